@@ -1,0 +1,66 @@
+#pragma once
+// The signals that flow along one device's plugin chain in a cycle:
+//   device.read -> DeviceState -> virtual model -> TaskTarget -> inverse kinematics -> JointTarget
+//   -> controller -> JointCommand -> safety -> device.write
+// All members are fixed-size: copying or filling them never allocates.
+#include <cstdint>
+
+#include "hapticd/joint_vector.hpp"
+#include "hapticd/spatial.hpp"
+
+namespace hapticd {
+
+// One sample read from a device.
+struct DeviceState {
+  std::int64_t timestamp_ns = 0;  // device time of the sample (simulated devices: the cycle time)
+  JointState joints;              // measured positions; velocities if the device reports them; effort = joint torque
+  Wrench sensor_wrench;           // force/torque sensor reading in the sensor frame, if the device has one
+};
+
+// What the virtual model asks of the chain. Admittance-type models fill the motion (desired pose, twist and
+// acceleration of the handle); impedance-type models fill the wrench to display.
+struct TaskTarget {
+  Pose pose;
+  Twist twist;
+  Twist acceleration;
+  Wrench wrench;
+  bool has_motion = false;
+  bool has_wrench = false;
+};
+
+// Desired joint motion from the inverse kinematics.
+struct JointTarget {
+  JointVector position;
+  JointVector velocity;
+  JointVector acceleration;
+  bool valid = false;
+
+  void resize(int dof) {
+    position.setZero(dof);
+    velocity.setZero(dof);
+    acceleration.setZero(dof);
+    valid = false;
+  }
+};
+
+// Joint torques at the joint output [N m] (forces [N] for prismatic joints) sent to the drives.
+struct JointCommand {
+  JointVector torque_nm;
+};
+
+struct VirtualModelInput {
+  const DeviceState& device;
+};
+
+struct InverseKinematicsInput {
+  const DeviceState& device;
+  const TaskTarget& task;
+};
+
+struct ControllerInput {
+  const DeviceState& device;
+  const TaskTarget& task;
+  const JointTarget& joints;
+};
+
+}  // namespace hapticd

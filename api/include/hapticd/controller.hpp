@@ -1,0 +1,27 @@
+#pragma once
+#include "hapticd/chain_signals.hpp"
+#include "hapticd/cycle_time.hpp"
+#include "hapticd/export.hpp"
+#include "hapticd/parameters.hpp"
+#include "hapticd/plugin_context.hpp"
+#include "hapticd/return_code.hpp"
+
+namespace hapticd {
+
+// Turns the targets of the chain into joint torques.
+class HAPTICD_API Controller {
+ public:
+  virtual ~Controller();
+
+  // Not real-time safe. Validate parameters (ParameterError names the key) and allocate everything.
+  virtual void configure(const Parameters& parameters, const PluginContext& context) = 0;
+  // Real-time safe. Start at a cycle boundary from the current state and the last torque command that reached
+  // the drives (bumpless transfer: the first update() should not jump away from it).
+  virtual ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept = 0;
+  // Real-time safe.
+  virtual ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept = 0;
+  // Not real-time safe. Called after the controller has left the loop.
+  virtual void deactivate() = 0;
+};
+
+}  // namespace hapticd

@@ -1,0 +1,34 @@
+#pragma once
+#include "hapticd/chain_signals.hpp"
+#include "hapticd/cycle_time.hpp"
+#include "hapticd/device_description.hpp"
+#include "hapticd/export.hpp"
+#include "hapticd/parameters.hpp"
+#include "hapticd/plugin_context.hpp"
+#include "hapticd/return_code.hpp"
+
+namespace hapticd {
+
+// A force-feedback device (hardware driver or simulation). Lifecycle:
+// configure -> description -> activate -> { read, write }* -> deactivate.
+class HAPTICD_API Device {
+ public:
+  virtual ~Device();
+
+  // Not real-time safe. Validate parameters (ParameterError names the key), allocate, open connections.
+  // Must not power the drives.
+  virtual void configure(const Parameters& parameters, const PluginContext& context) = 0;
+  // Not real-time safe. Valid after configure().
+  [[nodiscard]] virtual const DeviceDescription& description() const = 0;
+  // Not real-time safe. Power the drives with zero torque; the first read() follows at cycle 0.
+  virtual void activate() = 0;
+  // Real-time safe. Fill the newest sample for the cycle at cycle.time_ns. A simulated device advances its
+  // physics to that time under the last written command (zero-order hold).
+  virtual ReturnCode read(const CycleTime& cycle, DeviceState& state) noexcept = 0;
+  // Real-time safe. Command joint torques, held until the next write().
+  virtual ReturnCode write(const CycleTime& cycle, const JointCommand& command) noexcept = 0;
+  // Not real-time safe. Zero torque, drives off. Called after the loop has stopped using the device.
+  virtual void deactivate() = 0;
+};
+
+}  // namespace hapticd

@@ -1,0 +1,32 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace hapticd {
+
+// Limits and identity of one joint, at the joint output (after the gear).
+struct JointDescription {
+  std::string name;
+  double position_min = -1e9;         // [rad or m]
+  double position_max = 1e9;          // [rad or m]
+  double velocity_max = 1e9;          // [rad/s or m/s]
+  double torque_peak_nm = 0.0;        // largest torque the drive may be commanded (saturation)
+  double torque_continuous_nm = 0.0;  // thermally sustainable torque
+};
+
+// What a device plugin tells the server about itself after configure(). Not used in the loop (strings and
+// vectors): the server copies what the loop needs into fixed-size storage.
+struct DeviceDescription {
+  std::string model;                // e.g. "vishard3", "test_mass_spring"
+  std::vector<JointDescription> joints;
+  std::string handle_frame;         // name of the handle (end-effector) frame in the robot model, if any
+  std::string sensor_frame;         // name of the force/torque sensor frame, if any
+  std::string robot_model_file;     // URDF of the chain, if any
+  bool reports_joint_velocity = false;
+  bool reports_wrench = false;
+  bool reports_joint_torque = false;
+
+  [[nodiscard]] int dof() const noexcept { return static_cast<int>(joints.size()); }
+};
+
+}  // namespace hapticd

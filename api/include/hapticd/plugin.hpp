@@ -1,0 +1,80 @@
+#pragma once
+// Plugin metadata and the entry points a plugin library exports. A library exports two C symbols:
+//   int hapticd_plugin_api_version()                      -> kApiVersion it was built against
+//   const hapticd::PluginCatalog* hapticd_plugin_catalog() -> the plugins it contains
+// The loader reads the version first and refuses a mismatch before it touches the catalog (whose layout may
+// differ between versions). Write them with HAPTICD_PLUGIN_LIBRARY(hapticd::describe_plugin<T>(...), ...).
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string_view>
+#include <type_traits>
+
+#include "hapticd/api_version.hpp"
+#include "hapticd/controller.hpp"
+#include "hapticd/device.hpp"
+#include "hapticd/export.hpp"
+#include "hapticd/inverse_kinematics.hpp"
+#include "hapticd/parameters.hpp"
+#include "hapticd/virtual_model.hpp"
+
+namespace hapticd {
+
+enum class PluginKind : std::uint8_t { device, controller, inverse_kinematics, virtual_model };
+
+[[nodiscard]] HAPTICD_API std::string_view to_string(PluginKind kind) noexcept;
+
+struct PluginDescriptor {
+  PluginKind kind;
+  const char* name;     // unique among all plugins the server can load, e.g. "sim_vishard"
+  const char* version;  // the plugin's own version
+  const char* summary;  // one line for listings
+  ParameterSchema (*parameter_schema)();
+  // Exactly the factory matching kind is set.
+  std::unique_ptr<Device> (*create_device)();
+  std::unique_ptr<Controller> (*create_controller)();
+  std::unique_ptr<InverseKinematics> (*create_inverse_kinematics)();
+  std::unique_ptr<VirtualModel> (*create_virtual_model)();
+};
+
+struct PluginCatalog {
+  const PluginDescriptor* entries;
+  std::size_t count;
+};
+
+// Descriptor of plugin class T, which derives from one of the four interfaces and has a static
+// `ParameterSchema parameter_schema()`.
+template <class T>
+PluginDescriptor describe_plugin(const char* name, const char* version, const char* summary) {
+  PluginDescriptor d{};
+  d.name = name;
+  d.version = version;
+  d.summary = summary;
+  d.parameter_schema = &T::parameter_schema;
+  if constexpr (std::is_base_of_v<Device, T>) {
+    d.kind = PluginKind::device;
+    d.create_device = []() -> std::unique_ptr<Device> { return std::make_unique<T>(); };
+  } else if constexpr (std::is_base_of_v<Controller, T>) {
+    d.kind = PluginKind::controller;
+    d.create_controller = []() -> std::unique_ptr<Controller> { return std::make_unique<T>(); };
+  } else if constexpr (std::is_base_of_v<InverseKinematics, T>) {
+    d.kind = PluginKind::inverse_kinematics;
+    d.create_inverse_kinematics = []() -> std::unique_ptr<InverseKinematics> { return std::make_unique<T>(); };
+  } else {
+    static_assert(std::is_base_of_v<VirtualModel, T>, "a plugin derives from Device, Controller, "
+                                                      "InverseKinematics or VirtualModel");
+    d.kind = PluginKind::virtual_model;
+    d.create_virtual_model = []() -> std::unique_ptr<VirtualModel> { return std::make_unique<T>(); };
+  }
+  return d;
+}
+
+}  // namespace hapticd
+
+#define HAPTICD_PLUGIN_LIBRARY(...)                                                                     \
+  extern "C" HAPTICD_API int hapticd_plugin_api_version() { return ::hapticd::kApiVersion; }           \
+  extern "C" HAPTICD_API const ::hapticd::PluginCatalog* hapticd_plugin_catalog() {                    \
+    static const ::hapticd::PluginDescriptor entries[] = {__VA_ARGS__};                                 \
+    static const ::hapticd::PluginCatalog catalog{entries, sizeof(entries) / sizeof(entries[0])};       \
+    return &catalog;                                                                                    \
+  }

@@ -1,0 +1,28 @@
+#pragma once
+#include "hapticd/chain_signals.hpp"
+#include "hapticd/cycle_time.hpp"
+#include "hapticd/export.hpp"
+#include "hapticd/parameters.hpp"
+#include "hapticd/plugin_context.hpp"
+#include "hapticd/return_code.hpp"
+
+namespace hapticd {
+
+// The virtual environment a device renders: admittance type (operator and environment wrench in, desired
+// motion out) or impedance type (measured motion in, desired wrench out).
+class HAPTICD_API VirtualModel {
+ public:
+  virtual ~VirtualModel();
+
+  // Not real-time safe. Validate parameters (ParameterError names the key) and allocate everything.
+  virtual void configure(const Parameters& parameters, const PluginContext& context) = 0;
+  // Real-time safe. Start at a cycle boundary from the current state (for instance: the desired pose starts
+  // at the measured pose), so the hand-over does not make the torque jump.
+  virtual ReturnCode activate(const VirtualModelInput& current) noexcept = 0;
+  // Real-time safe.
+  virtual ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept = 0;
+  // Not real-time safe. Called after the model has left the loop.
+  virtual void deactivate() = 0;
+};
+
+}  // namespace hapticd

@@ -1,0 +1,26 @@
+// Out-of-line destructors: the key functions that give each interface one vtable and one type_info, in the
+// SDK library, shared by the server and every plugin.
+#include "hapticd/controller.hpp"
+#include "hapticd/device.hpp"
+#include "hapticd/inverse_kinematics.hpp"
+#include "hapticd/plugin.hpp"
+#include "hapticd/virtual_model.hpp"
+
+namespace hapticd {
+
+Device::~Device() = default;
+Controller::~Controller() = default;
+InverseKinematics::~InverseKinematics() = default;
+VirtualModel::~VirtualModel() = default;
+
+std::string_view to_string(PluginKind kind) noexcept {
+  switch (kind) {
+    case PluginKind::device: return "device";
+    case PluginKind::controller: return "controller";
+    case PluginKind::inverse_kinematics: return "inverse_kinematics";
+    case PluginKind::virtual_model: return "virtual_model";
+  }
+  return "unknown";
+}
+
+}  // namespace hapticd

@@ -1,0 +1,21 @@
+#pragma once
+#include "hapticd/inverse_kinematics.hpp"
+
+namespace hapticd::test_plugins {
+
+// Identity map from the task target's x, y, z to the first (up to) three joints: the IK of a Cartesian
+// device whose joints are its axes.
+class AxisInverseKinematics final : public InverseKinematics {
+ public:
+  static ParameterSchema parameter_schema() { return {}; }
+
+  void configure(const Parameters& parameters, const PluginContext& context) override;
+  ReturnCode activate(const InverseKinematicsInput& current) noexcept override;
+  ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) noexcept override;
+  void deactivate() override {}
+
+ private:
+  int axes_ = 0;
+};
+
+}  // namespace hapticd::test_plugins

@@ -1,0 +1,100 @@
+#include "mass_spring_device.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace hapticd::test_plugins {
+
+ParameterSchema MassSpringDevice::parameter_schema() {
+  ParameterSchema s;
+  s.real("mass_kg", "moving mass").unit("kg").greater_than(0.0).default_value(1.0);
+  s.real("stiffness_n_per_m", "spring to the rest position 0").unit("N/m").minimum(0.0).default_value(100.0);
+  s.real("damping_n_s_per_m", "viscous damping").unit("N s/m").minimum(0.0).default_value(1.0);
+  s.real("initial_position_m", "position at activation").unit("m").minimum(-1.0).maximum(1.0).default_value(0.0);
+  s.real("force_limit_n", "actuator saturation (peak force)").unit("N").greater_than(0.0).default_value(50.0);
+  s.integer("substeps", "integration steps per control period").minimum(1).maximum(1000).default_value(10);
+  s.real("encoder_resolution_m", "position quantum; 0 is an ideal encoder").unit("m").minimum(0.0).default_value(0.0);
+  s.real("position_noise_m", "standard deviation of Gaussian position noise (seeded)").unit("m").minimum(0.0)
+      .default_value(0.0);
+  s.integer("fail_read_at_cycle", "fault injection: read() fails from this cycle on; -1 never").minimum(-1)
+      .default_value(-1);
+  return s;
+}
+
+void MassSpringDevice::configure(const Parameters& p, const PluginContext& context) {
+  mass_kg_ = p.real("mass_kg");
+  stiffness_n_per_m_ = p.real("stiffness_n_per_m");
+  damping_n_s_per_m_ = p.real("damping_n_s_per_m");
+  initial_position_m_ = p.real("initial_position_m");
+  force_limit_n_ = p.real("force_limit_n");
+  substeps_ = p.integer("substeps");
+  encoder_resolution_m_ = p.real("encoder_resolution_m");
+  position_noise_m_ = p.real("position_noise_m");
+  fail_read_at_cycle_ = p.integer("fail_read_at_cycle");
+  period_s_ = 1.0 / context.rate_hz;
+  // Semi-implicit Euler is stable for w dt < 2; keep a wide margin so the test device is also accurate.
+  const double natural_hz = std::sqrt(stiffness_n_per_m_ / mass_kg_) / (2.0 * std::numbers::pi);
+  const double substep_hz = context.rate_hz * static_cast<double>(substeps_);
+  if (natural_hz > substep_hz / 20.0)
+    throw ParameterError("stiffness_n_per_m", "natural frequency " + std::to_string(natural_hz) +
+                                                  " Hz is too high for " + std::to_string(substeps_) +
+                                                  " substeps at this rate (limit " + std::to_string(substep_hz / 20.0) +
+                                                  " Hz): raise substeps or lower the stiffness");
+  rng_.seed(context.seed);
+
+  description_ = DeviceDescription{};
+  description_.model = "test_mass_spring";
+  description_.joints.push_back(JointDescription{"x", -1.0, 1.0, 10.0, force_limit_n_, force_limit_n_});
+  description_.reports_joint_velocity = true;
+}
+
+void MassSpringDevice::activate() {
+  position_m_ = initial_position_m_;
+  velocity_m_s_ = 0.0;
+  force_n_ = 0.0;
+  simulated_ns_ = 0;
+}
+
+void MassSpringDevice::step(double dt) noexcept {
+  const double acceleration = (-stiffness_n_per_m_ * position_m_ - damping_n_s_per_m_ * velocity_m_s_ + force_n_) / mass_kg_;
+  velocity_m_s_ += acceleration * dt;
+  position_m_ += velocity_m_s_ * dt;
+}
+
+ReturnCode MassSpringDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
+  if (fail_read_at_cycle_ >= 0 && cycle.index >= static_cast<std::uint64_t>(fail_read_at_cycle_)) return ReturnCode::error;
+  // Advance to the cycle's time in fixed substeps; a gap of more than 10 periods (a stalled real-time loop)
+  // is not integrated, which bounds the time read() takes.
+  const std::int64_t substep_ns = std::max<std::int64_t>(1, cycle.period_ns / substeps_);
+  const std::int64_t max_steps = 10 * substeps_;
+  std::int64_t steps = 0;
+  while (simulated_ns_ + substep_ns <= cycle.time_ns && steps < max_steps) {
+    step(static_cast<double>(substep_ns) * 1e-9);
+    simulated_ns_ += substep_ns;
+    ++steps;
+  }
+  if (simulated_ns_ + substep_ns <= cycle.time_ns) simulated_ns_ = cycle.time_ns;
+
+  double measured = position_m_;
+  if (position_noise_m_ > 0.0) measured += position_noise_m_ * noise_(rng_);
+  if (encoder_resolution_m_ > 0.0) measured = encoder_resolution_m_ * std::round(measured / encoder_resolution_m_);
+
+  state.timestamp_ns = cycle.time_ns;
+  state.joints.position[0] = measured;
+  state.joints.velocity[0] = velocity_m_s_;
+  state.joints.effort[0] = force_n_;
+  return ReturnCode::ok;
+}
+
+ReturnCode MassSpringDevice::write(const CycleTime&, const JointCommand& command) noexcept {
+  const double f = command.torque_nm[0];
+  if (!std::isfinite(f)) return ReturnCode::error;
+  force_n_ = std::clamp(f, -force_limit_n_, force_limit_n_);
+  return ReturnCode::ok;
+}
+
+void MassSpringDevice::deactivate() { force_n_ = 0.0; }
+
+}  // namespace hapticd::test_plugins

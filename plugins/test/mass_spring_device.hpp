@@ -1,0 +1,46 @@
+#pragma once
+#include <cstdint>
+#include <random>
+
+#include "hapticd/device.hpp"
+
+namespace hapticd::test_plugins {
+
+// A 1-DOF mass on a spring with viscous damping: m xdd = -k x - c xd + u, u the commanded force saturated at
+// force_limit_n. Integrated (semi-implicit Euler) in substeps up to each cycle's time; optional encoder
+// quantisation and seeded Gaussian position noise; optional injected read failure for fault tests.
+class MassSpringDevice final : public Device {
+ public:
+  static ParameterSchema parameter_schema();
+
+  void configure(const Parameters& parameters, const PluginContext& context) override;
+  [[nodiscard]] const DeviceDescription& description() const override { return description_; }
+  void activate() override;
+  ReturnCode read(const CycleTime& cycle, DeviceState& state) noexcept override;
+  ReturnCode write(const CycleTime& cycle, const JointCommand& command) noexcept override;
+  void deactivate() override;
+
+ private:
+  void step(double dt) noexcept;
+
+  DeviceDescription description_;
+  double mass_kg_ = 1.0;
+  double stiffness_n_per_m_ = 0.0;
+  double damping_n_s_per_m_ = 0.0;
+  double initial_position_m_ = 0.0;
+  double force_limit_n_ = 0.0;
+  double encoder_resolution_m_ = 0.0;
+  double position_noise_m_ = 0.0;
+  std::int64_t substeps_ = 1;
+  std::int64_t fail_read_at_cycle_ = -1;
+  double period_s_ = 0.0005;
+
+  double position_m_ = 0.0;
+  double velocity_m_s_ = 0.0;
+  double force_n_ = 0.0;
+  std::int64_t simulated_ns_ = 0;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> noise_{0.0, 1.0};
+};
+
+}  // namespace hapticd::test_plugins

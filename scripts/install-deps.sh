@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package hapticd needs to build, test, benchmark and plot.
+# Idempotent: packages already present are not reinstalled, and apt is not touched when nothing is missing.
+# Works as root or through sudo. Nothing else is ever downloaded: the build uses only these packages.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config ccache git
+  libeigen3-dev
+  cyclonedds-dev cyclonedds-tools
+  liburdfdom-dev
+  libboost-dev libboost-filesystem-dev
+  libspdlog-dev libfmt-dev
+  libyaml-cpp-dev
+  libcli11-dev
+  libgtest-dev libgmock-dev
+  libbenchmark-dev
+  liborocos-kdl-dev
+  rt-tests
+  python3 python3-matplotlib
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  sudo_cmd=(sudo)
+fi
+
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,196 @@
+#include "app/commands.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <memory>
+
+#include "app/session_report.hpp"
+#include "app/signals.hpp"
+#include "config/config_error.hpp"
+#include "config/session_config.hpp"
+#include "executor/executor.hpp"
+#include "recorder/recorder.hpp"
+#include "session/session_builder.hpp"
+
+namespace hapticd::server {
+namespace {
+
+struct LoadedSession {
+  SessionConfig config;
+  std::unique_ptr<PluginLoader> loader;
+  std::vector<std::unique_ptr<DeviceSession>> sessions;
+};
+
+// Config errors are printed once, here, without a log prefix: they are for the user to fix.
+std::optional<LoadedSession> load(const std::string& file, const RunOptions* overrides) {
+  try {
+    LoadedSession s;
+    s.config = load_session_config(file);
+    if (overrides != nullptr) {
+      if (overrides->duration_s) s.config.server.duration_s = *overrides->duration_s;
+      if (overrides->clock) s.config.server.clock = *overrides->clock == "lockstep" ? ClockMode::lockstep : ClockMode::realtime;
+    }
+    s.loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(s.config.server.plugin_paths));
+    s.sessions = build_sessions(s.config, *s.loader);
+    return s;
+  } catch (const ConfigError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+  }
+  return std::nullopt;
+}
+
+void print_schema(const ParameterSchema& schema) {
+  if (schema.specs().empty()) fmt::print("  (no parameters)\n");
+  for (const auto& spec : schema.specs())
+    fmt::print("  {:<24} {}\n  {:<24}   {}\n", spec.name, spec.description, "", spec.constraints_text());
+}
+
+}  // namespace
+
+int check_config(const std::string& file) {
+  const auto s = load(file, nullptr);
+  if (!s) return kExitConfigError;
+  fmt::print("{}: ok ({} device{}, {} Hz, {} clock)\n", file, s->sessions.size(), s->sessions.size() == 1 ? "" : "s",
+             s->config.server.rate_hz, s->config.server.clock == ClockMode::lockstep ? "lockstep" : "realtime");
+  for (const auto& d : s->sessions) {
+    const DeviceChain& c = d->chain();
+    fmt::print("  {}: {} ({} joints){}{} -> {}\n", d->name(), c.device.descriptor->name, d->description().dof(),
+               c.virtual_model ? fmt::format(" -> {}", c.virtual_model->descriptor->name) : "",
+               c.inverse_kinematics ? fmt::format(" -> {}", c.inverse_kinematics->descriptor->name) : "",
+               c.controller.descriptor->name);
+  }
+  return kExitOk;
+}
+
+int run_session(const RunOptions& options) {
+  auto s = load(options.config_file, &options);
+  if (!s) return kExitConfigError;
+  const ServerSettings& server = s->config.server;
+  const bool lockstep = server.clock == ClockMode::lockstep;
+  if (lockstep && server.duration_s <= 0.0)
+    spdlog::warn("lockstep clock without a duration: the session runs as fast as possible until SIGINT/SIGTERM");
+
+  std::unique_ptr<Recorder> recorder;
+  if (!options.record_csv.empty()) {
+    std::vector<std::string> names;
+    for (const auto& d : s->sessions) names.push_back(d->name());
+    try {
+      recorder = std::make_unique<Recorder>(options.record_csv, names, lockstep);
+    } catch (const std::exception& e) {
+      spdlog::error("{}", e.what());
+      return kExitRuntimeError;
+    }
+  }
+
+  std::vector<DeviceSession*> sessions;
+  for (const auto& d : s->sessions) sessions.push_back(d.get());
+  ExecutorSettings settings;
+  settings.rate_hz = server.rate_hz;
+  settings.lockstep = lockstep;
+  settings.duration_s = server.duration_s;
+  settings.shutdown_ramp_s = server.shutdown_ramp_s;
+  settings.realtime_priority = server.realtime_priority;
+  settings.lock_memory = server.lock_memory;
+  settings.cpu = server.cpu;
+  Executor executor(settings, sessions, recorder.get());
+
+  const std::atomic<bool>& stop = install_stop_signal_handlers();
+  spdlog::info("session {}: {} device(s) at {} Hz, {} clock{}", options.config_file, sessions.size(), server.rate_hz,
+               lockstep ? "lockstep" : "realtime",
+               server.duration_s > 0 ? fmt::format(", {} s", server.duration_s) : std::string(", until stopped"));
+
+  std::vector<DeviceFault> reported(sessions.size(), DeviceFault::none);
+  bool stop_logged = false;
+  const auto monitor = [&] {
+    for (std::size_t i = 0; i < sessions.size(); ++i) {
+      const DeviceFault f = sessions[i]->fault();
+      if (f != reported[i]) {
+        spdlog::error("device '{}' is in its safe state (zero torque) since cycle {}: {}", sessions[i]->name(),
+                      sessions[i]->fault_cycle(), to_string(f));
+        reported[i] = f;
+      }
+    }
+    if (stop.load() && !stop_logged) {
+      spdlog::info("stop requested: ramping torques to zero over {} s", server.shutdown_ramp_s);
+      stop_logged = true;
+    }
+  };
+
+  ExecutorResult result;
+  try {
+    result = executor.run(stop, monitor);
+  } catch (const std::exception& e) {
+    spdlog::error("session failed: {}", e.what());
+    return kExitRuntimeError;
+  }
+  for (const auto& w : result.warnings) spdlog::warn("{}", w);
+  if (recorder) recorder->finish();
+
+  SessionReport report{&s->config, &result, &s->sessions, recorder ? recorder->written() : 0,
+                       recorder ? recorder->dropped() : 0};
+  for (const auto& line : report_lines(report)) spdlog::info("{}", line);
+  if (recorder) spdlog::info("recorded {} device-cycles to {} ({} dropped)", recorder->written(), options.record_csv, recorder->dropped());
+  if (!options.stats_json.empty()) {
+    std::ofstream out(options.stats_json);
+    out << report_json(report);
+    if (!out) {
+      spdlog::error("cannot write {}", options.stats_json);
+      return kExitRuntimeError;
+    }
+  }
+  for (const auto& d : s->sessions)
+    if (d->fault() != DeviceFault::none) return kExitDeviceFault;
+  return kExitOk;
+}
+
+int list_plugins(const std::string& config_file) {
+  std::vector<std::filesystem::path> configured;
+  if (!config_file.empty()) {
+    try {
+      configured = load_session_config(config_file).server.plugin_paths;
+    } catch (const ConfigError& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      return kExitConfigError;
+    }
+  }
+  PluginLoader loader(PluginLoader::search_paths_for(configured));
+  std::vector<std::string> problems;
+  const auto handles = loader.list_all(&problems);
+  for (const auto& h : handles)
+    fmt::print("{:<20} {:<18} {:<8} {}  ({})\n", h.descriptor->name, to_string(h.descriptor->kind), h.descriptor->version,
+               h.descriptor->summary, h.library->path.string());
+  for (const auto& p : problems) fmt::print(stderr, "warning: {}\n", p);
+  if (handles.empty()) {
+    std::string paths;
+    for (const auto& p : loader.search_paths()) paths += (paths.empty() ? "" : ", ") + p.string();
+    fmt::print(stderr, "no plugins found; search paths: {}\n", paths);
+  }
+  return kExitOk;
+}
+
+int describe_plugin(const std::string& name, const std::string& config_file) {
+  std::vector<std::filesystem::path> configured;
+  if (!config_file.empty()) configured = load_session_config(config_file).server.plugin_paths;
+  PluginLoader loader(PluginLoader::search_paths_for(configured));
+  for (const auto& h : loader.list_all()) {
+    if (name != h.descriptor->name) continue;
+    fmt::print("{} {} ({} plugin): {}\nlibrary: {}\nparameters:\n", h.descriptor->name, h.descriptor->version,
+               to_string(h.descriptor->kind), h.descriptor->summary, h.library->path.string());
+    print_schema(h.descriptor->parameter_schema());
+    return kExitOk;
+  }
+  fmt::print(stderr, "error: no plugin named '{}' on the search paths\n", name);
+  return kExitConfigError;
+}
+
+int describe_config() {
+  fmt::print("server section of a session file:\n");
+  print_schema(server_settings_schema());
+  fmt::print("  {:<24} {}\n  {:<24}   {}\n", "plugin_paths", "folders searched for plugin libraries before "
+             "HAPTICD_PLUGIN_PATH and the installed plugin folder", "", "list of folders, relative to the session file");
+  return kExitOk;
+}
+
+}  // namespace hapticd::server

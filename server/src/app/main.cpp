@@ -1,0 +1,52 @@
+// hapticd: the real-time haptic control server.
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "app/commands.hpp"
+#include "hapticd/api_version.hpp"
+
+int main(int argc, char** argv) {
+  using namespace hapticd::server;
+  CLI::App app{"hapticd - real-time haptic control server"};
+  app.set_version_flag("--version", std::string("hapticd 0.1.0 (plugin API ") + std::to_string(hapticd::kApiVersion) + ")");
+
+  RunOptions run;
+  std::string check_file;
+  std::string describe_name;
+  bool list = false;
+  bool describe_server = false;
+  std::string log_level = "info";
+  double duration = -1.0;
+  std::string clock;
+
+  auto* config_opt = app.add_option("--config", run.config_file, "run the session described by this YAML file");
+  auto* check_opt = app.add_option("--check-config", check_file, "validate a session file (loads and configures its plugins) and exit");
+  auto* list_opt = app.add_flag("--list-plugins", list, "list the plugins on the search paths (with --config: also its plugin_paths)");
+  auto* describe_opt = app.add_option("--describe-plugin", describe_name, "print a plugin's parameters (type, unit, bounds, default)");
+  auto* server_opt = app.add_flag("--describe-config", describe_server, "print the settings of a session file's server section");
+  auto* duration_opt = app.add_option("--duration", duration, "run for this many seconds (overrides server.duration_s)")
+                           ->check(CLI::NonNegativeNumber);
+  auto* clock_opt = app.add_option("--clock", clock, "realtime or lockstep (overrides server.clock)")
+                        ->check(CLI::IsMember({"realtime", "lockstep"}));
+  app.add_option("--stats-json", run.stats_json, "write loop statistics (histograms, percentiles) to this JSON file");
+  app.add_option("--record", run.record_csv, "record every cycle of every device to this CSV file");
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
+  check_opt->excludes(config_opt);
+  server_opt->excludes(config_opt)->excludes(check_opt)->excludes(list_opt)->excludes(describe_opt);
+  CLI11_PARSE(app, argc, argv);
+
+  spdlog::set_level(spdlog::level::from_str(log_level));
+  spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
+
+  if (*duration_opt) run.duration_s = duration;
+  if (*clock_opt) run.clock = clock;
+
+  if (describe_server) return describe_config();
+  if (!describe_name.empty()) return describe_plugin(describe_name, run.config_file);
+  if (list) return list_plugins(run.config_file);
+  if (!check_file.empty()) return check_config(check_file);
+  if (!run.config_file.empty()) return run_session(run);
+  std::fputs(app.help().c_str(), stdout);
+  return 1;
+}

@@ -1,0 +1,25 @@
+#pragma once
+// What a finished session reports: loop timing and per-device outcome, as text for the log and as JSON for
+// --stats-json.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/session_config.hpp"
+#include "executor/executor.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server {
+
+struct SessionReport {
+  const SessionConfig* config = nullptr;
+  const ExecutorResult* result = nullptr;
+  const std::vector<std::unique_ptr<DeviceSession>>* sessions = nullptr;
+  std::uint64_t records_written = 0;
+  std::uint64_t records_dropped = 0;
+};
+
+std::string report_json(const SessionReport& report);
+std::vector<std::string> report_lines(const SessionReport& report);
+
+}  // namespace hapticd::server

@@ -1,0 +1,129 @@
+#include "config/session_config.hpp"
+
+#include <set>
+
+#include "config/config_error.hpp"
+#include "config/yaml_reader.hpp"
+
+namespace hapticd::server {
+namespace {
+
+PluginConfig read_plugin(const YAML::Node& node, const std::string& key_path, const std::string& file) {
+  MappingReader reader(node, key_path, file, {"plugin", "library", "parameters"});
+  PluginConfig plugin;
+  plugin.key_path = key_path;
+  plugin.line = line_of(node);
+  plugin.plugin = reader.required_string("plugin");
+  const YAML::Node library = reader.optional("library");
+  if (library.IsDefined() && !library.IsNull()) {
+    if (!library.IsScalar()) throw ConfigError(file, line_of(library), reader.path_of("library"), "expected a library name or path");
+    plugin.library = library.Scalar();
+  }
+  plugin.parameters = reader.optional("parameters");
+  return plugin;
+}
+
+std::optional<PluginConfig> read_optional_plugin(MappingReader& reader, const std::string& key) {
+  const YAML::Node node = reader.optional(key);
+  if (!node.IsDefined() || node.IsNull()) return std::nullopt;
+  return read_plugin(node, reader.path_of(key), reader.file());
+}
+
+bool valid_device_name(const std::string& name) {
+  if (name.empty() || name.size() > 64) return false;
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) return false;
+  return true;
+}
+
+ServerSettings read_server(const YAML::Node& node, const std::string& file, const std::filesystem::path& base) {
+  ServerSettings settings;
+  if (!node.IsDefined() || node.IsNull()) return settings;
+  if (!node.IsMap()) throw ConfigError(file, line_of(node), "server", "expected a mapping of server settings");
+
+  // plugin_paths is a list of strings, read apart from the schema'd scalar settings.
+  if (const YAML::Node paths = node["plugin_paths"]; paths.IsDefined() && !paths.IsNull()) {
+    if (!paths.IsSequence()) throw ConfigError(file, line_of(paths), "server.plugin_paths", "expected a list of folders");
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      if (!paths[i].IsScalar())
+        throw ConfigError(file, line_of(paths[i]), "server.plugin_paths[" + std::to_string(i) + "]", "expected a folder path");
+      std::filesystem::path p = paths[i].Scalar();
+      settings.plugin_paths.push_back(p.is_absolute() ? p : base / p);
+    }
+  }
+
+  const Parameters p = read_parameters(node, server_settings_schema(), file, "server", line_of(node), {"plugin_paths"});
+  settings.rate_hz = p.real("rate_hz");
+  settings.clock = p.string("clock") == "lockstep" ? ClockMode::lockstep : ClockMode::realtime;
+  settings.duration_s = p.real("duration_s");
+  settings.seed = static_cast<std::uint64_t>(p.integer("seed"));
+  settings.realtime_priority = static_cast<int>(p.integer("realtime_priority"));
+  settings.lock_memory = p.boolean("lock_memory");
+  settings.cpu = static_cast<int>(p.integer("cpu"));
+  settings.shutdown_ramp_s = p.real("shutdown_ramp_s");
+  return settings;
+}
+
+}  // namespace
+
+ParameterSchema server_settings_schema() {
+  ParameterSchema s;
+  s.real("rate_hz", "control loop rate").unit("Hz").minimum(100.0).maximum(20000.0).default_value(2000.0);
+  s.string("clock", "realtime: absolute deadlines on the monotonic clock; lockstep: virtual clock, as fast as possible")
+      .choices({"realtime", "lockstep"}).default_value(std::string("realtime"));
+  s.real("duration_s", "session length; 0 runs until SIGINT/SIGTERM").unit("s").minimum(0.0).default_value(0.0);
+  s.integer("seed", "seed of every random process (simulated noise), per device derived from it").minimum(0)
+      .default_value(std::int64_t{1});
+  s.integer("realtime_priority", "SCHED_FIFO priority of the loop thread; 0 keeps the normal scheduler").minimum(0)
+      .maximum(99).default_value(std::int64_t{80});
+  s.boolean("lock_memory", "lock all pages in memory (mlockall) in realtime mode").default_value(true);
+  s.integer("cpu", "pin the loop thread to this CPU; -1 does not pin").minimum(-1).maximum(1023)
+      .default_value(std::int64_t{-1});
+  s.real("shutdown_ramp_s", "torques ramp linearly to zero over this time when the session ends").unit("s")
+      .minimum(0.0).maximum(5.0).default_value(0.2);
+  return s;
+}
+
+SessionConfig load_session_config(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  if (!std::filesystem::exists(path)) throw ConfigError(file, 0, "", "no such file");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(file, e.mark.is_null() ? 0 : e.mark.line + 1, "", "YAML syntax error: " + e.msg);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError(file, 0, "", "cannot read the file");
+  }
+  if (!root.IsDefined() || root.IsNull()) throw ConfigError(file, 0, "", "the file is empty");
+
+  SessionConfig config;
+  config.file = path;
+  MappingReader top(root, "", file, {"server", "devices"});
+  config.server = read_server(top.optional("server"), file, path.parent_path());
+
+  const YAML::Node devices = top.required("devices");
+  if (!devices.IsSequence() || devices.size() == 0)
+    throw ConfigError(file, line_of(devices), "devices", "expected a non-empty list of devices");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    const std::string key_path = "devices[" + std::to_string(i) + "]";
+    MappingReader reader(devices[i], key_path, file,
+                         {"name", "device", "virtual_model", "inverse_kinematics", "controller"});
+    DeviceConfig device;
+    device.name = reader.required_string("name");
+    if (!valid_device_name(device.name))
+      throw ConfigError(file, line_of(devices[i]["name"]), reader.path_of("name"),
+                        "device name '" + device.name + "' must be 1-64 characters of letters, digits, '_' and '-'");
+    if (!names.insert(device.name).second)
+      throw ConfigError(file, line_of(devices[i]["name"]), reader.path_of("name"), "device name '" + device.name + "' is used twice");
+    device.device = read_plugin(reader.required("device"), reader.path_of("device"), file);
+    device.virtual_model = read_optional_plugin(reader, "virtual_model");
+    device.inverse_kinematics = read_optional_plugin(reader, "inverse_kinematics");
+    device.controller = read_plugin(reader.required("controller"), reader.path_of("controller"), file);
+    config.devices.push_back(std::move(device));
+  }
+  return config;
+}
+
+}  // namespace hapticd::server

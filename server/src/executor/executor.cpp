@@ -1,0 +1,117 @@
+#include "executor/executor.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "executor/realtime_setup.hpp"
+#include "recorder/recorder.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server {
+
+Executor::Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder)
+    : settings_(settings),
+      sessions_(std::move(sessions)),
+      recorder_(recorder),
+      period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))) {}
+
+void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, ExecutorResult& result) noexcept {
+  CycleStatistics& stats = result.statistics;
+  const std::uint64_t run_cycles =
+      settings_.duration_s > 0.0 ? static_cast<std::uint64_t>(std::llround(settings_.duration_s * settings_.rate_hz)) : 0;
+  const auto ramp_cycles =
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(settings_.shutdown_ramp_s * settings_.rate_hz)));
+
+  const std::int64_t start_ns = clock.now_ns();
+  std::int64_t deadline_ns = start_ns;  // cycle 0 runs at once
+  std::uint64_t ramp_start = 0;
+  bool ramping = false;
+
+  for (;;) {
+    clock.sleep_until(deadline_ns);
+    const auto index = static_cast<std::uint64_t>((deadline_ns - start_ns) / period_ns_);
+    const std::int64_t wake_ns = clock.now_ns();
+    const std::int64_t compute_start_ns = monotonic_now_ns();
+
+    if (!ramping && ((run_cycles > 0 && index >= run_cycles) || stop_requested.load(std::memory_order_relaxed))) {
+      ramping = true;
+      ramp_start = index;
+      result.stop_requested = !(run_cycles > 0 && index >= run_cycles);
+    }
+    // Linear ramp from 1 to 0 over ramp_cycles; the last cycle of the ramp commands exactly zero.
+    const double scale =
+        ramping ? std::max(0.0, 1.0 - static_cast<double>(index - ramp_start + 1) / static_cast<double>(ramp_cycles)) : 1.0;
+
+    const CycleTime cycle{deadline_ns - start_ns, period_ns_, index};
+    for (std::size_t d = 0; d < sessions_.size(); ++d) {
+      sessions_[d]->cycle(cycle, scale);
+      if (recorder_ != nullptr) recorder_->record(cycle, static_cast<std::uint16_t>(d), sessions_[d]->state(), sessions_[d]->command());
+    }
+
+    const std::int64_t compute_end_ns = monotonic_now_ns();
+    const std::int64_t next_deadline_ns = deadline_ns + period_ns_;
+    const bool overrun = !clock.is_virtual() && clock.now_ns() > next_deadline_ns;
+    stats.record(wake_ns - deadline_ns, compute_end_ns - compute_start_ns, overrun);
+
+    if (ramping && index - ramp_start + 1 >= ramp_cycles) {
+      result.periods = index + 1;
+      break;
+    }
+
+    deadline_ns = next_deadline_ns;
+    if (overrun) {
+      // Behind by more than a period: keep the absolute schedule but skip the deadlines already missed.
+      const std::int64_t behind_ns = clock.now_ns() - deadline_ns;
+      if (behind_ns > period_ns_) {
+        const std::int64_t missed = behind_ns / period_ns_;
+        deadline_ns += missed * period_ns_;
+        stats.skipped_cycles += static_cast<std::uint64_t>(missed);
+      }
+    }
+  }
+  result.loop_time_s = static_cast<double>(clock.now_ns() - start_ns) * 1e-9;
+}
+
+ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std::function<void()>& monitor) {
+  ExecutorResult result;
+  if (!settings_.lockstep && settings_.lock_memory)
+    if (std::string w = lock_process_memory(); !w.empty()) result.warnings.push_back(std::move(w));
+
+  for (DeviceSession* s : sessions_) s->activate();
+
+  std::atomic<bool> go{false};
+  std::atomic<bool> done{false};
+  const std::int64_t wall_start_ns = monotonic_now_ns();
+  std::thread thread([&] {
+    while (!go.load(std::memory_order_acquire)) std::this_thread::yield();
+    if (!settings_.lockstep) minimise_timer_slack();
+    if (!settings_.lockstep && settings_.lock_memory) prefault_stack();
+    if (settings_.lockstep) {
+      VirtualClock clock;
+      loop(clock, stop_requested, result);
+    } else {
+      MonotonicClock clock;
+      loop(clock, stop_requested, result);
+    }
+    done.store(true, std::memory_order_release);
+  });
+  if (!settings_.lockstep) {
+    auto warnings = make_thread_realtime(thread, settings_.realtime_priority, settings_.cpu);
+    result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
+  }
+  go.store(true, std::memory_order_release);
+
+  while (!done.load(std::memory_order_acquire)) {
+    if (monitor) monitor();
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  thread.join();
+  if (monitor) monitor();
+  result.wall_time_s = static_cast<double>(monotonic_now_ns() - wall_start_ns) * 1e-9;
+
+  for (DeviceSession* s : sessions_) s->deactivate();
+  return result;
+}
+
+}  // namespace hapticd::server

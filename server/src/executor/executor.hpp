@@ -1,0 +1,59 @@
+#pragma once
+// The fixed-rate loop. It runs on a thread of its own (SCHED_FIFO and locked memory when permitted), sleeps
+// to absolute deadlines on its clock, runs every device session of the group each cycle (all devices see the
+// same instant), hands records to the recorder, and keeps timing statistics. At the end - duration reached
+// or stop requested - it ramps every device's torque linearly to zero over the shutdown ramp, then stops.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "executor/cycle_statistics.hpp"
+#include "executor/loop_clock.hpp"
+
+namespace hapticd::server {
+
+class DeviceSession;
+class Recorder;
+
+struct ExecutorSettings {
+  double rate_hz = 2000.0;
+  bool lockstep = false;
+  double duration_s = 0.0;  // 0: until stop is requested
+  double shutdown_ramp_s = 0.2;
+  int realtime_priority = 0;
+  bool lock_memory = false;
+  int cpu = -1;
+};
+
+struct ExecutorResult {
+  CycleStatistics statistics;
+  std::vector<std::string> warnings;  // real-time set-up that was not permitted
+  bool stop_requested = false;        // ended by request rather than by duration
+  std::uint64_t periods = 0;          // periods elapsed on the loop clock: cycles run + skipped
+  double loop_time_s = 0.0;           // time on the loop clock (virtual in lockstep)
+  double wall_time_s = 0.0;
+};
+
+class Executor {
+ public:
+  Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder);
+
+  // Activates the sessions, runs the loop until the duration has passed or stop_requested turns true, ramps
+  // down and deactivates. While the loop runs, the calling thread calls `monitor` every 20 ms (for logging:
+  // the loop never logs).
+  ExecutorResult run(const std::atomic<bool>& stop_requested, const std::function<void()>& monitor = {});
+
+  [[nodiscard]] std::int64_t period_ns() const noexcept { return period_ns_; }
+
+ private:
+  void loop(LoopClock& clock, const std::atomic<bool>& stop_requested, ExecutorResult& result) noexcept;
+
+  ExecutorSettings settings_;
+  std::vector<DeviceSession*> sessions_;
+  Recorder* recorder_;
+  std::int64_t period_ns_;
+};
+
+}  // namespace hapticd::server

@@ -1,0 +1,49 @@
+#include "executor/realtime_setup.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+#include <sys/mman.h>
+#include <sys/prctl.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace hapticd::server {
+
+std::string lock_process_memory() {
+  if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
+    return std::string("cannot lock memory (mlockall: ") + std::strerror(errno) +
+           "); page faults may delay the loop. Run as root or raise RLIMIT_MEMLOCK (ulimit -l).";
+  return {};
+}
+
+std::vector<std::string> make_thread_realtime(std::thread& thread, int priority, int cpu) {
+  std::vector<std::string> warnings;
+  if (priority > 0) {
+    sched_param param{};
+    param.sched_priority = priority;
+    if (const int rc = pthread_setschedparam(thread.native_handle(), SCHED_FIFO, &param); rc != 0)
+      warnings.push_back(std::string("cannot switch the loop thread to SCHED_FIFO priority ") + std::to_string(priority) +
+                         " (" + std::strerror(rc) + "); it runs under the normal scheduler with more jitter. "
+                         "Run as root, grant CAP_SYS_NICE or set an rtprio limit.");
+  }
+  if (cpu >= 0) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(cpu, &set);
+    if (const int rc = pthread_setaffinity_np(thread.native_handle(), sizeof set, &set); rc != 0)
+      warnings.push_back("cannot pin the loop thread to CPU " + std::to_string(cpu) + " (" + std::strerror(rc) + ")");
+  }
+  return warnings;
+}
+
+void minimise_timer_slack() noexcept { prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL); }
+
+void prefault_stack() noexcept {
+  constexpr std::size_t kBytes = 256 * 1024;
+  unsigned char stack[kBytes];
+  std::memset(stack, 0, kBytes);
+  asm volatile("" : : "r"(stack) : "memory");  // keep the writes: the point is to touch the pages
+}
+
+}  // namespace hapticd::server

@@ -1,0 +1,18 @@
+#pragma once
+// Real-time set-up of the loop, loudly: each step that is not permitted becomes a warning the caller logs.
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace hapticd::server {
+
+// mlockall(MCL_CURRENT | MCL_FUTURE). Returns a warning, or empty on success.
+std::string lock_process_memory();
+// SCHED_FIFO at `priority` (if > 0) and pinning to `cpu` (if >= 0) for the given thread. Returns warnings.
+std::vector<std::string> make_thread_realtime(std::thread& thread, int priority, int cpu);
+// Timer slack of the calling thread to 1 ns (the default 50 us delays every wake-up of a normal thread).
+void minimise_timer_slack() noexcept;
+// Touch a stack region so that its pages are resident before the loop needs them (no page faults later).
+void prefault_stack() noexcept;
+
+}  // namespace hapticd::server

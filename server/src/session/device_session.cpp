@@ -1,0 +1,121 @@
+#include "session/device_session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "session/finite.hpp"
+
+namespace hapticd::server {
+
+std::string_view to_string(DeviceFault fault) noexcept {
+  switch (fault) {
+    case DeviceFault::none: return "none";
+    case DeviceFault::device_read: return "device read failed";
+    case DeviceFault::device_write: return "device write failed";
+    case DeviceFault::non_finite_measurement: return "device reported a non-finite value";
+    case DeviceFault::activation: return "a plugin failed to activate";
+    case DeviceFault::virtual_model: return "virtual model update failed";
+    case DeviceFault::inverse_kinematics: return "inverse kinematics update failed";
+    case DeviceFault::controller: return "controller update failed";
+    case DeviceFault::non_finite_output: return "a plugin produced a non-finite output";
+  }
+  return "unknown";
+}
+
+DeviceSession::DeviceSession(std::string name, DeviceChain chain)
+    : name_(std::move(name)), chain_(std::move(chain)), description_(chain_.device->description()) {
+  const int dof = description_.dof();
+  if (dof < 1 || dof > kMaxJoints)
+    throw std::invalid_argument("device '" + name_ + "' reports " + std::to_string(dof) + " joints; supported: 1.." +
+                                std::to_string(kMaxJoints));
+  torque_limit_nm_.resize(dof);
+  for (int i = 0; i < dof; ++i) {
+    const double peak = description_.joints[static_cast<std::size_t>(i)].torque_peak_nm;
+    if (!(peak > 0.0) || !std::isfinite(peak))
+      throw std::invalid_argument("device '" + name_ + "' joint " + std::to_string(i) + " has no valid peak torque");
+    torque_limit_nm_[i] = peak;
+  }
+  state_.joints.resize(dof);
+  joint_target_.resize(dof);
+  command_.torque_nm.setZero(dof);
+  zero_command_.torque_nm.setZero(dof);
+}
+
+void DeviceSession::activate() {
+  chain_.device->activate();
+  chain_active_ = false;
+  command_.torque_nm.setZero();
+}
+
+ReturnCode DeviceSession::activate_chain() noexcept {
+  if (chain_.virtual_model && (*chain_.virtual_model)->activate(VirtualModelInput{state_}) != ReturnCode::ok)
+    return ReturnCode::error;
+  if (chain_.inverse_kinematics &&
+      (*chain_.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_}) != ReturnCode::ok)
+    return ReturnCode::error;
+  return chain_.controller->activate(ControllerInput{state_, task_, joint_target_}, command_);
+}
+
+DeviceFault DeviceSession::run_chain(const CycleTime& cycle) noexcept {
+  if (!chain_active_) {
+    if (activate_chain() != ReturnCode::ok) return DeviceFault::activation;
+    chain_active_ = true;
+  }
+  if (chain_.virtual_model) {
+    if ((*chain_.virtual_model)->update(cycle, VirtualModelInput{state_}, task_) != ReturnCode::ok)
+      return DeviceFault::virtual_model;
+    if (!is_finite(task_)) return DeviceFault::non_finite_output;
+  }
+  if (chain_.inverse_kinematics) {
+    if ((*chain_.inverse_kinematics)->update(cycle, InverseKinematicsInput{state_, task_}, joint_target_) != ReturnCode::ok)
+      return DeviceFault::inverse_kinematics;
+    if (!is_finite(joint_target_)) return DeviceFault::non_finite_output;
+  }
+  if (chain_.controller->update(cycle, ControllerInput{state_, task_, joint_target_}, command_) != ReturnCode::ok)
+    return DeviceFault::controller;
+  if (!command_.torque_nm.allFinite()) return DeviceFault::non_finite_output;
+  return DeviceFault::none;
+}
+
+void DeviceSession::cycle(const CycleTime& cycle, double torque_scale) noexcept {
+  const ReturnCode read = chain_.device->read(cycle, state_);
+  if (fault() != DeviceFault::none) {
+    write_zero_torque(cycle);
+    return;
+  }
+  if (read != ReturnCode::ok) return enter_safe_state(DeviceFault::device_read, cycle);
+  if (!is_finite(state_)) return enter_safe_state(DeviceFault::non_finite_measurement, cycle);
+
+  if (const DeviceFault f = run_chain(cycle); f != DeviceFault::none) return enter_safe_state(f, cycle);
+
+  const auto limited = command_.torque_nm.cwiseMax(-torque_limit_nm_).cwiseMin(torque_limit_nm_);
+  if ((limited.array() != command_.torque_nm.array()).any())
+    saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
+  command_.torque_nm = limited * std::clamp(torque_scale, 0.0, 1.0);
+
+  if (chain_.device->write(cycle, command_) != ReturnCode::ok) enter_safe_state(DeviceFault::device_write, cycle);
+}
+
+void DeviceSession::write_zero_torque(const CycleTime& cycle) noexcept {
+  command_.torque_nm.setZero();
+  (void)chain_.device->write(cycle, zero_command_);
+}
+
+void DeviceSession::enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept {
+  fault_cycle_.store(cycle.index, std::memory_order_relaxed);
+  fault_.store(fault, std::memory_order_release);
+  write_zero_torque(cycle);
+}
+
+void DeviceSession::deactivate() {
+  if (chain_active_) {
+    chain_.controller->deactivate();
+    if (chain_.inverse_kinematics) (*chain_.inverse_kinematics)->deactivate();
+    if (chain_.virtual_model) (*chain_.virtual_model)->deactivate();
+    chain_active_ = false;
+  }
+  chain_.device->deactivate();
+}
+
+}  // namespace hapticd::server

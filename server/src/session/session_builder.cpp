@@ -1,0 +1,89 @@
+#include "session/session_builder.hpp"
+
+#include "config/config_error.hpp"
+#include "config/yaml_reader.hpp"
+
+namespace hapticd::server {
+namespace {
+
+int line_from_origin(const std::string& origin, int fallback) {
+  const auto colon = origin.rfind(':');
+  if (colon == std::string::npos) return fallback;
+  try {
+    return std::stoi(origin.substr(colon + 1));
+  } catch (const std::exception&) {
+    return fallback;
+  }
+}
+
+template <class T>
+PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, const SessionConfig& config,
+                                     PluginLoader& loader, const PluginContext& context) {
+  const std::string file = config.file.string();
+  PluginHandle handle;
+  try {
+    handle = loader.find(kind, pc.plugin, pc.library);
+  } catch (const PluginLoadError& e) {
+    throw ConfigError(file, pc.line, pc.key_path + ".plugin", e.what());
+  }
+  const ParameterSchema schema = handle.descriptor->parameter_schema();
+  const std::string parameters_path = pc.key_path + ".parameters";
+  const Parameters parameters = read_parameters(pc.parameters, schema, file, parameters_path, pc.line);
+
+  PluginInstance<T> instance;
+  try {
+    instance = create_plugin<T>(handle);
+  } catch (const PluginLoadError& e) {
+    throw ConfigError(file, pc.line, pc.key_path + ".plugin", e.what());
+  }
+  try {
+    instance->configure(parameters, context);
+  } catch (const ParameterError& e) {
+    throw ConfigError(file, line_from_origin(parameters.origin(e.key()), pc.line), parameters_path + "." + e.key(), e.what());
+  } catch (const std::exception& e) {
+    throw ConfigError(file, pc.line, pc.key_path,
+                      "plugin '" + pc.plugin + "' failed to configure: " + std::string(e.what()));
+  }
+  return instance;
+}
+
+}  // namespace
+
+std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) noexcept {
+  std::uint64_t z = session_seed + 0x9e3779b97f4a7c15ULL * (device_index + 1);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader) {
+  std::vector<std::unique_ptr<DeviceSession>> sessions;
+  for (std::size_t i = 0; i < config.devices.size(); ++i) {
+    const DeviceConfig& dc = config.devices[i];
+    PluginContext context;
+    context.device_name = dc.name;
+    context.rate_hz = config.server.rate_hz;
+    context.seed = device_seed(config.server.seed, i);
+    context.config_directory = config.file.parent_path();
+
+    DeviceChain chain;
+    chain.device = load_and_configure<Device>(PluginKind::device, dc.device, config, loader, context);
+    const DeviceDescription& description = chain.device->description();
+    context.device = &description;
+    if (dc.virtual_model)
+      chain.virtual_model = load_and_configure<VirtualModel>(PluginKind::virtual_model, *dc.virtual_model, config, loader, context);
+    if (dc.inverse_kinematics)
+      chain.inverse_kinematics =
+          load_and_configure<InverseKinematics>(PluginKind::inverse_kinematics, *dc.inverse_kinematics, config, loader, context);
+    chain.controller = load_and_configure<Controller>(PluginKind::controller, dc.controller, config, loader, context);
+
+    try {
+      sessions.push_back(std::make_unique<DeviceSession>(dc.name, std::move(chain)));
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(config.file.string(), dc.device.line, dc.device.key_path, e.what());
+    }
+  }
+  return sessions;
+}
+
+}  // namespace hapticd::server

@@ -1,0 +1,114 @@
+// The loop in lockstep (deterministic, machine-independent) and briefly in real time (structural checks only:
+// no assertion on how fast this machine is).
+#include "executor/executor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "recorder/recorder.hpp"
+#include "support/temp_file.hpp"
+#include "support/test_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string lockstep_yaml(double duration_s, const std::string& devices, std::uint64_t seed = 1) {
+  return "server: {clock: lockstep, rate_hz: 2000, duration_s: " + std::to_string(duration_s) +
+         ", shutdown_ramp_s: 0.1, seed: " + std::to_string(seed) + "}\ndevices:\n" + devices;
+}
+
+// Runs a session and returns its recording.
+std::string run_recorded(const std::string& yaml, const std::string& record_name) {
+  auto s = test::build_test_session(yaml);
+  const auto file = test::write_temp_file(record_name, "");
+  Recorder recorder(file, {"a", "b"}, /*wait_when_full=*/true);
+  Executor executor(s.executor_settings(), s.device_pointers(), &recorder);
+  std::atomic<bool> stop{false};
+  const ExecutorResult r = executor.run(stop);
+  recorder.finish();
+  EXPECT_EQ(recorder.dropped(), 0u);
+  EXPECT_EQ(recorder.written(), r.statistics.cycles * s.devices.size());
+  return read_file(file);
+}
+
+TEST(Executor, LockstepRunsTheDurationThenTheRamp) {
+  auto s = test::build_test_session(lockstep_yaml(0.5, test::mass_spring_device_yaml("a")));
+  Executor executor(s.executor_settings(), s.device_pointers(), nullptr);
+  std::atomic<bool> stop{false};
+  const ExecutorResult r = executor.run(stop);
+  EXPECT_EQ(r.statistics.cycles, 1000u + 200u);  // 0.5 s + 0.1 s ramp at 2 kHz
+  EXPECT_EQ(r.periods, r.statistics.cycles);
+  EXPECT_EQ(r.statistics.compute_time.count(), r.statistics.cycles);
+  EXPECT_EQ(r.statistics.overruns, 0u);
+  EXPECT_EQ(r.statistics.skipped_cycles, 0u);
+  EXPECT_EQ(r.statistics.wakeup_latency.max_ns(), 0);  // a virtual clock wakes exactly on time
+  EXPECT_NEAR(r.loop_time_s, 1199 * 0.0005, 1e-12);
+  EXPECT_FALSE(r.stop_requested);
+  EXPECT_EQ(s.devices[0]->command().torque_nm[0], 0.0);  // the ramp ends at zero torque
+}
+
+TEST(Executor, LockstepIsBitIdenticalAcrossRunsAndDependsOnTheSeed) {
+  const std::string devices = test::mass_spring_device_yaml("a", ", position_noise_m: 1.0e-4") +
+                              test::mass_spring_device_yaml("b", ", position_noise_m: 1.0e-4");
+  const std::string first = run_recorded(lockstep_yaml(1.0, devices, 7), "first.csv");
+  const std::string second = run_recorded(lockstep_yaml(1.0, devices, 7), "second.csv");
+  const std::string other_seed = run_recorded(lockstep_yaml(1.0, devices, 8), "other.csv");
+  EXPECT_GT(first.size(), 100'000u);
+  EXPECT_TRUE(first == second) << "two lockstep runs of the same session differ";
+  EXPECT_FALSE(first == other_seed) << "the seed has no effect: the determinism check would prove nothing";
+}
+
+TEST(Executor, StopRequestRampsTorqueLinearlyToZero) {
+  // No duration: runs until stopped. The monitor (caller's thread) requests the stop.
+  auto s = test::build_test_session(lockstep_yaml(0.0, test::mass_spring_device_yaml("a")));
+  const auto file = test::write_temp_file("ramp.csv", "");
+  Recorder recorder(file, {"a"}, true);
+  Executor executor(s.executor_settings(), s.device_pointers(), &recorder);
+  std::atomic<bool> stop{false};
+  const ExecutorResult r = executor.run(stop, [&] { stop.store(true); });
+  recorder.finish();
+  EXPECT_TRUE(r.stop_requested);
+  ASSERT_GE(r.statistics.cycles, 200u);
+
+  // Parse the torque column of the last 200 cycles (the ramp): |tau_k| <= scale_k * limit, last one zero.
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::vector<double> torque;
+  while (std::getline(in, line)) torque.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  ASSERT_EQ(torque.size(), r.statistics.cycles);
+  const std::size_t ramp_start = torque.size() - 200;
+  for (std::size_t k = ramp_start; k < torque.size(); ++k) {
+    const double scale = 1.0 - static_cast<double>(k - ramp_start + 1) / 200.0;
+    ASSERT_LE(std::abs(torque[k]), scale * 50.0 + 1e-12) << "cycle " << k;
+  }
+  EXPECT_EQ(torque.back(), 0.0);
+}
+
+TEST(Executor, RealtimeLoopAccountsForEveryPeriod) {
+  auto s = test::build_test_session(
+      "server: {clock: realtime, rate_hz: 2000, duration_s: 0.1, shutdown_ramp_s: 0.01}\ndevices:\n" +
+      test::mass_spring_device_yaml("a"));
+  Executor executor(s.executor_settings(), s.device_pointers(), nullptr);
+  std::atomic<bool> stop{false};
+  const ExecutorResult r = executor.run(stop);
+  // Every period is either run or counted as skipped, however loaded the machine is; the session lasts its
+  // duration plus the ramp on the clock (a skip may overshoot the last period of the ramp).
+  EXPECT_EQ(r.statistics.cycles + r.statistics.skipped_cycles, r.periods);
+  EXPECT_GE(r.periods, 200u + 20u);
+  EXPECT_LE(r.periods, 200u + 20u + r.statistics.skipped_cycles);
+  EXPECT_EQ(r.statistics.wakeup_latency.count(), r.statistics.cycles);
+  EXPECT_GE(r.wall_time_s, 0.1);
+}
+
+}  // namespace
+}  // namespace hapticd::server

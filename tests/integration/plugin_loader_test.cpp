@@ -1,0 +1,122 @@
+// Each plugin-loading failure has its own clear message; libraries outlive their objects.
+#include "plugins/plugin_loader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+namespace hapticd::server {
+namespace {
+
+std::string load_error(PluginLoader& loader, const std::string& library) {
+  try {
+    (void)loader.load_library(library);
+  } catch (const PluginLoadError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(PluginLoader, FindsEveryKindInTheTestLibrary) {
+  PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+  EXPECT_EQ(loader.find(PluginKind::device, "test_mass_spring", std::nullopt).descriptor->kind, PluginKind::device);
+  EXPECT_EQ(loader.find(PluginKind::controller, "test_pd", std::nullopt).descriptor->kind, PluginKind::controller);
+  EXPECT_EQ(loader.find(PluginKind::virtual_model, "test_sine_setpoint", "hapticd_test_plugins").descriptor->kind,
+            PluginKind::virtual_model);
+  EXPECT_EQ(loader.find(PluginKind::inverse_kinematics, "test_axis_ik", std::nullopt).descriptor->kind,
+            PluginKind::inverse_kinematics);
+}
+
+TEST(PluginLoader, MissingFile) {
+  PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+  EXPECT_NE(load_error(loader, "no_such_plugins").find("plugin library 'no_such_plugins' not found (looked for "
+                                                        "libno_such_plugins.so in: " HAPTICD_TEST_PLUGIN_DIR),
+            std::string::npos);
+  EXPECT_NE(load_error(loader, "/nowhere/libx.so").find("does not exist"), std::string::npos);
+}
+
+TEST(PluginLoader, NotALoadableLibrary) {
+  PluginLoader loader({});
+  // A text file with a .so name.
+  const std::string path = ::testing::TempDir() + "/libgarbage.so";
+  FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs("not an ELF file", f);
+  std::fclose(f);
+  EXPECT_NE(load_error(loader, path).find("cannot load plugin library"), std::string::npos);
+}
+
+TEST(PluginLoader, MissingSymbol) {
+  PluginLoader loader({HAPTICD_TEST_FIXTURE_DIR});
+  const std::string e = load_error(loader, "hapticd_fixture_not_a_plugin");
+  EXPECT_NE(e.find("is not a hapticd plugin library: it exports no 'hapticd_plugin_api_version' symbol"), std::string::npos) << e;
+}
+
+TEST(PluginLoader, WrongApiVersion) {
+  PluginLoader loader({HAPTICD_TEST_FIXTURE_DIR});
+  const std::string e = load_error(loader, "hapticd_fixture_wrong_api");
+  EXPECT_NE(e.find("was built against plugin API version " + std::to_string(kApiVersion + 1) +
+                   ", this server uses version " + std::to_string(kApiVersion)),
+            std::string::npos)
+      << e;
+}
+
+TEST(PluginLoader, WrongKind) {
+  PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+  try {
+    (void)loader.find(PluginKind::controller, "test_mass_spring", std::nullopt);
+    FAIL();
+  } catch (const PluginLoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a device plugin, but a controller plugin is needed"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PluginLoader, UnknownNameListsTheAvailableOnes) {
+  PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+  try {
+    (void)loader.find(PluginKind::controller, "impedance", std::nullopt);
+    FAIL();
+  } catch (const PluginLoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("no controller plugin named 'impedance'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("available: test_pd"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PluginLoader, ScanningReportsBrokenLibrariesButKeepsGoing) {
+  PluginLoader loader({HAPTICD_TEST_FIXTURE_DIR, HAPTICD_TEST_PLUGIN_DIR});
+  std::vector<std::string> problems;
+  const auto all = loader.list_all(&problems);
+  EXPECT_EQ(all.size(), 4u);
+  EXPECT_EQ(problems.size(), 2u);  // the two fixtures
+}
+
+TEST(PluginLoader, EnvironmentPathIsSearched) {
+  ::setenv("HAPTICD_PLUGIN_PATH", "/a:/b", 1);
+  const auto paths = PluginLoader::search_paths_for({"/configured"});
+  ::unsetenv("HAPTICD_PLUGIN_PATH");
+  ASSERT_GE(paths.size(), 4u);
+  EXPECT_EQ(paths[0], "/configured");
+  EXPECT_EQ(paths[1], "/a");
+  EXPECT_EQ(paths[2], "/b");
+  EXPECT_EQ(paths[3].filename(), "plugins");
+}
+
+TEST(PluginLoader, ObjectsKeepTheirLibraryLoaded) {
+  PluginInstance<Controller> controller;
+  {
+    PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+    controller = create_plugin<Controller>(loader.find(PluginKind::controller, "test_pd", std::nullopt));
+  }  // the loader is gone; the instance still holds the library
+  ASSERT_TRUE(controller.library->library.is_loaded());
+  EXPECT_EQ(controller.library.use_count(), 1);
+  DeviceDescription d;
+  d.joints.resize(1);
+  PluginContext context;
+  context.device = &d;
+  Parameters p;
+  const ParameterSchema schema = controller.descriptor->parameter_schema();
+  for (const auto& spec : schema.specs()) p.set(spec.name, *spec.default_value);
+  EXPECT_NO_THROW(controller->configure(p, context));  // its code is still mapped
+}
+
+}  // namespace
+}  // namespace hapticd::server

@@ -1,0 +1,47 @@
+#include "support/test_session.hpp"
+
+#include "session/session_builder.hpp"
+#include "support/temp_file.hpp"
+
+namespace hapticd::test {
+
+std::vector<server::DeviceSession*> TestSession::device_pointers() const {
+  std::vector<server::DeviceSession*> out;
+  for (const auto& d : devices) out.push_back(d.get());
+  return out;
+}
+
+server::ExecutorSettings TestSession::executor_settings() const {
+  server::ExecutorSettings s;
+  s.rate_hz = config.server.rate_hz;
+  s.lockstep = config.server.clock == server::ClockMode::lockstep;
+  s.duration_s = config.server.duration_s;
+  s.shutdown_ramp_s = config.server.shutdown_ramp_s;
+  s.realtime_priority = 0;  // tests never ask for SCHED_FIFO
+  s.lock_memory = false;
+  return s;
+}
+
+TestSession build_test_session(const std::string& yaml) {
+  TestSession s;
+  s.config = server::load_session_config(write_temp_file("session.yaml", yaml));
+  s.config.server.plugin_paths.push_back(HAPTICD_TEST_PLUGIN_DIR);
+  s.loader = std::make_unique<server::PluginLoader>(s.config.server.plugin_paths);
+  s.devices = server::build_sessions(s.config, *s.loader);
+  return s;
+}
+
+std::string mass_spring_device_yaml(const std::string& name, const std::string& device_parameters,
+                                    const std::string& controller_parameters) {
+  return "  - name: " + name +
+         "\n"
+         "    device:\n      plugin: test_mass_spring\n      parameters: {encoder_resolution_m: 1.0e-6" +
+         device_parameters +
+         "}\n"
+         "    virtual_model:\n      plugin: test_sine_setpoint\n      parameters: {amplitude_m: 0.05, frequency_hz: 2}\n"
+         "    inverse_kinematics:\n      plugin: test_axis_ik\n"
+         "    controller:\n      plugin: test_pd\n      parameters: {kp: 400, kd: 20" +
+         controller_parameters + "}\n";
+}
+
+}  // namespace hapticd::test
