@@ -92,7 +92,12 @@ void DeviceSession::cycle(const CycleTime& cycle, double torque_scale) noexcept 
   const auto limited = command_.torque_nm.cwiseMax(-torque_limit_nm_).cwiseMin(torque_limit_nm_);
   if ((limited.array() != command_.torque_nm.array()).any())
     saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
-  command_.torque_nm = limited * std::clamp(torque_scale, 0.0, 1.0);
+  const double scale = std::clamp(torque_scale, 0.0, 1.0);
+  if (scale > 0.0) {
+    command_.torque_nm = limited * scale;
+  } else {
+    command_.torque_nm.setZero();  // exactly +0, not -0 from a negative torque times zero
+  }
 
   if (chain_.device->write(cycle, command_) != ReturnCode::ok) enter_safe_state(DeviceFault::device_write, cycle);
 }

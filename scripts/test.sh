@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Quick start, command 2: install dependencies, build, run the whole test suite.
+# Usage: scripts/test.sh [PRESET]   (default: "ci" when CI=true, else "default"; also: asan, tsan)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+preset=${1:-$([ "${CI:-}" = "true" ] && echo ci || echo default)}
+bash scripts/build.sh "$preset"
+ctest --preset "$preset" -j "$(nproc)"
