@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config ccache git
   libeigen3-dev
   cyclonedds-dev cyclonedds-tools
-  liburdfdom-dev
+  liburdfdom-dev libtinyxml-dev
   libboost-dev libboost-filesystem-dev
   libspdlog-dev libfmt-dev
   libyaml-cpp-dev

@@ -1,0 +1,80 @@
+#pragma once
+// The immutable robot model: a serial chain of up to kMaxJoints revolute or prismatic joints, built once
+// from a URDF (load_robot_model in urdf_loader.hpp) and shared by every algorithm and thread. Everything
+// that changes per cycle lives in ModelData (model_data.hpp). Pattern: Pinocchio's model/data split.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hapticd/export.hpp"
+#include "hapticd/joint_vector.hpp"
+#include "hapticd/model/drive_data.hpp"
+
+namespace hapticd::model {
+
+enum class JointType { kRevolute, kPrismatic };
+
+// One movable joint and the rigid body it moves (the URDF child link with every link fixed to it merged in).
+struct Body {
+  std::string joint_name;
+  std::string link_name;
+  JointType type = JointType::kRevolute;
+  Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();  // joint frame in the parent body's frame
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();              // unit joint axis in the joint frame
+  double mass = 0.0;
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();                 // centre of mass in the body (joint) frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();             // about the centre of mass, body frame
+  double position_min = -1e9;                                    // [rad or m]; +-1e9: unlimited
+  double position_max = 1e9;
+  double velocity_limit = 0.0;                                   // URDF <limit velocity>, 0 if absent
+  double effort_limit = 0.0;                                     // URDF <limit effort>, 0 if absent
+  DriveData drive;
+  double reflected_inertia = 0.0;                                // drive inertia on the joint axis
+};
+
+// A named frame rigidly attached to a body (body -1: the fixed base).
+struct Frame {
+  std::string name;
+  int body = -1;
+  Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();  // in the body's joint frame
+};
+
+class HAPTICD_API RobotModel {
+ public:
+  RobotModel(std::string name, std::string source_file, std::vector<Body> bodies, std::vector<Frame> frames,
+             Eigen::Vector3d gravity);
+
+  [[nodiscard]] const std::string& name() const noexcept { return name_; }
+  [[nodiscard]] const std::string& source_file() const noexcept { return source_file_; }
+  [[nodiscard]] int dof() const noexcept { return static_cast<int>(bodies_.size()); }
+  [[nodiscard]] const Body& body(int i) const { return bodies_[static_cast<std::size_t>(i)]; }
+  [[nodiscard]] const std::vector<Body>& bodies() const noexcept { return bodies_; }
+  [[nodiscard]] const std::vector<Frame>& frames() const noexcept { return frames_; }
+  [[nodiscard]] const Frame& frame(int id) const { return frames_[static_cast<std::size_t>(id)]; }
+  // Index of a frame by name (every link is a frame, so are the named sensor and handle frames); -1 if absent.
+  [[nodiscard]] int frame_id(std::string_view frame_name) const noexcept;
+  // Like frame_id, but throws std::invalid_argument listing the known frames.
+  [[nodiscard]] int require_frame(std::string_view frame_name) const;
+  // Gravitational acceleration in the world frame (default (0, 0, -9.81)).
+  [[nodiscard]] const Eigen::Vector3d& gravity() const noexcept { return gravity_; }
+  // A copy with another gravity vector (for example zero, for free-motion tests).
+  [[nodiscard]] RobotModel with_gravity(const Eigen::Vector3d& gravity) const;
+  // Joint-output peak torque per joint: the drive's, else the URDF effort limit, else 0.
+  [[nodiscard]] JointVector peak_torques() const;
+  // Joint speed limit per joint: the drive's, else the URDF velocity limit, else 0.
+  [[nodiscard]] JointVector speed_limits() const;
+  // Reflected drive inertia per joint.
+  [[nodiscard]] JointVector reflected_inertias() const;
+
+ private:
+  std::string name_;
+  std::string source_file_;
+  std::vector<Body> bodies_;
+  std::vector<Frame> frames_;
+  Eigen::Vector3d gravity_;
+};
+
+}  // namespace hapticd::model

@@ -1,0 +1,25 @@
+#pragma once
+// Task-space measures from a Jacobian: operational-space inertia, manipulability, condition number.
+// Real-time safe (fixed-capacity Eigen storage only).
+#include "hapticd/export.hpp"
+#include "hapticd/model/model_data.hpp"
+
+namespace hapticd::model {
+
+// Which rows of a [linear; angular] frame Jacobian a task uses.
+enum class TaskRows { kFull, kTranslation, kRotation };
+
+// The selected rows of a 6 x n Jacobian.
+HAPTICD_API void select_rows(const TaskJacobian& full, TaskRows rows, TaskJacobian& task) noexcept;
+
+// Operational-space inertia Lambda = (J M^-1 J^T)^-1 for an m x n task Jacobian (m <= 6). Requires
+// joint_space_inertia. Returns false when J M^-1 J^T is singular (task rank below m).
+HAPTICD_API bool operational_space_inertia(const ModelData& data, const TaskJacobian& jacobian,
+                                           TaskMatrix& lambda) noexcept;
+// Yoshikawa's manipulability sqrt(det(J J^T)) (m <= n).
+[[nodiscard]] HAPTICD_API double manipulability(const TaskJacobian& jacobian) noexcept;
+// sigma_max / sigma_min of J (infinity when rank-deficient). Mixed linear/angular rows should be scaled
+// by a characteristic length by the caller.
+[[nodiscard]] HAPTICD_API double condition_number(const TaskJacobian& jacobian) noexcept;
+
+}  // namespace hapticd::model

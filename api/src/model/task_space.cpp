@@ -1,0 +1,46 @@
+#include "hapticd/model/task_space.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
+#include <cmath>
+#include <limits>
+
+namespace hapticd::model {
+
+void select_rows(const TaskJacobian& full, TaskRows rows, TaskJacobian& task) noexcept {
+  switch (rows) {
+    case TaskRows::kFull: task = full; break;
+    case TaskRows::kTranslation: task = full.topRows(3); break;
+    case TaskRows::kRotation: task = full.bottomRows(3); break;
+  }
+}
+
+bool operational_space_inertia(const ModelData& data, const TaskJacobian& jacobian, TaskMatrix& lambda) noexcept {
+  // J M^-1 J^T = (L^-1 J^T)^T (L^-1 J^T) with M = L L^T.
+  using Transposed = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxJoints, 6>;
+  Transposed x = jacobian.transpose();
+  data.mass_llt.matrixL().solveInPlace(x);
+  const TaskMatrix inverse = x.transpose() * x;
+  Eigen::LDLT<TaskMatrix> ldlt(inverse);
+  const double largest = inverse.diagonal().cwiseAbs().maxCoeff();
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12 * largest)) return false;
+  lambda.setIdentity(inverse.rows(), inverse.cols());
+  ldlt.solveInPlace(lambda);
+  return true;
+}
+
+double manipulability(const TaskJacobian& jacobian) noexcept {
+  const TaskMatrix jjt = jacobian * jacobian.transpose();
+  const double det = jjt.determinant();
+  return det > 0.0 ? std::sqrt(det) : 0.0;
+}
+
+double condition_number(const TaskJacobian& jacobian) noexcept {
+  const Eigen::JacobiSVD<TaskJacobian> svd(jacobian);
+  const auto& s = svd.singularValues();
+  const double smallest = s[s.size() - 1];
+  if (!(smallest > 0.0)) return std::numeric_limits<double>::infinity();
+  return s[0] / smallest;
+}
+
+}  // namespace hapticd::model

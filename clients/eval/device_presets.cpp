@@ -1,0 +1,59 @@
+#include "device_presets.hpp"
+
+#include <cstdlib>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace hapticd::eval {
+
+DevicePreset device_preset(const std::string& name) {
+  DevicePreset p;
+  p.name = name;
+  if (name == "vishard3") {
+    // Translational device (passive gimbal): workspace 0.6 x 0.25 x 0.4 m in front of joint 1.
+    p.task = model::TaskRows::kTranslation;
+    p.seed = {-0.3, 1.6, 0.0};
+    p.workspace_center = {0.0, 0.40, 0.0};
+    p.workspace_size = {0.6, 0.25, 0.4};
+  } else if (name == "vishard6") {
+    // Workspace 0.86 x 0.3 x 0.3 m. Joints 1-3 are vertical, so the handle height is set by the wrist pitch
+    // (joint 4) alone: height and pitch are coupled and a box x orientation grid is not reachable. The grid
+    // takes positions only; the orientation follows from the nominal pose (docs/output-capability.md).
+    p.seed = {-0.5, 1.0, -0.5, 0.0, 0.0, 0.0};
+    p.workspace_center = {1.0, 0.0, 1.10};
+    p.workspace_size = {0.3, 0.86, 0.3};
+    p.free_orientation = true;
+  } else if (name == "vishard10") {
+    // Box of the simple inverse function, 0.85 x 0.71 m in the plane; the model's wrist reaches 0.42 m of
+    // height (links 6 and 7), so the height evaluated is 0.3 m, not the published 0.6 m. 360 deg about
+    // every axis (pitch limited to +-60 deg on the grid, see docs/output-capability.md).
+    p.seed = {0.3, -0.6, 0.6, -0.6, 0.3, 1.0, -2.0, 1.0, 0.8, 0.0};
+    p.workspace_center = {0.45, 0.0, 1.49};
+    p.workspace_size = {0.85, 0.71, 0.3};
+    p.rotation_range_deg = {360.0, 120.0, 360.0};
+  } else {
+    throw std::invalid_argument("no evaluation preset for device '" + name +
+                                "' (known: vishard3, vishard6, vishard10; give --center and --size for others)");
+  }
+  return p;
+}
+
+std::filesystem::path find_device_urdf(const std::string& name_or_path) {
+  namespace fs = std::filesystem;
+  if (fs::is_regular_file(name_or_path)) return name_or_path;
+  std::vector<fs::path> config_dirs;
+  if (const char* env = std::getenv("HAPTICD_CONFIG_DIR")) config_dirs.emplace_back(env);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) config_dirs.push_back(exe.parent_path().parent_path() / HAPTICD_INSTALL_DATADIR / "hapticd" / "config");
+  config_dirs.emplace_back(HAPTICD_SOURCE_CONFIG_DIR);
+  std::string tried;
+  for (const fs::path& dir : config_dirs) {
+    const fs::path candidate = dir / "urdf" / (name_or_path + ".urdf");
+    if (fs::is_regular_file(candidate)) return candidate;
+    tried += "\n  " + candidate.string();
+  }
+  throw std::invalid_argument("device '" + name_or_path + "': not a file, and none of these exists:" + tried);
+}
+
+}  // namespace hapticd::eval

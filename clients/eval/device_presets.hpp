@@ -1,0 +1,34 @@
+#pragma once
+// What the evaluations assume per shipped device: where its URDF is, which task-space rows it controls,
+// its nominal configuration and the workspace (box and orientation ranges) it is evaluated over.
+// The workspace sizes are the published ones (spec/DEVICE-MODELS.md); their placement is our choice,
+// documented in docs/output-capability.md.
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "hapticd/joint_vector.hpp"
+#include "hapticd/model/task_space.hpp"
+
+namespace hapticd::eval {
+
+struct DevicePreset {
+  std::string name;
+  model::TaskRows task = model::TaskRows::kFull;
+  std::vector<double> seed;              // nominal configuration, the position solver's start
+  Eigen::Vector3d workspace_center = Eigen::Vector3d::Zero();
+  Eigen::Vector3d workspace_size = Eigen::Vector3d::Zero();
+  // Orientation ranges about the world axes (full widths, degrees); all zero for translational devices.
+  Eigen::Vector3d rotation_range_deg = Eigen::Vector3d::Zero();
+  bool free_orientation = false;  // see WorkspaceGrid::free_orientation
+};
+
+// The preset of a shipped device (vishard3, vishard6, vishard10); throws std::invalid_argument otherwise.
+DevicePreset device_preset(const std::string& name);
+
+// The URDF of a device name or path: an existing file as given, else <config>/urdf/<name>.urdf with
+// <config> = $HAPTICD_CONFIG_DIR, the installed share/hapticd/config, or the source tree's config/.
+std::filesystem::path find_device_urdf(const std::string& name_or_path);
+
+}  // namespace hapticd::eval

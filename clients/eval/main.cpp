@@ -1,0 +1,22 @@
+// hapticd-eval: the evaluation suite (off-line; never talks to a running server).
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "output_capability_command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"hapticd-eval: evaluations of haptic devices and control schemes"};
+  app.require_subcommand(1);
+  int exit_code = 0;
+  hapticd::eval::add_output_capability_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "hapticd-eval: " << e.what() << "\n";
+    return 2;
+  }
+  return exit_code;
+}
