@@ -86,9 +86,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"vishard6", model::TaskRows::kFull, model::CapabilitySubspace::kTranslation},
                       Case{"vishard6", model::TaskRows::kFull, model::CapabilitySubspace::kRotation},
                       Case{"vishard10", model::TaskRows::kFull, model::CapabilitySubspace::kRotation}),
-    [](const ::testing::TestParamInfo<Case>& info) {
-      return std::string(info.param.device) +
-             (info.param.subspace == model::CapabilitySubspace::kRotation ? "_rotation" : "_translation");
+    [](const ::testing::TestParamInfo<Case>& param_info) {
+      return std::string(param_info.param.device) +
+             (param_info.param.subspace == model::CapabilitySubspace::kRotation ? "_rotation" : "_translation");
     });
 
 TEST(OutputCapabilityGrid, Vishard3MeetsItsPublishedFigures) {
