@@ -1,0 +1,44 @@
+#include "physics_builder.hpp"
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+namespace hapticd::sim {
+
+FlexibleChain build_flexible_chain(const model::RobotModel& model, int handle_frame, const PhysicsOptions& options,
+                                   std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform;
+  std::vector<model::Body> bodies = model.bodies();
+  std::vector<JointPhysics> joints;
+  for (model::Body& b : bodies) {
+    if (!b.drive.present) {
+      throw std::invalid_argument("joint '" + b.joint_name + "' of " + model.source_file() +
+                                  " has no <hapticd_drive>: the simulation needs its drive data");
+    }
+    const model::DriveData& d = b.drive;
+    JointPhysics j;
+    j.motor_inertia = b.reflected_inertia;
+    j.gear_ratio = d.gear_ratio;
+    j.spring.k_min = d.stiffness_min;
+    j.spring.k_max = d.stiffness_max;
+    j.spring.rated_deflection = std::max(1e-6, d.gear_average_torque / d.stiffness_max);
+    j.damping = 2.0 * options.damping_ratio * std::sqrt(d.stiffness_min * j.motor_inertia);
+    j.friction = options.friction_template;
+    if (!options.friction) {
+      j.friction.sliding = j.friction.load_dependent = j.friction.stiction = false;
+    }
+    j.friction.scale = std::max(0.2, 1.0 + options.friction_variation * normal(rng));
+    j.ripple_amplitude =
+        options.ripple ? options.ripple_min_nm + (options.ripple_max_nm - options.ripple_min_nm) * uniform(rng) : 0.0;
+    j.ripple_phase = 2.0 * M_PI * uniform(rng);
+    joints.push_back(j);
+    b.reflected_inertia = 0.0;  // the motor is its own coordinate here
+  }
+  model::RobotModel links(model.name(), model.source_file(), std::move(bodies), model.frames(), model.gravity());
+  return FlexibleChain(std::move(links), std::move(joints), handle_frame, seed);
+}
+
+}  // namespace hapticd::sim

@@ -1,0 +1,21 @@
+#pragma once
+// Builds a FlexibleChain from a robot model with drive data: springs from the stiffness range, reflected
+// motor inertia, structural damping, friction with per-joint variation and ripple (seeded).
+#include "flexible_chain.hpp"
+
+namespace hapticd::sim {
+
+struct PhysicsOptions {
+  double damping_ratio = 0.02;          // structural damping of each spring (on the motor inertia)
+  double friction_variation = 0.1;      // relative standard deviation of the per-joint friction scale
+  bool friction = true;                 // master switch of all friction effects
+  FrictionParameters friction_template; // switches and curves shared by the joints
+  bool ripple = true;
+  double ripple_min_nm = 0.12, ripple_max_nm = 0.19;
+};
+
+// Throws std::invalid_argument when a joint has no drive data.
+[[nodiscard]] FlexibleChain build_flexible_chain(const model::RobotModel& model, int handle_frame,
+                                                 const PhysicsOptions& options, std::uint64_t seed);
+
+}  // namespace hapticd::sim
