@@ -1,5 +1,6 @@
 #include "pd_controller.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace hapticd::test_plugins {
@@ -9,6 +10,10 @@ ParameterSchema PdController::parameter_schema() {
   s.real("kp", "proportional gain").unit("N/m").minimum(0.0).maximum(1e6).default_value(400.0);
   s.real("kd", "derivative gain").unit("N s/m").minimum(0.0).maximum(1e4).default_value(20.0);
   s.real("setpoint", "joint target used when the chain has no inverse kinematics").unit("m").default_value(0.0);
+  s.boolean("hold_at_activation", "without inverse kinematics: hold the joint positions of activation instead "
+            "of the setpoint").default_value(false);
+  s.real("velocity_filter_hz", "devices without velocity: cut-off of the differentiated positions").unit("Hz")
+      .greater_than(0.0).default_value(100.0);
   s.integer("fault_at_cycle", "fault injection: output NaN at this cycle; -1 never").minimum(-1).default_value(-1);
   return s;
 }
@@ -18,17 +23,36 @@ void PdController::configure(const Parameters& p, const PluginContext& context) 
   kd_ = p.real("kd");
   setpoint_ = p.real("setpoint");
   fault_at_cycle_ = p.integer("fault_at_cycle");
+  hold_at_activation_ = p.boolean("hold_at_activation");
   dof_ = context.device != nullptr ? context.device->dof() : 0;
   if (dof_ == 0) throw ParameterError("kp", "the PD controller needs a device with at least one joint");
+  differentiate_ = !context.device->reports_joint_velocity;
+  period_s_ = 1.0 / context.rate_hz;
+  filter_alpha_ = 1.0 - std::exp(-2.0 * 3.141592653589793 * p.real("velocity_filter_hz") * period_s_);
+  hold_.setConstant(dof_, setpoint_);
+  previous_.setZero(dof_);
+  velocity_.setZero(dof_);
 }
 
-ReturnCode PdController::activate(const ControllerInput&, const JointCommand&) noexcept { return ReturnCode::ok; }
+ReturnCode PdController::activate(const ControllerInput& current, const JointCommand&) noexcept {
+  if (hold_at_activation_) hold_ = current.device.joints.position;
+  previous_ = current.device.joints.position;
+  velocity_.setZero();
+  return ReturnCode::ok;
+}
 
 ReturnCode PdController::update(const CycleTime& cycle, const ControllerInput& in, JointCommand& command) noexcept {
+  const JointVector& q = in.device.joints.position;
+  if (differentiate_) {
+    velocity_ += filter_alpha_ * ((q - previous_) / period_s_ - velocity_);
+    previous_ = q;
+  } else {
+    velocity_ = in.device.joints.velocity;
+  }
   for (int i = 0; i < dof_; ++i) {
-    const double q_d = in.joints.valid ? in.joints.position[i] : setpoint_;
+    const double q_d = in.joints.valid ? in.joints.position[i] : hold_[i];
     const double qd_d = in.joints.valid ? in.joints.velocity[i] : 0.0;
-    command.torque_nm[i] = kp_ * (q_d - in.device.joints.position[i]) + kd_ * (qd_d - in.device.joints.velocity[i]);
+    command.torque_nm[i] = kp_ * (q_d - q[i]) + kd_ * (qd_d - velocity_[i]);
   }
   if (fault_at_cycle_ >= 0 && cycle.index == static_cast<std::uint64_t>(fault_at_cycle_))
     command.torque_nm[0] = std::numeric_limits<double>::quiet_NaN();

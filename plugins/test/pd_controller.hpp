@@ -6,7 +6,8 @@
 namespace hapticd::test_plugins {
 
 // Joint PD control towards the IK's joint target (or a fixed setpoint when the chain has no IK):
-// tau = kp (q_d - q) + kd (qd_d - qd). fault_at_cycle makes it emit a non-finite torque, for fault tests.
+// tau = kp (q_d - q) + kd (qd_d - qd), with qd differentiated from the positions (first-order filter) for
+// devices that do not report velocities. fault_at_cycle makes it emit a non-finite torque, for fault tests.
 class PdController final : public Controller {
  public:
   static ParameterSchema parameter_schema();
@@ -22,6 +23,11 @@ class PdController final : public Controller {
   double setpoint_ = 0.0;
   std::int64_t fault_at_cycle_ = -1;
   int dof_ = 0;
+  bool hold_at_activation_ = false;
+  bool differentiate_ = false;
+  double period_s_ = 0.0005;
+  double filter_alpha_ = 1.0;
+  JointVector hold_, previous_, velocity_;
 };
 
 }  // namespace hapticd::test_plugins

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <cstdlib>
 
 namespace hapticd::server {
@@ -85,7 +87,12 @@ TEST(PluginLoader, ScanningReportsBrokenLibrariesButKeepsGoing) {
   PluginLoader loader({HAPTICD_TEST_FIXTURE_DIR, HAPTICD_TEST_PLUGIN_DIR});
   std::vector<std::string> problems;
   const auto all = loader.list_all(&problems);
-  EXPECT_EQ(all.size(), 4u);
+  std::set<std::string> names;
+  for (const auto& handle : all) names.insert(handle.descriptor->name);
+  // Every in-tree plugin library was read past the two broken fixtures.
+  for (const char* expected : {"test_mass_spring", "test_pd", "test_sine_setpoint", "test_axis_ik", "sim"}) {
+    EXPECT_EQ(names.count(expected), 1u) << expected;
+  }
   EXPECT_EQ(problems.size(), 2u);  // the two fixtures
 }
 

@@ -27,8 +27,11 @@ class Drive {
     const double limit = (p_.thermal_limit && heat_ >= 1.0) ? p_.continuous_torque : p_.peak_torque;
     const double target = std::fmax(-limit, std::fmin(limit, command)) + p_.current_offset_nm;
     if (p_.current_loop) {
-      const double alpha = 1.0 - std::exp(-2.0 * M_PI * p_.current_bandwidth_hz * dt);
-      torque_ += alpha * (target - torque_);
+      if (dt != alpha_dt_) {
+        alpha_dt_ = dt;
+        alpha_ = 1.0 - std::exp(-2.0 * M_PI * p_.current_bandwidth_hz * dt);
+      }
+      torque_ += alpha_ * (target - torque_);
     } else {
       torque_ = target;
     }
@@ -45,6 +48,8 @@ class Drive {
   DriveParameters p_;
   double torque_ = 0.0;
   double heat_ = 0.0;
+  double alpha_dt_ = -1.0;
+  double alpha_ = 1.0;
 };
 
 }  // namespace hapticd::sim

@@ -42,17 +42,28 @@ void FlexibleChain::reset(const JointVector& q0) noexcept {
     spring_torque_[i] = s.torque(d);
   }
   for (auto& f : friction_) f.reset();
+  prepared_ = false;
 }
 
+void FlexibleChain::prepare() noexcept {
+  model::forward_velocity(model_, data_, q_, qd_);
+  model::frame_jacobian(model_, data_, handle_, jacobian_);
+  prepared_ = true;
+}
+
+Eigen::Isometry3d FlexibleChain::handle_pose() const noexcept { return model::frame_pose(model_, data_, handle_); }
+
+model::Vector6d FlexibleChain::handle_twist() const noexcept { return jacobian_ * qd_; }
+
 void FlexibleChain::step(double dt, const JointVector& motor_torque, const model::Vector6d& handle_wrench) noexcept {
+  if (!prepared_) prepare();
+  prepared_ = false;
   for (int i = 0; i < n_; ++i) {
     const JointPhysics& j = joints_[static_cast<std::size_t>(i)];
     spring_torque_[i] = j.spring.torque(theta_[i] - q_[i]) + j.damping * (theta_d_[i] - qd_[i]);
   }
   // Links.
   if (!links_locked_) {
-    model::forward_velocity(model_, data_, q_, qd_);
-    model::frame_jacobian(model_, data_, handle_, jacobian_);
     tau_ = spring_torque_;
     tau_.noalias() += jacobian_.transpose() * handle_wrench;
     model::forward_dynamics(model_, data_, tau_, qdd_);
@@ -77,6 +88,7 @@ void FlexibleChain::step(double dt, const JointVector& motor_torque, const model
 }
 
 double FlexibleChain::energy() noexcept {
+  prepared_ = false;
   model::forward_kinematics(model_, data_, q_);
   model::joint_space_inertia(model_, data_);
   Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
@@ -90,6 +102,7 @@ double FlexibleChain::energy() noexcept {
 }
 
 double FlexibleChain::highest_frequency() noexcept {
+  prepared_ = false;
   model::forward_kinematics(model_, data_, q_);
   model::joint_space_inertia(model_, data_);
   // Per joint: spring k_max between the motor inertia and the link's apparent inertia 1 / (M^-1)_ii.

@@ -32,6 +32,11 @@ class FlexibleChain {
 
   // Everything at rest at q0 (springs relaxed under gravity: the motors are placed at q0 + g/k).
   void reset(const JointVector& q0) noexcept;
+  // Kinematics of the current state (body poses and velocities, the handle's Jacobian). step() runs it
+  // itself unless it ran since the last step, so callers that need the handle's pose first pay nothing.
+  void prepare() noexcept;
+  [[nodiscard]] Eigen::Isometry3d handle_pose() const noexcept;
+  [[nodiscard]] model::Vector6d handle_twist() const noexcept;  // [linear; angular], world
   // Advances by dt under the motor torques and an external wrench on the handle ([force; torque], world).
   void step(double dt, const JointVector& motor_torque, const model::Vector6d& handle_wrench) noexcept;
   // Holds the links still (isometric tests): only the motors move.
@@ -62,6 +67,7 @@ class FlexibleChain {
   int n_;
   int handle_;
   bool links_locked_ = false;
+  bool prepared_ = false;
   JointVector q_, qd_, qdd_, theta_, theta_d_, spring_torque_, friction_torque_, tau_;
   model::TaskJacobian jacobian_;
 };

@@ -50,9 +50,12 @@ double JointFriction::sliding_magnitude(double speed, double load_torque) const 
 
 void JointFriction::advance_temperature(double dt) noexcept {
   if (!p_.warm_up) return;
+  if (dt != decay_dt_) {  // the decay per step is computed once per step length
+    decay_dt_ = dt;
+    decay_ = std::exp(-dt / p_.warm_up_time_constant_s);
+  }
   elapsed_s_ += dt;
-  temperature_c_ = p_.end_temperature_c +
-                   (p_.start_temperature_c - p_.end_temperature_c) * std::exp(-elapsed_s_ / p_.warm_up_time_constant_s);
+  temperature_c_ = p_.end_temperature_c + (temperature_c_ - p_.end_temperature_c) * decay_;
 }
 
 double JointFriction::step_velocity(double velocity, double drive, double load_torque, double inertia, double dt,

@@ -2,7 +2,8 @@
 // Records every cycle of every device to CSV without touching the loop's timing: the loop pushes fixed-size
 // records into a lock-free ring, a writer thread formats and writes them. In real-time mode a full ring drops
 // the record (counted); in lockstep mode the loop waits for the writer instead, so a recording is complete.
-// Long format, one row per joint and cycle: cycle,time_s,device,joint,position,velocity,effort,torque_command
+// Long format, one row per joint and cycle: cycle,time_s,device,joint,position,velocity,effort,torque_command,
+// then the device's sensor wrench (sensor_fx .. sensor_tz, repeated on each joint's row)
 // Numbers are printed with 17 significant digits: identical files mean bit-identical values.
 #include <atomic>
 #include <cstdint>
@@ -27,6 +28,7 @@ struct CycleRecord {
   double velocity[kMaxJoints] = {};
   double effort[kMaxJoints] = {};
   double torque_command[kMaxJoints] = {};
+  double sensor_wrench[6] = {};  // force [N] and torque [N m] in the sensor frame (zero without a sensor)
 };
 
 class Recorder {

@@ -1,0 +1,65 @@
+#pragma once
+// What is attached to the simulated handle: nothing; a simulated operator (a hand-arm mass pulled by the
+// arm towards a target motion, plus a voluntary force, holding the handle through a grasp spring-damper from
+// loose to firm); a stiff position source (a linear guide with coupling stiffness and damping following a
+// path); or a scripted wrench. Settings can be replaced at any time; the new attachment starts from the
+// handle's current pose (no jump). Real-time safe.
+#include <Eigen/Geometry>
+
+#include "profile.hpp"
+
+namespace hapticd::sim {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+enum class AttachmentKind { kNone, kOperator, kPositionSource, kWrench };
+
+struct AttachmentSettings {
+  AttachmentKind kind = AttachmentKind::kNone;
+  // Operator.
+  double grasp = 0.5;                   // 0 loose .. 1 firm
+  double hand_mass_kg = 1.0;
+  double arm_stiffness = 300.0;         // [N/m] towards the target motion
+  double arm_damping = 25.0;            // [N s/m]
+  Profile motion;                       // target offset from the grasp position [m]
+  Profile force;                        // voluntary force [N]
+  // Position source.
+  double source_stiffness = 1e5;        // [N/m]
+  double source_damping = 500.0;        // [N s/m]
+  double source_rotational_stiffness = 500.0;  // [N m/rad]
+  double source_rotational_damping = 5.0;      // [N m s/rad]
+  Profile path;                         // offset from the attach position [m]
+  // Scripted wrench.
+  Profile wrench_force;                 // [N]
+  Profile wrench_torque;                // [N m]
+};
+
+class HandleAttachment {
+ public:
+  // Replaces the settings; the attachment re-anchors at the next step at the handle's pose then.
+  void select(const AttachmentSettings& settings) noexcept {
+    settings_ = settings;
+    anchored_ = false;
+  }
+  [[nodiscard]] const AttachmentSettings& settings() const noexcept { return settings_; }
+
+  // The wrench ([force; torque], world, at the handle point) the attachment applies to the handle over the
+  // next dt, given the handle's pose and twist ([linear; angular]); t is the simulated time.
+  Vector6d step(double t, double dt, const Eigen::Isometry3d& handle, const Vector6d& twist) noexcept;
+
+  // Grasp stiffness and damping of the operator at the current grasp setting.
+  [[nodiscard]] double grasp_stiffness() const noexcept { return 100.0 + settings_.grasp * (3000.0 - 100.0); }
+  [[nodiscard]] double grasp_damping() const noexcept { return 2.0 + settings_.grasp * (30.0 - 2.0); }
+  [[nodiscard]] const Eigen::Vector3d& hand_position() const noexcept { return hand_position_; }
+
+ private:
+  AttachmentSettings settings_;
+  bool anchored_ = false;
+  double anchor_time_ = 0.0;
+  Eigen::Vector3d anchor_position_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d anchor_rotation_ = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d hand_position_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d hand_velocity_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace hapticd::sim

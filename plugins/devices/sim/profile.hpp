@@ -1,0 +1,43 @@
+#pragma once
+// A scripted 3-D signal over time: constant, step at start_s, ramp from start_s, or sine from start_s.
+// Used for the operator's target motion and voluntary force, the position source's path and scripted
+// wrenches. Real-time safe.
+#include <Eigen/Core>
+#include <cmath>
+#include <string>
+
+namespace hapticd::sim {
+
+struct Profile {
+  enum class Kind { kConstant, kStep, kRamp, kSine };
+  Kind kind = Kind::kConstant;
+  Eigen::Vector3d value = Eigen::Vector3d::Zero();  // constant / step value, ramp rate per second, sine amplitude
+  double start_s = 0.0;
+  double frequency_hz = 1.0;
+
+  [[nodiscard]] Eigen::Vector3d at(double t) const noexcept {
+    switch (kind) {
+      case Kind::kConstant: return value;
+      case Kind::kStep: return t >= start_s ? value : Eigen::Vector3d::Zero();
+      case Kind::kRamp: return t >= start_s ? Eigen::Vector3d(value * (t - start_s)) : Eigen::Vector3d::Zero();
+      case Kind::kSine:
+        return t >= start_s ? Eigen::Vector3d(value * std::sin(2.0 * M_PI * frequency_hz * (t - start_s)))
+                            : Eigen::Vector3d::Zero();
+    }
+    return Eigen::Vector3d::Zero();
+  }
+  [[nodiscard]] Eigen::Vector3d rate_at(double t) const noexcept {
+    switch (kind) {
+      case Kind::kRamp: return t >= start_s ? value : Eigen::Vector3d::Zero();
+      case Kind::kSine:
+        return t >= start_s ? Eigen::Vector3d(value * 2.0 * M_PI * frequency_hz *
+                                              std::cos(2.0 * M_PI * frequency_hz * (t - start_s)))
+                            : Eigen::Vector3d::Zero();
+      default: return Eigen::Vector3d::Zero();
+    }
+  }
+  // "constant", "step", "ramp", "sine"; throws std::invalid_argument otherwise.
+  static Kind parse(const std::string& name);
+};
+
+}  // namespace hapticd::sim

@@ -1,0 +1,299 @@
+#include "sim_device.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "hapticd/model/kinematics.hpp"
+#include "hapticd/model/urdf_loader.hpp"
+#include "physics_builder.hpp"
+
+namespace hapticd::sim {
+namespace {
+
+const std::vector<std::string> kProfiles{"constant", "step", "ramp", "sine"};
+
+void declare_profile(ParameterSchema& s, const std::string& prefix, const std::string& what, const std::string& unit,
+                     const std::string& default_kind) {
+  s.string(prefix, what + ": constant, step (at _start_s), ramp (value per second) or sine (amplitude)")
+      .choices(kProfiles).default_value(default_kind);
+  s.real_vector(prefix + "_" + unit, what + " value (x, y, z, world)").size(3).default_value(std::vector<double>{0, 0, 0});
+  s.real(prefix + "_start_s", what + ": start of the step, ramp or sine").unit("s").minimum(0.0).default_value(0.0);
+  s.real(prefix + "_frequency_hz", what + ": frequency of the sine").unit("Hz").greater_than(0.0).default_value(0.5);
+}
+
+Profile read_profile(const Parameters& p, const std::string& prefix, const std::string& unit) {
+  Profile profile;
+  profile.kind = Profile::parse(p.string(prefix));
+  const auto& v = p.real_vector(prefix + "_" + unit);
+  profile.value = Eigen::Vector3d(v[0], v[1], v[2]);
+  profile.start_s = p.real(prefix + "_start_s");
+  profile.frequency_hz = p.real(prefix + "_frequency_hz");
+  return profile;
+}
+
+AttachmentKind parse_attachment(const std::string& name) {
+  if (name == "operator") return AttachmentKind::kOperator;
+  if (name == "position_source") return AttachmentKind::kPositionSource;
+  if (name == "wrench") return AttachmentKind::kWrench;
+  return AttachmentKind::kNone;
+}
+
+}  // namespace
+
+ParameterSchema SimDevice::parameter_schema() {
+  ParameterSchema s;
+  s.string("urdf", "robot model with <hapticd_drive> data (relative paths: from the session file's folder)");
+  s.string("handle_frame", "frame of the handle (end-effector) in the model").default_value(std::string("handle"));
+  s.string("sensor_frame", "frame of the force/torque sensor; empty: no sensor").default_value(std::string("sensor"));
+  s.boolean("passive_gimbal", "the handle turns freely (ViSHaRD3's thimble): attachments apply no torques")
+      .default_value(false);
+  s.real_vector("initial_position", "joint positions at activation; empty: all zero").default_value(std::vector<double>{});
+  s.real("substep_hz", "physics integration rate").unit("Hz").minimum(2000.0).maximum(1e6).default_value(20000.0);
+  s.real("structural_damping_ratio", "damping of each gear spring").minimum(0.0).maximum(1.0).default_value(0.02);
+  s.boolean("friction", "master switch of all gear friction").default_value(true);
+  s.boolean("stiction", "stiction with a random break-away level per sticking").default_value(true);
+  s.boolean("load_friction", "friction rising with the transmitted torque").default_value(true);
+  s.boolean("warm_up", "friction drifts from the 26 C to the 36 C curve").default_value(true);
+  s.real("warm_up_time_constant_s", "time constant of the warm-up").unit("s").greater_than(0.0).default_value(600.0);
+  s.real("friction_variation", "relative standard deviation of the per-joint friction scale").minimum(0.0)
+      .maximum(0.5).default_value(0.1);
+  s.boolean("ripple", "position-dependent torque ripple, 2 cycles per motor revolution").default_value(true);
+  s.boolean("current_loop", "first-order current loop (else the torque is applied at once)").default_value(true);
+  s.real("current_bandwidth_hz", "current-loop bandwidth").unit("Hz").greater_than(0.0).default_value(2500.0);
+  s.boolean("thermal_limit", "limit to the continuous torque while the winding is hot").default_value(true);
+  s.real("thermal_time_constant_s", "winding time constant").unit("s").greater_than(0.0).default_value(30.0);
+  s.real("current_offset_nm", "amplifier current offset, as a joint torque").unit("N m").default_value(0.0);
+  s.boolean("speed_monitor", "a joint above its speed limit faults the device (latched)").default_value(true);
+  s.boolean("encoder_quantisation", "positions in whole encoder counts (motor side)").default_value(true);
+  s.real_vector("sensor_force_range_n", "force ranges of the sensor").size(3).minimum(0.0)
+      .default_value(std::vector<double>{200, 200, 400});
+  s.real_vector("sensor_torque_range_nm", "torque ranges of the sensor").size(3).minimum(0.0)
+      .default_value(std::vector<double>{12, 12, 12});
+  s.real("sensor_noise_lsb", "sensor noise standard deviation, in resolution steps (1/4000 of the range)")
+      .minimum(0.0).default_value(0.5);
+  s.real("sensor_bandwidth_hz", "sensor bandwidth").unit("Hz").greater_than(0.0).default_value(8000.0);
+  s.string("attachment", "what holds the handle at activation").choices({"none", "operator", "position_source", "wrench"})
+      .default_value(std::string("none"));
+  s.real("operator_grasp", "operator's grasp, 0 loose .. 1 firm").minimum(0.0).maximum(1.0).default_value(0.5);
+  s.real("operator_hand_mass_kg", "operator's hand-arm mass").unit("kg").greater_than(0.0).default_value(1.0);
+  s.real("operator_arm_stiffness", "operator's arm stiffness towards the target motion").unit("N/m").minimum(0.0)
+      .default_value(300.0);
+  s.real("operator_arm_damping", "operator's arm damping").unit("N s/m").minimum(0.0).default_value(25.0);
+  declare_profile(s, "operator_motion", "operator's target motion from the grasp position", "m", "constant");
+  declare_profile(s, "operator_force", "operator's voluntary force", "n", "constant");
+  s.real("source_stiffness", "position source coupling stiffness").unit("N/m").greater_than(0.0).default_value(1e5);
+  s.real("source_damping", "position source coupling damping").unit("N s/m").minimum(0.0).default_value(500.0);
+  declare_profile(s, "source_path", "position source path from the attach position", "m", "constant");
+  declare_profile(s, "wrench_force", "scripted force", "n", "constant");
+  declare_profile(s, "wrench_torque", "scripted torque", "nm", "constant");
+  return s;
+}
+
+void SimDevice::configure(const Parameters& p, const PluginContext& context) {
+  std::filesystem::path urdf = p.string("urdf");
+  if (urdf.is_relative()) urdf = context.config_directory / urdf;
+  model::RobotModel robot = [&] {
+    try {
+      return model::load_robot_model(urdf);
+    } catch (const model::ModelError& e) {
+      throw ParameterError("urdf", e.what());
+    }
+  }();
+  const int n = robot.dof();
+  handle_frame_ = robot.frame_id(p.string("handle_frame"));
+  if (handle_frame_ < 0) throw ParameterError("handle_frame", "no frame '" + p.string("handle_frame") + "' in " + urdf.string());
+  sensor_present_ = !p.string("sensor_frame").empty();
+  sensor_frame_ = sensor_present_ ? robot.frame_id(p.string("sensor_frame")) : -1;
+  if (sensor_present_ && sensor_frame_ < 0) {
+    throw ParameterError("sensor_frame", "no frame '" + p.string("sensor_frame") + "' in " + urdf.string());
+  }
+  const auto& q0 = p.real_vector("initial_position");
+  if (!q0.empty() && static_cast<int>(q0.size()) != n) {
+    throw ParameterError("initial_position", "needs " + std::to_string(n) + " values (the model's joints), got " +
+                                                 std::to_string(q0.size()));
+  }
+  initial_position_ = JointVector::Zero(n);
+  for (int i = 0; i < static_cast<int>(q0.size()); ++i) initial_position_[i] = q0[static_cast<std::size_t>(i)];
+
+  PhysicsOptions physics;
+  physics.damping_ratio = p.real("structural_damping_ratio");
+  physics.friction = p.boolean("friction");
+  physics.friction_template.stiction = p.boolean("stiction");
+  physics.friction_template.load_dependent = p.boolean("load_friction");
+  physics.friction_template.warm_up = p.boolean("warm_up");
+  physics.friction_template.warm_up_time_constant_s = p.real("warm_up_time_constant_s");
+  physics.friction_variation = p.real("friction_variation");
+  physics.ripple = p.boolean("ripple");
+  try {
+    chain_ = std::make_unique<FlexibleChain>(build_flexible_chain(robot, handle_frame_, physics, context.seed));
+  } catch (const std::invalid_argument& e) {
+    throw ParameterError("urdf", e.what());
+  }
+
+  substep_ns_ = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::llround(1e9 / p.real("substep_hz"))));
+  const std::int64_t period_ns = static_cast<std::int64_t>(std::llround(1e9 / context.rate_hz));
+  if (period_ns % substep_ns_ != 0) {
+    throw ParameterError("substep_hz", "must divide the control period evenly (a multiple of the rate " +
+                                           std::to_string(context.rate_hz) + " Hz)");
+  }
+  substep_s_ = static_cast<double>(substep_ns_) * 1e-9;
+  chain_->reset(initial_position_);
+  const double highest = chain_->highest_frequency();
+  if (highest * substep_s_ > 0.5) {
+    throw ParameterError("substep_hz", "the stiffest joint oscillates at " + std::to_string(highest / (2 * M_PI)) +
+                                           " Hz: at least " + std::to_string(highest / 0.5) +
+                                           " Hz of substeps are needed for a stable integration");
+  }
+
+  drives_.assign(static_cast<std::size_t>(n), Drive{});
+  counts_per_rev_.resize(n);
+  description_ = DeviceDescription{};
+  description_.model = robot.name();
+  for (int i = 0; i < n; ++i) {
+    const model::Body& b = robot.body(i);
+    DriveParameters d;
+    d.peak_torque = b.drive.peak_joint_torque();
+    d.continuous_torque = b.drive.continuous_joint_torque();
+    d.current_bandwidth_hz = p.real("current_bandwidth_hz");
+    d.thermal_time_constant_s = p.real("thermal_time_constant_s");
+    d.current_offset_nm = p.real("current_offset_nm");
+    d.current_loop = p.boolean("current_loop");
+    d.thermal_limit = p.boolean("thermal_limit");
+    drives_[static_cast<std::size_t>(i)].configure(d);
+    counts_per_rev_[i] = p.boolean("encoder_quantisation") ? b.drive.joint_counts_per_rev() : 0.0;
+    description_.joints.push_back(JointDescription{b.joint_name, b.position_min, b.position_max,
+                                                   b.drive.max_joint_speed(), d.peak_torque, d.continuous_torque});
+  }
+  speed_limits_ = robot.speed_limits();
+  speed_monitor_ = p.boolean("speed_monitor");
+  encoder_quantisation_ = p.boolean("encoder_quantisation");
+  description_.handle_frame = p.string("handle_frame");
+  description_.sensor_frame = p.string("sensor_frame");
+  description_.robot_model_file = urdf.string();
+  description_.reports_wrench = sensor_present_;
+
+  ForceSensorParameters sensor;
+  const auto& fr = p.real_vector("sensor_force_range_n");
+  const auto& tr = p.real_vector("sensor_torque_range_nm");
+  sensor.range << fr[0], fr[1], fr[2], tr[0], tr[1], tr[2];
+  sensor.noise_lsb = p.real("sensor_noise_lsb");
+  sensor.bandwidth_hz = p.real("sensor_bandwidth_hz");
+  sensor_.configure(sensor, context.seed ^ 0x5EB5EB5EULL);
+
+  AttachmentSettings a;
+  a.kind = parse_attachment(p.string("attachment"));
+  a.grasp = p.real("operator_grasp");
+  a.hand_mass_kg = p.real("operator_hand_mass_kg");
+  a.arm_stiffness = p.real("operator_arm_stiffness");
+  a.arm_damping = p.real("operator_arm_damping");
+  a.motion = read_profile(p, "operator_motion", "m");
+  a.force = read_profile(p, "operator_force", "n");
+  a.source_stiffness = p.real("source_stiffness");
+  a.source_damping = p.real("source_damping");
+  a.path = read_profile(p, "source_path", "m");
+  a.wrench_force = read_profile(p, "wrench_force", "n");
+  a.wrench_torque = read_profile(p, "wrench_torque", "nm");
+  initial_attachment_ = a;
+  passive_gimbal_ = p.boolean("passive_gimbal");
+
+  command_ = JointVector::Zero(n);
+  truth_.motor_torque = JointVector::Zero(n);
+}
+
+void SimDevice::activate() {
+  chain_->reset(initial_position_);
+  for (Drive& d : drives_) d.reset();
+  sensor_.reset();
+  attachment_.select(initial_attachment_);
+  command_.setZero();
+  simulated_ns_ = 0;
+  truth_.overspeed_joint = -1;
+  chain_->prepare();
+  truth_.handle_pose = chain_->handle_pose();
+  truth_.handle_twist.setZero();
+  truth_.handle_wrench.setZero();
+  truth_.sensor_wrench.setZero();
+  truth_.link_position = chain_->link_position();
+  truth_.motor_position = chain_->motor_position();
+}
+
+void SimDevice::substep() noexcept {
+  const int n = chain_->dof();
+  for (int i = 0; i < n; ++i) truth_.motor_torque[i] = drives_[static_cast<std::size_t>(i)].step(command_[i], substep_s_);
+  chain_->prepare();
+  const Eigen::Isometry3d handle = chain_->handle_pose();
+  const Vector6d twist = chain_->handle_twist();
+  const double t = static_cast<double>(simulated_ns_) * 1e-9;
+  Vector6d wrench = attachment_.step(t, substep_s_, handle, twist);
+  if (passive_gimbal_) wrench.tail<3>().setZero();
+  if (sensor_present_) {
+    const Eigen::Isometry3d s = model::frame_pose(chain_->link_model(), chain_->data(), sensor_frame_);
+    const Eigen::Matrix3d rt = s.linear().transpose();
+    Vector6d at_sensor;
+    at_sensor.head<3>() = rt * wrench.head<3>();
+    at_sensor.tail<3>() = rt * (wrench.tail<3>() + (handle.translation() - s.translation()).cross(wrench.head<3>()));
+    sensor_.update(at_sensor, substep_s_);
+    truth_.sensor_wrench = at_sensor;
+  }
+  truth_.handle_pose = handle;
+  truth_.handle_twist = twist;
+  truth_.handle_wrench = wrench;
+  chain_->step(substep_s_, truth_.motor_torque, wrench);
+  if (speed_monitor_ && truth_.overspeed_joint < 0) {
+    for (int i = 0; i < n; ++i) {
+      if (std::abs(chain_->link_velocity()[i]) > speed_limits_[i]) {
+        truth_.overspeed_joint = i;
+        break;
+      }
+    }
+  }
+}
+
+ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
+  if (attachment_requests_.take(pending_)) attachment_.select(pending_);
+  // Advance to the cycle's time; a gap of more than 10 periods (a stalled loop) is skipped, which bounds
+  // the time read() takes.
+  const std::int64_t max_steps = 10 * std::max<std::int64_t>(1, cycle.period_ns / substep_ns_);
+  std::int64_t steps = 0;
+  while (simulated_ns_ + substep_ns_ <= cycle.time_ns && steps < max_steps) {
+    substep();
+    simulated_ns_ += substep_ns_;
+    ++steps;
+  }
+  if (simulated_ns_ + substep_ns_ <= cycle.time_ns) simulated_ns_ = cycle.time_ns;
+
+  const int n = chain_->dof();
+  state.timestamp_ns = cycle.time_ns;
+  for (int i = 0; i < n; ++i) {
+    state.joints.position[i] = quantise_encoder(chain_->motor_position()[i], counts_per_rev_[i]);
+    state.joints.velocity[i] = 0.0;  // not measured: controllers differentiate, as on the hardware
+    state.joints.effort[i] = truth_.motor_torque[i];
+  }
+  if (sensor_present_) {
+    const Vector6d w = sensor_.read();
+    state.sensor_wrench.force = w.head<3>();
+    state.sensor_wrench.torque = w.tail<3>();
+    truth_.sensor_saturated = sensor_.saturated();
+  }
+  truth_.link_position = chain_->link_position();
+  truth_.link_velocity = chain_->link_velocity();
+  truth_.motor_position = chain_->motor_position();
+  truth_.motor_velocity = chain_->motor_velocity();
+  truth_.spring_torque = chain_->spring_torque();
+  truth_.friction_torque = chain_->friction_torque();
+  truth_.time_s = static_cast<double>(simulated_ns_) * 1e-9;
+  return truth_.overspeed_joint >= 0 ? ReturnCode::error : ReturnCode::ok;
+}
+
+ReturnCode SimDevice::write(const CycleTime& /*cycle*/, const JointCommand& command) noexcept {
+  if (command.torque_nm.size() != command_.size()) return ReturnCode::error;
+  command_ = command.torque_nm;
+  return ReturnCode::ok;
+}
+
+void SimDevice::deactivate() {
+  command_.setZero();
+  for (Drive& d : drives_) d.reset();
+}
+
+}  // namespace hapticd::sim

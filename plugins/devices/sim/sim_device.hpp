@@ -1,0 +1,72 @@
+#pragma once
+// The simulated device plugin ("sim"): any serial URDF chain with drive data, ViSHaRD3/6/10 included.
+// Physics in substeps well above the control rate (FlexibleChain), drives (current loop, saturation, thermal
+// limit, speed monitoring), sensing as on the hardware (motor encoders, force/torque sensor), and what is
+// attached to the handle (HandleAttachment), switchable at run time through request_attachment().
+// Ground truth is kept apart from the device outputs, for tests and evaluations.
+#include <memory>
+#include <optional>
+
+#include "drive.hpp"
+#include "flexible_chain.hpp"
+#include "force_sensor.hpp"
+#include "handle_attachment.hpp"
+#include "hapticd/device.hpp"
+#include "hapticd/realtime/latest_value.hpp"
+
+namespace hapticd::sim {
+
+// The simulation's true state after the last read(), never mixed into the device outputs.
+struct GroundTruth {
+  JointVector link_position, link_velocity, motor_position, motor_velocity;
+  JointVector spring_torque, friction_torque, motor_torque;
+  Eigen::Isometry3d handle_pose = Eigen::Isometry3d::Identity();
+  Vector6d handle_twist = Vector6d::Zero();    // [linear; angular], world
+  Vector6d handle_wrench = Vector6d::Zero();   // applied to the handle by the attachment, world
+  Vector6d sensor_wrench = Vector6d::Zero();   // the same in the sensor frame, before the sensor's effects
+  double time_s = 0.0;
+  bool sensor_saturated = false;
+  int overspeed_joint = -1;                    // first joint above its speed limit, -1 if none
+};
+
+class SimDevice final : public Device {
+ public:
+  static ParameterSchema parameter_schema();
+
+  void configure(const Parameters& parameters, const PluginContext& context) override;
+  [[nodiscard]] const DeviceDescription& description() const override { return description_; }
+  void activate() override;
+  ReturnCode read(const CycleTime& cycle, DeviceState& state) noexcept override;
+  ReturnCode write(const CycleTime& cycle, const JointCommand& command) noexcept override;
+  void deactivate() override;
+
+  // Any thread: replaces what is attached to the handle from the next substep on.
+  void request_attachment(const AttachmentSettings& settings) { attachment_requests_.publish(settings); }
+  [[nodiscard]] const GroundTruth& ground_truth() const noexcept { return truth_; }
+  [[nodiscard]] const FlexibleChain& chain() const noexcept { return *chain_; }
+  [[nodiscard]] double substep_s() const noexcept { return substep_s_; }
+
+ private:
+  void substep() noexcept;
+
+  DeviceDescription description_;
+  std::unique_ptr<FlexibleChain> chain_;
+  std::vector<Drive> drives_;
+  ForceSensor sensor_;
+  HandleAttachment attachment_;
+  AttachmentSettings initial_attachment_;
+  realtime::LatestValue<AttachmentSettings> attachment_requests_;
+  AttachmentSettings pending_;
+  GroundTruth truth_;
+  JointVector initial_position_, command_, counts_per_rev_, speed_limits_;
+  int handle_frame_ = -1, sensor_frame_ = -1;
+  double substep_s_ = 5e-5;
+  std::int64_t substep_ns_ = 50000;
+  std::int64_t simulated_ns_ = 0;
+  bool encoder_quantisation_ = true;
+  bool speed_monitor_ = true;
+  bool sensor_present_ = true;
+  bool passive_gimbal_ = false;
+};
+
+}  // namespace hapticd::sim

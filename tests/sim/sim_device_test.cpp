@@ -1,0 +1,194 @@
+// The simulated device plugin in lockstep: sensing as on the hardware (encoder counts, sensor resolution,
+// saturation), the attachments (operator, position source, scripted wrench) and switching between them,
+// speed monitoring, determinism, configuration errors, allocation-free read/write.
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "hapticd/testing/allocation_guard.hpp"
+#include "support/sim_device_fixture.hpp"
+
+namespace hapticd {
+namespace {
+
+using test::SimRig;
+
+const std::string kVishard3 = "urdf: ../urdf/vishard3.urdf\ninitial_position: [-0.3, 1.6, 0.0]\npassive_gimbal: true\n";
+
+TEST(SimDevice, DescribesTheModelAndItsDrives) {
+  SimRig rig(kVishard3);
+  const DeviceDescription& d = rig.device.description();
+  EXPECT_EQ(d.model, "vishard3");
+  ASSERT_EQ(d.dof(), 3);
+  EXPECT_DOUBLE_EQ(d.joints[0].torque_peak_nm, 54.0);
+  EXPECT_NEAR(d.joints[0].velocity_max, 7.645, 1e-3);
+  EXPECT_TRUE(d.reports_wrench);
+  EXPECT_FALSE(d.reports_joint_velocity);
+}
+
+TEST(SimDevice, PositionsAreWholeEncoderCountsAndVelocitiesAreNotReported) {
+  SimRig rig(kVishard3 + "attachment: wrench\nwrench_force: constant\nwrench_force_n: [5, 3, 0]\n");
+  const double quantum = 2 * M_PI / (2000.0 * 100.0);
+  int distinct = 0;
+  double previous = 0.0;
+  for (int k = 0; k < 400; ++k) {
+    rig.cycle();
+    for (int i = 0; i < 3; ++i) {
+      const double counts = rig.state.joints.position[i] / quantum;
+      ASSERT_NEAR(counts, std::round(counts), 1e-6) << "joint " << i;
+      ASSERT_EQ(rig.state.joints.velocity[i], 0.0);
+    }
+    if (rig.state.joints.position[0] != previous) ++distinct;
+    previous = rig.state.joints.position[0];
+    // Ground truth differs from the measurement by less than one count, never more.
+    const double truth = rig.device.ground_truth().motor_position[0];
+    ASSERT_LT(truth - rig.state.joints.position[0], quantum);
+    ASSERT_GE(truth - rig.state.joints.position[0], 0.0);
+  }
+  EXPECT_GT(distinct, 3) << "the joint should move under the pushing wrench";
+}
+
+TEST(SimDevice, SensorReadsTheWrenchInResolutionStepsWithinNoise) {
+  // Hold the device with a stiff joint PD on the encoder positions; push the handle with 20 N along x.
+  SimRig rig(kVishard3 + "attachment: wrench\nwrench_force: step\nwrench_force_n: [20, 0, 0]\n"
+                         "wrench_force_start_s: 0.1\n");
+  const JointVector hold = [&] {
+    rig.cycle();
+    return rig.state.joints.position;
+  }();
+  double worst = 0.0;
+  for (int k = 0; k < 1000; ++k) {
+    rig.command.torque_nm = 2000.0 * (hold - rig.state.joints.position);
+    rig.cycle();
+    const auto& f = rig.state.sensor_wrench.force;
+    for (int a = 0; a < 3; ++a) {
+      const double lsb = (a == 2 ? 400.0 : 200.0) / 4000.0;
+      ASSERT_NEAR(f[a] / lsb, std::round(f[a] / lsb), 1e-6);
+    }
+    if (k > 400) {
+      const Eigen::Vector3d truth = rig.device.ground_truth().sensor_wrench.head<3>();
+      worst = std::max(worst, (f - truth).cwiseAbs().maxCoeff());
+    }
+  }
+  EXPECT_NEAR(rig.device.ground_truth().sensor_wrench.head<3>().norm(), 20.0, 1e-6);
+  EXPECT_LT(worst, 0.1 * 3);  // 3 LSB: noise of 0.5 LSB plus the rounding
+  EXPECT_GT(worst, 0.0);      // but not ideal: noise and quantisation are there
+}
+
+TEST(SimDevice, SensorSaturatesAtItsRange) {
+  SimRig rig(kVishard3 + "attachment: wrench\nwrench_force: constant\nwrench_force_n: [0, 0, -900]\n"
+                         "speed_monitor: false\n");
+  bool saturated = false;
+  for (int k = 0; k < 20; ++k) {
+    rig.cycle();
+    saturated = saturated || rig.device.ground_truth().sensor_saturated;
+    ASSERT_LE(rig.state.sensor_wrench.force.cwiseAbs().maxCoeff(), 400.0);
+  }
+  EXPECT_TRUE(saturated);
+  EXPECT_NEAR(rig.state.sensor_wrench.force.cwiseAbs().maxCoeff(), 400.0, 1e-9);
+  EXPECT_GT(rig.device.ground_truth().sensor_wrench.head<3>().cwiseAbs().maxCoeff(), 400.0);
+}
+
+TEST(SimDevice, OperatorGraspsWithoutJumpAndPushesTheFreeHandle) {
+  SimRig rig(kVishard3 + "attachment: operator\nfriction: false\noperator_force: step\n"
+                         "operator_force_n: [0, 10, 0]\noperator_force_start_s: 0.2\n");
+  rig.cycle();
+  const Eigen::Vector3d start = rig.device.ground_truth().handle_pose.translation();
+  for (int k = 0; k < 399; ++k) {
+    rig.cycle();
+    // Before the push the operator only holds: the grasp carries no more than the arm's own sag.
+    if (k < 20) {
+      ASSERT_LT(rig.device.ground_truth().handle_wrench.head<3>().norm(), 25.0);
+    }
+  }
+  for (int k = 0; k < 600; ++k) rig.cycle();
+  const Eigen::Vector3d moved = rig.device.ground_truth().handle_pose.translation() - start;
+  EXPECT_GT(moved.y(), 0.005) << moved.transpose();
+}
+
+TEST(SimDevice, PositionSourceDragsTheHandleAlongItsPath) {
+  SimRig rig(kVishard3 + "attachment: position_source\nsource_path: ramp\nsource_path_m: [0.05, 0, 0]\n");
+  rig.cycle();
+  const Eigen::Vector3d start = rig.device.ground_truth().handle_pose.translation();
+  for (int k = 0; k < 2000; ++k) rig.cycle();  // 1 s: 5 cm
+  const Eigen::Vector3d moved = rig.device.ground_truth().handle_pose.translation() - start;
+  EXPECT_NEAR(moved.x(), 0.05, 1e-3);
+  // Dragging a device with friction takes force: the source pushes along the path.
+  EXPECT_GT(rig.device.ground_truth().handle_wrench.x(), 1.0);
+}
+
+TEST(SimDevice, AttachmentSwitchesAtRunTimeWithoutAJump) {
+  SimRig rig(kVishard3 + "attachment: operator\noperator_motion: sine\noperator_motion_m: [0.03, 0, 0]\n");
+  for (int k = 0; k < 1000; ++k) rig.cycle();
+  sim::AttachmentSettings source;
+  source.kind = sim::AttachmentKind::kPositionSource;
+  std::thread other([&] { rig.device.request_attachment(source); });  // from another thread, as DDS will
+  other.join();
+  const sim::Vector6d before = rig.device.ground_truth().handle_wrench;
+  rig.cycle();
+  const sim::Vector6d after = rig.device.ground_truth().handle_wrench;
+  // The source anchors where the handle is: only its damping acts on the handle's current velocity.
+  const double speed = rig.device.ground_truth().handle_twist.head<3>().norm();
+  EXPECT_LT(after.head<3>().norm(), 500.0 * speed + 1.0) << before.transpose() << " -> " << after.transpose();
+}
+
+TEST(SimDevice, SpeedMonitorFaultsTheDevice) {
+  SimRig rig(kVishard3 + "attachment: wrench\nwrench_force: constant\nwrench_force_n: [0, 0, -300]\n");
+  ReturnCode r = ReturnCode::ok;
+  int cycles = 0;
+  for (; cycles < 4000 && r == ReturnCode::ok; ++cycles) r = rig.cycle();
+  EXPECT_EQ(r, ReturnCode::error);
+  EXPECT_GE(rig.device.ground_truth().overspeed_joint, 0);
+  EXPECT_EQ(rig.cycle(), ReturnCode::error) << "the fault is latched";
+}
+
+TEST(SimDevice, SameSeedSameReadingsOtherSeedOtherReadings) {
+  const std::string yaml = kVishard3 + "attachment: operator\noperator_motion: sine\noperator_motion_m: [0.03, 0, 0]\n";
+  const auto run = [&](std::uint64_t seed) {
+    SimRig rig(yaml, 2000.0, seed);
+    std::vector<double> out;
+    for (int k = 0; k < 2000; ++k) {
+      rig.command.torque_nm = JointVector::Constant(3, 0.5);
+      rig.cycle();
+      out.push_back(rig.state.joints.position[0]);
+      out.push_back(rig.state.sensor_wrench.force.x());
+    }
+    return out;
+  };
+  EXPECT_EQ(run(1), run(1));
+  EXPECT_NE(run(1), run(2));
+}
+
+TEST(SimDevice, ReadAndWriteDoNotAllocate) {
+  if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
+  SimRig rig("urdf: ../urdf/vishard10.urdf\ninitial_position: [0.3, -0.6, 0.6, -0.6, 0.3, 1.0, -2.0, 1.0, 0.8, 0.0]\n"
+             "attachment: operator\noperator_motion: sine\noperator_motion_m: [0.03, 0, 0]\n");
+  rig.cycle();
+  const std::size_t allocations = testing::count_allocations([&] {
+    for (int k = 0; k < 50; ++k) rig.cycle();
+  });
+  EXPECT_EQ(allocations, 0u);
+}
+
+std::string configure_error(const std::string& yaml) {
+  try {
+    SimRig rig(yaml);
+  } catch (const ParameterError& e) {
+    return e.key() + ": " + e.what();
+  }
+  return "";
+}
+
+TEST(SimDevice, ConfigurationErrorsNameTheParameter) {
+  EXPECT_EQ(configure_error("urdf: ../urdf/nope.urdf\n").rfind("urdf: ", 0), 0u);
+  EXPECT_NE(configure_error(kVishard3 + "handle_frame: tip\n").find("handle_frame: "), std::string::npos);
+  EXPECT_NE(configure_error("urdf: ../urdf/vishard3.urdf\ninitial_position: [1, 2]\n").find("needs 3 values"),
+            std::string::npos);
+  // ViSHaRD10's wrist springs need more than 2 kHz of substeps.
+  EXPECT_NE(configure_error("urdf: ../urdf/vishard10.urdf\nsubstep_hz: 2000\n").find("substep_hz: "),
+            std::string::npos);
+  EXPECT_NE(configure_error(kVishard3 + "substep_hz: 30000\n").find("divide the control period"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hapticd
