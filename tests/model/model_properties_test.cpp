@@ -22,15 +22,6 @@ using model::Vector6d;
 constexpr int kStates = 200;
 constexpr double kPi = std::numbers::pi;
 
-// Pose difference (a - b) as [position; rotation vector], for finite differences.
-Vector6d pose_difference(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  Vector6d d;
-  d.head<3>() = a.translation() - b.translation();
-  const Eigen::AngleAxisd r(a.linear() * b.linear().transpose());
-  d.tail<3>() = r.axis() * r.angle();
-  return d;
-}
-
 class ModelProperties : public ::testing::TestWithParam<const char*> {
  protected:
   void SetUp() override {
@@ -66,7 +57,7 @@ TEST_P(ModelProperties, JacobianMatchesFiniteDifferences) {
       JointVector qp = q, qm = q;
       qp[c] += h;
       qm[c] -= h;
-      const Vector6d fd = pose_difference(pose_at(qp), pose_at(qm)) / (2 * h);
+      const Vector6d fd = model::pose_difference(pose_at(qp), pose_at(qm)) / (2 * h);
       ASSERT_LE((j.col(c) - fd).norm(), 1e-7) << "column " << c << " state " << k;
     }
   }

@@ -75,8 +75,6 @@ double locked_output_frequency_hz(FlexibleChain& chain, int joint, double torque
   torque[joint] = torque_step;  // a torque step makes the motor oscillate about the new equilibrium
   double previous = 0.0, first_crossing = -1.0, last_crossing = -1.0;
   int crossings = 0;
-  const double equilibrium = chain.joint(joint).spring.torque(0.0);  // 0
-  (void)equilibrium;
   for (int step = 0; step < 20000; ++step) {
     chain.step(kDt, torque, model::Vector6d::Zero());
     const double oscillation = chain.spring_torque()[joint] - torque_step;

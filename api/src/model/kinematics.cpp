@@ -73,29 +73,49 @@ void frame_jacobian(const RobotModel& model, const ModelData& data, int frame_id
   }
 }
 
+namespace {
+
+// The velocity [linear; angular] of the body point at the frame's origin, and the origin itself.
+struct PointMotion {
+  Eigen::Vector3d point;
+  Eigen::Vector3d velocity;
+};
+
+PointMotion frame_point_motion(const RobotModel& model, const ModelData& data, int frame_id) noexcept {
+  const Eigen::Vector3d point = frame_pose(model, data, frame_id).translation();
+  const Motion& v = data.velocity[model.frame(frame_id).body];
+  return {point, v.linear + v.angular.cross(point)};  // v_O + w x p
+}
+
+}  // namespace
+
 Vector6d frame_velocity(const RobotModel& model, const ModelData& data, int frame_id) noexcept {
   Vector6d twist = Vector6d::Zero();
-  const Frame& f = model.frame(frame_id);
-  if (f.body < 0) return twist;
-  const Eigen::Vector3d point = frame_pose(model, data, frame_id).translation();
-  const Motion& v = data.velocity[f.body];
-  twist.head<3>() = v.linear + v.angular.cross(point);
-  twist.tail<3>() = v.angular;
+  const int body = model.frame(frame_id).body;
+  if (body < 0) return twist;
+  twist.head<3>() = frame_point_motion(model, data, frame_id).velocity;
+  twist.tail<3>() = data.velocity[body].angular;
   return twist;
 }
 
 Vector6d frame_jacobian_dot_times_qd(const RobotModel& model, const ModelData& data, int frame_id) noexcept {
   Vector6d result = Vector6d::Zero();
-  const Frame& f = model.frame(frame_id);
-  if (f.body < 0) return result;
-  const Eigen::Vector3d point = frame_pose(model, data, frame_id).translation();
-  const Motion& v = data.velocity[f.body];
-  const Motion& a = data.bias_acceleration[f.body];
-  const Eigen::Vector3d point_velocity = v.linear + v.angular.cross(point);
+  const int body = model.frame(frame_id).body;
+  if (body < 0) return result;
+  const PointMotion pm = frame_point_motion(model, data, frame_id);
+  const Motion& a = data.bias_acceleration[body];
   // Classical acceleration of a body point from the spatial acceleration: a_O + dw x p + w x v_p.
-  result.head<3>() = a.linear + a.angular.cross(point) + v.angular.cross(point_velocity);
+  result.head<3>() = a.linear + a.angular.cross(pm.point) + data.velocity[body].angular.cross(pm.velocity);
   result.tail<3>() = a.angular;
   return result;
+}
+
+Vector6d pose_difference(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) noexcept {
+  Vector6d d;
+  d.head<3>() = a.translation() - b.translation();
+  const Eigen::AngleAxisd rotation(a.linear() * b.linear().transpose());
+  d.tail<3>() = rotation.axis() * rotation.angle();
+  return d;
 }
 
 Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& r) noexcept {

@@ -7,14 +7,6 @@
 namespace hapticd::model {
 namespace {
 
-Vector6d pose_error(const Eigen::Isometry3d& target, const Eigen::Isometry3d& current) {
-  Vector6d e;
-  e.head<3>() = target.translation() - current.translation();
-  const Eigen::AngleAxisd rotation(target.linear() * current.linear().transpose());
-  e.tail<3>() = rotation.axis() * rotation.angle();
-  return e;
-}
-
 TaskVector select(const Vector6d& e, TaskRows rows) {
   switch (rows) {
     case TaskRows::kTranslation: return e.head<3>();
@@ -34,7 +26,7 @@ PositionSolution solve_position(const RobotModel& model, ModelData& data, int fr
   TaskJacobian j;
   for (result.iterations = 0; result.iterations <= options.max_iterations; ++result.iterations) {
     forward_kinematics(model, data, q);
-    const TaskVector e = select(pose_error(target, frame_pose(model, data, frame_id)), options.rows);
+    const TaskVector e = select(pose_difference(target, frame_pose(model, data, frame_id)), options.rows);
     result.error = e.norm();
     if (result.error < options.tolerance) {
       result.converged = true;

@@ -29,6 +29,10 @@ HAPTICD_API void frame_jacobian(const RobotModel& model, const ModelData& data, 
 [[nodiscard]] HAPTICD_API Vector6d frame_velocity(const RobotModel& model, const ModelData& data,
                                                    int frame_id) noexcept;
 
+// Pose difference a - b as [position difference; rotation vector of a b^T] (world axes): the error a
+// Newton step on the Jacobian corrects.
+[[nodiscard]] HAPTICD_API Vector6d pose_difference(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) noexcept;
+
 // Roll-pitch-yaw angles (URDF convention R = Rz(yaw) Ry(pitch) Rx(roll)), pitch in [-pi/2, pi/2].
 [[nodiscard]] HAPTICD_API Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& rotation) noexcept;
 // Analytic Jacobian: rows [linear; d(roll, pitch, yaw)/dt] from the geometric Jacobian at a frame rotation.
