@@ -75,6 +75,35 @@ TEST(SimDevice, SensorReadsTheWrenchInResolutionStepsWithinNoise) {
   EXPECT_GT(worst, 0.0);      // but not ideal: noise and quantisation are there
 }
 
+TEST(SimDevice, Vishard3SensorMeasuresAccelerations) {
+  SimRig rig(kVishard3 + "sensor_accelerations: true\nattachment: wrench\nwrench_force: step\n"
+                         "wrench_force_n: [0, 30, 0]\nwrench_force_start_s: 0.3\n");
+  EXPECT_TRUE(rig.device.description().reports_sensor_acceleration);
+  JointVector hold;
+  for (int k = 0; k < 700; ++k) {
+    if (k == 1) hold = rig.state.joints.position;
+    if (k >= 1) rig.command.torque_nm = 2000.0 * (hold - rig.state.joints.position);
+    rig.cycle();
+    const Eigen::Vector3d a = rig.state.sensor_acceleration.linear;
+    for (int i = 0; i < 3; ++i) ASSERT_NEAR(a[i] / 0.0981, std::round(a[i] / 0.0981), 1e-6);
+    if (k == 550) {
+      // Held at rest: the accelerometer reads gravity's reaction, 9.81 m/s^2 upwards.
+      EXPECT_NEAR(a.norm(), 9.81, 0.5) << a.transpose();
+      EXPECT_NEAR((a - rig.device.ground_truth().sensor_acceleration.head<3>()).norm(), 0.0, 0.1);
+    }
+  }
+  // Released: the pushed, unheld arm accelerates.
+  rig.command.torque_nm.setZero();
+  double largest = 0.0;
+  for (int k = 0; k < 40; ++k) {
+    rig.cycle();
+    largest = std::max(largest, (rig.state.sensor_acceleration.linear -
+                                 rig.device.ground_truth().handle_pose.linear().transpose() * Eigen::Vector3d(0, 0, 9.81))
+                                    .norm());
+  }
+  EXPECT_GT(largest, 1.0);
+}
+
 TEST(SimDevice, SensorSaturatesAtItsRange) {
   SimRig rig(kVishard3 + "attachment: wrench\nwrench_force: constant\nwrench_force_n: [0, 0, -900]\n"
                          "speed_monitor: false\n");

@@ -15,6 +15,9 @@ struct DeviceState {
   std::int64_t timestamp_ns = 0;  // device time of the sample (simulated devices: the cycle time)
   JointState joints;              // measured positions; velocities if the device reports them; effort = joint torque
   Wrench sensor_wrench;           // force/torque sensor reading in the sensor frame, if the device has one
+  // Proper acceleration (an accelerometer's reading: acceleration minus gravity) and angular acceleration of
+  // the sensor in its frame [m/s^2, rad/s^2], if the sensor measures them (reports_sensor_acceleration).
+  Twist sensor_acceleration;
 };
 
 // What the virtual model asks of the chain. Admittance-type models fill the motion (desired pose, twist and

@@ -25,6 +25,7 @@ struct DeviceDescription {
   bool reports_joint_velocity = false;
   bool reports_wrench = false;
   bool reports_joint_torque = false;
+  bool reports_sensor_acceleration = false;
 
   [[nodiscard]] int dof() const noexcept { return static_cast<int>(joints.size()); }
 };

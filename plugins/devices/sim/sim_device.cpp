@@ -51,6 +51,7 @@ ParameterSchema SimDevice::parameter_schema() {
   s.real("substep_hz", "physics integration rate").unit("Hz").minimum(2000.0).maximum(1e6).default_value(20000.0);
   s.real("structural_damping_ratio", "damping of each gear spring").minimum(0.0).maximum(1.0).default_value(0.02);
   s.boolean("friction", "master switch of all gear friction").default_value(true);
+  s.boolean("sliding_friction", "Coulomb and viscous (Stribeck curve) friction").default_value(true);
   s.boolean("stiction", "stiction with a random break-away level per sticking").default_value(true);
   s.boolean("load_friction", "friction rising with the transmitted torque").default_value(true);
   s.boolean("warm_up", "friction drifts from the 26 C to the 36 C curve").default_value(true);
@@ -72,6 +73,12 @@ ParameterSchema SimDevice::parameter_schema() {
   s.real("sensor_noise_lsb", "sensor noise standard deviation, in resolution steps (1/4000 of the range)")
       .minimum(0.0).default_value(0.5);
   s.real("sensor_bandwidth_hz", "sensor bandwidth").unit("Hz").greater_than(0.0).default_value(8000.0);
+  s.boolean("sensor_accelerations", "the sensor also measures linear and angular acceleration (ViSHaRD3's JR3)")
+      .default_value(false);
+  s.real_vector("sensor_acceleration_range", "ranges of the linear [m/s^2] and angular [rad/s^2] acceleration")
+      .size(2).greater_than(0.0).default_value(std::vector<double>{49.0, 100.0});
+  s.real_vector("sensor_acceleration_resolution", "resolution of the linear and angular acceleration").size(2)
+      .greater_than(0.0).default_value(std::vector<double>{0.0981, 0.1});
   s.string("attachment", "what holds the handle at activation").choices({"none", "operator", "position_source", "wrench"})
       .default_value(std::string("none"));
   s.real("operator_grasp", "operator's grasp, 0 loose .. 1 firm").minimum(0.0).maximum(1.0).default_value(0.5);
@@ -118,6 +125,7 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   PhysicsOptions physics;
   physics.damping_ratio = p.real("structural_damping_ratio");
   physics.friction = p.boolean("friction");
+  physics.friction_template.sliding = p.boolean("sliding_friction");
   physics.friction_template.stiction = p.boolean("stiction");
   physics.friction_template.load_dependent = p.boolean("load_friction");
   physics.friction_template.warm_up = p.boolean("warm_up");
@@ -179,6 +187,12 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   sensor.noise_lsb = p.real("sensor_noise_lsb");
   sensor.bandwidth_hz = p.real("sensor_bandwidth_hz");
   sensor_.configure(sensor, context.seed ^ 0x5EB5EB5EULL);
+  accelerations_ = sensor_present_ && p.boolean("sensor_accelerations");
+  description_.reports_sensor_acceleration = accelerations_;
+  const auto& ar = p.real_vector("sensor_acceleration_range");
+  const auto& aq = p.real_vector("sensor_acceleration_resolution");
+  acceleration_range_ = {ar[0], ar[1]};
+  acceleration_resolution_ = {aq[0], aq[1]};
 
   AttachmentSettings a;
   a.kind = parse_attachment(p.string("attachment"));
@@ -275,6 +289,7 @@ ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept 
     state.sensor_wrench.torque = w.tail<3>();
     truth_.sensor_saturated = sensor_.saturated();
   }
+  if (accelerations_) read_accelerations(state);
   truth_.link_position = chain_->link_position();
   truth_.link_velocity = chain_->link_velocity();
   truth_.motor_position = chain_->motor_position();
@@ -283,6 +298,29 @@ ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept 
   truth_.friction_torque = chain_->friction_torque();
   truth_.time_s = static_cast<double>(simulated_ns_) * 1e-9;
   return truth_.overspeed_joint >= 0 ? ReturnCode::error : ReturnCode::ok;
+}
+
+void SimDevice::read_accelerations(DeviceState& state) noexcept {
+  // Classical acceleration of the sensor from the links' last acceleration: J qdd + dJ/dt qd.
+  FlexibleChain& chain = *chain_;
+  chain.prepare();
+  const model::RobotModel& m = chain.link_model();
+  model::frame_jacobian(m, chain.data(), sensor_frame_, sensor_jacobian_);
+  Vector6d a = sensor_jacobian_ * chain.link_acceleration();
+  a += model::frame_jacobian_dot_times_qd(m, chain.data(), sensor_frame_);
+  a.head<3>() -= m.gravity();  // an accelerometer measures acceleration minus gravity
+  const Eigen::Matrix3d rt = model::frame_pose(m, chain.data(), sensor_frame_).linear().transpose();
+  truth_.sensor_acceleration.head<3>() = rt * a.head<3>();
+  truth_.sensor_acceleration.tail<3>() = rt * a.tail<3>();
+  const auto quantise = [](double v, double resolution, double range) {
+    return std::fmax(-range, std::fmin(range, std::round(v / resolution) * resolution));
+  };
+  for (int i = 0; i < 3; ++i) {
+    state.sensor_acceleration.linear[i] =
+        quantise(truth_.sensor_acceleration[i], acceleration_resolution_[0], acceleration_range_[0]);
+    state.sensor_acceleration.angular[i] =
+        quantise(truth_.sensor_acceleration[3 + i], acceleration_resolution_[1], acceleration_range_[1]);
+  }
 }
 
 ReturnCode SimDevice::write(const CycleTime& /*cycle*/, const JointCommand& command) noexcept {

@@ -4,6 +4,7 @@
 // limit, speed monitoring), sensing as on the hardware (motor encoders, force/torque sensor), and what is
 // attached to the handle (HandleAttachment), switchable at run time through request_attachment().
 // Ground truth is kept apart from the device outputs, for tests and evaluations.
+#include <array>
 #include <memory>
 #include <optional>
 
@@ -24,6 +25,7 @@ struct GroundTruth {
   Vector6d handle_twist = Vector6d::Zero();    // [linear; angular], world
   Vector6d handle_wrench = Vector6d::Zero();   // applied to the handle by the attachment, world
   Vector6d sensor_wrench = Vector6d::Zero();   // the same in the sensor frame, before the sensor's effects
+  Vector6d sensor_acceleration = Vector6d::Zero();  // proper linear and angular acceleration, sensor frame
   double time_s = 0.0;
   bool sensor_saturated = false;
   int overspeed_joint = -1;                    // first joint above its speed limit, -1 if none
@@ -48,6 +50,7 @@ class SimDevice final : public Device {
 
  private:
   void substep() noexcept;
+  void read_accelerations(DeviceState& state) noexcept;
 
   DeviceDescription description_;
   std::unique_ptr<FlexibleChain> chain_;
@@ -67,6 +70,10 @@ class SimDevice final : public Device {
   bool speed_monitor_ = true;
   bool sensor_present_ = true;
   bool passive_gimbal_ = false;
+  bool accelerations_ = false;
+  std::array<double, 2> acceleration_range_{49.0, 100.0};
+  std::array<double, 2> acceleration_resolution_{0.0981, 0.1};
+  model::TaskJacobian sensor_jacobian_;
 };
 
 }  // namespace hapticd::sim
