@@ -129,7 +129,7 @@ double torque_at_constant_velocity(FlexibleChain& chain, double velocity) {
   JointVector torque = JointVector::Zero(chain.dof());
   double integral = 0.0, sum = 0.0;
   int samples = 0;
-  const int steps = 40000;  // 2 s: 1 s to settle, 1 s to average
+  const int steps = 20000;  // 1 s: 0.5 s to settle, 0.5 s to average
   for (int step = 0; step < steps; ++step) {
     const double error = velocity - chain.motor_velocity()[0];
     integral += error * kDt;
@@ -147,7 +147,7 @@ double torque_at_constant_velocity(FlexibleChain& chain, double velocity) {
 TEST(SimulatedJoint, ConstantVelocityReproducesTheStribeckCurve) {
   FlexibleChain chain = make_chain("vishard3", friction_only());
   const sim::JointFriction& friction = chain.friction(0);
-  for (const double v : {0.2, 0.5, 1.0, 2.0, 3.0}) {
+  for (const double v : {0.2, 1.0, 3.0}) {
     const double measured = torque_at_constant_velocity(chain, v);
     const double expected = friction.sliding_magnitude(v, 0.0);
     EXPECT_NEAR(measured, expected, 0.02 * expected) << "at " << v << " rad/s";
