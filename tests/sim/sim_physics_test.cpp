@@ -103,6 +103,7 @@ TEST(SimulatedJoint, LockedOutputResonanceMatchesSpringAndMotorInertia) {
     const double expected = std::sqrt(chain.joint(0).spring.stiffness(mean_deflection) / inertia) / (2 * M_PI);
     EXPECT_NEAR(f, expected, 0.10 * expected) << "torque step " << step;
     RecordProperty("resonance_hz_at_" + std::to_string(static_cast<int>(step)) + "_nm", std::to_string(f));
+    RecordProperty("sqrt_k_over_j_hz_at_" + std::to_string(static_cast<int>(step)) + "_nm", std::to_string(expected));
   }
 }
 
@@ -201,6 +202,8 @@ TEST(SimulatedJoint, WarmUpLowersTheViscousFriction) {
   const double warm = chain.friction(0).sliding_magnitude(3.14, 0.0);
   EXPECT_GT(chain.friction(0).temperature_c(), 35.0);
   EXPECT_LT(warm, cold - 0.5) << cold << " -> " << warm;
+  RecordProperty("friction_at_pi_cold_nm", std::to_string(cold));
+  RecordProperty("friction_at_pi_warm_nm", std::to_string(warm));
 }
 
 TEST(SimulatedChain, IsDeterministicForASeed) {
