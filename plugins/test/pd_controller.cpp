@@ -1,6 +1,5 @@
 #include "pd_controller.hpp"
 
-#include <cmath>
 #include <limits>
 
 namespace hapticd::test_plugins {
@@ -27,16 +26,15 @@ void PdController::configure(const Parameters& p, const PluginContext& context) 
   dof_ = context.device != nullptr ? context.device->dof() : 0;
   if (dof_ == 0) throw ParameterError("kp", "the PD controller needs a device with at least one joint");
   differentiate_ = !context.device->reports_joint_velocity;
-  period_s_ = 1.0 / context.rate_hz;
-  filter_alpha_ = 1.0 - std::exp(-2.0 * 3.141592653589793 * p.real("velocity_filter_hz") * period_s_);
+  differentiator_.configure(1.0 / context.rate_hz, p.real("velocity_filter_hz"));
+  differentiator_.reset(JointVector::Zero(dof_));
   hold_.setConstant(dof_, setpoint_);
-  previous_.setZero(dof_);
   velocity_.setZero(dof_);
 }
 
 ReturnCode PdController::activate(const ControllerInput& current, const JointCommand&) noexcept {
   if (hold_at_activation_) hold_ = current.device.joints.position;
-  previous_ = current.device.joints.position;
+  differentiator_.reset(current.device.joints.position);
   velocity_.setZero();
   return ReturnCode::ok;
 }
@@ -44,8 +42,7 @@ ReturnCode PdController::activate(const ControllerInput& current, const JointCom
 ReturnCode PdController::update(const CycleTime& cycle, const ControllerInput& in, JointCommand& command) noexcept {
   const JointVector& q = in.device.joints.position;
   if (differentiate_) {
-    velocity_ += filter_alpha_ * ((q - previous_) / period_s_ - velocity_);
-    previous_ = q;
+    velocity_ = differentiator_.update(q);
   } else {
     velocity_ = in.device.joints.velocity;
   }

@@ -2,6 +2,7 @@
 #include <cstdint>
 
 #include "hapticd/controller.hpp"
+#include "hapticd/signal/differentiator.hpp"
 
 namespace hapticd::test_plugins {
 
@@ -25,9 +26,8 @@ class PdController final : public Controller {
   int dof_ = 0;
   bool hold_at_activation_ = false;
   bool differentiate_ = false;
-  double period_s_ = 0.0005;
-  double filter_alpha_ = 1.0;
-  JointVector hold_, previous_, velocity_;
+  signal::Differentiator<JointVector> differentiator_;
+  JointVector hold_, velocity_;
 };
 
 }  // namespace hapticd::test_plugins
