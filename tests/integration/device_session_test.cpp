@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include "hapticd/model/kinematics.hpp"
+
+#include "hapticd/chain_state.hpp"
+
 #include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_session.hpp"
 
@@ -84,6 +88,54 @@ TEST(DeviceSession, CycleOfTheWholeChainDoesNotAllocate) {
   d.activate();
   testing::AllocationGuard guard;
   for (std::uint64_t k = 0; k < 5000; ++k) d.cycle(cycle_at(k), k < 4000 ? 1.0 : 0.5);
+  EXPECT_EQ(guard.allocations(), 0u);
+  EXPECT_EQ(d.fault(), DeviceFault::none);
+}
+
+// A simulated ViSHaRD3 pushed by a scripted force, held by the test PD controller.
+const char* kSimVishard3 = R"(  - name: v3
+    device:
+      plugin: sim
+      parameters:
+        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
+        initial_position: [-0.3, 1.6, 0.0]
+        passive_gimbal: true
+        attachment: wrench
+        wrench_force: constant
+        wrench_force_n: [10.0, 0.0, 0.0]
+    controller:
+      plugin: test_pd
+      parameters: {kp: 300, kd: 3, hold_at_activation: true}
+)";
+
+TEST(DeviceSession, SharesTheModelTermsOfEveryCycleWithTheChain) {
+  auto s = session_with(kSimVishard3);
+  DeviceSession& d = *s.devices[0];
+  d.activate();
+  for (std::uint64_t k = 0; k < 400; ++k) d.cycle(cycle_at(k), 1.0);
+  ASSERT_EQ(d.fault(), DeviceFault::none);
+  const ChainState& c = d.chain_state();
+  ASSERT_NE(c.model, nullptr);
+  ASSERT_NE(c.data, nullptr);
+  // The handle pose is the model's FK at the measured positions.
+  model::ModelData check(*c.model);
+  model::forward_kinematics(*c.model, check, d.state().joints.position);
+  EXPECT_LE((model::frame_pose(*c.model, check, c.handle_frame).translation() - c.handle_pose.position).norm(), 1e-12);
+  // The operator wrench in the world is the scripted 10 N along x (sensor noise and resolution aside).
+  EXPECT_NEAR(c.operator_wrench.force.x(), 10.0, 0.3);
+  EXPECT_NEAR(c.operator_wrench.force.y(), 0.0, 0.3);
+  EXPECT_TRUE(c.has_operator_wrench);
+  EXPECT_EQ(c.velocity.size(), 3);
+}
+
+TEST(DeviceSession, CycleWithModelTermsDoesNotAllocate) {
+  if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
+  auto s = session_with(kSimVishard3);
+  DeviceSession& d = *s.devices[0];
+  d.activate();
+  d.cycle(cycle_at(0), 1.0);
+  testing::AllocationGuard guard;
+  for (std::uint64_t k = 1; k < 2000; ++k) d.cycle(cycle_at(k), 1.0);
   EXPECT_EQ(guard.allocations(), 0u);
   EXPECT_EQ(d.fault(), DeviceFault::none);
 }

@@ -2,6 +2,8 @@
 // it claims, so the foundation's end-to-end tests stand on something checked.
 #include <gtest/gtest.h>
 
+#include "hapticd/chain_state.hpp"
+
 #include <cmath>
 #include <numbers>
 
@@ -26,18 +28,20 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   joints.resize(1);
   JointCommand command;
   command.torque_nm.setZero(1);
+  ChainState chain;  // the test device has no robot model
+  chain.velocity.setZero(1);
   c.device->activate();
-  ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state}), ReturnCode::ok);
-  ASSERT_EQ((*c.inverse_kinematics)->activate(InverseKinematicsInput{state, task}), ReturnCode::ok);
-  ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints}, command), ReturnCode::ok);
+  ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, &chain}), ReturnCode::ok);
+  ASSERT_EQ((*c.inverse_kinematics)->activate(InverseKinematicsInput{state, task, &chain}), ReturnCode::ok);
+  ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints, &chain}, command), ReturnCode::ok);
 
   std::size_t device = 0, model = 0, ik = 0, controller = 0;
   for (std::uint64_t k = 0; k < 2000; ++k) {
     const CycleTime t = cycle_at(k);
     device += testing::count_allocations([&] { (void)c.device->read(t, state); });
-    model += testing::count_allocations([&] { (void)(*c.virtual_model)->update(t, VirtualModelInput{state}, task); });
-    ik += testing::count_allocations([&] { (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task}, joints); });
-    controller += testing::count_allocations([&] { (void)c.controller->update(t, ControllerInput{state, task, joints}, command); });
+    model += testing::count_allocations([&] { (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain}, task); });
+    ik += testing::count_allocations([&] { (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &chain}, joints); });
+    controller += testing::count_allocations([&] { (void)c.controller->update(t, ControllerInput{state, task, joints, &chain}, command); });
     device += testing::count_allocations([&] { (void)c.device->write(t, command); });
   }
   EXPECT_EQ(device, 0u);

@@ -51,19 +51,26 @@ struct JointCommand {
   JointVector torque_nm;
 };
 
+struct ChainState;  // chain_state.hpp
+
+// Each input carries the device sample and the server's per-cycle model terms (chain: never null while a
+// chain runs; chain->model is null when the device has no robot model).
 struct VirtualModelInput {
   const DeviceState& device;
+  const ChainState* chain;
 };
 
 struct InverseKinematicsInput {
   const DeviceState& device;
   const TaskTarget& task;
+  const ChainState* chain;
 };
 
 struct ControllerInput {
   const DeviceState& device;
   const TaskTarget& task;
   const JointTarget& joints;
+  const ChainState* chain;
 };
 
 }  // namespace hapticd

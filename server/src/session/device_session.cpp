@@ -4,6 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "hapticd/model/dynamics.hpp"
+#include "hapticd/model/kinematics.hpp"
+#include "hapticd/model/urdf_loader.hpp"
 #include "session/finite.hpp"
 
 namespace hapticd::server {
@@ -40,6 +43,21 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   joint_target_.resize(dof);
   command_.torque_nm.setZero(dof);
   zero_command_.torque_nm.setZero(dof);
+  chain_state_.velocity.setZero(dof);
+  if (!description_.robot_model_file.empty()) {
+    robot_ = std::make_unique<model::RobotModel>(model::load_robot_model(description_.robot_model_file));
+    if (robot_->dof() != dof) {
+      throw std::invalid_argument("device '" + name_ + "': its robot model " + description_.robot_model_file + " has " +
+                                  std::to_string(robot_->dof()) + " joints, the device " + std::to_string(dof));
+    }
+    model_data_ = std::make_unique<model::ModelData>(*robot_);
+    chain_state_.model = robot_.get();
+    chain_state_.data = model_data_.get();
+    chain_state_.handle_frame = robot_->require_frame(description_.handle_frame.empty() ? "handle" : description_.handle_frame);
+    if (description_.reports_wrench && !description_.sensor_frame.empty()) {
+      sensor_frame_ = robot_->require_frame(description_.sensor_frame);
+    }
+  }
 }
 
 void DeviceSession::activate() {
@@ -48,31 +66,66 @@ void DeviceSession::activate() {
   command_.torque_nm.setZero();
 }
 
-ReturnCode DeviceSession::activate_chain() noexcept {
-  if (chain_.virtual_model && (*chain_.virtual_model)->activate(VirtualModelInput{state_}) != ReturnCode::ok)
+ReturnCode DeviceSession::activate_chain(const CycleTime& cycle) noexcept {
+  differentiator_.configure(static_cast<double>(cycle.period_ns) * 1e-9, kVelocityFilterHz);
+  update_chain_state(true);
+  if (chain_.virtual_model &&
+      (*chain_.virtual_model)->activate(VirtualModelInput{state_, &chain_state_}) != ReturnCode::ok)
     return ReturnCode::error;
   if (chain_.inverse_kinematics &&
-      (*chain_.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_}) != ReturnCode::ok)
+      (*chain_.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &chain_state_}) != ReturnCode::ok)
     return ReturnCode::error;
-  return chain_.controller->activate(ControllerInput{state_, task_, joint_target_}, command_);
+  return chain_.controller->activate(ControllerInput{state_, task_, joint_target_, &chain_state_}, command_);
+}
+
+void DeviceSession::update_chain_state(bool first_cycle) noexcept {
+  ChainState& c = chain_state_;
+  if (description_.reports_joint_velocity) {
+    c.velocity = state_.joints.velocity;
+  } else if (first_cycle) {
+    differentiator_.reset(state_.joints.position);
+    c.velocity.setZero();
+  } else {
+    c.velocity = differentiator_.update(state_.joints.position);
+  }
+  if (robot_ == nullptr) return;
+  model::compute_cycle_terms(*robot_, *model_data_, state_.joints.position, c.velocity, c.handle_frame);
+  const model::ModelData& d = *model_data_;
+  c.handle_pose.position = d.frame_pose.translation();
+  c.handle_pose.orientation = Eigen::Quaterniond(d.frame_pose.linear());
+  const model::Vector6d twist = d.frame_jacobian * c.velocity;
+  c.handle_twist.linear = twist.head<3>();
+  c.handle_twist.angular = twist.tail<3>();
+  if (sensor_frame_ >= 0) {
+    // The sensor's wrench, turned into the world and moved to the handle point (the handle's own dynamics
+    // beyond the sensor are not subtracted yet).
+    const Eigen::Isometry3d sensor = model::frame_pose(*robot_, d, sensor_frame_);
+    const Eigen::Vector3d force = sensor.linear() * state_.sensor_wrench.force;
+    const Eigen::Vector3d moment = sensor.linear() * state_.sensor_wrench.torque;
+    c.operator_wrench.force = force;
+    c.operator_wrench.torque = moment + (sensor.translation() - c.handle_pose.position).cross(force);
+    c.has_operator_wrench = true;
+  }
 }
 
 DeviceFault DeviceSession::run_chain(const CycleTime& cycle) noexcept {
   if (!chain_active_) {
-    if (activate_chain() != ReturnCode::ok) return DeviceFault::activation;
+    if (activate_chain(cycle) != ReturnCode::ok) return DeviceFault::activation;
     chain_active_ = true;
+  } else {
+    update_chain_state(false);
   }
   if (chain_.virtual_model) {
-    if ((*chain_.virtual_model)->update(cycle, VirtualModelInput{state_}, task_) != ReturnCode::ok)
+    if ((*chain_.virtual_model)->update(cycle, VirtualModelInput{state_, &chain_state_}, task_) != ReturnCode::ok)
       return DeviceFault::virtual_model;
     if (!is_finite(task_)) return DeviceFault::non_finite_output;
   }
   if (chain_.inverse_kinematics) {
-    if ((*chain_.inverse_kinematics)->update(cycle, InverseKinematicsInput{state_, task_}, joint_target_) != ReturnCode::ok)
+    if ((*chain_.inverse_kinematics)->update(cycle, InverseKinematicsInput{state_, task_, &chain_state_}, joint_target_) != ReturnCode::ok)
       return DeviceFault::inverse_kinematics;
     if (!is_finite(joint_target_)) return DeviceFault::non_finite_output;
   }
-  if (chain_.controller->update(cycle, ControllerInput{state_, task_, joint_target_}, command_) != ReturnCode::ok)
+  if (chain_.controller->update(cycle, ControllerInput{state_, task_, joint_target_, &chain_state_}, command_) != ReturnCode::ok)
     return DeviceFault::controller;
   if (!command_.torque_nm.allFinite()) return DeviceFault::non_finite_output;
   return DeviceFault::none;

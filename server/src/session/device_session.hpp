@@ -9,7 +9,13 @@
 #include <string>
 #include <string_view>
 
+#include <memory>
+
+#include "hapticd/chain_state.hpp"
+#include "hapticd/model/model_data.hpp"
+#include "hapticd/model/robot_model.hpp"
 #include "hapticd/plugin.hpp"
+#include "hapticd/signal/differentiator.hpp"
 #include "plugins/plugin_loader.hpp"
 
 namespace hapticd::server {
@@ -59,11 +65,13 @@ class DeviceSession {
   // Loop thread only (or after the loop has stopped).
   [[nodiscard]] const DeviceState& state() const noexcept { return state_; }
   [[nodiscard]] const JointCommand& command() const noexcept { return command_; }
+  [[nodiscard]] const ChainState& chain_state() const noexcept { return chain_state_; }
 
  private:
   void enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept;
   void write_zero_torque(const CycleTime& cycle) noexcept;
-  ReturnCode activate_chain() noexcept;
+  ReturnCode activate_chain(const CycleTime& cycle) noexcept;
+  void update_chain_state(bool first_cycle) noexcept;
   DeviceFault run_chain(const CycleTime& cycle) noexcept;
 
   std::string name_;
@@ -77,6 +85,15 @@ class DeviceSession {
   JointCommand command_;
   JointCommand zero_command_;
   bool chain_active_ = false;
+
+  // Per-cycle model terms shared by the chain (when the device names a robot model).
+  std::unique_ptr<model::RobotModel> robot_;
+  std::unique_ptr<model::ModelData> model_data_;
+  int sensor_frame_ = -1;
+  signal::Differentiator<JointVector> differentiator_;
+  ChainState chain_state_;
+  // Cut-off of the joint-velocity estimate for devices without velocity measurement (encoder differences).
+  static constexpr double kVelocityFilterHz = 100.0;
 
   std::atomic<DeviceFault> fault_{DeviceFault::none};
   std::atomic<std::uint64_t> fault_cycle_{0};
