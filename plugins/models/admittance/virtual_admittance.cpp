@@ -1,0 +1,95 @@
+#include "virtual_admittance.hpp"
+
+#include "hapticd/chain_state.hpp"
+
+namespace hapticd::models {
+namespace {
+
+Eigen::Vector3d vector3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+Eigen::Vector3d clamp_norm(const Eigen::Vector3d& v, double limit) noexcept {
+  const double n = v.norm();
+  return n > limit ? Eigen::Vector3d(v * (limit / n)) : v;
+}
+
+}  // namespace
+
+ParameterSchema VirtualAdmittance::parameter_schema() {
+  ParameterSchema s;
+  s.real_vector("mass_kg", "virtual mass along the world axes").size(3).greater_than(0.0)
+      .default_value(std::vector<double>{5.0, 5.0, 5.0});
+  s.real_vector("damping_n_s_per_m", "virtual damping along the world axes").size(3).minimum(0.0)
+      .default_value(std::vector<double>{10.0, 10.0, 10.0});
+  s.boolean("rotation", "render rotations too (devices with actuated handle orientation)").default_value(true);
+  s.real_vector("inertia_kg_m2", "virtual principal inertia about the handle axes").size(3).greater_than(0.0)
+      .default_value(std::vector<double>{0.02, 0.02, 0.02});
+  s.real_vector("rotational_damping_n_m_s", "virtual rotational damping about the handle axes").size(3).minimum(0.0)
+      .default_value(std::vector<double>{0.1, 0.1, 0.1});
+  s.real("max_velocity_m_s", "integration limit of the virtual speed").unit("m/s").greater_than(0.0).default_value(1.0);
+  s.real("max_angular_velocity_rad_s", "integration limit of the virtual angular speed").unit("rad/s")
+      .greater_than(0.0).default_value(5.0);
+  return s;
+}
+
+void VirtualAdmittance::configure(const Parameters& p, const PluginContext& context) {
+  if (context.device == nullptr || context.device->robot_model_file.empty() || !context.device->reports_wrench) {
+    throw ParameterError("mass_kg", "the virtual admittance needs a device with a robot model and a force/torque sensor");
+  }
+  mass_ = vector3(p.real_vector("mass_kg"));
+  damping_ = vector3(p.real_vector("damping_n_s_per_m"));
+  inertia_ = vector3(p.real_vector("inertia_kg_m2"));
+  rotational_damping_ = vector3(p.real_vector("rotational_damping_n_m_s"));
+  rotation_ = p.boolean("rotation");
+  max_velocity_ = p.real("max_velocity_m_s");
+  max_angular_velocity_ = p.real("max_angular_velocity_rad_s");
+  period_s_ = 1.0 / context.rate_hz;
+}
+
+ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcept {
+  if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
+  // Start where the handle is, moving as it moves: no jump in the desired motion.
+  position_ = current.chain->handle_pose.position;
+  velocity_ = clamp_norm(current.chain->handle_twist.linear, max_velocity_);
+  orientation_ = current.chain->handle_pose.orientation.normalized();
+  body_angular_velocity_ = rotation_ ? Eigen::Vector3d(orientation_.conjugate() * current.chain->handle_twist.angular)
+                                     : Eigen::Vector3d::Zero();
+  return ReturnCode::ok;
+}
+
+ReturnCode VirtualAdmittance::update(const CycleTime& /*cycle*/, const VirtualModelInput& input,
+                                     TaskTarget& target) noexcept {
+  const ChainState& c = *input.chain;
+  const double dt = period_s_;
+  const Eigen::Vector3d force = c.operator_wrench.force;
+  const Eigen::Vector3d acceleration = (force - damping_.cwiseProduct(velocity_)).cwiseQuotient(mass_);
+  velocity_ = clamp_norm(velocity_ + dt * acceleration, max_velocity_);
+  position_ += dt * velocity_;
+
+  Eigen::Vector3d angular_acceleration_world = Eigen::Vector3d::Zero();
+  if (rotation_) {
+    const Eigen::Vector3d torque_body = orientation_.conjugate() * c.operator_wrench.torque;
+    const Eigen::Vector3d& w = body_angular_velocity_;
+    const Eigen::Vector3d wd = (torque_body - w.cross(inertia_.cwiseProduct(w)) - rotational_damping_.cwiseProduct(w))
+                                   .cwiseQuotient(inertia_);
+    body_angular_velocity_ = clamp_norm(w + dt * wd, max_angular_velocity_);
+    // Exact rotation over the step for the body-frame angular velocity.
+    const double angle = body_angular_velocity_.norm() * dt;
+    if (angle > 0.0) {
+      orientation_ = (orientation_ * Eigen::Quaterniond(Eigen::AngleAxisd(angle, body_angular_velocity_.normalized())))
+                         .normalized();
+    }
+    angular_acceleration_world = orientation_ * wd;
+  }
+  target.pose.position = position_;
+  target.pose.orientation = rotation_ ? orientation_ : c.handle_pose.orientation;
+  target.twist.linear = velocity_;
+  target.twist.angular = rotation_ ? Eigen::Vector3d(orientation_ * body_angular_velocity_) : Eigen::Vector3d::Zero();
+  target.acceleration.linear = acceleration;
+  target.acceleration.angular = angular_acceleration_world;
+  target.wrench = c.operator_wrench;
+  target.has_motion = true;
+  target.has_wrench = false;
+  return ReturnCode::ok;
+}
+
+}  // namespace hapticd::models

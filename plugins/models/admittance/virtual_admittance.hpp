@@ -1,0 +1,32 @@
+#pragma once
+// The virtual admittance (CONTROL-METHODS.md section 2): the operator's wrench drives a virtual rigid body,
+//   translation  M_t xdd + D_t xd = F              (world axes)
+//   rotation     M_r wd + w x (M_r w) + D_r w = T  (Euler's equations in the body frame)
+// whose pose (a unit quaternion: no representation singularities) is the desired handle pose of the inner
+// motion controller. Semi-implicit Euler at the control rate, with integration limits on the velocities.
+#include "hapticd/virtual_model.hpp"
+
+namespace hapticd::models {
+
+class VirtualAdmittance final : public VirtualModel {
+ public:
+  static ParameterSchema parameter_schema();
+
+  void configure(const Parameters& parameters, const PluginContext& context) override;
+  ReturnCode activate(const VirtualModelInput& current) noexcept override;
+  ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept override;
+  void deactivate() override {}
+
+ private:
+  Eigen::Vector3d mass_, inertia_, damping_, rotational_damping_;
+  double max_velocity_ = 1.0, max_angular_velocity_ = 5.0;
+  bool rotation_ = true;
+  double period_s_ = 0.0005;
+
+  Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation_ = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d body_angular_velocity_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace hapticd::models

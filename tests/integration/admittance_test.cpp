@@ -1,0 +1,113 @@
+// Admittance display on the simulated ViSHaRD3 in lockstep: the virtual admittance and resolved acceleration
+// control render the commanded virtual mass (force step -> handle acceleration) and damping (steady speed).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "hapticd/chain_state.hpp"
+#include "hapticd/testing/allocation_guard.hpp"
+#include "support/test_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+constexpr std::int64_t kPeriodNs = 500000;
+CycleTime cycle_at(std::uint64_t k) { return CycleTime{static_cast<std::int64_t>(k) * kPeriodNs, kPeriodNs, k}; }
+
+std::string admittance_session(const std::string& force, double mass, double damping) {
+  const std::string m = std::to_string(mass), d = std::to_string(damping);
+  return std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") + R"(  - name: v3
+    device:
+      plugin: sim
+      parameters:
+        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
+        initial_position: [-0.3, 1.6, 0.0]
+        passive_gimbal: true
+        attachment: wrench
+        wrench_force: step
+        wrench_force_n: )" + force + R"(
+        wrench_force_start_s: 0.2
+    virtual_model:
+      plugin: admittance
+      parameters:
+        mass_kg: [)" + m + ", " + m + ", " + m + R"(]
+        damping_n_s_per_m: [)" + d + ", " + d + ", " + d + R"(]
+        rotation: false
+    controller:
+      plugin: resolved_acceleration
+      parameters: {task: translation, bandwidth_rad_s: 60}
+)";
+}
+
+struct Trace {
+  std::vector<double> t;
+  std::vector<Eigen::Vector3d> x;
+};
+
+Trace run(test::TestSession& s, int cycles) {
+  DeviceSession& d = *s.devices[0];
+  d.activate();
+  Trace trace;
+  for (int k = 0; k < cycles; ++k) {
+    d.cycle(cycle_at(static_cast<std::uint64_t>(k)), 1.0);
+    EXPECT_EQ(d.fault(), DeviceFault::none) << "cycle " << k;
+    trace.t.push_back(k * 5e-4);
+    trace.x.push_back(d.chain_state().handle_pose.position);
+  }
+  return trace;
+}
+
+// Least-squares fit x(t) = a0 + a1 t + a2 t^2 over [t0, t1] along `axis`; returns (velocity at t1, 2 a2).
+std::pair<double, double> fit(const Trace& trace, double t0, double t1, int axis) {
+  std::vector<int> rows;
+  for (std::size_t i = 0; i < trace.t.size(); ++i) {
+    if (trace.t[i] >= t0 && trace.t[i] <= t1) rows.push_back(static_cast<int>(i));
+  }
+  Eigen::MatrixXd a(rows.size(), 3);
+  Eigen::VectorXd b(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const double t = trace.t[static_cast<std::size_t>(rows[r])] - t0;
+    a.row(static_cast<Eigen::Index>(r)) << 1.0, t, t * t;
+    b[static_cast<Eigen::Index>(r)] = trace.x[static_cast<std::size_t>(rows[r])][axis];
+  }
+  const Eigen::Vector3d c = a.colPivHouseholderQr().solve(b);
+  return {c[1] + 2 * c[2] * (t1 - t0), 2 * c[2]};
+}
+
+TEST(AdmittanceDisplay, ForceStepGivesTheVirtualMassAcceleration) {
+  for (const int axis : {0, 1, 2}) {
+    std::string force = "[0, 0, 0]";
+    force[1 + 3 * axis] = '8';  // 8 N along the axis
+    auto s = test::build_test_session(admittance_session(force, 4.0, 0.0));
+    const Trace trace = run(s, 800);  // the step at 0.2 s, 0.2 s of acceleration
+    const double expected = 8.0 / 4.0;
+    const double measured = fit(trace, 0.25, 0.4, axis).second;
+    EXPECT_NEAR(measured, expected, 0.10 * expected) << "axis " << axis;
+    RecordProperty("acceleration_axis_" + std::to_string(axis), std::to_string(measured));
+  }
+}
+
+TEST(AdmittanceDisplay, ConstantForceGivesTheVirtualDampingSpeed) {
+  // 6 N against 40 N s/m with 2 kg: time constant 0.05 s, steady speed 0.15 m/s.
+  auto s = test::build_test_session(admittance_session("[0, 6, 0]", 2.0, 40.0));
+  const Trace trace = run(s, 1200);
+  const double speed = fit(trace, 0.45, 0.6, 1).first;
+  EXPECT_NEAR(speed, 6.0 / 40.0, 0.10 * 6.0 / 40.0);
+  RecordProperty("steady_speed_m_s", std::to_string(speed));
+}
+
+TEST(AdmittanceDisplay, ChainUpdatesDoNotAllocate) {
+  if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
+  auto s = test::build_test_session(admittance_session("[5, 0, 0]", 4.0, 10.0));
+  DeviceSession& d = *s.devices[0];
+  d.activate();
+  d.cycle(cycle_at(0), 1.0);
+  testing::AllocationGuard guard;
+  for (std::uint64_t k = 1; k < 1000; ++k) d.cycle(cycle_at(k), 1.0);
+  EXPECT_EQ(guard.allocations(), 0u);
+  EXPECT_EQ(d.fault(), DeviceFault::none);
+}
+
+}  // namespace
+}  // namespace hapticd::server
