@@ -12,22 +12,12 @@
 namespace hapticd::server {
 namespace {
 
-constexpr std::int64_t kPeriodNs = 500000;
-CycleTime cycle_at(std::uint64_t k) { return CycleTime{static_cast<std::int64_t>(k) * kPeriodNs, kPeriodNs, k}; }
+using test::cycle_at;
 
 std::string admittance_session(const std::string& force, double mass, double damping) {
   const std::string m = std::to_string(mass), d = std::to_string(damping);
-  return std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") + R"(  - name: v3
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
-        initial_position: [-0.3, 1.6, 0.0]
-        passive_gimbal: true
-        attachment: wrench
-        wrench_force: step
-        wrench_force_n: )" + force + R"(
-        wrench_force_start_s: 0.2
+  return "server: {clock: lockstep, seed: 7}\ndevices:\n" + test::sim_vishard3_device_yaml("v3", "step", force) +
+         R"(        wrench_force_start_s: 0.2
     virtual_model:
       plugin: admittance
       parameters:
@@ -100,13 +90,8 @@ TEST(AdmittanceDisplay, ConstantForceGivesTheVirtualDampingSpeed) {
 TEST(AdmittanceDisplay, ChainUpdatesDoNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
   auto s = test::build_test_session(admittance_session("[5, 0, 0]", 4.0, 10.0));
-  DeviceSession& d = *s.devices[0];
-  d.activate();
-  d.cycle(cycle_at(0), 1.0);
-  testing::AllocationGuard guard;
-  for (std::uint64_t k = 1; k < 1000; ++k) d.cycle(cycle_at(k), 1.0);
-  EXPECT_EQ(guard.allocations(), 0u);
-  EXPECT_EQ(d.fault(), DeviceFault::none);
+  EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 1000), 0u);
+  EXPECT_EQ(s.devices[0]->fault(), DeviceFault::none);
 }
 
 }  // namespace

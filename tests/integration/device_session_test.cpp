@@ -14,9 +14,7 @@
 namespace hapticd::server {
 namespace {
 
-constexpr std::int64_t kPeriodNs = 500'000;
-
-CycleTime cycle_at(std::uint64_t k) { return CycleTime{static_cast<std::int64_t>(k) * kPeriodNs, kPeriodNs, k}; }
+using test::cycle_at;
 
 test::TestSession session_with(const std::string& devices) {
   return test::build_test_session("server: {clock: lockstep}\ndevices:\n" + devices);
@@ -93,17 +91,7 @@ TEST(DeviceSession, CycleOfTheWholeChainDoesNotAllocate) {
 }
 
 // A simulated ViSHaRD3 pushed by a scripted force, held by the test PD controller.
-const char* kSimVishard3 = R"(  - name: v3
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
-        initial_position: [-0.3, 1.6, 0.0]
-        passive_gimbal: true
-        attachment: wrench
-        wrench_force: constant
-        wrench_force_n: [10.0, 0.0, 0.0]
-    controller:
+const std::string kSimVishard3 = test::sim_vishard3_device_yaml("v3", "constant", "[10.0, 0.0, 0.0]") + R"(    controller:
       plugin: test_pd
       parameters: {kp: 300, kd: 3, hold_at_activation: true}
 )";
@@ -131,13 +119,8 @@ TEST(DeviceSession, SharesTheModelTermsOfEveryCycleWithTheChain) {
 TEST(DeviceSession, CycleWithModelTermsDoesNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
   auto s = session_with(kSimVishard3);
-  DeviceSession& d = *s.devices[0];
-  d.activate();
-  d.cycle(cycle_at(0), 1.0);
-  testing::AllocationGuard guard;
-  for (std::uint64_t k = 1; k < 2000; ++k) d.cycle(cycle_at(k), 1.0);
-  EXPECT_EQ(guard.allocations(), 0u);
-  EXPECT_EQ(d.fault(), DeviceFault::none);
+  EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 2000), 0u);
+  EXPECT_EQ(s.devices[0]->fault(), DeviceFault::none);
 }
 
 }  // namespace

@@ -13,8 +13,7 @@
 namespace hapticd::server {
 namespace {
 
-constexpr std::int64_t kPeriodNs = 500'000;
-CycleTime cycle_at(std::uint64_t k) { return CycleTime{static_cast<std::int64_t>(k) * kPeriodNs, kPeriodNs, k}; }
+using test::cycle_at;
 
 TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";

@@ -1,5 +1,6 @@
 #include "support/test_session.hpp"
 
+#include "hapticd/testing/allocation_guard.hpp"
 #include "session/session_builder.hpp"
 #include "support/temp_file.hpp"
 
@@ -20,6 +21,28 @@ server::ExecutorSettings TestSession::executor_settings() const {
   s.realtime_priority = 0;  // tests never ask for SCHED_FIFO
   s.lock_memory = false;
   return s;
+}
+
+std::size_t allocations_over_cycles(server::DeviceSession& device, std::uint64_t cycles, double torque_scale) {
+  device.activate();
+  device.cycle(cycle_at(0), torque_scale);
+  testing::AllocationGuard guard;
+  for (std::uint64_t k = 1; k <= cycles; ++k) device.cycle(cycle_at(k), torque_scale);
+  return guard.allocations();
+}
+
+std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,
+                                     const std::string& force_n) {
+  return "  - name: " + name + R"(
+    device:
+      plugin: sim
+      parameters:
+        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
+        initial_position: [-0.3, 1.6, 0.0]
+        passive_gimbal: true
+        attachment: wrench
+        wrench_force: )" + force_profile + R"(
+        wrench_force_n: )" + force_n + "\n";
 }
 
 TestSession build_test_session(const std::string& yaml) {

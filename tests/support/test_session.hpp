@@ -20,11 +20,27 @@ struct TestSession {
   [[nodiscard]] server::ExecutorSettings executor_settings() const;
 };
 
+// The k-th cycle of a 2 kHz loop.
+inline constexpr std::int64_t kTestPeriodNs = 500'000;
+inline CycleTime cycle_at(std::uint64_t k) {
+  return CycleTime{static_cast<std::int64_t>(k) * kTestPeriodNs, kTestPeriodNs, k};
+}
+
+// Activates the device, runs its first cycle (activation may allocate nothing either, but plugins are allowed
+// to warm up there), then counts the allocations of the next `cycles` cycles.
+std::size_t allocations_over_cycles(server::DeviceSession& device, std::uint64_t cycles, double torque_scale = 1.0);
+
 // yaml: a whole session file; the test plugin folder is added to server.plugin_paths.
 TestSession build_test_session(const std::string& yaml);
 
 // A device entry of the 1-DOF test chain (mass-spring, sine setpoint, axis IK, PD), with extra parameters.
 std::string mass_spring_device_yaml(const std::string& name, const std::string& device_parameters = "",
                                     const std::string& controller_parameters = "");
+
+// The head of a device entry for the simulated ViSHaRD3 (sim plugin, start pose, passive gimbal, pushed by a
+// scripted force `force_profile` of `force_n`); the caller appends more sim parameters (8 spaces of indent)
+// and the rest of the chain.
+std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,
+                                     const std::string& force_n);
 
 }  // namespace hapticd::test
