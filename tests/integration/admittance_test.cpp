@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "hapticd/chain_state.hpp"
+#include "hapticd/model/urdf_loader.hpp"
+#include "hapticd/model/kinematics.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_session.hpp"
 
@@ -85,6 +87,54 @@ TEST(AdmittanceDisplay, ConstantForceGivesTheVirtualDampingSpeed) {
   const double speed = fit(trace, 0.45, 0.6, 1).first;
   EXPECT_NEAR(speed, 6.0 / 40.0, 0.10 * 6.0 / 40.0);
   RecordProperty("steady_speed_m_s", std::to_string(speed));
+}
+
+TEST(AdmittanceDisplay, VirtualWallHoldsThePushingOperator) {
+  // The handle's start position, from the model at the start pose.
+  const model::RobotModel robot = model::load_robot_model(std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/vishard3.urdf");
+  model::ModelData data(robot);
+  JointVector q0(3);
+  q0 << -0.3, 1.6, 0.0;
+  model::forward_kinematics(robot, data, q0);
+  const Eigen::Vector3d start = model::frame_pose(robot, data, robot.require_frame("handle")).translation();
+  const Eigen::Vector3d wall = start + Eigen::Vector3d(0.02, 0.0, 0.0);  // 2 cm ahead along x, normal -x
+  const std::string yaml = std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") + R"(  - name: v3
+    device:
+      plugin: sim
+      parameters:
+        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
+        initial_position: [-0.3, 1.6, 0.0]
+        passive_gimbal: true
+        attachment: operator
+        operator_grasp: 0.8
+        operator_force: step
+        operator_force_n: [20, 0, 0]
+        operator_force_start_s: 0.1
+    virtual_model:
+      plugin: admittance
+      parameters:
+        mass_kg: [3, 3, 3]
+        damping_n_s_per_m: [20, 20, 20]
+        rotation: false
+        walls: [)" + std::to_string(wall.x()) + ", " + std::to_string(wall.y()) + ", " + std::to_string(wall.z()) +
+                           R"(, -1, 0, 0]
+        wall_stiffness_n_per_m: 5000
+        wall_damping_n_s_per_m: 100
+    controller:
+      plugin: resolved_acceleration
+      parameters: {task: translation, bandwidth_rad_s: 60}
+)";
+  auto s = test::build_test_session(yaml);
+  const Trace trace = run(s, 4000);  // 2 s: the operator keeps pushing with 20 N
+  double deepest = 0.0;
+  for (const Eigen::Vector3d& x : trace.x) deepest = std::max(deepest, x.x() - wall.x());
+  const double final_depth = trace.x.back().x() - wall.x();
+  // The wall stops the handle: bound 20 N / 5000 N/m = 4 mm at rest, plus the impact overshoot; stated bound 6 mm.
+  EXPECT_GT(final_depth, 0.0) << "the operator reaches the wall";
+  EXPECT_LT(final_depth, 0.005);
+  EXPECT_LT(deepest, 0.006);
+  RecordProperty("wall_penetration_final_mm", std::to_string(1e3 * final_depth));
+  RecordProperty("wall_penetration_max_mm", std::to_string(1e3 * deepest));
 }
 
 TEST(AdmittanceDisplay, ChainUpdatesDoNotAllocate) {

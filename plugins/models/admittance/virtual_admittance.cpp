@@ -25,6 +25,11 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
       .default_value(std::vector<double>{0.02, 0.02, 0.02});
   s.real_vector("rotational_damping_n_m_s", "virtual rotational damping about the handle axes").size(3).minimum(0.0)
       .default_value(std::vector<double>{0.1, 0.1, 0.1});
+  s.real_vector("walls", "virtual walls, 6 numbers each: a point on the wall and the normal pointing to the free "
+                 "side (world, m); at most 8").default_value(std::vector<double>{});
+  s.real("wall_stiffness_n_per_m", "stiffness of the walls").unit("N/m").minimum(0.0).default_value(5000.0);
+  s.real("wall_damping_n_s_per_m", "damping of the walls while penetrated").unit("N s/m").minimum(0.0)
+      .default_value(50.0);
   s.real("max_velocity_m_s", "integration limit of the virtual speed").unit("m/s").greater_than(0.0).default_value(1.0);
   s.real("max_angular_velocity_rad_s", "integration limit of the virtual angular speed").unit("rad/s")
       .greater_than(0.0).default_value(5.0);
@@ -43,6 +48,33 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
   max_velocity_ = p.real("max_velocity_m_s");
   max_angular_velocity_ = p.real("max_angular_velocity_rad_s");
   period_s_ = 1.0 / context.rate_hz;
+  const auto& w = p.real_vector("walls");
+  if (w.size() % 6 != 0 || w.size() / 6 > kMaxWalls) {
+    throw ParameterError("walls", "needs 6 numbers per wall (point, normal), at most " + std::to_string(kMaxWalls) +
+                                      " walls; got " + std::to_string(w.size()) + " numbers");
+  }
+  wall_count_ = static_cast<int>(w.size() / 6);
+  for (int i = 0; i < wall_count_; ++i) {
+    const std::size_t o = static_cast<std::size_t>(6 * i);
+    const Eigen::Vector3d normal(w[o + 3], w[o + 4], w[o + 5]);
+    if (normal.norm() < 1e-9) throw ParameterError("walls", "wall " + std::to_string(i + 1) + " has a zero normal");
+    walls_[static_cast<std::size_t>(i)] = Wall{Eigen::Vector3d(w[o], w[o + 1], w[o + 2]), normal.normalized()};
+  }
+  wall_stiffness_ = p.real("wall_stiffness_n_per_m");
+  wall_damping_ = p.real("wall_damping_n_s_per_m");
+}
+
+Eigen::Vector3d VirtualAdmittance::wall_force() const noexcept {
+  Eigen::Vector3d f = Eigen::Vector3d::Zero();
+  for (int i = 0; i < wall_count_; ++i) {
+    const Wall& w = walls_[static_cast<std::size_t>(i)];
+    const double depth = -(position_ - w.point).dot(w.normal);  // > 0 inside the wall
+    if (depth <= 0.0) continue;
+    // Unilateral: the wall pushes, never pulls.
+    const double push = wall_stiffness_ * depth - wall_damping_ * velocity_.dot(w.normal);
+    if (push > 0.0) f += push * w.normal;
+  }
+  return f;
 }
 
 ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcept {
@@ -60,7 +92,8 @@ ReturnCode VirtualAdmittance::update(const CycleTime& /*cycle*/, const VirtualMo
                                      TaskTarget& target) noexcept {
   const ChainState& c = *input.chain;
   const double dt = period_s_;
-  const Eigen::Vector3d force = c.operator_wrench.force;
+  const Eigen::Vector3d environment = wall_force();
+  const Eigen::Vector3d force = c.operator_wrench.force + environment;
   const Eigen::Vector3d acceleration = (force - damping_.cwiseProduct(velocity_)).cwiseQuotient(mass_);
   velocity_ = clamp_norm(velocity_ + dt * acceleration, max_velocity_);
   position_ += dt * velocity_;
@@ -86,7 +119,8 @@ ReturnCode VirtualAdmittance::update(const CycleTime& /*cycle*/, const VirtualMo
   target.twist.angular = rotation_ ? Eigen::Vector3d(orientation_ * body_angular_velocity_) : Eigen::Vector3d::Zero();
   target.acceleration.linear = acceleration;
   target.acceleration.angular = angular_acceleration_world;
-  target.wrench = c.operator_wrench;
+  target.wrench.force = environment;  // what the environment applies to the handle
+  target.wrench.torque.setZero();
   target.has_motion = true;
   target.has_wrench = false;
   return ReturnCode::ok;

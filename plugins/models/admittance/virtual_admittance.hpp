@@ -4,6 +4,10 @@
 //   rotation     M_r wd + w x (M_r w) + D_r w = T  (Euler's equations in the body frame)
 // whose pose (a unit quaternion: no representation singularities) is the desired handle pose of the inner
 // motion controller. Semi-implicit Euler at the control rate, with integration limits on the velocities.
+// Virtual walls (half-spaces: a point and an outward normal of the free side) push the virtual body back with
+// a unilateral spring-damper; the wall force is reported as the environment wrench of the target.
+#include <array>
+
 #include "hapticd/virtual_model.hpp"
 
 namespace hapticd::models {
@@ -18,7 +22,17 @@ class VirtualAdmittance final : public VirtualModel {
   void deactivate() override {}
 
  private:
+  struct Wall {
+    Eigen::Vector3d point, normal;
+  };
+  static constexpr int kMaxWalls = 8;
+
+  Eigen::Vector3d wall_force() const noexcept;
+
   Eigen::Vector3d mass_, inertia_, damping_, rotational_damping_;
+  std::array<Wall, kMaxWalls> walls_{};
+  int wall_count_ = 0;
+  double wall_stiffness_ = 0.0, wall_damping_ = 0.0;
   double max_velocity_ = 1.0, max_angular_velocity_ = 5.0;
   bool rotation_ = true;
   double period_s_ = 0.0005;
