@@ -1,0 +1,67 @@
+#include "impedance_controller.hpp"
+
+#include "hapticd/chain_state.hpp"
+
+namespace hapticd::controllers {
+
+ParameterSchema ImpedanceController::parameter_schema() {
+  ParameterSchema s;
+  s.string("task", "rendered handle wrench: auto (force only below 6 joints), translation, or full (6-D)")
+      .choices({"auto", "translation", "full"}).default_value(std::string("auto"));
+  s.real("force_gain", "proportional force feedback Kp (0: open-loop impedance control)").minimum(0.0).maximum(50.0)
+      .default_value(0.0);
+  s.real("force_derivative_gain", "derivative force feedback Kd").unit("s").minimum(0.0).maximum(1.0).default_value(0.0);
+  s.real("derivative_filter_hz", "low-pass of the force-error derivative").unit("Hz").greater_than(0.0)
+      .default_value(100.0);
+  s.boolean("gravity_compensation", "add the model's gravity torques").default_value(true);
+  return s;
+}
+
+void ImpedanceController::configure(const Parameters& p, const PluginContext& context) {
+  if (context.device == nullptr || context.device->robot_model_file.empty()) {
+    throw ParameterError("task", "impedance control needs a device with a robot model");
+  }
+  const std::string& task = p.string("task");
+  rows_ = task == "full" ? 6 : task == "translation" ? 3 : (context.device->dof() >= 6 ? 6 : 3);
+  kp_ = p.real("force_gain");
+  kd_ = p.real("force_derivative_gain");
+  if ((kp_ > 0.0 || kd_ > 0.0) && !context.device->reports_wrench) {
+    throw ParameterError("force_gain", "force feedback needs a device with a force/torque sensor");
+  }
+  gravity_compensation_ = p.boolean("gravity_compensation");
+  error_rate_.configure(1.0 / context.rate_hz, p.real("derivative_filter_hz"));
+}
+
+ImpedanceController::Vector6 ImpedanceController::force_error(const ControllerInput& in) const noexcept {
+  const ChainState& c = *in.chain;
+  Vector6 desired = Vector6::Zero();
+  if (in.task.has_wrench) desired << in.task.wrench.force, in.task.wrench.torque;
+  Vector6 error = desired;
+  if (c.has_operator_wrench) {
+    // The device applies -F_h to the operator: e = F_d - (-F_h).
+    error.head<3>() += c.operator_wrench.force;
+    error.tail<3>() += c.operator_wrench.torque;
+  }
+  return error;
+}
+
+ReturnCode ImpedanceController::activate(const ControllerInput& current, const JointCommand&) noexcept {
+  if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
+  error_rate_.reset(force_error(current));
+  return ReturnCode::ok;
+}
+
+ReturnCode ImpedanceController::update(const CycleTime& /*cycle*/, const ControllerInput& in,
+                                       JointCommand& command) noexcept {
+  const model::ModelData& d = *in.chain->data;
+  Vector6 desired = Vector6::Zero();
+  if (in.task.has_wrench) desired << in.task.wrench.force, in.task.wrench.torque;
+  const Vector6 error = force_error(in);
+  const Vector6& rate = error_rate_.update(error);
+  const Vector6 wrench = desired + kp_ * error + kd_ * rate;
+  command.torque_nm.noalias() = d.frame_jacobian.topRows(rows_).transpose() * wrench.head(rows_);
+  if (gravity_compensation_) command.torque_nm += d.gravity_torque;
+  return ReturnCode::ok;
+}
+
+}  // namespace hapticd::controllers

@@ -1,0 +1,32 @@
+#pragma once
+// Impedance control with force feedback (CONTROL-METHODS.md section 1):
+//   tau = J^T ( F_d + Kp e + Kd de/dt ) + g(q),   e = F_d - f,   f = -F_h
+// F_d: the wrench the virtual environment applies to the operator (TaskTarget::wrench; zero in free space),
+// f: the wrench the device applies to the operator, measured as the opposite of the sensor's operator wrench
+// F_h. force_gain = 0 is open-loop impedance control. Gyroscopic terms are deliberately not compensated.
+#include "hapticd/controller.hpp"
+#include "hapticd/model/model_data.hpp"
+#include "hapticd/signal/differentiator.hpp"
+
+namespace hapticd::controllers {
+
+class ImpedanceController final : public Controller {
+ public:
+  static ParameterSchema parameter_schema();
+
+  void configure(const Parameters& parameters, const PluginContext& context) override;
+  ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept override;
+  ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept override;
+  void deactivate() override {}
+
+ private:
+  using Vector6 = Eigen::Matrix<double, 6, 1>;
+  [[nodiscard]] Vector6 force_error(const ControllerInput& input) const noexcept;
+
+  int rows_ = 3;
+  double kp_ = 0.0, kd_ = 0.0;
+  bool gravity_compensation_ = true;
+  signal::Differentiator<Vector6> error_rate_;
+};
+
+}  // namespace hapticd::controllers

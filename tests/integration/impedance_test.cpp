@@ -1,0 +1,61 @@
+// Impedance display on the simulated ViSHaRD3 in lockstep: in free space (F_d = 0) force feedback lowers the
+// force the operator needs to move the handle compared with open-loop impedance control.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hapticd/chain_state.hpp"
+#include "support/test_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+using test::cycle_at;
+
+// RMS of the measured operator force over the last second of a 3 s session in which the simulated operator
+// moves the handle 3 cm back and forth at 1 Hz.
+double rms_operator_force(double force_gain) {
+  const std::string yaml = std::string("server: {clock: lockstep, seed: 3}\ndevices:\n") + R"(  - name: v3
+    device:
+      plugin: sim
+      parameters:
+        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
+        initial_position: [-0.3, 1.6, 0.0]
+        passive_gimbal: true
+        attachment: operator
+        operator_grasp: 0.7
+        operator_motion: sine
+        operator_motion_m: [0.03, 0.02, 0.0]
+        operator_motion_frequency_hz: 1.0
+    controller:
+      plugin: impedance
+      parameters: {task: translation, force_gain: )" + std::to_string(force_gain) + R"(}
+)";
+  auto s = test::build_test_session(yaml);
+  DeviceSession& d = *s.devices[0];
+  d.activate();
+  double sum = 0.0;
+  int n = 0;
+  for (std::uint64_t k = 0; k < 6000; ++k) {
+    d.cycle(cycle_at(k), 1.0);
+    EXPECT_EQ(d.fault(), DeviceFault::none);
+    if (k >= 4000) {
+      sum += d.chain_state().operator_wrench.force.squaredNorm();
+      ++n;
+    }
+  }
+  return std::sqrt(sum / n);
+}
+
+TEST(ImpedanceDisplay, ForceFeedbackLowersTheFreeSpaceInteractionForce) {
+  const double open_loop = rms_operator_force(0.0);
+  const double feedback = rms_operator_force(3.0);
+  RecordProperty("rms_force_open_loop_n", std::to_string(open_loop));
+  RecordProperty("rms_force_feedback_3_n", std::to_string(feedback));
+  EXPECT_GT(open_loop, 1.0) << "moving the device takes force in open loop (friction, inertia)";
+  // Kp = 3 divides the natural impedance by about (1 + Kp); stated bound: at most half the open-loop force.
+  EXPECT_LT(feedback, 0.5 * open_loop);
+}
+
+}  // namespace
+}  // namespace hapticd::server
