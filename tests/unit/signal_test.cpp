@@ -47,6 +47,16 @@ TEST(Biquad, NotchRemovesItsFrequencyAndPassesOthers) {
   EXPECT_NEAR(simulated_gain(c, 2.0), 1.0, 0.01);
 }
 
+TEST(Biquad, AnalogNotchHasTheDepthOfItsDampingRatios) {
+  // The thesis's torque notch: depth zn / zd = 0.05 at w0, unity far away.
+  const auto c = BiquadCoefficients::analog_notch(29.0, 0.01, 0.2, kRate);
+  EXPECT_NEAR(c.gain(29.0, kRate), 0.05, 1e-9);
+  EXPECT_NEAR(c.gain(0.0, kRate), 1.0, 1e-12);
+  EXPECT_GT(c.gain(2.9, kRate), 0.98);
+  EXPECT_GT(c.gain(290.0, kRate), 0.98);
+  EXPECT_NEAR(simulated_gain(c, 29.0), 0.05, 5e-3);
+}
+
 TEST(Biquad, ResetStartsInTheSteadyState) {
   Biquad<JointVector> filter(BiquadCoefficients::lowpass(50.0, kRate));
   JointVector x(3);

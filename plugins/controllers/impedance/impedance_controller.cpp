@@ -1,5 +1,7 @@
 #include "impedance_controller.hpp"
 
+#include <stdexcept>
+
 #include "hapticd/chain_state.hpp"
 
 namespace hapticd::controllers {
@@ -14,6 +16,12 @@ ParameterSchema ImpedanceController::parameter_schema() {
   s.real("derivative_filter_hz", "low-pass of the force-error derivative").unit("Hz").greater_than(0.0)
       .default_value(100.0);
   s.boolean("gravity_compensation", "add the model's gravity torques").default_value(true);
+  s.real("notch_hz", "centre of the torque notch filters (the joint resonance); 0: off").unit("Hz").minimum(0.0)
+      .default_value(0.0);
+  s.integer("notch_sections", "notch sections in series").minimum(1).maximum(4).default_value(2);
+  s.real("notch_zeta_numerator", "damping ratio of the notch zeros (depth = numerator / denominator)").minimum(0.0)
+      .default_value(0.01);
+  s.real("notch_zeta_denominator", "damping ratio of the notch poles (width)").greater_than(0.0).default_value(0.2);
   return s;
 }
 
@@ -30,6 +38,18 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
   }
   gravity_compensation_ = p.boolean("gravity_compensation");
   error_rate_.configure(1.0 / context.rate_hz, p.real("derivative_filter_hz"));
+  notch_count_ = 0;
+  if (p.real("notch_hz") > 0.0) {
+    signal::BiquadCoefficients c;
+    try {
+      c = signal::BiquadCoefficients::analog_notch(p.real("notch_hz"), p.real("notch_zeta_numerator"),
+                                                   p.real("notch_zeta_denominator"), context.rate_hz);
+    } catch (const std::invalid_argument& e) {
+      throw ParameterError("notch_hz", e.what());
+    }
+    notch_count_ = static_cast<int>(p.integer("notch_sections"));
+    for (int i = 0; i < notch_count_; ++i) notches_[static_cast<std::size_t>(i)].set_coefficients(c);
+  }
 }
 
 ImpedanceController::Vector6 ImpedanceController::force_error(const ControllerInput& in) const noexcept {
@@ -48,6 +68,10 @@ ImpedanceController::Vector6 ImpedanceController::force_error(const ControllerIn
 ReturnCode ImpedanceController::activate(const ControllerInput& current, const JointCommand&) noexcept {
   if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
   error_rate_.reset(force_error(current));
+  // The notches start in the steady state of the present gravity torque: no transient at activation.
+  const JointVector start = gravity_compensation_ ? current.chain->data->gravity_torque
+                                                  : JointVector(JointVector::Zero(current.chain->velocity.size()));
+  for (int i = 0; i < notch_count_; ++i) notches_[static_cast<std::size_t>(i)].reset(start);
   return ReturnCode::ok;
 }
 
@@ -61,6 +85,7 @@ ReturnCode ImpedanceController::update(const CycleTime& /*cycle*/, const Control
   const Vector6 wrench = desired + kp_ * error + kd_ * rate;
   command.torque_nm.noalias() = d.frame_jacobian.topRows(rows_).transpose() * wrench.head(rows_);
   if (gravity_compensation_) command.torque_nm += d.gravity_torque;
+  for (int i = 0; i < notch_count_; ++i) command.torque_nm = notches_[static_cast<std::size_t>(i)].update(command.torque_nm);
   return ReturnCode::ok;
 }
 

@@ -4,8 +4,13 @@
 // F_d: the wrench the virtual environment applies to the operator (TaskTarget::wrench; zero in free space),
 // f: the wrench the device applies to the operator, measured as the opposite of the sensor's operator wrench
 // F_h. force_gain = 0 is open-loop impedance control. Gyroscopic terms are deliberately not compensated.
+// Optional notch sections on the commanded torque against the joint resonance (thesis: two in series,
+// (s^2 + 2 0.01 w0 s + w0^2) / (s^2 + 2 0.2 w0 s + w0^2)).
 #include "hapticd/controller.hpp"
 #include "hapticd/model/model_data.hpp"
+#include <array>
+
+#include "hapticd/signal/biquad.hpp"
 #include "hapticd/signal/differentiator.hpp"
 
 namespace hapticd::controllers {
@@ -27,6 +32,9 @@ class ImpedanceController final : public Controller {
   double kp_ = 0.0, kd_ = 0.0;
   bool gravity_compensation_ = true;
   signal::Differentiator<Vector6> error_rate_;
+  static constexpr int kMaxNotches = 4;
+  std::array<signal::Biquad<JointVector>, kMaxNotches> notches_{};
+  int notch_count_ = 0;
 };
 
 }  // namespace hapticd::controllers

@@ -42,6 +42,26 @@ struct BiquadCoefficients {
     c.a2 = (1.0 - k / q + k * k) * norm;
     return c;
   }
+  // The analog section (s^2 + 2 zn w0 s + w0^2) / (s^2 + 2 zd w0 s + w0^2), w0 = 2 pi f0, by the bilinear
+  // transform pre-warped at f0 (exact gain at f0): zn < zd gives a notch of depth zn / zd (the thesis's
+  // torque notch uses zn = 0.01, zd = 0.2).
+  static BiquadCoefficients analog_notch(double f0, double zeta_numerator, double zeta_denominator, double fs) {
+    check(f0, fs);
+    if (!(zeta_numerator >= 0.0) || !(zeta_denominator > 0.0)) {
+      throw std::invalid_argument("notch damping ratios must be >= 0 (numerator) and > 0 (denominator)");
+    }
+    const double k = std::tan(M_PI * f0 / fs);  // s = (z - 1) / (z + 1) / k * w0 pre-warped: w0 / k scaling
+    const double kk = k * k;
+    const double n1 = 2.0 * zeta_numerator * k, d1 = 2.0 * zeta_denominator * k;
+    const double norm = 1.0 / (1.0 + d1 + kk);
+    BiquadCoefficients c;
+    c.b0 = (1.0 + n1 + kk) * norm;
+    c.b1 = 2.0 * (kk - 1.0) * norm;
+    c.b2 = (1.0 - n1 + kk) * norm;
+    c.a1 = c.b1;
+    c.a2 = (1.0 - d1 + kk) * norm;
+    return c;
+  }
   // Magnitude of the frequency response at f (for tests and documentation).
   [[nodiscard]] double gain(double f, double fs) const noexcept {
     const double w = 2.0 * M_PI * f / fs;
