@@ -1,5 +1,7 @@
 #include "impedance_controller.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "hapticd/chain_state.hpp"
@@ -16,6 +18,17 @@ ParameterSchema ImpedanceController::parameter_schema() {
   s.real("derivative_filter_hz", "low-pass of the force-error derivative").unit("Hz").greater_than(0.0)
       .default_value(100.0);
   s.boolean("gravity_compensation", "add the model's gravity torques").default_value(true);
+  s.boolean("friction_compensation", "add the model's sliding friction in the direction of motion").default_value(false);
+  s.real_vector("friction_polynomial", "p0 .. p4 of the sliding friction [N m vs rad/s] (default: the 26 C curve)")
+      .size(5).default_value(std::vector<double>{1.183, 1.008, -0.2642, 0.0487, -0.0037});
+  s.real_vector("friction_load", "a0, a1, a2 of the load-dependent friction").size(3)
+      .default_value(std::vector<double>{0.0, 0.02, 0.0});
+  s.real("friction_velocity_max", "highest identified velocity: the polynomial is held beyond it").unit("rad/s")
+      .greater_than(0.0).default_value(5.0);
+  s.real("friction_smooth_velocity", "velocity over which the compensation direction blends in").unit("rad/s")
+      .greater_than(0.0).default_value(0.05);
+  s.real("friction_fraction", "share of the modelled friction compensated").minimum(0.0).maximum(1.0)
+      .default_value(0.8);
   s.real("notch_hz", "centre of the torque notch filters (the joint resonance); 0: off").unit("Hz").minimum(0.0)
       .default_value(0.0);
   s.integer("notch_sections", "notch sections in series").minimum(1).maximum(4).default_value(2);
@@ -38,6 +51,14 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
   }
   gravity_compensation_ = p.boolean("gravity_compensation");
   error_rate_.configure(1.0 / context.rate_hz, p.real("derivative_filter_hz"));
+  friction_compensation_ = p.boolean("friction_compensation");
+  const auto& fp = p.real_vector("friction_polynomial");
+  const auto& fl = p.real_vector("friction_load");
+  for (std::size_t i = 0; i < 5; ++i) friction_p_[i] = fp[i];
+  for (std::size_t i = 0; i < 3; ++i) friction_load_[i] = fl[i];
+  friction_velocity_max_ = p.real("friction_velocity_max");
+  friction_smooth_velocity_ = p.real("friction_smooth_velocity");
+  friction_fraction_ = p.real("friction_fraction");
   notch_count_ = 0;
   if (p.real("notch_hz") > 0.0) {
     signal::BiquadCoefficients c;
@@ -50,6 +71,16 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
     notch_count_ = static_cast<int>(p.integer("notch_sections"));
     for (int i = 0; i < notch_count_; ++i) notches_[static_cast<std::size_t>(i)].set_coefficients(c);
   }
+}
+
+double ImpedanceController::friction(double velocity, double load) const noexcept {
+  const double v = std::min(std::abs(velocity), friction_velocity_max_);
+  const auto& c = friction_p_;
+  const double sliding = (((c[4] * v + c[3]) * v + c[2]) * v + c[1]) * v + c[0];
+  const double l = std::abs(load);
+  const double load_part = (friction_load_[2] * l + friction_load_[1]) * l + friction_load_[0];
+  const double direction = std::clamp(velocity / friction_smooth_velocity_, -1.0, 1.0);
+  return friction_fraction_ * direction * std::max(0.0, sliding + load_part);
 }
 
 ImpedanceController::Vector6 ImpedanceController::force_error(const ControllerInput& in) const noexcept {
@@ -85,6 +116,17 @@ ReturnCode ImpedanceController::update(const CycleTime& /*cycle*/, const Control
   const Vector6 wrench = desired + kp_ * error + kd_ * rate;
   command.torque_nm.noalias() = d.frame_jacobian.topRows(rows_).transpose() * wrench.head(rows_);
   if (gravity_compensation_) command.torque_nm += d.gravity_torque;
+  if (friction_compensation_) {
+    const ChainState& c = *in.chain;
+    Vector6 operator_wrench = Vector6::Zero();
+    if (c.has_operator_wrench) operator_wrench << c.operator_wrench.force, c.operator_wrench.torque;
+    for (int i = 0; i < command.torque_nm.size(); ++i) {
+      double transmitted = 0.0;  // (J^T F_h)_i
+      for (int r = 0; r < rows_; ++r) transmitted += d.frame_jacobian(r, i) * operator_wrench[r];
+      const double load = d.gravity_torque[i] - transmitted;
+      command.torque_nm[i] += friction(c.velocity[i], load);
+    }
+  }
   for (int i = 0; i < notch_count_; ++i) command.torque_nm = notches_[static_cast<std::size_t>(i)].update(command.torque_nm);
   return ReturnCode::ok;
 }

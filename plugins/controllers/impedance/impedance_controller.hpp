@@ -6,6 +6,11 @@
 // F_h. force_gain = 0 is open-loop impedance control. Gyroscopic terms are deliberately not compensated.
 // Optional notch sections on the commanded torque against the joint resonance (thesis: two in series,
 // (s^2 + 2 0.01 w0 s + w0^2) / (s^2 + 2 0.2 w0 s + w0^2)).
+// Optional model-based friction compensation of sliding friction (spec 1, friction model):
+//   h = s(qd) (p0 + p1|qd| + .. + p4|qd|^4 + a2 t^2 + a1 |t| + a0),  t = g + J^T(-F_h) the static load torque,
+// with s(qd) = clamp(qd / v_s, -1, 1) a smooth sign (no chatter from quantised velocities), the polynomial held
+// constant beyond the highest identified velocity, and a compensation fraction below 1 against
+// over-compensation. Friction at rest is left to the stiction compensator.
 #include "hapticd/controller.hpp"
 #include "hapticd/model/model_data.hpp"
 #include <array>
@@ -35,6 +40,11 @@ class ImpedanceController final : public Controller {
   static constexpr int kMaxNotches = 4;
   std::array<signal::Biquad<JointVector>, kMaxNotches> notches_{};
   int notch_count_ = 0;
+  bool friction_compensation_ = false;
+  std::array<double, 5> friction_p_{};
+  std::array<double, 3> friction_load_{};
+  double friction_velocity_max_ = 5.0, friction_smooth_velocity_ = 0.05, friction_fraction_ = 0.8;
+  [[nodiscard]] double friction(double velocity, double load) const noexcept;
 };
 
 }  // namespace hapticd::controllers
