@@ -16,7 +16,8 @@ namespace {
 
 using test::cycle_at;
 
-std::string admittance_session(const std::string& force, double mass, double damping) {
+std::string admittance_session(const std::string& force, double mass, double damping,
+                               const std::string& controller = "resolved_acceleration") {
   const std::string m = std::to_string(mass), d = std::to_string(damping);
   return "server: {clock: lockstep, seed: 7}\ndevices:\n" + test::sim_vishard3_device_yaml("v3", "step", force) +
          R"(        wrench_force_start_s: 0.2
@@ -27,7 +28,7 @@ std::string admittance_session(const std::string& force, double mass, double dam
         damping_n_s_per_m: [)" + d + ", " + d + ", " + d + R"(]
         rotation: false
     controller:
-      plugin: resolved_acceleration
+      plugin: )" + controller + R"(
       parameters: {task: translation, bandwidth_rad_s: 60}
 )";
 }
@@ -67,18 +68,26 @@ std::pair<double, double> fit(const Trace& trace, double t0, double t1, int axis
   return {c[1] + 2 * c[2] * (t1 - t0), 2 * c[2]};
 }
 
-TEST(AdmittanceDisplay, ForceStepGivesTheVirtualMassAcceleration) {
+class VirtualMass : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(VirtualMass, ForceStepGivesTheVirtualMassAcceleration) {
   for (const int axis : {0, 1, 2}) {
     std::string force = "[0, 0, 0]";
     force[1 + 3 * axis] = '8';  // 8 N along the axis
-    auto s = test::build_test_session(admittance_session(force, 4.0, 0.0));
+    auto s = test::build_test_session(admittance_session(force, 4.0, 0.0, GetParam()));
     const Trace trace = run(s, 800);  // the step at 0.2 s, 0.2 s of acceleration
     const double expected = 8.0 / 4.0;
     const double measured = fit(trace, 0.25, 0.4, axis).second;
-    EXPECT_NEAR(measured, expected, 0.10 * expected) << "axis " << axis;
+    EXPECT_NEAR(measured, expected, 0.10 * expected) << GetParam() << " axis " << axis;
     RecordProperty("acceleration_axis_" + std::to_string(axis), std::to_string(measured));
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(InnerLoops, VirtualMass,
+                         ::testing::Values("resolved_acceleration", "inverse_jacobian", "transposed_jacobian"),
+                         [](const ::testing::TestParamInfo<const char*>& param_info) {
+                           return std::string(param_info.param);
+                         });
 
 TEST(AdmittanceDisplay, ConstantForceGivesTheVirtualDampingSpeed) {
   // 6 N against 40 N s/m with 2 kg: time constant 0.05 s, steady speed 0.15 m/s.

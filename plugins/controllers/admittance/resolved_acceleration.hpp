@@ -1,12 +1,11 @@
 #pragma once
 // Resolved acceleration control, the inner motion loop of admittance display (CONTROL-METHODS.md section 2):
-//   xdd_c = xdd_d + Kd (xd_d - xd) + Kp (x_d - x)         (orientation error as a rotation vector)
+//   xdd_c = xdd_d + Kd (xd_d - xd) + Kp (x_d - x)         (TaskMotionLaw)
 //   qdd_c = J^+ (xdd_c - dJ/dt qd)
 //   tau   = M qdd_c + C qd + g - J^T F_h                   (F_h: the operator's wrench on the handle)
-// Kp = w^2, Kd = 2 zeta w per translation and rotation. Acceleration feedforward and the operator-wrench
-// compensation can be switched off. Uses the server's per-cycle model terms (ChainState).
+// Uses the server's per-cycle model terms (ChainState).
 #include "hapticd/controller.hpp"
-#include "hapticd/model/model_data.hpp"
+#include "task_motion_law.hpp"
 
 namespace hapticd::controllers {
 
@@ -20,12 +19,8 @@ class ResolvedAcceleration final : public Controller {
   void deactivate() override {}
 
  private:
-  int rows_ = 3;  // 3: translation only; 6: translation and rotation
-  double kp_ = 0.0, kd_ = 0.0, kp_rot_ = 0.0, kd_rot_ = 0.0;
-  bool acceleration_feedforward_ = true;
-  bool wrench_compensation_ = true;
+  TaskMotionLaw law_;
   double damping_ = 1e-6;  // damped least squares at singularities
-  model::TaskJacobian jacobian_;
 };
 
 }  // namespace hapticd::controllers

@@ -1,0 +1,88 @@
+#include "jacobian_control.hpp"
+
+#include <Eigen/Cholesky>
+
+#include "hapticd/model/task_space.hpp"
+
+namespace hapticd::controllers {
+
+ParameterSchema JacobianControl::parameter_schema() {
+  ParameterSchema s;
+  TaskMotionLaw::declare(s);
+  s.real_vector("joint_inertia", "inverse_jacobian: constant diagonal joint inertia M_hat (empty: diag M at "
+                                 "activation)").default_value(std::vector<double>{});
+  s.real_vector("task_mass", "transposed_jacobian: constant diagonal task-space mass Mx_hat, one per task row "
+                             "(empty: diag of the operational-space inertia at activation)")
+      .default_value(std::vector<double>{});
+  return s;
+}
+
+void JacobianControl::configure(const Parameters& p, const PluginContext& context) {
+  law_.configure(p, context);
+  const int n = context.device->dof();
+  const auto& mj = p.real_vector("joint_inertia");
+  const auto& mx = p.real_vector("task_mass");
+  const bool inverse = kind_ == Kind::kInverse;
+  const auto& given = inverse ? mj : mx;
+  const int expected = inverse ? n : law_.rows();
+  if (!given.empty() && static_cast<int>(given.size()) != expected) {
+    throw ParameterError(inverse ? "joint_inertia" : "task_mass",
+                         "needs " + std::to_string(expected) + " values, got " + std::to_string(given.size()));
+  }
+  for (double v : given) {
+    if (!(v > 0.0)) throw ParameterError(inverse ? "joint_inertia" : "task_mass", "values must be positive");
+  }
+  inertia_from_model_ = given.empty();
+  joint_inertia_.setZero(n);
+  task_mass_.setZero(law_.rows());
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    if (inverse) {
+      joint_inertia_[static_cast<int>(i)] = given[i];
+    } else {
+      task_mass_[static_cast<int>(i)] = given[i];
+    }
+  }
+}
+
+ReturnCode JacobianControl::activate(const ControllerInput& current, const JointCommand&) noexcept {
+  if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
+  if (!inertia_from_model_) return ReturnCode::ok;
+  const model::ModelData& d = *current.chain->data;
+  if (kind_ == Kind::kInverse) {
+    joint_inertia_ = d.mass_matrix.diagonal();
+    return ReturnCode::ok;
+  }
+  model::TaskMatrix lambda;
+  const model::TaskJacobian j = d.frame_jacobian.topRows(law_.rows());
+  if (!model::operational_space_inertia(d, j, lambda)) return ReturnCode::error;  // singular at activation
+  task_mass_ = lambda.diagonal();
+  return ReturnCode::ok;
+}
+
+ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerInput& in,
+                                   JointCommand& command) noexcept {
+  const ChainState& c = *in.chain;
+  const model::ModelData& d = *c.data;
+  if (!in.task.has_motion) return ReturnCode::error;
+  const int rows = law_.rows();
+  const model::TaskJacobian j = d.frame_jacobian.topRows(rows);
+  if (kind_ == Kind::kInverse) {
+    const model::Vector6d xdd = law_.acceleration(in.task, c) - d.frame_jacobian_dot_qd;
+    model::TaskMatrix jjt = j * j.transpose();
+    jjt.diagonal().array() += damping_;
+    const model::TaskVector task_acceleration = xdd.head(rows);
+    const model::TaskVector weights = jjt.ldlt().solve(task_acceleration);
+    JointVector qdd = JointVector::Zero(j.cols());
+    qdd.noalias() = j.transpose() * weights;
+    command.torque_nm = joint_inertia_.cwiseProduct(qdd);
+  } else {
+    const model::Vector6d xdd = law_.acceleration(in.task, c);
+    const model::TaskVector force = task_mass_.cwiseProduct(xdd.head(rows));
+    command.torque_nm.noalias() = j.transpose() * force;
+  }
+  command.torque_nm += d.gravity_torque;
+  law_.add_wrench_compensation(c, command.torque_nm);
+  return ReturnCode::ok;
+}
+
+}  // namespace hapticd::controllers

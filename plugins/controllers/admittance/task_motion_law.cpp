@@ -1,0 +1,62 @@
+#include "task_motion_law.hpp"
+
+namespace hapticd::controllers {
+
+void TaskMotionLaw::declare(ParameterSchema& s) {
+  s.string("task", "controlled handle motion: auto (translation below 6 joints), translation, or full (6-D)")
+      .choices({"auto", "translation", "full"}).default_value(std::string("auto"));
+  s.real("bandwidth_rad_s", "translational loop bandwidth w: Kp = w^2, Kd = 2 zeta w").unit("rad/s").greater_than(0.0)
+      .maximum(1000.0).default_value(60.0);
+  s.real("rotational_bandwidth_rad_s", "rotational loop bandwidth").unit("rad/s").greater_than(0.0).maximum(1000.0)
+      .default_value(40.0);
+  s.real("damping_ratio", "zeta of both loops").greater_than(0.0).maximum(5.0).default_value(1.0);
+  s.boolean("acceleration_feedforward", "add the desired acceleration").default_value(true);
+  s.boolean("wrench_compensation", "cancel the measured operator wrench (positive feedback, + J^T F)").default_value(true);
+}
+
+void TaskMotionLaw::configure(const Parameters& p, const PluginContext& context) {
+  if (context.device == nullptr || context.device->robot_model_file.empty()) {
+    throw ParameterError("task", "admittance control needs a device with a robot model");
+  }
+  const std::string& task = p.string("task");
+  rows_ = task == "full" ? 6 : task == "translation" ? 3 : (context.device->dof() >= 6 ? 6 : 3);
+  if (rows_ > context.device->dof()) {
+    throw ParameterError("task", "a 6-D task needs at least 6 joints; this device has " +
+                                     std::to_string(context.device->dof()));
+  }
+  const double w = p.real("bandwidth_rad_s"), wr = p.real("rotational_bandwidth_rad_s"), z = p.real("damping_ratio");
+  kp_ = w * w;
+  kd_ = 2.0 * z * w;
+  kp_rot_ = wr * wr;
+  kd_rot_ = 2.0 * z * wr;
+  acceleration_feedforward_ = p.boolean("acceleration_feedforward");
+  wrench_compensation_ = p.boolean("wrench_compensation");
+}
+
+model::Vector6d TaskMotionLaw::acceleration(const TaskTarget& t, const ChainState& c) const noexcept {
+  model::Vector6d xdd = model::Vector6d::Zero();
+  xdd.head<3>() = kp_ * (t.pose.position - c.handle_pose.position) + kd_ * (t.twist.linear - c.handle_twist.linear);
+  if (rows_ == 6) {
+    const Eigen::AngleAxisd error(t.pose.orientation * c.handle_pose.orientation.conjugate());
+    xdd.tail<3>() = kp_rot_ * error.angle() * error.axis() + kd_rot_ * (t.twist.angular - c.handle_twist.angular);
+  }
+  if (acceleration_feedforward_) {
+    xdd.head<3>() += t.acceleration.linear;
+    xdd.tail<3>() += t.acceleration.angular;
+  }
+  return xdd;
+}
+
+void TaskMotionLaw::add_wrench_compensation(const ChainState& c, JointVector& torque) const noexcept {
+  if (!wrench_compensation_ || !c.has_operator_wrench) return;
+  model::Vector6d wrench;
+  wrench << c.operator_wrench.force, c.operator_wrench.torque;
+  const model::ModelData& d = *c.data;
+  for (int i = 0; i < torque.size(); ++i) {
+    double transmitted = 0.0;
+    for (int r = 0; r < rows_; ++r) transmitted += d.frame_jacobian(r, i) * wrench[r];
+    torque[i] -= transmitted;
+  }
+}
+
+}  // namespace hapticd::controllers
