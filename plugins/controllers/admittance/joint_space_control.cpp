@@ -1,0 +1,67 @@
+#include "joint_space_control.hpp"
+
+#include "hapticd/chain_state.hpp"
+
+namespace hapticd::controllers {
+
+ParameterSchema JointSpaceControl::parameter_schema() {
+  ParameterSchema s;
+  s.string("task", "rows of the operator-wrench compensation: auto (translation below 6 joints), translation, full")
+      .choices({"auto", "translation", "full"}).default_value(std::string("auto"));
+  s.real("bandwidth_rad_s", "computed_torque: error dynamics bandwidth w (Kp = w^2, Kd = 2 zeta w)").unit("rad/s")
+      .greater_than(0.0).maximum(1000.0).default_value(60.0);
+  s.real("damping_ratio", "computed_torque: zeta").greater_than(0.0).maximum(5.0).default_value(1.0);
+  s.real("joint_stiffness", "joint_pd: Kp").unit("N m/rad").minimum(0.0).default_value(500.0);
+  s.real("joint_damping", "joint_pd: Kd").unit("N m s/rad").minimum(0.0).default_value(10.0);
+  s.boolean("acceleration_feedforward", "computed_torque: add qdd_d").default_value(true);
+  s.boolean("wrench_compensation", "cancel the measured operator wrench (- J^T F_h)").default_value(true);
+  return s;
+}
+
+void JointSpaceControl::configure(const Parameters& p, const PluginContext& context) {
+  if (context.device == nullptr || context.device->robot_model_file.empty()) {
+    throw ParameterError("task", "joint-space admittance control needs a device with a robot model");
+  }
+  const std::string& task = p.string("task");
+  rows_ = task == "full" ? 6 : task == "translation" ? 3 : (context.device->dof() >= 6 ? 6 : 3);
+  const double w = p.real("bandwidth_rad_s");
+  kp_ = w * w;
+  kd_ = 2.0 * p.real("damping_ratio") * w;
+  joint_kp_ = p.real("joint_stiffness");
+  joint_kd_ = p.real("joint_damping");
+  acceleration_feedforward_ = p.boolean("acceleration_feedforward");
+  wrench_compensation_ = p.boolean("wrench_compensation");
+}
+
+ReturnCode JointSpaceControl::activate(const ControllerInput& current, const JointCommand&) noexcept {
+  return current.chain != nullptr && current.chain->model != nullptr ? ReturnCode::ok : ReturnCode::error;
+}
+
+ReturnCode JointSpaceControl::update(const CycleTime& /*cycle*/, const ControllerInput& in,
+                                     JointCommand& command) noexcept {
+  const ChainState& c = *in.chain;
+  const model::ModelData& d = *c.data;
+  if (!in.joints.valid) return ReturnCode::error;  // needs an inverse-kinematics plugin in the chain
+  const JointVector& q = in.device.joints.position;
+  if (kind_ == Kind::kComputedTorque) {
+    JointVector qdd = kp_ * (in.joints.position - q) + kd_ * (in.joints.velocity - c.velocity);
+    if (acceleration_feedforward_) qdd += in.joints.acceleration;
+    command.torque_nm.noalias() = d.mass_matrix * qdd;
+    command.torque_nm += d.coriolis_torque + d.gravity_torque;
+  } else {
+    command.torque_nm = joint_kp_ * (in.joints.position - q) + joint_kd_ * (in.joints.velocity - c.velocity) +
+                        d.gravity_torque;
+  }
+  if (wrench_compensation_ && c.has_operator_wrench) {
+    model::Vector6d wrench;
+    wrench << c.operator_wrench.force, c.operator_wrench.torque;
+    for (int i = 0; i < command.torque_nm.size(); ++i) {
+      double transmitted = 0.0;
+      for (int r = 0; r < rows_; ++r) transmitted += d.frame_jacobian(r, i) * wrench[r];
+      command.torque_nm[i] -= transmitted;
+    }
+  }
+  return ReturnCode::ok;
+}
+
+}  // namespace hapticd::controllers

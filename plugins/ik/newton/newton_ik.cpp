@@ -1,0 +1,75 @@
+#include "newton_ik.hpp"
+
+#include <Eigen/Cholesky>
+
+#include "hapticd/chain_state.hpp"
+#include "hapticd/model/kinematics.hpp"
+#include "hapticd/model/urdf_loader.hpp"
+
+namespace hapticd::ik {
+
+ParameterSchema NewtonIk::parameter_schema() {
+  ParameterSchema s;
+  s.string("task", "task rows: auto (translation below 6 joints), translation, or full (6-D)")
+      .choices({"auto", "translation", "full"}).default_value(std::string("auto"));
+  s.integer("newton_steps", "Newton steps per cycle").minimum(1).maximum(10).default_value(1);
+  s.real("acceleration_filter_hz", "low-pass of the differentiated joint-velocity target").unit("Hz")
+      .greater_than(0.0).default_value(200.0);
+  return s;
+}
+
+void NewtonIk::configure(const Parameters& p, const PluginContext& context) {
+  if (context.device == nullptr || context.device->robot_model_file.empty()) {
+    throw ParameterError("task", "the Newton inverse kinematics needs a device with a robot model");
+  }
+  model_ = std::make_unique<model::RobotModel>(model::load_robot_model(context.device->robot_model_file));
+  data_ = std::make_unique<model::ModelData>(*model_);
+  handle_ = model_->require_frame(context.device->handle_frame.empty() ? "handle" : context.device->handle_frame);
+  const std::string& task = p.string("task");
+  rows_ = task == "full" ? 6 : task == "translation" ? 3 : (model_->dof() >= 6 ? 6 : 3);
+  steps_ = static_cast<int>(p.integer("newton_steps"));
+  acceleration_.configure(1.0 / context.rate_hz, p.real("acceleration_filter_hz"));
+  q_.setZero(model_->dof());
+  qd_.setZero(model_->dof());
+}
+
+model::TaskVector NewtonIk::pseudo_inverse_times(const model::TaskJacobian& j, const model::Vector6d& v) const noexcept {
+  model::TaskMatrix jjt = j * j.transpose();
+  jjt.diagonal().array() += damping_;
+  const model::TaskVector rhs = v.head(rows_);
+  return jjt.ldlt().solve(rhs);
+}
+
+ReturnCode NewtonIk::activate(const InverseKinematicsInput& current) noexcept {
+  q_ = current.device.joints.position;
+  qd_ = current.chain != nullptr ? current.chain->velocity : JointVector(JointVector::Zero(q_.size()));
+  acceleration_.reset(qd_);
+  return ReturnCode::ok;
+}
+
+ReturnCode NewtonIk::update(const CycleTime& /*cycle*/, const InverseKinematicsInput& in, JointTarget& target) noexcept {
+  if (!in.task.has_motion) return ReturnCode::error;
+  Eigen::Isometry3d desired = Eigen::Isometry3d::Identity();
+  desired.translation() = in.task.pose.position;
+  desired.linear() = in.task.pose.orientation.toRotationMatrix();
+  for (int s = 0; s < steps_; ++s) {
+    model::forward_kinematics(*model_, *data_, q_);
+    model::frame_jacobian(*model_, *data_, handle_, jacobian_);
+    const model::TaskJacobian j = jacobian_.topRows(rows_);
+    const model::Vector6d error = model::pose_difference(desired, model::frame_pose(*model_, *data_, handle_));
+    q_.noalias() += j.transpose() * pseudo_inverse_times(j, error);
+  }
+  model::forward_kinematics(*model_, *data_, q_);
+  model::frame_jacobian(*model_, *data_, handle_, jacobian_);
+  const model::TaskJacobian j = jacobian_.topRows(rows_);
+  model::Vector6d twist;
+  twist << in.task.twist.linear, in.task.twist.angular;
+  qd_.noalias() = j.transpose() * pseudo_inverse_times(j, twist);
+  target.position = q_;
+  target.velocity = qd_;
+  target.acceleration = acceleration_.update(qd_);
+  target.valid = true;
+  return ReturnCode::ok;
+}
+
+}  // namespace hapticd::ik
