@@ -119,7 +119,9 @@ TEST(AdmittanceDisplay, ConstantForceGivesTheVirtualDampingSpeed) {
   RecordProperty("steady_speed_m_s", std::to_string(speed));
 }
 
-TEST(AdmittanceDisplay, VirtualWallHoldsThePushingOperator) {
+class VirtualWall : public ::testing::TestWithParam<bool> {};
+
+TEST_P(VirtualWall, HoldsThePushingOperator) {
   // The handle's start position, from the model at the start pose.
   const model::RobotModel robot = model::load_robot_model(std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/vishard3.urdf");
   model::ModelData data(robot);
@@ -150,6 +152,7 @@ TEST(AdmittanceDisplay, VirtualWallHoldsThePushingOperator) {
                            R"(, -1, 0, 0]
         wall_stiffness_n_per_m: 5000
         wall_damping_n_s_per_m: 100
+        motion_based: )" + std::string(GetParam() ? "true" : "false") + R"(
     controller:
       plugin: resolved_acceleration
       parameters: {task: translation, bandwidth_rad_s: 60}
@@ -166,6 +169,10 @@ TEST(AdmittanceDisplay, VirtualWallHoldsThePushingOperator) {
   RecordProperty("wall_penetration_final_mm", std::to_string(1e3 * final_depth));
   RecordProperty("wall_penetration_max_mm", std::to_string(1e3 * deepest));
 }
+
+INSTANTIATE_TEST_SUITE_P(Walls, VirtualWall, ::testing::Bool(), [](const ::testing::TestParamInfo<bool>& param_info) {
+  return std::string(param_info.param ? "motion_based" : "virtual_state");
+});
 
 TEST(AdmittanceDisplay, ChainUpdatesDoNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";

@@ -30,6 +30,8 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
   s.real("wall_stiffness_n_per_m", "stiffness of the walls").unit("N/m").minimum(0.0).default_value(5000.0);
   s.real("wall_damping_n_s_per_m", "damping of the walls while penetrated").unit("N s/m").minimum(0.0)
       .default_value(50.0);
+  s.boolean("motion_based", "walls act on the measured handle motion (motion-based impedance control)")
+      .default_value(false);
   s.real("max_velocity_m_s", "integration limit of the virtual speed").unit("m/s").greater_than(0.0).default_value(1.0);
   s.real("max_angular_velocity_rad_s", "integration limit of the virtual angular speed").unit("rad/s")
       .greater_than(0.0).default_value(5.0);
@@ -62,16 +64,18 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
   }
   wall_stiffness_ = p.real("wall_stiffness_n_per_m");
   wall_damping_ = p.real("wall_damping_n_s_per_m");
+  motion_based_ = p.boolean("motion_based");
 }
 
-Eigen::Vector3d VirtualAdmittance::wall_force() const noexcept {
+Eigen::Vector3d VirtualAdmittance::wall_force(const Eigen::Vector3d& position,
+                                              const Eigen::Vector3d& velocity) const noexcept {
   Eigen::Vector3d f = Eigen::Vector3d::Zero();
   for (int i = 0; i < wall_count_; ++i) {
     const Wall& w = walls_[static_cast<std::size_t>(i)];
-    const double depth = -(position_ - w.point).dot(w.normal);  // > 0 inside the wall
+    const double depth = -(position - w.point).dot(w.normal);  // > 0 inside the wall
     if (depth <= 0.0) continue;
     // Unilateral: the wall pushes, never pulls.
-    const double push = wall_stiffness_ * depth - wall_damping_ * velocity_.dot(w.normal);
+    const double push = wall_stiffness_ * depth - wall_damping_ * velocity.dot(w.normal);
     if (push > 0.0) f += push * w.normal;
   }
   return f;
@@ -92,7 +96,8 @@ ReturnCode VirtualAdmittance::update(const CycleTime& /*cycle*/, const VirtualMo
                                      TaskTarget& target) noexcept {
   const ChainState& c = *input.chain;
   const double dt = period_s_;
-  const Eigen::Vector3d environment = wall_force();
+  const Eigen::Vector3d environment = motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
+                                                    : wall_force(position_, velocity_);
   const Eigen::Vector3d force = c.operator_wrench.force + environment;
   const Eigen::Vector3d acceleration = (force - damping_.cwiseProduct(velocity_)).cwiseQuotient(mass_);
   velocity_ = clamp_norm(velocity_ + dt * acceleration, max_velocity_);

@@ -5,7 +5,9 @@
 // whose pose (a unit quaternion: no representation singularities) is the desired handle pose of the inner
 // motion controller. Semi-implicit Euler at the control rate, with integration limits on the velocities.
 // Virtual walls (half-spaces: a point and an outward normal of the free side) push the virtual body back with
-// a unilateral spring-damper; the wall force is reported as the environment wrench of the target.
+// a unilateral spring-damper; the wall force is reported as the environment wrench of the target. With
+// motion_based the walls act on the measured handle motion instead of the virtual body's (the thesis's
+// motion-based impedance control: walls do not drift when the inner loop is not integral).
 #include <array>
 
 #include "hapticd/virtual_model.hpp"
@@ -27,12 +29,13 @@ class VirtualAdmittance final : public VirtualModel {
   };
   static constexpr int kMaxWalls = 8;
 
-  Eigen::Vector3d wall_force() const noexcept;
+  Eigen::Vector3d wall_force(const Eigen::Vector3d& position, const Eigen::Vector3d& velocity) const noexcept;
 
   Eigen::Vector3d mass_, inertia_, damping_, rotational_damping_;
   std::array<Wall, kMaxWalls> walls_{};
   int wall_count_ = 0;
   double wall_stiffness_ = 0.0, wall_damping_ = 0.0;
+  bool motion_based_ = false;
   double max_velocity_ = 1.0, max_angular_velocity_ = 5.0;
   bool rotation_ = true;
   double period_s_ = 0.0005;
