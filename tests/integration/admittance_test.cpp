@@ -37,6 +37,7 @@ std::string admittance_session(const std::string& force, double mass, double dam
 struct Trace {
   std::vector<double> t;
   std::vector<Eigen::Vector3d> x;
+  std::vector<Eigen::Vector3d> rotation;  // rotation vector of the handle relative to its start orientation
 };
 
 Trace run(test::TestSession& s, int cycles) {
@@ -48,12 +49,16 @@ Trace run(test::TestSession& s, int cycles) {
     EXPECT_EQ(d.fault(), DeviceFault::none) << "cycle " << k;
     trace.t.push_back(k * 5e-4);
     trace.x.push_back(d.chain_state().handle_pose.position);
+    static thread_local Eigen::Quaterniond start;
+    if (k == 0) start = d.chain_state().handle_pose.orientation;
+    const Eigen::AngleAxisd r(d.chain_state().handle_pose.orientation * start.conjugate());
+    trace.rotation.push_back(r.angle() * r.axis());
   }
   return trace;
 }
 
 // Least-squares fit x(t) = a0 + a1 t + a2 t^2 over [t0, t1] along `axis`; returns (velocity at t1, 2 a2).
-std::pair<double, double> fit(const Trace& trace, double t0, double t1, int axis) {
+std::pair<double, double> fit(const Trace& trace, double t0, double t1, int axis, bool rotation = false) {
   std::vector<int> rows;
   for (std::size_t i = 0; i < trace.t.size(); ++i) {
     if (trace.t[i] >= t0 && trace.t[i] <= t1) rows.push_back(static_cast<int>(i));
@@ -63,7 +68,8 @@ std::pair<double, double> fit(const Trace& trace, double t0, double t1, int axis
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const double t = trace.t[static_cast<std::size_t>(rows[r])] - t0;
     a.row(static_cast<Eigen::Index>(r)) << 1.0, t, t * t;
-    b[static_cast<Eigen::Index>(r)] = trace.x[static_cast<std::size_t>(rows[r])][axis];
+    const auto& series = rotation ? trace.rotation : trace.x;
+    b[static_cast<Eigen::Index>(r)] = series[static_cast<std::size_t>(rows[r])][axis];
   }
   const Eigen::Vector3d c = a.colPivHouseholderQr().solve(b);
   return {c[1] + 2 * c[2] * (t1 - t0), 2 * c[2]};
@@ -108,6 +114,58 @@ TEST(AdmittanceDisplay, JointPdBaselineRendersTheMassWorstOfAll) {
   }
   EXPECT_GT(worst_pd, worst_rac);
   EXPECT_LT(worst_rac, 0.05);
+}
+
+// ViSHaRD6 in 6-D admittance: forces and torques give the virtual mass's and inertia's accelerations. Start
+// pose with the wrist pitched (joint 4 = 0.5 rad). As read from the source, this kinematics sets the handle
+// height and pitch with joint 4 alone (docs/output-capability.md): vertical force and pitch torque at a fixed
+// orientation are its near-singular pair, and rotations about horizontal axes couple into it at this pose, so
+// they are not part of this check (they trip the speed monitor or move the wrong way). Open: issue 5 must
+// re-check the ViSHaRD6 model reading before its 6-D tests can cover every direction.
+std::string vishard6_session(const std::string& force, const std::string& torque) {
+  return std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") + R"(  - name: v6
+    device:
+      plugin: sim
+      parameters:
+        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard6.urdf
+        initial_position: [-0.5, 1.0, -0.5, 0.5, 0.3, 0.0]
+        attachment: wrench
+        wrench_force: step
+        wrench_force_n: )" + force + R"(
+        wrench_force_start_s: 0.2
+        wrench_torque: step
+        wrench_torque_nm: )" + torque + R"(
+        wrench_torque_start_s: 0.2
+    virtual_model:
+      plugin: admittance
+      parameters:
+        mass_kg: [4, 4, 4]
+        damping_n_s_per_m: [0, 0, 0]
+        inertia_kg_m2: [0.1, 0.1, 0.1]
+        rotational_damping_n_m_s: [0, 0, 0]
+    controller:
+      plugin: resolved_acceleration
+      parameters: {task: full, bandwidth_rad_s: 60, rotational_bandwidth_rad_s: 40}
+)";
+}
+
+TEST(AdmittanceDisplay, Vishard6RendersMassAndInertiaInItsWellConditionedDirections) {
+  for (const int axis : {0, 1}) {
+    std::string force = "[0, 0, 0]";
+    force[1 + 3 * axis] = '8';  // 8 N on 4 kg: 2 m/s^2
+    auto s = test::build_test_session(vishard6_session(force, "[0, 0, 0]"));
+    const double a = fit(run(s, 800), 0.25, 0.4, axis).second;
+    EXPECT_NEAR(a, 2.0, 0.2) << "force along axis " << axis;
+    RecordProperty("vishard6_acceleration_axis_" + std::to_string(axis), std::to_string(a));
+  }
+  for (const int axis : {2}) {
+    std::string torque = "[0.0, 0.0, 0.0]";
+    torque.replace(static_cast<std::size_t>(1 + 5 * axis), 3, "0.2");  // 0.2 N m on 0.1 kg m^2: 2 rad/s^2
+    auto s = test::build_test_session(vishard6_session("[0, 0, 0]", torque));
+    const double alpha = fit(run(s, 800), 0.25, 0.4, axis, true).second;
+    EXPECT_NEAR(alpha, 2.0, 0.2) << "torque about axis " << axis;
+    RecordProperty("vishard6_angular_acceleration_axis_" + std::to_string(axis), std::to_string(alpha));
+  }
 }
 
 TEST(AdmittanceDisplay, ConstantForceGivesTheVirtualDampingSpeed) {
