@@ -336,3 +336,43 @@ TEST(VishardModels, Vishard3ApparentMassSpansThePublishedRange) {
 
 }  // namespace
 }  // namespace hapticd
+
+namespace hapticd {
+namespace {
+
+TEST(TaskSpace, MinimumNormSolutionIsExactAndHasNoNullSpacePart) {
+  const model::RobotModel robot = test::load_device_model("vishard10");
+  model::ModelData data(robot);
+  std::mt19937_64 rng(12);
+  for (int k = 0; k < 100; ++k) {
+    model::forward_kinematics(robot, data, test::random_joint_vector(rng, 10, kPi));
+    model::TaskJacobian j;
+    model::frame_jacobian(robot, data, robot.require_frame("handle"), j);
+    const model::TaskVector v = test::random_joint_vector(rng, 6, 1.0).head(6);
+    const JointVector q = model::minimum_norm_solution(j, v, 0.0);
+    EXPECT_LE((j * q - v).norm(), 1e-8 * (1 + v.norm()));
+    // Minimum norm: q lies in the row space of J (no component in its null space).
+    const Eigen::MatrixXd jd = j;
+    const Eigen::MatrixXd null_projector =
+        Eigen::MatrixXd::Identity(10, 10) - jd.completeOrthogonalDecomposition().pseudoInverse() * jd;
+    EXPECT_LE((null_projector * Eigen::VectorXd(q)).norm(), 1e-8 * (1 + q.norm()));
+  }
+}
+
+TEST(TaskSpace, JacobianTransposeTimesUsesTheGivenRows) {
+  const model::RobotModel robot = test::load_device_model("vishard6");
+  model::ModelData data(robot);
+  std::mt19937_64 rng(13);
+  model::forward_kinematics(robot, data, test::random_joint_vector(rng, 6, kPi));
+  model::TaskJacobian j;
+  model::frame_jacobian(robot, data, robot.require_frame("handle"), j);
+  model::Vector6d w;
+  w << 1, -2, 3, 0.1, 0.2, -0.3;
+  EXPECT_LE((model::jacobian_transpose_times(j, 6, w) - j.transpose() * w).norm(), 1e-12);
+  model::Vector6d force_only = w;
+  force_only.tail<3>().setZero();
+  EXPECT_LE((model::jacobian_transpose_times(j, 3, w) - j.transpose() * force_only).norm(), 1e-12);
+}
+
+}  // namespace
+}  // namespace hapticd

@@ -29,6 +29,25 @@ bool operational_space_inertia(const ModelData& data, const TaskJacobian& jacobi
   return true;
 }
 
+JointVector minimum_norm_solution(const TaskJacobian& jacobian, const TaskVector& v, double damping) noexcept {
+  TaskMatrix jjt = jacobian * jacobian.transpose();
+  jjt.diagonal().array() += damping;
+  const TaskVector weights = jjt.ldlt().solve(v);
+  JointVector q = JointVector::Zero(jacobian.cols());
+  q.noalias() = jacobian.transpose() * weights;
+  return q;
+}
+
+JointVector jacobian_transpose_times(const TaskJacobian& jacobian, int rows, const Vector6d& wrench) noexcept {
+  JointVector tau = JointVector::Zero(jacobian.cols());
+  for (int i = 0; i < jacobian.cols(); ++i) {
+    double sum = 0.0;
+    for (int r = 0; r < rows; ++r) sum += jacobian(r, i) * wrench[r];
+    tau[i] = sum;
+  }
+  return tau;
+}
+
 double manipulability(const TaskJacobian& jacobian) noexcept {
   const TaskMatrix jjt = jacobian * jacobian.transpose();
   const double det = jjt.determinant();

@@ -1,7 +1,5 @@
 #include "jacobian_control.hpp"
 
-#include <Eigen/Cholesky>
-
 #include "hapticd/model/task_space.hpp"
 
 namespace hapticd::controllers {
@@ -68,12 +66,7 @@ ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerI
   const model::TaskJacobian j = d.frame_jacobian.topRows(rows);
   if (kind_ == Kind::kInverse) {
     const model::Vector6d xdd = law_.acceleration(in.task, c) - d.frame_jacobian_dot_qd;
-    model::TaskMatrix jjt = j * j.transpose();
-    jjt.diagonal().array() += damping_;
-    const model::TaskVector task_acceleration = xdd.head(rows);
-    const model::TaskVector weights = jjt.ldlt().solve(task_acceleration);
-    JointVector qdd = JointVector::Zero(j.cols());
-    qdd.noalias() = j.transpose() * weights;
+    const JointVector qdd = model::minimum_norm_solution(j, model::TaskVector(xdd.head(rows)), damping_);
     command.torque_nm = joint_inertia_.cwiseProduct(qdd);
   } else {
     const model::Vector6d xdd = law_.acceleration(in.task, c);

@@ -1,6 +1,7 @@
 #include "joint_space_control.hpp"
 
 #include "hapticd/chain_state.hpp"
+#include "hapticd/model/task_space.hpp"
 
 namespace hapticd::controllers {
 
@@ -55,11 +56,7 @@ ReturnCode JointSpaceControl::update(const CycleTime& /*cycle*/, const Controlle
   if (wrench_compensation_ && c.has_operator_wrench) {
     model::Vector6d wrench;
     wrench << c.operator_wrench.force, c.operator_wrench.torque;
-    for (int i = 0; i < command.torque_nm.size(); ++i) {
-      double transmitted = 0.0;
-      for (int r = 0; r < rows_; ++r) transmitted += d.frame_jacobian(r, i) * wrench[r];
-      command.torque_nm[i] -= transmitted;
-    }
+    command.torque_nm -= model::jacobian_transpose_times(d.frame_jacobian, rows_, wrench);
   }
   return ReturnCode::ok;
 }

@@ -1,6 +1,6 @@
 #include "resolved_acceleration.hpp"
 
-#include <Eigen/Cholesky>
+#include "hapticd/model/task_space.hpp"
 
 namespace hapticd::controllers {
 
@@ -23,14 +23,9 @@ ReturnCode ResolvedAcceleration::update(const CycleTime& /*cycle*/, const Contro
   if (!in.task.has_motion) return ReturnCode::error;
   const int rows = law_.rows();
   const model::Vector6d xdd = law_.acceleration(in.task, c) - d.frame_jacobian_dot_qd;
-  const model::TaskJacobian j = d.frame_jacobian.topRows(rows);
-  // qdd = J^T (J J^T + l I)^-1 (xdd - dJ qd): the inverse for square J, minimum norm for redundant J.
-  model::TaskMatrix jjt = j * j.transpose();
-  jjt.diagonal().array() += damping_;
-  const model::TaskVector task_acceleration = xdd.head(rows);
-  const model::TaskVector weights = jjt.ldlt().solve(task_acceleration);
-  JointVector qdd = JointVector::Zero(j.cols());
-  qdd.noalias() = j.transpose() * weights;
+  // qdd = J^+ (xdd - dJ qd): the inverse for square J, minimum norm for redundant J.
+  const JointVector qdd =
+      model::minimum_norm_solution(d.frame_jacobian.topRows(rows), model::TaskVector(xdd.head(rows)), damping_);
   command.torque_nm.noalias() = d.mass_matrix * qdd;
   command.torque_nm += d.coriolis_torque + d.gravity_torque;
   law_.add_wrench_compensation(c, command.torque_nm);

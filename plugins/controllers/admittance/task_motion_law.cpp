@@ -1,5 +1,7 @@
 #include "task_motion_law.hpp"
 
+#include "hapticd/model/task_space.hpp"
+
 namespace hapticd::controllers {
 
 void TaskMotionLaw::declare(ParameterSchema& s) {
@@ -51,12 +53,7 @@ void TaskMotionLaw::add_wrench_compensation(const ChainState& c, JointVector& to
   if (!wrench_compensation_ || !c.has_operator_wrench) return;
   model::Vector6d wrench;
   wrench << c.operator_wrench.force, c.operator_wrench.torque;
-  const model::ModelData& d = *c.data;
-  for (int i = 0; i < torque.size(); ++i) {
-    double transmitted = 0.0;
-    for (int r = 0; r < rows_; ++r) transmitted += d.frame_jacobian(r, i) * wrench[r];
-    torque[i] -= transmitted;
-  }
+  torque -= model::jacobian_transpose_times(c.data->frame_jacobian, rows_, wrench);
 }
 
 }  // namespace hapticd::controllers

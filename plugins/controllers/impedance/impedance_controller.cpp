@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "hapticd/chain_state.hpp"
+#include "hapticd/model/task_space.hpp"
 
 namespace hapticd::controllers {
 
@@ -120,11 +121,9 @@ ReturnCode ImpedanceController::update(const CycleTime& /*cycle*/, const Control
     const ChainState& c = *in.chain;
     Vector6 operator_wrench = Vector6::Zero();
     if (c.has_operator_wrench) operator_wrench << c.operator_wrench.force, c.operator_wrench.torque;
+    const JointVector transmitted = model::jacobian_transpose_times(d.frame_jacobian, rows_, operator_wrench);
     for (int i = 0; i < command.torque_nm.size(); ++i) {
-      double transmitted = 0.0;  // (J^T F_h)_i
-      for (int r = 0; r < rows_; ++r) transmitted += d.frame_jacobian(r, i) * operator_wrench[r];
-      const double load = d.gravity_torque[i] - transmitted;
-      command.torque_nm[i] += friction(c.velocity[i], load);
+      command.torque_nm[i] += friction(c.velocity[i], d.gravity_torque[i] - transmitted[i]);
     }
   }
   for (int i = 0; i < notch_count_; ++i) command.torque_nm = notches_[static_cast<std::size_t>(i)].update(command.torque_nm);

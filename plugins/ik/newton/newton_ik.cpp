@@ -1,9 +1,8 @@
 #include "newton_ik.hpp"
 
-#include <Eigen/Cholesky>
-
 #include "hapticd/chain_state.hpp"
 #include "hapticd/model/kinematics.hpp"
+#include "hapticd/model/task_space.hpp"
 #include "hapticd/model/urdf_loader.hpp"
 
 namespace hapticd::ik {
@@ -33,13 +32,6 @@ void NewtonIk::configure(const Parameters& p, const PluginContext& context) {
   qd_.setZero(model_->dof());
 }
 
-model::TaskVector NewtonIk::pseudo_inverse_times(const model::TaskJacobian& j, const model::Vector6d& v) const noexcept {
-  model::TaskMatrix jjt = j * j.transpose();
-  jjt.diagonal().array() += damping_;
-  const model::TaskVector rhs = v.head(rows_);
-  return jjt.ldlt().solve(rhs);
-}
-
 ReturnCode NewtonIk::activate(const InverseKinematicsInput& current) noexcept {
   q_ = current.device.joints.position;
   qd_ = current.chain != nullptr ? current.chain->velocity : JointVector(JointVector::Zero(q_.size()));
@@ -57,14 +49,14 @@ ReturnCode NewtonIk::update(const CycleTime& /*cycle*/, const InverseKinematicsI
     model::frame_jacobian(*model_, *data_, handle_, jacobian_);
     const model::TaskJacobian j = jacobian_.topRows(rows_);
     const model::Vector6d error = model::pose_difference(desired, model::frame_pose(*model_, *data_, handle_));
-    q_.noalias() += j.transpose() * pseudo_inverse_times(j, error);
+    q_ += model::minimum_norm_solution(j, model::TaskVector(error.head(rows_)), damping_);
   }
   model::forward_kinematics(*model_, *data_, q_);
   model::frame_jacobian(*model_, *data_, handle_, jacobian_);
   const model::TaskJacobian j = jacobian_.topRows(rows_);
   model::Vector6d twist;
   twist << in.task.twist.linear, in.task.twist.angular;
-  qd_.noalias() = j.transpose() * pseudo_inverse_times(j, twist);
+  qd_ = model::minimum_norm_solution(j, model::TaskVector(twist.head(rows_)), damping_);
   target.position = q_;
   target.velocity = qd_;
   target.acceleration = acceleration_.update(qd_);

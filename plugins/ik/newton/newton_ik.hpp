@@ -22,8 +22,6 @@ class NewtonIk final : public InverseKinematics {
   void deactivate() override {}
 
  private:
-  [[nodiscard]] model::TaskVector pseudo_inverse_times(const model::TaskJacobian& j, const model::Vector6d& v) const noexcept;
-
   std::unique_ptr<model::RobotModel> model_;
   std::unique_ptr<model::ModelData> data_;
   int handle_ = -1;

@@ -22,4 +22,13 @@ HAPTICD_API bool operational_space_inertia(const ModelData& data, const TaskJaco
 // by a characteristic length by the caller.
 [[nodiscard]] HAPTICD_API double condition_number(const TaskJacobian& jacobian) noexcept;
 
+// The minimum-norm joint vector q with J q = v (exact for full row rank), through the damped normal equations
+// q = J^T (J J^T + damping I)^-1 v; a small damping keeps it bounded at singularities. Real-time safe.
+[[nodiscard]] HAPTICD_API JointVector minimum_norm_solution(const TaskJacobian& jacobian, const TaskVector& v,
+                                                            double damping = 1e-6) noexcept;
+// J_rows^T w_rows over the first `rows` rows of a [linear; angular] frame Jacobian: the joint torques of a
+// handle wrench (rows 3: force only). Real-time safe.
+[[nodiscard]] HAPTICD_API JointVector jacobian_transpose_times(const TaskJacobian& jacobian, int rows,
+                                                               const Vector6d& wrench) noexcept;
+
 }  // namespace hapticd::model
