@@ -376,3 +376,22 @@ TEST(TaskSpace, JacobianTransposeTimesUsesTheGivenRows) {
 
 }  // namespace
 }  // namespace hapticd
+
+namespace hapticd {
+namespace {
+
+TEST(TaskSpace, TaskRowsFollowTheChoiceAndTheDevice) {
+  EXPECT_EQ(model::task_rows("auto", 3), 3);
+  EXPECT_EQ(model::task_rows("auto", 6), 6);
+  EXPECT_EQ(model::task_rows("translation", 10), 3);
+  EXPECT_EQ(model::task_rows("full", 6), 6);
+  try {
+    (void)model::task_rows("full", 3);
+    FAIL() << "a 6-D task on 3 joints was accepted";
+  } catch (const ParameterError& e) {
+    EXPECT_EQ(e.key(), "task");
+  }
+}
+
+}  // namespace
+}  // namespace hapticd

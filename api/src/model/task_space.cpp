@@ -48,6 +48,27 @@ JointVector jacobian_transpose_times(const TaskJacobian& jacobian, int rows, con
   return tau;
 }
 
+void declare_task_parameter(ParameterSchema& schema, const std::string& description) {
+  schema.string("task", description + ": auto (translation below 6 joints), translation, or full (6-D)")
+      .choices({"auto", "translation", "full"})
+      .default_value(std::string("auto"));
+}
+
+int task_rows(const std::string& choice, int dof) {
+  const int rows = choice == "full" ? 6 : choice == "translation" ? 3 : (dof >= 6 ? 6 : 3);
+  if (rows > dof) {
+    throw ParameterError("task", "a 6-D task needs at least 6 joints; this device has " + std::to_string(dof));
+  }
+  return rows;
+}
+
+JointVector operator_wrench_torques(const ChainState& chain, int rows) noexcept {
+  if (!chain.has_operator_wrench) return JointVector::Zero(chain.velocity.size());
+  Vector6d wrench;
+  wrench << chain.operator_wrench.force, chain.operator_wrench.torque;
+  return jacobian_transpose_times(chain.data->frame_jacobian, rows, wrench);
+}
+
 double manipulability(const TaskJacobian& jacobian) noexcept {
   const TaskMatrix jjt = jacobian * jacobian.transpose();
   const double det = jjt.determinant();

@@ -7,8 +7,7 @@ namespace hapticd::controllers {
 
 ParameterSchema JointSpaceControl::parameter_schema() {
   ParameterSchema s;
-  s.string("task", "rows of the operator-wrench compensation: auto (translation below 6 joints), translation, full")
-      .choices({"auto", "translation", "full"}).default_value(std::string("auto"));
+  model::declare_task_parameter(s, "rows of the operator-wrench compensation");
   s.real("bandwidth_rad_s", "computed_torque: error dynamics bandwidth w (Kp = w^2, Kd = 2 zeta w)").unit("rad/s")
       .greater_than(0.0).maximum(1000.0).default_value(60.0);
   s.real("damping_ratio", "computed_torque: zeta").greater_than(0.0).maximum(5.0).default_value(1.0);
@@ -23,8 +22,7 @@ void JointSpaceControl::configure(const Parameters& p, const PluginContext& cont
   if (context.device == nullptr || context.device->robot_model_file.empty()) {
     throw ParameterError("task", "joint-space admittance control needs a device with a robot model");
   }
-  const std::string& task = p.string("task");
-  rows_ = task == "full" ? 6 : task == "translation" ? 3 : (context.device->dof() >= 6 ? 6 : 3);
+  rows_ = model::task_rows(p.string("task"), context.device->dof());
   const double w = p.real("bandwidth_rad_s");
   kp_ = w * w;
   kd_ = 2.0 * p.real("damping_ratio") * w;
@@ -53,11 +51,7 @@ ReturnCode JointSpaceControl::update(const CycleTime& /*cycle*/, const Controlle
     command.torque_nm = joint_kp_ * (in.joints.position - q) + joint_kd_ * (in.joints.velocity - c.velocity) +
                         d.gravity_torque;
   }
-  if (wrench_compensation_ && c.has_operator_wrench) {
-    model::Vector6d wrench;
-    wrench << c.operator_wrench.force, c.operator_wrench.torque;
-    command.torque_nm -= model::jacobian_transpose_times(d.frame_jacobian, rows_, wrench);
-  }
+  if (wrench_compensation_) command.torque_nm -= model::operator_wrench_torques(c, rows_);
   return ReturnCode::ok;
 }
 

@@ -5,8 +5,7 @@
 namespace hapticd::controllers {
 
 void TaskMotionLaw::declare(ParameterSchema& s) {
-  s.string("task", "controlled handle motion: auto (translation below 6 joints), translation, or full (6-D)")
-      .choices({"auto", "translation", "full"}).default_value(std::string("auto"));
+  model::declare_task_parameter(s, "controlled handle motion");
   s.real("bandwidth_rad_s", "translational loop bandwidth w: Kp = w^2, Kd = 2 zeta w").unit("rad/s").greater_than(0.0)
       .maximum(1000.0).default_value(60.0);
   s.real("rotational_bandwidth_rad_s", "rotational loop bandwidth").unit("rad/s").greater_than(0.0).maximum(1000.0)
@@ -20,12 +19,7 @@ void TaskMotionLaw::configure(const Parameters& p, const PluginContext& context)
   if (context.device == nullptr || context.device->robot_model_file.empty()) {
     throw ParameterError("task", "admittance control needs a device with a robot model");
   }
-  const std::string& task = p.string("task");
-  rows_ = task == "full" ? 6 : task == "translation" ? 3 : (context.device->dof() >= 6 ? 6 : 3);
-  if (rows_ > context.device->dof()) {
-    throw ParameterError("task", "a 6-D task needs at least 6 joints; this device has " +
-                                     std::to_string(context.device->dof()));
-  }
+  rows_ = model::task_rows(p.string("task"), context.device->dof());
   const double w = p.real("bandwidth_rad_s"), wr = p.real("rotational_bandwidth_rad_s"), z = p.real("damping_ratio");
   kp_ = w * w;
   kd_ = 2.0 * z * w;
@@ -50,10 +44,7 @@ model::Vector6d TaskMotionLaw::acceleration(const TaskTarget& t, const ChainStat
 }
 
 void TaskMotionLaw::add_wrench_compensation(const ChainState& c, JointVector& torque) const noexcept {
-  if (!wrench_compensation_ || !c.has_operator_wrench) return;
-  model::Vector6d wrench;
-  wrench << c.operator_wrench.force, c.operator_wrench.torque;
-  torque -= model::jacobian_transpose_times(c.data->frame_jacobian, rows_, wrench);
+  if (wrench_compensation_) torque -= model::operator_wrench_torques(c, rows_);
 }
 
 }  // namespace hapticd::controllers

@@ -11,8 +11,7 @@ namespace hapticd::controllers {
 
 ParameterSchema ImpedanceController::parameter_schema() {
   ParameterSchema s;
-  s.string("task", "rendered handle wrench: auto (force only below 6 joints), translation, or full (6-D)")
-      .choices({"auto", "translation", "full"}).default_value(std::string("auto"));
+  model::declare_task_parameter(s, "rendered handle wrench");
   s.real("force_gain", "proportional force feedback Kp (0: open-loop impedance control)").minimum(0.0).maximum(50.0)
       .default_value(0.0);
   s.real("force_derivative_gain", "derivative force feedback Kd").unit("s").minimum(0.0).maximum(1.0).default_value(0.0);
@@ -43,8 +42,7 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
   if (context.device == nullptr || context.device->robot_model_file.empty()) {
     throw ParameterError("task", "impedance control needs a device with a robot model");
   }
-  const std::string& task = p.string("task");
-  rows_ = task == "full" ? 6 : task == "translation" ? 3 : (context.device->dof() >= 6 ? 6 : 3);
+  rows_ = model::task_rows(p.string("task"), context.device->dof());
   kp_ = p.real("force_gain");
   kd_ = p.real("force_derivative_gain");
   if ((kp_ > 0.0 || kd_ > 0.0) && !context.device->reports_wrench) {
@@ -119,9 +117,7 @@ ReturnCode ImpedanceController::update(const CycleTime& /*cycle*/, const Control
   if (gravity_compensation_) command.torque_nm += d.gravity_torque;
   if (friction_compensation_) {
     const ChainState& c = *in.chain;
-    Vector6 operator_wrench = Vector6::Zero();
-    if (c.has_operator_wrench) operator_wrench << c.operator_wrench.force, c.operator_wrench.torque;
-    const JointVector transmitted = model::jacobian_transpose_times(d.frame_jacobian, rows_, operator_wrench);
+    const JointVector transmitted = model::operator_wrench_torques(c, rows_);
     for (int i = 0; i < command.torque_nm.size(); ++i) {
       command.torque_nm[i] += friction(c.velocity[i], d.gravity_torque[i] - transmitted[i]);
     }

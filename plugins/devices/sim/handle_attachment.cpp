@@ -1,16 +1,6 @@
 #include "handle_attachment.hpp"
 
-#include <stdexcept>
-
 namespace hapticd::sim {
-
-Profile::Kind Profile::parse(const std::string& name) {
-  if (name == "constant") return Kind::kConstant;
-  if (name == "step") return Kind::kStep;
-  if (name == "ramp") return Kind::kRamp;
-  if (name == "sine") return Kind::kSine;
-  throw std::invalid_argument("profile '" + name + "': use constant, step, ramp or sine");
-}
 
 Vector6d HandleAttachment::step(double t, double dt, const Eigen::Isometry3d& handle, const Vector6d& twist) noexcept {
   const Eigen::Vector3d p = handle.translation();

@@ -50,7 +50,6 @@ class HandleAttachment {
   // Grasp stiffness and damping of the operator at the current grasp setting.
   [[nodiscard]] double grasp_stiffness() const noexcept { return 100.0 + settings_.grasp * (3000.0 - 100.0); }
   [[nodiscard]] double grasp_damping() const noexcept { return 2.0 + settings_.grasp * (30.0 - 2.0); }
-  [[nodiscard]] const Eigen::Vector3d& hand_position() const noexcept { return hand_position_; }
 
  private:
   AttachmentSettings settings_;

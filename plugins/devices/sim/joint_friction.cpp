@@ -12,7 +12,6 @@ void JointFriction::configure(const FrictionParameters& p, std::uint64_t seed) {
 }
 
 void JointFriction::reset() noexcept {
-  elapsed_s_ = 0.0;
   temperature_c_ = p_.start_temperature_c;
   stuck_ = true;
   draw_breakaway();
@@ -54,7 +53,6 @@ void JointFriction::advance_temperature(double dt) noexcept {
     decay_dt_ = dt;
     decay_ = std::exp(-dt / p_.warm_up_time_constant_s);
   }
-  elapsed_s_ += dt;
   temperature_c_ = p_.end_temperature_c + (temperature_c_ - p_.end_temperature_c) * decay_;
 }
 

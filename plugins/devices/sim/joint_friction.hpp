@@ -60,7 +60,6 @@ class JointFriction {
 
   FrictionParameters p_;
   double temperature_c_ = 26.0;
-  double elapsed_s_ = 0.0;
   double decay_dt_ = -1.0;
   double decay_ = 1.0;
   bool stuck_ = true;

@@ -174,7 +174,6 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   }
   speed_limits_ = robot.speed_limits();
   speed_monitor_ = p.boolean("speed_monitor");
-  encoder_quantisation_ = p.boolean("encoder_quantisation");
   description_.handle_frame = p.string("handle_frame");
   description_.sensor_frame = p.string("sensor_frame");
   description_.robot_model_file = urdf.string();

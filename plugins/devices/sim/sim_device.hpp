@@ -6,7 +6,6 @@
 // Ground truth is kept apart from the device outputs, for tests and evaluations.
 #include <array>
 #include <memory>
-#include <optional>
 
 #include "drive.hpp"
 #include "flexible_chain.hpp"
@@ -66,7 +65,6 @@ class SimDevice final : public Device {
   double substep_s_ = 5e-5;
   std::int64_t substep_ns_ = 50000;
   std::int64_t simulated_ns_ = 0;
-  bool encoder_quantisation_ = true;
   bool speed_monitor_ = true;
   bool sensor_present_ = true;
   bool passive_gimbal_ = false;

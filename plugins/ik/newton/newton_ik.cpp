@@ -9,8 +9,7 @@ namespace hapticd::ik {
 
 ParameterSchema NewtonIk::parameter_schema() {
   ParameterSchema s;
-  s.string("task", "task rows: auto (translation below 6 joints), translation, or full (6-D)")
-      .choices({"auto", "translation", "full"}).default_value(std::string("auto"));
+  model::declare_task_parameter(s, "task rows");
   s.integer("newton_steps", "Newton steps per cycle").minimum(1).maximum(10).default_value(1);
   s.real("acceleration_filter_hz", "low-pass of the differentiated joint-velocity target").unit("Hz")
       .greater_than(0.0).default_value(200.0);
@@ -24,8 +23,7 @@ void NewtonIk::configure(const Parameters& p, const PluginContext& context) {
   model_ = std::make_unique<model::RobotModel>(model::load_robot_model(context.device->robot_model_file));
   data_ = std::make_unique<model::ModelData>(*model_);
   handle_ = model_->require_frame(context.device->handle_frame.empty() ? "handle" : context.device->handle_frame);
-  const std::string& task = p.string("task");
-  rows_ = task == "full" ? 6 : task == "translation" ? 3 : (model_->dof() >= 6 ? 6 : 3);
+  rows_ = model::task_rows(p.string("task"), model_->dof());
   steps_ = static_cast<int>(p.integer("newton_steps"));
   acceleration_.configure(1.0 / context.rate_hz, p.real("acceleration_filter_hz"));
   q_.setZero(model_->dof());

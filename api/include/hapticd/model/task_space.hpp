@@ -1,8 +1,12 @@
 #pragma once
 // Task-space measures from a Jacobian: operational-space inertia, manipulability, condition number.
 // Real-time safe (fixed-capacity Eigen storage only).
+#include <string>
+
+#include "hapticd/chain_state.hpp"
 #include "hapticd/export.hpp"
 #include "hapticd/model/model_data.hpp"
+#include "hapticd/parameters.hpp"
 
 namespace hapticd::model {
 
@@ -30,5 +34,15 @@ HAPTICD_API bool operational_space_inertia(const ModelData& data, const TaskJaco
 // handle wrench (rows 3: force only). Real-time safe.
 [[nodiscard]] HAPTICD_API JointVector jacobian_transpose_times(const TaskJacobian& jacobian, int rows,
                                                                const Vector6d& wrench) noexcept;
+
+// The "task" parameter shared by the task-space plugins: auto (translation below 6 joints), translation or
+// full (6-D). declare_task_parameter adds it to a schema; task_rows turns the choice into 3 or 6 rows and
+// throws ParameterError("task") when 6 rows are asked of a device with fewer joints. Not real-time safe.
+HAPTICD_API void declare_task_parameter(ParameterSchema& schema, const std::string& description);
+[[nodiscard]] HAPTICD_API int task_rows(const std::string& choice, int dof);
+
+// J^T F_h over the task rows: the joint torques of the operator's measured wrench (zero without a sensor).
+// Real-time safe.
+[[nodiscard]] HAPTICD_API JointVector operator_wrench_torques(const ChainState& chain, int rows) noexcept;
 
 }  // namespace hapticd::model
