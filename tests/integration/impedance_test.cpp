@@ -13,8 +13,9 @@ namespace {
 using test::cycle_at;
 
 // RMS of the measured operator force over the second second of a 2 s session in which the simulated operator
-// moves the handle 3 cm back and forth at 1 Hz.
-double rms_operator_force(double force_gain, double notch_hz = 0.0, bool friction_compensation = false) {
+// moves the handle 3 cm back and forth at 1 Hz. controller: the impedance controller's parameters besides the
+// task; device: extra sim parameters (one "key: value" per line, 8 spaces of indent).
+double rms_operator_force(const std::string& controller, const std::string& device = "") {
   const std::string yaml = std::string("server: {clock: lockstep, seed: 3}\ndevices:\n") + R"(  - name: v3
     device:
       plugin: sim
@@ -27,11 +28,9 @@ double rms_operator_force(double force_gain, double notch_hz = 0.0, bool frictio
         operator_motion: sine
         operator_motion_m: [0.03, 0.02, 0.0]
         operator_motion_frequency_hz: 1.0
-    controller:
+)" + device + R"(    controller:
       plugin: impedance
-      parameters: {task: translation, force_gain: )" + std::to_string(force_gain) + ", notch_hz: " +
-                           std::to_string(notch_hz) +
-                           ", friction_compensation: " + (friction_compensation ? "true" : "false") + R"(}
+      parameters: {task: translation, )" + controller + R"(}
 )";
   auto s = test::build_test_session(yaml);
   DeviceSession& d = *s.devices[0];
@@ -47,6 +46,11 @@ double rms_operator_force(double force_gain, double notch_hz = 0.0, bool frictio
     }
   }
   return std::sqrt(sum / n);
+}
+
+double rms_operator_force(double force_gain, double notch_hz = 0.0, bool friction_compensation = false) {
+  return rms_operator_force("force_gain: " + std::to_string(force_gain) + ", notch_hz: " + std::to_string(notch_hz) +
+                            ", friction_compensation: " + (friction_compensation ? "true" : "false"));
 }
 
 TEST(ImpedanceDisplay, ForceFeedbackLowersTheFreeSpaceInteractionForce) {
@@ -76,6 +80,42 @@ TEST(ImpedanceDisplay, NotchFilterStopsTheHighGainOscillation) {
   RecordProperty("rms_force_kp10_notch64_n", std::to_string(with_notch));
   EXPECT_GT(without, 10.0) << "the high-gain loop should oscillate without the notch";
   EXPECT_LT(with_notch, 1.0);
+}
+
+TEST(ImpedanceDisplay, DisturbanceObserverLowersTheOpenLoopForce) {
+  // With the full nominal inertia the observer removes friction only (about 0.6 N of the 4.25 N here: the
+  // rest is the arm's inertia); a nominal inertia of half the model's also takes half of that away.
+  const double plain = rms_operator_force(0.0);
+  const double observer = rms_operator_force("disturbance_observer: true");
+  const double lighter = rms_operator_force("disturbance_observer: true, observer_nominal_inertia: 0.5");
+  RecordProperty("rms_force_disturbance_observer_n", std::to_string(observer));
+  RecordProperty("rms_force_disturbance_observer_half_inertia_n", std::to_string(lighter));
+  std::printf("RMS force: open loop %.2f N, disturbance observer %.2f N, with half the nominal inertia %.2f N\n",
+              plain, observer, lighter);
+  EXPECT_LT(observer, 0.99 * plain);
+  EXPECT_LT(lighter, 0.7 * plain);
+}
+
+TEST(ImpedanceDisplay, JointTorqueFeedbackLowersTheOpenLoopForce) {
+  const std::string sensors = "        joint_torque_sensors: true\n";
+  const double plain = rms_operator_force("force_gain: 0", sensors);
+  const double inner_loop = rms_operator_force("joint_torque_gain: 2", sensors);
+  RecordProperty("rms_force_joint_torque_feedback_n", std::to_string(inner_loop));
+  std::printf("RMS force: open loop %.2f N, joint-torque feedback Kt=2 %.2f N\n", plain, inner_loop);
+  EXPECT_LT(inner_loop, 0.8 * plain);
+}
+
+TEST(ImpedanceDisplay, JointTorqueFeedbackNeedsJointTorqueSensors) {
+  EXPECT_THROW(rms_operator_force("joint_torque_gain: 2"), std::exception);
+}
+
+TEST(ImpedanceDisplay, VariableStructureControlStaysQuietInTheOperatorsHand) {
+  // The integrator acts only at rest; the held handle moved at 1 Hz must not be worse than plain PD.
+  const double pd = rms_operator_force(3.0, 0.0, true);
+  const double vs = rms_operator_force("force_gain: 3, friction_compensation: true, stiction_compensation: true");
+  RecordProperty("rms_force_variable_structure_n", std::to_string(vs));
+  std::printf("RMS force: PD Kp=3 + friction %.2f N, variable structure %.2f N\n", pd, vs);
+  EXPECT_LT(vs, 1.1 * pd);
 }
 
 }  // namespace

@@ -5,7 +5,9 @@
 #include <stdexcept>
 
 #include "hapticd/chain_state.hpp"
+#include "hapticd/model/friction_file.hpp"
 #include "hapticd/model/task_space.hpp"
+#include "hapticd/model/urdf_loader.hpp"
 
 namespace hapticd::controllers {
 
@@ -18,7 +20,10 @@ ParameterSchema ImpedanceController::parameter_schema() {
   s.real("derivative_filter_hz", "low-pass of the force-error derivative").unit("Hz").greater_than(0.0)
       .default_value(100.0);
   s.boolean("gravity_compensation", "add the model's gravity torques").default_value(true);
+  // Sliding friction.
   s.boolean("friction_compensation", "add the model's sliding friction in the direction of motion").default_value(false);
+  s.string("friction_file", "identified friction per joint (hapticd-eval identify-friction); empty: the polynomial "
+                            "below for every joint").default_value(std::string());
   s.real_vector("friction_polynomial", "p0 .. p4 of the sliding friction [N m vs rad/s] (default: the 26 C curve)")
       .size(5).default_value(std::vector<double>{1.183, 1.008, -0.2642, 0.0487, -0.0037});
   s.real_vector("friction_load", "a0, a1, a2 of the load-dependent friction").size(3)
@@ -29,6 +34,44 @@ ParameterSchema ImpedanceController::parameter_schema() {
       .greater_than(0.0).default_value(0.05);
   s.real("friction_fraction", "share of the modelled friction compensated").minimum(0.0).maximum(1.0)
       .default_value(0.8);
+  // Static friction: variable-structure PID/PD force control.
+  s.boolean("stiction_compensation", "variable-structure force control: PID at rest, PD with friction "
+                                     "compensation while moving").default_value(false);
+  s.real("stiction_integral_gain", "Ki of the force error at rest").unit("1/s").minimum(0.0).default_value(100.0);
+  s.real("stiction_integrator_limit_nm", "limit of each joint's integrator").unit("N m").greater_than(0.0)
+      .default_value(2.0);
+  s.real("stiction_moving_velocity", "relay: a joint counts as moving above this speed").unit("rad/s")
+      .greater_than(0.0).default_value(0.05);
+  s.real("stiction_rest_velocity", "relay: a moving joint counts as at rest below this speed").unit("rad/s")
+      .greater_than(0.0).default_value(0.01);
+  // Disturbance observer.
+  s.boolean("disturbance_observer", "compensate the disturbance estimated against the rigid-body model")
+      .default_value(false);
+  s.real("observer_cutoff_hz", "bandwidth of the observer's Q filter").unit("Hz").greater_than(0.0).default_value(15.0);
+  s.real("observer_nominal_inertia", "nominal inertia as a share of the model's: below 1 also lightens the device")
+      .greater_than(0.0).maximum(1.0).default_value(1.0);
+  s.real("observer_limit_nm", "limit of the compensated disturbance per joint").unit("N m").greater_than(0.0)
+      .default_value(2.0);
+  // Joint-torque feedback.
+  s.real("joint_torque_gain", "inner joint-torque loop gain Kt (needs joint torque sensors); 0: off").minimum(0.0)
+      .maximum(20.0).default_value(0.0);
+  // Adaptive sliding friction.
+  s.boolean("adaptive_friction", "re-tune the sliding-friction model on line (batch least squares)").default_value(false);
+  s.real("adaptive_update_s", "re-tuning period T_update").unit("s").greater_than(0.0).default_value(40.0);
+  s.integer("adaptive_window", "samples of the backward differences and averages").minimum(2)
+      .maximum(kMaxEstimationWindow).default_value(40);
+  s.real("adaptive_min_speed", "estimates below this speed are not used").unit("rad/s").greater_than(0.0)
+      .default_value(0.05);
+  s.real("adaptive_bin_width", "width of the velocity bins").unit("rad/s").greater_than(0.0).default_value(0.05);
+  s.real("adaptive_memory", "weight of the earlier data at each update").minimum(0.0).maximum(1.0).default_value(0.5);
+  s.real("adaptive_regularization", "ridge weight pulling each fit towards the present curve").minimum(0.0)
+      .default_value(0.01);
+  s.integer("adaptive_min_bins", "excitation check: filled velocity bins needed").minimum(5).maximum(kFrictionBins)
+      .default_value(6);
+  s.real("adaptive_min_span", "excitation check: speed range needed").unit("rad/s").minimum(0.0).default_value(0.4);
+  s.string("adaptive_log", "CSV of every re-tuning attempt (relative: to the session file); empty: none")
+      .default_value(std::string());
+  // Resonance.
   s.real("notch_hz", "centre of the torque notch filters (the joint resonance); 0: off").unit("Hz").minimum(0.0)
       .default_value(0.0);
   s.integer("notch_sections", "notch sections in series").minimum(1).maximum(4).default_value(2);
@@ -42,7 +85,8 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
   if (context.device == nullptr || context.device->robot_model_file.empty()) {
     throw ParameterError("task", "impedance control needs a device with a robot model");
   }
-  rows_ = model::task_rows(p.string("task"), context.device->dof());
+  dof_ = context.device->dof();
+  rows_ = model::task_rows(p.string("task"), dof_);
   kp_ = p.real("force_gain");
   kd_ = p.real("force_derivative_gain");
   if ((kp_ > 0.0 || kd_ > 0.0) && !context.device->reports_wrench) {
@@ -50,14 +94,22 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
   }
   gravity_compensation_ = p.boolean("gravity_compensation");
   error_rate_.configure(1.0 / context.rate_hz, p.real("derivative_filter_hz"));
-  friction_compensation_ = p.boolean("friction_compensation");
-  const auto& fp = p.real_vector("friction_polynomial");
-  const auto& fl = p.real_vector("friction_load");
-  for (std::size_t i = 0; i < 5; ++i) friction_p_[i] = fp[i];
-  for (std::size_t i = 0; i < 3; ++i) friction_load_[i] = fl[i];
-  friction_velocity_max_ = p.real("friction_velocity_max");
-  friction_smooth_velocity_ = p.real("friction_smooth_velocity");
-  friction_fraction_ = p.real("friction_fraction");
+  configure_friction(p, context);
+
+  disturbance_observer_ = p.boolean("disturbance_observer");
+  if (disturbance_observer_) {
+    try {
+      observer_.configure(dof_, context.rate_hz, p.real("observer_cutoff_hz"), p.real("observer_limit_nm"),
+                         p.real("observer_nominal_inertia"));
+    } catch (const std::invalid_argument& e) {
+      throw ParameterError("observer_cutoff_hz", e.what());
+    }
+  }
+  joint_torque_gain_ = p.real("joint_torque_gain");
+  if (joint_torque_gain_ > 0.0 && !context.device->reports_joint_torque) {
+    throw ParameterError("joint_torque_gain", "joint-torque feedback needs a device that reports joint torques");
+  }
+
   notch_count_ = 0;
   if (p.real("notch_hz") > 0.0) {
     signal::BiquadCoefficients c;
@@ -70,16 +122,78 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
     notch_count_ = static_cast<int>(p.integer("notch_sections"));
     for (int i = 0; i < notch_count_; ++i) notches_[static_cast<std::size_t>(i)].set_coefficients(c);
   }
+  sliding_.setZero(dof_);
+  friction_torque_.setZero(dof_);
+  projected_error_.setZero(dof_);
+  previous_command_.setZero(dof_);
 }
 
-double ImpedanceController::friction(double velocity, double load) const noexcept {
-  const double v = std::min(std::abs(velocity), friction_velocity_max_);
-  const auto& c = friction_p_;
-  const double sliding = (((c[4] * v + c[3]) * v + c[2]) * v + c[1]) * v + c[0];
-  const double l = std::abs(load);
-  const double load_part = (friction_load_[2] * l + friction_load_[1]) * l + friction_load_[0];
-  const double direction = std::clamp(velocity / friction_smooth_velocity_, -1.0, 1.0);
-  return friction_fraction_ * direction * std::max(0.0, sliding + load_part);
+void ImpedanceController::configure_friction(const Parameters& p, const PluginContext& context) {
+  friction_compensation_ = p.boolean("friction_compensation");
+  stiction_compensation_ = p.boolean("stiction_compensation");
+  adaptive_ = p.boolean("adaptive_friction");
+  if (adaptive_ && !friction_compensation_) {
+    throw ParameterError("adaptive_friction", "re-tunes the sliding-friction compensation: set friction_compensation");
+  }
+  FrictionModels models{};
+  model::FrictionModel base;
+  const auto& fp = p.real_vector("friction_polynomial");
+  const auto& fl = p.real_vector("friction_load");
+  for (std::size_t i = 0; i < 5; ++i) base.p[i] = fp[i];
+  for (std::size_t i = 0; i < 3; ++i) base.load[i] = fl[i];
+  base.velocity_max = p.real("friction_velocity_max");
+  models.fill(base);
+  if (!p.string("friction_file").empty()) {
+    std::filesystem::path file = p.string("friction_file");
+    if (file.is_relative()) file = context.config_directory / file;
+    model::FrictionFile f;
+    try {
+      f = model::read_friction_file(file);
+    } catch (const model::ModelError& e) {
+      throw ParameterError("friction_file", e.what());
+    }
+    if (static_cast<int>(f.joints.size()) != dof_) {
+      throw ParameterError("friction_file", file.string() + " has " + std::to_string(f.joints.size()) +
+                                                " joints, the device " + std::to_string(dof_));
+    }
+    for (int i = 0; i < dof_; ++i) models[static_cast<std::size_t>(i)] = f.joints[static_cast<std::size_t>(i)];
+  }
+  friction_.configure(models, p.real("friction_fraction"), p.real("friction_smooth_velocity"));
+
+  StictionSettings st;
+  st.integral_gain = p.real("stiction_integral_gain");
+  st.integrator_limit_nm = p.real("stiction_integrator_limit_nm");
+  st.moving_velocity = p.real("stiction_moving_velocity");
+  st.rest_velocity = p.real("stiction_rest_velocity");
+  if (st.rest_velocity >= st.moving_velocity) {
+    throw ParameterError("stiction_rest_velocity", "must be below stiction_moving_velocity (relay hysteresis)");
+  }
+  if (stiction_compensation_ && !context.device->reports_wrench) {
+    throw ParameterError("stiction_compensation", "the variable-structure controller needs a force/torque sensor");
+  }
+  stiction_.configure(dof_, st, 1.0 / context.rate_hz);
+
+  retuner_.reset();
+  if (adaptive_) {
+    const double update_s = p.real("adaptive_update_s");
+    adapt_period_cycles_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(update_s * context.rate_hz)));
+    estimator_.configure(dof_, 1.0 / context.rate_hz, static_cast<int>(p.integer("adaptive_window")),
+                         p.real("adaptive_bin_width"), p.real("adaptive_min_speed"));
+    RetuneChecks checks;
+    checks.memory = p.real("adaptive_memory");
+    checks.min_bins = static_cast<int>(p.integer("adaptive_min_bins"));
+    checks.min_span = p.real("adaptive_min_span");
+    checks.fraction = p.real("friction_fraction");
+    checks.regularization = p.real("adaptive_regularization");
+    std::filesystem::path log = p.string("adaptive_log");
+    if (!log.empty() && log.is_relative()) log = context.config_directory / log;
+    retuner_ = std::make_unique<FrictionRetuner>();
+    try {
+      retuner_->start(dof_, models, checks, log);
+    } catch (const std::runtime_error& e) {
+      throw ParameterError("adaptive_log", e.what());
+    }
+  }
 }
 
 ImpedanceController::Vector6 ImpedanceController::force_error(const ControllerInput& in) const noexcept {
@@ -95,19 +209,47 @@ ImpedanceController::Vector6 ImpedanceController::force_error(const ControllerIn
   return error;
 }
 
-ReturnCode ImpedanceController::activate(const ControllerInput& current, const JointCommand&) noexcept {
+ReturnCode ImpedanceController::activate(const ControllerInput& current, const JointCommand& last_command) noexcept {
   if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
   error_rate_.reset(force_error(current));
   // The notches start in the steady state of the present gravity torque: no transient at activation.
   const JointVector start = gravity_compensation_ ? current.chain->data->gravity_torque
                                                   : JointVector(JointVector::Zero(current.chain->velocity.size()));
   for (int i = 0; i < notch_count_; ++i) notches_[static_cast<std::size_t>(i)].reset(start);
+  stiction_.reset();
+  if (disturbance_observer_) observer_.reset(current.chain->velocity);
+  previous_command_ = last_command.torque_nm.size() == dof_ ? last_command.torque_nm : start;
+  if (adaptive_) {
+    estimator_.reset(current.device.joints.position);
+    adapt_cycles_ = 0;
+    retuned_pending_ = false;
+  }
   return ReturnCode::ok;
 }
 
-ReturnCode ImpedanceController::update(const CycleTime& /*cycle*/, const ControllerInput& in,
+void ImpedanceController::adapt(const CycleTime& cycle, const ControllerInput& in,
+                                const JointVector& operator_torques) noexcept {
+  estimator_.sample(in.device.joints.position, previous_command_, operator_torques, *in.chain->data, friction_);
+  if (retuner_->take(retuned_)) retuned_pending_ = true;
+  if (++adapt_cycles_ < adapt_period_cycles_) return;
+  adapt_cycles_ = 0;
+  // Results fitted to the previous hand-over take effect at this period boundary (deterministic timing as long as
+  // the worker needs less than T_update, which it does by orders of magnitude).
+  if (retuned_pending_) {
+    friction_.set_models(retuned_.models);
+    retuned_pending_ = false;
+  }
+  FrictionBinData& bins = estimator_.bins();
+  bins.sequence = ++adapt_sequence_;
+  bins.time_s = static_cast<double>(cycle.time_ns) * 1e-9;
+  retuner_->submit(bins);
+  bins.clear();
+}
+
+ReturnCode ImpedanceController::update(const CycleTime& cycle, const ControllerInput& in,
                                        JointCommand& command) noexcept {
-  const model::ModelData& d = *in.chain->data;
+  const ChainState& c = *in.chain;
+  const model::ModelData& d = *c.data;
   Vector6 desired = Vector6::Zero();
   if (in.task.has_wrench) desired << in.task.wrench.force, in.task.wrench.torque;
   const Vector6 error = force_error(in);
@@ -115,14 +257,28 @@ ReturnCode ImpedanceController::update(const CycleTime& /*cycle*/, const Control
   const Vector6 wrench = desired + kp_ * error + kd_ * rate;
   command.torque_nm.noalias() = d.frame_jacobian.topRows(rows_).transpose() * wrench.head(rows_);
   if (gravity_compensation_) command.torque_nm += d.gravity_torque;
-  if (friction_compensation_) {
-    const ChainState& c = *in.chain;
-    const JointVector transmitted = model::operator_wrench_torques(c, rows_);
-    for (int i = 0; i < command.torque_nm.size(); ++i) {
-      command.torque_nm[i] += friction(c.velocity[i], d.gravity_torque[i] - transmitted[i]);
+
+  const JointVector operator_torques = model::operator_wrench_torques(c, rows_);
+  if (adaptive_) adapt(cycle, in, operator_torques);
+  if (friction_compensation_ || stiction_compensation_) {
+    for (int i = 0; i < dof_; ++i) {
+      sliding_[i] = friction_compensation_ ? friction_.torque(i, c.velocity[i], d.gravity_torque[i] - operator_torques[i])
+                                           : 0.0;
+    }
+    if (stiction_compensation_) {
+      projected_error_.noalias() = d.frame_jacobian.topRows(rows_).transpose() * error.head(rows_);
+      stiction_.update(c.velocity, sliding_, projected_error_, friction_torque_);
+      command.torque_nm += friction_torque_;
+    } else {
+      command.torque_nm += sliding_;
     }
   }
+  if (disturbance_observer_) command.torque_nm += observer_.update(d, c.velocity, previous_command_, operator_torques);
+  if (joint_torque_gain_ > 0.0) {
+    command.torque_nm += joint_torque_gain_ * (command.torque_nm - in.device.joints.effort);
+  }
   for (int i = 0; i < notch_count_; ++i) command.torque_nm = notches_[static_cast<std::size_t>(i)].update(command.torque_nm);
+  previous_command_ = command.torque_nm;
   return ReturnCode::ok;
 }
 

@@ -1,22 +1,26 @@
 #pragma once
-// Impedance control with force feedback (CONTROL-METHODS.md section 1):
-//   tau = J^T ( F_d + Kp e + Kd de/dt ) + g(q),   e = F_d - f,   f = -F_h
-// F_d: the wrench the virtual environment applies to the operator (TaskTarget::wrench; zero in free space),
-// f: the wrench the device applies to the operator, measured as the opposite of the sensor's operator wrench
-// F_h. force_gain = 0 is open-loop impedance control. Gyroscopic terms are deliberately not compensated.
-// Optional notch sections on the commanded torque against the joint resonance (thesis: two in series,
-// (s^2 + 2 0.01 w0 s + w0^2) / (s^2 + 2 0.2 w0 s + w0^2)).
-// Optional model-based friction compensation of sliding friction (spec 1, friction model):
-//   h = s(qd) (p0 + p1|qd| + .. + p4|qd|^4 + a2 t^2 + a1 |t| + a0),  t = g + J^T(-F_h) the static load torque,
-// with s(qd) = clamp(qd / v_s, -1, 1) a smooth sign (no chatter from quantised velocities), the polynomial held
-// constant beyond the highest identified velocity, and a compensation fraction below 1 against
-// over-compensation. Friction at rest is left to the stiction compensator.
-#include "hapticd/controller.hpp"
-#include "hapticd/model/model_data.hpp"
+// Impedance control with force feedback and the thesis's compensators (CONTROL-METHODS.md section 1):
+//   tau_d = J^T ( F_d + Kp e + Kd de/dt ) + g(q) + [friction] + [disturbance observer],  e = F_d - f,  f = -F_h
+//   tau   = tau_d + Kt (tau_d - tau_joint)          (joint-torque feedback, devices with joint torque sensors)
+//   tau  -> notch filters -> drives
+// F_d: the wrench the virtual environment applies to the operator (TaskTarget::wrench; zero in free space);
+// f: the wrench the device applies to the operator, the opposite of the sensor's operator wrench F_h.
+// force_gain = 0 is open-loop impedance control. Gyroscopic terms are deliberately not compensated.
+// [friction] is one of: none; sliding-friction compensation (FrictionCompensation, from the built-in curve or
+// a friction file, optionally re-tuned on line by FrictionEstimator + FrictionRetuner); the variable-structure
+// stiction compensator (StictionCompensator, which uses the sliding compensation while a joint moves).
+// Real-time safe in activate() and update().
 #include <array>
+#include <memory>
 
+#include "disturbance_observer.hpp"
+#include "friction_compensation.hpp"
+#include "friction_estimator.hpp"
+#include "friction_retuner.hpp"
+#include "hapticd/controller.hpp"
 #include "hapticd/signal/biquad.hpp"
 #include "hapticd/signal/differentiator.hpp"
+#include "stiction_compensator.hpp"
 
 namespace hapticd::controllers {
 
@@ -32,7 +36,10 @@ class ImpedanceController final : public Controller {
  private:
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   [[nodiscard]] Vector6 force_error(const ControllerInput& input) const noexcept;
+  void configure_friction(const Parameters& p, const PluginContext& context);
+  void adapt(const CycleTime& cycle, const ControllerInput& in, const JointVector& operator_torques) noexcept;
 
+  int dof_ = 0;
   int rows_ = 3;
   double kp_ = 0.0, kd_ = 0.0;
   bool gravity_compensation_ = true;
@@ -40,11 +47,25 @@ class ImpedanceController final : public Controller {
   static constexpr int kMaxNotches = 4;
   std::array<signal::Biquad<JointVector>, kMaxNotches> notches_{};
   int notch_count_ = 0;
+
   bool friction_compensation_ = false;
-  std::array<double, 5> friction_p_{};
-  std::array<double, 3> friction_load_{};
-  double friction_velocity_max_ = 5.0, friction_smooth_velocity_ = 0.05, friction_fraction_ = 0.8;
-  [[nodiscard]] double friction(double velocity, double load) const noexcept;
+  FrictionCompensation friction_;
+  bool stiction_compensation_ = false;
+  StictionCompensator stiction_;
+  bool disturbance_observer_ = false;
+  DisturbanceObserver observer_;
+  double joint_torque_gain_ = 0.0;
+
+  bool adaptive_ = false;
+  std::uint64_t adapt_period_cycles_ = 80000;
+  std::uint64_t adapt_cycles_ = 0;
+  std::uint64_t adapt_sequence_ = 0;
+  FrictionEstimator estimator_;
+  std::unique_ptr<FrictionRetuner> retuner_;
+  RetunedModels retuned_{};
+  bool retuned_pending_ = false;
+
+  JointVector sliding_, friction_torque_, projected_error_, previous_command_;
 };
 
 }  // namespace hapticd::controllers

@@ -65,6 +65,10 @@ ParameterSchema SimDevice::parameter_schema() {
   s.real("thermal_time_constant_s", "winding time constant").unit("s").greater_than(0.0).default_value(30.0);
   s.real("current_offset_nm", "amplifier current offset, as a joint torque").unit("N m").default_value(0.0);
   s.boolean("speed_monitor", "a joint above its speed limit faults the device (latched)").default_value(true);
+  s.boolean("joint_torque_sensors", "each joint measures its output torque (the gear spring's); effort is the "
+                                    "drive torque otherwise").default_value(false);
+  s.real("joint_torque_resolution_nm", "resolution of the joint torque sensors").unit("N m").greater_than(0.0)
+      .default_value(0.01);
   s.boolean("encoder_quantisation", "positions in whole encoder counts (motor side)").default_value(true);
   s.real_vector("sensor_force_range_n", "force ranges of the sensor").size(3).minimum(0.0)
       .default_value(std::vector<double>{200, 200, 400});
@@ -178,6 +182,9 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   description_.sensor_frame = p.string("sensor_frame");
   description_.robot_model_file = urdf.string();
   description_.reports_wrench = sensor_present_;
+  joint_torque_sensors_ = p.boolean("joint_torque_sensors");
+  joint_torque_resolution_ = p.real("joint_torque_resolution_nm");
+  description_.reports_joint_torque = joint_torque_sensors_;
 
   ForceSensorParameters sensor;
   const auto& fr = p.real_vector("sensor_force_range_n");
@@ -280,7 +287,9 @@ ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept 
   for (int i = 0; i < n; ++i) {
     state.joints.position[i] = quantise_encoder(chain_->motor_position()[i], counts_per_rev_[i]);
     state.joints.velocity[i] = 0.0;  // not measured: controllers differentiate, as on the hardware
-    state.joints.effort[i] = truth_.motor_torque[i];
+    state.joints.effort[i] = joint_torque_sensors_
+                                 ? std::round(chain_->spring_torque()[i] / joint_torque_resolution_) * joint_torque_resolution_
+                                 : truth_.motor_torque[i];
   }
   if (sensor_present_) {
     const Vector6d w = sensor_.read();

@@ -69,6 +69,8 @@ class SimDevice final : public Device {
   bool sensor_present_ = true;
   bool passive_gimbal_ = false;
   bool accelerations_ = false;
+  bool joint_torque_sensors_ = false;
+  double joint_torque_resolution_ = 0.01;
   std::array<double, 2> acceleration_range_{49.0, 100.0};
   std::array<double, 2> acceleration_resolution_{0.0981, 0.1};
   model::TaskJacobian sensor_jacobian_;
