@@ -19,7 +19,8 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
   auto s = test::build_test_session("server: {clock: lockstep}\ndevices:\n" +
                                     test::mass_spring_device_yaml("a", ", position_noise_m: 1.0e-5"));
-  const DeviceChain& c = s.devices[0]->chain();
+  const SchemeChain& c = s.devices[0]->chain().schemes[0];
+  const DeviceChain& dc = s.devices[0]->chain();
   DeviceState state;
   state.joints.resize(1);
   TaskTarget task;
@@ -29,7 +30,7 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   command.torque_nm.setZero(1);
   ChainState chain;  // the test device has no robot model
   chain.velocity.setZero(1);
-  c.device->activate();
+  dc.device->activate();
   ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, &chain}), ReturnCode::ok);
   ASSERT_EQ((*c.inverse_kinematics)->activate(InverseKinematicsInput{state, task, &chain}), ReturnCode::ok);
   ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints, &chain}, command), ReturnCode::ok);
@@ -37,11 +38,11 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   std::size_t device = 0, model = 0, ik = 0, controller = 0;
   for (std::uint64_t k = 0; k < 2000; ++k) {
     const CycleTime t = cycle_at(k);
-    device += testing::count_allocations([&] { (void)c.device->read(t, state); });
+    device += testing::count_allocations([&] { (void)dc.device->read(t, state); });
     model += testing::count_allocations([&] { (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain}, task); });
     ik += testing::count_allocations([&] { (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &chain}, joints); });
     controller += testing::count_allocations([&] { (void)c.controller->update(t, ControllerInput{state, task, joints, &chain}, command); });
-    device += testing::count_allocations([&] { (void)c.device->write(t, command); });
+    device += testing::count_allocations([&] { (void)dc.device->write(t, command); });
   }
   EXPECT_EQ(device, 0u);
   EXPECT_EQ(model, 0u);

@@ -56,10 +56,14 @@ int check_config(const std::string& file) {
              s->config.server.rate_hz, s->config.server.clock == ClockMode::lockstep ? "lockstep" : "realtime");
   for (const auto& d : s->sessions) {
     const DeviceChain& c = d->chain();
-    fmt::print("  {}: {} ({} joints){}{} -> {}\n", d->name(), c.device.descriptor->name, d->description().dof(),
-               c.virtual_model ? fmt::format(" -> {}", c.virtual_model->descriptor->name) : "",
-               c.inverse_kinematics ? fmt::format(" -> {}", c.inverse_kinematics->descriptor->name) : "",
-               c.controller.descriptor->name);
+    for (std::size_t k = 0; k < c.schemes.size(); ++k) {
+      const SchemeChain& sc = c.schemes[k];
+      fmt::print("  {}: {} ({} joints){}{} -> {}   [scheme {}{}]\n", d->name(), c.device.descriptor->name,
+                 d->description().dof(),
+                 sc.virtual_model ? fmt::format(" -> {}", sc.virtual_model->descriptor->name) : "",
+                 sc.inverse_kinematics ? fmt::format(" -> {}", sc.inverse_kinematics->descriptor->name) : "",
+                 sc.controller.descriptor->name, sc.name, k == 0 ? ", at start" : "");
+    }
   }
   return kExitOk;
 }
@@ -104,6 +108,7 @@ int run_session(const RunOptions& options) {
   std::vector<DeviceFault> reported(sessions.size(), DeviceFault::none);
   bool stop_logged = false;
   const auto monitor = [&] {
+    for (auto* session : sessions) session->service();
     for (std::size_t i = 0; i < sessions.size(); ++i) {
       const DeviceFault f = sessions[i]->fault();
       if (f != reported[i]) {

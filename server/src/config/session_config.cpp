@@ -29,6 +29,45 @@ std::optional<PluginConfig> read_optional_plugin(MappingReader& reader, const st
   return read_plugin(node, reader.path_of(key), reader.file());
 }
 
+double read_scalar_real(const YAML::Node& node, const std::string& key_path, const std::string& file, double min,
+                        double max) {
+  double v = 0.0;
+  try {
+    v = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(file, line_of(node), key_path, "expected a number");
+  }
+  if (!(v >= min && v <= max)) {
+    throw ConfigError(file, line_of(node), key_path,
+                      "value " + node.Scalar() + " is outside " + std::to_string(min) + " .. " + std::to_string(max));
+  }
+  return v;
+}
+
+// The alternative schemes of a device: a list of {name, virtual_model?, inverse_kinematics?, controller}.
+void read_schemes(MappingReader& reader, DeviceConfig& device) {
+  const std::string& file = reader.file();
+  if (const YAML::Node ramp = reader.optional("switch_ramp_s"); ramp.IsDefined()) {
+    device.switch_ramp_s = read_scalar_real(ramp, reader.path_of("switch_ramp_s"), file, 0.0, 5.0);
+  }
+  const YAML::Node list = reader.optional("schemes");
+  if (!list.IsDefined() || list.IsNull()) return;
+  if (!list.IsSequence()) throw ConfigError(file, line_of(list), reader.path_of("schemes"), "expected a list of schemes");
+  std::set<std::string> names{device.scheme};
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string path = reader.path_of("schemes") + "[" + std::to_string(k) + "]";
+    MappingReader r(list[k], path, file, {"name", "virtual_model", "inverse_kinematics", "controller"});
+    SchemeConfig scheme;
+    scheme.name = r.required_string("name");
+    if (!names.insert(scheme.name).second)
+      throw ConfigError(file, line_of(list[k]["name"]), r.path_of("name"), "scheme name '" + scheme.name + "' is used twice");
+    scheme.virtual_model = read_optional_plugin(r, "virtual_model");
+    scheme.inverse_kinematics = read_optional_plugin(r, "inverse_kinematics");
+    scheme.controller = read_plugin(r.required("controller"), r.path_of("controller"), file);
+    device.alternatives.push_back(std::move(scheme));
+  }
+}
+
 bool valid_device_name(const std::string& name) {
   if (name.empty() || name.size() > 64) return false;
   for (char c : name)
@@ -109,7 +148,8 @@ SessionConfig load_session_config(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < devices.size(); ++i) {
     const std::string key_path = "devices[" + std::to_string(i) + "]";
     MappingReader reader(devices[i], key_path, file,
-                         {"name", "device", "virtual_model", "inverse_kinematics", "controller"});
+                         {"name", "device", "virtual_model", "inverse_kinematics", "controller", "scheme", "schemes",
+                          "switch_ramp_s"});
     DeviceConfig device;
     device.name = reader.required_string("name");
     if (!valid_device_name(device.name))
@@ -121,6 +161,8 @@ SessionConfig load_session_config(const std::filesystem::path& path) {
     device.virtual_model = read_optional_plugin(reader, "virtual_model");
     device.inverse_kinematics = read_optional_plugin(reader, "inverse_kinematics");
     device.controller = read_plugin(reader.required("controller"), reader.path_of("controller"), file);
+    if (reader.optional("scheme").IsDefined()) device.scheme = reader.required_string("scheme");
+    read_schemes(reader, device);
     config.devices.push_back(std::move(device));
   }
   return config;

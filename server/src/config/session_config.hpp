@@ -35,12 +35,26 @@ struct PluginConfig {
   int line = 0;
 };
 
-struct DeviceConfig {
+// A control scheme: the plugin chain between the device's reading and its torques.
+struct SchemeConfig {
   std::string name;
-  PluginConfig device;
   std::optional<PluginConfig> virtual_model;
   std::optional<PluginConfig> inverse_kinematics;
   PluginConfig controller;
+};
+
+struct DeviceConfig {
+  std::string name;
+  PluginConfig device;
+  // The scheme the device starts with (the device entry's own virtual_model / inverse_kinematics / controller,
+  // named by its `scheme` key, "default" if absent).
+  std::optional<PluginConfig> virtual_model;
+  std::optional<PluginConfig> inverse_kinematics;
+  PluginConfig controller;
+  std::string scheme = "default";
+  // Alternatives the device can switch to at run time (`schemes` list), configured at start-up.
+  std::vector<SchemeConfig> alternatives;
+  double switch_ramp_s = 0.1;  // a torque difference at a switch fades out over this time
 };
 
 struct SessionConfig {

@@ -39,6 +39,10 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
       throw std::invalid_argument("device '" + name_ + "' joint " + std::to_string(i) + " has no valid peak torque");
     torque_limit_nm_[i] = peak;
   }
+  if (chain_.schemes.empty()) throw std::invalid_argument("device '" + name_ + "' has no control scheme");
+  scheme_state_ = std::vector<std::atomic<std::uint8_t>>(chain_.schemes.size());
+  for (auto& st : scheme_state_) st.store(kIdle);
+  switch_offset_.setZero(dof);
   state_.joints.resize(dof);
   joint_target_.resize(dof);
   command_.torque_nm.setZero(dof);
@@ -64,18 +68,67 @@ void DeviceSession::activate() {
   chain_.device->activate();
   chain_active_ = false;
   command_.torque_nm.setZero();
+  switch_ramp_left_ = 0;
 }
 
-ReturnCode DeviceSession::activate_chain(const CycleTime& cycle) noexcept {
-  differentiator_.configure(static_cast<double>(cycle.period_ns) * 1e-9, kVelocityFilterHz);
-  update_chain_state(true);
-  if (chain_.virtual_model &&
-      (*chain_.virtual_model)->activate(VirtualModelInput{state_, &chain_state_}) != ReturnCode::ok)
+ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
+  if (scheme.virtual_model &&
+      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &chain_state_}) != ReturnCode::ok)
     return ReturnCode::error;
-  if (chain_.inverse_kinematics &&
-      (*chain_.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &chain_state_}) != ReturnCode::ok)
+  if (scheme.inverse_kinematics &&
+      (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &chain_state_}) != ReturnCode::ok)
     return ReturnCode::error;
-  return chain_.controller->activate(ControllerInput{state_, task_, joint_target_, &chain_state_}, command_);
+  return scheme.controller->activate(ControllerInput{state_, task_, joint_target_, &chain_state_}, command_);
+}
+
+bool DeviceSession::request_scheme(std::string_view name) {
+  for (std::size_t i = 0; i < chain_.schemes.size(); ++i) {
+    if (chain_.schemes[i].name == name) {
+      requested_.store(static_cast<int>(i), std::memory_order_release);
+      return true;
+    }
+  }
+  return false;
+}
+
+const std::string& DeviceSession::active_scheme() const noexcept {
+  return chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_acquire))].name;
+}
+
+void DeviceSession::service() {
+  for (std::size_t i = 0; i < chain_.schemes.size(); ++i) {
+    if (scheme_state_[i].load(std::memory_order_acquire) != kLeaving) continue;
+    SchemeChain& s = chain_.schemes[i];
+    s.controller->deactivate();
+    if (s.inverse_kinematics) (*s.inverse_kinematics)->deactivate();
+    if (s.virtual_model) (*s.virtual_model)->deactivate();
+    scheme_state_[i].store(kIdle, std::memory_order_release);
+  }
+}
+
+void DeviceSession::switch_scheme_if_requested(const CycleTime& cycle) noexcept {
+  const int wanted = requested_.load(std::memory_order_acquire);
+  const int current = active_.load(std::memory_order_relaxed);
+  if (wanted == current) return;
+  const auto w = static_cast<std::size_t>(wanted);
+  if (scheme_state_[w].load(std::memory_order_acquire) != kIdle) return;  // still leaving: wait for service()
+  const JointVector before = command_.torque_nm;
+  if (activate_scheme(chain_.schemes[w]) != ReturnCode::ok) {
+    refused_switches_.fetch_add(1, std::memory_order_relaxed);
+    requested_.store(current, std::memory_order_release);  // keep running the old scheme
+    // Parts of the chain may have activated before one refused: service() deactivates them off the loop.
+    scheme_state_[w].store(kLeaving, std::memory_order_release);
+    return;
+  }
+  scheme_state_[static_cast<std::size_t>(current)].store(kLeaving, std::memory_order_release);
+  scheme_state_[w].store(kActive, std::memory_order_release);
+  active_.store(wanted, std::memory_order_release);
+  switches_.fetch_add(1, std::memory_order_relaxed);
+  // The offset is measured against the new scheme's first command in run_chain.
+  switch_offset_ = before;
+  switch_ramp_cycles_ = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(std::llround(chain_.switch_ramp_s * 1e9 / static_cast<double>(cycle.period_ns))));
+  switch_ramp_left_ = -1;  // marks "offset not yet taken"
 }
 
 void DeviceSession::update_chain_state(bool first_cycle) noexcept {
@@ -110,25 +163,44 @@ void DeviceSession::update_chain_state(bool first_cycle) noexcept {
 
 DeviceFault DeviceSession::run_chain(const CycleTime& cycle) noexcept {
   if (!chain_active_) {
-    if (activate_chain(cycle) != ReturnCode::ok) return DeviceFault::activation;
+    differentiator_.configure(static_cast<double>(cycle.period_ns) * 1e-9, kVelocityFilterHz);
+    update_chain_state(true);
+    const int first = active_.load(std::memory_order_relaxed);
+    if (activate_scheme(chain_.schemes[static_cast<std::size_t>(first)]) != ReturnCode::ok) return DeviceFault::activation;
+    scheme_state_[static_cast<std::size_t>(first)].store(kActive, std::memory_order_release);
     chain_active_ = true;
   } else {
     update_chain_state(false);
+    switch_scheme_if_requested(cycle);
   }
-  if (chain_.virtual_model) {
-    if ((*chain_.virtual_model)->update(cycle, VirtualModelInput{state_, &chain_state_}, task_) != ReturnCode::ok)
+  SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_relaxed))];
+  if (scheme.virtual_model) {
+    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &chain_state_}, task_) != ReturnCode::ok)
       return DeviceFault::virtual_model;
     if (!is_finite(task_)) return DeviceFault::non_finite_output;
+  } else {
+    task_ = TaskTarget{};  // a scheme without a virtual model renders nothing (free space)
   }
-  if (chain_.inverse_kinematics) {
-    if ((*chain_.inverse_kinematics)->update(cycle, InverseKinematicsInput{state_, task_, &chain_state_}, joint_target_) != ReturnCode::ok)
+  if (scheme.inverse_kinematics) {
+    if ((*scheme.inverse_kinematics)->update(cycle, InverseKinematicsInput{state_, task_, &chain_state_}, joint_target_) != ReturnCode::ok)
       return DeviceFault::inverse_kinematics;
     if (!is_finite(joint_target_)) return DeviceFault::non_finite_output;
   }
-  if (chain_.controller->update(cycle, ControllerInput{state_, task_, joint_target_, &chain_state_}, command_) != ReturnCode::ok)
+  if (scheme.controller->update(cycle, ControllerInput{state_, task_, joint_target_, &chain_state_}, command_) != ReturnCode::ok)
     return DeviceFault::controller;
   if (!command_.torque_nm.allFinite()) return DeviceFault::non_finite_output;
+  blend_after_switch();
   return DeviceFault::none;
+}
+
+void DeviceSession::blend_after_switch() noexcept {
+  if (switch_ramp_left_ == 0) return;
+  if (switch_ramp_left_ < 0) {  // the new scheme's first command: take the difference to the old one
+    switch_offset_ -= command_.torque_nm;
+    switch_ramp_left_ = switch_ramp_cycles_;
+  }
+  command_.torque_nm += switch_offset_ * (static_cast<double>(switch_ramp_left_) / static_cast<double>(switch_ramp_cycles_));
+  --switch_ramp_left_;
 }
 
 void DeviceSession::cycle(const CycleTime& cycle, double torque_scale) noexcept {
@@ -167,12 +239,11 @@ void DeviceSession::enter_safe_state(DeviceFault fault, const CycleTime& cycle) 
 }
 
 void DeviceSession::deactivate() {
-  if (chain_active_) {
-    chain_.controller->deactivate();
-    if (chain_.inverse_kinematics) (*chain_.inverse_kinematics)->deactivate();
-    if (chain_.virtual_model) (*chain_.virtual_model)->deactivate();
-    chain_active_ = false;
+  for (auto& st : scheme_state_) {
+    if (st.load(std::memory_order_acquire) == kActive) st.store(kLeaving, std::memory_order_release);
   }
+  chain_active_ = false;
+  service();
   chain_.device->deactivate();
 }
 

@@ -3,11 +3,19 @@
 // output checks -> device.write, once per cycle. Every plugin output is checked (return code, finite) before
 // it can reach a motor; torques are clamped to the joints' peak torque. A failure puts this device, and only
 // this device, in its safe state (zero torque) until the session ends.
+//
+// Control schemes: the chain between reading and torques can be one of several schemes, all configured at
+// start-up. request_scheme() (any thread) asks for another; the loop switches at the next cycle boundary:
+// the new scheme's plugins activate from the current state and the last torque command (bumpless transfer),
+// and whatever torque difference remains between the old command and the new scheme's first one fades out
+// linearly over switch_ramp_s. A scheme that fails to activate is not switched to (the old one keeps
+// running; the rejection is counted). The old scheme's plugins are deactivated off the loop by service().
 #include <atomic>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <memory>
 
@@ -34,11 +42,17 @@ enum class DeviceFault : std::uint8_t {
 
 [[nodiscard]] std::string_view to_string(DeviceFault fault) noexcept;
 
-struct DeviceChain {
-  PluginInstance<Device> device;
+struct SchemeChain {
+  std::string name;
   std::optional<PluginInstance<VirtualModel>> virtual_model;
   std::optional<PluginInstance<InverseKinematics>> inverse_kinematics;
   PluginInstance<Controller> controller;
+};
+
+struct DeviceChain {
+  PluginInstance<Device> device;
+  std::vector<SchemeChain> schemes;  // [0]: the scheme the device starts with
+  double switch_ramp_s = 0.1;
 };
 
 class DeviceSession {
@@ -67,10 +81,22 @@ class DeviceSession {
   [[nodiscard]] const JointCommand& command() const noexcept { return command_; }
   [[nodiscard]] const ChainState& chain_state() const noexcept { return chain_state_; }
 
+  // Any thread: asks for the scheme `name` from the next cycle on; false if there is no such scheme.
+  bool request_scheme(std::string_view name);
+  // Any thread: the scheme running now, and how many switches were made or refused (activation failed).
+  [[nodiscard]] const std::string& active_scheme() const noexcept;
+  [[nodiscard]] std::uint64_t scheme_switches() const noexcept { return switches_.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t refused_switches() const noexcept { return refused_switches_.load(std::memory_order_relaxed); }
+  // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
+  // (the executor's monitor does); deactivate() does it too.
+  void service();
+
  private:
   void enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept;
   void write_zero_torque(const CycleTime& cycle) noexcept;
-  ReturnCode activate_chain(const CycleTime& cycle) noexcept;
+  ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
+  void switch_scheme_if_requested(const CycleTime& cycle) noexcept;
+  void blend_after_switch() noexcept;
   void update_chain_state(bool first_cycle) noexcept;
   DeviceFault run_chain(const CycleTime& cycle) noexcept;
 
@@ -85,6 +111,18 @@ class DeviceSession {
   JointCommand command_;
   JointCommand zero_command_;
   bool chain_active_ = false;
+
+  // Scheme switching. State per scheme: idle (deactivated), active (in the loop), leaving (left the loop,
+  // waiting for service() to deactivate it).
+  enum SchemeState : std::uint8_t { kIdle, kActive, kLeaving };
+  std::vector<std::atomic<std::uint8_t>> scheme_state_;
+  std::atomic<int> active_{0};
+  std::atomic<int> requested_{0};
+  std::atomic<std::uint64_t> switches_{0};
+  std::atomic<std::uint64_t> refused_switches_{0};
+  JointVector switch_offset_;       // torque difference at the last switch, fading out
+  std::int64_t switch_ramp_cycles_ = 0;
+  std::int64_t switch_ramp_left_ = 0;
 
   // Per-cycle model terms shared by the chain (when the device names a robot model).
   std::unique_ptr<model::RobotModel> robot_;

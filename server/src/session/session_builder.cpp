@@ -70,12 +70,22 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
     chain.device = load_and_configure<Device>(PluginKind::device, dc.device, config, loader, context);
     const DeviceDescription& description = chain.device->description();
     context.device = &description;
-    if (dc.virtual_model)
-      chain.virtual_model = load_and_configure<VirtualModel>(PluginKind::virtual_model, *dc.virtual_model, config, loader, context);
-    if (dc.inverse_kinematics)
-      chain.inverse_kinematics =
-          load_and_configure<InverseKinematics>(PluginKind::inverse_kinematics, *dc.inverse_kinematics, config, loader, context);
-    chain.controller = load_and_configure<Controller>(PluginKind::controller, dc.controller, config, loader, context);
+    const auto build_scheme = [&](const std::string& name, const std::optional<PluginConfig>& virtual_model,
+                                  const std::optional<PluginConfig>& inverse_kinematics, const PluginConfig& controller) {
+      SchemeChain scheme;
+      scheme.name = name;
+      if (virtual_model)
+        scheme.virtual_model = load_and_configure<VirtualModel>(PluginKind::virtual_model, *virtual_model, config, loader, context);
+      if (inverse_kinematics)
+        scheme.inverse_kinematics =
+            load_and_configure<InverseKinematics>(PluginKind::inverse_kinematics, *inverse_kinematics, config, loader, context);
+      scheme.controller = load_and_configure<Controller>(PluginKind::controller, controller, config, loader, context);
+      chain.schemes.push_back(std::move(scheme));
+    };
+    build_scheme(dc.scheme, dc.virtual_model, dc.inverse_kinematics, dc.controller);
+    for (const SchemeConfig& alt : dc.alternatives)
+      build_scheme(alt.name, alt.virtual_model, alt.inverse_kinematics, alt.controller);
+    chain.switch_ramp_s = dc.switch_ramp_s;
 
     try {
       sessions.push_back(std::make_unique<DeviceSession>(dc.name, std::move(chain)));
