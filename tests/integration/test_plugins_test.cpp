@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "hapticd/testing/allocation_guard.hpp"
+#include "hapticd/engine_input.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -29,9 +30,10 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   JointCommand command;
   command.torque_nm.setZero(1);
   ChainState chain;  // the test device has no robot model
+  const EngineInput engine;
   chain.velocity.setZero(1);
   dc.device->activate();
-  ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, &chain}), ReturnCode::ok);
+  ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, &chain, &engine}), ReturnCode::ok);
   ASSERT_EQ((*c.inverse_kinematics)->activate(InverseKinematicsInput{state, task, &chain}), ReturnCode::ok);
   ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints, &chain}, command), ReturnCode::ok);
 
@@ -39,7 +41,7 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   for (std::uint64_t k = 0; k < 2000; ++k) {
     const CycleTime t = cycle_at(k);
     device += testing::count_allocations([&] { (void)dc.device->read(t, state); });
-    model += testing::count_allocations([&] { (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain}, task); });
+    model += testing::count_allocations([&] { (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain, &engine}, task); });
     ik += testing::count_allocations([&] { (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &chain}, joints); });
     controller += testing::count_allocations([&] { (void)c.controller->update(t, ControllerInput{state, task, joints, &chain}, command); });
     device += testing::count_allocations([&] { (void)dc.device->write(t, command); });

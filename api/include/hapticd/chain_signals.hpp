@@ -51,13 +51,17 @@ struct JointCommand {
   JointVector torque_nm;
 };
 
-struct ChainState;  // chain_state.hpp
+struct ChainState;   // chain_state.hpp
+struct EngineInput;  // engine_input.hpp
 
 // Each input carries the device sample and the server's per-cycle model terms (chain: never null while a
 // chain runs; chain->model is null when the device has no robot model).
 struct VirtualModelInput {
   const DeviceState& device;
   const ChainState* chain;
+  // The rendering engine's newest input for this device (never null while a chain runs; has_proxy and
+  // has_wrench say whether anything has arrived).
+  const EngineInput* engine;
 };
 
 struct InverseKinematicsInput {

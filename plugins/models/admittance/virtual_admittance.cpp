@@ -1,5 +1,7 @@
 #include "virtual_admittance.hpp"
 
+#include <algorithm>
+
 #include "hapticd/chain_state.hpp"
 
 namespace hapticd::models {
@@ -32,6 +34,17 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
       .default_value(50.0);
   s.boolean("motion_based", "walls act on the measured handle motion (motion-based impedance control)")
       .default_value(false);
+  s.boolean("coupling", "virtual coupling to the rendering engine's proxy pose, and its wrench applied")
+      .default_value(false);
+  s.real("coupling_stiffness_n_per_m", "coupling spring").unit("N/m").minimum(0.0).default_value(2000.0);
+  s.real("coupling_damping_n_s_per_m", "coupling damper").unit("N s/m").minimum(0.0).default_value(20.0);
+  s.real("coupling_rotational_stiffness_n_m_per_rad", "rotational coupling spring").unit("N m/rad").minimum(0.0)
+      .default_value(20.0);
+  s.real("coupling_rotational_damping_n_m_s", "rotational coupling damper").unit("N m s/rad").minimum(0.0)
+      .default_value(0.2);
+  s.real("coupling_timeout_s", "engine input older than this starts to fade out").unit("s").greater_than(0.0)
+      .default_value(0.1);
+  s.real("coupling_fade_s", "fade-out time of stale engine input").unit("s").greater_than(0.0).default_value(0.2);
   s.real("max_velocity_m_s", "integration limit of the virtual speed").unit("m/s").greater_than(0.0).default_value(1.0);
   s.real("max_angular_velocity_rad_s", "integration limit of the virtual angular speed").unit("rad/s")
       .greater_than(0.0).default_value(5.0);
@@ -65,6 +78,37 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
   wall_stiffness_ = p.real("wall_stiffness_n_per_m");
   wall_damping_ = p.real("wall_damping_n_s_per_m");
   motion_based_ = p.boolean("motion_based");
+  coupling_ = p.boolean("coupling");
+  coupling_k_ = p.real("coupling_stiffness_n_per_m");
+  coupling_b_ = p.real("coupling_damping_n_s_per_m");
+  coupling_kr_ = p.real("coupling_rotational_stiffness_n_m_per_rad");
+  coupling_br_ = p.real("coupling_rotational_damping_n_m_s");
+  coupling_timeout_s_ = p.real("coupling_timeout_s");
+  coupling_fade_s_ = p.real("coupling_fade_s");
+}
+
+Eigen::Matrix<double, 6, 1> VirtualAdmittance::engine_wrench(const EngineInput& e, std::int64_t now_ns,
+                                                             const Eigen::Vector3d& position,
+                                                             const Eigen::Quaterniond& orientation,
+                                                             const Eigen::Vector3d& velocity,
+                                                             const Eigen::Vector3d& angular_velocity) const noexcept {
+  Eigen::Matrix<double, 6, 1> w = Eigen::Matrix<double, 6, 1>::Zero();
+  if (!coupling_ || (!e.has_proxy && !e.has_wrench)) return w;
+  const double age = static_cast<double>(now_ns - e.received_ns) * 1e-9;
+  const double weight = std::clamp(1.0 - (age - coupling_timeout_s_) / coupling_fade_s_, 0.0, 1.0);
+  if (weight <= 0.0) return w;
+  if (e.has_proxy) {
+    w.head<3>() = coupling_k_ * (e.proxy_pose.position - position) + coupling_b_ * (e.proxy_twist.linear - velocity);
+    if (rotation_) {
+      const Eigen::AngleAxisd error(e.proxy_pose.orientation.normalized() * orientation.conjugate());
+      w.tail<3>() = coupling_kr_ * error.angle() * error.axis() + coupling_br_ * (e.proxy_twist.angular - angular_velocity);
+    }
+  }
+  if (e.has_wrench) {
+    w.head<3>() += e.wrench.force;
+    if (rotation_) w.tail<3>() += e.wrench.torque;
+  }
+  return weight * w;
 }
 
 Eigen::Vector3d VirtualAdmittance::wall_force(const Eigen::Vector3d& position,
@@ -92,12 +136,17 @@ ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcep
   return ReturnCode::ok;
 }
 
-ReturnCode VirtualAdmittance::update(const CycleTime& /*cycle*/, const VirtualModelInput& input,
+ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelInput& input,
                                      TaskTarget& target) noexcept {
   const ChainState& c = *input.chain;
   const double dt = period_s_;
-  const Eigen::Vector3d environment = motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
-                                                    : wall_force(position_, velocity_);
+  const Eigen::Vector3d world_angular = orientation_ * body_angular_velocity_;
+  const Eigen::Matrix<double, 6, 1> engine =
+      motion_based_ ? engine_wrench(*input.engine, cycle.time_ns, c.handle_pose.position, c.handle_pose.orientation,
+                                    c.handle_twist.linear, c.handle_twist.angular)
+                    : engine_wrench(*input.engine, cycle.time_ns, position_, orientation_, velocity_, world_angular);
+  const Eigen::Vector3d environment = engine.head<3>() + (motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
+                                                                        : wall_force(position_, velocity_));
   const Eigen::Vector3d force = c.operator_wrench.force + environment;
   const Eigen::Vector3d acceleration = (force - damping_.cwiseProduct(velocity_)).cwiseQuotient(mass_);
   velocity_ = clamp_norm(velocity_ + dt * acceleration, max_velocity_);
@@ -105,7 +154,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& /*cycle*/, const VirtualMo
 
   Eigen::Vector3d angular_acceleration_world = Eigen::Vector3d::Zero();
   if (rotation_) {
-    const Eigen::Vector3d torque_body = orientation_.conjugate() * c.operator_wrench.torque;
+    const Eigen::Vector3d torque_body = orientation_.conjugate() * (c.operator_wrench.torque + engine.tail<3>());
     const Eigen::Vector3d& w = body_angular_velocity_;
     const Eigen::Vector3d wd = (torque_body - w.cross(inertia_.cwiseProduct(w)) - rotational_damping_.cwiseProduct(w))
                                    .cwiseQuotient(inertia_);
@@ -125,7 +174,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& /*cycle*/, const VirtualMo
   target.acceleration.linear = acceleration;
   target.acceleration.angular = angular_acceleration_world;
   target.wrench.force = environment;  // what the environment applies to the handle
-  target.wrench.torque.setZero();
+  target.wrench.torque = rotation_ ? Eigen::Vector3d(engine.tail<3>()) : Eigen::Vector3d::Zero();
   target.has_motion = true;
   target.has_wrench = false;
   return ReturnCode::ok;

@@ -8,8 +8,14 @@
 // a unilateral spring-damper; the wall force is reported as the environment wrench of the target. With
 // motion_based the walls act on the measured handle motion instead of the virtual body's (the thesis's
 // motion-based impedance control: walls do not drift when the inner loop is not integral).
+// Virtual coupling (spec section 2, [3.5]): with coupling on, an impedance-type rendering engine's proxy pose
+// (EngineInput) pulls the virtual body through a spring-damper Z_d1 in series with the admittance Z_d2; a
+// wrench the engine sends is applied as it is. Engine input older than coupling_timeout_s fades out over
+// coupling_fade_s (a stalled or disconnected engine lets go of the device smoothly instead of holding it).
+// The wrench of walls, coupling and engine is reported as the target's environment wrench.
 #include <array>
 
+#include "hapticd/engine_input.hpp"
 #include "hapticd/virtual_model.hpp"
 
 namespace hapticd::models {
@@ -30,12 +36,20 @@ class VirtualAdmittance final : public VirtualModel {
   static constexpr int kMaxWalls = 8;
 
   Eigen::Vector3d wall_force(const Eigen::Vector3d& position, const Eigen::Vector3d& velocity) const noexcept;
+  // Coupling and engine wrench [force; torque] (world) on a body at (position, orientation) moving with
+  // (velocity, angular velocity), at loop time now_ns.
+  Eigen::Matrix<double, 6, 1> engine_wrench(const EngineInput& engine, std::int64_t now_ns, const Eigen::Vector3d& position,
+                                            const Eigen::Quaterniond& orientation, const Eigen::Vector3d& velocity,
+                                            const Eigen::Vector3d& angular_velocity) const noexcept;
 
   Eigen::Vector3d mass_, inertia_, damping_, rotational_damping_;
   std::array<Wall, kMaxWalls> walls_{};
   int wall_count_ = 0;
   double wall_stiffness_ = 0.0, wall_damping_ = 0.0;
   bool motion_based_ = false;
+  bool coupling_ = false;
+  double coupling_k_ = 2000.0, coupling_b_ = 20.0, coupling_kr_ = 20.0, coupling_br_ = 0.2;
+  double coupling_timeout_s_ = 0.1, coupling_fade_s_ = 0.2;
   double max_velocity_ = 1.0, max_angular_velocity_ = 5.0;
   bool rotation_ = true;
   double period_s_ = 0.0005;

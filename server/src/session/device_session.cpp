@@ -73,7 +73,7 @@ void DeviceSession::activate() {
 
 ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
   if (scheme.virtual_model &&
-      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &chain_state_}) != ReturnCode::ok)
+      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &chain_state_, &engine_}) != ReturnCode::ok)
     return ReturnCode::error;
   if (scheme.inverse_kinematics &&
       (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &chain_state_}) != ReturnCode::ok)
@@ -173,9 +173,13 @@ DeviceFault DeviceSession::run_chain(const CycleTime& cycle) noexcept {
     update_chain_state(false);
     switch_scheme_if_requested(cycle);
   }
+  if (engine_inbox_.take(engine_incoming_)) {
+    engine_ = engine_incoming_;
+    engine_.received_ns = cycle.time_ns;
+  }
   SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_relaxed))];
   if (scheme.virtual_model) {
-    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &chain_state_}, task_) != ReturnCode::ok)
+    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &chain_state_, &engine_}, task_) != ReturnCode::ok)
       return DeviceFault::virtual_model;
     if (!is_finite(task_)) return DeviceFault::non_finite_output;
   } else {

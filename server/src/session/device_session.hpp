@@ -20,6 +20,8 @@
 #include <memory>
 
 #include "hapticd/chain_state.hpp"
+#include "hapticd/engine_input.hpp"
+#include "hapticd/realtime/latest_value.hpp"
 #include "hapticd/model/model_data.hpp"
 #include "hapticd/model/robot_model.hpp"
 #include "hapticd/plugin.hpp"
@@ -87,6 +89,9 @@ class DeviceSession {
   [[nodiscard]] const std::string& active_scheme() const noexcept;
   [[nodiscard]] std::uint64_t scheme_switches() const noexcept { return switches_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t refused_switches() const noexcept { return refused_switches_.load(std::memory_order_relaxed); }
+  // Any thread (the DDS interface): the rendering engine's newest input; the loop picks it up at the next cycle
+  // and stamps it with that cycle's time.
+  void publish_engine_input(const EngineInput& input) { engine_inbox_.publish(input); }
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
   // (the executor's monitor does); deactivate() does it too.
   void service();
@@ -120,6 +125,8 @@ class DeviceSession {
   std::atomic<int> requested_{0};
   std::atomic<std::uint64_t> switches_{0};
   std::atomic<std::uint64_t> refused_switches_{0};
+  realtime::LatestValue<EngineInput> engine_inbox_;
+  EngineInput engine_incoming_, engine_;
   JointVector switch_offset_;       // torque difference at the last switch, fading out
   std::int64_t switch_ramp_cycles_ = 0;
   std::int64_t switch_ramp_left_ = 0;
