@@ -23,6 +23,7 @@ struct ChainState {
   Twist handle_twist;              // world, at the handle point
   Wrench operator_wrench;          // world, at the handle point: the wrench the operator applies TO the handle
   bool has_operator_wrench = false;  // the device has a force/torque sensor
+  bool output_saturated = false;     // the previous cycle's torque command was clamped at a drive's peak torque
 };
 
 }  // namespace hapticd

@@ -45,6 +45,11 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
   s.real("coupling_timeout_s", "engine input older than this starts to fade out").unit("s").greater_than(0.0)
       .default_value(0.1);
   s.real("coupling_fade_s", "fade-out time of stale engine input").unit("s").greater_than(0.0).default_value(0.2);
+  s.real("max_tracking_error_m", "anti-windup: while the drives saturate, the virtual body stays this close to the "
+                                 "handle; 0: off").unit("m")
+      .minimum(0.0).default_value(0.0);
+  s.real("max_tracking_angle_rad", "anti-windup: the same for the orientation; 0: off").unit("rad").minimum(0.0)
+      .default_value(0.0);
   s.real("max_velocity_m_s", "integration limit of the virtual speed").unit("m/s").greater_than(0.0).default_value(1.0);
   s.real("max_angular_velocity_rad_s", "integration limit of the virtual angular speed").unit("rad/s")
       .greater_than(0.0).default_value(5.0);
@@ -78,6 +83,8 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
   wall_stiffness_ = p.real("wall_stiffness_n_per_m");
   wall_damping_ = p.real("wall_damping_n_s_per_m");
   motion_based_ = p.boolean("motion_based");
+  max_tracking_error_ = p.real("max_tracking_error_m");
+  max_tracking_angle_ = p.real("max_tracking_angle_rad");
   coupling_ = p.boolean("coupling");
   coupling_k_ = p.real("coupling_stiffness_n_per_m");
   coupling_b_ = p.real("coupling_damping_n_s_per_m");
@@ -125,6 +132,34 @@ Eigen::Vector3d VirtualAdmittance::wall_force(const Eigen::Vector3d& position,
   return f;
 }
 
+bool VirtualAdmittance::limit_tracking_error(const ChainState& c) noexcept {
+  bool limited = false;
+  if (max_tracking_error_ > 0.0) {
+    const Eigen::Vector3d error = position_ - c.handle_pose.position;
+    const double distance = error.norm();
+    // Only a body running ahead of a device that cannot follow is held back; a body behind the handle is the
+    // controller braking a pushed device, which must go on.
+    if (distance > max_tracking_error_ && velocity_.dot(error) > 0.0) {
+      const Eigen::Vector3d direction = error / distance;
+      position_ = c.handle_pose.position + max_tracking_error_ * direction;
+      const double away = velocity_.dot(direction) - c.handle_twist.linear.dot(direction);
+      if (away > 0.0) velocity_ -= away * direction;  // no faster away from the handle than the handle itself
+      limited = true;
+    }
+  }
+  if (rotation_ && max_tracking_angle_ > 0.0) {
+    const Eigen::Quaterniond handle = c.handle_pose.orientation.normalized();
+    const Eigen::AngleAxisd error(orientation_ * handle.conjugate());
+    if (error.angle() > max_tracking_angle_) {
+      orientation_ = (Eigen::Quaterniond(Eigen::AngleAxisd(max_tracking_angle_, error.axis())) * handle).normalized();
+      const Eigen::Vector3d axis_body = orientation_.conjugate() * error.axis();
+      const double away = body_angular_velocity_.dot(axis_body) - c.handle_twist.angular.dot(error.axis());
+      if (away > 0.0) body_angular_velocity_ -= away * axis_body;
+    }
+  }
+  return limited;
+}
+
 ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcept {
   if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
   // Start where the handle is, moving as it moves: no jump in the desired motion.
@@ -167,11 +202,18 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
     }
     angular_acceleration_world = orientation_ * wd;
   }
+  Eigen::Vector3d commanded_acceleration = acceleration;
+  if (c.output_saturated && limit_tracking_error(c)) {
+    // On the limit: no acceleration away from the handle either (the inner loop gets a consistent target).
+    const Eigen::Vector3d away = (position_ - c.handle_pose.position).normalized();
+    const double outward = commanded_acceleration.dot(away);
+    if (outward > 0.0) commanded_acceleration -= outward * away;
+  }
   target.pose.position = position_;
   target.pose.orientation = rotation_ ? orientation_ : c.handle_pose.orientation;
   target.twist.linear = velocity_;
   target.twist.angular = rotation_ ? Eigen::Vector3d(orientation_ * body_angular_velocity_) : Eigen::Vector3d::Zero();
-  target.acceleration.linear = acceleration;
+  target.acceleration.linear = commanded_acceleration;
   target.acceleration.angular = angular_acceleration_world;
   target.wrench.force = environment;  // what the environment applies to the handle
   target.wrench.torque = rotation_ ? Eigen::Vector3d(engine.tail<3>()) : Eigen::Vector3d::Zero();

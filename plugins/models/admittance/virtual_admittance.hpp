@@ -13,6 +13,11 @@
 // wrench the engine sends is applied as it is. Engine input older than coupling_timeout_s fades out over
 // coupling_fade_s (a stalled or disconnected engine lets go of the device smoothly instead of holding it).
 // The wrench of walls, coupling and engine is reported as the target's environment wrench.
+// Anti-windup: while the drives saturate (ChainState::output_saturated), the virtual body would run away from
+// the device and the inner loop would "wind up" its error, lunging after the body once free. With
+// max_tracking_error_m / max_tracking_angle_rad the body is then kept within that distance of the measured
+// handle (conditional integration): it is projected back onto the limit and loses the velocity and
+// acceleration that would take it further.
 #include <array>
 
 #include "hapticd/engine_input.hpp"
@@ -51,6 +56,9 @@ class VirtualAdmittance final : public VirtualModel {
   double coupling_k_ = 2000.0, coupling_b_ = 20.0, coupling_kr_ = 20.0, coupling_br_ = 0.2;
   double coupling_timeout_s_ = 0.1, coupling_fade_s_ = 0.2;
   double max_velocity_ = 1.0, max_angular_velocity_ = 5.0;
+  double max_tracking_error_ = 0.0, max_tracking_angle_ = 0.0;  // 0: no anti-windup limit
+  // true when the translation was limited.
+  bool limit_tracking_error(const ChainState& chain) noexcept;
   bool rotation_ = true;
   double period_s_ = 0.0005;
 

@@ -219,8 +219,8 @@ void DeviceSession::cycle(const CycleTime& cycle, double torque_scale) noexcept 
   if (const DeviceFault f = run_chain(cycle); f != DeviceFault::none) return enter_safe_state(f, cycle);
 
   const auto limited = command_.torque_nm.cwiseMax(-torque_limit_nm_).cwiseMin(torque_limit_nm_);
-  if ((limited.array() != command_.torque_nm.array()).any())
-    saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
+  chain_state_.output_saturated = (limited.array() != command_.torque_nm.array()).any();
+  if (chain_state_.output_saturated) saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
   const double scale = std::clamp(torque_scale, 0.0, 1.0);
   if (scale > 0.0) {
     command_.torque_nm = limited * scale;

@@ -81,6 +81,7 @@ class DeviceSession {
   // Loop thread only (or after the loop has stopped).
   [[nodiscard]] const DeviceState& state() const noexcept { return state_; }
   [[nodiscard]] const JointCommand& command() const noexcept { return command_; }
+  [[nodiscard]] const TaskTarget& task() const noexcept { return task_; }
   [[nodiscard]] const ChainState& chain_state() const noexcept { return chain_state_; }
 
   // Any thread: asks for the scheme `name` from the next cycle on; false if there is no such scheme.
