@@ -29,6 +29,7 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
       .default_value(std::vector<double>{0.1, 0.1, 0.1});
   s.real_vector("walls", "virtual walls, 6 numbers each: a point on the wall and the normal pointing to the free "
                  "side (world, m); at most 8").default_value(std::vector<double>{});
+  s.boolean("walls_relative", "wall points are offsets from the handle's position at activation").default_value(false);
   s.real("wall_stiffness_n_per_m", "stiffness of the walls").unit("N/m").minimum(0.0).default_value(5000.0);
   s.real("wall_damping_n_s_per_m", "damping of the walls while penetrated").unit("N s/m").minimum(0.0)
       .default_value(50.0);
@@ -83,6 +84,8 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
   wall_stiffness_ = p.real("wall_stiffness_n_per_m");
   wall_damping_ = p.real("wall_damping_n_s_per_m");
   motion_based_ = p.boolean("motion_based");
+  walls_relative_ = p.boolean("walls_relative");
+  for (int i = 0; i < wall_count_; ++i) configured_wall_points_[static_cast<std::size_t>(i)] = walls_[static_cast<std::size_t>(i)].point;
   max_tracking_error_ = p.real("max_tracking_error_m");
   max_tracking_angle_ = p.real("max_tracking_angle_rad");
   coupling_ = p.boolean("coupling");
@@ -164,6 +167,10 @@ ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcep
   if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
   // Start where the handle is, moving as it moves: no jump in the desired motion.
   position_ = current.chain->handle_pose.position;
+  for (int i = 0; i < wall_count_; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    walls_[k].point = walls_relative_ ? Eigen::Vector3d(configured_wall_points_[k] + position_) : configured_wall_points_[k];
+  }
   velocity_ = clamp_norm(current.chain->handle_twist.linear, max_velocity_);
   orientation_ = current.chain->handle_pose.orientation.normalized();
   body_angular_velocity_ = rotation_ ? Eigen::Vector3d(orientation_.conjugate() * current.chain->handle_twist.angular)

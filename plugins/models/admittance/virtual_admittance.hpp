@@ -52,6 +52,8 @@ class VirtualAdmittance final : public VirtualModel {
   int wall_count_ = 0;
   double wall_stiffness_ = 0.0, wall_damping_ = 0.0;
   bool motion_based_ = false;
+  bool walls_relative_ = false;
+  std::array<Eigen::Vector3d, kMaxWalls> configured_wall_points_{};
   bool coupling_ = false;
   double coupling_k_ = 2000.0, coupling_b_ = 20.0, coupling_kr_ = 20.0, coupling_br_ = 0.2;
   double coupling_timeout_s_ = 0.1, coupling_fade_s_ = 0.2;
