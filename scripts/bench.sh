@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs the benchmark programs with medians over repetitions: the model toolbox against KDL (with the ratios)
-# and the simulated devices (real_time_factor).
+# the simulated devices (real_time_factor) and the control schemes (compute time per cycle, ratio to the
+# per-cycle model terms).
 # Usage: scripts/bench.sh [REPETITIONS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,3 +10,5 @@ reps=${1:-10}
 build/default/bin/model_benchmark --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true \
   --benchmark_min_time=0.2
 build/default/bin/sim_benchmark --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
+build/default/bin/scheme_benchmark --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.2

@@ -1,0 +1,109 @@
+// Compute time per cycle of each control scheme on the simulated ViSHaRD3 and ViSHaRD6: one iteration runs the
+// scheme's chain (virtual model -> inverse kinematics -> controller) on a realistic state, taken after 1 s of
+// the shipped session (config/sessions/<device>/<scheme>.yaml) in lockstep. Side by side, the reference: the
+// server's shared per-cycle model terms (compute_cycle_terms) for the same device; the counter
+// ratio_to_model_terms is the scheme's time over the reference's (machine-independent to first order).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "config/session_config.hpp"
+#include "hapticd/chain_state.hpp"
+#include "hapticd/engine_input.hpp"
+#include "hapticd/model/dynamics.hpp"
+#include "hapticd/model/model_data.hpp"
+#include "plugins/plugin_loader.hpp"
+#include "session/session_builder.hpp"
+
+namespace {
+
+using namespace hapticd;
+
+struct Rig {
+  server::SessionConfig config;
+  std::unique_ptr<server::PluginLoader> loader;
+  std::vector<std::unique_ptr<server::DeviceSession>> sessions;
+};
+
+std::unique_ptr<Rig> make_rig(const std::string& device, const std::string& scheme) {
+  auto rig = std::make_unique<Rig>();
+  rig->config = server::load_session_config(std::string(HAPTICD_SOURCE_DIR) + "/config/sessions/" + device + "/" +
+                                            scheme + ".yaml");
+  rig->config.server.plugin_paths.push_back(HAPTICD_PLUGIN_DIR);
+  rig->loader = std::make_unique<server::PluginLoader>(rig->config.server.plugin_paths);
+  rig->sessions = server::build_sessions(rig->config, *rig->loader);
+  server::DeviceSession& d = *rig->sessions[0];
+  d.activate();
+  const std::int64_t period = 500'000;
+  for (std::uint64_t k = 0; k < 2000; ++k) d.cycle(CycleTime{static_cast<std::int64_t>(k) * period, period, k}, 1.0);
+  return rig;
+}
+
+double seconds_per_model_terms(const ChainState& chain, const DeviceState& state) {
+  model::ModelData data(*chain.model);
+  const auto start = std::chrono::steady_clock::now();
+  constexpr int kRuns = 20000;
+  for (int i = 0; i < kRuns; ++i) {
+    model::compute_cycle_terms(*chain.model, data, state.joints.position, chain.velocity, chain.handle_frame);
+    benchmark::DoNotOptimize(data.mass_matrix.data());
+  }
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kRuns;
+}
+
+void scheme(benchmark::State& st, const std::string& device, const std::string& scheme_file) {
+  auto rig = make_rig(device, scheme_file);
+  server::DeviceSession& d = *rig->sessions[0];
+  const server::SchemeChain& chain = d.chain().schemes[0];
+  const ChainState cs = d.chain_state();
+  const DeviceState state = d.state();
+  const EngineInput engine;
+  TaskTarget task;
+  JointTarget joints;
+  joints.resize(d.description().dof());
+  JointCommand command;
+  command.torque_nm = d.command().torque_nm;
+  std::uint64_t k = 2000;
+  const auto one_cycle = [&] {
+    const CycleTime t{static_cast<std::int64_t>(k) * 500'000, 500'000, k};
+    ++k;
+    if (chain.virtual_model) (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, &cs, &engine}, task);
+    if (chain.inverse_kinematics)
+      (void)(*chain.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &cs}, joints);
+    (void)chain.controller->update(t, ControllerInput{state, task, joints, &cs}, command);
+    benchmark::DoNotOptimize(command.torque_nm.data());
+  };
+  for (auto _ : st) one_cycle();
+  // Side by side: the scheme and the reference timed back to back outside the framework, for the ratio.
+  constexpr int kRuns = 20000;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < kRuns; ++i) one_cycle();
+  const double own = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kRuns;
+  const double reference = seconds_per_model_terms(cs, state);
+  st.counters["model_terms_us"] = reference * 1e6;
+  st.counters["ratio_to_model_terms"] = own / reference;
+}
+
+const char* kSchemes[] = {"impedance-open-loop", "impedance-force-feedback", "impedance-friction-compensation",
+                          "impedance-stiction", "impedance-adaptive-friction", "impedance-disturbance-observer",
+                          "impedance-joint-torque-feedback", "admittance-resolved-acceleration",
+                          "admittance-inverse-jacobian", "admittance-transposed-jacobian",
+                          "admittance-computed-torque", "admittance-joint-pd", "admittance-motion-based",
+                          "admittance-virtual-coupling"};
+
+const bool kRegistered = [] {
+  for (const char* device : {"vishard3", "vishard6"}) {
+    for (const char* s : kSchemes) {
+      benchmark::RegisterBenchmark((std::string("scheme/") + device + "/" + s).c_str(),
+                                   [device, s](benchmark::State& st) { scheme(st, device, s); })
+          ->Unit(benchmark::kMicrosecond);
+    }
+  }
+  return true;
+}();
+
+}  // namespace
+
+BENCHMARK_MAIN();
