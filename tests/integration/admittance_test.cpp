@@ -188,14 +188,7 @@ TEST_P(VirtualWall, HoldsThePushingOperator) {
   model::forward_kinematics(robot, data, q0);
   const Eigen::Vector3d start = model::frame_pose(robot, data, robot.require_frame("handle")).translation();
   const Eigen::Vector3d wall = start + Eigen::Vector3d(0.02, 0.0, 0.0);  // 2 cm ahead along x, normal -x
-  const std::string yaml = std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") + R"(  - name: v3
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
-        initial_position: [-0.3, 1.6, 0.0]
-        passive_gimbal: true
-        attachment: operator
+  const std::string yaml = test::sim_vishard3_session_head("v3", 7) + R"(        attachment: operator
         operator_grasp: 0.8
         operator_force: step
         operator_force_n: [20, 0, 0]

@@ -17,14 +17,7 @@ using test::cycle_at;
 // attachment: "none", or "operator" (a firm grasp with a stiff arm spring: the strokes load the joints).
 std::string identification_session(const std::string& output, const std::string& controller_extra = "",
                                    const std::string& attachment = "none") {
-  return std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") + R"(  - name: v3
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
-        initial_position: [-0.3, 1.6, 0.0]
-        passive_gimbal: true
-        warm_up: false
+  return test::sim_vishard3_session_head("v3", 7) + R"(        warm_up: false
         friction_variation: 0.0
         attachment: )" + attachment + R"(
         operator_grasp: 1.0

@@ -100,14 +100,7 @@ TEST(AdaptiveFriction, ConvergesWhileTheJointsWarmUpAndNeverOverCompensates) {
   // re-tunes every 10 s.
   constexpr double kWarmUp = 40.0;
   const std::string log = ::testing::TempDir() + "adaptive_friction.csv";
-  const std::string yaml = std::string("server: {clock: lockstep, seed: 11}\ndevices:\n") + R"(  - name: v3
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
-        initial_position: [-0.3, 1.6, 0.0]
-        passive_gimbal: true
-        friction_variation: 0.0
+  const std::string yaml = test::sim_vishard3_session_head("v3", 11) + R"(        friction_variation: 0.0
         warm_up_time_constant_s: 40.0
         attachment: operator
         operator_grasp: 0.7

@@ -16,14 +16,7 @@ using test::cycle_at;
 // moves the handle 3 cm back and forth at 1 Hz. controller: the impedance controller's parameters besides the
 // task; device: extra sim parameters (one "key: value" per line, 8 spaces of indent).
 double rms_operator_force(const std::string& controller, const std::string& device = "") {
-  const std::string yaml = std::string("server: {clock: lockstep, seed: 3}\ndevices:\n") + R"(  - name: v3
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
-        initial_position: [-0.3, 1.6, 0.0]
-        passive_gimbal: true
-        attachment: operator
+  const std::string yaml = test::sim_vishard3_session_head("v3", 3) + R"(        attachment: operator
         operator_grasp: 0.7
         operator_motion: sine
         operator_motion_m: [0.03, 0.02, 0.0]

@@ -15,14 +15,7 @@ namespace {
 using test::cycle_at;
 
 std::string switching_session(double ramp_s) {
-  return std::string("server: {clock: lockstep, seed: 9}\ndevices:\n") + R"(  - name: v3
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
-        initial_position: [-0.3, 1.6, 0.0]
-        passive_gimbal: true
-        attachment: operator
+  return test::sim_vishard3_session_head("v3", 9) + R"(        attachment: operator
         operator_grasp: 0.7
         operator_motion: sine
         operator_motion_m: [0.03, 0.02, 0.01]

@@ -31,8 +31,8 @@ std::size_t allocations_over_cycles(server::DeviceSession& device, std::uint64_t
   return guard.allocations();
 }
 
-std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,
-                                     const std::string& force_n) {
+namespace {
+std::string sim_vishard3_entry(const std::string& name) {
   return "  - name: " + name + R"(
     device:
       plugin: sim
@@ -40,7 +40,17 @@ std::string sim_vishard3_device_yaml(const std::string& name, const std::string&
         urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
         initial_position: [-0.3, 1.6, 0.0]
         passive_gimbal: true
-        attachment: wrench
+)";
+}
+}  // namespace
+
+std::string sim_vishard3_session_head(const std::string& name, std::uint64_t seed) {
+  return "server: {clock: lockstep, seed: " + std::to_string(seed) + "}\ndevices:\n" + sim_vishard3_entry(name);
+}
+
+std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,
+                                     const std::string& force_n) {
+  return sim_vishard3_entry(name) + R"(        attachment: wrench
         wrench_force: )" + force_profile + R"(
         wrench_force_n: )" + force_n + "\n";
 }

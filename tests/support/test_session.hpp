@@ -37,6 +37,10 @@ TestSession build_test_session(const std::string& yaml);
 std::string mass_spring_device_yaml(const std::string& name, const std::string& device_parameters = "",
                                     const std::string& controller_parameters = "");
 
+// A lockstep session with one simulated ViSHaRD3 named `name` at its usual start pose with the passive gimbal,
+// up to its sim parameters: the caller appends more (8 spaces of indent, e.g. the attachment) and the chain.
+std::string sim_vishard3_session_head(const std::string& name, std::uint64_t seed);
+
 // The head of a device entry for the simulated ViSHaRD3 (sim plugin, start pose, passive gimbal, pushed by a
 // scripted force `force_profile` of `force_n`); the caller appends more sim parameters (8 spaces of indent)
 // and the rest of the chain.
