@@ -94,6 +94,13 @@ TEST(FrictionIdentification, AShortSessionReportsWhatItNeeds) {
   }
 }
 
+TEST(FrictionIdentification, UpdatesWithoutAllocating) {
+  const std::string output = ::testing::TempDir() + "identified_friction_alloc.yaml";
+  auto s = test::build_test_session(identification_session(output));
+  // 10 s: settling, the break-away ramps and the first strokes.
+  EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 20000), 0u);
+}
+
 TEST(FrictionIdentification, RejectsAStrokeTooShortForItsSpeeds) {
   EXPECT_THROW(test::build_test_session(identification_session("/tmp/x.yaml", ", stroke_rad: 0.1")), std::exception);
 }

@@ -5,6 +5,7 @@
 
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
+#include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -72,6 +73,23 @@ TEST(VirtualCoupling, AStaleEngineLetsGoOfTheDevice) {
   const Eigen::Vector3d moved = run("[8.0, 0.0, 0.0]", Eigen::Vector3d::Zero(), [](std::uint64_t k) { return k < 2000; });
   std::printf("engine silent from 1 s on: the pushed handle moved %.0f mm by 3 s\n", 1e3 * moved.x());
   EXPECT_GT(moved.x(), 0.1);
+}
+
+TEST(VirtualCoupling, CoupledUpdatesDoNotAllocate) {
+  if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
+  auto s = test::build_test_session(coupling_session("[4.0, 0.0, 0.0]"));
+  DeviceSession& d = *s.devices[0];
+  d.activate();
+  d.cycle(cycle_at(0), 1.0);
+  EngineInput e;
+  e.has_proxy = true;
+  e.proxy_pose = d.chain_state().handle_pose;
+  std::size_t allocations = 0;
+  for (std::uint64_t k = 1; k < 2000; ++k) {
+    if (k < 1000) d.publish_engine_input(e);  // the publisher side is not the loop: not counted below
+    allocations += testing::count_allocations([&] { d.cycle(cycle_at(k), 1.0); });
+  }
+  EXPECT_EQ(allocations, 0u);
 }
 
 }  // namespace
