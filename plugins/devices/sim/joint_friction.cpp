@@ -19,7 +19,7 @@ void JointFriction::reset() noexcept {
 
 void JointFriction::draw_breakaway() noexcept {
   const double u = std::uniform_real_distribution<double>(0.0, 1.0)(rng_);
-  breakaway_ = p_.scale * (p_.breakaway_min_nm + u * (p_.breakaway_max_nm - p_.breakaway_min_nm));
+  breakaway_ = p_.scale * p_.size * (p_.breakaway_min_nm + u * (p_.breakaway_max_nm - p_.breakaway_min_nm));
 }
 
 double JointFriction::curve(int i, double speed) const noexcept {
@@ -38,7 +38,7 @@ double JointFriction::sliding_magnitude(double speed, double load_torque) const 
     const double temp = std::clamp(temperature_c_, t[0], t[2]);
     const int i = temp <= t[1] ? 0 : 1;
     const double w = (temp - t[static_cast<std::size_t>(i)]) / (t[static_cast<std::size_t>(i) + 1] - t[static_cast<std::size_t>(i)]);
-    f = (1.0 - w) * curve(i, speed) + w * curve(i + 1, speed);
+    f = p_.size * ((1.0 - w) * curve(i, speed) + w * curve(i + 1, speed));
   }
   if (p_.load_dependent) {
     const double l = std::abs(load_torque);

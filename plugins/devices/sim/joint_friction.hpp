@@ -20,6 +20,9 @@ struct FrictionParameters {
   bool stiction = true;
   bool warm_up = true;
   double scale = 1.0;                     // per-joint variation of the whole friction
+  // Gear size relative to the HFUC-17 the curves were measured on (rated torque ratio): scales the sliding
+  // friction and the break-away, not the load-dependent part (which follows the transmitted torque).
+  double size = 1.0;
   // The measured curves (spec), at 26, 32 and 36 C.
   std::array<double, 3> temperatures_c{26.0, 32.0, 36.0};
   std::array<StribeckCurve, 3> curves{StribeckCurve{{1.183, 1.008, -0.2642, 0.0487, -0.0037}},

@@ -6,6 +6,10 @@
 
 namespace hapticd::sim {
 
+namespace {
+constexpr double kReferenceGearAverageTorque = 39.0;  // HFUC-2UH-17 [N m]
+}  // namespace
+
 FlexibleChain build_flexible_chain(const model::RobotModel& model, int handle_frame, const PhysicsOptions& options,
                                    std::uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -31,8 +35,13 @@ FlexibleChain build_flexible_chain(const model::RobotModel& model, int handle_fr
       j.friction.sliding = j.friction.load_dependent = j.friction.stiction = false;
     }
     j.friction.scale = std::max(0.2, 1.0 + options.friction_variation * normal(rng));
+    // The friction and ripple data were measured on ViSHaRD3's HFUC-17 gears (rated average torque 39 N m):
+    // other sizes scale with their rated torque (ViSHaRD6's HFUC-25 base x2.8, its HFUC-8 wrist x0.085).
+    const double size = d.gear_average_torque > 0.0 ? d.gear_average_torque / kReferenceGearAverageTorque : 1.0;
+    j.friction.size = size;
     j.ripple_amplitude =
-        options.ripple ? options.ripple_min_nm + (options.ripple_max_nm - options.ripple_min_nm) * uniform(rng) : 0.0;
+        options.ripple ? size * (options.ripple_min_nm + (options.ripple_max_nm - options.ripple_min_nm) * uniform(rng))
+                       : 0.0;
     j.ripple_phase = 2.0 * M_PI * uniform(rng);
     joints.push_back(j);
     b.reflected_inertia = 0.0;  // the motor is its own coordinate here
