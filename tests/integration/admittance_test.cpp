@@ -189,6 +189,24 @@ TEST(AdmittanceDisplay, Vishard6RendersDampingInEveryDirection) {
   }
 }
 
+TEST(AdmittanceDisplay, WorkspaceSpringHoldsThePushedHandleAtItsLimit) {
+  // 8 N against a workspace spring of 1000 N/m beyond 20 mm from the start: equilibrium at 28 mm.
+  const std::string yaml = "server: {clock: lockstep, seed: 7}\ndevices:\n" +
+                           test::sim_vishard3_device_yaml("v3", "constant", "[8.0, 0.0, 0.0]") + R"(    virtual_model:
+      plugin: admittance
+      parameters: {mass_kg: [2, 2, 2], damping_n_s_per_m: [60, 60, 60], rotation: false, workspace_radius_m: 0.02,
+                   workspace_stiffness_n_per_m: 1000}
+    controller:
+      plugin: resolved_acceleration
+      parameters: {task: translation}
+)";
+  auto s = test::build_test_session(yaml);
+  const Trace t = run(s, 6000);
+  const double reached = (t.x.back() - t.x.front()).norm();
+  RecordProperty("workspace_spring_position_mm", std::to_string(1e3 * reached));
+  EXPECT_NEAR(reached, 0.028, 0.002);
+}
+
 TEST(AdmittanceDisplay, ConstantForceGivesTheVirtualDampingSpeed) {
   // 6 N against 40 N s/m with 2 kg: time constant 0.05 s, steady speed 0.15 m/s.
   auto s = test::build_test_session(admittance_session("[0, 6, 0]", 2.0, 40.0));

@@ -46,6 +46,10 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
   s.real("coupling_timeout_s", "engine input older than this starts to fade out").unit("s").greater_than(0.0)
       .default_value(0.1);
   s.real("coupling_fade_s", "fade-out time of stale engine input").unit("s").greater_than(0.0).default_value(0.2);
+  s.real("workspace_radius_m", "workspace spring: beyond this distance from the start position a spring pulls "
+                               "the body back; 0: off").unit("m").minimum(0.0).default_value(0.0);
+  s.real("workspace_stiffness_n_per_m", "stiffness of the workspace spring").unit("N/m").minimum(0.0)
+      .default_value(1000.0);
   s.real("max_tracking_error_m", "anti-windup: while the drives saturate, the virtual body stays this close to the "
                                  "handle; 0: off").unit("m")
       .minimum(0.0).default_value(0.0);
@@ -86,6 +90,8 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
   motion_based_ = p.boolean("motion_based");
   walls_relative_ = p.boolean("walls_relative");
   for (int i = 0; i < wall_count_; ++i) configured_wall_points_[static_cast<std::size_t>(i)] = walls_[static_cast<std::size_t>(i)].point;
+  workspace_radius_ = p.real("workspace_radius_m");
+  workspace_stiffness_ = p.real("workspace_stiffness_n_per_m");
   max_tracking_error_ = p.real("max_tracking_error_m");
   max_tracking_angle_ = p.real("max_tracking_angle_rad");
   coupling_ = p.boolean("coupling");
@@ -132,6 +138,11 @@ Eigen::Vector3d VirtualAdmittance::wall_force(const Eigen::Vector3d& position,
     const double push = wall_stiffness_ * depth - wall_damping_ * velocity.dot(w.normal);
     if (push > 0.0) f += push * w.normal;
   }
+  if (workspace_radius_ > 0.0) {  // a soft spherical workspace limit around the start position
+    const Eigen::Vector3d from_centre = position - workspace_centre_;
+    const double beyond = from_centre.norm() - workspace_radius_;
+    if (beyond > 0.0) f -= workspace_stiffness_ * beyond * from_centre.normalized();
+  }
   return f;
 }
 
@@ -167,6 +178,7 @@ ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcep
   if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
   // Start where the handle is, moving as it moves: no jump in the desired motion.
   position_ = current.chain->handle_pose.position;
+  workspace_centre_ = position_;
   for (int i = 0; i < wall_count_; ++i) {
     const auto k = static_cast<std::size_t>(i);
     walls_[k].point = walls_relative_ ? Eigen::Vector3d(configured_wall_points_[k] + position_) : configured_wall_points_[k];

@@ -7,7 +7,8 @@
 // Virtual walls (half-spaces: a point and an outward normal of the free side) push the virtual body back with
 // a unilateral spring-damper; the wall force is reported as the environment wrench of the target. With
 // motion_based the walls act on the measured handle motion instead of the virtual body's (the thesis's
-// motion-based impedance control: walls do not drift when the inner loop is not integral).
+// motion-based impedance control: walls do not drift when the inner loop is not integral). A workspace spring
+// (workspace_radius_m) pulls the body back towards a sphere around its start position, a soft workspace limit.
 // Virtual coupling (spec section 2, [3.5]): with coupling on, an impedance-type rendering engine's proxy pose
 // (EngineInput) pulls the virtual body through a spring-damper Z_d1 in series with the admittance Z_d2; a
 // wrench the engine sends is applied as it is. Engine input older than coupling_timeout_s fades out over
@@ -53,6 +54,8 @@ class VirtualAdmittance final : public VirtualModel {
   double wall_stiffness_ = 0.0, wall_damping_ = 0.0;
   bool motion_based_ = false;
   bool walls_relative_ = false;
+  double workspace_radius_ = 0.0, workspace_stiffness_ = 1000.0;
+  Eigen::Vector3d workspace_centre_ = Eigen::Vector3d::Zero();
   std::array<Eigen::Vector3d, kMaxWalls> configured_wall_points_{};
   bool coupling_ = false;
   double coupling_k_ = 2000.0, coupling_b_ = 20.0, coupling_kr_ = 20.0, coupling_br_ = 0.2;
