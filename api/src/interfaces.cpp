@@ -13,6 +13,16 @@ Controller::~Controller() = default;
 InverseKinematics::~InverseKinematics() = default;
 VirtualModel::~VirtualModel() = default;
 
+namespace {
+RuntimeReply refuse(std::string_view name) {
+  return {false, "'" + std::string(name) + "' is not a run-time request this plugin accepts"};
+}
+}  // namespace
+
+RuntimeReply Device::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
+RuntimeReply Controller::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
+RuntimeReply VirtualModel::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
+
 std::string_view to_string(PluginKind kind) noexcept {
   switch (kind) {
     case PluginKind::device: return "device";

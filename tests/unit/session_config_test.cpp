@@ -119,7 +119,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadConfig{"duplicate_device_name", kHeader + kValidDevices + "  - name: axis\n    device: {plugin: test_mass_spring}\n"
                   "    controller: {plugin: test_pd}\n", "devices[1].name", "  - name: axis\n    device: {", "used twice"},
         BadConfig{"invalid_device_name", kHeader + "devices:\n  - name: my arm\n    device: {plugin: test_mass_spring}\n"
-                  "    controller: {plugin: test_pd}\n", "devices[0].name", "my arm", "must be 1-64 characters"},
+                  "    controller: {plugin: test_pd}\n", "devices[0].name", "my arm", "must be 1-31 characters"},
         BadConfig{"empty_device_list", kHeader + "devices: []\n", "devices", "devices: []", "non-empty list"},
         // Plugins.
         BadConfig{"unknown_plugin", kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n"

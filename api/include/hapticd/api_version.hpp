@@ -5,7 +5,8 @@ namespace hapticd {
 // Version of the binary plugin contract (interfaces, value types, descriptor layout). A plugin built against
 // another version is refused by the loader before any of its code is called. Bump on every change to a type
 // in api/include/hapticd that a plugin compiles against.
-inline constexpr int kApiVersion = 4;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
-                                        // 4: EngineInput in VirtualModelInput
+inline constexpr int kApiVersion = 5;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
+                                        // 4: EngineInput in VirtualModelInput; 5: EngineInput weight,
+                                        //    local model and motion
 
 }  // namespace hapticd

@@ -5,6 +5,7 @@
 #include "hapticd/parameters.hpp"
 #include "hapticd/plugin_context.hpp"
 #include "hapticd/return_code.hpp"
+#include "hapticd/runtime_request.hpp"
 
 namespace hapticd {
 
@@ -22,6 +23,9 @@ class HAPTICD_API Controller {
   virtual ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept = 0;
   // Not real-time safe. Called after the controller has left the loop.
   virtual void deactivate() = 0;
+  // Not real-time safe, any server thread (runtime_request.hpp): a run-time request such as setting a
+  // parameter; `name` is the parameter or command, `values` its numbers. The default refuses.
+  virtual RuntimeReply handle_request(std::string_view name, const std::vector<double>& values);
 };
 
 }  // namespace hapticd

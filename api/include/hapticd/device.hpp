@@ -6,6 +6,7 @@
 #include "hapticd/parameters.hpp"
 #include "hapticd/plugin_context.hpp"
 #include "hapticd/return_code.hpp"
+#include "hapticd/runtime_request.hpp"
 
 namespace hapticd {
 
@@ -29,6 +30,9 @@ class HAPTICD_API Device {
   virtual ReturnCode write(const CycleTime& cycle, const JointCommand& command) noexcept = 0;
   // Not real-time safe. Zero torque, drives off. Called after the loop has stopped using the device.
   virtual void deactivate() = 0;
+  // Not real-time safe, any server thread (runtime_request.hpp): a run-time request such as setting a
+  // parameter; `name` is the parameter or command, `values` its numbers. The default refuses.
+  virtual RuntimeReply handle_request(std::string_view name, const std::vector<double>& values);
 };
 
 }  // namespace hapticd

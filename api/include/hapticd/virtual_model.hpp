@@ -5,6 +5,7 @@
 #include "hapticd/parameters.hpp"
 #include "hapticd/plugin_context.hpp"
 #include "hapticd/return_code.hpp"
+#include "hapticd/runtime_request.hpp"
 
 namespace hapticd {
 
@@ -23,6 +24,9 @@ class HAPTICD_API VirtualModel {
   virtual ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept = 0;
   // Not real-time safe. Called after the model has left the loop.
   virtual void deactivate() = 0;
+  // Not real-time safe, any server thread (runtime_request.hpp): a run-time request such as setting a
+  // parameter; `name` is the parameter or command, `values` its numbers. The default refuses.
+  virtual RuntimeReply handle_request(std::string_view name, const std::vector<double>& values);
 };
 
 }  // namespace hapticd

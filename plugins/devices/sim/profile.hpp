@@ -3,23 +3,30 @@
 // Used for the operator's target motion and voluntary force, the position source's path and scripted
 // wrenches. Real-time safe.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 namespace hapticd::sim {
 
 struct Profile {
-  enum class Kind { kConstant, kStep, kRamp, kSine };
+  enum class Kind { kConstant, kStep, kRamp, kSine, kRampTo };
   Kind kind = Kind::kConstant;
   Eigen::Vector3d value = Eigen::Vector3d::Zero();  // constant / step value, ramp rate per second, sine amplitude
   double start_s = 0.0;
   double frequency_hz = 1.0;
+  Eigen::Vector3d from = Eigen::Vector3d::Zero();  // kRampTo: from `from` to `value` over duration_s
+  double duration_s = 0.0;
 
   [[nodiscard]] Eigen::Vector3d at(double t) const noexcept {
     switch (kind) {
       case Kind::kConstant: return value;
       case Kind::kStep: return t >= start_s ? value : Eigen::Vector3d::Zero();
       case Kind::kRamp: return t >= start_s ? Eigen::Vector3d(value * (t - start_s)) : Eigen::Vector3d::Zero();
+      case Kind::kRampTo: {
+        const double a = duration_s > 0.0 ? std::clamp((t - start_s) / duration_s, 0.0, 1.0) : (t >= start_s ? 1.0 : 0.0);
+        return from + a * (value - from);
+      }
       case Kind::kSine:
         return t >= start_s ? Eigen::Vector3d(value * std::sin(2.0 * M_PI * frequency_hz * (t - start_s)))
                             : Eigen::Vector3d::Zero();

@@ -214,6 +214,7 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   a.wrench_force = read_profile(p, "wrench_force", "n");
   a.wrench_torque = read_profile(p, "wrench_torque", "nm");
   initial_attachment_ = a;
+  requested_ = a;
   passive_gimbal_ = p.boolean("passive_gimbal");
 
   command_ = JointVector::Zero(n);
@@ -269,8 +270,38 @@ void SimDevice::substep() noexcept {
   }
 }
 
+RuntimeReply SimDevice::handle_request(std::string_view name, const std::vector<double>& values) {
+  const double now = static_cast<double>(simulated_now_ns_.load(std::memory_order_relaxed)) * 1e-9;
+  AttachmentSettings a = requested_;
+  if (name == "operator.release") {
+    a.kind = AttachmentKind::kNone;
+  } else if (name == "operator.push") {
+    if (values.size() != 3 && values.size() != 4) return {false, "operator.push takes fx fy fz [ramp_s]"};
+    const double ramp = values.size() == 4 ? values[3] : 0.5;
+    const Eigen::Vector3d f(values[0], values[1], values[2]);
+    if (!f.allFinite() || f.norm() > 200.0 || !(ramp >= 0.0 && ramp <= 60.0))
+      return {false, "operator.push: |force| up to 200 N, ramp 0..60 s"};
+    const Eigen::Vector3d from = a.kind == AttachmentKind::kOperator ? a.force.at(now) : Eigen::Vector3d::Zero();
+    a.kind = AttachmentKind::kOperator;
+    a.force.kind = Profile::Kind::kRampTo;
+    a.force.from = from;
+    a.force.value = f;
+    a.force.start_s = now;
+    a.force.duration_s = ramp;
+  } else if (name == "operator.grasp") {
+    if (values.size() != 1 || !(values[0] >= 0.0 && values[0] <= 1.0)) return {false, "operator.grasp takes one value in 0..1"};
+    a.grasp = values[0];
+  } else {
+    return {false, "the simulated device accepts operator.push, operator.release and operator.grasp"};
+  }
+  requested_ = a;
+  request_attachment(a);
+  return {true, std::string(name) + " accepted"};
+}
+
 ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
   if (attachment_requests_.take(pending_)) attachment_.select(pending_);
+  simulated_now_ns_.store(cycle.time_ns, std::memory_order_relaxed);
   // Advance to the cycle's time; a gap of more than 10 periods (a stalled loop) is skipped, which bounds
   // the time read() takes.
   const std::int64_t max_steps = 10 * std::max<std::int64_t>(1, cycle.period_ns / substep_ns_);

@@ -1,4 +1,5 @@
 #pragma once
+#include <atomic>
 // The simulated device plugin ("sim"): any serial URDF chain with drive data, ViSHaRD3/6/10 included.
 // Physics in substeps well above the control rate (FlexibleChain), drives (current loop, saturation, thermal
 // limit, speed monitoring), sensing as on the hardware (motor encoders, force/torque sensor), and what is
@@ -40,6 +41,10 @@ class SimDevice final : public Device {
   ReturnCode read(const CycleTime& cycle, DeviceState& state) noexcept override;
   ReturnCode write(const CycleTime& cycle, const JointCommand& command) noexcept override;
   void deactivate() override;
+  // "operator.push" {fx, fy, fz[, ramp_s = 0.5]}: the simulated operator takes the handle (if it was not
+  // holding it) and ramps its voluntary force to that value; "operator.release": lets go of the handle;
+  // "operator.grasp" {0..1}: loose .. firm.
+  RuntimeReply handle_request(std::string_view name, const std::vector<double>& values) override;
 
   // Any thread: replaces what is attached to the handle from the next substep on.
   void request_attachment(const AttachmentSettings& settings) { attachment_requests_.publish(settings); }
@@ -59,6 +64,8 @@ class SimDevice final : public Device {
   AttachmentSettings initial_attachment_;
   realtime::LatestValue<AttachmentSettings> attachment_requests_;
   AttachmentSettings pending_;
+  AttachmentSettings requested_;              // the last attachment asked for (request thread)
+  std::atomic<std::int64_t> simulated_now_ns_{0};  // for requests: when "now" is
   GroundTruth truth_;
   JointVector initial_position_, command_, counts_per_rev_, speed_limits_;
   int handle_frame_ = -1, sensor_frame_ = -1;

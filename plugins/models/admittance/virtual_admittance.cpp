@@ -35,17 +35,14 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
       .default_value(50.0);
   s.boolean("motion_based", "walls act on the measured handle motion (motion-based impedance control)")
       .default_value(false);
-  s.boolean("coupling", "virtual coupling to the rendering engine's proxy pose, and its wrench applied")
-      .default_value(false);
+  s.boolean("coupling", "take the rendering engine's input: virtual coupling to its proxy pose, its wrench (and "
+                        "local model), or its desired motion").default_value(false);
   s.real("coupling_stiffness_n_per_m", "coupling spring").unit("N/m").minimum(0.0).default_value(2000.0);
   s.real("coupling_damping_n_s_per_m", "coupling damper").unit("N s/m").minimum(0.0).default_value(20.0);
   s.real("coupling_rotational_stiffness_n_m_per_rad", "rotational coupling spring").unit("N m/rad").minimum(0.0)
       .default_value(20.0);
   s.real("coupling_rotational_damping_n_m_s", "rotational coupling damper").unit("N m s/rad").minimum(0.0)
       .default_value(0.2);
-  s.real("coupling_timeout_s", "engine input older than this starts to fade out").unit("s").greater_than(0.0)
-      .default_value(0.1);
-  s.real("coupling_fade_s", "fade-out time of stale engine input").unit("s").greater_than(0.0).default_value(0.2);
   s.real("workspace_radius_m", "workspace spring: beyond this distance from the start position a spring pulls "
                                "the body back; 0: off").unit("m").minimum(0.0).default_value(0.0);
   s.real("workspace_stiffness_n_per_m", "stiffness of the workspace spring").unit("N/m").minimum(0.0)
@@ -99,20 +96,15 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
   coupling_b_ = p.real("coupling_damping_n_s_per_m");
   coupling_kr_ = p.real("coupling_rotational_stiffness_n_m_per_rad");
   coupling_br_ = p.real("coupling_rotational_damping_n_m_s");
-  coupling_timeout_s_ = p.real("coupling_timeout_s");
-  coupling_fade_s_ = p.real("coupling_fade_s");
 }
 
-Eigen::Matrix<double, 6, 1> VirtualAdmittance::engine_wrench(const EngineInput& e, std::int64_t now_ns,
-                                                             const Eigen::Vector3d& position,
+Eigen::Matrix<double, 6, 1> VirtualAdmittance::engine_wrench(const EngineInput& e, const Eigen::Vector3d& position,
                                                              const Eigen::Quaterniond& orientation,
                                                              const Eigen::Vector3d& velocity,
                                                              const Eigen::Vector3d& angular_velocity) const noexcept {
   Eigen::Matrix<double, 6, 1> w = Eigen::Matrix<double, 6, 1>::Zero();
-  if (!coupling_ || (!e.has_proxy && !e.has_wrench)) return w;
-  const double age = static_cast<double>(now_ns - e.received_ns) * 1e-9;
-  const double weight = std::clamp(1.0 - (age - coupling_timeout_s_) / coupling_fade_s_, 0.0, 1.0);
-  if (weight <= 0.0) return w;
+  // The server fades stale input out (EngineInput::weight); motion input is followed, not felt as a wrench.
+  if (!coupling_ || e.weight <= 0.0 || (!e.has_proxy && !e.has_wrench)) return w;
   if (e.has_proxy) {
     w.head<3>() = coupling_k_ * (e.proxy_pose.position - position) + coupling_b_ * (e.proxy_twist.linear - velocity);
     if (rotation_) {
@@ -123,8 +115,36 @@ Eigen::Matrix<double, 6, 1> VirtualAdmittance::engine_wrench(const EngineInput& 
   if (e.has_wrench) {
     w.head<3>() += e.wrench.force;
     if (rotation_) w.tail<3>() += e.wrench.torque;
+    if (e.has_local_model) {
+      // The engine's linearisation about its anchor, evaluated at loop rate between the engine's updates.
+      w.head<3>() += e.stiffness.head<3>().cwiseProduct(e.anchor.position - position) -
+                     e.damping.head<3>().cwiseProduct(velocity);
+      if (rotation_) {
+        const Eigen::AngleAxisd error(e.anchor.orientation.normalized() * orientation.conjugate());
+        w.tail<3>() += e.stiffness.tail<3>().cwiseProduct(error.angle() * error.axis()) -
+                       e.damping.tail<3>().cwiseProduct(angular_velocity);
+      }
+    }
   }
-  return weight * w;
+  return e.weight * w;
+}
+
+void VirtualAdmittance::follow_engine_motion(const EngineInput& e, std::int64_t now_ns) noexcept {
+  // An admittance-type engine: the virtual body is the engine's desired motion, extrapolated with its twist
+  // since it arrived. While the input fades, the body blends back to its own dynamics from where it is.
+  const double since = std::max(0.0, static_cast<double>(now_ns - e.received_ns) * 1e-9);
+  const Eigen::Vector3d desired = e.motion_pose.position + since * e.motion_twist.linear;
+  const double a = e.weight;
+  position_ = (1.0 - a) * position_ + a * desired;
+  velocity_ = clamp_norm((1.0 - a) * velocity_ + a * e.motion_twist.linear, max_velocity_);
+  if (rotation_) {
+    const double angle = e.motion_twist.angular.norm() * since;
+    Eigen::Quaterniond q = e.motion_pose.orientation.normalized();
+    if (angle > 0.0) q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, e.motion_twist.angular.normalized())) * q;
+    orientation_ = orientation_.slerp(a, q).normalized();
+    const Eigen::Vector3d body = orientation_.conjugate() * e.motion_twist.angular;
+    body_angular_velocity_ = clamp_norm((1.0 - a) * body_angular_velocity_ + a * body, max_angular_velocity_);
+  }
 }
 
 Eigen::Vector3d VirtualAdmittance::wall_force(const Eigen::Vector3d& position,
@@ -195,10 +215,11 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
   const ChainState& c = *input.chain;
   const double dt = period_s_;
   const Eigen::Vector3d world_angular = orientation_ * body_angular_velocity_;
+  const EngineInput& e = *input.engine;
   const Eigen::Matrix<double, 6, 1> engine =
-      motion_based_ ? engine_wrench(*input.engine, cycle.time_ns, c.handle_pose.position, c.handle_pose.orientation,
-                                    c.handle_twist.linear, c.handle_twist.angular)
-                    : engine_wrench(*input.engine, cycle.time_ns, position_, orientation_, velocity_, world_angular);
+      motion_based_ ? engine_wrench(e, c.handle_pose.position, c.handle_pose.orientation, c.handle_twist.linear,
+                                    c.handle_twist.angular)
+                    : engine_wrench(e, position_, orientation_, velocity_, world_angular);
   const Eigen::Vector3d environment = engine.head<3>() + (motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
                                                                         : wall_force(position_, velocity_));
   const Eigen::Vector3d force = c.operator_wrench.force + environment;
@@ -221,6 +242,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
     }
     angular_acceleration_world = orientation_ * wd;
   }
+  if (coupling_ && e.has_motion && e.weight > 0.0) follow_engine_motion(e, cycle.time_ns);
   Eigen::Vector3d commanded_acceleration = acceleration;
   if (c.output_saturated && limit_tracking_error(c)) {
     // On the limit: no acceleration away from the handle either (the inner loop gets a consistent target).

@@ -11,8 +11,10 @@
 // (workspace_radius_m) pulls the body back towards a sphere around its start position, a soft workspace limit.
 // Virtual coupling (spec section 2, [3.5]): with coupling on, an impedance-type rendering engine's proxy pose
 // (EngineInput) pulls the virtual body through a spring-damper Z_d1 in series with the admittance Z_d2; a
-// wrench the engine sends is applied as it is. Engine input older than coupling_timeout_s fades out over
-// coupling_fade_s (a stalled or disconnected engine lets go of the device smoothly instead of holding it).
+// wrench the engine sends is applied as it is, plus its local linear model (stiffness and damping about an
+// anchor) evaluated every cycle; an admittance-type engine's desired motion replaces the body's own. All of it
+// is scaled by EngineInput::weight, which the server fades to zero when the engine misses its deadline (a
+// stalled or disconnected engine lets go of the device smoothly instead of holding it).
 // The wrench of walls, coupling and engine is reported as the target's environment wrench.
 // Anti-windup: while the drives saturate (ChainState::output_saturated), the virtual body would run away from
 // the device and the inner loop would "wind up" its error, lunging after the body once free. With
@@ -41,10 +43,11 @@ class VirtualAdmittance final : public VirtualModel {
   };
   static constexpr int kMaxWalls = 8;
 
+  void follow_engine_motion(const EngineInput& engine, std::int64_t now_ns) noexcept;
   Eigen::Vector3d wall_force(const Eigen::Vector3d& position, const Eigen::Vector3d& velocity) const noexcept;
   // Coupling and engine wrench [force; torque] (world) on a body at (position, orientation) moving with
-  // (velocity, angular velocity), at loop time now_ns.
-  Eigen::Matrix<double, 6, 1> engine_wrench(const EngineInput& engine, std::int64_t now_ns, const Eigen::Vector3d& position,
+  // (velocity, angular velocity), scaled by the engine input's weight.
+  Eigen::Matrix<double, 6, 1> engine_wrench(const EngineInput& engine, const Eigen::Vector3d& position,
                                             const Eigen::Quaterniond& orientation, const Eigen::Vector3d& velocity,
                                             const Eigen::Vector3d& angular_velocity) const noexcept;
 
@@ -59,7 +62,6 @@ class VirtualAdmittance final : public VirtualModel {
   std::array<Eigen::Vector3d, kMaxWalls> configured_wall_points_{};
   bool coupling_ = false;
   double coupling_k_ = 2000.0, coupling_b_ = 20.0, coupling_kr_ = 20.0, coupling_br_ = 0.2;
-  double coupling_timeout_s_ = 0.1, coupling_fade_s_ = 0.2;
   double max_velocity_ = 1.0, max_angular_velocity_ = 5.0;
   double max_tracking_error_ = 0.0, max_tracking_angle_ = 0.0;  // 0: no anti-windup limit
   // true when the translation was limited.

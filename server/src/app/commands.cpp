@@ -10,6 +10,7 @@
 #include "app/signals.hpp"
 #include "config/config_error.hpp"
 #include "config/session_config.hpp"
+#include "dds/dds_bridge.hpp"
 #include "executor/executor.hpp"
 #include "recorder/recorder.hpp"
 #include "session/session_builder.hpp"
@@ -31,6 +32,10 @@ std::optional<LoadedSession> load(const std::string& file, const RunOptions* ove
     if (overrides != nullptr) {
       if (overrides->duration_s) s.config.server.duration_s = *overrides->duration_s;
       if (overrides->clock) s.config.server.clock = *overrides->clock == "lockstep" ? ClockMode::lockstep : ClockMode::realtime;
+      if (overrides->dds_domain) {
+        s.config.dds.enabled = true;
+        s.config.dds.domain_id = *overrides->dds_domain;
+      }
     }
     s.loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(s.config.server.plugin_paths));
     s.sessions = build_sessions(s.config, *s.loader);
@@ -100,6 +105,21 @@ int run_session(const RunOptions& options) {
   settings.cpu = server.cpu;
   Executor executor(settings, sessions, recorder.get());
 
+  std::unique_ptr<DdsBridge> bridge;
+  if (s->config.dds.enabled) {
+    try {
+      bridge = std::make_unique<DdsBridge>(s->config.dds, server.rate_hz, sessions);
+    } catch (const std::exception& e) {
+      spdlog::error("DDS interface: {}", e.what());
+      return kExitRuntimeError;
+    }
+    bridge->set_loop_statistics(&executor.live());
+    executor.set_cycle_listener(bridge.get());
+    bridge->start();
+    spdlog::info("DDS interface on domain {} ({})", s->config.dds.domain_id,
+                 s->config.dds.cyclone_config.empty() ? std::string("loopback only") : s->config.dds.cyclone_config.string());
+  }
+
   const std::atomic<bool>& stop = install_stop_signal_handlers();
   spdlog::info("session {}: {} device(s) at {} Hz, {} clock{}", options.config_file, sessions.size(), server.rate_hz,
                lockstep ? "lockstep" : "realtime",
@@ -132,9 +152,27 @@ int run_session(const RunOptions& options) {
   }
   for (const auto& w : result.warnings) spdlog::warn("{}", w);
   if (recorder) recorder->finish();
+  if (bridge) {
+    bridge->stop();
+    for (std::size_t i = 0; i < sessions.size(); ++i) {
+      spdlog::info("{}: engine commands accepted {}, rejected {}, deadline misses {}", sessions[i]->name(),
+                   bridge->commands_accepted(i), bridge->commands_rejected(i), bridge->deadline_misses(i));
+    }
+    const RoundTripStatistics rt = bridge->round_trip();
+    if (rt.count > 0)
+      spdlog::info("round trip state -> engine -> command accepted: {} samples, p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us",
+                   rt.count, rt.p50_us, rt.p99_us, rt.max_us);
+  }
 
   SessionReport report{&s->config, &result, &s->sessions, recorder ? recorder->written() : 0,
                        recorder ? recorder->dropped() : 0};
+  if (bridge) {
+    const RoundTripStatistics rt = bridge->round_trip();
+    report.has_round_trip = rt.count > 0;
+    report.round_trip_count = rt.count;
+    report.round_trip_p50_us = rt.p50_us;
+    report.round_trip_p99_us = rt.p99_us;
+  }
   for (const auto& line : report_lines(report)) spdlog::info("{}", line);
   if (recorder) spdlog::info("recorded {} device-cycles to {} ({} dropped)", recorder->written(), options.record_csv, recorder->dropped());
   if (!options.stats_json.empty()) {

@@ -13,6 +13,7 @@ struct RunOptions {
   std::optional<std::string> clock;   // overrides server.clock
   std::string stats_json;             // write the loop statistics here
   std::string record_csv;             // record every cycle here
+  std::optional<int> dds_domain;      // turns the DDS interface on, on this domain (overrides dds.domain_id)
 };
 
 inline constexpr int kExitOk = 0;

@@ -30,6 +30,9 @@ int main(int argc, char** argv) {
                         ->check(CLI::IsMember({"realtime", "lockstep"}));
   app.add_option("--stats-json", run.stats_json, "write loop statistics (histograms, percentiles) to this JSON file");
   app.add_option("--record", run.record_csv, "record every cycle of every device to this CSV file");
+  int dds_domain = 0;
+  auto* dds_opt = app.add_option("--dds-domain", dds_domain, "run the DDS interface on this domain (loopback-only "
+                                 "configuration unless dds.cyclone_config says otherwise)")->check(CLI::Range(0, 230));
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
   check_opt->excludes(config_opt);
@@ -41,6 +44,7 @@ int main(int argc, char** argv) {
 
   if (*duration_opt) run.duration_s = duration;
   if (*clock_opt) run.clock = clock;
+  if (*dds_opt) run.dds_domain = dds_domain;
 
   if (describe_server) return describe_config();
   if (!describe_name.empty()) return describe_plugin(describe_name, run.config_file);

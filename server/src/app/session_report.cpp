@@ -16,6 +16,9 @@ std::string report_json(const SessionReport& r) {
   out += "  \"wakeup_latency_us\": " + histogram_json(s.wakeup_latency) + ",\n";
   out += "  \"compute_time_us\": " + histogram_json(s.compute_time) + ",\n";
   out += fmt::format("  \"recorder\": {{\"records\": {}, \"dropped\": {}}},\n", r.records_written, r.records_dropped);
+  if (r.has_round_trip)
+    out += fmt::format("  \"dds_round_trip_us\": {{\"count\": {}, \"p50\": {:.3f}, \"p99\": {:.3f}}},\n", r.round_trip_count,
+                       r.round_trip_p50_us, r.round_trip_p99_us);
   out += "  \"devices\": [";
   for (std::size_t i = 0; i < r.sessions->size(); ++i) {
     const DeviceSession& d = *(*r.sessions)[i];

@@ -69,7 +69,7 @@ void read_schemes(MappingReader& reader, DeviceConfig& device) {
 }
 
 bool valid_device_name(const std::string& name) {
-  if (name.empty() || name.size() > 64) return false;
+  if (name.empty() || name.size() > 31) return false;  // the DDS key holds 31 characters
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) return false;
   return true;
@@ -103,7 +103,79 @@ ServerSettings read_server(const YAML::Node& node, const std::string& file, cons
   return settings;
 }
 
+DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std::filesystem::path& base) {
+  DdsSettings d;
+  if (!node.IsDefined()) return d;
+  d.enabled = true;
+  if (node.IsNull()) return d;  // `dds:` alone: on with the defaults
+  if (!node.IsMap()) throw ConfigError(file, line_of(node), "dds", "expected a mapping of DDS settings");
+  const Parameters p = read_parameters(node, dds_settings_schema(), file, "dds", line_of(node), {});
+  d.enabled = p.boolean("enabled");
+  d.domain_id = static_cast<int>(p.integer("domain_id"));
+  if (const std::string c = p.string("cyclone_config"); !c.empty()) {
+    const std::filesystem::path cp = c;
+    d.cyclone_config = cp.is_absolute() ? cp : base / cp;
+    if (!std::filesystem::exists(d.cyclone_config))
+      throw ConfigError(file, line_of(node["cyclone_config"]), "dds.cyclone_config", "no such file: " + d.cyclone_config.string());
+  }
+  d.state_rate_hz = p.real("state_rate_hz");
+  d.telemetry_rate_hz = p.real("telemetry_rate_hz");
+  d.max_sample_age_s = p.real("max_sample_age_s");
+  d.max_force_n = p.real("max_force_n");
+  d.max_torque_nm = p.real("max_torque_nm");
+  d.max_stiffness_n_per_m = p.real("max_stiffness_n_per_m");
+  d.max_rotational_stiffness_n_m_per_rad = p.real("max_rotational_stiffness_n_m_per_rad");
+  d.max_damping_n_s_per_m = p.real("max_damping_n_s_per_m");
+  d.max_rotational_damping_n_m_s = p.real("max_rotational_damping_n_m_s");
+  d.max_distance_m = p.real("max_distance_m");
+  d.max_speed_m_s = p.real("max_speed_m_s");
+  d.max_angular_speed_rad_s = p.real("max_angular_speed_rad_s");
+  d.lockstep_sync = p.boolean("lockstep_sync");
+  d.lockstep_wait_s = p.real("lockstep_wait_s");
+  d.lockstep_start_wait_s = p.real("lockstep_start_wait_s");
+  return d;
+}
+
 }  // namespace
+
+ParameterSchema dds_settings_schema() {
+  ParameterSchema s;
+  const DdsSettings d;
+  s.boolean("enabled", "run the DDS interface").default_value(true);
+  s.integer("domain_id", "DDS domain").minimum(0).maximum(230).default_value(std::int64_t{0});
+  s.string("cyclone_config", "Cyclone DDS XML file; empty: the built-in loopback-only configuration "
+                             "(config/dds/cyclonedds-loopback.xml)").default_value(std::string());
+  s.real("state_rate_hz", "device state publication rate; 0: every loop cycle").unit("Hz").minimum(0.0)
+      .default_value(d.state_rate_hz);
+  s.real("telemetry_rate_hz", "telemetry publication rate").unit("Hz").greater_than(0.0).maximum(100.0)
+      .default_value(d.telemetry_rate_hz);
+  s.real("max_sample_age_s", "engine commands older than this by their source timestamp are rejected").unit("s")
+      .greater_than(0.0).default_value(d.max_sample_age_s);
+  s.real("max_force_n", "largest accepted engine force").unit("N").greater_than(0.0).default_value(d.max_force_n);
+  s.real("max_torque_nm", "largest accepted engine torque").unit("N m").greater_than(0.0).default_value(d.max_torque_nm);
+  s.real("max_stiffness_n_per_m", "largest accepted local-model stiffness").unit("N/m").greater_than(0.0)
+      .default_value(d.max_stiffness_n_per_m);
+  s.real("max_rotational_stiffness_n_m_per_rad", "largest accepted local-model rotational stiffness").unit("N m/rad")
+      .greater_than(0.0).default_value(d.max_rotational_stiffness_n_m_per_rad);
+  s.real("max_damping_n_s_per_m", "largest accepted local-model damping").unit("N s/m").greater_than(0.0)
+      .default_value(d.max_damping_n_s_per_m);
+  s.real("max_rotational_damping_n_m_s", "largest accepted local-model rotational damping").unit("N m s/rad")
+      .greater_than(0.0).default_value(d.max_rotational_damping_n_m_s);
+  s.real("max_distance_m", "engine poses must lie within this distance of the device base").unit("m")
+      .greater_than(0.0).default_value(d.max_distance_m);
+  s.real("max_speed_m_s", "largest accepted engine twist, linear").unit("m/s").greater_than(0.0)
+      .default_value(d.max_speed_m_s);
+  s.real("max_angular_speed_rad_s", "largest accepted engine twist, angular").unit("rad/s").greater_than(0.0)
+      .default_value(d.max_angular_speed_rad_s);
+  s.boolean("lockstep_sync", "with the lockstep clock, each cycle waits for the owning engine's answer to the "
+                             "previous state (deterministic end-to-end runs)").default_value(d.lockstep_sync);
+  s.real("lockstep_wait_s", "longest wait (wall time) for an engine in lockstep before the loop stops waiting for "
+                            "it").unit("s").greater_than(0.0).default_value(d.lockstep_wait_s);
+  s.real("lockstep_start_wait_s", "with the lockstep clock, the first cycle waits up to this long (wall time) for an "
+                                  "engine to claim a device and answer its state; 0: no wait").unit("s").minimum(0.0)
+      .maximum(600.0).default_value(d.lockstep_start_wait_s);
+  return s;
+}
 
 ParameterSchema server_settings_schema() {
   ParameterSchema s;
@@ -138,8 +210,9 @@ SessionConfig load_session_config(const std::filesystem::path& path) {
 
   SessionConfig config;
   config.file = path;
-  MappingReader top(root, "", file, {"server", "devices"});
+  MappingReader top(root, "", file, {"server", "dds", "devices"});
   config.server = read_server(top.optional("server"), file, path.parent_path());
+  config.dds = read_dds(top.optional("dds"), file, path.parent_path());
 
   const YAML::Node devices = top.required("devices");
   if (!devices.IsSequence() || devices.size() == 0)
@@ -149,12 +222,13 @@ SessionConfig load_session_config(const std::filesystem::path& path) {
     const std::string key_path = "devices[" + std::to_string(i) + "]";
     MappingReader reader(devices[i], key_path, file,
                          {"name", "device", "virtual_model", "inverse_kinematics", "controller", "scheme", "schemes",
-                          "switch_ramp_s"});
+                          "switch_ramp_s", "engine_deadline_s", "engine_fade_s",
+                          "engine_ramp_in_s"});
     DeviceConfig device;
     device.name = reader.required_string("name");
     if (!valid_device_name(device.name))
       throw ConfigError(file, line_of(devices[i]["name"]), reader.path_of("name"),
-                        "device name '" + device.name + "' must be 1-64 characters of letters, digits, '_' and '-'");
+                        "device name '" + device.name + "' must be 1-31 characters of letters, digits, '_' and '-'");
     if (!names.insert(device.name).second)
       throw ConfigError(file, line_of(devices[i]["name"]), reader.path_of("name"), "device name '" + device.name + "' is used twice");
     device.device = read_plugin(reader.required("device"), reader.path_of("device"), file);
@@ -163,6 +237,12 @@ SessionConfig load_session_config(const std::filesystem::path& path) {
     device.controller = read_plugin(reader.required("controller"), reader.path_of("controller"), file);
     if (reader.optional("scheme").IsDefined()) device.scheme = reader.required_string("scheme");
     read_schemes(reader, device);
+    if (const YAML::Node n = reader.optional("engine_deadline_s"); n.IsDefined())
+      device.engine_deadline_s = read_scalar_real(n, reader.path_of("engine_deadline_s"), file, 0.001, 10.0);
+    if (const YAML::Node n = reader.optional("engine_fade_s"); n.IsDefined())
+      device.engine_fade_s = read_scalar_real(n, reader.path_of("engine_fade_s"), file, 0.0, 10.0);
+    if (const YAML::Node n = reader.optional("engine_ramp_in_s"); n.IsDefined())
+      device.engine_ramp_in_s = read_scalar_real(n, reader.path_of("engine_ramp_in_s"), file, 0.0, 10.0);
     config.devices.push_back(std::move(device));
   }
   return config;

@@ -27,6 +27,28 @@ struct ServerSettings {
   std::vector<std::filesystem::path> plugin_paths;  // resolved against the session file's folder
 };
 
+// The `dds` section: the DDS interface (docs/dds-interface.md). Absent: no DDS participant is created.
+struct DdsSettings {
+  bool enabled = false;
+  int domain_id = 0;
+  std::filesystem::path cyclone_config;  // empty: the built-in loopback configuration
+  double state_rate_hz = 0.0;            // 0: every cycle
+  double telemetry_rate_hz = 10.0;
+  double max_sample_age_s = 0.1;         // commands older than this (source timestamp) are rejected
+  double max_force_n = 300.0;            // bounds of accepted engine commands
+  double max_torque_nm = 30.0;
+  double max_stiffness_n_per_m = 20000.0;
+  double max_rotational_stiffness_n_m_per_rad = 200.0;
+  double max_damping_n_s_per_m = 500.0;
+  double max_rotational_damping_n_m_s = 5.0;
+  double max_distance_m = 2.0;           // proxy, anchor and motion poses within this distance of the device base
+  double max_speed_m_s = 5.0;
+  double max_angular_speed_rad_s = 20.0;
+  bool lockstep_sync = true;             // lockstep clock: each cycle waits for the owning engine's answer
+  double lockstep_wait_s = 0.5;          // ... at most this long (wall time), then stops waiting for that engine
+  double lockstep_start_wait_s = 0.0;    // lockstep: the first cycle waits this long (wall) for an engine to answer
+};
+
 struct PluginConfig {
   std::string plugin;
   std::optional<std::string> library;
@@ -55,16 +77,22 @@ struct DeviceConfig {
   // Alternatives the device can switch to at run time (`schemes` list), configured at start-up.
   std::vector<SchemeConfig> alternatives;
   double switch_ramp_s = 0.1;  // a torque difference at a switch fades out over this time
+  double engine_deadline_s = 0.05;  // engine input older than this fades out ...
+  double engine_fade_s = 0.02;      // ... over this time
+  double engine_ramp_in_s = 0.1;    // engine input starting after a silence ramps in over this time
 };
 
 struct SessionConfig {
   std::filesystem::path file;
   ServerSettings server;
+  DdsSettings dds;
   std::vector<DeviceConfig> devices;
 };
 
 // The schema of the `server` section: validates it and documents it (hapticd --describe-config).
 ParameterSchema server_settings_schema();
+// The schema of the `dds` section.
+ParameterSchema dds_settings_schema();
 
 // Reads and validates a session file. Throws ConfigError naming file, line and key.
 SessionConfig load_session_config(const std::filesystem::path& file);

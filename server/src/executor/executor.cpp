@@ -1,5 +1,6 @@
 #include "executor/executor.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -27,6 +28,8 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
   std::int64_t deadline_ns = start_ns;  // cycle 0 runs at once
   std::uint64_t ramp_start = 0;
   bool ramping = false;
+  const auto window_cycles = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(settings_.rate_hz)));
+  std::int64_t window_latency_ns = 0, window_compute_ns = 0;
 
   for (;;) {
     clock.sleep_until(deadline_ns);
@@ -50,9 +53,19 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
     }
 
     const std::int64_t compute_end_ns = monotonic_now_ns();
+    if (listener_ != nullptr) listener_->after_cycle(index, clock.is_virtual());
     const std::int64_t next_deadline_ns = deadline_ns + period_ns_;
     const bool overrun = !clock.is_virtual() && clock.now_ns() > next_deadline_ns;
     stats.record(wake_ns - deadline_ns, compute_end_ns - compute_start_ns, overrun);
+    window_latency_ns = std::max(window_latency_ns, wake_ns - deadline_ns);
+    window_compute_ns = std::max(window_compute_ns, compute_end_ns - compute_start_ns);
+    live_.cycles.store(stats.cycles, std::memory_order_relaxed);
+    live_.overruns.store(stats.overruns, std::memory_order_relaxed);
+    if ((index + 1) % window_cycles == 0) {
+      live_.window_latency_max_ns.store(window_latency_ns, std::memory_order_relaxed);
+      live_.window_compute_max_ns.store(window_compute_ns, std::memory_order_relaxed);
+      window_latency_ns = window_compute_ns = 0;
+    }
 
     if (ramping && index - ramp_start + 1 >= ramp_cycles) {
       result.periods = index + 1;

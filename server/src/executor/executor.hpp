@@ -17,6 +17,14 @@ namespace hapticd::server {
 class DeviceSession;
 class Recorder;
 
+// Told by the loop thread after every cycle, once all devices have run (the DDS bridge: wake the publisher;
+// in lockstep, wait for the engine's answer). Real-time safe by contract in realtime mode.
+class CycleListener {
+ public:
+  virtual ~CycleListener() = default;
+  virtual void after_cycle(std::uint64_t index, bool lockstep) noexcept = 0;
+};
+
 struct ExecutorSettings {
   double rate_hz = 2000.0;
   bool lockstep = false;
@@ -36,6 +44,15 @@ struct ExecutorResult {
   double wall_time_s = 0.0;
 };
 
+// The loop's health while it runs, readable from any thread (the DDS bridge): counts since the start and the
+// worst times of the last complete one-second window. Written by the loop with relaxed atomics.
+struct LiveLoopStatistics {
+  std::atomic<std::uint64_t> cycles{0};
+  std::atomic<std::uint64_t> overruns{0};
+  std::atomic<std::int64_t> window_latency_max_ns{0};
+  std::atomic<std::int64_t> window_compute_max_ns{0};
+};
+
 class Executor {
  public:
   Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder);
@@ -46,6 +63,9 @@ class Executor {
   ExecutorResult run(const std::atomic<bool>& stop_requested, const std::function<void()>& monitor = {});
 
   [[nodiscard]] std::int64_t period_ns() const noexcept { return period_ns_; }
+  // Before run().
+  void set_cycle_listener(CycleListener* listener) noexcept { listener_ = listener; }
+  [[nodiscard]] const LiveLoopStatistics& live() const noexcept { return live_; }
 
  private:
   void loop(LoopClock& clock, const std::atomic<bool>& stop_requested, ExecutorResult& result) noexcept;
@@ -53,6 +73,8 @@ class Executor {
   ExecutorSettings settings_;
   std::vector<DeviceSession*> sessions_;
   Recorder* recorder_;
+  CycleListener* listener_ = nullptr;
+  LiveLoopStatistics live_;
   std::int64_t period_ns_;
 };
 

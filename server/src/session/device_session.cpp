@@ -22,6 +22,7 @@ std::string_view to_string(DeviceFault fault) noexcept {
     case DeviceFault::inverse_kinematics: return "inverse kinematics update failed";
     case DeviceFault::controller: return "controller update failed";
     case DeviceFault::non_finite_output: return "a plugin produced a non-finite output";
+    case DeviceFault::emergency_stop: return "emergency stop";
   }
   return "unknown";
 }
@@ -106,6 +107,17 @@ void DeviceSession::service() {
   }
 }
 
+RuntimeReply DeviceSession::handle_request(std::string_view stage, std::string_view name, const std::vector<double>& values) {
+  if (stage == "device") return chain_.device->handle_request(name, values);
+  SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_acquire))];
+  if (stage == "controller") return scheme.controller->handle_request(name, values);
+  if (stage == "virtual_model") {
+    if (!scheme.virtual_model) return {false, "scheme '" + scheme.name + "' has no virtual model"};
+    return (*scheme.virtual_model)->handle_request(name, values);
+  }
+  return {false, "unknown stage '" + std::string(stage) + "' (device, virtual_model or controller)"};
+}
+
 void DeviceSession::switch_scheme_if_requested(const CycleTime& cycle) noexcept {
   const int wanted = requested_.load(std::memory_order_acquire);
   const int current = active_.load(std::memory_order_relaxed);
@@ -173,10 +185,7 @@ DeviceFault DeviceSession::run_chain(const CycleTime& cycle) noexcept {
     update_chain_state(false);
     switch_scheme_if_requested(cycle);
   }
-  if (engine_inbox_.take(engine_incoming_)) {
-    engine_ = engine_incoming_;
-    engine_.received_ns = cycle.time_ns;
-  }
+  take_engine_input(cycle);
   SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_relaxed))];
   if (scheme.virtual_model) {
     if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &chain_state_, &engine_}, task_) != ReturnCode::ok)
@@ -197,6 +206,53 @@ DeviceFault DeviceSession::run_chain(const CycleTime& cycle) noexcept {
   return DeviceFault::none;
 }
 
+void DeviceSession::take_engine_input(const CycleTime& cycle) noexcept {
+  if (engine_inbox_.take(engine_incoming_)) {
+    engine_ = engine_incoming_;
+    engine_.received_ns = cycle.time_ns;
+    engine_seen_ = true;
+  }
+  if (!engine_seen_) {
+    engine_.weight = engine_weight_ = 0.0;
+    return;
+  }
+  // Fresh until the deadline, then a linear fade to zero (the safety deadline of docs/dds-interface.md). Input
+  // that (re)starts after a silence is ramped in over engine_ramp_in_s (soft start: no force step when an
+  // engine connects or reconnects).
+  const double age = static_cast<double>(cycle.time_ns - engine_.received_ns) * 1e-9;
+  const double late = age - chain_.engine_deadline_s;
+  const double target = late <= 0.0 ? 1.0 : std::clamp(1.0 - late / std::max(chain_.engine_fade_s, 1e-9), 0.0, 1.0);
+  const double step = static_cast<double>(cycle.period_ns) * 1e-9 / std::max(chain_.engine_ramp_in_s, 1e-9);
+  engine_.weight = target > engine_weight_ ? std::min(target, engine_weight_ + step) : target;
+  engine_weight_ = engine_.weight;
+  engine_late_ = late > 0.0;
+}
+
+void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept {
+  if (snapshot_interval_ == 0 || cycle.index % snapshot_interval_ != 0) return;
+  DeviceSnapshot& s = snapshot_;
+  s.cycle = cycle.index;
+  s.time_ns = cycle.time_ns;
+  s.handle_pose = chain_state_.handle_pose;
+  s.handle_twist = chain_state_.handle_twist;
+  s.operator_wrench = chain_state_.operator_wrench;
+  s.environment_wrench = task_.wrench;
+  s.target_pose = task_.pose;
+  s.position = state_.joints.position;
+  s.velocity = chain_state_.velocity;
+  s.torque = command_.torque_nm;
+  s.fault = fault();
+  s.estop = s.fault == DeviceFault::emergency_stop;
+  s.stopping = torque_scale < 1.0;
+  s.saturated = chain_state_.output_saturated;
+  s.switching = switch_ramp_left_ != 0;
+  s.scheme = active_.load(std::memory_order_relaxed);
+  s.engine_weight = engine_.weight;
+  s.engine_stale = engine_seen_ && engine_late_;
+  s.engine_sequence = engine_.sequence;
+  snapshot_outbox_.publish(s);
+}
+
 void DeviceSession::blend_after_switch() noexcept {
   if (switch_ramp_left_ == 0) return;
   if (switch_ramp_left_ < 0) {  // the new scheme's first command: take the difference to the old one
@@ -208,7 +264,14 @@ void DeviceSession::blend_after_switch() noexcept {
 }
 
 void DeviceSession::cycle(const CycleTime& cycle, double torque_scale) noexcept {
+  cycle_checked(cycle, torque_scale);
+  publish_snapshot(cycle, torque_scale);
+}
+
+void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale) noexcept {
   const ReturnCode read = chain_.device->read(cycle, state_);
+  if (fault() == DeviceFault::none && estop_requested_.load(std::memory_order_acquire))
+    enter_safe_state(DeviceFault::emergency_stop, cycle);
   if (fault() != DeviceFault::none) {
     write_zero_torque(cycle);
     return;

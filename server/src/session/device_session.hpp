@@ -22,6 +22,7 @@
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/realtime/latest_value.hpp"
+#include "session/device_snapshot.hpp"
 #include "hapticd/model/model_data.hpp"
 #include "hapticd/model/robot_model.hpp"
 #include "hapticd/plugin.hpp"
@@ -40,6 +41,7 @@ enum class DeviceFault : std::uint8_t {
   inverse_kinematics,
   controller,
   non_finite_output,
+  emergency_stop,
 };
 
 [[nodiscard]] std::string_view to_string(DeviceFault fault) noexcept;
@@ -55,6 +57,10 @@ struct DeviceChain {
   PluginInstance<Device> device;
   std::vector<SchemeChain> schemes;  // [0]: the scheme the device starts with
   double switch_ramp_s = 0.1;
+  // Engine input older than the deadline fades out over the fade time (EngineInput::weight).
+  double engine_deadline_s = 0.05;
+  double engine_fade_s = 0.02;
+  double engine_ramp_in_s = 0.1;  // engine input starting after a silence ramps in over this time
 };
 
 class DeviceSession {
@@ -83,6 +89,7 @@ class DeviceSession {
   [[nodiscard]] const JointCommand& command() const noexcept { return command_; }
   [[nodiscard]] const TaskTarget& task() const noexcept { return task_; }
   [[nodiscard]] const ChainState& chain_state() const noexcept { return chain_state_; }
+  [[nodiscard]] double engine_weight() const noexcept { return engine_.weight; }
 
   // Any thread: asks for the scheme `name` from the next cycle on; false if there is no such scheme.
   bool request_scheme(std::string_view name);
@@ -93,17 +100,31 @@ class DeviceSession {
   // Any thread (the DDS interface): the rendering engine's newest input; the loop picks it up at the next cycle
   // and stamps it with that cycle's time.
   void publish_engine_input(const EngineInput& input) { engine_inbox_.publish(input); }
+  // Any thread: the newest snapshot the loop published (see set_snapshot_interval); false if none since the
+  // last take. One reader at a time.
+  bool take_snapshot(DeviceSnapshot& out) noexcept { return snapshot_outbox_.take(out); }
+  // Before activate(): the loop publishes a snapshot every `cycles` cycles (0: never, the default).
+  void set_snapshot_interval(std::uint64_t cycles) noexcept { snapshot_interval_ = cycles; }
+  // Any thread: emergency stop. The loop puts the device in its safe state at the next cycle (fault
+  // emergency_stop); the session keeps running for the other devices.
+  void request_emergency_stop() noexcept { estop_requested_.store(true, std::memory_order_release); }
+  // Not real-time safe, not the loop thread: a run-time request to one stage of the chain - "device", or
+  // "virtual_model" / "inverse_kinematics" / "controller" of the running scheme (Plugin::handle_request).
+  RuntimeReply handle_request(std::string_view stage, std::string_view name, const std::vector<double>& values);
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
   // (the executor's monitor does); deactivate() does it too.
   void service();
 
  private:
+  void cycle_checked(const CycleTime& cycle, double torque_scale) noexcept;
   void enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept;
   void write_zero_torque(const CycleTime& cycle) noexcept;
   ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
   void switch_scheme_if_requested(const CycleTime& cycle) noexcept;
   void blend_after_switch() noexcept;
   void update_chain_state(bool first_cycle) noexcept;
+  void take_engine_input(const CycleTime& cycle) noexcept;
+  void publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept;
   DeviceFault run_chain(const CycleTime& cycle) noexcept;
 
   std::string name_;
@@ -128,6 +149,13 @@ class DeviceSession {
   std::atomic<std::uint64_t> refused_switches_{0};
   realtime::LatestValue<EngineInput> engine_inbox_;
   EngineInput engine_incoming_, engine_;
+  bool engine_seen_ = false;
+  double engine_weight_ = 0.0;  // carried over the engine_ copies
+  bool engine_late_ = false;
+  realtime::LatestValue<DeviceSnapshot> snapshot_outbox_;
+  DeviceSnapshot snapshot_;
+  std::uint64_t snapshot_interval_ = 0;
+  std::atomic<bool> estop_requested_{false};
   JointVector switch_offset_;       // torque difference at the last switch, fading out
   std::int64_t switch_ramp_cycles_ = 0;
   std::int64_t switch_ramp_left_ = 0;

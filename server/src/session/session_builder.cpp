@@ -86,6 +86,9 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
     for (const SchemeConfig& alt : dc.alternatives)
       build_scheme(alt.name, alt.virtual_model, alt.inverse_kinematics, alt.controller);
     chain.switch_ramp_s = dc.switch_ramp_s;
+    chain.engine_deadline_s = dc.engine_deadline_s;
+    chain.engine_fade_s = dc.engine_fade_s;
+    chain.engine_ramp_in_s = dc.engine_ramp_in_s;
 
     try {
       sessions.push_back(std::make_unique<DeviceSession>(dc.name, std::move(chain)));

@@ -1,0 +1,198 @@
+// hapticctl: the command-line client of hapticd's DDS interface (docs/dds-interface.md).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <atomic>
+#include <csignal>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+#include "hapticd/client/client.hpp"
+
+namespace {
+
+using hapticd::client::Client;
+using hapticd::client::name_of;
+using hapticd::client::Reply;
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop.store(true); }
+
+const char* mode_name(hapticd_msg_DeviceMode m) {
+  switch (m) {
+    case hapticd_msg_MODE_STARTING: return "starting";
+    case hapticd_msg_MODE_RUNNING: return "running";
+    case hapticd_msg_MODE_STOPPING: return "stopping";
+    case hapticd_msg_MODE_SAFE: return "SAFE";
+    case hapticd_msg_MODE_OFF: return "off";
+  }
+  return "?";
+}
+
+const char* event_name(hapticd_msg_EventKind k) {
+  switch (k) {
+    case hapticd_msg_EVENT_FAULT: return "fault";
+    case hapticd_msg_EVENT_ESTOP: return "e-stop";
+    case hapticd_msg_EVENT_MODE: return "mode";
+    case hapticd_msg_EVENT_SCHEME: return "scheme";
+    case hapticd_msg_EVENT_OWNER: return "owner";
+    case hapticd_msg_EVENT_ENGINE_STALE: return "engine stale";
+    case hapticd_msg_EVENT_ENGINE_REJECTED: return "rejected";
+  }
+  return "?";
+}
+
+int report(const Reply& r) {
+  if (!r.answered) {
+    fmt::print(stderr, "no reply: {}\n", r.message);
+    return 3;
+  }
+  fmt::print("{}: {}\n", r.accepted ? "accepted" : "refused", r.message);
+  return r.accepted ? 0 : 1;
+}
+
+bool run_for(double duration_s) {  // false when interrupted
+  const auto start = std::chrono::steady_clock::now();
+  while (!g_stop.load()) {
+    if (duration_s > 0.0 && std::chrono::steady_clock::now() - start > std::chrono::duration<double>(duration_s)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"hapticctl: list, watch and command hapticd devices over DDS (loopback-only by default)"};
+  app.require_subcommand(1);
+  int domain = 0;
+  std::string id = "hapticctl", cyclone;
+  double timeout = 2.0;
+  app.add_option("--domain", domain, "DDS domain")->check(CLI::Range(0, 230));
+  app.add_option("--id", id, "client id (the owner name of a claim)");
+  app.add_option("--cyclone-config", cyclone, "Cyclone DDS XML (default: the built-in loopback configuration)");
+  app.add_option("--timeout", timeout, "seconds to wait for devices and replies");
+
+  std::string device, scheme, parameter, file, what;
+  std::vector<double> values;
+  double duration = 0.0, rate = 10.0;
+
+  auto* list = app.add_subcommand("list", "list the devices the servers on this domain describe");
+  auto* watch = app.add_subcommand("watch", "print a device's state live, and its events");
+  watch->add_option("device", device, "device name")->required();
+  watch->add_option("--rate", rate, "lines per second")->check(CLI::Range(0.1, 1000.0));
+  watch->add_option("--duration", duration, "stop after this many seconds");
+  auto* claim = app.add_subcommand("claim", "claim a device (as --id)");
+  claim->add_option("device", device)->required();
+  auto* release = app.add_subcommand("release", "release a device claimed as --id");
+  release->add_option("device", device)->required();
+  auto* switch_cmd = app.add_subcommand("scheme", "switch a device's control scheme");
+  switch_cmd->add_option("device", device)->required();
+  switch_cmd->add_option("scheme", scheme)->required();
+  auto* set = app.add_subcommand("set", "set a run-time parameter: <stage>.<name> values...");
+  set->add_option("device", device)->required();
+  set->add_option("parameter", parameter, "e.g. virtual_model.mass_kg")->required();
+  set->add_option("values", values)->required();
+  auto* record = app.add_subcommand("record", "record a device's state to CSV");
+  record->add_option("device", device)->required();
+  record->add_option("file", file)->required();
+  record->add_option("--duration", duration, "seconds (default: until Ctrl-C)");
+  auto* estop = app.add_subcommand("estop", "emergency stop: the device goes to its safe state");
+  estop->add_option("device", device)->required();
+  auto* op = app.add_subcommand("operator", "drive a simulated device's operator: push FX FY FZ [RAMP_S] | release | grasp G");
+  op->add_option("device", device)->required();
+  op->add_option("command", what)->required()->check(CLI::IsMember({"push", "release", "grasp"}));
+  op->add_option("values", values);
+  CLI11_PARSE(app, argc, argv);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  Client client({id, domain, cyclone, 0.05});
+  const auto wait = std::chrono::duration<double>(timeout);
+
+  if (*list) {
+    std::this_thread::sleep_for(wait);
+    const auto devices = client.devices();
+    if (devices.empty()) {
+      fmt::print("no devices on domain {}\n", domain);
+      return 1;
+    }
+    for (const auto& d : devices) {
+      std::string schemes;
+      for (int k = 0; k < d.scheme_count; ++k) schemes += (k ? ", " : "") + std::string(name_of(d.schemes[k]));
+      fmt::print("{:<16} {} joints, {} ({}), {} Hz, schemes: {}; engine deadline {} ms\n", name_of(d.device), d.dof,
+                 name_of(d.device_plugin), d.simulated ? "simulated" : "hardware", d.rate_hz, schemes,
+                 1e3 * d.command_deadline_s);
+    }
+    return 0;
+  }
+  if (!client.wait_for_device(device, wait)) {
+    fmt::print(stderr, "no device '{}' on domain {}\n", device, domain);
+    return 2;
+  }
+  if (*claim) return report(client.claim(device, wait));
+  if (*release) return report(client.release(device, wait));
+  if (*switch_cmd) return report(client.switch_scheme(device, scheme, wait));
+  if (*set) return report(client.set_parameter(device, parameter, values, wait));
+  if (*estop) return report(client.emergency_stop(device, wait));
+  if (*op) return report(client.operator_command(device, what, values, wait));
+
+  if (*watch) {
+    std::mutex m;
+    auto last = std::chrono::steady_clock::now() - std::chrono::hours(1);
+    const auto period = std::chrono::duration<double>(1.0 / rate);
+    client.on_event([&](const hapticd_msg_Event& e) {
+      if (name_of(e.device) != device) return;
+      std::lock_guard lock(m);
+      fmt::print("event {}: {} {}\n", event_name(e.kind), name_of(e.code), name_of(e.message));
+    });
+    client.on_state([&](const hapticd_msg_DeviceState& s) {
+      if (name_of(s.device) != device) return;
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < period) return;
+      last = now;
+      std::lock_guard lock(m);
+      fmt::print("t={:8.3f} {:<8} scheme {:<22} owner {:<14} pos ({:+.4f} {:+.4f} {:+.4f}) m  F_op ({:+6.2f} {:+6.2f} {:+6.2f}) N  "
+                 "F_env ({:+6.2f} {:+6.2f} {:+6.2f}) N  flags {:#x}\n",
+                 static_cast<double>(s.loop_time_ns) * 1e-9, mode_name(s.mode), name_of(s.scheme),
+                 name_of(s.owner).empty() ? "-" : name_of(s.owner), s.pose.position[0], s.pose.position[1],
+                 s.pose.position[2], s.operator_wrench[0], s.operator_wrench[1], s.operator_wrench[2],
+                 s.environment_wrench[0], s.environment_wrench[1], s.environment_wrench[2], s.flags);
+    });
+    run_for(duration);
+    client.on_state({});
+    client.on_event({});
+    return 0;
+  }
+  if (*record) {
+    std::ofstream out(file);
+    if (!out) {
+      fmt::print(stderr, "cannot write {}\n", file);
+      return 2;
+    }
+    out << "serial,cycle,time_s,mode,flags,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,op_fx,op_fy,op_fz,op_tx,op_ty,op_tz,"
+           "env_fx,env_fy,env_fz,env_tx,env_ty,env_tz\n";
+    std::mutex m;
+    std::uint64_t rows = 0;
+    client.on_state([&](const hapticd_msg_DeviceState& s) {
+      if (name_of(s.device) != device) return;
+      std::lock_guard lock(m);
+      out << fmt::format("{},{},{:.6f},{},{}", s.serial, s.cycle, static_cast<double>(s.loop_time_ns) * 1e-9,
+                         static_cast<int>(s.mode), s.flags);
+      for (double v : s.pose.position) out << ',' << v;
+      for (double v : s.pose.orientation) out << ',' << v;
+      for (double v : s.twist) out << ',' << v;
+      for (double v : s.operator_wrench) out << ',' << v;
+      for (double v : s.environment_wrench) out << ',' << v;
+      out << '\n';
+      ++rows;
+    });
+    run_for(duration);
+    client.on_state({});
+    std::lock_guard lock(m);
+    fmt::print("recorded {} states of '{}' to {}\n", rows, device, file);
+    return rows > 0 ? 0 : 1;
+  }
+  return 0;
+}

@@ -1,0 +1,278 @@
+#include "hapticd/client/client.hpp"
+
+#include <atomic>
+#include <condition_variable>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "hapticd/dds/conversion.hpp"
+#include "hapticd/dds/endpoints.hpp"
+
+namespace hapticd::client {
+
+struct Client::Impl {
+  explicit Impl(ClientOptions o)
+      : options(std::move(o)),
+        participant(dds::ParticipantOptions{options.domain_id, options.cyclone_config}),
+        timing{options.command_deadline_s, 0.5},
+        description(participant),
+        state(participant),
+        event(participant),
+        telemetry(participant),
+        reply(participant),
+        command(participant, timing),
+        request(participant),
+        waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
+        wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {
+    for (dds_entity_t r : {description.get(), state.get(), event.get(), telemetry.get(), reply.get()}) {
+      dds::check(dds_set_status_mask(r, DDS_DATA_AVAILABLE_STATUS), "status mask");
+      dds::check(dds_waitset_attach(waitset.get(), r, r), "waitset");
+    }
+    dds::check(dds_waitset_attach(waitset.get(), wake.get(), wake.get()), "waitset");
+    thread = std::thread([this] { run(); });
+  }
+  ~Impl() {
+    stopping.store(true);
+    (void)dds_set_guardcondition(wake.get(), true);
+    thread.join();
+  }
+
+  void run() {
+    std::array<dds_attach_t, 8> triggered{};
+    while (!stopping.load()) {
+      (void)dds_waitset_wait(waitset.get(), triggered.data(), triggered.size(), DDS_MSECS(100));
+      state.take([&](const hapticd_msg_DeviceState& s, const dds_sample_info_t&) {
+        {
+          std::lock_guard lock(mutex);
+          states[std::string(dds::text_of(s.device))] = s;
+        }
+        changed.notify_all();
+        std::function<void(const hapticd_msg_DeviceState&)> f;
+        {
+          std::lock_guard lock(callback_mutex);
+          f = state_callback;
+        }
+        if (f) f(s);
+      });
+      description.take([&](const hapticd_msg_DeviceDescription& d, const dds_sample_info_t&) {
+        {
+          std::lock_guard lock(mutex);
+          descriptions[std::string(dds::text_of(d.device))] = d;
+        }
+        changed.notify_all();
+      });
+      reply.take([&](const hapticd_msg_ControlReply& r, const dds_sample_info_t&) {
+        if (dds::text_of(r.client) != options.client_id) return;
+        {
+          std::lock_guard lock(mutex);
+          replies[r.request_id] = Reply{true, r.accepted, std::string(dds::text_of(r.message))};
+        }
+        changed.notify_all();
+      });
+      event.take([&](const hapticd_msg_Event& e, const dds_sample_info_t&) {
+        std::function<void(const hapticd_msg_Event&)> f;
+        {
+          std::lock_guard lock(callback_mutex);
+          f = event_callback;
+        }
+        if (f) f(e);
+      });
+      telemetry.take([&](const hapticd_msg_Telemetry& t, const dds_sample_info_t&) {
+        std::function<void(const hapticd_msg_Telemetry&)> f;
+        {
+          std::lock_guard lock(callback_mutex);
+          f = telemetry_callback;
+        }
+        if (f) f(t);
+      });
+    }
+  }
+
+  ClientOptions options;
+  dds::Participant participant;
+  dds::CommandTiming timing;
+  dds::Reader<hapticd_msg_DeviceDescription> description;
+  dds::Reader<hapticd_msg_DeviceState> state;
+  dds::Reader<hapticd_msg_Event> event;
+  dds::Reader<hapticd_msg_Telemetry> telemetry;
+  dds::Reader<hapticd_msg_ControlReply> reply;
+  dds::Writer<hapticd_msg_EngineCommand> command;
+  dds::Writer<hapticd_msg_ControlRequest> request;
+  dds::Entity waitset, wake;
+  std::thread thread;
+  std::atomic<bool> stopping{false};
+
+  mutable std::mutex mutex;
+  std::condition_variable changed;
+  std::map<std::string, hapticd_msg_DeviceDescription> descriptions;
+  std::map<std::string, hapticd_msg_DeviceState> states;
+  std::map<std::uint64_t, Reply> replies;
+  std::atomic<std::uint64_t> next_request{1};
+  std::atomic<std::uint64_t> serial{0};
+
+  std::mutex callback_mutex;
+  std::function<void(const hapticd_msg_DeviceState&)> state_callback;
+  std::function<void(const hapticd_msg_Event&)> event_callback;
+  std::function<void(const hapticd_msg_Telemetry&)> telemetry_callback;
+};
+
+Client::Client(ClientOptions options) {
+  if (options.client_id.empty() || options.client_id.size() > 31)
+    throw std::invalid_argument("a client id of 1..31 characters is needed");
+  impl_ = std::make_unique<Impl>(std::move(options));
+}
+Client::~Client() = default;
+
+const std::string& Client::id() const noexcept { return impl_->options.client_id; }
+
+std::vector<hapticd_msg_DeviceDescription> Client::devices() const {
+  std::lock_guard lock(impl_->mutex);
+  std::vector<hapticd_msg_DeviceDescription> v;
+  for (const auto& [name, d] : impl_->descriptions) v.push_back(d);
+  return v;
+}
+
+std::optional<hapticd_msg_DeviceDescription> Client::wait_for_device(std::string_view device, Timeout timeout, bool started) {
+  std::unique_lock lock(impl_->mutex);
+  const std::string key(device);
+  const auto ready = [&] {
+    const auto it = impl_->descriptions.find(key);
+    if (it == impl_->descriptions.end()) return false;
+    const double* q = it->second.start_pose.orientation;
+    return !started || q[0] != 0.0 || q[1] != 0.0 || q[2] != 0.0 || q[3] != 0.0;
+  };
+  if (!impl_->changed.wait_for(lock, timeout, ready)) return std::nullopt;
+  return impl_->descriptions[key];
+}
+
+std::optional<hapticd_msg_DeviceState> Client::latest_state(std::string_view device) const {
+  std::lock_guard lock(impl_->mutex);
+  const auto it = impl_->states.find(std::string(device));
+  if (it == impl_->states.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<hapticd_msg_DeviceState> Client::wait_for_state(std::string_view device, Timeout timeout, std::uint64_t after) {
+  std::unique_lock lock(impl_->mutex);
+  const std::string key(device);
+  const bool got = impl_->changed.wait_for(lock, timeout, [&] {
+    const auto it = impl_->states.find(key);
+    return it != impl_->states.end() && it->second.serial > after;
+  });
+  if (!got) return std::nullopt;
+  return impl_->states[key];
+}
+
+void Client::on_state(std::function<void(const hapticd_msg_DeviceState&)> callback) {
+  std::lock_guard lock(impl_->callback_mutex);
+  impl_->state_callback = std::move(callback);
+}
+void Client::on_event(std::function<void(const hapticd_msg_Event&)> callback) {
+  std::lock_guard lock(impl_->callback_mutex);
+  impl_->event_callback = std::move(callback);
+}
+void Client::on_telemetry(std::function<void(const hapticd_msg_Telemetry&)> callback) {
+  std::lock_guard lock(impl_->callback_mutex);
+  impl_->telemetry_callback = std::move(callback);
+}
+
+Reply Client::request(std::string_view device, hapticd_msg_RequestKind kind, std::string_view name,
+                      const std::vector<double>& values, Timeout timeout) {
+  hapticd_msg_ControlRequest r{};
+  dds::set_text(r.device, device);
+  dds::set_text(r.client, impl_->options.client_id);
+  r.request_id = impl_->next_request.fetch_add(1);
+  r.kind = kind;
+  dds::set_text(r.name, name);
+  r.value_count = static_cast<std::int32_t>(std::min<std::size_t>(values.size(), hapticd_msg_MAX_VALUES));
+  for (std::int32_t i = 0; i < r.value_count; ++i) r.values[i] = values[static_cast<std::size_t>(i)];
+  // A reliable writer delivers to the readers it has matched: give discovery a moment after start-up.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout);
+  while (impl_->request.matched() == 0 && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  if (!impl_->request.write(r)) return Reply{false, false, "cannot write the request"};
+  std::unique_lock lock(impl_->mutex);
+  if (!impl_->changed.wait_until(lock, until, [&] { return impl_->replies.count(r.request_id) > 0; }))
+    return Reply{false, false, "no reply within the timeout"};
+  Reply reply = impl_->replies[r.request_id];
+  impl_->replies.erase(r.request_id);
+  return reply;
+}
+
+Reply Client::claim(std::string_view device, Timeout timeout) {
+  Reply r = request(device, hapticd_msg_REQUEST_CLAIM, {}, {}, timeout);
+  if (r.accepted) reset_serial();
+  return r;
+}
+Reply Client::release(std::string_view device, Timeout timeout) { return request(device, hapticd_msg_REQUEST_RELEASE, {}, {}, timeout); }
+Reply Client::switch_scheme(std::string_view device, std::string_view scheme, Timeout timeout) {
+  return request(device, hapticd_msg_REQUEST_SWITCH_SCHEME, scheme, {}, timeout);
+}
+Reply Client::set_parameter(std::string_view device, std::string_view parameter, const std::vector<double>& values, Timeout timeout) {
+  return request(device, hapticd_msg_REQUEST_SET_PARAMETER, parameter, values, timeout);
+}
+Reply Client::emergency_stop(std::string_view device, Timeout timeout) { return request(device, hapticd_msg_REQUEST_ESTOP, {}, {}, timeout); }
+Reply Client::operator_command(std::string_view device, std::string_view command, const std::vector<double>& values, Timeout timeout) {
+  return request(device, hapticd_msg_REQUEST_OPERATOR, command, values, timeout);
+}
+
+bool Client::send(std::string_view device, hapticd_msg_EngineCommand& command) {
+  dds::set_text(command.device, device);
+  dds::set_text(command.engine, impl_->options.client_id);
+  command.serial = impl_->serial.fetch_add(1) + 1;
+  return impl_->command.write(command);
+}
+
+bool Client::send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist, std::uint64_t state_serial) {
+  hapticd_msg_EngineCommand c{};
+  c.kind = hapticd_msg_COMMAND_COUPLING;
+  c.state_serial = state_serial;
+  dds::to_msg(proxy, c.pose);
+  dds::to_msg(proxy_twist, c.twist);
+  return send(device, c);
+}
+
+bool Client::send_wrench(std::string_view device, const Wrench& wrench, std::uint64_t state_serial) {
+  hapticd_msg_EngineCommand c{};
+  c.kind = hapticd_msg_COMMAND_WRENCH;
+  c.state_serial = state_serial;
+  dds::to_msg(wrench, c.wrench);
+  c.anchor.orientation[0] = 1.0;
+  c.pose.orientation[0] = 1.0;
+  return send(device, c);
+}
+
+bool Client::send_motion(std::string_view device, const Pose& pose, const Twist& twist, std::uint64_t state_serial) {
+  hapticd_msg_EngineCommand c{};
+  c.kind = hapticd_msg_COMMAND_MOTION;
+  c.state_serial = state_serial;
+  dds::to_msg(pose, c.pose);
+  dds::to_msg(twist, c.twist);
+  return send(device, c);
+}
+
+void Client::reset_serial() noexcept { impl_->serial.store(0); }
+
+int Client::matched_state_writers() const {
+  dds_subscription_matched_status_t s{};
+  return dds_get_subscription_matched_status(impl_->state.get(), &s) == DDS_RETCODE_OK ? static_cast<int>(s.current_count) : 0;
+}
+
+std::string_view name_of(const hapticd_msg_Name& name) noexcept { return dds::text_of(name); }
+std::string_view name_of(const hapticd_msg_Text& text) noexcept { return dds::text_of(text); }
+Pose pose_of(const hapticd_msg_Pose& pose) noexcept { return dds::to_pose(pose); }
+Twist twist_of(const double (&t)[6]) noexcept {
+  Twist r;
+  r.linear = Eigen::Vector3d(t[0], t[1], t[2]);
+  r.angular = Eigen::Vector3d(t[3], t[4], t[5]);
+  return r;
+}
+Wrench wrench_of(const double (&w)[6]) noexcept {
+  Wrench r;
+  r.force = Eigen::Vector3d(w[0], w[1], w[2]);
+  r.torque = Eigen::Vector3d(w[3], w[4], w[5]);
+  return r;
+}
+
+}  // namespace hapticd::client

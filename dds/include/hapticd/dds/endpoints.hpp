@@ -1,0 +1,87 @@
+#pragma once
+// Typed writers and readers of hapticd's topics. The message types are fixed-size, so reading copies into
+// caller-owned samples and never allocates message memory.
+#include <array>
+#include <cstddef>
+
+#include "hapticd/dds/participant.hpp"
+#include "hapticd/dds/topics.hpp"
+
+namespace hapticd::dds {
+
+template <class T>
+Entity make_topic(const Participant& participant, const CommandTiming& timing) {
+  const Qos qos = topic_qos(TopicOf<T>::kind, Side::reader, timing);
+  return Entity(check(dds_create_topic(participant.get(), TopicOf<T>::descriptor(), TopicOf<T>::name, qos.get(), nullptr),
+                      "cannot create a DDS topic"));
+}
+
+template <class T>
+class Writer {
+ public:
+  explicit Writer(const Participant& participant, const CommandTiming& timing = {})
+      : topic_(make_topic<T>(participant, timing)) {
+    const Qos qos = topic_qos(TopicOf<T>::kind, Side::writer, timing);
+    writer_ = Entity(check(dds_create_writer(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS writer"));
+  }
+  bool write(const T& sample) const noexcept { return dds_write(writer_.get(), &sample) == DDS_RETCODE_OK; }
+  // With an explicit source timestamp (ns since the epoch, the wall clock).
+  bool write(const T& sample, dds_time_t source_time) const noexcept {
+    return dds_write_ts(writer_.get(), &sample, source_time) == DDS_RETCODE_OK;
+  }
+  // Disposes the instance `sample` names (its key).
+  bool dispose(const T& sample) const noexcept { return dds_dispose(writer_.get(), &sample) == DDS_RETCODE_OK; }
+  [[nodiscard]] dds_entity_t get() const noexcept { return writer_.get(); }
+  // Number of matched readers.
+  [[nodiscard]] int matched() const noexcept {
+    dds_publication_matched_status_t s{};
+    return dds_get_publication_matched_status(writer_.get(), &s) == DDS_RETCODE_OK ? static_cast<int>(s.current_count) : 0;
+  }
+
+ private:
+  Entity topic_;
+  Entity writer_;
+};
+
+template <class T>
+class Reader {
+ public:
+  static constexpr std::size_t kBatch = 16;
+
+  explicit Reader(const Participant& participant, const CommandTiming& timing = {}, const dds_listener_t* listener = nullptr)
+      : topic_(make_topic<T>(participant, timing)) {
+    const Qos qos = topic_qos(TopicOf<T>::kind, Side::reader, timing);
+    reader_ = Entity(check(dds_create_reader(participant.get(), topic_.get(), qos.get(), listener), "cannot create a DDS reader"));
+    for (std::size_t i = 0; i < kBatch; ++i) pointers_[i] = &samples_[i];
+  }
+  // Takes everything available; calls f(sample, info) for each valid sample and returns how many there were.
+  template <class F>
+  int take(F&& f) {
+    int total = 0;
+    for (;;) {
+      const dds_return_t n = dds_take(reader_.get(), pointers_.data(), infos_.data(), kBatch, kBatch);
+      if (n <= 0) break;
+      for (dds_return_t i = 0; i < n; ++i) {
+        if (!infos_[static_cast<std::size_t>(i)].valid_data) continue;
+        f(samples_[static_cast<std::size_t>(i)], infos_[static_cast<std::size_t>(i)]);
+        ++total;
+      }
+      if (static_cast<std::size_t>(n) < kBatch) break;
+    }
+    return total;
+  }
+  [[nodiscard]] dds_entity_t get() const noexcept { return reader_.get(); }
+  [[nodiscard]] int matched() const noexcept {
+    dds_subscription_matched_status_t s{};
+    return dds_get_subscription_matched_status(reader_.get(), &s) == DDS_RETCODE_OK ? static_cast<int>(s.current_count) : 0;
+  }
+
+ private:
+  Entity topic_;
+  Entity reader_;
+  std::array<T, kBatch> samples_{};
+  std::array<void*, kBatch> pointers_{};
+  std::array<dds_sample_info_t, kBatch> infos_{};
+};
+
+}  // namespace hapticd::dds

@@ -1,0 +1,44 @@
+#pragma once
+// RAII ownership of a Cyclone DDS entity handle: dds_delete on destruction (which deletes its children too).
+#include <dds/dds.h>
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace hapticd::dds {
+
+// Throws std::runtime_error naming `what` when a Cyclone call returned a negative (error) value.
+inline dds_entity_t check(dds_entity_t result, const char* what) {
+  if (result < 0) throw std::runtime_error(std::string(what) + ": " + dds_strretcode(result));
+  return result;
+}
+
+class Entity {
+ public:
+  Entity() = default;
+  explicit Entity(dds_entity_t handle) : handle_(handle) {}
+  Entity(Entity&& other) noexcept : handle_(std::exchange(other.handle_, 0)) {}
+  Entity& operator=(Entity&& other) noexcept {
+    if (this != &other) {
+      reset();
+      handle_ = std::exchange(other.handle_, 0);
+    }
+    return *this;
+  }
+  Entity(const Entity&) = delete;
+  Entity& operator=(const Entity&) = delete;
+  ~Entity() { reset(); }
+
+  void reset() noexcept {
+    if (handle_ > 0) (void)dds_delete(handle_);
+    handle_ = 0;
+  }
+  [[nodiscard]] dds_entity_t get() const noexcept { return handle_; }
+  explicit operator bool() const noexcept { return handle_ > 0; }
+
+ private:
+  dds_entity_t handle_ = 0;
+};
+
+}  // namespace hapticd::dds

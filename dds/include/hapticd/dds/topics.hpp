@@ -1,0 +1,46 @@
+#pragma once
+// hapticd's topics: name, type and quality of service of each (docs/dds-interface.md has the table and why).
+#include <memory>
+
+#include "hapticd/dds/entity.hpp"
+#include "hapticd_msg.h"
+
+namespace hapticd::dds {
+
+enum class TopicKind { description, state, command, request, reply, event, telemetry };
+
+template <class T>
+struct TopicOf;
+#define HAPTICD_DDS_TOPIC(TYPE, KIND, NAME)                                              \
+  template <>                                                                            \
+  struct TopicOf<TYPE> {                                                                 \
+    static constexpr TopicKind kind = TopicKind::KIND;                                   \
+    static constexpr const char* name = NAME;                                            \
+    static const dds_topic_descriptor_t* descriptor() noexcept { return &TYPE##_desc; }  \
+  };
+HAPTICD_DDS_TOPIC(hapticd_msg_DeviceDescription, description, "hapticd_description")
+HAPTICD_DDS_TOPIC(hapticd_msg_DeviceState, state, "hapticd_state")
+HAPTICD_DDS_TOPIC(hapticd_msg_EngineCommand, command, "hapticd_command")
+HAPTICD_DDS_TOPIC(hapticd_msg_ControlRequest, request, "hapticd_request")
+HAPTICD_DDS_TOPIC(hapticd_msg_ControlReply, reply, "hapticd_reply")
+HAPTICD_DDS_TOPIC(hapticd_msg_Event, event, "hapticd_event")
+HAPTICD_DDS_TOPIC(hapticd_msg_Telemetry, telemetry, "hapticd_telemetry")
+#undef HAPTICD_DDS_TOPIC
+
+struct QosDeleter {
+  void operator()(dds_qos_t* q) const noexcept { dds_delete_qos(q); }
+};
+using Qos = std::unique_ptr<dds_qos_t, QosDeleter>;
+
+// Engine commands: how often a writer must write (deadline) and how soon a dead writer is noticed
+// (liveliness lease). Readers request these; writers offer them (a writer offering less does not match).
+struct CommandTiming {
+  double deadline_s = 0.05;
+  double liveliness_lease_s = 0.5;
+};
+
+enum class Side { reader, writer };
+// The QoS of a topic for one side.
+[[nodiscard]] Qos topic_qos(TopicKind kind, Side side, const CommandTiming& timing = {});
+
+}  // namespace hapticd::dds

@@ -1,0 +1,43 @@
+#include "hapticd/dds/topics.hpp"
+
+namespace hapticd::dds {
+
+Qos topic_qos(TopicKind kind, Side side, const CommandTiming& timing) {
+  Qos q(dds_create_qos());
+  dds_qos_t* p = q.get();
+  switch (kind) {
+    case TopicKind::description:  // a late joiner gets every device's description
+      dds_qset_reliability(p, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+      dds_qset_durability(p, DDS_DURABILITY_TRANSIENT_LOCAL);
+      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 1);
+      break;
+    case TopicKind::state:  // only the newest state matters; never block the server
+    case TopicKind::telemetry:
+      dds_qset_reliability(p, DDS_RELIABILITY_BEST_EFFORT, 0);
+      dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
+      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 1);
+      break;
+    case TopicKind::command:  // latest wins; a silent or dead engine is visible quickly
+      dds_qset_reliability(p, DDS_RELIABILITY_BEST_EFFORT, 0);
+      dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
+      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 1);
+      dds_qset_deadline(p, DDS_SECS(1) * timing.deadline_s);
+      dds_qset_liveliness(p, DDS_LIVELINESS_AUTOMATIC, static_cast<dds_duration_t>(DDS_SECS(1) * timing.liveliness_lease_s));
+      break;
+    case TopicKind::request:  // nothing lost; a burst of requests is kept
+    case TopicKind::reply:
+      dds_qset_reliability(p, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+      dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
+      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 32);
+      break;
+    case TopicKind::event:
+      dds_qset_reliability(p, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+      dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
+      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 64);
+      break;
+  }
+  (void)side;  // both sides use the same values: what a reader requests, a writer offers
+  return q;
+}
+
+}  // namespace hapticd::dds

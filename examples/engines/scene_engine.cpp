@@ -1,0 +1,123 @@
+// hapticd-scene-engine: an example impedance-type rendering engine. It renders a scene of a wall, a box and a
+// sphere through the server's virtual coupling: for every device state it computes the proxy (the handle
+// kept on the objects' surfaces) and sends it as a COUPLING command; the server's coupling spring turns the
+// difference into force. It prints contacts as they happen and can write a CSV of position, proxy and force.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <atomic>
+#include <csignal>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+#include "hapticd/client/client.hpp"
+#include "scene.hpp"
+
+namespace {
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop.store(true); }
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"hapticd-scene-engine: renders a wall, a box and a sphere through the virtual coupling"};
+  std::string device = "vishard3", id = "scene-engine", csv;
+  int domain = 0;
+  double duration = 0.0, wait = 10.0;
+  app.add_option("--device", device, "device to claim");
+  app.add_option("--id", id, "client id (the owner name)");
+  app.add_option("--domain", domain, "DDS domain")->check(CLI::Range(0, 230));
+  app.add_option("--duration", duration, "stop after this many seconds (0: until SIGINT/SIGTERM or the server ends)");
+  app.add_option("--wait", wait, "how long to wait for the device to appear");
+  app.add_option("--csv", csv, "write time, handle position, proxy, rendered force and operator force here");
+  CLI11_PARSE(app, argc, argv);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  hapticd::client::Client client({id, domain, {}, 0.05});
+  const auto description = client.wait_for_device(device, std::chrono::duration<double>(wait));
+  if (!description) {
+    fmt::print(stderr, "scene-engine: no device '{}' on domain {} within {} s\n", device, domain, wait);
+    return 1;
+  }
+  const auto first = client.wait_for_state(device, std::chrono::duration<double>(wait));
+  if (!first) {
+    fmt::print(stderr, "scene-engine: no state from '{}'\n", device);
+    return 1;
+  }
+  // The scene sits at the device's start pose (the description is re-sent with it once the loop runs), so an
+  // engine that reconnects finds its objects where they were.
+  const auto described = client.wait_for_device(device, std::chrono::duration<double>(wait), true);
+  if (!described) {
+    fmt::print(stderr, "scene-engine: '{}' has not started\n", device);
+    return 1;
+  }
+  const Eigen::Vector3d origin = hapticd::client::pose_of(described->start_pose).position;
+  const hapticd::examples::Scene scene = hapticd::examples::demo_scene();
+
+  std::ofstream out;
+  if (!csv.empty()) {
+    out.open(csv);
+    out << "time_s,x,y,z,proxy_x,proxy_y,proxy_z,env_fx,env_fy,env_fz,op_fx,op_fy,op_fz,contact\n";
+  }
+  std::mutex out_mutex;
+  std::string last_contact;
+  double deepest = 0.0;
+  std::atomic<std::uint64_t> answered{0};
+  std::atomic<bool> server_gone{false};
+  client.on_state([&](const hapticd_msg_DeviceState& s) {
+    if (hapticd::client::name_of(s.device) != device) return;
+    const Eigen::Vector3d x = hapticd::client::pose_of(s.pose).position - origin;
+    const Eigen::Vector3d p = scene.proxy(x);
+    hapticd::Pose proxy = hapticd::client::pose_of(s.pose);
+    proxy.position = origin + p;
+    // In free space the proxy moves with the handle; on a surface it stands still.
+    const hapticd::Twist twist = p == x ? hapticd::client::twist_of(s.twist) : hapticd::Twist{};
+    client.send_coupling(device, proxy, twist, s.serial);
+    answered.fetch_add(1);
+    if (s.mode == hapticd_msg_MODE_STOPPING || s.mode == hapticd_msg_MODE_OFF) server_gone.store(true);
+    const std::string contact = scene.contact(x);
+    const double depth = (p - x).norm();
+    std::lock_guard lock(out_mutex);
+    if (contact != last_contact) {
+      fmt::print("t={:6.3f} s  {}  handle at ({:+.1f}, {:+.1f}, {:+.1f}) mm, operator force {:.1f} N\n",
+                 static_cast<double>(s.loop_time_ns) * 1e-9,
+                 contact.empty() ? "free space  " : fmt::format("touches the {}", contact), 1e3 * x.x(), 1e3 * x.y(),
+                 1e3 * x.z(), hapticd::client::wrench_of(s.operator_wrench).force.norm());
+      last_contact = contact;
+    }
+    deepest = std::max(deepest, depth);
+    if (out.is_open()) {
+      out << fmt::format("{:.4f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{}\n",
+                         static_cast<double>(s.loop_time_ns) * 1e-9, x.x(), x.y(), x.z(), p.x(), p.y(), p.z(),
+                         s.environment_wrench[0], s.environment_wrench[1], s.environment_wrench[2], s.operator_wrench[0],
+                         s.operator_wrench[1], s.operator_wrench[2], contact);
+    }
+  });
+  const auto claim = client.claim(device);
+  if (!claim.accepted) {
+    fmt::print(stderr, "scene-engine: cannot claim '{}': {}\n", device, claim.message);
+    return 2;
+  }
+  fmt::print("scene-engine: claimed '{}'; rendering a wall at +30 mm x, a box at -40 mm y, a sphere at -50 mm x\n", device);
+  const auto start = std::chrono::steady_clock::now();
+  std::uint64_t last_answered = 0;
+  auto last_progress = start;
+  while (!g_stop.load() && !server_gone.load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const auto now = std::chrono::steady_clock::now();
+    if (duration > 0.0 && now - start > std::chrono::duration<double>(duration)) break;
+    if (answered.load() != last_answered) {
+      last_answered = answered.load();
+      last_progress = now;
+    } else if (now - last_progress > std::chrono::seconds(3)) {
+      fmt::print("scene-engine: no state for 3 s, the server is gone\n");
+      break;
+    }
+  }
+  client.on_state({});
+  (void)client.release(device, std::chrono::milliseconds(500));
+  std::lock_guard lock(out_mutex);
+  fmt::print("scene-engine: answered {} states; deepest penetration {:.2f} mm\n", answered.load(), 1e3 * deepest);
+  return 0;
+}

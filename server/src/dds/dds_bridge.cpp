@@ -1,0 +1,555 @@
+#include "dds/dds_bridge.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "hapticd/dds/conversion.hpp"
+#include "hapticd/dds/endpoints.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::int64_t steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+}
+
+hapticd_msg_DeviceMode mode_of(const DeviceSnapshot& s) {
+  if (s.fault != DeviceFault::none) return hapticd_msg_MODE_SAFE;
+  if (s.stopping) return hapticd_msg_MODE_STOPPING;
+  return hapticd_msg_MODE_RUNNING;
+}
+
+}  // namespace
+
+struct DdsBridge::Device {
+  Device(DeviceSession* s, const DdsSettings& settings)
+      : session(s),
+        gate(dds::CommandBounds{settings.max_force_n, settings.max_torque_nm, settings.max_stiffness_n_per_m,
+                                settings.max_rotational_stiffness_n_m_per_rad, settings.max_damping_n_s_per_m,
+                                settings.max_rotational_damping_n_m_s, settings.max_distance_m, settings.max_speed_m_s,
+                                settings.max_angular_speed_rad_s},
+             settings.max_sample_age_s) {}
+  DeviceSession* session;
+  mutable std::mutex mutex;  // the gate (the receiver changes it; the others read owner and counters)
+  CommandGate gate;
+  dds_instance_handle_t owner_writer = 0;  // the owner's command writer, once it has sent one
+  dds_instance_handle_t instance = 0;      // this device's instance on the command reader
+  std::atomic<std::uint64_t> answered{0};  // newest state serial an accepted command answered
+  std::atomic<bool> synced{false};         // the owner answers every state (lockstep sync waits for it)
+  std::atomic<std::uint64_t> deadline_misses{0};
+  std::uint64_t requests = 0;
+  std::array<std::uint64_t, dds::kRejectReasons> reject_events{};
+  // Publisher thread.
+  DeviceSnapshot snapshot;
+  bool have_snapshot = false;
+  DeviceFault last_fault = DeviceFault::none;
+  int last_scheme = 0;
+  bool last_stale = false;
+  std::uint64_t states = 0;
+  hapticd_msg_DeviceState last_state{};
+  std::int64_t last_write_ns = 0;
+  Pose start_pose;
+};
+
+struct DdsBridge::Dds {
+  Dds(const DdsSettings& s, const dds::CommandTiming& timing)
+      : participant(dds::ParticipantOptions{s.domain_id, s.cyclone_config}),
+        description(participant),
+        state(participant),
+        event(participant),
+        telemetry(participant),
+        reply(participant),
+        command(participant, timing),
+        request(participant),
+        waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
+        wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {}
+  dds::Participant participant;
+  dds::Writer<hapticd_msg_DeviceDescription> description;
+  dds::Writer<hapticd_msg_DeviceState> state;
+  dds::Writer<hapticd_msg_Event> event;
+  dds::Writer<hapticd_msg_Telemetry> telemetry;
+  dds::Writer<hapticd_msg_ControlReply> reply;
+  dds::Reader<hapticd_msg_EngineCommand> command;
+  dds::Reader<hapticd_msg_ControlRequest> request;
+  dds::Entity waitset;
+  dds::Entity wake;
+};
+
+DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions)
+    : settings_(settings), rate_hz_(rate_hz) {
+  snapshot_interval_ = settings.state_rate_hz > 0.0
+                           ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(rate_hz / settings.state_rate_hz)))
+                           : 1;
+  double deadline = 1.0;
+  for (DeviceSession* s : sessions) deadline = std::min(deadline, s->chain().engine_deadline_s);
+  dds_ = std::make_unique<Dds>(settings, dds::CommandTiming{deadline, 0.5});
+  dds::check(dds_set_status_mask(dds_->command.get(), DDS_DATA_AVAILABLE_STATUS | DDS_LIVELINESS_CHANGED_STATUS |
+                                                          DDS_REQUESTED_DEADLINE_MISSED_STATUS),
+             "cannot set the command reader's status mask");
+  dds::check(dds_set_status_mask(dds_->request.get(), DDS_DATA_AVAILABLE_STATUS), "cannot set the request reader's status mask");
+  dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->command.get(), 0), "waitset");
+  dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->request.get(), 1), "waitset");
+  dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->wake.get(), 2), "waitset");
+  for (DeviceSession* s : sessions) {
+    s->set_snapshot_interval(snapshot_interval_);
+    devices_.push_back(std::make_unique<Device>(s, settings));
+  }
+  for (auto& d : devices_) publish_description(*d);
+}
+
+DdsBridge::~DdsBridge() { stop(); }
+
+void DdsBridge::start() {
+  publisher_ = std::thread([this] { publisher_thread(); });
+  receiver_ = std::thread([this] { receiver_thread(); });
+}
+
+void DdsBridge::stop() {
+  if (!publisher_.joinable() && !receiver_.joinable()) return;
+  stopping_.store(true);
+  ticket_.fetch_add(1);
+  ticket_.notify_all();
+  (void)dds_set_guardcondition(dds_->wake.get(), true);
+  if (publisher_.joinable()) publisher_.join();
+  if (receiver_.joinable()) receiver_.join();
+  publish_states();  // the final state (mode off after the shutdown ramp)
+  publish_telemetry();
+}
+
+void DdsBridge::after_cycle(std::uint64_t index, bool lockstep) noexcept {
+  ticket_.fetch_add(1, std::memory_order_release);
+  ticket_.notify_one();  // a futex wake when the publisher waits; no lock, no allocation
+  if (!lockstep || !settings_.lockstep_sync || index % snapshot_interval_ != 0) return;
+  if (index == 0 && settings_.lockstep_start_wait_s > 0.0) {
+    // Before the virtual clock runs away: wait for an engine to claim a device and answer its first state
+    // (the publisher repeats the state meanwhile, for a reader that matches late).
+    const auto give_up = Clock::now() + std::chrono::duration<double>(settings_.lockstep_start_wait_s);
+    const auto any_synced = [&] {
+      return std::any_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->synced.load(std::memory_order_acquire); });
+    };
+    while (!any_synced() && Clock::now() < give_up && !stopping_.load(std::memory_order_acquire)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      ticket_.fetch_add(1, std::memory_order_release);
+      ticket_.notify_one();
+    }
+  }
+  // Lockstep: wait until each engine that answers every state has answered this one (bounded in wall time).
+  const std::uint64_t serial = index / snapshot_interval_ + 1;
+  for (auto& d : devices_) {
+    if (!d->synced.load(std::memory_order_acquire)) continue;
+    const auto give_up = Clock::now() + std::chrono::duration<double>(settings_.lockstep_wait_s);
+    int spins = 0;
+    while (d->answered.load(std::memory_order_acquire) < serial && d->synced.load(std::memory_order_acquire)) {
+      if (++spins < 200) {
+        std::this_thread::yield();
+        continue;
+      }
+      if (Clock::now() > give_up) {
+        d->synced.store(false, std::memory_order_release);  // stop waiting for it until it answers again
+        lockstep_timeouts_.fetch_add(1, std::memory_order_relaxed);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+    }
+  }
+}
+
+// ---- publisher ----
+
+void DdsBridge::publisher_thread() {
+  std::uint32_t seen = ticket_.load(std::memory_order_acquire);
+  while (!stopping_.load(std::memory_order_acquire)) {
+    ticket_.wait(seen, std::memory_order_acquire);
+    seen = ticket_.load(std::memory_order_acquire);
+    publish_states();
+  }
+}
+
+void DdsBridge::publish_states() {
+  for (auto& dp : devices_) {
+    Device& d = *dp;
+    if (!d.session->take_snapshot(d.snapshot)) {
+      // Nothing new (the loop waits, e.g. for the first engine in lockstep): repeat the last state now and
+      // then, for readers that matched after it was written.
+      if (d.states > 0 && steady_ns() - d.last_write_ns > 10'000'000) {
+        (void)dds_->state.write(d.last_state);
+        d.last_write_ns = steady_ns();
+      }
+      continue;
+    }
+    const DeviceSnapshot& s = d.snapshot;
+    if (!d.have_snapshot) {
+      d.have_snapshot = true;
+      d.start_pose = s.handle_pose;
+      publish_description(d);  // now with the start pose
+    }
+    hapticd_msg_DeviceState m{};
+    dds::set_text(m.device, d.session->name());
+    m.serial = s.cycle / snapshot_interval_ + 1;
+    m.cycle = s.cycle;
+    m.loop_time_ns = s.time_ns;
+    dds::to_msg(s.handle_pose, m.pose);
+    dds::to_msg(s.handle_twist, m.twist);
+    dds::to_msg(s.operator_wrench, m.operator_wrench);
+    dds::to_msg(s.environment_wrench, m.environment_wrench);
+    dds::to_msg(s.target_pose, m.target_pose);
+    m.dof = static_cast<std::int32_t>(s.position.size());
+    for (Eigen::Index i = 0; i < s.position.size() && i < hapticd_msg_MAX_JOINTS; ++i) {
+      m.position[i] = s.position[i];
+      m.velocity[i] = i < s.velocity.size() ? s.velocity[i] : 0.0;
+      m.torque[i] = i < s.torque.size() ? s.torque[i] : 0.0;
+    }
+    m.mode = mode_of(s);
+    m.flags = (s.saturated ? hapticd_msg_FLAG_TORQUE_SATURATED : 0u) |
+              (s.engine_weight > 0.0 && !s.engine_stale ? hapticd_msg_FLAG_ENGINE_ACTIVE : 0u) |
+              (s.engine_stale ? hapticd_msg_FLAG_ENGINE_STALE : 0u) |
+              (s.estop ? hapticd_msg_FLAG_ESTOP : 0u) | (s.fault != DeviceFault::none ? hapticd_msg_FLAG_FAULT : 0u) |
+              (s.switching ? hapticd_msg_FLAG_SWITCHING : 0u);
+    dds::set_text(m.fault, s.fault == DeviceFault::none ? std::string_view() : to_string(s.fault));
+    dds::set_text(m.scheme, d.session->chain().schemes[static_cast<std::size_t>(s.scheme)].name);
+    {
+      std::lock_guard lock(d.mutex);
+      dds::set_text(m.owner, d.gate.owner());
+    }
+    m.engine_serial = s.engine_sequence;
+    m.loop.rate_hz = rate_hz_;
+    if (live_ != nullptr) {
+      m.loop.cycles = live_->cycles.load(std::memory_order_relaxed);
+      m.loop.overruns = live_->overruns.load(std::memory_order_relaxed);
+      m.loop.latency_max_us = static_cast<double>(live_->window_latency_max_ns.load(std::memory_order_relaxed)) * 1e-3;
+      m.loop.compute_max_us = static_cast<double>(live_->window_compute_max_ns.load(std::memory_order_relaxed)) * 1e-3;
+    }
+    const std::size_t slot = m.serial % kWriteTimes;
+    write_time_ns_[slot].store(steady_ns(), std::memory_order_relaxed);
+    write_serial_[slot].store(m.serial, std::memory_order_release);
+    (void)dds_->state.write(m);
+    ++d.states;
+    d.last_state = m;
+    d.last_write_ns = steady_ns();
+
+    // Events the snapshots reveal.
+    if (s.fault != d.last_fault) {
+      d.last_fault = s.fault;
+      send_event(d, s.fault == DeviceFault::emergency_stop ? hapticd_msg_EVENT_ESTOP : hapticd_msg_EVENT_FAULT,
+                 to_string(s.fault), "the device is in its safe state (zero torque)");
+    }
+    if (s.scheme != d.last_scheme) {
+      d.last_scheme = s.scheme;
+      const std::string& name = d.session->chain().schemes[static_cast<std::size_t>(s.scheme)].name;
+      send_event(d, hapticd_msg_EVENT_SCHEME, name, "switched to scheme " + name);
+    }
+    const bool stale = s.engine_stale;
+    if (stale && !d.last_stale)
+      send_event(d, hapticd_msg_EVENT_ENGINE_STALE, "deadline", "engine input missed its deadline: forces fade out");
+    d.last_stale = stale;
+  }
+}
+
+void DdsBridge::publish_description(Device& d) {
+  const DeviceSession& s = *d.session;
+  const DeviceDescription& desc = s.description();
+  hapticd_msg_DeviceDescription m{};
+  dds::set_text(m.device, s.name());
+  m.version = hapticd_msg_VERSION;
+  dds::set_text(m.device_plugin, s.chain().device.descriptor->name);
+  m.simulated = std::string_view(s.chain().device.descriptor->name).substr(0, 3) == "sim";
+  m.rate_hz = rate_hz_;
+  m.dof = desc.dof();
+  for (int i = 0; i < desc.dof() && i < hapticd_msg_MAX_JOINTS; ++i) {
+    const JointDescription& j = desc.joints[static_cast<std::size_t>(i)];
+    dds::set_text(m.joint_names[i], j.name);
+    m.position_min[i] = j.position_min;
+    m.position_max[i] = j.position_max;
+    m.velocity_max[i] = j.velocity_max;
+    m.torque_peak[i] = j.torque_peak_nm;
+    m.torque_continuous[i] = j.torque_continuous_nm;
+  }
+  dds::set_text(m.base_frame, "world");
+  dds::set_text(m.handle_frame, desc.handle_frame);
+  if (d.have_snapshot) dds::to_msg(d.start_pose, m.start_pose);  // else all zeros: not known yet
+  const auto& schemes = s.chain().schemes;
+  m.scheme_count = static_cast<std::int32_t>(std::min<std::size_t>(schemes.size(), hapticd_msg_MAX_SCHEMES));
+  for (std::int32_t k = 0; k < m.scheme_count; ++k) {
+    const SchemeChain& sc = schemes[static_cast<std::size_t>(k)];
+    dds::set_text(m.schemes[k], sc.name);
+    dds::set_text(m.scheme_virtual_model[k], sc.virtual_model ? std::string_view(sc.virtual_model->descriptor->name) : "");
+  }
+  m.command_deadline_s = s.chain().engine_deadline_s;
+  m.command_fade_s = s.chain().engine_fade_s;
+  (void)dds_->description.write(m);
+}
+
+void DdsBridge::send_event(Device& d, int kind, std::string_view code, std::string_view message) {
+  hapticd_msg_Event e{};
+  dds::set_text(e.device, d.session->name());
+  e.serial = event_serial_.fetch_add(1) + 1;
+  e.loop_time_ns = d.snapshot.time_ns;
+  e.kind = static_cast<hapticd_msg_EventKind>(kind);
+  dds::set_text(e.code, code);
+  dds::set_text(e.message, message);
+  (void)dds_->event.write(e);
+}
+
+// ---- receiver ----
+
+void DdsBridge::receiver_thread() {
+  const auto telemetry_period = std::chrono::duration<double>(1.0 / settings_.telemetry_rate_hz);
+  auto next_telemetry = Clock::now();
+  std::array<dds_attach_t, 4> triggered{};
+  while (!stopping_.load(std::memory_order_acquire)) {
+    const auto now = Clock::now();
+    const auto wait = std::max<std::int64_t>(
+        0, std::chrono::duration_cast<std::chrono::nanoseconds>(next_telemetry - now).count());
+    (void)dds_waitset_wait(dds_->waitset.get(), triggered.data(), triggered.size(), wait);
+    handle_commands();
+    handle_requests();
+    check_engine_health();
+    if (Clock::now() >= next_telemetry) {
+      publish_telemetry();
+      next_telemetry += std::chrono::duration_cast<Clock::duration>(telemetry_period);
+      if (next_telemetry < Clock::now()) next_telemetry = Clock::now() + std::chrono::duration_cast<Clock::duration>(telemetry_period);
+    }
+  }
+}
+
+void DdsBridge::handle_commands() {
+  dds_->command.take([&](const hapticd_msg_EngineCommand& c, const dds_sample_info_t& info) {
+    const std::int64_t now_wall = dds::wall_clock_ns();
+    const std::string_view device = dds::text_of(c.device);
+    for (auto& dp : devices_) {
+      Device& d = *dp;
+      if (device != d.session->name()) continue;
+      d.instance = info.instance_handle;
+      CommandGate::Verdict v;
+      {
+        std::lock_guard lock(d.mutex);
+        v = d.gate.admit(c, info.source_timestamp, now_wall);
+        if (v.accepted) d.owner_writer = info.publication_handle;
+      }
+      if (!v.accepted) {
+        const auto r = static_cast<std::size_t>(v.reason);
+        if (d.reject_events[r]++ % 100 == 0)  // the first, then every 100th per reason
+          send_event(d, hapticd_msg_EVENT_ENGINE_REJECTED, dds::to_string(v.reason),
+                     "engine command rejected from '" + std::string(dds::text_of(c.engine)) + "': " +
+                         std::string(dds::to_string(v.reason)));
+        return;
+      }
+      d.session->publish_engine_input(dds::to_engine_input(c));
+      if (c.state_serial > 0) {
+        const std::size_t slot = c.state_serial % kWriteTimes;
+        if (write_serial_[slot].load(std::memory_order_acquire) == c.state_serial) {
+          const std::int64_t rt = steady_ns() - write_time_ns_[slot].load(std::memory_order_relaxed);
+          std::lock_guard lock(round_trip_mutex_);
+          if (round_trip_ns_.size() < 10'000'000) round_trip_ns_.push_back(rt);
+        }
+        if (c.state_serial > d.answered.load(std::memory_order_relaxed)) d.answered.store(c.state_serial, std::memory_order_release);
+        d.synced.store(true, std::memory_order_release);
+      }
+      return;
+    }
+    // A command for a device this server does not drive: not ours to count.
+  });
+}
+
+void DdsBridge::check_engine_health() {
+  dds_liveliness_changed_status_t live{};
+  if (dds_get_liveliness_changed_status(dds_->command.get(), &live) == DDS_RETCODE_OK && live.not_alive_count_change > 0) {
+    for (auto& dp : devices_) {
+      Device& d = *dp;
+      std::string lost;
+      {
+        std::lock_guard lock(d.mutex);
+        if (d.owner_writer != 0 && d.owner_writer == live.last_publication_handle && !d.gate.owner().empty()) {
+          lost = d.gate.owner();
+          d.gate.release_any();
+          d.owner_writer = 0;
+        }
+      }
+      if (!lost.empty()) {
+        d.synced.store(false, std::memory_order_release);
+        send_event(d, hapticd_msg_EVENT_OWNER, "", "engine '" + lost + "' lost liveliness: the device is free again");
+      }
+    }
+  }
+  dds_requested_deadline_missed_status_t missed{};
+  if (dds_get_requested_deadline_missed_status(dds_->command.get(), &missed) == DDS_RETCODE_OK && missed.total_count_change > 0) {
+    for (auto& dp : devices_)
+      if (dp->instance == missed.last_instance_handle) dp->deadline_misses.fetch_add(missed.total_count_change);
+  }
+}
+
+void DdsBridge::handle_requests() {
+  dds_->request.take([&](const hapticd_msg_ControlRequest& r, const dds_sample_info_t&) {
+    const std::string_view device = dds::text_of(r.device);
+    const std::string_view client = dds::text_of(r.client);
+    const std::string_view name = dds::text_of(r.name);
+    for (auto& dp : devices_) {
+      Device& d = *dp;
+      if (device != d.session->name()) continue;
+      ++d.requests;
+      hapticd_msg_ControlReply reply{};
+      dds::set_text(reply.device, device);
+      dds::set_text(reply.client, client);
+      reply.request_id = r.request_id;
+      std::string message;
+      bool ok = false;
+      std::string owner;
+      {
+        std::lock_guard lock(d.mutex);
+        owner = d.gate.owner();
+      }
+      const bool may_drive = owner.empty() || owner == client;
+      const std::vector<double> values(r.values, r.values + std::clamp<std::int32_t>(r.value_count, 0, hapticd_msg_MAX_VALUES));
+      if (client.empty() || !dds::terminated(r.client) || !dds::terminated(r.name)) {
+        message = "malformed request (no client id)";
+      } else {
+        switch (r.kind) {
+          case hapticd_msg_REQUEST_CLAIM: {
+            std::lock_guard lock(d.mutex);
+            ok = d.gate.claim(client);
+            if (ok) d.owner_writer = 0;
+            message = ok ? "claimed" : "claimed by '" + d.gate.owner() + "'";
+            break;
+          }
+          case hapticd_msg_REQUEST_RELEASE: {
+            std::lock_guard lock(d.mutex);
+            ok = d.gate.release(client);
+            if (ok) d.owner_writer = 0;
+            message = ok ? "released" : "not the owner";
+            break;
+          }
+          case hapticd_msg_REQUEST_SWITCH_SCHEME:
+            if (!may_drive) {
+              message = "claimed by '" + owner + "'";
+            } else {
+              ok = d.session->request_scheme(name);
+              message = ok ? "switching to " + std::string(name) : "no scheme named '" + std::string(name) + "'";
+            }
+            break;
+          case hapticd_msg_REQUEST_SET_PARAMETER:
+          case hapticd_msg_REQUEST_OPERATOR: {
+            if (!may_drive) {
+              message = "claimed by '" + owner + "'";
+              break;
+            }
+            std::string_view stage = "device", parameter = name;
+            if (r.kind == hapticd_msg_REQUEST_SET_PARAMETER) {
+              const auto dot = name.find('.');
+              if (dot == std::string_view::npos) {
+                message = "expected <stage>.<parameter>, e.g. virtual_model.mass_kg";
+                break;
+              }
+              stage = name.substr(0, dot);
+              parameter = name.substr(dot + 1);
+            }
+            const std::string request = r.kind == hapticd_msg_REQUEST_OPERATOR ? "operator." + std::string(name) : std::string(parameter);
+            const RuntimeReply rr = d.session->handle_request(stage, request, values);
+            ok = rr.accepted;
+            message = rr.message;
+            break;
+          }
+          case hapticd_msg_REQUEST_ESTOP:
+            d.session->request_emergency_stop();  // anyone may stop a device
+            ok = true;
+            message = "emergency stop";
+            break;
+          case hapticd_msg_REQUEST_DESCRIBE:
+            publish_description(d);
+            ok = true;
+            message = "description republished";
+            break;
+          default:
+            message = "unknown request kind";
+        }
+      }
+      reply.accepted = ok;
+      dds::set_text(reply.message, message);
+      (void)dds_->reply.write(reply);
+      if (ok && (r.kind == hapticd_msg_REQUEST_CLAIM || r.kind == hapticd_msg_REQUEST_RELEASE)) {
+        if (r.kind == hapticd_msg_REQUEST_RELEASE) d.synced.store(false, std::memory_order_release);
+        send_event(d, hapticd_msg_EVENT_OWNER, r.kind == hapticd_msg_REQUEST_CLAIM ? client : std::string_view(),
+                   std::string(client) + (r.kind == hapticd_msg_REQUEST_CLAIM ? " claimed the device" : " released the device"));
+      }
+      return;
+    }
+    // Unknown device: say so, so a client does not wait for its timeout.
+    hapticd_msg_ControlReply reply{};
+    dds::set_text(reply.device, device);
+    dds::set_text(reply.client, client);
+    reply.request_id = r.request_id;
+    reply.accepted = false;
+    dds::set_text(reply.message, "this server has no device named '" + std::string(device) + "'");
+    (void)dds_->reply.write(reply);
+  });
+}
+
+void DdsBridge::publish_telemetry() {
+  for (auto& dp : devices_) {
+    Device& d = *dp;
+    hapticd_msg_Telemetry t{};
+    dds::set_text(t.device, d.session->name());
+    t.wall_time_ns = dds::wall_clock_ns();
+    t.loop.rate_hz = rate_hz_;
+    if (live_ != nullptr) {
+      t.loop.cycles = live_->cycles.load(std::memory_order_relaxed);
+      t.loop.overruns = live_->overruns.load(std::memory_order_relaxed);
+      t.loop.latency_max_us = static_cast<double>(live_->window_latency_max_ns.load(std::memory_order_relaxed)) * 1e-3;
+      t.loop.compute_max_us = static_cast<double>(live_->window_compute_max_ns.load(std::memory_order_relaxed)) * 1e-3;
+    }
+    t.states_published = d.states;  // read unsynchronised: a monotone counter, approximate is fine
+    {
+      std::lock_guard lock(d.mutex);
+      t.commands_received = d.gate.received();
+      t.commands_accepted = d.gate.accepted();
+      for (int i = 0; i < dds::kRejectReasons; ++i) t.rejected[i] = d.gate.rejected()[static_cast<std::size_t>(i)];
+    }
+    t.requests = d.requests;
+    t.deadline_misses = d.deadline_misses.load();
+    t.scheme_switches = d.session->scheme_switches();
+    t.saturated_cycles = d.session->saturated_cycles();
+    (void)dds_->telemetry.write(t);
+  }
+}
+
+// ---- queries ----
+
+std::uint64_t DdsBridge::commands_accepted(std::size_t device) const {
+  std::lock_guard lock(devices_.at(device)->mutex);
+  return devices_[device]->gate.accepted();
+}
+std::uint64_t DdsBridge::commands_rejected(std::size_t device) const {
+  std::lock_guard lock(devices_.at(device)->mutex);
+  return devices_[device]->gate.rejected_total();
+}
+std::array<std::uint64_t, dds::kRejectReasons> DdsBridge::rejected_by_reason(std::size_t device) const {
+  std::lock_guard lock(devices_.at(device)->mutex);
+  return devices_[device]->gate.rejected();
+}
+std::string DdsBridge::owner(std::size_t device) const {
+  std::lock_guard lock(devices_.at(device)->mutex);
+  return devices_[device]->gate.owner();
+}
+std::uint64_t DdsBridge::deadline_misses(std::size_t device) const { return devices_.at(device)->deadline_misses.load(); }
+
+RoundTripStatistics DdsBridge::round_trip() const {
+  std::vector<std::int64_t> v;
+  {
+    std::lock_guard lock(round_trip_mutex_);
+    v = round_trip_ns_;
+  }
+  RoundTripStatistics r;
+  r.count = v.size();
+  if (v.empty()) return r;
+  std::sort(v.begin(), v.end());
+  const auto at = [&](double q) { return static_cast<double>(v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))]) * 1e-3; };
+  r.p50_us = at(0.5);
+  r.p99_us = at(0.99);
+  r.max_us = static_cast<double>(v.back()) * 1e-3;
+  return r;
+}
+
+}  // namespace hapticd::server

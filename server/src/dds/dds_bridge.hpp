@@ -1,0 +1,93 @@
+#pragma once
+// The server's DDS interface (docs/dds-interface.md): publishes every device's description, state, events and
+// telemetry; takes engine commands and control requests. It runs on two threads of its own, never the loop:
+//   publisher: woken by the loop after each cycle (futex, no lock), takes the devices' snapshots (lock-free
+//              LatestValue) and writes the states, and the events the snapshots reveal (faults, scheme changes);
+//   receiver:  waits on the command and request readers; validates every command (CommandGate) and hands an
+//              accepted one to the loop (DeviceSession::publish_engine_input, lock-free); answers requests;
+//              writes telemetry; watches the owning engine's liveliness and deadline.
+// In lockstep with lockstep_sync, after_cycle() makes the loop wait (wall time, bounded) until the owning
+// engine has answered the state just published, so end-to-end runs over DDS are repeatable.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "config/session_config.hpp"
+#include "dds/command_gate.hpp"
+#include "executor/executor.hpp"
+
+namespace hapticd::server {
+
+class DeviceSession;
+
+struct RoundTripStatistics {
+  std::uint64_t count = 0;
+  double p50_us = 0.0, p99_us = 0.0, max_us = 0.0;
+};
+
+class DdsBridge final : public CycleListener {
+ public:
+  // Creates the participant, the topics and the per-device snapshot interval; publishes the descriptions.
+  DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions);
+  ~DdsBridge() override;
+  DdsBridge(const DdsBridge&) = delete;
+  DdsBridge& operator=(const DdsBridge&) = delete;
+
+  // Before start(): where the loop's live statistics are (the executor's).
+  void set_loop_statistics(const LiveLoopStatistics* live) noexcept { live_ = live; }
+  void start();  // the two threads
+  void stop();   // joins them; publishes the final states and telemetry first
+
+  void after_cycle(std::uint64_t index, bool lockstep) noexcept override;
+
+  // Any thread, while running or after stop().
+  [[nodiscard]] std::uint64_t commands_accepted(std::size_t device) const;
+  [[nodiscard]] std::uint64_t commands_rejected(std::size_t device) const;
+  [[nodiscard]] std::array<std::uint64_t, dds::kRejectReasons> rejected_by_reason(std::size_t device) const;
+  [[nodiscard]] std::string owner(std::size_t device) const;
+  [[nodiscard]] std::uint64_t deadline_misses(std::size_t device) const;
+  // Time from writing a state to accepting the command that answers it, over the session.
+  [[nodiscard]] RoundTripStatistics round_trip() const;
+  [[nodiscard]] std::uint64_t lockstep_timeouts() const noexcept { return lockstep_timeouts_.load(); }
+
+ private:
+  struct Device;
+  struct Dds;
+
+  void publisher_thread();
+  void receiver_thread();
+  void publish_states();
+  void handle_commands();
+  void handle_requests();
+  void check_engine_health();
+  void publish_telemetry();
+  void publish_description(Device& d);
+  void send_event(Device& d, int kind, std::string_view code, std::string_view message);
+
+  DdsSettings settings_;
+  double rate_hz_;
+  const LiveLoopStatistics* live_ = nullptr;
+  std::uint64_t snapshot_interval_;
+  std::vector<std::unique_ptr<Device>> devices_;
+  std::unique_ptr<Dds> dds_;
+
+  std::atomic<std::uint32_t> ticket_{0};
+  std::atomic<bool> stopping_{false};
+  std::thread publisher_, receiver_;
+  std::atomic<std::uint64_t> event_serial_{0};
+  std::atomic<std::uint64_t> lockstep_timeouts_{0};
+
+  // State serial -> write time (steady ns), for the round trip; receiver reads it.
+  static constexpr std::size_t kWriteTimes = 4096;
+  std::array<std::atomic<std::uint64_t>, kWriteTimes> write_serial_{};
+  std::array<std::atomic<std::int64_t>, kWriteTimes> write_time_ns_{};
+  mutable std::mutex round_trip_mutex_;
+  std::vector<std::int64_t> round_trip_ns_;
+};
+
+}  // namespace hapticd::server

@@ -1,0 +1,344 @@
+// End to end over DDS: the server's bridge and an engine built on the client library, each its own DDS
+// participant on a test domain of its own (loopback-only configuration). The loop runs in lockstep and waits
+// for the engine's answer to every state (dds.lockstep_sync), so the runs are repeatable; a recording listener
+// on the loop thread captures what the device renders in every cycle.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "../../examples/engines/scene.hpp"
+#include "dds/dds_bridge.hpp"
+#include "hapticd/client/client.hpp"
+#include "hapticd/dds/conversion.hpp"
+#include "hapticd/dds/endpoints.hpp"
+#include "support/test_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+using client::Client;
+
+// Records, on the loop thread, the environment force the device renders and the handle position each cycle.
+class RecordingListener final : public CycleListener {
+ public:
+  RecordingListener(CycleListener* next, DeviceSession* device) : next_(next), device_(device) {
+    force_.reserve(20000);
+    position_.reserve(20000);
+    weight_.reserve(20000);
+  }
+  void after_cycle(std::uint64_t index, bool lockstep) noexcept override {
+    force_.push_back(device_->task().wrench.force);
+    position_.push_back(device_->chain_state().handle_pose.position);
+    weight_.push_back(device_->engine_weight());
+    next_->after_cycle(index, lockstep);
+  }
+  const std::vector<Eigen::Vector3d>& force() const { return force_; }
+  const std::vector<Eigen::Vector3d>& position() const { return position_; }
+  const std::vector<double>& engine_weight() const { return weight_; }
+
+ private:
+  CycleListener* next_;
+  DeviceSession* device_;
+  std::vector<Eigen::Vector3d> force_, position_;
+  std::vector<double> weight_;
+};
+
+// A session (lockstep unless told otherwise) with the DDS interface on `domain`: the simulated ViSHaRD3 in admittance display with the
+// virtual coupling, pushed by a scripted force.
+std::string session_yaml(int domain, double duration_s, const std::string& force_profile, const std::string& force_n,
+                         const std::string& clock = "lockstep") {
+  return "server: {clock: " + clock + ", seed: 11, realtime_priority: 0, lock_memory: false, duration_s: " +
+         std::to_string(duration_s) + "}\n" +
+         "dds: {domain_id: " + std::to_string(domain) + ", lockstep_start_wait_s: 20, lockstep_wait_s: 2}\n" +
+         "devices:\n" + test::sim_vishard3_device_yaml("v3", force_profile, force_n) + R"(        wrench_force_start_s: 0.3
+    virtual_model:
+      plugin: admittance
+      parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [30.0, 30.0, 30.0], rotation: false,
+                   coupling: true, coupling_stiffness_n_per_m: 3000, coupling_damping_n_s_per_m: 40}
+    controller:
+      plugin: resolved_acceleration
+      parameters: {task: translation}
+)";
+}
+
+class Server {
+ public:
+  explicit Server(const std::string& yaml) : session_(test::build_test_session(yaml)) {
+    std::vector<DeviceSession*> devices;
+    for (auto& d : session_.devices) devices.push_back(d.get());
+    bridge_ = std::make_unique<DdsBridge>(session_.config.dds, session_.config.server.rate_hz, devices);
+    executor_ = std::make_unique<Executor>(session_.executor_settings(), devices, nullptr);
+    listener_ = std::make_unique<RecordingListener>(bridge_.get(), devices[0]);
+    executor_->set_cycle_listener(listener_.get());
+    bridge_->set_loop_statistics(&executor_->live());
+    bridge_->start();
+  }
+  ~Server() { join(); }
+  void start() {
+    thread_ = std::thread([this] { result_ = executor_->run(stop_); });
+  }
+  void join() {
+    if (thread_.joinable()) thread_.join();
+    bridge_->stop();
+  }
+  DdsBridge& bridge() { return *bridge_; }
+  DeviceSession& device() { return *session_.devices[0]; }
+  const RecordingListener& recording() const { return *listener_; }
+  const ExecutorResult& result() const { return result_; }
+
+ private:
+  test::TestSession session_;
+  std::unique_ptr<DdsBridge> bridge_;
+  std::unique_ptr<Executor> executor_;
+  std::unique_ptr<RecordingListener> listener_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  ExecutorResult result_;
+};
+
+// The scene engine of examples/engines: answers every state with the proxy of the handle in the scene.
+struct SceneEngine {
+  SceneEngine(int domain, const std::string& id) : client({id, domain, {}, 0.05}) {}
+  bool connect() {
+    if (!client.wait_for_state("v3", std::chrono::seconds(20))) return false;
+    // The scene sits at the device's start pose (from the description, re-sent once the loop has run).
+    const auto described = client.wait_for_device("v3", std::chrono::seconds(5), true);
+    if (!described) return false;
+    origin = client::pose_of(described->start_pose).position;
+    if (!client.claim("v3", std::chrono::seconds(10)).accepted) return false;
+    client.on_state([this](const hapticd_msg_DeviceState& s) {
+      if (!answering.load()) return;
+      const Eigen::Vector3d x = client::pose_of(s.pose).position - origin;
+      const Eigen::Vector3d p = scene.proxy(x);
+      depth = std::max(depth.load(), (p - x).norm());
+      Pose proxy = client::pose_of(s.pose);
+      proxy.position = origin + p;
+      // In free space the proxy moves with the handle; on a surface it stands still.
+      const Twist twist = p == x ? client::twist_of(s.twist) : Twist{};
+      client.send_coupling("v3", proxy, twist, s.serial);
+    });
+    return true;
+  }
+  Client client;
+  examples::Scene scene = examples::demo_scene();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  std::atomic<double> depth{0.0};
+  std::atomic<bool> answering{true};
+};
+
+TEST(DdsEngine, TheEnginesWallStopsThePushingOperator) {
+  // 15 N along +x into the engine's wall 30 mm ahead; through the 3000 N/m coupling the handle settles
+  // 15/3000 = 5 mm behind the proxy on the wall.
+  Server server(session_yaml(61, 2.5, "step", "[15.0, 0.0, 0.0]"));
+  SceneEngine engine(61, "wall-engine");
+  server.start();
+  ASSERT_TRUE(engine.connect());
+  server.join();
+  const auto& x = server.recording().position();
+  const Eigen::Vector3d start = x.front();
+  double furthest = -1.0;
+  for (const auto& p : x) furthest = std::max(furthest, p.x() - start.x());
+  const double settled = x[x.size() - 600].x() - start.x();  // before the shutdown ramp
+  std::printf("wall at 30 mm: handle furthest %.2f mm, settled %.2f mm (5.00 mm behind the wall expected); "
+              "engine saw %.2f mm; %llu commands accepted, %llu lockstep timeouts\n",
+              1e3 * furthest, 1e3 * settled, 1e3 * engine.depth.load(),
+              static_cast<unsigned long long>(server.bridge().commands_accepted(0)),
+              static_cast<unsigned long long>(server.bridge().lockstep_timeouts()));
+  RecordProperty("wall_penetration_mm", std::to_string(1e3 * (furthest - 0.03)));
+  EXPECT_GT(furthest, 0.030);            // it did reach the wall
+  // Stated bound: the coupling spring alone gives 5 mm at rest; arriving at 0.3 m/s the 3 kg body overshoots,
+  // the peak stays within twice that.
+  EXPECT_LT(furthest, 0.030 + 0.0105);
+  EXPECT_NEAR(settled, 0.035, 0.001);
+  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+  EXPECT_GT(server.bridge().commands_accepted(0), 4000u);
+  EXPECT_EQ(server.bridge().commands_rejected(0), 0u);
+}
+
+// The next tests need the server running while clients come and go: the real-time clock (their checks do not
+// depend on timing).
+TEST(DdsEngine, ASecondEngineCannotTakeAClaimedDevice) {
+  Server server(session_yaml(62, 2.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
+  SceneEngine first(62, "first-engine");
+  server.start();
+  ASSERT_TRUE(first.connect());
+  Client second({"second-engine", 62, {}, 0.05});
+  const client::Reply r = second.claim("v3", std::chrono::seconds(10));
+  EXPECT_TRUE(r.answered);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.message.find("first-engine"), std::string::npos) << r.message;
+  // Its commands are rejected as not the owner's, and it may not switch the scheme either.
+  Pose far = client::pose_of(second.latest_state("v3")->pose);
+  far.position.x() += 0.05;
+  for (int i = 0; i < 20; ++i) second.send_coupling("v3", far, Twist{}, 0);
+  EXPECT_FALSE(second.switch_scheme("v3", "default", std::chrono::seconds(5)).accepted);
+  // Observing is allowed.
+  EXPECT_TRUE(second.wait_for_state("v3", std::chrono::seconds(5)).has_value());
+  server.join();
+  EXPECT_GT(server.bridge().rejected_by_reason(0)[static_cast<std::size_t>(dds::RejectReason::not_owner)], 0u);
+  EXPECT_EQ(server.bridge().owner(0), "first-engine");
+  // The device never felt the intruder's proxy 50 mm away (that would be 150 N through the coupling; the
+  // owner's proxy on the free handle gives a few newtons of coupling damping at most).
+  double largest = 0.0;
+  for (const auto& f : server.recording().force()) largest = std::max(largest, f.norm());
+  EXPECT_LT(largest, 10.0);
+}
+
+TEST(DdsEngine, AKilledEngineFadesToZeroWithinTheDeadline) {
+  // An engine pushes with a 10 N wrench, then dies. The device must hold 10 N until the deadline (50 ms
+  // after the last command) and fade to zero within the fade time (20 ms), without a step.
+  Server server(session_yaml(63, 1.5, "constant", "[0.0, 0.0, 0.0]"));
+  auto engine = std::make_unique<Client>(client::ClientOptions{"doomed-engine", 63, {}, 0.05});
+  server.start();
+  ASSERT_TRUE(engine->wait_for_state("v3", std::chrono::seconds(20)));
+  ASSERT_TRUE(engine->claim("v3", std::chrono::seconds(10)).accepted);
+  std::atomic<int> answers{0};
+  std::atomic<bool> alive{true};
+  engine->on_state([&](const hapticd_msg_DeviceState& s) {
+    if (!alive.load()) return;
+    Wrench w;
+    w.force = Eigen::Vector3d(-10.0, 0.0, 0.0);
+    engine->send_wrench("v3", w, s.serial);
+    if (answers.fetch_add(1) == 1200) alive.store(false);  // dies after ~0.6 s of loop time
+  });
+  while (alive.load()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  engine->on_state({});
+  engine.reset();  // the process is gone: participant deleted
+  server.join();
+  const auto& f = server.recording().force();
+  std::size_t last_full = 0, first_zero = 0;
+  double largest_step = 0.0;
+  for (std::size_t k = 1; k < f.size(); ++k) {
+    if (std::abs(f[k].x() + 10.0) < 1e-9) last_full = k;
+    if (last_full > 0 && first_zero == 0 && f[k].norm() == 0.0) first_zero = k;
+    if (last_full > 0) largest_step = std::max(largest_step, (f[k] - f[k - 1]).norm());
+  }
+  ASSERT_GT(last_full, 0u);
+  ASSERT_GT(first_zero, last_full);
+  // Cycles at 2 kHz: the fade lasts 20 ms = 40 cycles.
+  const double fade_ms = 0.5 * static_cast<double>(first_zero - last_full);
+  std::printf("engine killed: force 10 N -> 0 over %.1f ms after the deadline; largest step per cycle %.3f N\n", fade_ms,
+              largest_step);
+  RecordProperty("fade_ms", std::to_string(fade_ms));
+  EXPECT_LE(fade_ms, 20.5);
+  EXPECT_LE(largest_step, 10.0 / 40.0 + 1e-9);
+  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+}
+
+TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
+  Server server(session_yaml(64, 2.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
+  Client engine({"careful-engine", 64, {}, 0.05});
+  server.start();
+  ASSERT_TRUE(engine.wait_for_state("v3", std::chrono::seconds(20)));
+  ASSERT_TRUE(engine.claim("v3", std::chrono::seconds(10)).accepted);
+  // A raw writer in the engine's name, to write what the client library would never write.
+  dds::Participant raw_participant(dds::ParticipantOptions{64, {}});
+  dds::Writer<hapticd_msg_EngineCommand> raw(raw_participant);
+  for (int i = 0; i < 200 && raw.matched() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const auto good = [](std::uint64_t serial) {
+    hapticd_msg_EngineCommand c{};
+    dds::set_text(c.device, "v3");
+    dds::set_text(c.engine, "careful-engine");
+    c.serial = serial;
+    c.kind = hapticd_msg_COMMAND_WRENCH;
+    c.wrench[0] = 2.0;
+    c.anchor.orientation[0] = c.pose.orientation[0] = 1.0;
+    return c;
+  };
+  const std::int64_t now = dds::wall_clock_ns();
+  auto c = good(10);
+  ASSERT_TRUE(raw.write(c, now));  // accepted: serial 10
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  // Latest wins (keep-last 1): space the samples so the receiver takes each one.
+  const auto send = [&](const hapticd_msg_EngineCommand& sample, std::int64_t age_ns = 0) {
+    raw.write(sample, dds::wall_clock_ns() - age_ns);
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  };
+  c = good(11);
+  dds::set_text(c.engine, "");  // malformed: no engine id (an enum out of range never leaves the writer:
+  send(c);                      // Cyclone's serializer refuses it)
+  c = good(12);
+  c.wrench[1] = std::nan("");  // non-finite
+  send(c);
+  c = good(13);
+  c.wrench[0] = 5000.0;  // out of bounds
+  send(c);
+  c = good(9);  // out of order
+  send(c);
+  c = good(14);  // stale: written 1 s ago
+  send(c, 1'000'000'000);
+  c = good(15);
+  c.pose.orientation[0] = 0.0;  // malformed quaternion on a coupling command
+  c.kind = hapticd_msg_COMMAND_COUPLING;
+  send(c);
+  c = good(16);
+  dds::set_text(c.engine, "someone-else");  // not the owner
+  send(c);
+  for (int i = 0; i < 200 && server.bridge().commands_rejected(0) < 7; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  server.join();
+  const auto r = server.bridge().rejected_by_reason(0);
+  using dds::RejectReason;
+  const auto n = [&](RejectReason reason) { return r[static_cast<std::size_t>(reason)]; };
+  EXPECT_EQ(n(RejectReason::malformed), 2u);
+  EXPECT_EQ(n(RejectReason::non_finite), 1u);
+  EXPECT_EQ(n(RejectReason::out_of_bounds), 1u);
+  EXPECT_EQ(n(RejectReason::out_of_order), 1u);
+  EXPECT_EQ(n(RejectReason::stale), 1u);
+  EXPECT_EQ(n(RejectReason::not_owner), 1u);
+  EXPECT_EQ(server.bridge().commands_accepted(0), 1u);
+  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+  // Nothing but the one good command (2 N) ever reached the device.
+  for (const auto& f : server.recording().force()) {
+    EXPECT_TRUE(f.allFinite());
+    EXPECT_LE(f.norm(), 2.0 + 1e-9);
+  }
+}
+
+TEST(DdsEngine, AReconnectingEngineStartsWithoutAJump) {
+  // The operator pushes 10 N into the wall; the engine disconnects (the wall fades, the handle moves on into
+  // where the wall was), then reconnects: the proxy is now far from the handle, but the force ramps in.
+  Server server(session_yaml(65, 4.0, "step", "[10.0, 0.0, 0.0]", "realtime"));
+  auto engine = std::make_unique<SceneEngine>(65, "scene-engine");
+  server.start();
+  ASSERT_TRUE(engine->connect());
+  // Wait until the handle rests on the wall, then disconnect.
+  while (engine->depth.load() < 0.003) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  engine->answering.store(false);
+  (void)engine->client.release("v3", std::chrono::seconds(5));
+  engine->client.on_state({});
+  engine.reset();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  auto again = std::make_unique<SceneEngine>(65, "scene-engine");
+  ASSERT_TRUE(again->connect());
+  server.join();
+  const auto& f = server.recording().force();
+  const auto& w = server.recording().engine_weight();
+  // The reconnection: the engine input weight rises again after it had faded to zero.
+  std::size_t faded = 0, back = 0;
+  for (std::size_t k = 1; k < w.size() && back == 0; ++k) {
+    if (w[k] == 0.0 && w[k - 1] > 0.0) faded = k;
+    if (faded > 0 && w[k] > 0.0 && w[k - 1] == 0.0) back = k;
+  }
+  ASSERT_GT(back, faded);
+  double largest_step = 0.0, largest = 0.0;
+  // Over the ramp-in (0.1 s = 200 cycles); after it the engine's own contact dynamics take over.
+  for (std::size_t k = back; k < std::min(f.size(), back + 200); ++k) {
+    largest_step = std::max(largest_step, (f[k] - f[k - 1]).norm());
+    largest = std::max(largest, f[k].norm());
+  }
+  std::printf("reconnect after %.0f ms: force rises to %.1f N over the ramp-in, largest change per cycle %.3f N "
+              "(ramp-in over 0.1 s)\n", 0.5 * static_cast<double>(back - faded), largest, largest_step);
+  RecordProperty("reconnect_largest_step_n", std::to_string(largest_step));
+  EXPECT_GT(largest, 5.0);  // the wall did push back
+  // Without the ramp the whole force would come in one cycle. With it (0.1 s = 200 cycles) the largest change
+  // per cycle is the ramp's share (force / 200) plus the coupling's own variation as the device moves: stated
+  // bound 3 % of the force plus 0.5 N.
+  EXPECT_LT(largest_step, 0.03 * largest + 0.5);
+  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+}
+
+}  // namespace
+}  // namespace hapticd::server
