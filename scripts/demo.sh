@@ -1,16 +1,43 @@
 #!/usr/bin/env bash
-# Quick start, command 1: install dependencies, build, and run the demo session on the simulated device
-# in real time, then plot what happened.
-# Usage: scripts/demo.sh [SESSION.yaml] [SECONDS]
+# Quick start, command 1: install dependencies, build, and run the demo: the server with the simulated
+# ViSHaRD3 in admittance display, the example rendering engine (a wall, a cube, a sphere) coupled over DDS on
+# the loopback interface, and the simulated operator pushing into the objects (driven with hapticctl).
+# Prints what happens; writes the engine's view, the server's recording and a plot to build/demo/.
+# Usage: scripts/demo.sh [DOMAIN_ID]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-session=${1:-config/sessions/demo.yaml}
-seconds=${2:-5}
+domain=${1:-0}
 bash scripts/build.sh default
+bin=build/default/bin
 out=build/demo
 mkdir -p "$out"
-echo "== hapticd --config $session --duration $seconds"
-build/default/bin/hapticd --config "$session" --duration "$seconds" \
-  --record "$out/recording.csv" --stats-json "$out/stats.json"
-/usr/bin/python3 scripts/plot_recording.py "$out/recording.csv" "$out/demo.png"
-echo "== recording: $out/recording.csv, loop statistics: $out/stats.json, plot: $out/demo.png"
+rm -f "$out"/engine.csv
+
+echo "== hapticd --config config/sessions/demo.yaml --dds-domain $domain (11 s, real time)"
+"$bin/hapticd" --config config/sessions/demo.yaml --dds-domain "$domain" \
+  --record "$out/recording.csv" --stats-json "$out/stats.json" > "$out/server.log" 2>&1 &
+server=$!
+trap 'kill $server $engine 2>/dev/null || true' EXIT
+engine=
+"$bin/hapticd-scene-engine" --device vishard3 --domain "$domain" --csv "$out/engine.csv" --wait 10 &
+engine=$!
+
+ctl() { "$bin/hapticctl" --domain "$domain" --timeout 5 "$@"; }
+ctl list
+sleep 1
+echo "== the operator pushes along +x (12 N): the wall is 30 mm ahead"
+ctl operator vishard3 push 12 0 0 1.0
+sleep 3
+echo "== the operator pushes along -y (12 N): the cube is below"
+ctl operator vishard3 push 0 -12 0 1.0
+sleep 3
+echo "== the operator pushes along -x (12 N): the sphere is that way"
+ctl operator vishard3 push -12 0 0 1.0
+sleep 2.5
+ctl operator vishard3 release
+wait "$engine" || true
+wait "$server"
+trap - EXIT
+grep -E "round trip|engine commands|cycles in|device " "$out/server.log" | sed 's/^\[[^]]*\] \[[a-z]*\] /server: /'
+/usr/bin/python3 scripts/plot_engine_run.py "$out/engine.csv" "$out/demo.png"
+echo "== engine view: $out/engine.csv, server recording: $out/recording.csv, server log: $out/server.log, plot: $out/demo.png"

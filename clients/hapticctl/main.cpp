@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <mutex>
 #include <thread>
@@ -105,6 +106,7 @@ int main(int argc, char** argv) {
   op->add_option("command", what)->required()->check(CLI::IsMember({"push", "release", "grasp"}));
   op->add_option("values", values);
   CLI11_PARSE(app, argc, argv);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
@@ -112,7 +114,11 @@ int main(int argc, char** argv) {
   const auto wait = std::chrono::duration<double>(timeout);
 
   if (*list) {
-    std::this_thread::sleep_for(wait);
+    // Until a first description arrives, then a moment for the other servers' (each sends its own).
+    const auto give_up = std::chrono::steady_clock::now() + wait;
+    while (client.devices().empty() && std::chrono::steady_clock::now() < give_up)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
     const auto devices = client.devices();
     if (devices.empty()) {
       fmt::print("no devices on domain {}\n", domain);

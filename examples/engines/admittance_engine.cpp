@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 #include <thread>
 
 #include "hapticd/client/client.hpp"
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
   app.add_option("--floor-depth", floor_depth, "floor this far below the start position [m]");
   app.add_option("--floor-stiffness", floor_stiffness, "floor stiffness [N/m]")->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
@@ -44,6 +46,11 @@ int main(int argc, char** argv) {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
   std::int64_t last_time = first->loop_time_ns;
   std::atomic<std::uint64_t> answered{0};
+  const auto claim = client.claim(device);
+  if (!claim.accepted) {
+    fmt::print(stderr, "admittance-engine: cannot claim '{}': {}\n", device, claim.message);
+    return 2;
+  }
   client.on_state([&](const hapticd_msg_DeviceState& s) {
     if (hapticd::client::name_of(s.device) != device) return;
     const double dt = std::clamp(static_cast<double>(s.loop_time_ns - last_time) * 1e-9, 0.0, 0.01);
@@ -58,11 +65,6 @@ int main(int argc, char** argv) {
     client.send_motion(device, object, twist, s.serial);
     answered.fetch_add(1);
   });
-  const auto claim = client.claim(device);
-  if (!claim.accepted) {
-    fmt::print(stderr, "admittance-engine: cannot claim '{}': {}\n", device, claim.message);
-    return 2;
-  }
   fmt::print("admittance-engine: claimed '{}': a {} kg object, floor {} mm below\n", device, mass, 1e3 * floor_depth);
   const auto start = std::chrono::steady_clock::now();
   while (!g_stop.load()) {

@@ -61,6 +61,16 @@ struct Scene {
     return p;
   }
 
+  // The proxy's velocity for a handle at x moving with v whose proxy is p: the handle's velocity in free space;
+  // on a surface the part along the surface (the proxy slides with the handle, it does not enter).
+  [[nodiscard]] static Eigen::Vector3d proxy_velocity(const Eigen::Vector3d& x, const Eigen::Vector3d& p,
+                                                      const Eigen::Vector3d& v) {
+    const Eigen::Vector3d out = p - x;
+    if (out.norm() < 1e-12) return v;
+    const Eigen::Vector3d n = out.normalized();
+    return v - v.dot(n) * n;
+  }
+
   // Which object the handle at x is in contact with ("" none).
   [[nodiscard]] std::string contact(const Eigen::Vector3d& x) const {
     for (const Wall& w : walls)
@@ -73,13 +83,15 @@ struct Scene {
   }
 };
 
-// The demo's scene relative to the start position: a wall 30 mm ahead in +x, a 40 mm box 20 mm to the -y
-// side, a 25 mm sphere 60 mm ahead in -y... placed so a push along +x meets the wall and a push along -y the box.
+// The demo's scene relative to the start position (mm): a wall at x = +30 facing -x; a 40 mm cube centred
+// at (30, -55, 0), its top face at y = -35; a sphere of radius 25 centred at (-30, -35, 0). A push along +x
+// from the start meets the wall; from there a push along -y lands on the cube; from there a push along -x
+// meets the sphere.
 inline Scene demo_scene() {
   Scene s;
   s.walls.push_back({Eigen::Vector3d(0.03, 0.0, 0.0), Eigen::Vector3d(-1.0, 0.0, 0.0)});
-  s.boxes.push_back({Eigen::Vector3d(0.0, -0.04, 0.0), Eigen::Vector3d(0.02, 0.02, 0.02)});
-  s.spheres.push_back({Eigen::Vector3d(-0.05, 0.0, 0.0), 0.02});
+  s.boxes.push_back({Eigen::Vector3d(0.03, -0.055, 0.0), Eigen::Vector3d(0.02, 0.02, 0.02)});
+  s.spheres.push_back({Eigen::Vector3d(-0.030, -0.035, 0.0), 0.025});
   return s;
 }
 

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <mutex>
 #include <thread>
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   app.add_option("--wait", wait, "how long to wait for the device to appear");
   app.add_option("--csv", csv, "write time, handle position, proxy, rendered force and operator force here");
   CLI11_PARSE(app, argc, argv);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
@@ -65,14 +67,21 @@ int main(int argc, char** argv) {
   double deepest = 0.0;
   std::atomic<std::uint64_t> answered{0};
   std::atomic<bool> server_gone{false};
+  const auto claim = client.claim(device);
+  if (!claim.accepted) {
+    fmt::print(stderr, "scene-engine: cannot claim '{}': {}\n", device, claim.message);
+    return 2;
+  }
   client.on_state([&](const hapticd_msg_DeviceState& s) {
     if (hapticd::client::name_of(s.device) != device) return;
-    const Eigen::Vector3d x = hapticd::client::pose_of(s.pose).position - origin;
+    // The coupling pulls the server's virtual body (the target pose); its proxy is the body kept out of the
+    // objects (using the measured handle instead would tie the body to the handle in free space).
+    const Eigen::Vector3d x = hapticd::client::pose_of(s.target_pose).position - origin;
     const Eigen::Vector3d p = scene.proxy(x);
     hapticd::Pose proxy = hapticd::client::pose_of(s.pose);
     proxy.position = origin + p;
-    // In free space the proxy moves with the handle; on a surface it stands still.
-    const hapticd::Twist twist = p == x ? hapticd::client::twist_of(s.twist) : hapticd::Twist{};
+    hapticd::Twist twist;  // slides with the handle along a surface, never into it
+    twist.linear = scene.proxy_velocity(x, p, hapticd::client::twist_of(s.twist).linear);
     client.send_coupling(device, proxy, twist, s.serial);
     answered.fetch_add(1);
     if (s.mode == hapticd_msg_MODE_STOPPING || s.mode == hapticd_msg_MODE_OFF) server_gone.store(true);
@@ -94,12 +103,8 @@ int main(int argc, char** argv) {
                          s.operator_wrench[1], s.operator_wrench[2], contact);
     }
   });
-  const auto claim = client.claim(device);
-  if (!claim.accepted) {
-    fmt::print(stderr, "scene-engine: cannot claim '{}': {}\n", device, claim.message);
-    return 2;
-  }
-  fmt::print("scene-engine: claimed '{}'; rendering a wall at +30 mm x, a box at -40 mm y, a sphere at -50 mm x\n", device);
+  fmt::print("scene-engine: claimed '{}'; rendering a wall at x = +30 mm, a cube below it (top at y = -35 mm) and a "
+             "sphere at (-30, -35) mm, r = 25 mm\n", device);
   const auto start = std::chrono::steady_clock::now();
   std::uint64_t last_answered = 0;
   auto last_progress = start;

@@ -281,12 +281,14 @@ RuntimeReply SimDevice::handle_request(std::string_view name, const std::vector<
     const Eigen::Vector3d f(values[0], values[1], values[2]);
     if (!f.allFinite() || f.norm() > 200.0 || !(ramp >= 0.0 && ramp <= 60.0))
       return {false, "operator.push: |force| up to 200 N, ramp 0..60 s"};
-    const Eigen::Vector3d from = a.kind == AttachmentKind::kOperator ? a.force.at(now) : Eigen::Vector3d::Zero();
+    // Profiles run on the attachment's own clock, which restarts when the new settings take hold.
+    const Eigen::Vector3d from =
+        a.kind == AttachmentKind::kOperator ? a.force.at(now - requested_at_s_) : Eigen::Vector3d::Zero();
     a.kind = AttachmentKind::kOperator;
     a.force.kind = Profile::Kind::kRampTo;
     a.force.from = from;
     a.force.value = f;
-    a.force.start_s = now;
+    a.force.start_s = 0.0;
     a.force.duration_s = ramp;
   } else if (name == "operator.grasp") {
     if (values.size() != 1 || !(values[0] >= 0.0 && values[0] <= 1.0)) return {false, "operator.grasp takes one value in 0..1"};
@@ -295,6 +297,7 @@ RuntimeReply SimDevice::handle_request(std::string_view name, const std::vector<
     return {false, "the simulated device accepts operator.push, operator.release and operator.grasp"};
   }
   requested_ = a;
+  requested_at_s_ = now;
   request_attachment(a);
   return {true, std::string(name) + " accepted"};
 }

@@ -65,6 +65,7 @@ class SimDevice final : public Device {
   realtime::LatestValue<AttachmentSettings> attachment_requests_;
   AttachmentSettings pending_;
   AttachmentSettings requested_;              // the last attachment asked for (request thread)
+  double requested_at_s_ = 0.0;               // ... and when (simulated time)
   std::atomic<std::int64_t> simulated_now_ns_{0};  // for requests: when "now" is
   GroundTruth truth_;
   JointVector initial_position_, command_, counts_per_rev_, speed_limits_;

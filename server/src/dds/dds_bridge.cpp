@@ -432,7 +432,8 @@ void DdsBridge::handle_requests() {
             break;
           case hapticd_msg_REQUEST_SET_PARAMETER:
           case hapticd_msg_REQUEST_OPERATOR: {
-            if (!may_drive) {
+            // The simulated operator is the person at the device, not the device: anyone may drive it.
+            if (!may_drive && r.kind == hapticd_msg_REQUEST_SET_PARAMETER) {
               message = "claimed by '" + owner + "'";
               break;
             }
