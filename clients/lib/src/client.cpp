@@ -16,8 +16,9 @@ struct Client::Impl {
       : options(std::move(o)),
         participant(dds::ParticipantOptions{options.domain_id, options.cyclone_config}),
         timing{options.command_deadline_s, 0.5},
+        state_listener(make_state_listener(this)),
         description(participant),
-        state(participant),
+        state(participant, dds::CommandTiming{}, state_listener.get()),
         event(participant),
         telemetry(participant),
         reply(participant),
@@ -25,7 +26,7 @@ struct Client::Impl {
         request(participant),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {
-    for (dds_entity_t r : {description.get(), state.get(), event.get(), telemetry.get(), reply.get()}) {
+    for (dds_entity_t r : {description.get(), event.get(), telemetry.get(), reply.get()}) {
       dds::check(dds_set_status_mask(r, DDS_DATA_AVAILABLE_STATUS), "status mask");
       dds::check(dds_waitset_attach(waitset.get(), r, r), "waitset");
     }
@@ -38,23 +39,32 @@ struct Client::Impl {
     thread.join();
   }
 
+  struct ListenerDeleter {
+    void operator()(dds_listener_t* l) const noexcept { dds_delete_listener(l); }
+  };
+  // States are taken on Cyclone's receive thread (a listener): an engine answers without a thread wake-up.
+  static std::unique_ptr<dds_listener_t, ListenerDeleter> make_state_listener(Impl* self) {
+    std::unique_ptr<dds_listener_t, ListenerDeleter> l(dds_create_listener(self));
+    dds_lset_data_available(l.get(), [](dds_entity_t, void* arg) { static_cast<Impl*>(arg)->take_states(); });
+    return l;
+  }
+  void take_states() {
+    std::lock_guard one_at_a_time(state_take_mutex);
+    state.take([&](const hapticd_msg_DeviceState& s, const dds_sample_info_t&) {
+      {
+        std::lock_guard lock(mutex);
+        states[std::string(dds::text_of(s.device))] = s;
+      }
+      changed.notify_all();
+      std::lock_guard lock(callback_mutex);
+      if (state_callback) state_callback(s);
+    });
+  }
+
   void run() {
     std::array<dds_attach_t, 8> triggered{};
     while (!stopping.load()) {
       (void)dds_waitset_wait(waitset.get(), triggered.data(), triggered.size(), DDS_MSECS(100));
-      state.take([&](const hapticd_msg_DeviceState& s, const dds_sample_info_t&) {
-        {
-          std::lock_guard lock(mutex);
-          states[std::string(dds::text_of(s.device))] = s;
-        }
-        changed.notify_all();
-        std::function<void(const hapticd_msg_DeviceState&)> f;
-        {
-          std::lock_guard lock(callback_mutex);
-          f = state_callback;
-        }
-        if (f) f(s);
-      });
       description.take([&](const hapticd_msg_DeviceDescription& d, const dds_sample_info_t&) {
         {
           std::lock_guard lock(mutex);
@@ -90,19 +100,7 @@ struct Client::Impl {
   }
 
   ClientOptions options;
-  dds::Participant participant;
-  dds::CommandTiming timing;
-  dds::Reader<hapticd_msg_DeviceDescription> description;
-  dds::Reader<hapticd_msg_DeviceState> state;
-  dds::Reader<hapticd_msg_Event> event;
-  dds::Reader<hapticd_msg_Telemetry> telemetry;
-  dds::Reader<hapticd_msg_ControlReply> reply;
-  dds::Writer<hapticd_msg_EngineCommand> command;
-  dds::Writer<hapticd_msg_ControlRequest> request;
-  dds::Entity waitset, wake;
-  std::thread thread;
-  std::atomic<bool> stopping{false};
-
+  // Declared before the readers: a listener may run as soon as its reader exists.
   mutable std::mutex mutex;
   std::condition_variable changed;
   std::map<std::string, hapticd_msg_DeviceDescription> descriptions;
@@ -115,6 +113,21 @@ struct Client::Impl {
   std::function<void(const hapticd_msg_DeviceState&)> state_callback;
   std::function<void(const hapticd_msg_Event&)> event_callback;
   std::function<void(const hapticd_msg_Telemetry&)> telemetry_callback;
+  std::mutex state_take_mutex;
+  dds::Participant participant;
+  dds::CommandTiming timing;
+  std::unique_ptr<dds_listener_t, ListenerDeleter> state_listener;
+  dds::Reader<hapticd_msg_DeviceDescription> description;
+  dds::Reader<hapticd_msg_DeviceState> state;
+  dds::Reader<hapticd_msg_Event> event;
+  dds::Reader<hapticd_msg_Telemetry> telemetry;
+  dds::Reader<hapticd_msg_ControlReply> reply;
+  dds::Writer<hapticd_msg_EngineCommand> command;
+  dds::Writer<hapticd_msg_ControlRequest> request;
+  dds::Entity waitset, wake;
+  std::thread thread;
+  std::atomic<bool> stopping{false};
+
 };
 
 Client::Client(ClientOptions options) {

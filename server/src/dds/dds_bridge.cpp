@@ -55,15 +55,19 @@ struct DdsBridge::Device {
   Pose start_pose;
 };
 
+struct ListenerDeleter {
+  void operator()(dds_listener_t* l) const noexcept { dds_delete_listener(l); }
+};
+
 struct DdsBridge::Dds {
-  Dds(const DdsSettings& s, const dds::CommandTiming& timing)
+  Dds(const DdsSettings& s, const dds::CommandTiming& timing, dds_listener_t* command_listener)
       : participant(dds::ParticipantOptions{s.domain_id, s.cyclone_config}),
         description(participant),
         state(participant),
         event(participant),
         telemetry(participant),
         reply(participant),
-        command(participant, timing),
+        command(participant, timing, command_listener),
         request(participant),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {}
@@ -86,18 +90,19 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
                            : 1;
   double deadline = 1.0;
   for (DeviceSession* s : sessions) deadline = std::min(deadline, s->chain().engine_deadline_s);
-  dds_ = std::make_unique<Dds>(settings, dds::CommandTiming{deadline, 0.5});
-  dds::check(dds_set_status_mask(dds_->command.get(), DDS_DATA_AVAILABLE_STATUS | DDS_LIVELINESS_CHANGED_STATUS |
-                                                          DDS_REQUESTED_DEADLINE_MISSED_STATUS),
-             "cannot set the command reader's status mask");
-  dds::check(dds_set_status_mask(dds_->request.get(), DDS_DATA_AVAILABLE_STATUS), "cannot set the request reader's status mask");
-  dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->command.get(), 0), "waitset");
-  dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->request.get(), 1), "waitset");
-  dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->wake.get(), 2), "waitset");
+  // The devices first: the command listener may run as soon as the reader exists.
   for (DeviceSession* s : sessions) {
     s->set_snapshot_interval(snapshot_interval_);
     devices_.push_back(std::make_unique<Device>(s, settings));
   }
+  // Engine commands are taken on Cyclone's receive thread (a listener): no thread wake-up between a command's
+  // arrival and its hand-over to the loop. Requests, engine health and telemetry are the receiver thread's.
+  std::unique_ptr<dds_listener_t, ListenerDeleter> listener(dds_create_listener(this));
+  dds_lset_data_available(listener.get(), [](dds_entity_t, void* self) { static_cast<DdsBridge*>(self)->handle_commands(); });
+  dds_ = std::make_unique<Dds>(settings, dds::CommandTiming{deadline, 0.5}, listener.get());
+  dds::check(dds_set_status_mask(dds_->request.get(), DDS_DATA_AVAILABLE_STATUS), "cannot set the request reader's status mask");
+  dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->request.get(), 1), "waitset");
+  dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->wake.get(), 2), "waitset");
   for (auto& d : devices_) publish_description(*d);
 }
 
@@ -305,7 +310,6 @@ void DdsBridge::receiver_thread() {
     const auto wait = std::max<std::int64_t>(
         0, std::chrono::duration_cast<std::chrono::nanoseconds>(next_telemetry - now).count());
     (void)dds_waitset_wait(dds_->waitset.get(), triggered.data(), triggered.size(), wait);
-    handle_commands();
     handle_requests();
     check_engine_health();
     if (Clock::now() >= next_telemetry) {

@@ -3,8 +3,10 @@
 // receive their state, events and telemetry through typed callbacks, claim a device and send it engine
 // commands, and make requests with a timeout. One Client is one DDS participant (loopback-only by default).
 //
-// Callbacks run on the client's own receive thread, one at a time; a callback may send commands (an engine
-// answers each state from its state callback) but must not wait for a reply (that would wait for itself).
+// Callbacks run one at a time: state callbacks on Cyclone's receive thread (no extra thread wake-up between a
+// state's arrival and the engine's answer), the others on the client's own thread. A callback may send
+// commands (an engine answers each state from its state callback) but must not wait for a reply, set a
+// callback or destroy the client.
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
