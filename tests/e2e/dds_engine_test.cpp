@@ -13,6 +13,7 @@
 #include "hapticd/client/client.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
+#include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -182,6 +183,9 @@ TEST(DdsEngine, ASecondEngineCannotTakeAClaimedDevice) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   EXPECT_FALSE(second.switch_scheme("v3", "default", std::chrono::seconds(5)).accepted);
+  EXPECT_FALSE(second.set_parameter("v3", "virtual_model.coupling_stiffness_n_per_m", {100.0}).accepted);
+  // The owner may tune its device at run time.
+  EXPECT_TRUE(first.client.set_parameter("v3", "virtual_model.coupling_stiffness_n_per_m", {3000.0}).accepted);
   // Observing is allowed.
   EXPECT_TRUE(second.wait_for_state("v3", std::chrono::seconds(5)).has_value());
   server.join();
@@ -346,6 +350,32 @@ TEST(DdsEngine, AReconnectingEngineStartsWithoutAJump) {
   // bound 3 % of the force plus 0.5 N.
   EXPECT_LT(largest_step, 0.03 * largest + 0.5);
   EXPECT_EQ(server.device().fault(), DeviceFault::none);
+}
+
+TEST(DdsEngine, TheLoopSideOfTheBridgeDoesNotAllocate) {
+  // The loop publishes a snapshot every cycle and wakes the publisher; engine input arrives lock-free.
+  if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
+  auto session = test::build_test_session(session_yaml(66, 1.0, "constant", "[2.0, 0.0, 0.0]", "realtime"));
+  DeviceSession& d = *session.devices[0];
+  DdsBridge bridge(session.config.dds, 2000.0, {&d});
+  bridge.start();
+  d.activate();
+  d.cycle(test::cycle_at(0), 1.0);
+  EngineInput e;
+  e.has_proxy = true;
+  e.proxy_pose = d.chain_state().handle_pose;
+  std::size_t allocations = 0;
+  for (std::uint64_t k = 1; k < 2000; ++k) {
+    ++e.sequence;
+    d.publish_engine_input(e);  // the bridge's receive side, not the loop: not counted
+    allocations += testing::count_allocations([&] {
+      d.cycle(test::cycle_at(k), 1.0);
+      bridge.after_cycle(k, false);
+    });
+  }
+  bridge.stop();
+  d.deactivate();
+  EXPECT_EQ(allocations, 0u);
 }
 
 }  // namespace

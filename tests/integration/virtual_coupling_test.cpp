@@ -3,6 +3,8 @@
 // proxy feels the coupling stiffness; a stale engine lets go of the device.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
@@ -73,6 +75,31 @@ TEST(VirtualCoupling, AStaleEngineLetsGoOfTheDevice) {
   const Eigen::Vector3d moved = run("[8.0, 0.0, 0.0]", Eigen::Vector3d::Zero(), [](std::uint64_t k) { return k < 2000; });
   std::printf("engine silent from 1 s on: the pushed handle moved %.0f mm by 3 s\n", 1e3 * moved.x());
   EXPECT_GT(moved.x(), 0.1);
+}
+
+TEST(VirtualCoupling, RunTimeParametersTakeEffectAtTheNextCycle) {
+  // The same 8 N push from rest, with the configured 3 kg and after setting 6 kg at run time (the DDS
+  // request path): with 40 N s/m of damping the virtual speed after 100 ms is (F/b)(1 - exp(-t b/m)) for the
+  // mass in effect. Bad values are refused.
+  const auto moved_after_100ms = [](const std::vector<double>* mass) {
+    auto s = test::build_test_session(coupling_session("[8.0, 0.0, 0.0]"));
+    DeviceSession& d = *s.devices[0];
+    if (mass != nullptr) {
+      EXPECT_TRUE(d.handle_request("virtual_model", "mass_kg", *mass).accepted);
+    }
+    EXPECT_FALSE(d.handle_request("virtual_model", "mass_kg", {1.0, -1.0, 1.0}).accepted);
+    EXPECT_FALSE(d.handle_request("virtual_model", "no_such_parameter", {1.0}).accepted);
+    EXPECT_FALSE(d.handle_request("controller", "mass_kg", {1.0, 1.0, 1.0}).accepted);
+    d.activate();
+    for (std::uint64_t k = 0; k <= 200; ++k) d.cycle(cycle_at(k), 1.0);
+    return d.task().twist.linear.x();
+  };
+  const std::vector<double> six{6.0, 6.0, 6.0};
+  const double v3 = moved_after_100ms(nullptr);
+  const double v6 = moved_after_100ms(&six);
+  std::printf("virtual speed after 100 ms of 8 N: 3 kg %.4f m/s, 6 kg (set at run time) %.4f m/s\n", v3, v6);
+  EXPECT_NEAR(v3, 0.2 * (1.0 - std::exp(-0.1 * 40.0 / 3.0)), 0.004);
+  EXPECT_NEAR(v6, 0.2 * (1.0 - std::exp(-0.1 * 40.0 / 6.0)), 0.004);
 }
 
 TEST(VirtualCoupling, CoupledUpdatesDoNotAllocate) {

@@ -1,6 +1,7 @@
 #include "virtual_admittance.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "hapticd/chain_state.hpp"
 
@@ -194,6 +195,33 @@ bool VirtualAdmittance::limit_tracking_error(const ChainState& c) noexcept {
   return limited;
 }
 
+RuntimeReply VirtualAdmittance::handle_request(std::string_view name, const std::vector<double>& values) {
+  if (!requested_valid_) {
+    requested_ = tunable();  // configured values (configure() ran before any request can come)
+    requested_valid_ = true;
+  }
+  Tunable t = requested_;
+  const auto all_finite_positive = [&](bool zero_ok) {
+    for (double v : values)
+      if (!std::isfinite(v) || v < 0.0 || (!zero_ok && v == 0.0)) return false;
+    return true;
+  };
+  if (name == "mass_kg" || name == "damping_n_s_per_m") {
+    const bool mass = name == "mass_kg";
+    if (values.size() != 3 || !all_finite_positive(!mass)) return {false, std::string(name) + " takes 3 values, " + (mass ? "> 0" : ">= 0")};
+    (mass ? t.mass : t.damping) = Eigen::Vector3d(values[0], values[1], values[2]);
+  } else if (name == "coupling_stiffness_n_per_m" || name == "coupling_damping_n_s_per_m" || name == "wall_stiffness_n_per_m") {
+    if (values.size() != 1 || !all_finite_positive(true)) return {false, std::string(name) + " takes one value >= 0"};
+    (name == "coupling_stiffness_n_per_m" ? t.coupling_k : name == "coupling_damping_n_s_per_m" ? t.coupling_b : t.wall_k) = values[0];
+  } else {
+    return {false, "admittance run-time parameters: mass_kg, damping_n_s_per_m, coupling_stiffness_n_per_m, "
+                   "coupling_damping_n_s_per_m, wall_stiffness_n_per_m"};
+  }
+  requested_ = t;
+  tunable_inbox_.publish(t);
+  return {true, std::string(name) + " set"};
+}
+
 ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcept {
   if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
   // Start where the handle is, moving as it moves: no jump in the desired motion.
@@ -214,6 +242,13 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
                                      TaskTarget& target) noexcept {
   const ChainState& c = *input.chain;
   const double dt = period_s_;
+  if (tunable_inbox_.take(tunable_incoming_)) {  // run-time parameters, at a cycle boundary
+    mass_ = tunable_incoming_.mass;
+    damping_ = tunable_incoming_.damping;
+    coupling_k_ = tunable_incoming_.coupling_k;
+    coupling_b_ = tunable_incoming_.coupling_b;
+    wall_stiffness_ = tunable_incoming_.wall_k;
+  }
   const Eigen::Vector3d world_angular = orientation_ * body_angular_velocity_;
   const EngineInput& e = *input.engine;
   const Eigen::Matrix<double, 6, 1> engine =

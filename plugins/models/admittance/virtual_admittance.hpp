@@ -24,6 +24,7 @@
 #include <array>
 
 #include "hapticd/engine_input.hpp"
+#include "hapticd/realtime/latest_value.hpp"
 #include "hapticd/virtual_model.hpp"
 
 namespace hapticd::models {
@@ -36,6 +37,9 @@ class VirtualAdmittance final : public VirtualModel {
   ReturnCode activate(const VirtualModelInput& current) noexcept override;
   ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept override;
   void deactivate() override {}
+  // Run-time parameters (taken at the next cycle): mass_kg, damping_n_s_per_m (3 values each),
+  // coupling_stiffness_n_per_m, coupling_damping_n_s_per_m, wall_stiffness_n_per_m (1 value each).
+  RuntimeReply handle_request(std::string_view name, const std::vector<double>& values) override;
 
  private:
   struct Wall {
@@ -50,6 +54,16 @@ class VirtualAdmittance final : public VirtualModel {
   Eigen::Matrix<double, 6, 1> engine_wrench(const EngineInput& engine, const Eigen::Vector3d& position,
                                             const Eigen::Quaterniond& orientation, const Eigen::Vector3d& velocity,
                                             const Eigen::Vector3d& angular_velocity) const noexcept;
+
+  struct Tunable {
+    Eigen::Vector3d mass, damping;
+    double coupling_k, coupling_b, wall_k;
+  };
+  Tunable tunable() const noexcept { return {mass_, damping_, coupling_k_, coupling_b_, wall_stiffness_}; }
+  Tunable requested_{};  // request thread's copy of what it last asked for
+  bool requested_valid_ = false;
+  realtime::LatestValue<Tunable> tunable_inbox_;
+  Tunable tunable_incoming_{};
 
   Eigen::Vector3d mass_, inertia_, damping_, rotational_damping_;
   std::array<Wall, kMaxWalls> walls_{};
