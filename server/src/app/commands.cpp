@@ -233,6 +233,8 @@ int describe_config() {
   print_schema(server_settings_schema());
   fmt::print("  {:<24} {}\n  {:<24}   {}\n", "plugin_paths", "folders searched for plugin libraries before "
              "HAPTICD_PLUGIN_PATH and the installed plugin folder", "", "list of folders, relative to the session file");
+  fmt::print("\ndds section of a session file (present: the DDS interface runs):\n");
+  print_schema(dds_settings_schema());
   return kExitOk;
 }
 

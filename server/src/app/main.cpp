@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   auto* check_opt = app.add_option("--check-config", check_file, "validate a session file (loads and configures its plugins) and exit");
   auto* list_opt = app.add_flag("--list-plugins", list, "list the plugins on the search paths (with --config: also its plugin_paths)");
   auto* describe_opt = app.add_option("--describe-plugin", describe_name, "print a plugin's parameters (type, unit, bounds, default)");
-  auto* server_opt = app.add_flag("--describe-config", describe_server, "print the settings of a session file's server section");
+  auto* server_opt = app.add_flag("--describe-config", describe_server, "print the settings of a session file's server and dds sections");
   auto* duration_opt = app.add_option("--duration", duration, "run for this many seconds (overrides server.duration_s)")
                            ->check(CLI::NonNegativeNumber);
   auto* clock_opt = app.add_option("--clock", clock, "realtime or lockstep (overrides server.clock)")
