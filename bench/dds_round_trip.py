@@ -6,7 +6,9 @@ example scene engine (a separate process) answering every state with a coupling 
 state written -> command accepted (validated and handed to the loop). Then ddsperf ping/pong (two processes)
 at the same rate with the same payload size (the state's, 712 bytes), the same Cyclone configuration
 (config/dds/cyclonedds-loopback.xml) and the same triggering (listeners: ddsperf's default, and what the
-server's command path and the client library's state path use). Both on the loopback interface only.
+server's command path and the client library's state path use) and the same placement (the engine and
+both ddsperf processes on CPU 0, where the server keeps its DDS threads; the server's loop on the last CPU).
+Both on the loopback interface only.
 
 ddsperf reports percentiles per second; its p50 and p99 here are the count-weighted means of those. Ours are
 over every sample of the run. Usage: bench/dds_round_trip.py BUILD_BIN_DIR [SECONDS] [OUT.md]
@@ -23,6 +25,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 XML = os.path.join(ROOT, "config", "dds", "cyclonedds-loopback.xml")
 SESSION = os.path.join(ROOT, "config", "sessions", "vishard3", "dds-coupling.yaml")
 STATE_BYTES = 712
+# Placement: hapticd puts its loop on the last CPU and its DDS threads on the others (dds.cpu: auto); the
+# engine and both ddsperf processes run on CPU 0, with the server's DDS threads.
+PIN = ["taskset", "-c", "0"] if (os.cpu_count() or 1) >= 2 else []
 
 
 def run_hapticd(bin_dir, rate, seconds, domain):
@@ -35,7 +40,7 @@ def run_hapticd(bin_dir, rate, seconds, domain):
         server = subprocess.Popen([os.path.join(bin_dir, "hapticd"), "--config", session, "--duration", str(seconds + 1.5),
                                    "--dds-domain", str(domain), "--stats-json", stats, "--log-level", "warn"])
         time.sleep(0.3)
-        engine = subprocess.Popen([os.path.join(bin_dir, "hapticd-scene-engine"), "--domain", str(domain),
+        engine = subprocess.Popen(PIN + [os.path.join(bin_dir, "hapticd-scene-engine"), "--domain", str(domain),
                                    "--duration", str(seconds + 3)], stdout=subprocess.DEVNULL)
         server.wait(timeout=seconds + 30)
         engine.wait(timeout=30)
@@ -45,10 +50,10 @@ def run_hapticd(bin_dir, rate, seconds, domain):
 
 def run_ddsperf(rate, seconds, domain):
     env = dict(os.environ, CYCLONEDDS_URI="file://" + XML)
-    pong = subprocess.Popen(["ddsperf", "-i", str(domain), "-D", str(seconds + 3), "pong"], env=env,
+    pong = subprocess.Popen(PIN + ["ddsperf", "-i", str(domain), "-D", str(seconds + 3), "pong"], env=env,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     time.sleep(0.3)
-    ping = subprocess.run(["ddsperf", "-i", str(domain), "-D", str(seconds), "ping", f"{rate}Hz", "size", str(STATE_BYTES)], env=env, capture_output=True, text=True, timeout=seconds + 30)
+    ping = subprocess.run(PIN + ["ddsperf", "-i", str(domain), "-D", str(seconds), "ping", f"{rate}Hz", "size", str(STATE_BYTES)], env=env, capture_output=True, text=True, timeout=seconds + 30)
     pong.wait(timeout=30)
     total = p50 = p99 = 0.0
     for line in ping.stdout.splitlines():

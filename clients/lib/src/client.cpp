@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -53,9 +54,9 @@ struct Client::Impl {
     state.take([&](const hapticd_msg_DeviceState& s, const dds_sample_info_t&) {
       {
         std::lock_guard lock(mutex);
-        states[std::string(dds::text_of(s.device))] = s;
+        store_state(s);
       }
-      changed.notify_all();
+      if (waiters.load(std::memory_order_acquire) > 0) changed.notify_all();
       std::lock_guard lock(callback_mutex);
       if (state_callback) state_callback(s);
     });
@@ -104,7 +105,22 @@ struct Client::Impl {
   mutable std::mutex mutex;
   std::condition_variable changed;
   std::map<std::string, hapticd_msg_DeviceDescription> descriptions;
-  std::map<std::string, hapticd_msg_DeviceState> states;
+  // The newest state per device: a short list, searched by name (no allocation on the state path).
+  std::vector<hapticd_msg_DeviceState> states;
+  std::atomic<int> waiters{0};  // threads in a wait_for_*: only then does a state notify
+  void store_state(const hapticd_msg_DeviceState& s) {
+    for (auto& known : states)
+      if (std::strncmp(known.device, s.device, sizeof s.device) == 0) {
+        known = s;
+        return;
+      }
+    states.push_back(s);
+  }
+  const hapticd_msg_DeviceState* find_state(std::string_view device) const {
+    for (const auto& known : states)
+      if (dds::text_of(known.device) == device) return &known;
+    return nullptr;
+  }
   std::map<std::uint64_t, Reply> replies;
   std::atomic<std::uint64_t> next_request{1};
   std::atomic<std::uint64_t> serial{0};
@@ -161,20 +177,22 @@ std::optional<hapticd_msg_DeviceDescription> Client::wait_for_device(std::string
 
 std::optional<hapticd_msg_DeviceState> Client::latest_state(std::string_view device) const {
   std::lock_guard lock(impl_->mutex);
-  const auto it = impl_->states.find(std::string(device));
-  if (it == impl_->states.end()) return std::nullopt;
-  return it->second;
+  const hapticd_msg_DeviceState* s = impl_->find_state(device);
+  if (s == nullptr) return std::nullopt;
+  return *s;
 }
 
 std::optional<hapticd_msg_DeviceState> Client::wait_for_state(std::string_view device, Timeout timeout, std::uint64_t after) {
   std::unique_lock lock(impl_->mutex);
   const std::string key(device);
+  impl_->waiters.fetch_add(1);
   const bool got = impl_->changed.wait_for(lock, timeout, [&] {
-    const auto it = impl_->states.find(key);
-    return it != impl_->states.end() && it->second.serial > after;
+    const hapticd_msg_DeviceState* s = impl_->find_state(key);
+    return s != nullptr && s->serial > after;
   });
+  impl_->waiters.fetch_sub(1);
   if (!got) return std::nullopt;
-  return impl_->states[key];
+  return *impl_->find_state(key);
 }
 
 void Client::on_state(std::function<void(const hapticd_msg_DeviceState&)> callback) {

@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <memory>
+#include <thread>
 
 #include "app/session_report.hpp"
 #include "app/signals.hpp"
@@ -103,12 +104,24 @@ int run_session(const RunOptions& options) {
   settings.realtime_priority = server.realtime_priority;
   settings.lock_memory = server.lock_memory;
   settings.cpu = server.cpu;
+  // With the DDS interface, where its threads run (docs/dds-interface.md, "CPUs").
+  std::vector<int> dds_cpus;
+  if (s->config.dds.enabled) {
+    const int n = static_cast<int>(std::thread::hardware_concurrency());
+    if (s->config.dds.cpu >= 0) {
+      dds_cpus = {s->config.dds.cpu};
+    } else if (s->config.dds.cpu == -2 && !lockstep && n >= 2) {
+      if (settings.cpu < 0) settings.cpu = n - 1;
+      for (int c = 0; c < n; ++c)
+        if (c != settings.cpu) dds_cpus.push_back(c);
+    }
+  }
   Executor executor(settings, sessions, recorder.get());
 
   std::unique_ptr<DdsBridge> bridge;
   if (s->config.dds.enabled) {
     try {
-      bridge = std::make_unique<DdsBridge>(s->config.dds, server.rate_hz, sessions);
+      bridge = std::make_unique<DdsBridge>(s->config.dds, server.rate_hz, sessions, dds_cpus);
     } catch (const std::exception& e) {
       spdlog::error("DDS interface: {}", e.what());
       return kExitRuntimeError;
@@ -116,8 +129,11 @@ int run_session(const RunOptions& options) {
     bridge->set_loop_statistics(&executor.live());
     executor.set_cycle_listener(bridge.get());
     bridge->start();
-    spdlog::info("DDS interface on domain {} ({})", s->config.dds.domain_id,
-                 s->config.dds.cyclone_config.empty() ? std::string("loopback only") : s->config.dds.cyclone_config.string());
+    std::string cpus;
+    for (int c : dds_cpus) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
+    spdlog::info("DDS interface on domain {} ({}){}", s->config.dds.domain_id,
+                 s->config.dds.cyclone_config.empty() ? std::string("loopback only") : s->config.dds.cyclone_config.string(),
+                 cpus.empty() ? std::string() : fmt::format(", DDS threads on CPU {}, the loop on CPU {}", cpus, settings.cpu));
   }
 
   const std::atomic<bool>& stop = install_stop_signal_handlers();

@@ -133,6 +133,7 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
   d.lockstep_sync = p.boolean("lockstep_sync");
   d.lockstep_wait_s = p.real("lockstep_wait_s");
   d.lockstep_start_wait_s = p.real("lockstep_start_wait_s");
+  d.cpu = static_cast<int>(p.integer("cpu"));
   return d;
 }
 
@@ -174,6 +175,9 @@ ParameterSchema dds_settings_schema() {
   s.real("lockstep_start_wait_s", "with the lockstep clock, the first cycle waits up to this long (wall time) for an "
                                   "engine to claim a device and answer its state; 0: no wait").unit("s").minimum(0.0)
       .maximum(600.0).default_value(d.lockstep_start_wait_s);
+  s.integer("cpu", "CPU of the DDS threads: -2 auto (real-time clock, 2 or more CPUs: the loop on the last CPU "
+                   "unless server.cpu is set, the DDS threads on the others), -1 no pinning").minimum(-2).maximum(1023)
+      .default_value(std::int64_t{d.cpu});
   return s;
 }
 

@@ -47,6 +47,9 @@ struct DdsSettings {
   bool lockstep_sync = true;             // lockstep clock: each cycle waits for the owning engine's answer
   double lockstep_wait_s = 0.5;          // ... at most this long (wall time), then stops waiting for that engine
   double lockstep_start_wait_s = 0.0;    // lockstep: the first cycle waits this long (wall) for an engine to answer
+  // CPU of the DDS threads (the bridge's and Cyclone's): -2 auto (real-time clock on 2+ CPUs: the loop gets
+  // the last CPU unless server.cpu says otherwise, the DDS threads the others), -1 no pinning, else that CPU.
+  int cpu = -2;
 };
 
 struct PluginConfig {

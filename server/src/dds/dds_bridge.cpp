@@ -1,8 +1,12 @@
 #include "dds/dds_bridge.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
@@ -83,8 +87,25 @@ struct DdsBridge::Dds {
   dds::Entity wake;
 };
 
-DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions)
-    : settings_(settings), rate_hz_(rate_hz) {
+namespace {
+// Sets the calling thread's CPUs; returns the previous set (to restore), nullopt if none were given.
+std::optional<cpu_set_t> set_cpus(const std::vector<int>& cpus) {
+  if (cpus.empty()) return std::nullopt;
+  cpu_set_t previous;
+  if (pthread_getaffinity_np(pthread_self(), sizeof previous, &previous) != 0) return std::nullopt;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  for (int c : cpus) CPU_SET(c, &set);
+  if (pthread_setaffinity_np(pthread_self(), sizeof set, &set) != 0) return std::nullopt;
+  return previous;
+}
+}  // namespace
+
+void DdsBridge::pin_this_thread() const { (void)set_cpus(cpus_); }
+
+DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions,
+                     std::vector<int> dds_cpus)
+    : settings_(settings), rate_hz_(rate_hz), cpus_(std::move(dds_cpus)) {
   snapshot_interval_ = settings.state_rate_hz > 0.0
                            ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(rate_hz / settings.state_rate_hz)))
                            : 1;
@@ -99,7 +120,10 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
   // arrival and its hand-over to the loop. Requests, engine health and telemetry are the receiver thread's.
   std::unique_ptr<dds_listener_t, ListenerDeleter> listener(dds_create_listener(this));
   dds_lset_data_available(listener.get(), [](dds_entity_t, void* self) { static_cast<DdsBridge*>(self)->handle_commands(); });
+  // Cyclone's threads (receive, timed events, ...) start with the participant and inherit this thread's CPUs.
+  const std::optional<cpu_set_t> previous = set_cpus(cpus_);
   dds_ = std::make_unique<Dds>(settings, dds::CommandTiming{deadline, 0.5}, listener.get());
+  if (previous) (void)pthread_setaffinity_np(pthread_self(), sizeof *previous, &*previous);
   dds::check(dds_set_status_mask(dds_->request.get(), DDS_DATA_AVAILABLE_STATUS), "cannot set the request reader's status mask");
   dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->request.get(), 1), "waitset");
   dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->wake.get(), 2), "waitset");
@@ -166,6 +190,7 @@ void DdsBridge::after_cycle(std::uint64_t index, bool lockstep) noexcept {
 // ---- publisher ----
 
 void DdsBridge::publisher_thread() {
+  pin_this_thread();
   std::uint32_t seen = ticket_.load(std::memory_order_acquire);
   while (!stopping_.load(std::memory_order_acquire)) {
     ticket_.wait(seen, std::memory_order_acquire);
@@ -302,6 +327,7 @@ void DdsBridge::send_event(Device& d, int kind, std::string_view code, std::stri
 // ---- receiver ----
 
 void DdsBridge::receiver_thread() {
+  pin_this_thread();
   const auto telemetry_period = std::chrono::duration<double>(1.0 / settings_.telemetry_rate_hz);
   auto next_telemetry = Clock::now();
   std::array<dds_attach_t, 4> triggered{};

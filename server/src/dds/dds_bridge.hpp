@@ -33,7 +33,11 @@ struct RoundTripStatistics {
 class DdsBridge final : public CycleListener {
  public:
   // Creates the participant, the topics and the per-device snapshot interval; publishes the descriptions.
-  DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions);
+  // dds_cpus: the CPUs the bridge's and Cyclone's threads run on (empty: no pinning). Cross-CPU wake-ups
+  // dominate the round trip on small machines; keeping the DDS path off the loop's CPU and on one set of CPUs
+  // makes it several times shorter (docs/dds-interface.md).
+  DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions,
+            std::vector<int> dds_cpus = {});
   ~DdsBridge() override;
   DdsBridge(const DdsBridge&) = delete;
   DdsBridge& operator=(const DdsBridge&) = delete;
@@ -69,8 +73,11 @@ class DdsBridge final : public CycleListener {
   void publish_description(Device& d);
   void send_event(Device& d, int kind, std::string_view code, std::string_view message);
 
+  void pin_this_thread() const;
+
   DdsSettings settings_;
   double rate_hz_;
+  std::vector<int> cpus_;
   const LiveLoopStatistics* live_ = nullptr;
   std::uint64_t snapshot_interval_;
   std::vector<std::unique_ptr<Device>> devices_;
