@@ -5,4 +5,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 preset=${1:-$([ "${CI:-}" = "true" ] && echo ci || echo default)}
 bash scripts/build.sh "$preset"
+# Cyclone DDS is not built with ThreadSanitizer: its internals are suppressed, ours are not.
+export TSAN_OPTIONS="${TSAN_OPTIONS:-} suppressions=$PWD/tests/tsan.supp"
 ctest --preset "$preset" -j "$(nproc)"

@@ -53,7 +53,8 @@ struct DdsBridge::Device {
   DeviceFault last_fault = DeviceFault::none;
   int last_scheme = 0;
   bool last_stale = false;
-  std::uint64_t states = 0;
+  std::atomic<std::uint64_t> states{0};     // read by telemetry
+  std::atomic<std::int64_t> loop_time_ns{0}; // of the newest snapshot, for events from any thread
   hapticd_msg_DeviceState last_state{};
   std::int64_t last_write_ns = 0;
   Pose start_pose;
@@ -205,7 +206,7 @@ void DdsBridge::publish_states() {
     if (!d.session->take_snapshot(d.snapshot)) {
       // Nothing new (the loop waits, e.g. for the first engine in lockstep): repeat the last state now and
       // then, for readers that matched after it was written.
-      if (d.states > 0 && steady_ns() - d.last_write_ns > 10'000'000) {
+      if (d.states.load(std::memory_order_relaxed) > 0 && steady_ns() - d.last_write_ns > 10'000'000) {
         (void)dds_->state.write(d.last_state);
         d.last_write_ns = steady_ns();
       }
@@ -257,7 +258,8 @@ void DdsBridge::publish_states() {
     write_time_ns_[slot].store(steady_ns(), std::memory_order_relaxed);
     write_serial_[slot].store(m.serial, std::memory_order_release);
     (void)dds_->state.write(m);
-    ++d.states;
+    d.states.fetch_add(1, std::memory_order_relaxed);
+    d.loop_time_ns.store(s.time_ns, std::memory_order_relaxed);
     d.last_state = m;
     d.last_write_ns = steady_ns();
 
@@ -317,7 +319,7 @@ void DdsBridge::send_event(Device& d, int kind, std::string_view code, std::stri
   hapticd_msg_Event e{};
   dds::set_text(e.device, d.session->name());
   e.serial = event_serial_.fetch_add(1) + 1;
-  e.loop_time_ns = d.snapshot.time_ns;
+  e.loop_time_ns = d.loop_time_ns.load(std::memory_order_relaxed);
   e.kind = static_cast<hapticd_msg_EventKind>(kind);
   dds::set_text(e.code, code);
   dds::set_text(e.message, message);
@@ -531,7 +533,7 @@ void DdsBridge::publish_telemetry() {
       t.loop.latency_max_us = static_cast<double>(live_->window_latency_max_ns.load(std::memory_order_relaxed)) * 1e-3;
       t.loop.compute_max_us = static_cast<double>(live_->window_compute_max_ns.load(std::memory_order_relaxed)) * 1e-3;
     }
-    t.states_published = d.states;  // read unsynchronised: a monotone counter, approximate is fine
+    t.states_published = d.states.load(std::memory_order_relaxed);
     {
       std::lock_guard lock(d.mutex);
       t.commands_received = d.gate.received();
