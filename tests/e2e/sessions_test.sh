@@ -17,9 +17,11 @@ done
 # Every per-scheme session runs in lockstep for a second (2000 cycles) without a device fault. A fault in the
 # 0.2 s shutdown ramp after it is not the scheme's: the unpowered ViSHaRD6 falls under gravity and trips the
 # speed monitor (no brakes are simulated).
+# Sessions with the DDS interface run on this test's own domain.
+dds_flags() { grep -q "^dds:" "$1" && echo "--dds-domain 68"; }
 for session in $(find "$src/config/sessions" -mindepth 2 -name "*.yaml" ! -name "identify-*" | sort); do
   name=${session#$src/config/sessions/}
-  out=$(timeout 60 "$hapticd" --config "$session" --clock lockstep --duration 1 2>&1)
+  out=$(timeout 60 "$hapticd" --config "$session" --clock lockstep --duration 1 $(dds_flags "$session") 2>&1)
   fault_cycle=$(echo "$out" | grep -oE "FAULT at cycle [0-9]+" | grep -oE "[0-9]+$" || true)
   if echo "$out" | grep -q "': ok" || { [ -n "$fault_cycle" ] && [ "$fault_cycle" -ge 2000 ]; }; then
     pass "runs $name"
@@ -29,7 +31,7 @@ for session in $(find "$src/config/sessions" -mindepth 2 -name "*.yaml" ! -name 
 done
 
 for run in 1 2; do
-  timeout 60 "$hapticd" --config "$src/config/sessions/demo.yaml" --clock lockstep --duration 1 \
+  timeout 60 "$hapticd" --config "$src/config/sessions/demo.yaml" --clock lockstep --duration 1 --dds-domain 68 \
     --record "$work/demo$run.csv" > "$work/demo$run.log" 2>&1 || fail "demo run $run exited $?: $(cat "$work/demo$run.log")"
 done
 cmp -s "$work/demo1.csv" "$work/demo2.csv" && pass "demo lockstep runs identical" || fail "demo recordings differ"
