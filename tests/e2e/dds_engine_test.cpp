@@ -180,7 +180,7 @@ TEST(DdsEngine, ASecondEngineCannotTakeAClaimedDevice) {
   const auto not_owner = [&] {
     return server.bridge().rejected_by_reason(0)[static_cast<std::size_t>(dds::RejectReason::not_owner)];
   };
-  for (int i = 0; i < 200 && not_owner() < 5; ++i) {
+  for (int i = 0; i < 2000 && not_owner() < 5; ++i) {  // at most 10 s
     second.send_coupling("v3", far, Twist{}, 0);
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }

@@ -40,12 +40,9 @@ struct Client::Impl {
     thread.join();
   }
 
-  struct ListenerDeleter {
-    void operator()(dds_listener_t* l) const noexcept { dds_delete_listener(l); }
-  };
   // States are taken on Cyclone's receive thread (a listener): an engine answers without a thread wake-up.
-  static std::unique_ptr<dds_listener_t, ListenerDeleter> make_state_listener(Impl* self) {
-    std::unique_ptr<dds_listener_t, ListenerDeleter> l(dds_create_listener(self));
+  static dds::Listener make_state_listener(Impl* self) {
+    dds::Listener l(dds_create_listener(self));
     dds_lset_data_available(l.get(), [](dds_entity_t, void* arg) { static_cast<Impl*>(arg)->take_states(); });
     return l;
   }
@@ -132,7 +129,7 @@ struct Client::Impl {
   std::mutex state_take_mutex;
   dds::Participant participant;
   dds::CommandTiming timing;
-  std::unique_ptr<dds_listener_t, ListenerDeleter> state_listener;
+  dds::Listener state_listener;
   dds::Reader<hapticd_msg_DeviceDescription> description;
   dds::Reader<hapticd_msg_DeviceState> state;
   dds::Reader<hapticd_msg_Event> event;
@@ -255,12 +252,21 @@ bool Client::send(std::string_view device, hapticd_msg_EngineCommand& command) {
   return impl_->command.write(command);
 }
 
-bool Client::send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist, std::uint64_t state_serial) {
+namespace {
+hapticd_msg_EngineCommand pose_command(hapticd_msg_CommandKind kind, const Pose& pose, const Twist& twist,
+                                       std::uint64_t state_serial) {
   hapticd_msg_EngineCommand c{};
-  c.kind = hapticd_msg_COMMAND_COUPLING;
+  c.kind = kind;
   c.state_serial = state_serial;
-  dds::to_msg(proxy, c.pose);
-  dds::to_msg(proxy_twist, c.twist);
+  dds::to_msg(pose, c.pose);
+  dds::to_msg(twist, c.twist);
+  c.anchor.orientation[0] = 1.0;
+  return c;
+}
+}  // namespace
+
+bool Client::send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist, std::uint64_t state_serial) {
+  hapticd_msg_EngineCommand c = pose_command(hapticd_msg_COMMAND_COUPLING, proxy, proxy_twist, state_serial);
   return send(device, c);
 }
 
@@ -275,11 +281,7 @@ bool Client::send_wrench(std::string_view device, const Wrench& wrench, std::uin
 }
 
 bool Client::send_motion(std::string_view device, const Pose& pose, const Twist& twist, std::uint64_t state_serial) {
-  hapticd_msg_EngineCommand c{};
-  c.kind = hapticd_msg_COMMAND_MOTION;
-  c.state_serial = state_serial;
-  dds::to_msg(pose, c.pose);
-  dds::to_msg(twist, c.twist);
+  hapticd_msg_EngineCommand c = pose_command(hapticd_msg_COMMAND_MOTION, pose, twist, state_serial);
   return send(device, c);
 }
 

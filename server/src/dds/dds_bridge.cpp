@@ -60,10 +60,6 @@ struct DdsBridge::Device {
   Pose start_pose;
 };
 
-struct ListenerDeleter {
-  void operator()(dds_listener_t* l) const noexcept { dds_delete_listener(l); }
-};
-
 struct DdsBridge::Dds {
   Dds(const DdsSettings& s, const dds::CommandTiming& timing, dds_listener_t* command_listener)
       : participant(dds::ParticipantOptions{s.domain_id, s.cyclone_config}),
@@ -119,7 +115,7 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
   }
   // Engine commands are taken on Cyclone's receive thread (a listener): no thread wake-up between a command's
   // arrival and its hand-over to the loop. Requests, engine health and telemetry are the receiver thread's.
-  std::unique_ptr<dds_listener_t, ListenerDeleter> listener(dds_create_listener(this));
+  dds::Listener listener(dds_create_listener(this));
   dds_lset_data_available(listener.get(), [](dds_entity_t, void* self) { static_cast<DdsBridge*>(self)->handle_commands(); });
   // Cyclone's threads (receive, timed events, ...) start with the participant and inherit this thread's CPUs.
   const std::optional<cpu_set_t> previous = set_cpus(cpus_);

@@ -2,6 +2,7 @@
 // RAII ownership of a Cyclone DDS entity handle: dds_delete on destruction (which deletes its children too).
 #include <dds/dds.h>
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -40,5 +41,11 @@ class Entity {
  private:
   dds_entity_t handle_ = 0;
 };
+
+// A listener (callbacks on Cyclone's threads), deleted with dds_delete_listener.
+struct ListenerDeleter {
+  void operator()(dds_listener_t* l) const noexcept { dds_delete_listener(l); }
+};
+using Listener = std::unique_ptr<dds_listener_t, ListenerDeleter>;
 
 }  // namespace hapticd::dds
