@@ -1,6 +1,7 @@
 #include "hapticd/dds/command_validation.hpp"
 
 #include <cmath>
+#include <cstring>
 
 #include "hapticd/dds/conversion.hpp"
 
@@ -52,16 +53,23 @@ ContentCheck check_command_content(const hapticd_msg_EngineCommand& c, const Com
   const auto reject = [](RejectReason r) { return ContentCheck{false, r}; };
   if (!terminated(c.device) || !terminated(c.engine) || text_of(c.device).empty() || text_of(c.engine).empty())
     return reject(RejectReason::malformed);
-  if (c.kind != hapticd_msg_COMMAND_WRENCH && c.kind != hapticd_msg_COMMAND_COUPLING && c.kind != hapticd_msg_COMMAND_MOTION)
+  // The enum and the bool are read as the bytes they are: a sample from anywhere may hold any value there.
+  std::int32_t kind = 0;
+  static_assert(sizeof kind == sizeof c.kind);
+  std::memcpy(&kind, &c.kind, sizeof kind);
+  if (kind != hapticd_msg_COMMAND_WRENCH && kind != hapticd_msg_COMMAND_COUPLING && kind != hapticd_msg_COMMAND_MOTION)
     return reject(RejectReason::malformed);
+  unsigned char local_model = 0;
+  std::memcpy(&local_model, &c.local_model, 1);
+  if (local_model > 1) return reject(RejectReason::malformed);
   if (c.serial == 0) return reject(RejectReason::malformed);  // serial numbers start at 1
   if (!all_finite(c.wrench) || !all_finite(c.anchor) || !all_finite(c.stiffness) || !all_finite(c.damping) ||
       !all_finite(c.pose) || !all_finite(c.twist))
     return reject(RejectReason::non_finite);
-  switch (c.kind) {
+  switch (kind) {
     case hapticd_msg_COMMAND_WRENCH:
       if (!within(c.wrench, b.max_force_n, b.max_torque_nm)) return reject(RejectReason::out_of_bounds);
-      if (c.local_model) {
+      if (local_model != 0) {
         if (!unit_quaternion(c.anchor)) return reject(RejectReason::malformed);
         if (norm3(c.anchor.position) > b.max_distance_m) return reject(RejectReason::out_of_bounds);
         if (!non_negative_within(c.stiffness, b.max_stiffness_n_per_m, b.max_rotational_stiffness_n_m_per_rad) ||

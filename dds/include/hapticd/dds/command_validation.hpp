@@ -43,7 +43,7 @@ struct ContentCheck {
 };
 [[nodiscard]] ContentCheck check_command_content(const hapticd_msg_EngineCommand& command, const CommandBounds& bounds) noexcept;
 
-// The loop's view of an accepted command (quaternions normalised).
+// The loop's view of a command that passed check_command_content (quaternions normalised).
 [[nodiscard]] EngineInput to_engine_input(const hapticd_msg_EngineCommand& command) noexcept;
 
 }  // namespace hapticd::dds
