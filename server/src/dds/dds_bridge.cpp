@@ -243,13 +243,7 @@ void DdsBridge::publish_states() {
       dds::set_text(m.owner, d.gate.owner());
     }
     m.engine_serial = s.engine_sequence;
-    m.loop.rate_hz = rate_hz_;
-    if (live_ != nullptr) {
-      m.loop.cycles = live_->cycles.load(std::memory_order_relaxed);
-      m.loop.overruns = live_->overruns.load(std::memory_order_relaxed);
-      m.loop.latency_max_us = static_cast<double>(live_->window_latency_max_ns.load(std::memory_order_relaxed)) * 1e-3;
-      m.loop.compute_max_us = static_cast<double>(live_->window_compute_max_ns.load(std::memory_order_relaxed)) * 1e-3;
-    }
+    fill_loop_summary(m.loop);
     const std::size_t slot = m.serial % kWriteTimes;
     write_time_ns_[slot].store(steady_ns(), std::memory_order_relaxed);
     write_serial_[slot].store(m.serial, std::memory_order_release);
@@ -275,6 +269,15 @@ void DdsBridge::publish_states() {
       send_event(d, hapticd_msg_EVENT_ENGINE_STALE, "deadline", "engine input missed its deadline: forces fade out");
     d.last_stale = stale;
   }
+}
+
+void DdsBridge::fill_loop_summary(hapticd_msg_LoopSummary& loop) const {
+  loop.rate_hz = rate_hz_;
+  if (live_ == nullptr) return;
+  loop.cycles = live_->cycles.load(std::memory_order_relaxed);
+  loop.overruns = live_->overruns.load(std::memory_order_relaxed);
+  loop.latency_max_us = static_cast<double>(live_->window_latency_max_ns.load(std::memory_order_relaxed)) * 1e-3;
+  loop.compute_max_us = static_cast<double>(live_->window_compute_max_ns.load(std::memory_order_relaxed)) * 1e-3;
 }
 
 void DdsBridge::publish_description(Device& d) {
@@ -522,13 +525,7 @@ void DdsBridge::publish_telemetry() {
     hapticd_msg_Telemetry t{};
     dds::set_text(t.device, d.session->name());
     t.wall_time_ns = dds::wall_clock_ns();
-    t.loop.rate_hz = rate_hz_;
-    if (live_ != nullptr) {
-      t.loop.cycles = live_->cycles.load(std::memory_order_relaxed);
-      t.loop.overruns = live_->overruns.load(std::memory_order_relaxed);
-      t.loop.latency_max_us = static_cast<double>(live_->window_latency_max_ns.load(std::memory_order_relaxed)) * 1e-3;
-      t.loop.compute_max_us = static_cast<double>(live_->window_compute_max_ns.load(std::memory_order_relaxed)) * 1e-3;
-    }
+    fill_loop_summary(t.loop);
     t.states_published = d.states.load(std::memory_order_relaxed);
     {
       std::lock_guard lock(d.mutex);

@@ -20,6 +20,7 @@
 #include "config/session_config.hpp"
 #include "dds/command_gate.hpp"
 #include "executor/executor.hpp"
+#include "hapticd_msg.h"
 
 namespace hapticd::server {
 
@@ -71,6 +72,7 @@ class DdsBridge final : public CycleListener {
   void check_engine_health();
   void publish_telemetry();
   void publish_description(Device& d);
+  void fill_loop_summary(hapticd_msg_LoopSummary& loop) const;
   void send_event(Device& d, int kind, std::string_view code, std::string_view message);
 
   void pin_this_thread() const;
