@@ -4,7 +4,9 @@
 // on the loop thread captures what the device renders in every cycle.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <cmath>
 #include <thread>
 
@@ -104,6 +106,9 @@ class Server {
 // The scene engine of examples/engines: answers every state with the proxy of the handle in the scene.
 struct SceneEngine {
   SceneEngine(int domain, const std::string& id) : client({id, domain, {}, 0.05}) {}
+  ~SceneEngine() { client.on_state({}); }  // before the members the callback uses are gone
+  SceneEngine(const SceneEngine&) = delete;
+  SceneEngine& operator=(const SceneEngine&) = delete;
   bool connect() {
     if (!client.wait_for_state("v3", std::chrono::seconds(20))) return false;
     // The scene sits at the device's start pose (from the description, re-sent once the loop has run).
@@ -244,8 +249,14 @@ TEST(DdsEngine, AKilledEngineFadesToZeroWithinTheDeadline) {
 }
 
 TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
+  std::mutex events_mutex;  // before the client: its callbacks use them until it is gone
+  std::vector<std::string> events;
   Server server(session_yaml(64, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
   Client engine({"careful-engine", 64, {}, 0.05});
+  engine.on_event([&](const hapticd_msg_Event& e) {
+    std::lock_guard lock(events_mutex);
+    events.push_back(std::to_string(static_cast<int>(e.kind)) + ":" + std::string(client::name_of(e.code)));
+  });
   server.start();
   ASSERT_TRUE(engine.wait_for_state("v3", std::chrono::seconds(20)));
   ASSERT_TRUE(engine.claim("v3", std::chrono::seconds(10)).accepted);
@@ -306,6 +317,19 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   EXPECT_EQ(n(RejectReason::not_owner), 1u);
   EXPECT_EQ(server.bridge().commands_accepted(0), 1u);
   EXPECT_EQ(server.device().fault(), DeviceFault::none);
+  // Events: the rejections (the first of each reason) and the mode change at the end of the session.
+  const auto saw = [&](const std::string& event) {
+    for (int i = 0; i < 200; ++i) {
+      {
+        std::lock_guard lock(events_mutex);
+        if (std::find(events.begin(), events.end(), event) != events.end()) return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  };
+  EXPECT_TRUE(saw(std::to_string(hapticd_msg_EVENT_ENGINE_REJECTED) + ":stale"));
+  EXPECT_TRUE(saw(std::to_string(hapticd_msg_EVENT_MODE) + ":stopping"));
   // Nothing but the one good command (2 N) ever reached the device.
   for (const auto& f : server.recording().force()) {
     EXPECT_TRUE(f.allFinite());

@@ -51,6 +51,7 @@ struct DdsBridge::Device {
   DeviceSnapshot snapshot;
   bool have_snapshot = false;
   DeviceFault last_fault = DeviceFault::none;
+  hapticd_msg_DeviceMode last_mode = hapticd_msg_MODE_STARTING;
   int last_scheme = 0;
   bool last_stale = false;
   std::atomic<std::uint64_t> states{0};     // read by telemetry
@@ -254,6 +255,12 @@ void DdsBridge::publish_states() {
     d.last_write_ns = steady_ns();
 
     // Events the snapshots reveal.
+    if (m.mode != d.last_mode) {
+      static constexpr const char* kModes[] = {"starting", "running", "stopping", "safe", "off"};
+      const auto mode = static_cast<std::size_t>(m.mode);
+      send_event(d, hapticd_msg_EVENT_MODE, mode < 5 ? kModes[mode] : "?", std::string("mode: ") + (mode < 5 ? kModes[mode] : "?"));
+      d.last_mode = m.mode;
+    }
     if (s.fault != d.last_fault) {
       d.last_fault = s.fault;
       send_event(d, s.fault == DeviceFault::emergency_stop ? hapticd_msg_EVENT_ESTOP : hapticd_msg_EVENT_FAULT,
