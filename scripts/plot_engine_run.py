@@ -28,7 +28,7 @@ def main(csv_path: str, png_path: str) -> None:
             if current:
                 for ax in (ax_x, ax_f):
                     ax.axvspan(start, time, alpha=0.08, color="grey")
-                ax_x.text(start, ax_x.get_ylim()[1] if False else 0, f" {current}", fontsize=8, va="bottom")
+                ax_x.text(start, 0, f" {current}", fontsize=8, va="bottom")
             start, current = time, r["contact"]
     ax_x.set_ylabel("position from start [mm]")
     ax_f.set_ylabel("force [N]")

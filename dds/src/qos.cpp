@@ -2,7 +2,7 @@
 
 namespace hapticd::dds {
 
-Qos topic_qos(TopicKind kind, Side side, const CommandTiming& timing) {
+Qos topic_qos(TopicKind kind, const CommandTiming& timing) {
   Qos q(dds_create_qos());
   dds_qos_t* p = q.get();
   switch (kind) {
@@ -36,7 +36,6 @@ Qos topic_qos(TopicKind kind, Side side, const CommandTiming& timing) {
       dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 64);
       break;
   }
-  (void)side;  // both sides use the same values: what a reader requests, a writer offers
   return q;
 }
 

@@ -178,7 +178,9 @@ TEST(DdsEngine, ASecondEngineCannotTakeAClaimedDevice) {
   EXPECT_FALSE(r.accepted);
   EXPECT_NE(r.message.find("first-engine"), std::string::npos) << r.message;
   // Its commands are rejected as not the owner's, and it may not switch the scheme either.
-  Pose far = client::pose_of(second.latest_state("v3")->pose);
+  const auto seen = second.wait_for_state("v3", std::chrono::seconds(10));
+  ASSERT_TRUE(seen.has_value());
+  Pose far = client::pose_of(seen->pose);
   far.position.x() += 0.05;
   // (Best effort: a command written before the writer has matched the server's reader is lost, so keep
   // sending for a while.)

@@ -17,9 +17,8 @@ struct Client::Impl {
       : options(std::move(o)),
         participant(dds::ParticipantOptions{options.domain_id, options.cyclone_config}),
         timing{options.command_deadline_s, 0.5},
-        state_listener(make_state_listener(this)),
         description(participant),
-        state(participant, dds::CommandTiming{}, state_listener.get()),
+        state(participant),
         event(participant),
         telemetry(participant),
         reply(participant),
@@ -33,6 +32,11 @@ struct Client::Impl {
     }
     dds::check(dds_waitset_attach(waitset.get(), wake.get(), wake.get()), "waitset");
     thread = std::thread([this] { run(); });
+    // States are taken on Cyclone's receive thread (a listener): an engine answers without a thread wake-up.
+    // Last: the listener may run at once, and needs everything above.
+    const dds::Listener listener(dds_create_listener(this));
+    dds_lset_data_available(listener.get(), [](dds_entity_t, void* arg) { static_cast<Impl*>(arg)->take_states(); });
+    state.set_listener(listener.get());
   }
   ~Impl() {
     stopping.store(true);
@@ -40,12 +44,6 @@ struct Client::Impl {
     thread.join();
   }
 
-  // States are taken on Cyclone's receive thread (a listener): an engine answers without a thread wake-up.
-  static dds::Listener make_state_listener(Impl* self) {
-    dds::Listener l(dds_create_listener(self));
-    dds_lset_data_available(l.get(), [](dds_entity_t, void* arg) { static_cast<Impl*>(arg)->take_states(); });
-    return l;
-  }
   void take_states() {
     std::lock_guard one_at_a_time(state_take_mutex);
     state.take([&](const hapticd_msg_DeviceState& s, const dds_sample_info_t&) {
@@ -98,7 +96,6 @@ struct Client::Impl {
   }
 
   ClientOptions options;
-  // Declared before the readers: a listener may run as soon as its reader exists.
   mutable std::mutex mutex;
   std::condition_variable changed;
   std::map<std::string, hapticd_msg_DeviceDescription> descriptions;
@@ -129,7 +126,6 @@ struct Client::Impl {
   std::mutex state_take_mutex;
   dds::Participant participant;
   dds::CommandTiming timing;
-  dds::Listener state_listener;
   dds::Reader<hapticd_msg_DeviceDescription> description;
   dds::Reader<hapticd_msg_DeviceState> state;
   dds::Reader<hapticd_msg_Event> event;
@@ -286,11 +282,6 @@ bool Client::send_motion(std::string_view device, const Pose& pose, const Twist&
 }
 
 void Client::reset_serial() noexcept { impl_->serial.store(0); }
-
-int Client::matched_state_writers() const {
-  dds_subscription_matched_status_t s{};
-  return dds_get_subscription_matched_status(impl_->state.get(), &s) == DDS_RETCODE_OK ? static_cast<int>(s.current_count) : 0;
-}
 
 std::string_view name_of(const hapticd_msg_Name& name) noexcept { return dds::text_of(name); }
 std::string_view name_of(const hapticd_msg_Text& text) noexcept { return dds::text_of(text); }

@@ -41,7 +41,7 @@ struct DdsBridge::Device {
   mutable std::mutex mutex;  // the gate (the receiver changes it; the others read owner and counters)
   CommandGate gate;
   dds_instance_handle_t owner_writer = 0;  // the owner's command writer, once it has sent one
-  dds_instance_handle_t instance = 0;      // this device's instance on the command reader
+  std::atomic<dds_instance_handle_t> instance{0};  // its instance on the command reader (listener -> receiver)
   std::atomic<std::uint64_t> answered{0};  // newest state serial an accepted command answered
   std::atomic<bool> synced{false};         // the owner answers every state (lockstep sync waits for it)
   std::atomic<std::uint64_t> deadline_misses{0};
@@ -62,14 +62,14 @@ struct DdsBridge::Device {
 };
 
 struct DdsBridge::Dds {
-  Dds(const DdsSettings& s, const dds::CommandTiming& timing, dds_listener_t* command_listener)
+  Dds(const DdsSettings& s, const dds::CommandTiming& timing)
       : participant(dds::ParticipantOptions{s.domain_id, s.cyclone_config}),
         description(participant),
         state(participant),
         event(participant),
         telemetry(participant),
         reply(participant),
-        command(participant, timing, command_listener),
+        command(participant, timing),
         request(participant),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {}
@@ -109,23 +109,24 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
                            : 1;
   double deadline = 1.0;
   for (DeviceSession* s : sessions) deadline = std::min(deadline, s->chain().engine_deadline_s);
-  // The devices first: the command listener may run as soon as the reader exists.
   for (DeviceSession* s : sessions) {
     s->set_snapshot_interval(snapshot_interval_);
     devices_.push_back(std::make_unique<Device>(s, settings));
   }
   // Engine commands are taken on Cyclone's receive thread (a listener): no thread wake-up between a command's
   // arrival and its hand-over to the loop. Requests, engine health and telemetry are the receiver thread's.
-  dds::Listener listener(dds_create_listener(this));
-  dds_lset_data_available(listener.get(), [](dds_entity_t, void* self) { static_cast<DdsBridge*>(self)->handle_commands(); });
   // Cyclone's threads (receive, timed events, ...) start with the participant and inherit this thread's CPUs.
   const std::optional<cpu_set_t> previous = set_cpus(cpus_);
-  dds_ = std::make_unique<Dds>(settings, dds::CommandTiming{deadline, 0.5}, listener.get());
+  dds_ = std::make_unique<Dds>(settings, dds::CommandTiming{deadline, 0.5});
   if (previous) (void)pthread_setaffinity_np(pthread_self(), sizeof *previous, &*previous);
   dds::check(dds_set_status_mask(dds_->request.get(), DDS_DATA_AVAILABLE_STATUS), "cannot set the request reader's status mask");
   dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->request.get(), 1), "waitset");
   dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->wake.get(), 2), "waitset");
   for (auto& d : devices_) publish_description(*d);
+  // Last: the listener may run at once, and needs everything above.
+  const dds::Listener listener(dds_create_listener(this));
+  dds_lset_data_available(listener.get(), [](dds_entity_t, void* self) { static_cast<DdsBridge*>(self)->handle_commands(); });
+  dds_->command.set_listener(listener.get());
 }
 
 DdsBridge::~DdsBridge() { stop(); }
@@ -355,13 +356,16 @@ void DdsBridge::receiver_thread() {
 }
 
 void DdsBridge::handle_commands() {
+  // One at a time: Cyclone may call the listener from more than one thread (local writers deliver on their
+  // own thread), and the reader's sample buffers are shared.
+  const std::lock_guard one_at_a_time(command_take_mutex_);
   dds_->command.take([&](const hapticd_msg_EngineCommand& c, const dds_sample_info_t& info) {
     const std::int64_t now_wall = dds::wall_clock_ns();
     const std::string_view device = dds::text_of(c.device);
     for (auto& dp : devices_) {
       Device& d = *dp;
       if (device != d.session->name()) continue;
-      d.instance = info.instance_handle;
+      d.instance.store(info.instance_handle, std::memory_order_relaxed);
       CommandGate::Verdict v;
       {
         std::lock_guard lock(d.mutex);
@@ -416,7 +420,7 @@ void DdsBridge::check_engine_health() {
   dds_requested_deadline_missed_status_t missed{};
   if (dds_get_requested_deadline_missed_status(dds_->command.get(), &missed) == DDS_RETCODE_OK && missed.total_count_change > 0) {
     for (auto& dp : devices_)
-      if (dp->instance == missed.last_instance_handle) dp->deadline_misses.fetch_add(missed.total_count_change);
+      if (dp->instance.load(std::memory_order_relaxed) == missed.last_instance_handle) dp->deadline_misses.fetch_add(missed.total_count_change);
   }
 }
 

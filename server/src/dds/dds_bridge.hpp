@@ -95,6 +95,7 @@ class DdsBridge final : public CycleListener {
   static constexpr std::size_t kWriteTimes = 4096;
   std::array<std::atomic<std::uint64_t>, kWriteTimes> write_serial_{};
   std::array<std::atomic<std::int64_t>, kWriteTimes> write_time_ns_{};
+  std::mutex command_take_mutex_;
   mutable std::mutex round_trip_mutex_;
   std::vector<std::int64_t> round_trip_ns_;
 };

@@ -11,7 +11,7 @@ namespace hapticd::dds {
 
 template <class T>
 Entity make_topic(const Participant& participant, const CommandTiming& timing) {
-  const Qos qos = topic_qos(TopicOf<T>::kind, Side::reader, timing);
+  const Qos qos = topic_qos(TopicOf<T>::kind, timing);
   return Entity(check(dds_create_topic(participant.get(), TopicOf<T>::descriptor(), TopicOf<T>::name, qos.get(), nullptr),
                       "cannot create a DDS topic"));
 }
@@ -21,7 +21,7 @@ class Writer {
  public:
   explicit Writer(const Participant& participant, const CommandTiming& timing = {})
       : topic_(make_topic<T>(participant, timing)) {
-    const Qos qos = topic_qos(TopicOf<T>::kind, Side::writer, timing);
+    const Qos qos = topic_qos(TopicOf<T>::kind, timing);
     writer_ = Entity(check(dds_create_writer(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS writer"));
   }
   bool write(const T& sample) const noexcept { return dds_write(writer_.get(), &sample) == DDS_RETCODE_OK; }
@@ -29,8 +29,6 @@ class Writer {
   bool write(const T& sample, dds_time_t source_time) const noexcept {
     return dds_write_ts(writer_.get(), &sample, source_time) == DDS_RETCODE_OK;
   }
-  // Disposes the instance `sample` names (its key).
-  bool dispose(const T& sample) const noexcept { return dds_dispose(writer_.get(), &sample) == DDS_RETCODE_OK; }
   [[nodiscard]] dds_entity_t get() const noexcept { return writer_.get(); }
   // Number of matched readers.
   [[nodiscard]] int matched() const noexcept {
@@ -48,11 +46,16 @@ class Reader {
  public:
   static constexpr std::size_t kBatch = 16;
 
-  explicit Reader(const Participant& participant, const CommandTiming& timing = {}, const dds_listener_t* listener = nullptr)
+  explicit Reader(const Participant& participant, const CommandTiming& timing = {})
       : topic_(make_topic<T>(participant, timing)) {
-    const Qos qos = topic_qos(TopicOf<T>::kind, Side::reader, timing);
-    reader_ = Entity(check(dds_create_reader(participant.get(), topic_.get(), qos.get(), listener), "cannot create a DDS reader"));
     for (std::size_t i = 0; i < kBatch; ++i) pointers_[i] = &samples_[i];
+    const Qos qos = topic_qos(TopicOf<T>::kind, timing);
+    reader_ = Entity(check(dds_create_reader(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS reader"));
+  }
+  // Callbacks on Cyclone's receive thread from now on (Cyclone copies the listener). Set it once the owner
+  // is fully built: a callback may run at once.
+  void set_listener(const dds_listener_t* listener) {
+    check(dds_set_listener(reader_.get(), listener), "cannot set a DDS listener");
   }
   // Takes everything available; calls f(sample, info) for each valid sample and returns how many there were.
   template <class F>

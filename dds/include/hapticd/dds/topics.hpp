@@ -39,8 +39,7 @@ struct CommandTiming {
   double liveliness_lease_s = 0.5;
 };
 
-enum class Side { reader, writer };
-// The QoS of a topic for one side.
-[[nodiscard]] Qos topic_qos(TopicKind kind, Side side, const CommandTiming& timing = {});
+// The QoS of a topic; readers request what writers offer, so both sides use the same.
+[[nodiscard]] Qos topic_qos(TopicKind kind, const CommandTiming& timing = {});
 
 }  // namespace hapticd::dds

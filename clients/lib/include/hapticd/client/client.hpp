@@ -85,9 +85,6 @@ class Client {
   // Restart serial numbers (a new claim after a release).
   void reset_serial() noexcept;
 
-  // Number of servers' state writers matched (0: nothing heard of yet).
-  [[nodiscard]] int matched_state_writers() const;
-
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
