@@ -40,6 +40,7 @@ const char* event_name(hapticd_msg_EventKind k) {
     case hapticd_msg_EVENT_OWNER: return "owner";
     case hapticd_msg_EVENT_ENGINE_STALE: return "engine stale";
     case hapticd_msg_EVENT_ENGINE_REJECTED: return "rejected";
+    case hapticd_msg_EVENT_RECOVERED: return "recovered";
   }
   return "?";
 }
@@ -99,8 +100,10 @@ int main(int argc, char** argv) {
   record->add_option("device", device)->required();
   record->add_option("file", file)->required();
   record->add_option("--duration", duration, "seconds (default: until Ctrl-C)");
-  auto* estop = app.add_subcommand("estop", "emergency stop: the device goes to its safe state");
+  auto* estop = app.add_subcommand("estop", "emergency stop: the device goes to its safe mode (damping, then zero torque)");
   estop->add_option("device", device)->required();
+  auto* recover = app.add_subcommand("recover", "leave the safe mode after a fault or an E-stop");
+  recover->add_option("device", device)->required();
   auto* op = app.add_subcommand("operator", "drive a simulated device's operator: push FX FY FZ [RAMP_S] | release | grasp G");
   op->add_option("device", device)->required();
   op->add_option("command", what)->required()->check(CLI::IsMember({"push", "release", "grasp"}));
@@ -142,6 +145,7 @@ int main(int argc, char** argv) {
   if (*switch_cmd) return report(client.switch_scheme(device, scheme, wait));
   if (*set) return report(client.set_parameter(device, parameter, values, wait));
   if (*estop) return report(client.emergency_stop(device, wait));
+  if (*recover) return report(client.recover(device, wait));
   if (*op) return report(client.operator_command(device, what, values, wait));
 
   if (*watch) {
@@ -152,6 +156,20 @@ int main(int argc, char** argv) {
       if (name_of(e.device) != device) return;
       std::lock_guard lock(m);
       fmt::print("event {}: {} {}\n", event_name(e.kind), name_of(e.code), name_of(e.message));
+    });
+    client.on_fault_report([&](const hapticd_msg_FaultReport& r) {
+      if (name_of(r.device) != device) return;
+      std::lock_guard lock(m);
+      fmt::print("fault report {}: {} at cycle {} ({}), {} cycles of history:\n", r.serial, name_of(r.fault), r.cycle,
+                 name_of(r.message), r.record_count);
+      for (int k = std::max(0, r.record_count - 5); k < r.record_count; ++k) {
+        const hapticd_msg_CycleRecord& c = r.records[k];
+        fmt::print("  cycle {:>8}  pos ({:+.4f} {:+.4f} {:+.4f}) m  vel ({:+.3f} {:+.3f} {:+.3f}) m/s  F_op ({:+6.2f} {:+6.2f} "
+                   "{:+6.2f}) N  flags {:#x}\n",
+                   c.cycle, c.handle_position[0], c.handle_position[1], c.handle_position[2], c.handle_velocity[0],
+                   c.handle_velocity[1], c.handle_velocity[2], c.operator_force[0], c.operator_force[1],
+                   c.operator_force[2], c.flags);
+      }
     });
     client.on_state([&](const hapticd_msg_DeviceState& s) {
       if (name_of(s.device) != device) return;
@@ -169,6 +187,7 @@ int main(int argc, char** argv) {
     run_for(duration);
     client.on_state({});
     client.on_event({});
+    client.on_fault_report({});
     return 0;
   }
   if (*record) {

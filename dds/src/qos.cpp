@@ -6,7 +6,8 @@ Qos topic_qos(TopicKind kind, const CommandTiming& timing) {
   Qos q(dds_create_qos());
   dds_qos_t* p = q.get();
   switch (kind) {
-    case TopicKind::description:  // a late joiner gets every device's description
+    case TopicKind::description:  // a late joiner gets every device's description (and its last fault report)
+    case TopicKind::fault_report:
       dds_qset_reliability(p, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
       dds_qset_durability(p, DDS_DURABILITY_TRANSIENT_LOCAL);
       dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 1);

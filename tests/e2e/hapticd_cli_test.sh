@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # End-to-end checks of the hapticd executable: --check-config (good and bad), lockstep determinism through
-# --record, --stats-json, and a clean SIGTERM shutdown with the torque ramped to zero and exit code 0.
+# --record, --stats-json, and a clean SIGTERM shutdown through the safe mode (damping, then zero torque), exit 0.
 # Usage: hapticd_cli_test.sh HAPTICD SOURCE_DIR WORK_DIR
 set -u
 hapticd=$1; src=$2; work=$3
@@ -36,7 +36,7 @@ else fail "lockstep recordings differ or are short ($rows rows)"; fi
 grep -q '"cycles": 4400' "$work/stats1.json" && pass "stats: 4400 cycles (2 s + 0.2 s ramp)" || fail "stats: $(head -5 "$work/stats1.json")"
 grep -q '"compute_time_us": {"count": 4400' "$work/stats1.json" && pass "stats: compute-time histogram" || fail "no compute histogram"
 
-# 4. SIGTERM: clean shutdown, exit 0, torque ramped to zero.
+# 4. SIGTERM: every device stops through its safe mode, exit 0, last torque zero.
 timeout 60 "$hapticd" --config "$session" --clock realtime --duration 0 --record "$work/term.csv" \
   --stats-json "$work/term.json" --log-level info > "$work/term.log" 2>&1 &
 pid=$!
@@ -47,7 +47,7 @@ wait "$pid"; rc=$?
 grep -q '"stop_requested": true' "$work/term.json" && pass "SIGTERM: stop was requested" || fail "SIGTERM: stats say no stop request"
 last=$(tail -n 1 "$work/term.csv" | awk -F, '{print $8}')
 [ "$last" = "0" ] && pass "SIGTERM: last torque command is 0" || fail "SIGTERM: last torque command is '$last'"
-grep -q "ramping torques to zero" "$work/term.log" && pass "SIGTERM: ramp logged" || fail "SIGTERM: no ramp in log"
+grep -q "stops through its safe mode" "$work/term.log" && pass "SIGTERM: safe stop logged" || fail "SIGTERM: no safe stop in log"
 
 echo "$(( 9 - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]

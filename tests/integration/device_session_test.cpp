@@ -20,21 +20,32 @@ test::TestSession session_with(const std::string& devices) {
   return test::build_test_session("server: {clock: lockstep}\ndevices:\n" + devices);
 }
 
-TEST(DeviceSession, NonFiniteControllerOutputStopsTheDeviceWithZeroTorque) {
+TEST(DeviceSession, NonFiniteControllerOutputPutsTheDeviceInItsSafeModeDampingThenZeroTorque) {
+  // Safe mode: joint damping for safe_damping_s (0.5 s = 1000 cycles at 2 kHz), then exactly zero torque.
   auto s = session_with(test::mass_spring_device_yaml("axis", "", ", fault_at_cycle: 100"));
   DeviceSession& d = *s.devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 100; ++k) d.cycle(cycle_at(k), 1.0);
   EXPECT_EQ(d.fault(), DeviceFault::none);
   EXPECT_NE(d.command().torque_nm[0], 0.0);
-  for (std::uint64_t k = 100; k < 200; ++k) {
+  int damping_cycles = 0;
+  for (std::uint64_t k = 100; k < 1300; ++k) {
     d.cycle(cycle_at(k), 1.0);
-    ASSERT_EQ(d.command().torque_nm[0], 0.0) << "cycle " << k;
-    // The effort read at cycle k is the force held since cycle k-1.
-    if (k > 100) {
-      ASSERT_EQ(d.state().joints.effort[0], 0.0) << "the device applies force after the fault, cycle " << k;
+    const double tau = d.command().torque_nm[0];
+    const double v = d.chain_state().velocity[0];
+    if (k < 1100) {
+      // Damping: against the motion, proportional to it.
+      ASSERT_NEAR(tau, -d.safety().settings().safe_damping_gain * v, 1e-12) << "cycle " << k;
+      ASSERT_FALSE(d.at_rest()) << "cycle " << k;
+      if (tau != 0.0) ++damping_cycles;
+    } else {
+      ASSERT_EQ(tau, 0.0) << "cycle " << k;
+      ASSERT_TRUE(d.at_rest());
+      // The effort read at cycle k is the force held since cycle k-1.
+      if (k > 1100) ASSERT_EQ(d.state().joints.effort[0], 0.0) << "the device applies force after the safe mode, cycle " << k;
     }
   }
+  EXPECT_GT(damping_cycles, 900);  // the axis was moving: the damping acted
   EXPECT_EQ(d.fault(), DeviceFault::non_finite_output);
   EXPECT_EQ(d.fault_cycle(), 100u);
   d.deactivate();

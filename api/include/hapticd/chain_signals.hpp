@@ -10,6 +10,8 @@
 
 namespace hapticd {
 
+class RenderGuard;
+
 // One sample read from a device.
 struct DeviceState {
   std::int64_t timestamp_ns = 0;  // device time of the sample (simulated devices: the cycle time)
@@ -18,6 +20,9 @@ struct DeviceState {
   // Proper acceleration (an accelerometer's reading: acceleration minus gravity) and angular acceleration of
   // the sensor in its frame [m/s^2, rad/s^2], if the sensor measures them (reports_sensor_acceleration).
   Twist sensor_acceleration;
+  // The force/torque sensor reached its range this sample (a reading at the range is not a measurement): the
+  // server faults the device (sensor_saturation).
+  bool sensor_saturated = false;
 };
 
 // What the virtual model asks of the chain. Admittance-type models fill the motion (desired pose, twist and
@@ -62,6 +67,10 @@ struct VirtualModelInput {
   // The rendering engine's newest input for this device (never null while a chain runs; has_proxy and
   // has_wrench say whether anything has arrived).
   const EngineInput* engine;
+  // The safety layer's passivity controller and rendered-wrench limits (safety/render_guard.hpp; never null
+  // while a chain runs). A model that renders an engine passes the engine's wrench through engine_port() and
+  // its environment wrench through limit().
+  RenderGuard* guard;
 };
 
 struct InverseKinematicsInput {

@@ -20,7 +20,7 @@ class HAPTICD_API Controller {
   // the drives (bumpless transfer: the first update() should not jump away from it).
   virtual ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept = 0;
   // Real-time safe.
-  virtual ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept = 0;
+  virtual ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) = 0;
   // Not real-time safe. Called after the controller has left the loop.
   virtual void deactivate() = 0;
   // Not real-time safe, any server thread (runtime_request.hpp): a run-time request such as setting a

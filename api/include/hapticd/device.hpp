@@ -25,9 +25,9 @@ class HAPTICD_API Device {
   virtual void activate() = 0;
   // Real-time safe. Fill the newest sample for the cycle at cycle.time_ns. A simulated device advances its
   // physics to that time under the last written command (zero-order hold).
-  virtual ReturnCode read(const CycleTime& cycle, DeviceState& state) noexcept = 0;
+  virtual ReturnCode read(const CycleTime& cycle, DeviceState& state) = 0;
   // Real-time safe. Command joint torques, held until the next write().
-  virtual ReturnCode write(const CycleTime& cycle, const JointCommand& command) noexcept = 0;
+  virtual ReturnCode write(const CycleTime& cycle, const JointCommand& command) = 0;
   // Not real-time safe. Zero torque, drives off. Called after the loop has stopped using the device.
   virtual void deactivate() = 0;
   // Not real-time safe, any server thread (runtime_request.hpp): a run-time request such as setting a

@@ -18,7 +18,7 @@ class HAPTICD_API InverseKinematics {
   // Real-time safe. Start at a cycle boundary from the current joint state.
   virtual ReturnCode activate(const InverseKinematicsInput& current) noexcept = 0;
   // Real-time safe.
-  virtual ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) noexcept = 0;
+  virtual ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) = 0;
   // Not real-time safe. Called after the plugin has left the loop.
   virtual void deactivate() = 0;
 };

@@ -21,7 +21,7 @@ class HAPTICD_API VirtualModel {
   // at the measured pose), so the hand-over does not make the torque jump.
   virtual ReturnCode activate(const VirtualModelInput& current) noexcept = 0;
   // Real-time safe.
-  virtual ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept = 0;
+  virtual ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) = 0;
   // Not real-time safe. Called after the model has left the loop.
   virtual void deactivate() = 0;
   // Not real-time safe, any server thread (runtime_request.hpp): a run-time request such as setting a

@@ -21,12 +21,13 @@ struct Client::Impl {
         state(participant),
         event(participant),
         telemetry(participant),
+        fault_report(participant),
         reply(participant),
         command(participant, timing),
         request(participant),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {
-    for (dds_entity_t r : {description.get(), event.get(), telemetry.get(), reply.get()}) {
+    for (dds_entity_t r : {description.get(), event.get(), telemetry.get(), fault_report.get(), reply.get()}) {
       dds::check(dds_set_status_mask(r, DDS_DATA_AVAILABLE_STATUS), "status mask");
       dds::check(dds_waitset_attach(waitset.get(), r, r), "waitset");
     }
@@ -92,6 +93,14 @@ struct Client::Impl {
         }
         if (f) f(t);
       });
+      fault_report.take([&](const hapticd_msg_FaultReport& r, const dds_sample_info_t&) {
+        std::function<void(const hapticd_msg_FaultReport&)> f;
+        {
+          std::lock_guard lock(callback_mutex);
+          f = fault_report_callback;
+        }
+        if (f) f(r);
+      });
     }
   }
 
@@ -123,6 +132,7 @@ struct Client::Impl {
   std::function<void(const hapticd_msg_DeviceState&)> state_callback;
   std::function<void(const hapticd_msg_Event&)> event_callback;
   std::function<void(const hapticd_msg_Telemetry&)> telemetry_callback;
+  std::function<void(const hapticd_msg_FaultReport&)> fault_report_callback;
   std::mutex state_take_mutex;
   dds::Participant participant;
   dds::CommandTiming timing;
@@ -130,6 +140,7 @@ struct Client::Impl {
   dds::Reader<hapticd_msg_DeviceState> state;
   dds::Reader<hapticd_msg_Event> event;
   dds::Reader<hapticd_msg_Telemetry> telemetry;
+  dds::Reader<hapticd_msg_FaultReport> fault_report;
   dds::Reader<hapticd_msg_ControlReply> reply;
   dds::Writer<hapticd_msg_EngineCommand> command;
   dds::Writer<hapticd_msg_ControlRequest> request;
@@ -201,6 +212,11 @@ void Client::on_telemetry(std::function<void(const hapticd_msg_Telemetry&)> call
   impl_->telemetry_callback = std::move(callback);
 }
 
+void Client::on_fault_report(std::function<void(const hapticd_msg_FaultReport&)> callback) {
+  std::lock_guard lock(impl_->callback_mutex);
+  impl_->fault_report_callback = std::move(callback);
+}
+
 Reply Client::request(std::string_view device, hapticd_msg_RequestKind kind, std::string_view name,
                       const std::vector<double>& values, Timeout timeout) {
   hapticd_msg_ControlRequest r{};
@@ -237,6 +253,7 @@ Reply Client::set_parameter(std::string_view device, std::string_view parameter,
   return request(device, hapticd_msg_REQUEST_SET_PARAMETER, parameter, values, timeout);
 }
 Reply Client::emergency_stop(std::string_view device, Timeout timeout) { return request(device, hapticd_msg_REQUEST_ESTOP, {}, {}, timeout); }
+Reply Client::recover(std::string_view device, Timeout timeout) { return request(device, hapticd_msg_REQUEST_RECOVER, {}, {}, timeout); }
 Reply Client::operator_command(std::string_view device, std::string_view command, const std::vector<double>& values, Timeout timeout) {
   return request(device, hapticd_msg_REQUEST_OPERATOR, command, values, timeout);
 }

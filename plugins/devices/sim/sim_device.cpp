@@ -330,6 +330,7 @@ ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept 
     state.sensor_wrench.force = w.head<3>();
     state.sensor_wrench.torque = w.tail<3>();
     truth_.sensor_saturated = sensor_.saturated();
+    state.sensor_saturated = truth_.sensor_saturated;
   }
   if (accelerations_) read_accelerations(state);
   truth_.link_position = chain_->link_position();

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "hapticd/chain_state.hpp"
+#include "hapticd/safety/render_guard.hpp"
 
 namespace hapticd::models {
 namespace {
@@ -251,12 +252,25 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
   }
   const Eigen::Vector3d world_angular = orientation_ * body_angular_velocity_;
   const EngineInput& e = *input.engine;
-  const Eigen::Matrix<double, 6, 1> engine =
+  // The port where the engine acts: the handle (motion-based) or the virtual body.
+  Eigen::Matrix<double, 6, 1> port_twist;
+  if (motion_based_) {
+    port_twist << c.handle_twist.linear, c.handle_twist.angular;
+  } else {
+    port_twist << velocity_, world_angular;
+  }
+  Eigen::Matrix<double, 6, 1> engine =
       motion_based_ ? engine_wrench(e, c.handle_pose.position, c.handle_pose.orientation, c.handle_twist.linear,
                                     c.handle_twist.angular)
                     : engine_wrench(e, position_, orientation_, velocity_, world_angular);
-  const Eigen::Vector3d environment = engine.head<3>() + (motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
-                                                                        : wall_force(position_, velocity_));
+  // The safety layer: passivity controller on the engine port, then the rendered-wrench limits.
+  if (input.guard != nullptr) engine = input.guard->engine_port(engine, port_twist);
+  Eigen::Matrix<double, 6, 1> rendered;
+  rendered << engine.head<3>() + (motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
+                                                : wall_force(position_, velocity_)),
+      rotation_ ? Eigen::Vector3d(engine.tail<3>()) : Eigen::Vector3d::Zero();
+  if (input.guard != nullptr) rendered = input.guard->limit(rendered);
+  const Eigen::Vector3d environment = rendered.head<3>();
   const Eigen::Vector3d force = c.operator_wrench.force + environment;
   const Eigen::Vector3d acceleration = (force - damping_.cwiseProduct(velocity_)).cwiseQuotient(mass_);
   velocity_ = clamp_norm(velocity_ + dt * acceleration, max_velocity_);
@@ -264,7 +278,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
 
   Eigen::Vector3d angular_acceleration_world = Eigen::Vector3d::Zero();
   if (rotation_) {
-    const Eigen::Vector3d torque_body = orientation_.conjugate() * (c.operator_wrench.torque + engine.tail<3>());
+    const Eigen::Vector3d torque_body = orientation_.conjugate() * (c.operator_wrench.torque + rendered.tail<3>());
     const Eigen::Vector3d& w = body_angular_velocity_;
     const Eigen::Vector3d wd = (torque_body - w.cross(inertia_.cwiseProduct(w)) - rotational_damping_.cwiseProduct(w))
                                    .cwiseQuotient(inertia_);
@@ -292,7 +306,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
   target.acceleration.linear = commanded_acceleration;
   target.acceleration.angular = angular_acceleration_world;
   target.wrench.force = environment;  // what the environment applies to the handle
-  target.wrench.torque = rotation_ ? Eigen::Vector3d(engine.tail<3>()) : Eigen::Vector3d::Zero();
+  target.wrench.torque = rendered.tail<3>();
   target.has_motion = true;
   target.has_wrench = false;
   return ReturnCode::ok;

@@ -23,6 +23,7 @@ struct LoadedSession {
   SessionConfig config;
   std::unique_ptr<PluginLoader> loader;
   std::vector<std::unique_ptr<DeviceSession>> sessions;
+  std::vector<ConfigureFailure> configure_failures;  // devices isolated at start-up (run only)
 };
 
 // Config errors are printed once, here, without a log prefix: they are for the user to fix.
@@ -39,7 +40,8 @@ std::optional<LoadedSession> load(const std::string& file, const RunOptions* ove
       }
     }
     s.loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(s.config.server.plugin_paths));
-    s.sessions = build_sessions(s.config, *s.loader);
+    // Running, a plugin that throws from configure() isolates its device; checking, it is an error.
+    s.sessions = build_sessions(s.config, *s.loader, overrides != nullptr ? &s.configure_failures : nullptr);
     return s;
   } catch (const ConfigError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
@@ -51,6 +53,21 @@ void print_schema(const ParameterSchema& schema) {
   if (schema.specs().empty()) fmt::print("  (no parameters)\n");
   for (const auto& spec : schema.specs())
     fmt::print("  {:<24} {}\n  {:<24}   {}\n", spec.name, spec.description, "", spec.constraints_text());
+}
+
+// The fault and a summary of the cycles before it (the full history goes to the fault report topic).
+void log_fault_report(const DeviceSession& d, const FaultReport& r) {
+  double speed = 0.0, joint_speed = 0.0, torque = 0.0, force = 0.0;
+  for (std::uint32_t k = 0; k < r.count; ++k) {
+    const HistoryRecord& c = r.records[k];
+    speed = std::max(speed, c.handle_velocity.norm());
+    if (c.velocity.size() > 0) joint_speed = std::max(joint_speed, c.velocity.cwiseAbs().maxCoeff());
+    if (c.torque.size() > 0) torque = std::max(torque, c.torque.cwiseAbs().maxCoeff());
+    force = std::max(force, c.operator_force.norm());
+  }
+  spdlog::error("device '{}' fault {} at cycle {}: {}; safe mode (damping, then zero torque). Last {} cycles: "
+                "largest handle speed {:.3f} m/s, joint speed {:.3f}, torque {:.2f}, operator force {:.1f} N",
+                d.name(), fault_code(r.fault), r.cycle, to_string(r.fault), r.count, speed, joint_speed, torque, force);
 }
 
 }  // namespace
@@ -136,6 +153,11 @@ int run_session(const RunOptions& options) {
                  cpus.empty() ? std::string() : fmt::format(", DDS threads on CPU {}, the loop on CPU {}", cpus, settings.cpu));
   }
 
+  for (const ConfigureFailure& f : s->configure_failures)
+    spdlog::error("device '{}' {}: {}", f.device,
+                  f.powered ? "is held in its safe state (zero torque)" : "is left out (its drives stay unpowered)",
+                  f.error.what());
+
   const std::atomic<bool>& stop = install_stop_signal_handlers();
   spdlog::info("session {}: {} device(s) at {} Hz, {} clock{}", options.config_file, sessions.size(), server.rate_hz,
                lockstep ? "lockstep" : "realtime",
@@ -143,18 +165,27 @@ int run_session(const RunOptions& options) {
 
   std::vector<DeviceFault> reported(sessions.size(), DeviceFault::none);
   bool stop_logged = false;
+  auto fault_report = std::make_unique<FaultReport>();  // large: not on the stack
   const auto monitor = [&] {
     for (auto* session : sessions) session->service();
     for (std::size_t i = 0; i < sessions.size(); ++i) {
-      const DeviceFault f = sessions[i]->fault();
+      DeviceSession& d = *sessions[i];
+      if (d.take_fault_report(*fault_report)) {
+        log_fault_report(d, *fault_report);
+        if (bridge) bridge->publish_fault_report(i, *fault_report);
+      }
+      const DeviceFault f = d.fault();
       if (f != reported[i]) {
-        spdlog::error("device '{}' is in its safe state (zero torque) since cycle {}: {}", sessions[i]->name(),
-                      sessions[i]->fault_cycle(), to_string(f));
+        if (f == DeviceFault::none) {
+          spdlog::info("device '{}' recovered from {} on request", d.name(), fault_code(reported[i]));
+        } else if (f == DeviceFault::configure) {
+          spdlog::error("device '{}' is in its safe state: {}", d.name(), to_string(f));
+        }
         reported[i] = f;
       }
     }
     if (stop.load() && !stop_logged) {
-      spdlog::info("stop requested: ramping torques to zero over {} s", server.shutdown_ramp_s);
+      spdlog::info("stop requested: every device stops through its safe mode (damping, then zero torque)");
       stop_logged = true;
     }
   };

@@ -137,6 +137,20 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
   return d;
 }
 
+SafetySettings read_safety(const YAML::Node& node, const std::string& file, const std::string& key_path) {
+  if (node.IsDefined() && !node.IsNull() && !node.IsMap())
+    throw ConfigError(file, line_of(node), key_path, "expected a mapping of safety settings");
+  const Parameters p = read_parameters(node, safety_settings_schema(), file, key_path, line_of(node), {});
+  try {
+    return safety_settings_from(p);
+  } catch (const ParameterError& e) {
+    const std::string origin = p.origin(e.key());
+    const auto colon = origin.rfind(':');
+    const int line = colon == std::string::npos ? line_of(node) : std::atoi(origin.c_str() + colon + 1);
+    throw ConfigError(file, line, key_path + "." + e.key(), e.what());
+  }
+}
+
 }  // namespace
 
 ParameterSchema dds_settings_schema() {
@@ -227,7 +241,7 @@ SessionConfig load_session_config(const std::filesystem::path& path) {
     MappingReader reader(devices[i], key_path, file,
                          {"name", "device", "virtual_model", "inverse_kinematics", "controller", "scheme", "schemes",
                           "switch_ramp_s", "engine_deadline_s", "engine_fade_s",
-                          "engine_ramp_in_s"});
+                          "engine_ramp_in_s", "safety"});
     DeviceConfig device;
     device.name = reader.required_string("name");
     if (!valid_device_name(device.name))
@@ -247,6 +261,7 @@ SessionConfig load_session_config(const std::filesystem::path& path) {
       device.engine_fade_s = read_scalar_real(n, reader.path_of("engine_fade_s"), file, 0.0, 10.0);
     if (const YAML::Node n = reader.optional("engine_ramp_in_s"); n.IsDefined())
       device.engine_ramp_in_s = read_scalar_real(n, reader.path_of("engine_ramp_in_s"), file, 0.0, 10.0);
+    device.safety = read_safety(reader.optional("safety"), file, reader.path_of("safety"));
     config.devices.push_back(std::move(device));
   }
   return config;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hapticd/parameters.hpp"
+#include "safety/safety_settings.hpp"
 
 namespace hapticd::server {
 
@@ -83,6 +84,7 @@ struct DeviceConfig {
   double engine_deadline_s = 0.05;  // engine input older than this fades out ...
   double engine_fade_s = 0.02;      // ... over this time
   double engine_ramp_in_s = 0.1;    // engine input starting after a silence ramps in over this time
+  SafetySettings safety;            // the `safety` section (docs/safety.md)
 };
 
 struct SessionConfig {

@@ -68,6 +68,7 @@ struct DdsBridge::Dds {
         state(participant),
         event(participant),
         telemetry(participant),
+        fault_report(participant),
         reply(participant),
         command(participant, timing),
         request(participant),
@@ -78,6 +79,7 @@ struct DdsBridge::Dds {
   dds::Writer<hapticd_msg_DeviceState> state;
   dds::Writer<hapticd_msg_Event> event;
   dds::Writer<hapticd_msg_Telemetry> telemetry;
+  dds::Writer<hapticd_msg_FaultReport> fault_report;
   dds::Writer<hapticd_msg_ControlReply> reply;
   dds::Reader<hapticd_msg_EngineCommand> command;
   dds::Reader<hapticd_msg_ControlRequest> request;
@@ -237,9 +239,13 @@ void DdsBridge::publish_states() {
               (s.engine_weight > 0.0 && !s.engine_stale ? hapticd_msg_FLAG_ENGINE_ACTIVE : 0u) |
               (s.engine_stale ? hapticd_msg_FLAG_ENGINE_STALE : 0u) |
               (s.estop ? hapticd_msg_FLAG_ESTOP : 0u) | (s.fault != DeviceFault::none ? hapticd_msg_FLAG_FAULT : 0u) |
-              (s.switching ? hapticd_msg_FLAG_SWITCHING : 0u);
-    dds::set_text(m.fault, s.fault == DeviceFault::none ? std::string_view() : to_string(s.fault));
-    dds::set_text(m.scheme, d.session->chain().schemes[static_cast<std::size_t>(s.scheme)].name);
+              (s.switching ? hapticd_msg_FLAG_SWITCHING : 0u) | (s.safe_damping ? hapticd_msg_FLAG_SAFE_DAMPING : 0u) |
+              (s.limit_engaged ? hapticd_msg_FLAG_LIMIT_ENGAGED : 0u) |
+              (s.render_limited ? hapticd_msg_FLAG_RENDER_LIMITED : 0u) |
+              (s.thermal_derating ? hapticd_msg_FLAG_THERMAL_DERATING : 0u) |
+              (s.passivity_control ? hapticd_msg_FLAG_PASSIVITY_CONTROL : 0u);
+    dds::set_text(m.fault, s.fault == DeviceFault::none ? std::string_view() : fault_code(s.fault));
+    dds::set_text(m.scheme, d.session->active_scheme());
     {
       std::lock_guard lock(d.mutex);
       dds::set_text(m.owner, d.gate.owner());
@@ -263,11 +269,17 @@ void DdsBridge::publish_states() {
       d.last_mode = m.mode;
     }
     if (s.fault != d.last_fault) {
+      if (s.fault == DeviceFault::none) {
+        send_event(d, hapticd_msg_EVENT_RECOVERED, fault_code(d.last_fault), "the device left its safe mode on request");
+      } else {
+        send_event(d, s.fault == DeviceFault::emergency_stop ? hapticd_msg_EVENT_ESTOP : hapticd_msg_EVENT_FAULT,
+                   fault_code(s.fault),
+                   std::string(to_string(s.fault)) + ": the device is in its safe mode (damping, then zero torque); "
+                                                     "its history is on the fault report topic");
+      }
       d.last_fault = s.fault;
-      send_event(d, s.fault == DeviceFault::emergency_stop ? hapticd_msg_EVENT_ESTOP : hapticd_msg_EVENT_FAULT,
-                 to_string(s.fault), "the device is in its safe state (zero torque)");
     }
-    if (s.scheme != d.last_scheme) {
+    if (s.scheme != d.last_scheme && !d.session->chain().schemes.empty()) {
       d.last_scheme = s.scheme;
       const std::string& name = d.session->chain().schemes[static_cast<std::size_t>(s.scheme)].name;
       send_event(d, hapticd_msg_EVENT_SCHEME, name, "switched to scheme " + name);
@@ -320,6 +332,39 @@ void DdsBridge::publish_description(Device& d) {
   m.command_deadline_s = s.chain().engine_deadline_s;
   m.command_fade_s = s.chain().engine_fade_s;
   (void)dds_->description.write(m);
+}
+
+void DdsBridge::publish_fault_report(std::size_t device, const FaultReport& report) {
+  Device& d = *devices_.at(device);
+  auto m = std::make_unique<hapticd_msg_FaultReport>();  // 100 kB: not on the stack
+  *m = hapticd_msg_FaultReport{};
+  dds::set_text(m->device, d.session->name());
+  m->serial = report.serial;
+  dds::set_text(m->fault, fault_code(report.fault));
+  dds::set_text(m->message, to_string(report.fault));
+  m->cycle = report.cycle;
+  m->loop_time_ns = report.time_ns;
+  m->dof = d.session->description().dof();
+  m->record_count = static_cast<std::int32_t>(std::min<std::uint32_t>(report.count, hapticd_msg_MAX_HISTORY));
+  for (std::int32_t k = 0; k < m->record_count; ++k) {
+    const HistoryRecord& r = report.records[static_cast<std::size_t>(k)];
+    hapticd_msg_CycleRecord& o = m->records[k];
+    o.cycle = r.cycle;
+    o.loop_time_ns = r.time_ns;
+    for (Eigen::Index i = 0; i < r.position.size() && i < hapticd_msg_MAX_JOINTS; ++i) {
+      o.position[i] = r.position[i];
+      o.velocity[i] = i < r.velocity.size() ? r.velocity[i] : 0.0;
+      o.torque[i] = i < r.torque.size() ? r.torque[i] : 0.0;
+    }
+    for (int i = 0; i < 3; ++i) {
+      o.handle_position[i] = r.handle_position[i];
+      o.handle_velocity[i] = r.handle_velocity[i];
+      o.operator_force[i] = r.operator_force[i];
+      o.environment_force[i] = r.environment_force[i];
+    }
+    o.flags = r.flags;
+  }
+  (void)dds_->fault_report.write(*m);
 }
 
 void DdsBridge::send_event(Device& d, int kind, std::string_view code, std::string_view message) {
@@ -500,6 +545,16 @@ void DdsBridge::handle_requests() {
             ok = true;
             message = "emergency stop";
             break;
+          case hapticd_msg_REQUEST_RECOVER: {
+            if (!may_drive) {
+              message = "claimed by '" + owner + "'";
+              break;
+            }
+            const RuntimeReply rr = d.session->request_recovery();
+            ok = rr.accepted;
+            message = rr.message;
+            break;
+          }
           case hapticd_msg_REQUEST_DESCRIBE:
             publish_description(d);
             ok = true;
@@ -548,6 +603,12 @@ void DdsBridge::publish_telemetry() {
     t.deadline_misses = d.deadline_misses.load();
     t.scheme_switches = d.session->scheme_switches();
     t.saturated_cycles = d.session->saturated_cycles();
+    t.limited_cycles = d.session->limited_cycles();
+    t.render_limited_cycles = d.session->render_limited_cycles();
+    t.faults = d.session->faults_raised();
+    t.recoveries = d.session->recoveries();
+    t.thermal_load = d.session->thermal_load();
+    t.dissipated_j = d.session->dissipated_j();
     (void)dds_->telemetry.write(t);
   }
 }

@@ -19,6 +19,7 @@
 
 #include "config/session_config.hpp"
 #include "dds/command_gate.hpp"
+#include "safety/fault_history.hpp"
 #include "executor/executor.hpp"
 #include "hapticd_msg.h"
 
@@ -49,6 +50,8 @@ class DdsBridge final : public CycleListener {
   void stop();   // joins them; publishes the final states and telemetry first
 
   void after_cycle(std::uint64_t index, bool lockstep) noexcept override;
+  // Any thread (the server's monitor, which takes the reports from the devices): publishes a fault report.
+  void publish_fault_report(std::size_t device, const FaultReport& report);
 
   // Any thread, while running or after stop().
   [[nodiscard]] std::uint64_t commands_accepted(std::size_t device) const;

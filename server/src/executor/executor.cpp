@@ -27,7 +27,9 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
   const std::int64_t start_ns = clock.now_ns();
   std::int64_t deadline_ns = start_ns;  // cycle 0 runs at once
   std::uint64_t ramp_start = 0;
-  bool ramping = false;
+  bool ramping = false;    // the duration has passed: torques ramp to zero
+  bool stopping = false;   // stop requested (SIGINT/SIGTERM): every device goes through its safe mode
+  std::uint32_t consecutive_overruns = 0;
   const auto window_cycles = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(settings_.rate_hz)));
   std::int64_t window_latency_ns = 0, window_compute_ns = 0;
 
@@ -37,10 +39,14 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
     const std::int64_t wake_ns = clock.now_ns();
     const std::int64_t compute_start_ns = monotonic_now_ns();
 
-    if (!ramping && ((run_cycles > 0 && index >= run_cycles) || stop_requested.load(std::memory_order_relaxed))) {
+    if (!ramping && !stopping && stop_requested.load(std::memory_order_relaxed)) {
+      stopping = true;
+      result.stop_requested = true;
+      for (DeviceSession* s : sessions_) s->request_safe_stop();
+    }
+    if (!ramping && !stopping && run_cycles > 0 && index >= run_cycles) {
       ramping = true;
       ramp_start = index;
-      result.stop_requested = !(run_cycles > 0 && index >= run_cycles);
     }
     // Linear ramp from 1 to 0 over ramp_cycles; the last cycle of the ramp commands exactly zero.
     const double scale =
@@ -48,7 +54,7 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
 
     const CycleTime cycle{deadline_ns - start_ns, period_ns_, index};
     for (std::size_t d = 0; d < sessions_.size(); ++d) {
-      sessions_[d]->cycle(cycle, scale);
+      sessions_[d]->cycle(cycle, scale, consecutive_overruns);
       if (recorder_ != nullptr) recorder_->record(cycle, static_cast<std::uint16_t>(d), sessions_[d]->state(), sessions_[d]->command());
     }
 
@@ -56,6 +62,7 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
     if (listener_ != nullptr) listener_->after_cycle(index, clock.is_virtual());
     const std::int64_t next_deadline_ns = deadline_ns + period_ns_;
     const bool overrun = !clock.is_virtual() && clock.now_ns() > next_deadline_ns;
+    consecutive_overruns = overrun ? consecutive_overruns + 1 : 0;
     stats.record(wake_ns - deadline_ns, compute_end_ns - compute_start_ns, overrun);
     window_latency_ns = std::max(window_latency_ns, wake_ns - deadline_ns);
     window_compute_ns = std::max(window_compute_ns, compute_end_ns - compute_start_ns);
@@ -67,7 +74,8 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
       window_latency_ns = window_compute_ns = 0;
     }
 
-    if (ramping && index - ramp_start + 1 >= ramp_cycles) {
+    const bool all_at_rest = std::all_of(sessions_.begin(), sessions_.end(), [](const DeviceSession* s) { return s->at_rest(); });
+    if ((ramping && index - ramp_start + 1 >= ramp_cycles) || (stopping && all_at_rest)) {
       result.periods = index + 1;
       break;
     }

@@ -1,8 +1,11 @@
 #pragma once
 // The fixed-rate loop. It runs on a thread of its own (SCHED_FIFO and locked memory when permitted), sleeps
 // to absolute deadlines on its clock, runs every device session of the group each cycle (all devices see the
-// same instant), hands records to the recorder, and keeps timing statistics. At the end - duration reached
-// or stop requested - it ramps every device's torque linearly to zero over the shutdown ramp, then stops.
+// same instant), hands records to the recorder, and keeps timing statistics. When the duration is reached it
+// ramps every device's torque linearly to zero over the shutdown ramp, then stops; when a stop is requested
+// (SIGINT/SIGTERM) every device takes an emergency stop - its safe mode, damping then zero torque - and the loop
+// stops once all of them are at zero torque. Each cycle tells the devices the current run of consecutive
+// overruns (their watchdog).
 #include <atomic>
 #include <cstdint>
 #include <functional>

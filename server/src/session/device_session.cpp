@@ -11,22 +11,6 @@
 
 namespace hapticd::server {
 
-std::string_view to_string(DeviceFault fault) noexcept {
-  switch (fault) {
-    case DeviceFault::none: return "none";
-    case DeviceFault::device_read: return "device read failed";
-    case DeviceFault::device_write: return "device write failed";
-    case DeviceFault::non_finite_measurement: return "device reported a non-finite value";
-    case DeviceFault::activation: return "a plugin failed to activate";
-    case DeviceFault::virtual_model: return "virtual model update failed";
-    case DeviceFault::inverse_kinematics: return "inverse kinematics update failed";
-    case DeviceFault::controller: return "controller update failed";
-    case DeviceFault::non_finite_output: return "a plugin produced a non-finite output";
-    case DeviceFault::emergency_stop: return "emergency stop";
-  }
-  return "unknown";
-}
-
 DeviceSession::DeviceSession(std::string name, DeviceChain chain)
     : name_(std::move(name)), chain_(std::move(chain)), description_(chain_.device->description()) {
   const int dof = description_.dof();
@@ -40,11 +24,16 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
       throw std::invalid_argument("device '" + name_ + "' joint " + std::to_string(i) + " has no valid peak torque");
     torque_limit_nm_[i] = peak;
   }
-  if (chain_.schemes.empty()) throw std::invalid_argument("device '" + name_ + "' has no control scheme");
+  if (chain_.schemes.empty() && chain_.configure_error.empty())
+    throw std::invalid_argument("device '" + name_ + "' has no control scheme");
   scheme_state_ = std::vector<std::atomic<std::uint8_t>>(chain_.schemes.size());
   for (auto& st : scheme_state_) st.store(kIdle);
   switch_offset_.setZero(dof);
   state_.joints.resize(dof);
+  if (!chain_.configure_error.empty()) {
+    fault_.store(DeviceFault::configure);
+    fault_serial_.store(1);
+  }
   joint_target_.resize(dof);
   command_.torque_nm.setZero(dof);
   zero_command_.torque_nm.setZero(dof);
@@ -68,13 +57,14 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
 void DeviceSession::activate() {
   chain_.device->activate();
   chain_active_ = false;
+  differentiator_ready_ = false;
   command_.torque_nm.setZero();
   switch_ramp_left_ = 0;
 }
 
 ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
   if (scheme.virtual_model &&
-      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &chain_state_, &engine_}) != ReturnCode::ok)
+      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &chain_state_, &engine_, &safety_.guard()}) != ReturnCode::ok)
     return ReturnCode::error;
   if (scheme.inverse_kinematics &&
       (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &chain_state_}) != ReturnCode::ok)
@@ -93,6 +83,8 @@ bool DeviceSession::request_scheme(std::string_view name) {
 }
 
 const std::string& DeviceSession::active_scheme() const noexcept {
+  static const std::string none;
+  if (chain_.schemes.empty()) return none;
   return chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_acquire))].name;
 }
 
@@ -109,13 +101,23 @@ void DeviceSession::service() {
 
 RuntimeReply DeviceSession::handle_request(std::string_view stage, std::string_view name, const std::vector<double>& values) {
   if (stage == "device") return chain_.device->handle_request(name, values);
+  if (stage == "safety") {
+    if (name == "recover") return request_recovery();
+    if (name == "passivity_control") {
+      if (values.size() != 1 || (values[0] != 0.0 && values[0] != 1.0)) return {false, "passivity_control takes 0 or 1"};
+      passivity_request_.store(values[0] == 1.0 ? 1 : 0, std::memory_order_release);
+      return {true, values[0] == 1.0 ? "passivity controller on" : "passivity controller off"};
+    }
+    return {false, "unknown safety request '" + std::string(name) + "' (recover, passivity_control)"};
+  }
+  if (chain_.schemes.empty()) return {false, "device '" + name_ + "' has no running scheme"};
   SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_acquire))];
   if (stage == "controller") return scheme.controller->handle_request(name, values);
   if (stage == "virtual_model") {
     if (!scheme.virtual_model) return {false, "scheme '" + scheme.name + "' has no virtual model"};
     return (*scheme.virtual_model)->handle_request(name, values);
   }
-  return {false, "unknown stage '" + std::string(stage) + "' (device, virtual_model or controller)"};
+  return {false, "unknown stage '" + std::string(stage) + "' (device, virtual_model, controller or safety)"};
 }
 
 void DeviceSession::switch_scheme_if_requested(const CycleTime& cycle) noexcept {
@@ -141,6 +143,7 @@ void DeviceSession::switch_scheme_if_requested(const CycleTime& cycle) noexcept 
   switch_ramp_cycles_ = std::max<std::int64_t>(
       1, static_cast<std::int64_t>(std::llround(chain_.switch_ramp_s * 1e9 / static_cast<double>(cycle.period_ns))));
   switch_ramp_left_ = -1;  // marks "offset not yet taken"
+  safety_.restart_soft_start();
 }
 
 void DeviceSession::update_chain_state(bool first_cycle) noexcept {
@@ -173,7 +176,7 @@ void DeviceSession::update_chain_state(bool first_cycle) noexcept {
   }
 }
 
-DeviceFault DeviceSession::run_chain(const CycleTime& cycle) noexcept {
+DeviceFault DeviceSession::run_chain(const CycleTime& cycle) {
   if (!chain_active_) {
     differentiator_.configure(static_cast<double>(cycle.period_ns) * 1e-9, kVelocityFilterHz);
     update_chain_state(true);
@@ -181,6 +184,8 @@ DeviceFault DeviceSession::run_chain(const CycleTime& cycle) noexcept {
     if (activate_scheme(chain_.schemes[static_cast<std::size_t>(first)]) != ReturnCode::ok) return DeviceFault::activation;
     scheme_state_[static_cast<std::size_t>(first)].store(kActive, std::memory_order_release);
     chain_active_ = true;
+    differentiator_ready_ = true;
+    safety_.restart_soft_start();
   } else {
     update_chain_state(false);
     switch_scheme_if_requested(cycle);
@@ -188,9 +193,18 @@ DeviceFault DeviceSession::run_chain(const CycleTime& cycle) noexcept {
   take_engine_input(cycle);
   SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_relaxed))];
   if (scheme.virtual_model) {
-    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &chain_state_, &engine_}, task_) != ReturnCode::ok)
+    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &chain_state_, &engine_, &safety_.guard()}, task_) !=
+        ReturnCode::ok)
       return DeviceFault::virtual_model;
     if (!is_finite(task_)) return DeviceFault::non_finite_output;
+    if (task_.has_wrench && !safety_.guard().limit_applied()) {
+      // A model that does not apply the rendered-wrench limits itself: the server applies them here.
+      RenderGuard::Vector6 w;
+      w << task_.wrench.force, task_.wrench.torque;
+      w = safety_.guard().limit(w);
+      task_.wrench.force = w.head<3>();
+      task_.wrench.torque = w.tail<3>();
+    }
   } else {
     task_ = TaskTarget{};  // a scheme without a virtual model renders nothing (free space)
   }
@@ -250,6 +264,15 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.engine_weight = engine_.weight;
   s.engine_stale = engine_seen_ && engine_late_;
   s.engine_sequence = engine_.sequence;
+  s.safe_damping = (s.fault != DeviceFault::none || stopped_) && !safety_.at_rest();
+  s.stopping = s.stopping || stopped_;
+  const std::uint32_t flags = safety_.flags();
+  s.limit_engaged = (flags & kRecordLimitEngaged) != 0;
+  s.render_limited = (flags & kRecordRenderLimited) != 0;
+  s.thermal_derating = (flags & kRecordThermalDerating) != 0;
+  s.thermal_load = safety_.thermal().max_load();
+  s.dissipated_j = safety_.guard().dissipated_j();
+  s.passivity_control = safety_.guard().passivity_control();
   snapshot_outbox_.publish(s);
 }
 
@@ -263,46 +286,159 @@ void DeviceSession::blend_after_switch() noexcept {
   --switch_ramp_left_;
 }
 
-void DeviceSession::cycle(const CycleTime& cycle, double torque_scale) noexcept {
-  cycle_checked(cycle, torque_scale);
+void DeviceSession::cycle(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns) noexcept {
+  cycle_checked(cycle, torque_scale, consecutive_overruns);
+  record_history(cycle);
   publish_snapshot(cycle, torque_scale);
 }
 
-void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale) noexcept {
-  const ReturnCode read = chain_.device->read(cycle, state_);
+void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns) noexcept {
+  if (!safety_configured_) {  // fixed-size state: no allocation
+    safety_.configure(chain_.safety, description_, static_cast<double>(cycle.period_ns) * 1e-9);
+    safety_configured_ = true;
+  }
+  if (const int p = passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0) safety_.guard().set_passivity_control(p == 1);
+  ReturnCode read = ReturnCode::error;
+  try {
+    read = chain_.device->read(cycle, state_);
+  } catch (...) {
+    read = ReturnCode::error;
+  }
   if (fault() == DeviceFault::none && estop_requested_.load(std::memory_order_acquire))
     enter_safe_state(DeviceFault::emergency_stop, cycle);
-  if (fault() != DeviceFault::none) {
-    write_zero_torque(cycle);
-    return;
+  if (fault() == DeviceFault::none && safety_.overruns_exceeded(consecutive_overruns))
+    enter_safe_state(DeviceFault::loop_overrun, cycle);
+  if (fault() == DeviceFault::none && !stopped_ && safe_stop_requested_.load(std::memory_order_acquire)) {
+    stopped_ = true;
+    leave_chain();
+    safety_.enter_safe_mode();
+    at_rest_.store(false, std::memory_order_release);
   }
+  if (fault() != DeviceFault::none || stopped_) return safe_mode_cycle(cycle, read == ReturnCode::ok);
   if (read != ReturnCode::ok) return enter_safe_state(DeviceFault::device_read, cycle);
   if (!is_finite(state_)) return enter_safe_state(DeviceFault::non_finite_measurement, cycle);
+  if (state_.sensor_saturated) return enter_safe_state(DeviceFault::sensor_saturation, cycle);
 
-  if (const DeviceFault f = run_chain(cycle); f != DeviceFault::none) return enter_safe_state(f, cycle);
+  safety_.begin_cycle();
+  DeviceFault chain_fault = DeviceFault::none;
+  try {
+    chain_fault = run_chain(cycle);
+  } catch (...) {
+    chain_fault = DeviceFault::plugin_exception;
+  }
+  if (chain_fault != DeviceFault::none) return enter_safe_state(chain_fault, cycle);
 
-  const auto limited = command_.torque_nm.cwiseMax(-torque_limit_nm_).cwiseMin(torque_limit_nm_);
-  chain_state_.output_saturated = (limited.array() != command_.torque_nm.array()).any();
-  if (chain_state_.output_saturated) saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
+  bool saturated = false;
+  if (const DeviceFault f = safety_.limit(chain_state_, command_.torque_nm, saturated); f != DeviceFault::none)
+    return enter_safe_state(f, cycle);
+  chain_state_.output_saturated = saturated;
+  if (saturated) saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
+  const std::uint32_t flags = safety_.flags();
+  if ((flags & kRecordLimitEngaged) != 0) limited_cycles_.fetch_add(1, std::memory_order_relaxed);
+  if ((flags & kRecordRenderLimited) != 0) render_limited_cycles_.fetch_add(1, std::memory_order_relaxed);
   const double scale = std::clamp(torque_scale, 0.0, 1.0);
   if (scale > 0.0) {
-    command_.torque_nm = limited * scale;
+    command_.torque_nm *= scale;
   } else {
     command_.torque_nm.setZero();  // exactly +0, not -0 from a negative torque times zero
   }
 
-  if (chain_.device->write(cycle, command_) != ReturnCode::ok) enter_safe_state(DeviceFault::device_write, cycle);
+  ReturnCode written = ReturnCode::error;
+  try {
+    written = chain_.device->write(cycle, command_);
+  } catch (...) {
+    written = ReturnCode::error;
+  }
+  if (written != ReturnCode::ok) return enter_safe_state(DeviceFault::device_write, cycle);
+  safety_.written(command_.torque_nm);
+  dissipated_j_.store(safety_.guard().dissipated_j(), std::memory_order_relaxed);
+  thermal_load_.store(safety_.thermal().max_load(), std::memory_order_relaxed);
 }
 
-void DeviceSession::write_zero_torque(const CycleTime& cycle) noexcept {
-  command_.torque_nm.setZero();
-  (void)chain_.device->write(cycle, zero_command_);
+void DeviceSession::safe_mode_cycle(const CycleTime& cycle, bool read_ok) noexcept {
+  // Joint damping while the measurement can be trusted, then zero torque.
+  bool valid = read_ok && state_.joints.position.allFinite() && differentiator_ready_;
+  JointVector& velocity = chain_state_.velocity;
+  if (valid) {
+    if (description_.reports_joint_velocity) {
+      velocity = state_.joints.velocity;
+    } else {
+      velocity = differentiator_.update(state_.joints.position);
+    }
+    valid = velocity.allFinite();
+  }
+  safety_.safe_torque(velocity, valid, command_.torque_nm);
+  at_rest_.store(safety_.at_rest(), std::memory_order_release);
+  try {
+    (void)chain_.device->write(cycle, command_);
+  } catch (...) {
+  }
+  recover_if_requested();
+}
+
+void DeviceSession::recover_if_requested() noexcept {
+  if (stopped_ || !recovery_requested_.load(std::memory_order_acquire) || !safety_.at_rest()) return;
+  // The scheme that ran must have been deactivated off the loop (service()) before it activates again.
+  const auto active = static_cast<std::size_t>(active_.load(std::memory_order_relaxed));
+  if (scheme_state_[active].load(std::memory_order_acquire) != kIdle) return;
+  recovery_requested_.store(false, std::memory_order_relaxed);
+  estop_requested_.store(false, std::memory_order_relaxed);
+  chain_active_ = false;  // the next cycle activates the chain from the current state, with a soft start
+  switch_ramp_left_ = 0;
+  engine_seen_ = false;   // engine input ramps in again
+  engine_weight_ = 0.0;
+  recoveries_.fetch_add(1, std::memory_order_relaxed);
+  fault_.store(DeviceFault::none, std::memory_order_release);
+}
+
+RuntimeReply DeviceSession::request_recovery() {
+  const DeviceFault f = fault();
+  if (f == DeviceFault::none) return {false, "device '" + name_ + "' is not in its safe mode"};
+  if (f == DeviceFault::configure)
+    return {false, "device '" + name_ + "' never configured (" + chain_.configure_error + "); fix the session and restart"};
+  recovery_requested_.store(true, std::memory_order_release);
+  return {true, "device '" + name_ + "' recovers once its safe mode has reached zero torque"};
+}
+
+void DeviceSession::record_history(const CycleTime& cycle) noexcept {
+  HistoryRecord r;
+  r.cycle = cycle.index;
+  r.time_ns = cycle.time_ns;
+  r.position = state_.joints.position;
+  r.velocity = chain_state_.velocity;
+  r.torque = command_.torque_nm;
+  r.handle_position = chain_state_.handle_pose.position;
+  r.handle_velocity = chain_state_.handle_twist.linear;
+  r.operator_force = chain_state_.operator_wrench.force;
+  r.environment_force = task_.wrench.force;
+  r.flags = safety_.flags();
+  safety_.history().record(r);
+}
+
+void DeviceSession::leave_chain() noexcept {
+  // The running scheme leaves the loop (service() deactivates it); a recovery activates it again.
+  if (!chain_active_) return;
+  const auto active = static_cast<std::size_t>(active_.load(std::memory_order_relaxed));
+  if (scheme_state_[active].load(std::memory_order_relaxed) == kActive) scheme_state_[active].store(kLeaving, std::memory_order_release);
+  chain_active_ = false;
 }
 
 void DeviceSession::enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept {
+  // The report: the cycles before this one, as recorded (this cycle never wrote its chain's command).
+  report_.fault = fault;
+  report_.serial = fault_serial_.load(std::memory_order_relaxed) + 1;
+  report_.cycle = cycle.index;
+  report_.time_ns = cycle.time_ns;
+  safety_.history().copy_to(report_);
+  report_outbox_.publish(report_);
   fault_cycle_.store(cycle.index, std::memory_order_relaxed);
+  fault_serial_.store(report_.serial, std::memory_order_relaxed);
   fault_.store(fault, std::memory_order_release);
-  write_zero_torque(cycle);
+  leave_chain();
+  recovery_requested_.store(false, std::memory_order_relaxed);
+  safety_.enter_safe_mode();
+  at_rest_.store(safety_.at_rest(), std::memory_order_release);
+  safe_mode_cycle(cycle, fault != DeviceFault::device_read && fault != DeviceFault::non_finite_measurement);
 }
 
 void DeviceSession::deactivate() {

@@ -1,8 +1,9 @@
 #pragma once
 // One device and its plugin chain: device.read -> virtual model -> inverse kinematics -> controller ->
-// output checks -> device.write, once per cycle. Every plugin output is checked (return code, finite) before
-// it can reach a motor; torques are clamped to the joints' peak torque. A failure puts this device, and only
-// this device, in its safe state (zero torque) until the session ends.
+// safety supervisor -> device.write, once per cycle. Every plugin output is checked (return code, finite, no
+// exception) before it can reach a motor; the safety supervisor (safety/safety_supervisor.hpp) limits the
+// torques and watches the device. A fault puts this device, and only this device, in its safe mode (joint
+// damping, then zero torque) until a recovery is requested; the loop copies the last cycles into a fault report.
 //
 // Control schemes: the chain between reading and torques can be one of several schemes, all configured at
 // start-up. request_scheme() (any thread) asks for another; the loop switches at the next cycle boundary:
@@ -28,23 +29,11 @@
 #include "hapticd/plugin.hpp"
 #include "hapticd/signal/differentiator.hpp"
 #include "plugins/plugin_loader.hpp"
+#include "safety/device_fault.hpp"
+#include "safety/fault_history.hpp"
+#include "safety/safety_supervisor.hpp"
 
 namespace hapticd::server {
-
-enum class DeviceFault : std::uint8_t {
-  none,
-  device_read,
-  device_write,
-  non_finite_measurement,
-  activation,
-  virtual_model,
-  inverse_kinematics,
-  controller,
-  non_finite_output,
-  emergency_stop,
-};
-
-[[nodiscard]] std::string_view to_string(DeviceFault fault) noexcept;
 
 struct SchemeChain {
   std::string name;
@@ -61,7 +50,12 @@ struct DeviceChain {
   double engine_deadline_s = 0.05;
   double engine_fade_s = 0.02;
   double engine_ramp_in_s = 0.1;  // engine input starting after a silence ramps in over this time
+  SafetySettings safety;
+  // The device's plugins could not all be configured (configure_error says why): the device is held in its
+  // safe state from the first cycle, and may have no scheme.
+  std::string configure_error;
 };
+
 
 class DeviceSession {
  public:
@@ -72,8 +66,9 @@ class DeviceSession {
 
   // Not real-time safe. Powers the device; the chain activates in the first cycle from the first sample.
   void activate();
-  // Real-time safe. torque_scale in [0, 1] ramps the output (shutdown).
-  void cycle(const CycleTime& cycle, double torque_scale) noexcept;
+  // Real-time safe. torque_scale in [0, 1] ramps the output (shutdown); consecutive_overruns: the loop's
+  // current run of overrun cycles (the watchdog).
+  void cycle(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns = 0) noexcept;
   // Not real-time safe. Zero torque, chain and device off.
   void deactivate();
 
@@ -108,24 +103,50 @@ class DeviceSession {
   // Any thread: emergency stop. The loop puts the device in its safe state at the next cycle (fault
   // emergency_stop); the session keeps running for the other devices.
   void request_emergency_stop() noexcept { estop_requested_.store(true, std::memory_order_release); }
+  // Any thread: the server is stopping (SIGINT/SIGTERM): the device goes through its safe mode - damping,
+  // then zero torque - without a fault. at_rest() tells when it is done.
+  void request_safe_stop() noexcept { safe_stop_requested_.store(true, std::memory_order_release); }
+  [[nodiscard]] bool safe_stopping() const noexcept { return safe_stop_requested_.load(std::memory_order_relaxed); }
+  // Any thread: leave the safe mode. Refused when there is no fault or the device never configured; otherwise
+  // the loop recovers once the safe mode has reached zero torque: the chain activates again from the current
+  // state with a soft start.
+  RuntimeReply request_recovery();
+  // Any thread: the safe mode has reached zero torque (or there is no fault).
+  [[nodiscard]] bool at_rest() const noexcept { return at_rest_.load(std::memory_order_acquire); }
+  // Any thread: the newest fault report (the fault and the cycles before it); false if none since the last take.
+  // One reader at a time.
+  bool take_fault_report(FaultReport& out) noexcept { return report_outbox_.take(out); }
+  [[nodiscard]] std::uint64_t faults_raised() const noexcept { return fault_serial_.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t recoveries() const noexcept { return recoveries_.load(std::memory_order_relaxed); }
+  // Any thread: counters and gauges of the safety supervisor.
+  [[nodiscard]] std::uint64_t limited_cycles() const noexcept { return limited_cycles_.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t render_limited_cycles() const noexcept { return render_limited_cycles_.load(std::memory_order_relaxed); }
+  [[nodiscard]] double dissipated_j() const noexcept { return dissipated_j_.load(std::memory_order_relaxed); }
+  [[nodiscard]] double thermal_load() const noexcept { return thermal_load_.load(std::memory_order_relaxed); }
+  // Loop thread only (tests): the supervisor.
+  [[nodiscard]] const SafetySupervisor& safety() const noexcept { return safety_; }
   // Not real-time safe, not the loop thread: a run-time request to one stage of the chain - "device", or
-  // "virtual_model" / "inverse_kinematics" / "controller" of the running scheme (Plugin::handle_request).
+  // "virtual_model" / "inverse_kinematics" / "controller" of the running scheme (Plugin::handle_request), or
+  // "safety" ("passivity_control" 0/1, "recover").
   RuntimeReply handle_request(std::string_view stage, std::string_view name, const std::vector<double>& values);
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
   // (the executor's monitor does); deactivate() does it too.
   void service();
 
  private:
-  void cycle_checked(const CycleTime& cycle, double torque_scale) noexcept;
+  void cycle_checked(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns) noexcept;
   void enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept;
-  void write_zero_torque(const CycleTime& cycle) noexcept;
+  void leave_chain() noexcept;
+  void safe_mode_cycle(const CycleTime& cycle, bool read_ok) noexcept;
+  void recover_if_requested() noexcept;
+  void record_history(const CycleTime& cycle) noexcept;
   ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
   void switch_scheme_if_requested(const CycleTime& cycle) noexcept;
   void blend_after_switch() noexcept;
   void update_chain_state(bool first_cycle) noexcept;
   void take_engine_input(const CycleTime& cycle) noexcept;
   void publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept;
-  DeviceFault run_chain(const CycleTime& cycle) noexcept;
+  DeviceFault run_chain(const CycleTime& cycle);  // plugins may throw despite the contract: caught by the caller
 
   std::string name_;
   DeviceChain chain_;
@@ -168,6 +189,24 @@ class DeviceSession {
   ChainState chain_state_;
   // Cut-off of the joint-velocity estimate for devices without velocity measurement (encoder differences).
   static constexpr double kVelocityFilterHz = 100.0;
+
+  // Safety.
+  SafetySupervisor safety_;
+  FaultReport report_;
+  realtime::LatestValue<FaultReport> report_outbox_;
+  std::atomic<bool> safe_stop_requested_{false};
+  bool stopped_ = false;  // loop thread: the safe stop has begun
+  std::atomic<bool> recovery_requested_{false};
+  std::atomic<int> passivity_request_{-1};  // -1: none, else 0/1
+  std::atomic<bool> at_rest_{true};
+  std::atomic<std::uint64_t> fault_serial_{0};
+  std::atomic<std::uint64_t> recoveries_{0};
+  std::atomic<std::uint64_t> limited_cycles_{0};
+  std::atomic<std::uint64_t> render_limited_cycles_{0};
+  std::atomic<double> dissipated_j_{0.0};
+  std::atomic<double> thermal_load_{0.0};
+  bool differentiator_ready_ = false;
+  bool safety_configured_ = false;
 
   std::atomic<DeviceFault> fault_{DeviceFault::none};
   std::atomic<std::uint64_t> fault_cycle_{0};

@@ -5,10 +5,10 @@
 
 #include "hapticd/joint_vector.hpp"
 #include "hapticd/spatial.hpp"
+#include "safety/device_fault.hpp"
 
 namespace hapticd::server {
 
-enum class DeviceFault : std::uint8_t;
 
 struct DeviceSnapshot {
   std::uint64_t cycle = 0;
@@ -28,6 +28,13 @@ struct DeviceSnapshot {
   double engine_weight = 0.0;        // 1: fresh engine input applied; between 0 and 1: fading
   bool engine_stale = false;         // the engine missed its deadline
   std::uint64_t engine_sequence = 0; // the engine input the loop applied this cycle
+  bool safe_damping = false;         // in safe mode, damping phase (false once at zero torque)
+  bool limit_engaged = false;        // velocity damping or a workspace wall acted
+  bool render_limited = false;       // the rendered wrench was limited
+  bool thermal_derating = false;
+  double thermal_load = 0.0;         // largest joint thermal load (1: continuous torque for ever)
+  double dissipated_j = 0.0;         // energy the passivity controller has dissipated since the chain activated
+  bool passivity_control = false;
 };
 
 }  // namespace hapticd::server

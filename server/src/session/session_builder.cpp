@@ -3,8 +3,16 @@
 #include "config/config_error.hpp"
 #include "config/yaml_reader.hpp"
 
+#include <algorithm>
+
 namespace hapticd::server {
 namespace {
+
+// A plugin threw from configure() (other than a ParameterError, which is a mistake in the session file): the
+// device is isolated in its safe state and the others run (docs/safety.md).
+struct PluginConfigureError {
+  ConfigError error;
+};
 
 int line_from_origin(const std::string& origin, int fallback) {
   const auto colon = origin.rfind(':');
@@ -41,8 +49,10 @@ PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, co
   } catch (const ParameterError& e) {
     throw ConfigError(file, line_from_origin(parameters.origin(e.key()), pc.line), parameters_path + "." + e.key(), e.what());
   } catch (const std::exception& e) {
-    throw ConfigError(file, pc.line, pc.key_path,
-                      "plugin '" + pc.plugin + "' failed to configure: " + std::string(e.what()));
+    throw PluginConfigureError(ConfigError(file, pc.line, pc.key_path,
+                                           "plugin '" + pc.plugin + "' failed to configure: " + std::string(e.what())));
+  } catch (...) {
+    throw PluginConfigureError(ConfigError(file, pc.line, pc.key_path, "plugin '" + pc.plugin + "' failed to configure"));
   }
   return instance;
 }
@@ -56,7 +66,8 @@ std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) 
   return z ^ (z >> 31);
 }
 
-std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader) {
+std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader,
+                                                           std::vector<ConfigureFailure>* report) {
   std::vector<std::unique_ptr<DeviceSession>> sessions;
   for (std::size_t i = 0; i < config.devices.size(); ++i) {
     const DeviceConfig& dc = config.devices[i];
@@ -67,7 +78,14 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
     context.config_directory = config.file.parent_path();
 
     DeviceChain chain;
-    chain.device = load_and_configure<Device>(PluginKind::device, dc.device, config, loader, context);
+    try {
+      chain.device = load_and_configure<Device>(PluginKind::device, dc.device, config, loader, context);
+    } catch (const PluginConfigureError& e) {
+      // Without a configured device plugin there is nothing to drive: its drives stay unpowered.
+      if (report == nullptr) throw e.error;
+      report->push_back({dc.name, e.error, false});
+      continue;
+    }
     const DeviceDescription& description = chain.device->description();
     context.device = &description;
     const auto build_scheme = [&](const std::string& name, const std::optional<PluginConfig>& virtual_model,
@@ -82,19 +100,32 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
       scheme.controller = load_and_configure<Controller>(PluginKind::controller, controller, config, loader, context);
       chain.schemes.push_back(std::move(scheme));
     };
-    build_scheme(dc.scheme, dc.virtual_model, dc.inverse_kinematics, dc.controller);
-    for (const SchemeConfig& alt : dc.alternatives)
-      build_scheme(alt.name, alt.virtual_model, alt.inverse_kinematics, alt.controller);
+    try {
+      build_scheme(dc.scheme, dc.virtual_model, dc.inverse_kinematics, dc.controller);
+      for (const SchemeConfig& alt : dc.alternatives)
+        build_scheme(alt.name, alt.virtual_model, alt.inverse_kinematics, alt.controller);
+    } catch (const PluginConfigureError& e) {
+      // The device is powered but held in its safe state; its other plugins are dropped.
+      if (report == nullptr) throw e.error;
+      chain.schemes.clear();
+      chain.configure_error = e.error.what();
+      report->push_back({dc.name, e.error, true});
+    }
     chain.switch_ramp_s = dc.switch_ramp_s;
     chain.engine_deadline_s = dc.engine_deadline_s;
     chain.engine_fade_s = dc.engine_fade_s;
     chain.engine_ramp_in_s = dc.engine_ramp_in_s;
+    chain.safety = dc.safety;
 
     try {
       sessions.push_back(std::make_unique<DeviceSession>(dc.name, std::move(chain)));
     } catch (const std::invalid_argument& e) {
       throw ConfigError(config.file.string(), dc.device.line, dc.device.key_path, e.what());
     }
+  }
+  if (report == nullptr) return sessions;
+  if (sessions.empty() || std::none_of(sessions.begin(), sessions.end(), [](const auto& d) { return d->fault() == DeviceFault::none; })) {
+    if (!report->empty()) throw report->front().error;  // nothing could run: fail the start
   }
   return sessions;
 }

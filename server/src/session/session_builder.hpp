@@ -4,13 +4,25 @@
 #include <memory>
 #include <vector>
 
+#include "config/config_error.hpp"
 #include "config/session_config.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
 
-std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader);
+// A device whose plugin threw from configure() (a ParameterError is a session-file error and always fails).
+struct ConfigureFailure {
+  std::string device;
+  ConfigError error;
+  bool powered;  // false: the device plugin itself failed, the device is left out; true: held in its safe state
+};
+
+// Without `report` every failure throws. With it, a plugin that throws from configure() isolates its device:
+// the failure is added to `report`, the device is held in its safe state (or left out when its device plugin
+// failed) and the others are built; the start fails only if no device can run.
+std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader,
+                                                           std::vector<ConfigureFailure>* report = nullptr);
 
 // Per-device seed derived from the session seed (splitmix64), so devices get independent random streams.
 std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) noexcept;

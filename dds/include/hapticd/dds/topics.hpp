@@ -7,7 +7,7 @@
 
 namespace hapticd::dds {
 
-enum class TopicKind { description, state, command, request, reply, event, telemetry };
+enum class TopicKind { description, state, command, request, reply, event, telemetry, fault_report };
 
 template <class T>
 struct TopicOf;
@@ -25,6 +25,7 @@ HAPTICD_DDS_TOPIC(hapticd_msg_ControlRequest, request, "hapticd_request")
 HAPTICD_DDS_TOPIC(hapticd_msg_ControlReply, reply, "hapticd_reply")
 HAPTICD_DDS_TOPIC(hapticd_msg_Event, event, "hapticd_event")
 HAPTICD_DDS_TOPIC(hapticd_msg_Telemetry, telemetry, "hapticd_telemetry")
+HAPTICD_DDS_TOPIC(hapticd_msg_FaultReport, fault_report, "hapticd_fault_report")
 #undef HAPTICD_DDS_TOPIC
 
 struct QosDeleter {

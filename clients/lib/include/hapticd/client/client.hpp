@@ -61,6 +61,8 @@ class Client {
   void on_state(std::function<void(const hapticd_msg_DeviceState&)> callback);
   void on_event(std::function<void(const hapticd_msg_Event&)> callback);
   void on_telemetry(std::function<void(const hapticd_msg_Telemetry&)> callback);
+  // A device's fault and the cycles before it (a late joiner gets the newest one per device).
+  void on_fault_report(std::function<void(const hapticd_msg_FaultReport&)> callback);
 
   // ---- requests ----
   Reply request(std::string_view device, hapticd_msg_RequestKind kind, std::string_view name = {},
@@ -72,6 +74,8 @@ class Client {
   Reply set_parameter(std::string_view device, std::string_view parameter, const std::vector<double>& values,
                       Timeout timeout = std::chrono::seconds(2));
   Reply emergency_stop(std::string_view device, Timeout timeout = std::chrono::seconds(2));
+  // Leave the safe mode (accepted when the device is in it; it recovers once at zero torque).
+  Reply recover(std::string_view device, Timeout timeout = std::chrono::seconds(2));
   // Simulated devices: "push" {fx, fy, fz[, ramp_s]} or "release".
   Reply operator_command(std::string_view device, std::string_view command, const std::vector<double>& values = {},
                          Timeout timeout = std::chrono::seconds(2));

@@ -1,0 +1,34 @@
+#pragma once
+// The reasons a device leaves normal operation for its safe mode, in the manner of a robot's reflex list:
+// each has a stable code (events, the DDS state, logs) and a sentence for people.
+#include <cstdint>
+#include <string_view>
+
+namespace hapticd::server {
+
+enum class DeviceFault : std::uint8_t {
+  none,
+  device_read,             // the device's read() failed
+  device_write,            // the device's write() failed
+  non_finite_measurement,  // the device reported NaN or infinity
+  sensor_saturation,       // the force/torque sensor reached its range
+  activation,              // a plugin refused to activate
+  configure,               // a plugin failed to configure: the device never ran
+  virtual_model,           // the virtual model's update() returned an error
+  inverse_kinematics,
+  controller,
+  plugin_exception,        // a plugin threw despite the real-time contract
+  non_finite_output,       // a plugin produced NaN or infinity
+  joint_velocity,          // a joint exceeded its velocity limit despite the damping
+  cartesian_velocity,      // the handle exceeded its speed limit despite the damping
+  workspace,               // the handle went through a workspace wall by more than the allowed depth
+  loop_overrun,            // too many consecutive loop overruns
+  emergency_stop,          // requested (DDS, hapticctl, signal)
+};
+
+// The stable code ("joint_velocity_violation"); at most 31 characters.
+[[nodiscard]] std::string_view fault_code(DeviceFault fault) noexcept;
+// A sentence ("a joint exceeded its velocity limit").
+[[nodiscard]] std::string_view to_string(DeviceFault fault) noexcept;
+
+}  // namespace hapticd::server

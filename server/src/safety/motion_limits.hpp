@@ -1,0 +1,38 @@
+#pragma once
+// Velocity limits and workspace walls, applied to the torque command after the controller:
+//   - joint velocity: above joint_damping_from x velocity_max a joint gets damping against its excess speed;
+//     above joint_fault_at x velocity_max the device faults (joint_velocity);
+//   - handle speed (devices with a robot model): above speed_damping_from_m_s the handle gets damping against
+//     its excess speed (J^T F); above max_speed_m_s the device faults (cartesian_velocity);
+//   - workspace walls: outside the box the handle is pushed back by a spring (and damping of outward motion),
+//     J^T F; beyond wall_fault_depth_m the device faults (workspace).
+// Real-time safe after configure().
+#include <Eigen/Core>
+
+#include "hapticd/chain_state.hpp"
+#include "hapticd/joint_vector.hpp"
+#include "safety/device_fault.hpp"
+#include "safety/safety_settings.hpp"
+
+namespace hapticd::server {
+
+class MotionLimits {
+ public:
+  void configure(const SafetySettings& settings, const JointVector& velocity_max);
+  // Adds the damping and wall torques to `torque`; returns the fault a limit raises, or none.
+  DeviceFault apply(const ChainState& chain, JointVector& torque) noexcept;
+  // A damping or wall force acted this cycle.
+  [[nodiscard]] bool engaged() const noexcept { return engaged_; }
+  [[nodiscard]] bool has_workspace() const noexcept { return workspace_; }
+
+ private:
+  void add_handle_force(const ChainState& chain, const Eigen::Vector3d& force, JointVector& torque) const noexcept;
+
+  SafetySettings s_;
+  JointVector damping_from_, fault_at_;
+  Eigen::Vector3d lo_ = Eigen::Vector3d::Zero(), hi_ = Eigen::Vector3d::Zero();
+  bool workspace_ = false;
+  bool engaged_ = false;
+};
+
+}  // namespace hapticd::server

@@ -1,0 +1,72 @@
+#pragma once
+// The safety layer every device chain passes through (docs/safety.md), owned by the DeviceSession and run on
+// the loop thread: it limits what the chain commands, watches what the device reports, and drives the safe
+// mode after a fault. Real-time safe after configure(): fixed-size state only.
+//
+//   chain:   begin_cycle (soft-start scale for the rendered wrench) -> [virtual model: RenderGuard] ->
+//            controller -> limit (velocity damping, workspace walls, thermal and peak torque) -> write -> written
+//   fault:   enter_safe_mode -> safe_torque every cycle: joint damping for safe_damping_s, then zero torque
+#include <cstdint>
+
+#include "hapticd/chain_state.hpp"
+#include "hapticd/device_description.hpp"
+#include "hapticd/joint_vector.hpp"
+#include "hapticd/safety/render_guard.hpp"
+#include "safety/device_fault.hpp"
+#include "safety/fault_history.hpp"
+#include "safety/motion_limits.hpp"
+#include "safety/safety_settings.hpp"
+#include "safety/thermal_limiter.hpp"
+
+namespace hapticd::server {
+
+class SafetySupervisor {
+ public:
+  void configure(const SafetySettings& settings, const DeviceDescription& description, double period_s);
+  [[nodiscard]] const SafetySettings& settings() const noexcept { return settings_; }
+  [[nodiscard]] RenderGuard& guard() noexcept { return guard_; }
+  [[nodiscard]] FaultHistory& history() noexcept { return history_; }
+  [[nodiscard]] const ThermalLimiter& thermal() const noexcept { return thermal_; }
+
+  // The rendered-wrench limit ramps up from zero again (activation, scheme switch, recovery).
+  void restart_soft_start(const RenderGuard::Vector6& from = RenderGuard::Vector6::Zero()) noexcept;
+  // Start of a running cycle.
+  void begin_cycle() noexcept;
+  // After the controller: velocity damping, workspace walls, then the thermal and peak torque limits. Returns the
+  // fault a limit raised, or none; `saturated` tells whether the torque limit clamped.
+  DeviceFault limit(const ChainState& chain, JointVector& torque, bool& saturated) noexcept;
+  // The torque that was written: heats the thermal model.
+  void written(const JointVector& torque) noexcept { thermal_.update(torque); }
+  [[nodiscard]] bool overruns_exceeded(std::uint32_t consecutive) const noexcept {
+    return settings_.max_consecutive_overruns > 0 && consecutive >= settings_.max_consecutive_overruns;
+  }
+  // kRecord* flags of this cycle.
+  [[nodiscard]] std::uint32_t flags() const noexcept;
+
+  // Safe mode: the clock starts now; safe_torque() gives damping against `velocity` (when valid) for
+  // safe_damping_s, bounded by each joint's continuous torque, then zero.
+  void enter_safe_mode() noexcept {
+    safe_cycles_ = 0;
+    zero_written_ = false;
+  }
+  void safe_torque(const JointVector& velocity, bool velocity_valid, JointVector& torque) noexcept;
+  // The safe mode's last torque was zero (the damping phase is over, or could not run).
+  [[nodiscard]] bool at_rest() const noexcept { return zero_written_; }
+
+ private:
+  SafetySettings settings_;
+  ThermalLimiter thermal_;
+  MotionLimits motion_;
+  RenderGuard guard_;
+  FaultHistory history_;
+  JointVector peak_, continuous_;
+  double period_s_ = 1e-3;
+  std::int64_t soft_start_cycles_ = 0;
+  std::int64_t soft_start_done_ = 0;
+  std::int64_t damping_cycles_ = 0;
+  std::int64_t safe_cycles_ = 0;
+  bool saturated_ = false;
+  bool zero_written_ = true;
+};
+
+}  // namespace hapticd::server
