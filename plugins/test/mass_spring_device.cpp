@@ -20,6 +20,11 @@ ParameterSchema MassSpringDevice::parameter_schema() {
       .default_value(0.0);
   s.integer("fail_read_at_cycle", "fault injection: read() fails from this cycle on; -1 never").minimum(-1)
       .default_value(-1);
+  s.integer("fail_write_at_cycle", "fault injection: write() fails from this cycle on; -1 never").minimum(-1)
+      .default_value(-1);
+  s.real("velocity_limit_m_s", "velocity limit in the description").unit("m/s").greater_than(0.0).default_value(10.0);
+  s.real("continuous_force_n", "thermally sustainable force in the description; 0: the peak").unit("N").minimum(0.0)
+      .default_value(0.0);
   return s;
 }
 
@@ -33,6 +38,7 @@ void MassSpringDevice::configure(const Parameters& p, const PluginContext& conte
   encoder_resolution_m_ = p.real("encoder_resolution_m");
   position_noise_m_ = p.real("position_noise_m");
   fail_read_at_cycle_ = p.integer("fail_read_at_cycle");
+  fail_write_at_cycle_ = p.integer("fail_write_at_cycle");
   period_s_ = 1.0 / context.rate_hz;
   // Semi-implicit Euler is stable for w dt < 2; keep a wide margin so the test device is also accurate.
   const double natural_hz = std::sqrt(stiffness_n_per_m_ / mass_kg_) / (2.0 * std::numbers::pi);
@@ -46,7 +52,8 @@ void MassSpringDevice::configure(const Parameters& p, const PluginContext& conte
 
   description_ = DeviceDescription{};
   description_.model = "test_mass_spring";
-  description_.joints.push_back(JointDescription{"x", -1.0, 1.0, 10.0, force_limit_n_, force_limit_n_});
+  const double continuous = p.real("continuous_force_n") > 0.0 ? p.real("continuous_force_n") : force_limit_n_;
+  description_.joints.push_back(JointDescription{"x", -1.0, 1.0, p.real("velocity_limit_m_s"), force_limit_n_, continuous});
   description_.reports_joint_velocity = true;
 }
 
@@ -88,7 +95,11 @@ ReturnCode MassSpringDevice::read(const CycleTime& cycle, DeviceState& state) no
   return ReturnCode::ok;
 }
 
-ReturnCode MassSpringDevice::write(const CycleTime&, const JointCommand& command) noexcept {
+ReturnCode MassSpringDevice::write(const CycleTime& cycle, const JointCommand& command) noexcept {
+  if (fail_write_at_cycle_ >= 0 && cycle.index >= static_cast<std::uint64_t>(fail_write_at_cycle_)) {
+    force_n_ = 0.0;  // a failed write: the drive holds nothing
+    return ReturnCode::error;
+  }
   const double f = command.torque_nm[0];
   if (!std::isfinite(f)) return ReturnCode::error;
   force_n_ = std::clamp(f, -force_limit_n_, force_limit_n_);

@@ -33,6 +33,7 @@ class MassSpringDevice final : public Device {
   double position_noise_m_ = 0.0;
   std::int64_t substeps_ = 1;
   std::int64_t fail_read_at_cycle_ = -1;
+  std::int64_t fail_write_at_cycle_ = -1;
   double period_s_ = 0.0005;
 
   double position_m_ = 0.0;

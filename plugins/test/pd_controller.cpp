@@ -1,5 +1,7 @@
 #include "pd_controller.hpp"
 
+#include <stdexcept>
+
 #include <limits>
 
 namespace hapticd::test_plugins {
@@ -14,6 +16,9 @@ ParameterSchema PdController::parameter_schema() {
   s.real("velocity_filter_hz", "devices without velocity: cut-off of the differentiated positions").unit("Hz")
       .greater_than(0.0).default_value(100.0);
   s.integer("fault_at_cycle", "fault injection: output NaN at this cycle; -1 never").minimum(-1).default_value(-1);
+  s.integer("throw_at_cycle", "fault injection: update() throws at this cycle (against the contract); -1 never")
+      .minimum(-1).default_value(-1);
+  s.boolean("throw_in_configure", "fault injection: configure() throws a plugin failure").default_value(false);
   return s;
 }
 
@@ -22,6 +27,8 @@ void PdController::configure(const Parameters& p, const PluginContext& context) 
   kd_ = p.real("kd");
   setpoint_ = p.real("setpoint");
   fault_at_cycle_ = p.integer("fault_at_cycle");
+  throw_at_cycle_ = p.integer("throw_at_cycle");
+  if (p.boolean("throw_in_configure")) throw std::runtime_error("injected configure failure");
   hold_at_activation_ = p.boolean("hold_at_activation");
   dof_ = context.device != nullptr ? context.device->dof() : 0;
   if (dof_ == 0) throw ParameterError("kp", "the PD controller needs a device with at least one joint");
@@ -39,7 +46,9 @@ ReturnCode PdController::activate(const ControllerInput& current, const JointCom
   return ReturnCode::ok;
 }
 
-ReturnCode PdController::update(const CycleTime& cycle, const ControllerInput& in, JointCommand& command) noexcept {
+ReturnCode PdController::update(const CycleTime& cycle, const ControllerInput& in, JointCommand& command) {
+  if (throw_at_cycle_ >= 0 && cycle.index == static_cast<std::uint64_t>(throw_at_cycle_))
+    throw std::runtime_error("injected exception in update()");
   const JointVector& q = in.device.joints.position;
   if (differentiate_) {
     velocity_ = differentiator_.update(q);

@@ -35,9 +35,9 @@ double runaway(double limit_m, bool saturated) {
   VirtualModel& model = **s.devices[0]->chain().schemes[0].virtual_model;
   const EngineInput engine;
   TaskTarget target;
-  EXPECT_EQ(model.activate(VirtualModelInput{d.state(), &chain, &engine}), ReturnCode::ok);
+  EXPECT_EQ(model.activate(VirtualModelInput{d.state(), &chain, &engine, nullptr}), ReturnCode::ok);
   for (std::uint64_t k = 1; k <= 2000; ++k) {
-    EXPECT_EQ(model.update(cycle_at(k), VirtualModelInput{d.state(), &chain, &engine}, target), ReturnCode::ok);
+    EXPECT_EQ(model.update(cycle_at(k), VirtualModelInput{d.state(), &chain, &engine, nullptr}, target), ReturnCode::ok);
   }
   EXPECT_LE(target.twist.linear.x(), 1.0);
   return (target.pose.position - chain.handle_pose.position).norm();

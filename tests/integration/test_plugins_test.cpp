@@ -33,7 +33,7 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   const EngineInput engine;
   chain.velocity.setZero(1);
   dc.device->activate();
-  ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, &chain, &engine}), ReturnCode::ok);
+  ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, &chain, &engine, nullptr}), ReturnCode::ok);
   ASSERT_EQ((*c.inverse_kinematics)->activate(InverseKinematicsInput{state, task, &chain}), ReturnCode::ok);
   ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints, &chain}, command), ReturnCode::ok);
 
@@ -41,7 +41,7 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   for (std::uint64_t k = 0; k < 2000; ++k) {
     const CycleTime t = cycle_at(k);
     device += testing::count_allocations([&] { (void)dc.device->read(t, state); });
-    model += testing::count_allocations([&] { (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain, &engine}, task); });
+    model += testing::count_allocations([&] { (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain, &engine, nullptr}, task); });
     ik += testing::count_allocations([&] { (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &chain}, joints); });
     controller += testing::count_allocations([&] { (void)c.controller->update(t, ControllerInput{state, task, joints, &chain}, command); });
     device += testing::count_allocations([&] { (void)dc.device->write(t, command); });

@@ -269,7 +269,12 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
   rendered << engine.head<3>() + (motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
                                                 : wall_force(position_, velocity_)),
       rotation_ ? Eigen::Vector3d(engine.tail<3>()) : Eigen::Vector3d::Zero();
-  if (input.guard != nullptr) rendered = input.guard->limit(rendered);
+  if (input.guard != nullptr) {
+    rendered = input.guard->limit(rendered);
+    // The safety supervisor's walls and speed damping act on the virtual body too (after the limits: they are
+    // not the environment's), so the inner loop follows them instead of fighting them.
+    rendered.head<3>() += input.guard->take_safety_force();
+  }
   const Eigen::Vector3d environment = rendered.head<3>();
   const Eigen::Vector3d force = c.operator_wrench.force + environment;
   const Eigen::Vector3d acceleration = (force - damping_.cwiseProduct(velocity_)).cwiseQuotient(mass_);

@@ -21,16 +21,14 @@ void MotionLimits::add_handle_force(const ChainState& chain, const Eigen::Vector
   torque.noalias() += chain.data->frame_jacobian.topRows<3>().transpose() * force;
 }
 
-DeviceFault MotionLimits::apply(const ChainState& chain, JointVector& torque) noexcept {
+DeviceFault MotionLimits::check(const ChainState& chain, Eigen::Vector3d& handle_force) noexcept {
   engaged_ = false;
+  handle_force.setZero();
   const JointVector& qd = chain.velocity;
   for (int i = 0; i < qd.size(); ++i) {
     const double speed = std::abs(qd[i]);
     if (speed > fault_at_[i]) return DeviceFault::joint_velocity;
-    if (speed > damping_from_[i]) {
-      torque[i] -= s_.joint_damping_gain * (speed - damping_from_[i]) * std::copysign(1.0, qd[i]);
-      engaged_ = true;
-    }
+    engaged_ = engaged_ || speed > damping_from_[i];
   }
   if (chain.data == nullptr) return DeviceFault::none;  // no robot model: joint limits only
 
@@ -39,13 +37,12 @@ DeviceFault MotionLimits::apply(const ChainState& chain, JointVector& torque) no
   if (s_.max_speed_m_s > 0.0) {
     if (speed > s_.max_speed_m_s) return DeviceFault::cartesian_velocity;
     if (speed > s_.speed_damping_from_m_s) {
-      add_handle_force(chain, -s_.speed_damping_n_s_per_m * (speed - s_.speed_damping_from_m_s) * (v / speed), torque);
+      handle_force -= s_.speed_damping_n_s_per_m * (speed - s_.speed_damping_from_m_s) * (v / speed);
       engaged_ = true;
     }
   }
   if (workspace_) {
     const Eigen::Vector3d& p = chain.handle_pose.position;
-    Eigen::Vector3d force = Eigen::Vector3d::Zero();
     for (int i = 0; i < 3; ++i) {
       // Depth beyond the wall, positive outwards, and the outward direction.
       double depth = 0.0, outward = 0.0;
@@ -59,14 +56,21 @@ DeviceFault MotionLimits::apply(const ChainState& chain, JointVector& torque) no
       if (depth <= 0.0) continue;
       if (depth > s_.wall_fault_depth_m) return DeviceFault::workspace;
       const double outward_speed = std::max(0.0, outward * v[i]);
-      force[i] = -outward * (s_.wall_stiffness_n_per_m * depth + s_.wall_damping_n_s_per_m * outward_speed);
-    }
-    if (!force.isZero()) {
-      add_handle_force(chain, force, torque);
+      handle_force[i] -= outward * (s_.wall_stiffness_n_per_m * depth + s_.wall_damping_n_s_per_m * outward_speed);
       engaged_ = true;
     }
   }
   return DeviceFault::none;
+}
+
+void MotionLimits::apply(const ChainState& chain, const Eigen::Vector3d& handle_force, bool force_taken,
+                         JointVector& torque) noexcept {
+  const JointVector& qd = chain.velocity;
+  for (int i = 0; i < qd.size(); ++i) {
+    const double speed = std::abs(qd[i]);
+    if (speed > damping_from_[i]) torque[i] -= s_.joint_damping_gain * (speed - damping_from_[i]) * std::copysign(1.0, qd[i]);
+  }
+  if (chain.data != nullptr && !force_taken && !handle_force.isZero()) add_handle_force(chain, handle_force, torque);
 }
 
 }  // namespace hapticd::server

@@ -19,8 +19,12 @@ namespace hapticd::server {
 class MotionLimits {
  public:
   void configure(const SafetySettings& settings, const JointVector& velocity_max);
-  // Adds the damping and wall torques to `torque`; returns the fault a limit raises, or none.
-  DeviceFault apply(const ChainState& chain, JointVector& torque) noexcept;
+  // Before the chain: checks the joint and handle speeds and the wall depth (the fault a limit raises, or none)
+  // and computes the force on the handle of the speed damping and the walls (zero without a robot model).
+  DeviceFault check(const ChainState& chain, Eigen::Vector3d& handle_force) noexcept;
+  // After the controller: adds the joint damping, and the handle force as J^T F unless `force_taken` (an
+  // admittance model took it into its dynamics).
+  void apply(const ChainState& chain, const Eigen::Vector3d& handle_force, bool force_taken, JointVector& torque) noexcept;
   // A damping or wall force acted this cycle.
   [[nodiscard]] bool engaged() const noexcept { return engaged_; }
   [[nodiscard]] bool has_workspace() const noexcept { return workspace_; }

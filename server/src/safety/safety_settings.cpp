@@ -52,6 +52,8 @@ ParameterSchema safety_settings_schema() {
   s.integer("max_consecutive_overruns", "this many consecutive loop overruns put the device in its safe mode; 0: "
                                         "never").minimum(0).maximum(100000)
       .default_value(std::int64_t{d.max_consecutive_overruns});
+  s.real("safe_fade_s", "safe mode: the last torque written fades linearly to zero over this time (no step); "
+                        "0: at once").unit("s").minimum(0.0).maximum(1.0).default_value(d.safe_fade_s);
   s.real("safe_damping_s", "safe mode: joint damping for this long, then zero torque").unit("s").minimum(0.0)
       .maximum(10.0).default_value(d.safe_damping_s);
   s.real("safe_damping_gain", "safe mode: joint damping (bounded by each joint's continuous torque)")
@@ -98,7 +100,9 @@ SafetySettings safety_settings_from(const Parameters& p) {
   s.passivity_max_damping_n_s_per_m = p.real("passivity_max_damping_n_s_per_m");
   s.passivity_max_rotational_damping_n_m_s = p.real("passivity_max_rotational_damping_n_m_s");
   s.max_consecutive_overruns = static_cast<std::uint32_t>(p.integer("max_consecutive_overruns"));
+  s.safe_fade_s = p.real("safe_fade_s");
   s.safe_damping_s = p.real("safe_damping_s");
+  if (s.safe_damping_s < s.safe_fade_s) throw ParameterError("safe_damping_s", "must not be shorter than safe_fade_s");
   s.safe_damping_gain = p.real("safe_damping_gain");
   s.history_cycles = static_cast<std::uint32_t>(p.integer("history_cycles"));
   return s;

@@ -41,7 +41,9 @@ struct SafetySettings {
   double passivity_max_rotational_damping_n_m_s = 2.0;
   // Watchdogs.
   std::uint32_t max_consecutive_overruns = 10;  // 0: overruns never stop the device
-  // Safe mode: joint damping for this long, then zero torque.
+  // Safe mode: the last torque written fades out over safe_fade_s (no step) while joint damping acts for
+  // safe_damping_s; then zero torque.
+  double safe_fade_s = 0.02;
   double safe_damping_s = 0.5;
   double safe_damping_gain = 3.0;          // N m s/rad (N s/m), bounded by each joint's continuous torque
   // The fault event carries this many cycles of history.

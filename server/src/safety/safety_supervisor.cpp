@@ -29,6 +29,8 @@ void SafetySupervisor::configure(const SafetySettings& settings, const DeviceDes
   soft_start_cycles_ = std::max<std::int64_t>(1, std::llround(settings.soft_start_s / period_s));
   soft_start_done_ = soft_start_cycles_;
   damping_cycles_ = std::llround(settings.safe_damping_s / period_s);
+  fade_cycles_ = std::llround(settings.safe_fade_s / period_s);
+  fade_from_.setZero(dof);
   safe_cycles_ = damping_cycles_;
   zero_written_ = true;
 }
@@ -36,17 +38,21 @@ void SafetySupervisor::configure(const SafetySettings& settings, const DeviceDes
 void SafetySupervisor::restart_soft_start(const RenderGuard::Vector6& from) noexcept {
   soft_start_done_ = 0;
   guard_.reset(from);
+  guard_.set_scale(0.0);  // already for this cycle
 }
 
-void SafetySupervisor::begin_cycle() noexcept {
+DeviceFault SafetySupervisor::begin_cycle(const ChainState& chain) noexcept {
   guard_.begin_cycle();
   guard_.clear_limit_applied();
   if (soft_start_done_ < soft_start_cycles_) ++soft_start_done_;
   guard_.set_scale(static_cast<double>(soft_start_done_) / static_cast<double>(soft_start_cycles_));
+  const DeviceFault f = motion_.check(chain, handle_force_);
+  guard_.set_safety_force(handle_force_);
+  return f;
 }
 
-DeviceFault SafetySupervisor::limit(const ChainState& chain, JointVector& torque, bool& saturated) noexcept {
-  if (const DeviceFault f = motion_.apply(chain, torque); f != DeviceFault::none) return f;
+void SafetySupervisor::limit(const ChainState& chain, JointVector& torque, bool& saturated) noexcept {
+  motion_.apply(chain, handle_force_, guard_.safety_force_taken(), torque);
   const JointVector& lim = thermal_.limit();
   saturated = false;
   for (int i = 0; i < torque.size(); ++i) {
@@ -55,7 +61,6 @@ DeviceFault SafetySupervisor::limit(const ChainState& chain, JointVector& torque
     torque[i] = t;
   }
   saturated_ = saturated;
-  return DeviceFault::none;
 }
 
 std::uint32_t SafetySupervisor::flags() const noexcept {
@@ -65,10 +70,15 @@ std::uint32_t SafetySupervisor::flags() const noexcept {
 
 void SafetySupervisor::safe_torque(const JointVector& velocity, bool velocity_valid, JointVector& torque) noexcept {
   if (safe_cycles_ < damping_cycles_) {
+    // Fade: 1 - (k+1)/N, so the first safe cycle already steps down by one N-th and cycle N-1 reaches zero.
+    const double fade = safe_cycles_ < fade_cycles_
+                            ? 1.0 - static_cast<double>(safe_cycles_ + 1) / static_cast<double>(fade_cycles_)
+                            : 0.0;
     ++safe_cycles_;
     if (velocity_valid) {
       for (int i = 0; i < torque.size(); ++i)
-        torque[i] = std::clamp(-settings_.safe_damping_gain * velocity[i], -continuous_[i], continuous_[i]);
+        torque[i] = std::clamp(fade * fade_from_[i] - std::clamp(settings_.safe_damping_gain * velocity[i], -continuous_[i], continuous_[i]),
+                               -peak_[i], peak_[i]);
       zero_written_ = false;
       return;
     }

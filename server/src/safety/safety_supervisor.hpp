@@ -25,16 +25,18 @@ class SafetySupervisor {
   void configure(const SafetySettings& settings, const DeviceDescription& description, double period_s);
   [[nodiscard]] const SafetySettings& settings() const noexcept { return settings_; }
   [[nodiscard]] RenderGuard& guard() noexcept { return guard_; }
+  [[nodiscard]] const RenderGuard& guard() const noexcept { return guard_; }
   [[nodiscard]] FaultHistory& history() noexcept { return history_; }
   [[nodiscard]] const ThermalLimiter& thermal() const noexcept { return thermal_; }
 
   // The rendered-wrench limit ramps up from zero again (activation, scheme switch, recovery).
   void restart_soft_start(const RenderGuard::Vector6& from = RenderGuard::Vector6::Zero()) noexcept;
-  // Start of a running cycle.
-  void begin_cycle() noexcept;
-  // After the controller: velocity damping, workspace walls, then the thermal and peak torque limits. Returns the
-  // fault a limit raised, or none; `saturated` tells whether the torque limit clamped.
-  DeviceFault limit(const ChainState& chain, JointVector& torque, bool& saturated) noexcept;
+  // Start of a running cycle, before the chain: soft-start scale; speed and workspace checks (the fault they
+  // raise, or none) and the handle force of the walls and speed damping, offered to the model (RenderGuard).
+  DeviceFault begin_cycle(const ChainState& chain) noexcept;
+  // After the controller: joint velocity damping, the handle force unless the model took it, then the thermal
+  // and peak torque limits; `saturated` tells whether the torque limit clamped.
+  void limit(const ChainState& chain, JointVector& torque, bool& saturated) noexcept;
   // The torque that was written: heats the thermal model.
   void written(const JointVector& torque) noexcept { thermal_.update(torque); }
   [[nodiscard]] bool overruns_exceeded(std::uint32_t consecutive) const noexcept {
@@ -43,11 +45,13 @@ class SafetySupervisor {
   // kRecord* flags of this cycle.
   [[nodiscard]] std::uint32_t flags() const noexcept;
 
-  // Safe mode: the clock starts now; safe_torque() gives damping against `velocity` (when valid) for
-  // safe_damping_s, bounded by each joint's continuous torque, then zero.
-  void enter_safe_mode() noexcept {
+  // Safe mode: the clock starts now. safe_torque() gives the last torque written (`last`, when it can be
+  // trusted; else pass zero) fading linearly to zero over safe_fade_s, plus damping against `velocity` (when
+  // valid) bounded by each joint's continuous torque, for safe_damping_s; then zero.
+  void enter_safe_mode(const JointVector& last) noexcept {
     safe_cycles_ = 0;
     zero_written_ = false;
+    fade_from_ = last;
   }
   void safe_torque(const JointVector& velocity, bool velocity_valid, JointVector& torque) noexcept;
   // The safe mode's last torque was zero (the damping phase is over, or could not run).
@@ -64,9 +68,12 @@ class SafetySupervisor {
   std::int64_t soft_start_cycles_ = 0;
   std::int64_t soft_start_done_ = 0;
   std::int64_t damping_cycles_ = 0;
+  std::int64_t fade_cycles_ = 0;
+  JointVector fade_from_;
   std::int64_t safe_cycles_ = 0;
   bool saturated_ = false;
   bool zero_written_ = true;
+  Eigen::Vector3d handle_force_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace hapticd::server

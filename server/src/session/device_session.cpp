@@ -37,6 +37,7 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   joint_target_.resize(dof);
   command_.torque_nm.setZero(dof);
   zero_command_.torque_nm.setZero(dof);
+  last_written_.setZero(dof);
   chain_state_.velocity.setZero(dof);
   if (!description_.robot_model_file.empty()) {
     robot_ = std::make_unique<model::RobotModel>(model::load_robot_model(description_.robot_model_file));
@@ -190,6 +191,8 @@ DeviceFault DeviceSession::run_chain(const CycleTime& cycle) {
     update_chain_state(false);
     switch_scheme_if_requested(cycle);
   }
+  // The supervisor's speed and workspace checks on the measured state, before the chain renders anything.
+  if (const DeviceFault f = safety_.begin_cycle(chain_state_); f != DeviceFault::none) return f;
   take_engine_input(cycle);
   SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_relaxed))];
   if (scheme.virtual_model) {
@@ -311,7 +314,7 @@ void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, s
   if (fault() == DeviceFault::none && !stopped_ && safe_stop_requested_.load(std::memory_order_acquire)) {
     stopped_ = true;
     leave_chain();
-    safety_.enter_safe_mode();
+    safety_.enter_safe_mode(last_written_);
     at_rest_.store(false, std::memory_order_release);
   }
   if (fault() != DeviceFault::none || stopped_) return safe_mode_cycle(cycle, read == ReturnCode::ok);
@@ -319,7 +322,6 @@ void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, s
   if (!is_finite(state_)) return enter_safe_state(DeviceFault::non_finite_measurement, cycle);
   if (state_.sensor_saturated) return enter_safe_state(DeviceFault::sensor_saturation, cycle);
 
-  safety_.begin_cycle();
   DeviceFault chain_fault = DeviceFault::none;
   try {
     chain_fault = run_chain(cycle);
@@ -329,8 +331,7 @@ void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, s
   if (chain_fault != DeviceFault::none) return enter_safe_state(chain_fault, cycle);
 
   bool saturated = false;
-  if (const DeviceFault f = safety_.limit(chain_state_, command_.torque_nm, saturated); f != DeviceFault::none)
-    return enter_safe_state(f, cycle);
+  safety_.limit(chain_state_, command_.torque_nm, saturated);
   chain_state_.output_saturated = saturated;
   if (saturated) saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
   const std::uint32_t flags = safety_.flags();
@@ -349,7 +350,11 @@ void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, s
   } catch (...) {
     written = ReturnCode::error;
   }
-  if (written != ReturnCode::ok) return enter_safe_state(DeviceFault::device_write, cycle);
+  if (written != ReturnCode::ok) {
+    last_written_.setZero();  // unknown what the drive holds: do not fade from it
+    return enter_safe_state(DeviceFault::device_write, cycle);
+  }
+  last_written_ = command_.torque_nm;
   safety_.written(command_.torque_nm);
   dissipated_j_.store(safety_.guard().dissipated_j(), std::memory_order_relaxed);
   thermal_load_.store(safety_.thermal().max_load(), std::memory_order_relaxed);
@@ -373,6 +378,7 @@ void DeviceSession::safe_mode_cycle(const CycleTime& cycle, bool read_ok) noexce
     (void)chain_.device->write(cycle, command_);
   } catch (...) {
   }
+  last_written_ = command_.torque_nm;
   recover_if_requested();
 }
 
@@ -436,7 +442,9 @@ void DeviceSession::enter_safe_state(DeviceFault fault, const CycleTime& cycle) 
   fault_.store(fault, std::memory_order_release);
   leave_chain();
   recovery_requested_.store(false, std::memory_order_relaxed);
-  safety_.enter_safe_mode();
+  // The last torque that reached the drives fades out, unless the measurement cannot be trusted (then the
+  // damping cannot run either, and the safe mode is zero torque at once).
+  safety_.enter_safe_mode(last_written_);
   at_rest_.store(safety_.at_rest(), std::memory_order_release);
   safe_mode_cycle(cycle, fault != DeviceFault::device_read && fault != DeviceFault::non_finite_measurement);
 }

@@ -207,6 +207,7 @@ class DeviceSession {
   std::atomic<double> thermal_load_{0.0};
   bool differentiator_ready_ = false;
   bool safety_configured_ = false;
+  JointVector last_written_;  // the last torque the device accepted
 
   std::atomic<DeviceFault> fault_{DeviceFault::none};
   std::atomic<std::uint64_t> fault_cycle_{0};

@@ -7,7 +7,10 @@
 //     instance from its sample-and-hold or delay) the controller adds just the damping along the port velocity
 //     that dissipates the excess, up to a bound. Linear and angular parts are separate ports.
 //   - limit(): the limits on the rendered wrench (force and torque magnitude, and their rate of change per
-//     second) applied to everything the environment renders.
+//     second) applied to everything the environment renders;
+//   - take_safety_force(): the supervisor's own force on the handle this cycle (workspace walls, speed damping),
+//     which an admittance-type model adds to its environment force after limit() - so its inner loop does not
+//     fight the walls. A model that takes it gets it; otherwise the supervisor applies it as J^T F torque.
 // Models that render an engine call engine_port() on the engine's wrench and limit() on the total
 // environment wrench; the server limits the task wrench of models that do not (and counts either way).
 // Real-time safe: fixed-size state, no allocation.
@@ -61,8 +64,19 @@ class HAPTICD_API RenderGuard {
   // The limited environment wrench; counts the cycles it had to change something.
   Vector6 limit(const Vector6& wrench) noexcept;
 
-  // Called by the server at the start of each cycle.
-  void begin_cycle() noexcept { limited_this_cycle_ = false; }
+  // The supervisor's force on the handle (world) this cycle; marks it taken.
+  Eigen::Vector3d take_safety_force() noexcept {
+    safety_force_taken_ = true;
+    return safety_force_;
+  }
+
+  // Called by the server: at the start of each cycle, and with the supervisor's force before the model runs.
+  void begin_cycle() noexcept {
+    limited_this_cycle_ = false;
+    safety_force_taken_ = false;
+  }
+  void set_safety_force(const Eigen::Vector3d& force) noexcept { safety_force_ = force; }
+  [[nodiscard]] bool safety_force_taken() const noexcept { return safety_force_taken_; }
   [[nodiscard]] bool limited_this_cycle() const noexcept { return limited_this_cycle_; }
   [[nodiscard]] bool limit_applied() const noexcept { return limit_applied_; }
   void clear_limit_applied() noexcept { limit_applied_ = false; }
@@ -80,6 +94,8 @@ class HAPTICD_API RenderGuard {
   double scale_ = 1.0;
   Vector6 last_ = Vector6::Zero();
   bool limited_this_cycle_ = false;
+  Eigen::Vector3d safety_force_ = Eigen::Vector3d::Zero();
+  bool safety_force_taken_ = false;
   bool limit_applied_ = false;  // limit() ran this cycle (the model applied it itself)
 };
 
