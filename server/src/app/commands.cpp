@@ -282,6 +282,8 @@ int describe_config() {
              "HAPTICD_PLUGIN_PATH and the installed plugin folder", "", "list of folders, relative to the session file");
   fmt::print("\ndds section of a session file (present: the DDS interface runs):\n");
   print_schema(dds_settings_schema());
+  fmt::print("\nsafety section of a device entry (docs/safety.md):\n");
+  print_schema(safety_settings_schema());
   return kExitOk;
 }
 

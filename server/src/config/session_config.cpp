@@ -213,7 +213,21 @@ ParameterSchema server_settings_schema() {
   return s;
 }
 
+namespace {
+SessionConfig read_session_config(const std::filesystem::path& path);
+}  // namespace
+
 SessionConfig load_session_config(const std::filesystem::path& path) {
+  // Every error names the file: a YAML conversion the readers did not anticipate becomes a located error too.
+  try {
+    return read_session_config(path);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(path.string(), e.mark.is_null() ? 0 : e.mark.line + 1, "", "YAML: " + e.msg);
+  }
+}
+
+namespace {
+SessionConfig read_session_config(const std::filesystem::path& path) {
   const std::string file = path.string();
   if (!std::filesystem::exists(path)) throw ConfigError(file, 0, "", "no such file");
   YAML::Node root;
@@ -266,5 +280,7 @@ SessionConfig load_session_config(const std::filesystem::path& path) {
   }
   return config;
 }
+
+}  // namespace
 
 }  // namespace hapticd::server

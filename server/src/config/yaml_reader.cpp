@@ -95,13 +95,21 @@ std::string closest_match(const std::string& word, const std::vector<std::string
   return best;
 }
 
+namespace {
+// A mapping key: a plain name (YAML allows lists and mappings as keys; a session file does not).
+std::string key_of(const YAML::Node& key, const std::string& file, const std::string& key_path) {
+  if (!key.IsScalar()) throw ConfigError(file, line_of(key), key_path, "expected a key name, got " + scalar_text(key));
+  return key.Scalar();
+}
+}  // namespace
+
 MappingReader::MappingReader(const YAML::Node& node, std::string key_path, std::string file,
                              std::vector<std::string> allowed_keys)
     : node_(node), key_path_(std::move(key_path)), file_(std::move(file)) {
   if (!node_.IsMap())
     throw ConfigError(file_, line_of(node_), key_path_, "expected a mapping of keys, got " + scalar_text(node_));
   for (const auto& entry : node_) {
-    const std::string key = entry.first.as<std::string>();
+    const std::string key = key_of(entry.first, file_, key_path_);
     if (std::find(allowed_keys.begin(), allowed_keys.end(), key) == allowed_keys.end())
       throw ConfigError(file_, line_of(entry.first), path_of(key), unknown_key_message(key, allowed_keys));
   }
@@ -136,7 +144,7 @@ Parameters read_parameters(const YAML::Node& node, const ParameterSchema& schema
 
   if (present) {
     for (const auto& entry : node) {
-      const std::string key = entry.first.as<std::string>();
+      const std::string key = key_of(entry.first, file, key_path);
       if (std::find(read_elsewhere.begin(), read_elsewhere.end(), key) != read_elsewhere.end()) continue;
       const std::string path = key_path + "." + key;
       const ParameterSpec* spec = schema.find(key);
