@@ -213,7 +213,7 @@ TEST(Safety, RenderedForceAndItsRateAreLimited) {
   EXPECT_LE(largest_rate, 2000.0 + 1e-6);
 }
 
-TEST(Safety, SoftStartRampsTheRenderedForceAtActivationAndAfterASwitch) {
+TEST(Safety, SoftStartRampsTheRenderedForceAtActivation) {
   // A wrench engine at 20 N from the first cycle on (engine ramp-in off): the rendered force follows the
   // soft-start ramp 0 -> limit over 0.2 s (max_force_n 40 N: 0.2 N per cycle) rather than stepping.
   const std::string device = sim_device(kNoPush, "max_force_n: 40, max_force_rate_n_per_s: 1.0e6", ", coupling: true") +
