@@ -69,7 +69,7 @@ void scheme(benchmark::State& st, const std::string& device, const std::string& 
   const auto one_cycle = [&] {
     const CycleTime t{static_cast<std::int64_t>(k) * 500'000, 500'000, k};
     ++k;
-    if (chain.virtual_model) (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, &cs, &engine}, task);
+    if (chain.virtual_model) (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, &cs, &engine, nullptr}, task);
     if (chain.inverse_kinematics)
       (void)(*chain.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &cs}, joints);
     (void)chain.controller->update(t, ControllerInput{state, task, joints, &cs}, command);
