@@ -10,6 +10,7 @@
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
+#include "safety/safety_supervisor.hpp"
 #include "safety/thermal_limiter.hpp"
 #include "session/session_builder.hpp"
 #include "support/temp_file.hpp"
@@ -260,6 +261,30 @@ TEST(Safety, ThermalModelDeratesToTheContinuousTorque) {
   EXPECT_NEAR(derate_at, 10.0 * std::log(9.0 / 8.1), 0.01);
   EXPECT_NEAR(t.limit()[0], 10.0, 0.2);
   EXPECT_LE(t.max_load(), 1.0 + 1e-3);
+}
+
+TEST(Safety, SafeModeWithAnUntrustedMeasurementStaysAtZeroTorque) {
+  // Unit level: a safe mode that had to write zero (no valid velocity) never steps back up to the fade and the
+  // damping when the measurement returns; with a valid velocity it fades the last torque out.
+  DeviceDescription description;
+  description.joints.push_back(JointDescription{"x", -1.0, 1.0, 10.0, 50.0, 20.0});
+  SafetySupervisor supervisor;
+  supervisor.configure(SafetySettings{}, description, 0.0005);
+  JointVector last(1), velocity(1), torque(1);
+  last << 10.0;
+  velocity << 0.5;
+  supervisor.enter_safe_mode(last);
+  supervisor.safe_torque(velocity, false, torque);
+  EXPECT_EQ(torque[0], 0.0);
+  EXPECT_TRUE(supervisor.at_rest());
+  for (int k = 0; k < 100; ++k) {
+    supervisor.safe_torque(velocity, true, torque);
+    ASSERT_EQ(torque[0], 0.0) << "cycle " << k;
+  }
+  supervisor.enter_safe_mode(last);
+  supervisor.safe_torque(velocity, true, torque);
+  EXPECT_NEAR(torque[0], 10.0 * (1.0 - 1.0 / 40.0) - 3.0 * 0.5, 1e-12);  // fade 1/40 down, damping 3 N m s/rad
+  EXPECT_FALSE(supervisor.at_rest());
 }
 
 TEST(Safety, ThermalLimitActsInTheChain) {

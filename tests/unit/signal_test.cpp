@@ -89,6 +89,19 @@ TEST(Differentiator, RecoversTheSlopeOfARampAndTheAmplitudeOfASlowSine) {
   EXPECT_NEAR(peak, 2 * M_PI, 0.01 * 2 * M_PI);
 }
 
+TEST(Differentiator, ASampleAfterSkippedPeriodsIsNotAFastMotion) {
+  // A ramp at 0.3 per second sampled every period, then once after 10 periods (a loop that skipped nine):
+  // with the elapsed time the slope stays 0.3; divided by one period it would read 3.0.
+  signal::Differentiator<Scalar> d;
+  d.configure(1.0 / kRate, 200.0);
+  d.reset(Scalar::Zero());
+  int k = 0;
+  for (; k < 200; ++k) d.update(Scalar(0.3 * (k + 1) / kRate));
+  k += 10;
+  d.update(Scalar(0.3 * k / kRate), 10.0 / kRate);
+  EXPECT_NEAR(d.value()[0], 0.3, 1e-9);
+}
+
 TEST(RateLimiter, FollowsWithBoundedSlope) {
   signal::RateLimiter<JointVector> r;
   r.configure(1.0 / kRate, 10.0);  // 10 per second: 0.005 per sample

@@ -74,8 +74,8 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
       window_latency_ns = window_compute_ns = 0;
     }
 
-    const bool all_at_rest = std::all_of(sessions_.begin(), sessions_.end(), [](const DeviceSession* s) { return s->at_rest(); });
-    if ((ramping && index - ramp_start + 1 >= ramp_cycles) || (stopping && all_at_rest)) {
+    const bool stopped = stopping && std::all_of(sessions_.begin(), sessions_.end(), [](const DeviceSession* s) { return s->at_rest(); });
+    if ((ramping && index - ramp_start + 1 >= ramp_cycles) || stopped) {
       result.periods = index + 1;
       break;
     }

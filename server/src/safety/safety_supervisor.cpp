@@ -7,7 +7,6 @@ namespace hapticd::server {
 
 void SafetySupervisor::configure(const SafetySettings& settings, const DeviceDescription& description, double period_s) {
   settings_ = settings;
-  period_s_ = period_s;
   const int dof = description.dof();
   peak_.resize(dof);
   continuous_.resize(dof);
@@ -43,7 +42,6 @@ void SafetySupervisor::restart_soft_start(const RenderGuard::Vector6& from) noex
 
 DeviceFault SafetySupervisor::begin_cycle(const ChainState& chain) noexcept {
   guard_.begin_cycle();
-  guard_.clear_limit_applied();
   if (soft_start_done_ < soft_start_cycles_) ++soft_start_done_;
   guard_.set_scale(static_cast<double>(soft_start_done_) / static_cast<double>(soft_start_cycles_));
   const DeviceFault f = motion_.check(chain, handle_force_);
@@ -69,19 +67,18 @@ std::uint32_t SafetySupervisor::flags() const noexcept {
 }
 
 void SafetySupervisor::safe_torque(const JointVector& velocity, bool velocity_valid, JointVector& torque) noexcept {
+  if (safe_cycles_ < damping_cycles_ && !velocity_valid) safe_cycles_ = damping_cycles_;  // untrusted: zero, for good
   if (safe_cycles_ < damping_cycles_) {
     // Fade: 1 - (k+1)/N, so the first safe cycle already steps down by one N-th and cycle N-1 reaches zero.
     const double fade = safe_cycles_ < fade_cycles_
                             ? 1.0 - static_cast<double>(safe_cycles_ + 1) / static_cast<double>(fade_cycles_)
                             : 0.0;
     ++safe_cycles_;
-    if (velocity_valid) {
-      for (int i = 0; i < torque.size(); ++i)
-        torque[i] = std::clamp(fade * fade_from_[i] - std::clamp(settings_.safe_damping_gain * velocity[i], -continuous_[i], continuous_[i]),
-                               -peak_[i], peak_[i]);
-      zero_written_ = false;
-      return;
-    }
+    for (int i = 0; i < torque.size(); ++i)
+      torque[i] = std::clamp(fade * fade_from_[i] - std::clamp(settings_.safe_damping_gain * velocity[i], -continuous_[i], continuous_[i]),
+                             -peak_[i], peak_[i]);
+    zero_written_ = false;
+    return;
   }
   torque.setZero();
   zero_written_ = true;

@@ -46,8 +46,9 @@ class SafetySupervisor {
   [[nodiscard]] std::uint32_t flags() const noexcept;
 
   // Safe mode: the clock starts now. safe_torque() gives the last torque written (`last`, when it can be
-  // trusted; else pass zero) fading linearly to zero over safe_fade_s, plus damping against `velocity` (when
-  // valid) bounded by each joint's continuous torque, for safe_damping_s; then zero.
+  // trusted; else pass zero) fading linearly to zero over safe_fade_s, plus damping against `velocity`
+  // bounded by each joint's continuous torque, for safe_damping_s; then zero. A cycle without a valid
+  // velocity ends the damping phase: zero torque from then on (no step back up if the measurement returns).
   void enter_safe_mode(const JointVector& last) noexcept {
     safe_cycles_ = 0;
     zero_written_ = false;
@@ -64,7 +65,6 @@ class SafetySupervisor {
   RenderGuard guard_;
   FaultHistory history_;
   JointVector peak_, continuous_;
-  double period_s_ = 1e-3;
   std::int64_t soft_start_cycles_ = 0;
   std::int64_t soft_start_done_ = 0;
   std::int64_t damping_cycles_ = 0;

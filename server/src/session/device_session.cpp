@@ -17,12 +17,10 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   if (dof < 1 || dof > kMaxJoints)
     throw std::invalid_argument("device '" + name_ + "' reports " + std::to_string(dof) + " joints; supported: 1.." +
                                 std::to_string(kMaxJoints));
-  torque_limit_nm_.resize(dof);
   for (int i = 0; i < dof; ++i) {
     const double peak = description_.joints[static_cast<std::size_t>(i)].torque_peak_nm;
     if (!(peak > 0.0) || !std::isfinite(peak))
       throw std::invalid_argument("device '" + name_ + "' joint " + std::to_string(i) + " has no valid peak torque");
-    torque_limit_nm_[i] = peak;
   }
   if (chain_.schemes.empty() && chain_.configure_error.empty())
     throw std::invalid_argument("device '" + name_ + "' has no control scheme");
@@ -36,7 +34,6 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   }
   joint_target_.resize(dof);
   command_.torque_nm.setZero(dof);
-  zero_command_.torque_nm.setZero(dof);
   last_written_.setZero(dof);
   chain_state_.velocity.setZero(dof);
   if (!description_.robot_model_file.empty()) {
@@ -147,15 +144,23 @@ void DeviceSession::switch_scheme_if_requested(const CycleTime& cycle) noexcept 
   safety_.restart_soft_start();
 }
 
-void DeviceSession::update_chain_state(bool first_cycle) noexcept {
+const JointVector& DeviceSession::differentiate(const CycleTime& cycle) noexcept {
+  // After skipped periods (an overloaded real-time loop) the difference spans the time that really passed.
+  const std::int64_t elapsed_ns = std::max<std::int64_t>(cycle.period_ns, cycle.time_ns - differentiated_ns_);
+  differentiated_ns_ = cycle.time_ns;
+  return differentiator_.update(state_.joints.position, static_cast<double>(elapsed_ns) * 1e-9);
+}
+
+void DeviceSession::update_chain_state(const CycleTime& cycle, bool first_cycle) noexcept {
   ChainState& c = chain_state_;
   if (description_.reports_joint_velocity) {
     c.velocity = state_.joints.velocity;
   } else if (first_cycle) {
     differentiator_.reset(state_.joints.position);
+    differentiated_ns_ = cycle.time_ns;
     c.velocity.setZero();
   } else {
-    c.velocity = differentiator_.update(state_.joints.position);
+    c.velocity = differentiate(cycle);
   }
   if (robot_ == nullptr) return;
   model::compute_cycle_terms(*robot_, *model_data_, state_.joints.position, c.velocity, c.handle_frame);
@@ -180,7 +185,7 @@ void DeviceSession::update_chain_state(bool first_cycle) noexcept {
 DeviceFault DeviceSession::run_chain(const CycleTime& cycle) {
   if (!chain_active_) {
     differentiator_.configure(static_cast<double>(cycle.period_ns) * 1e-9, kVelocityFilterHz);
-    update_chain_state(true);
+    update_chain_state(cycle, true);
     const int first = active_.load(std::memory_order_relaxed);
     if (activate_scheme(chain_.schemes[static_cast<std::size_t>(first)]) != ReturnCode::ok) return DeviceFault::activation;
     scheme_state_[static_cast<std::size_t>(first)].store(kActive, std::memory_order_release);
@@ -188,7 +193,7 @@ DeviceFault DeviceSession::run_chain(const CycleTime& cycle) {
     differentiator_ready_ = true;
     safety_.restart_soft_start();
   } else {
-    update_chain_state(false);
+    update_chain_state(cycle, false);
     switch_scheme_if_requested(cycle);
   }
   // The supervisor's speed and workspace checks on the measured state, before the chain renders anything.
@@ -368,7 +373,7 @@ void DeviceSession::safe_mode_cycle(const CycleTime& cycle, bool read_ok) noexce
     if (description_.reports_joint_velocity) {
       velocity = state_.joints.velocity;
     } else {
-      velocity = differentiator_.update(state_.joints.position);
+      velocity = differentiate(cycle);
     }
     valid = velocity.allFinite();
   }

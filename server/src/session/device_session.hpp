@@ -143,7 +143,9 @@ class DeviceSession {
   ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
   void switch_scheme_if_requested(const CycleTime& cycle) noexcept;
   void blend_after_switch() noexcept;
-  void update_chain_state(bool first_cycle) noexcept;
+  void update_chain_state(const CycleTime& cycle, bool first_cycle) noexcept;
+  // The joint velocity from the encoder positions, over the time since the previous sample.
+  const JointVector& differentiate(const CycleTime& cycle) noexcept;
   void take_engine_input(const CycleTime& cycle) noexcept;
   void publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept;
   DeviceFault run_chain(const CycleTime& cycle);  // plugins may throw despite the contract: caught by the caller
@@ -151,13 +153,11 @@ class DeviceSession {
   std::string name_;
   DeviceChain chain_;
   DeviceDescription description_;
-  JointVector torque_limit_nm_;
 
   DeviceState state_;
   TaskTarget task_;
   JointTarget joint_target_;
   JointCommand command_;
-  JointCommand zero_command_;
   bool chain_active_ = false;
 
   // Scheme switching. State per scheme: idle (deactivated), active (in the loop), leaving (left the loop,
@@ -186,6 +186,7 @@ class DeviceSession {
   std::unique_ptr<model::ModelData> model_data_;
   int sensor_frame_ = -1;
   signal::Differentiator<JointVector> differentiator_;
+  std::int64_t differentiated_ns_ = 0;  // loop time of the differentiator's last sample
   ChainState chain_state_;
   // Cut-off of the joint-velocity estimate for devices without velocity measurement (encoder differences).
   static constexpr double kVelocityFilterHz = 100.0;

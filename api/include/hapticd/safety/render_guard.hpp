@@ -73,13 +73,13 @@ class HAPTICD_API RenderGuard {
   // Called by the server: at the start of each cycle, and with the supervisor's force before the model runs.
   void begin_cycle() noexcept {
     limited_this_cycle_ = false;
+    limit_applied_ = false;
     safety_force_taken_ = false;
   }
   void set_safety_force(const Eigen::Vector3d& force) noexcept { safety_force_ = force; }
   [[nodiscard]] bool safety_force_taken() const noexcept { return safety_force_taken_; }
   [[nodiscard]] bool limited_this_cycle() const noexcept { return limited_this_cycle_; }
   [[nodiscard]] bool limit_applied() const noexcept { return limit_applied_; }
-  void clear_limit_applied() noexcept { limit_applied_ = false; }
 
   [[nodiscard]] bool passivity_control() const noexcept { return passivity_control_; }
   [[nodiscard]] double port_energy_j() const noexcept { return linear_.energy_j() + angular_.energy_j(); }

@@ -17,8 +17,11 @@ class Differentiator {
     previous_ = position;
     velocity_ = position * 0.0;
   }
-  const Vector& update(const Vector& position) noexcept {
-    velocity_ += alpha_ * ((position - previous_) / period_ - velocity_);
+  const Vector& update(const Vector& position) noexcept { return update(position, period_); }
+  // The same after `elapsed` seconds instead of one period (a loop that skipped periods): the difference is
+  // taken over the time that really passed, so a late sample is not mistaken for a fast motion.
+  const Vector& update(const Vector& position, double elapsed) noexcept {
+    velocity_ += alpha_ * ((position - previous_) / elapsed - velocity_);
     previous_ = position;
     return velocity_;
   }
