@@ -17,6 +17,7 @@ packages=(
   libbenchmark-dev
   liborocos-kdl-dev
   rt-tests
+  clang-14 libclang-rt-14-dev
   python3 python3-matplotlib
 )
 

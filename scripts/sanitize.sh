@@ -3,22 +3,39 @@
 #   asan (AddressSanitizer + UndefinedBehaviorSanitizer): the safety supervisor with fault injection, the
 #     fuzzed session loader and the fuzzed DDS command validation, the device session;
 #   tsan (ThreadSanitizer): the DDS end-to-end tests (the bridge's threads, Cyclone's receive thread, the
-#     loop's lock-free hand-offs) and the scheme switching (loop and monitor threads).
+#     loop's lock-free hand-offs) and the scheme switching (loop and monitor threads);
+#   fuzz (libFuzzer with ASan + UBSan, Debian's clang-14): the DDS engine-command validation and the session
+#     loader, each for a fixed number of inputs from a fixed seed (FUZZ_RUNS scales them; findings are written to
+#     build/fuzz/findings and fail the run).
 # Only these targets are built, to keep CI short on small machines.
-# Usage: scripts/sanitize.sh [asan|tsan]...   (default: both)
+# Usage: scripts/sanitize.sh [asan|tsan|fuzz]...   (default: all three)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 presets=("$@")
-[ ${#presets[@]} -eq 0 ] && presets=(asan tsan)
+[ ${#presets[@]} -eq 0 ] && presets=(asan tsan fuzz)
 export TSAN_OPTIONS="${TSAN_OPTIONS:-} suppressions=$PWD/tests/tsan.supp halt_on_error=1"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-} halt_on_error=1 print_stacktrace=1"
+fuzz() {
+  cmake --preset fuzz > /dev/null
+  cmake --build --preset fuzz --target engine_command_fuzzer session_config_fuzzer
+  local out=build/fuzz/findings scale=${FUZZ_RUNS:-1}
+  mkdir -p "$out" build/fuzz/corpus/engine_command build/fuzz/corpus/session_config
+  for f in config/sessions/*.yaml config/sessions/*/*.yaml; do cp "$f" "build/fuzz/corpus/session_config/${f//\//_}"; done
+  # -runs bounds the work (deterministic from -seed on a fresh corpus); -max_total_time only guards the time.
+  build/fuzz/bin/engine_command_fuzzer -seed=1 -runs=$((400000 * scale)) -max_total_time=300 -max_len=4096 \
+    -artifact_prefix="$out/engine_command-" build/fuzz/corpus/engine_command
+  build/fuzz/bin/session_config_fuzzer -seed=1 -runs=$((20000 * scale)) -max_total_time=300 -max_len=8192 \
+    -artifact_prefix="$out/session_config-" build/fuzz/corpus/session_config
+}
+
 for preset in "${presets[@]}"; do
   case "$preset" in
     asan) targets=(safety_test config_fuzz_test command_gate_test device_session_test)
           tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession)\.' ;;
     tsan) targets=(dds_engine_test scheme_switching_test)
           tests='^(DdsEngine|SchemeSwitching)\.' ;;
-    *) echo "unknown preset '$preset' (asan, tsan)" >&2; exit 2 ;;
+    fuzz) fuzz ; continue ;;
+    *) echo "unknown preset '$preset' (asan, tsan, fuzz)" >&2; exit 2 ;;
   esac
   cmake --preset "$preset" > /dev/null
   cmake --build --preset "$preset" --target "${targets[@]}"

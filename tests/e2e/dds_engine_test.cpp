@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "../../examples/engines/scene.hpp"
+#include "app/session_monitor.hpp"
 #include "dds/dds_bridge.hpp"
 #include "hapticd/client/client.hpp"
 #include "hapticd/dds/conversion.hpp"
@@ -30,8 +31,10 @@ class RecordingListener final : public CycleListener {
     force_.reserve(20000);
     position_.reserve(20000);
     weight_.reserve(20000);
+    index_.reserve(20000);
   }
   void after_cycle(std::uint64_t index, bool lockstep) noexcept override {
+    index_.push_back(index);
     force_.push_back(device_->task().wrench.force);
     position_.push_back(device_->chain_state().handle_pose.position);
     weight_.push_back(device_->engine_weight());
@@ -40,13 +43,24 @@ class RecordingListener final : public CycleListener {
   const std::vector<Eigen::Vector3d>& force() const { return force_; }
   const std::vector<Eigen::Vector3d>& position() const { return position_; }
   const std::vector<double>& engine_weight() const { return weight_; }
+  // The loop's period index of each recorded cycle (a real-time loop that fell behind skips periods).
+  const std::vector<std::uint64_t>& index() const { return index_; }
 
  private:
   CycleListener* next_;
   DeviceSession* device_;
   std::vector<Eigen::Vector3d> force_, position_;
   std::vector<double> weight_;
+  std::vector<std::uint64_t> index_;
 };
+
+// Under a sanitizer the real-time loop runs several times slower than its period: the overrun watchdog (a
+// device fault after 10 consecutive overruns) is off there, these runs look for races, not for timing.
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
 
 // A session (lockstep unless told otherwise) with the DDS interface on `domain`: the simulated ViSHaRD3 in admittance display with the
 // virtual coupling, pushed by a scripted force.
@@ -63,7 +77,9 @@ std::string session_yaml(int domain, double duration_s, const std::string& force
     controller:
       plugin: resolved_acceleration
       parameters: {task: translation}
-    safety: {)" + safety + "}\n";
+    safety: {)" + safety +
+         (kSanitized && clock == "realtime" ? std::string(safety.empty() ? "" : ", ") + "max_consecutive_overruns: 0" : "") +
+         "}\n";
 }
 
 class Server {
@@ -76,11 +92,15 @@ class Server {
     listener_ = std::make_unique<RecordingListener>(bridge_.get(), devices[0]);
     executor_->set_cycle_listener(listener_.get());
     bridge_->set_loop_statistics(&executor_->live());
+    monitor_ = std::make_unique<SessionMonitor>(devices, bridge_.get());
     bridge_->start();
   }
-  ~Server() { join(); }
+  ~Server() {
+    stop();  // a failed check must not wait for the session's end
+    join();
+  }
   void start() {
-    thread_ = std::thread([this] { result_ = executor_->run(stop_); });
+    thread_ = std::thread([this] { result_ = executor_->run(stop_, [this] { monitor_->poll(); }); });
   }
   // Ends the session now (the device stops through its safe mode); the real-time tests stop when their checks
   // are done.
@@ -93,12 +113,14 @@ class Server {
   DeviceSession& device() { return *session_.devices[0]; }
   const RecordingListener& recording() const { return *listener_; }
   const ExecutorResult& result() const { return result_; }
+  const SessionMonitor& monitor() const { return *monitor_; }
 
  private:
   test::TestSession session_;
   std::unique_ptr<DdsBridge> bridge_;
   std::unique_ptr<Executor> executor_;
   std::unique_ptr<RecordingListener> listener_;
+  std::unique_ptr<SessionMonitor> monitor_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
   ExecutorResult result_;
@@ -373,20 +395,149 @@ TEST(DdsEngine, AReconnectingEngineStartsWithoutAJump) {
   }
   ASSERT_GT(back, faded);
   double largest_step = 0.0, largest = 0.0;
-  // Over the ramp-in (0.1 s = 200 cycles); after it the engine's own contact dynamics take over.
-  for (std::size_t k = back; k < std::min(f.size(), back + 200); ++k) {
-    largest_step = std::max(largest_step, (f[k] - f[k - 1]).norm());
+  // Over the ramp-in (0.1 s = 200 periods); after it the engine's own contact dynamics take over. Changes per
+  // period: a loop that fell behind (a loaded machine, a sanitizer) skipped periods, and the ramps run on time.
+  const auto& index = server.recording().index();
+  for (std::size_t k = back; k < f.size() && index[k] < index[back] + 200; ++k) {
+    const double periods = static_cast<double>(std::max<std::uint64_t>(1, index[k] - index[k - 1]));
+    largest_step = std::max(largest_step, (f[k] - f[k - 1]).norm() / periods);
     largest = std::max(largest, f[k].norm());
   }
-  std::printf("reconnect after %.0f ms: force rises to %.1f N over the ramp-in, largest change per cycle %.3f N "
+  std::printf("reconnect after %.0f ms: force rises to %.1f N over the ramp-in, largest change per period %.3f N "
               "(ramp-in over 0.1 s)\n", 0.5 * static_cast<double>(back - faded), largest, largest_step);
   RecordProperty("reconnect_largest_step_n", std::to_string(largest_step));
   EXPECT_GT(largest, 5.0);  // the wall did push back
   // Without the ramp the whole force would come in one cycle. With it (0.1 s = 200 cycles) the largest change
   // per cycle is the ramp's share (force / 200) plus the coupling's own variation as the device moves: stated
-  // bound 3 % of the force plus 0.5 N.
-  EXPECT_LT(largest_step, 0.03 * largest + 0.5);
+  // bound 3 % of the force plus 0.5 N. Under a sanitizer the engine's answers arrive in bursts (the proxy jumps
+  // between them): there the rendered-force rate limit (4000 N/s: 2 N per period) is what bounds the change.
+  EXPECT_LT(largest_step, kSanitized ? 2.0 + 1e-9 : 0.03 * largest + 0.5);
   EXPECT_EQ(server.device().fault(), DeviceFault::none);
+}
+
+TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest) {
+  // A tool E-stops the device over DDS: the fault report topic carries the cycles before the stop (also to a
+  // tool that joins later: transient-local), the device stays in its safe mode until asked to recover, and
+  // recovers only once its safe mode has reached zero torque (safe_damping_s after the stop).
+  std::mutex m;  // before the clients: their callbacks use these until they are gone
+  std::unique_ptr<hapticd_msg_FaultReport> report, late_report;
+  std::vector<std::string> events;
+  Server server(session_yaml(69, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime", "safe_damping_s: 0.5"));
+  Client tool({"safety-tool", 69, {}, 0.05});
+  tool.on_fault_report([&](const hapticd_msg_FaultReport& r) {
+    std::lock_guard lock(m);
+    report = std::make_unique<hapticd_msg_FaultReport>(r);
+  });
+  tool.on_event([&](const hapticd_msg_Event& e) {
+    std::lock_guard lock(m);
+    events.push_back(std::to_string(static_cast<int>(e.kind)) + ":" + std::string(client::name_of(e.code)));
+  });
+  const auto eventually = [&](const std::function<bool()>& done) {  // at most 10 s
+    for (int i = 0; i < 1000; ++i) {
+      {
+        std::lock_guard lock(m);
+        if (done()) return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  };
+  const auto saw = [&](int kind, const std::string& code) {
+    return std::find(events.begin(), events.end(), std::to_string(kind) + ":" + code) != events.end();
+  };
+  server.start();
+  // Once the loop has run long enough to fill the history (0.1 s = 200 cycles).
+  std::optional<hapticd_msg_DeviceState> first = tool.wait_for_state("v3", std::chrono::seconds(20));
+  for (int i = 0; i < 20000 && first && first->loop_time_ns < 100'000'000; ++i)
+    first = tool.wait_for_state("v3", std::chrono::seconds(1), first->serial);
+  ASSERT_TRUE(first && first->loop_time_ns >= 100'000'000);
+  const client::Reply early = tool.recover("v3");
+  EXPECT_TRUE(early.answered);
+  EXPECT_FALSE(early.accepted) << "nothing to recover from yet";
+
+  ASSERT_TRUE(tool.emergency_stop("v3").accepted);
+  ASSERT_TRUE(eventually([&] { return report != nullptr; })) << "no fault report";
+  {
+    std::lock_guard lock(m);
+    EXPECT_EQ(client::name_of(report->device), "v3");
+    EXPECT_EQ(client::name_of(report->fault), "emergency_stop");
+    EXPECT_EQ(report->serial, 1u);
+    EXPECT_EQ(report->dof, 3);
+    ASSERT_EQ(report->record_count, 50);  // history_cycles' default
+    for (int k = 0; k < report->record_count; ++k) {
+      const hapticd_msg_CycleRecord& c = report->records[k];
+      if (k > 0) {
+        EXPECT_GT(c.cycle, report->records[k - 1].cycle);
+        EXPECT_GT(c.loop_time_ns, report->records[k - 1].loop_time_ns);
+      }
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_TRUE(std::isfinite(c.position[i]) && std::isfinite(c.torque[i]));
+        EXPECT_TRUE(std::isfinite(c.handle_position[i]));
+      }
+    }
+    EXPECT_LT(report->records[report->record_count - 1].cycle, report->cycle);  // the cycles before the stop
+  }
+  EXPECT_TRUE(eventually([&] { return saw(hapticd_msg_EVENT_ESTOP, "emergency_stop"); }));
+  // A tool started after the fault still gets the report.
+  Client late({"late-tool", 69, {}, 0.05});
+  late.on_fault_report([&](const hapticd_msg_FaultReport& r) {
+    std::lock_guard lock(m);
+    late_report = std::make_unique<hapticd_msg_FaultReport>(r);
+  });
+  ASSERT_TRUE(eventually([&] { return late_report != nullptr; })) << "a late joiner got no report";
+  EXPECT_EQ(late_report->serial, 1u);
+  EXPECT_EQ(late_report->cycle, report->cycle);
+  const auto kept = late.latest_fault_report("v3");
+  ASSERT_NE(kept, nullptr);
+  EXPECT_EQ(kept->serial, 1u);
+
+  // In its safe mode, and it stays there: no recovery without a request.
+  const auto safe = tool.wait_for_state("v3", std::chrono::seconds(5));
+  ASSERT_TRUE(safe.has_value());
+  EXPECT_EQ(safe->mode, hapticd_msg_MODE_SAFE);
+  EXPECT_EQ(client::name_of(safe->fault), "emergency_stop");
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  EXPECT_EQ(server.device().fault(), DeviceFault::emergency_stop);
+  EXPECT_EQ(server.device().recoveries(), 0u);
+
+  // On request it recovers and runs again: the first running state after a safe one (at most ~10 s of states).
+  const auto running_again = [&](std::uint64_t after, bool was_safe) {
+    std::optional<hapticd_msg_DeviceState> s = tool.wait_for_state("v3", std::chrono::seconds(1), after);
+    for (int i = 0; i < 20000 && s && !(was_safe && s->mode == hapticd_msg_MODE_RUNNING); ++i) {
+      was_safe = was_safe || s->mode == hapticd_msg_MODE_SAFE;
+      s = tool.wait_for_state("v3", std::chrono::seconds(1), s->serial);
+    }
+    return s;
+  };
+  const client::Reply recovered = tool.recover("v3");
+  EXPECT_TRUE(recovered.accepted) << recovered.message;
+  EXPECT_TRUE(eventually([&] { return saw(hapticd_msg_EVENT_RECOVERED, "emergency_stop"); })) << "no recovered event";
+  std::optional<hapticd_msg_DeviceState> running = running_again(safe->serial, true);
+  ASSERT_TRUE(running && running->mode == hapticd_msg_MODE_RUNNING);
+  EXPECT_EQ(client::name_of(running->fault), "");
+  EXPECT_EQ(running->flags & (hapticd_msg_FLAG_ESTOP | hapticd_msg_FLAG_FAULT), 0u);
+
+  // Asked right after a new stop, it recovers only once its safe mode has reached zero torque.
+  ASSERT_TRUE(tool.emergency_stop("v3").accepted);
+  ASSERT_TRUE(eventually([&] { return report->serial == 2; })) << "no second report";
+  const std::int64_t stopped_ns = report->loop_time_ns;
+  EXPECT_TRUE(tool.recover("v3").accepted);
+  const auto stopped = tool.wait_for_state("v3", std::chrono::seconds(5));
+  ASSERT_TRUE(stopped.has_value());
+  running = running_again(stopped->serial, false);
+  ASSERT_TRUE(running && running->mode == hapticd_msg_MODE_RUNNING);
+  const double after_s = 1e-9 * static_cast<double>(running->loop_time_ns - stopped_ns);
+  std::printf("e-stop over DDS: report with %d cycles; asked at once, recovered %.4f s after the stop (safe mode "
+              "0.5 s)\n", report->record_count, after_s);
+  // Loop times on the real-time clock are measured wake-up times: one period (0.5 ms) of jitter allowed.
+  EXPECT_GE(after_s, 0.5 - 0.0005);
+  EXPECT_LT(after_s, 1.0);
+  server.stop();
+  server.join();
+  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device().recoveries(), 2u);
+  EXPECT_EQ(server.device().faults_raised(), 2u);
+  EXPECT_EQ(server.monitor().reports(), 2u);
 }
 
 TEST(DdsEngine, TheLoopSideOfTheBridgeDoesNotAllocate) {

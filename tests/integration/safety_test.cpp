@@ -242,6 +242,59 @@ TEST(Safety, SoftStartRampsTheRenderedForceAtActivation) {
   EXPECT_LE(largest_step, 40.0 / 400.0 + 1e-9);
 }
 
+TEST(Safety, SoftStartRampsTheRenderedForceAgainAfterASchemeSwitch) {
+  // The same 20 N engine wrench, rendered in full by the start scheme; at 0.5 s the device switches to an
+  // alternative with the same kind of virtual model (stiffer damping): the rendered force drops to zero at the
+  // switch and follows the soft-start ramp again (40 N over 0.2 s), no step; switching back ramps once more.
+  const std::string device = sim_device(kNoPush, "max_force_n: 40, max_force_rate_n_per_s: 1.0e6", ", coupling: true") +
+                             R"(    engine_ramp_in_s: 0.0
+    schemes:
+      - name: damped
+        virtual_model:
+          plugin: admittance
+          parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [80.0, 80.0, 80.0], rotation: false, coupling: true}
+        controller: {plugin: resolved_acceleration, parameters: {task: translation}}
+)";
+  auto s = test::build_test_session("server: {clock: lockstep, seed: 7}\ndevices:\n" + device);
+  DeviceSession& d = *s.devices[0];
+  d.activate();
+  std::vector<double> force;
+  for (std::uint64_t k = 0; k < 2400; ++k) {
+    if (k == 1000) {
+      EXPECT_TRUE(d.request_scheme("damped"));
+    }
+    if (k == 1800) {
+      EXPECT_TRUE(d.request_scheme("default"));
+    }
+    EngineInput e;
+    e.has_wrench = true;
+    e.wrench.force = Eigen::Vector3d(0.0, 20.0, 0.0);
+    e.sequence = k + 1;
+    d.publish_engine_input(e);
+    d.cycle(cycle_at(k), 1.0);
+    force.push_back(d.task().wrench.force.norm());
+    d.service();
+  }
+  EXPECT_EQ(d.active_scheme(), "default");
+  EXPECT_EQ(d.scheme_switches(), 2u);
+  EXPECT_EQ(d.fault(), DeviceFault::none);
+  for (const std::uint64_t at : {std::uint64_t{1000}, std::uint64_t{1800}}) {
+    EXPECT_NEAR(force[at - 1], 20.0, 1e-9);  // in full before the switch
+    double largest_rise = 0.0;
+    std::uint64_t full = 0;
+    for (std::uint64_t k = at; k < at + 600; ++k) {
+      largest_rise = std::max(largest_rise, force[k] - force[k - 1]);
+      if (full == 0 && force[k] >= 20.0 - 1e-9) full = k - at;
+    }
+    std::printf("switch at cycle %llu: rendered force %.2f N in the switching cycle, 20 N again after %.1f ms, largest "
+                "rise per cycle %.3f N\n",
+                static_cast<unsigned long long>(at), force[at], 0.5 * static_cast<double>(full), largest_rise);
+    EXPECT_LE(force[at], 0.2 + 1e-9);                          // the ramp starts again from zero
+    EXPECT_NEAR(0.5 * static_cast<double>(full), 100.0, 1.0);  // 20 N of a 40 N limit rising over 200 ms
+    EXPECT_LE(largest_rise, 40.0 / 400.0 + 1e-9);
+  }
+}
+
 TEST(Safety, ThermalModelDeratesToTheContinuousTorque) {
   // Unit level: a joint with peak 30, continuous 10 held at 30: the model's load 9 (1 - e^{-t/T}) reaches the
   // derating start 0.9 at t = T ln(9 / 8.1) = 0.105 T, and the limit settles where load = 1 at continuous.

@@ -43,6 +43,11 @@ struct Client::Impl {
     stopping.store(true);
     (void)dds_set_guardcondition(wake.get(), true);
     thread.join();
+    // No more state callbacks (Cyclone waits for a running one; a local writer's thread may be in it), then
+    // synchronise with the last one through our own locks, which ThreadSanitizer sees (Cyclone's it does not).
+    (void)dds_set_listener(state.get(), nullptr);
+    std::lock_guard take(state_take_mutex);
+    std::lock_guard lock(mutex);
   }
 
   void take_states() {
@@ -96,7 +101,11 @@ struct Client::Impl {
       fault_report.take([&](const hapticd_msg_FaultReport& r, const dds_sample_info_t&) {
         std::function<void(const hapticd_msg_FaultReport&)> f;
         {
+          // Kept with the choice of callback, under one lock: a callback set later gets it replayed exactly once.
           std::lock_guard lock(callback_mutex);
+          auto& kept = fault_reports[std::string(dds::text_of(r.device))];
+          if (!kept) kept = std::make_unique<hapticd_msg_FaultReport>();
+          *kept = r;
           f = fault_report_callback;
         }
         if (f) f(r);
@@ -133,6 +142,7 @@ struct Client::Impl {
   std::function<void(const hapticd_msg_Event&)> event_callback;
   std::function<void(const hapticd_msg_Telemetry&)> telemetry_callback;
   std::function<void(const hapticd_msg_FaultReport&)> fault_report_callback;
+  std::map<std::string, std::unique_ptr<hapticd_msg_FaultReport>> fault_reports;  // the newest per device (~100 kB each)
   std::mutex state_take_mutex;
   dds::Participant participant;
   dds::CommandTiming timing;
@@ -213,8 +223,21 @@ void Client::on_telemetry(std::function<void(const hapticd_msg_Telemetry&)> call
 }
 
 void Client::on_fault_report(std::function<void(const hapticd_msg_FaultReport&)> callback) {
+  std::vector<std::unique_ptr<hapticd_msg_FaultReport>> received;
+  {
+    std::lock_guard lock(impl_->callback_mutex);
+    impl_->fault_report_callback = callback;
+    if (callback)
+      for (const auto& [device, r] : impl_->fault_reports) received.push_back(std::make_unique<hapticd_msg_FaultReport>(*r));
+  }
+  for (const auto& r : received) callback(*r);  // those that arrived before (a late joiner's transient-local ones)
+}
+
+std::unique_ptr<hapticd_msg_FaultReport> Client::latest_fault_report(std::string_view device) const {
   std::lock_guard lock(impl_->callback_mutex);
-  impl_->fault_report_callback = std::move(callback);
+  const auto it = impl_->fault_reports.find(std::string(device));
+  if (it == impl_->fault_reports.end()) return nullptr;
+  return std::make_unique<hapticd_msg_FaultReport>(*it->second);
 }
 
 Reply Client::request(std::string_view device, hapticd_msg_RequestKind kind, std::string_view name,

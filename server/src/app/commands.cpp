@@ -7,6 +7,7 @@
 #include <memory>
 #include <thread>
 
+#include "app/session_monitor.hpp"
 #include "app/session_report.hpp"
 #include "app/signals.hpp"
 #include "config/config_error.hpp"
@@ -53,21 +54,6 @@ void print_schema(const ParameterSchema& schema) {
   if (schema.specs().empty()) fmt::print("  (no parameters)\n");
   for (const auto& spec : schema.specs())
     fmt::print("  {:<24} {}\n  {:<24}   {}\n", spec.name, spec.description, "", spec.constraints_text());
-}
-
-// The fault and a summary of the cycles before it (the full history goes to the fault report topic).
-void log_fault_report(const DeviceSession& d, const FaultReport& r) {
-  double speed = 0.0, joint_speed = 0.0, torque = 0.0, force = 0.0;
-  for (std::uint32_t k = 0; k < r.count; ++k) {
-    const HistoryRecord& c = r.records[k];
-    speed = std::max(speed, c.handle_velocity.norm());
-    if (c.velocity.size() > 0) joint_speed = std::max(joint_speed, c.velocity.cwiseAbs().maxCoeff());
-    if (c.torque.size() > 0) torque = std::max(torque, c.torque.cwiseAbs().maxCoeff());
-    force = std::max(force, c.operator_force.norm());
-  }
-  spdlog::error("device '{}' fault {} at cycle {}: {}; safe mode (damping, then zero torque). Last {} cycles: "
-                "largest handle speed {:.3f} m/s, joint speed {:.3f}, torque {:.2f}, operator force {:.1f} N",
-                d.name(), fault_code(r.fault), r.cycle, to_string(r.fault), r.count, speed, joint_speed, torque, force);
 }
 
 }  // namespace
@@ -163,36 +149,11 @@ int run_session(const RunOptions& options) {
                lockstep ? "lockstep" : "realtime",
                server.duration_s > 0 ? fmt::format(", {} s", server.duration_s) : std::string(", until stopped"));
 
-  std::vector<DeviceFault> reported(sessions.size(), DeviceFault::none);
-  bool stop_logged = false;
-  auto fault_report = std::make_unique<FaultReport>();  // large: not on the stack
-  const auto monitor = [&] {
-    for (auto* session : sessions) session->service();
-    for (std::size_t i = 0; i < sessions.size(); ++i) {
-      DeviceSession& d = *sessions[i];
-      if (d.take_fault_report(*fault_report)) {
-        log_fault_report(d, *fault_report);
-        if (bridge) bridge->publish_fault_report(i, *fault_report);
-      }
-      const DeviceFault f = d.fault();
-      if (f != reported[i]) {
-        if (f == DeviceFault::none) {
-          spdlog::info("device '{}' recovered from {} on request", d.name(), fault_code(reported[i]));
-        } else if (f == DeviceFault::configure) {
-          spdlog::error("device '{}' is in its safe state: {}", d.name(), to_string(f));
-        }
-        reported[i] = f;
-      }
-    }
-    if (stop.load() && !stop_logged) {
-      spdlog::info("stop requested: every device stops through its safe mode (damping, then zero torque)");
-      stop_logged = true;
-    }
-  };
+  SessionMonitor monitor(sessions, bridge.get(), &stop);
 
   ExecutorResult result;
   try {
-    result = executor.run(stop, monitor);
+    result = executor.run(stop, [&] { monitor.poll(); });
   } catch (const std::exception& e) {
     spdlog::error("session failed: {}", e.what());
     return kExitRuntimeError;

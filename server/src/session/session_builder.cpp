@@ -49,10 +49,10 @@ PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, co
   } catch (const ParameterError& e) {
     throw ConfigError(file, line_from_origin(parameters.origin(e.key()), pc.line), parameters_path + "." + e.key(), e.what());
   } catch (const std::exception& e) {
-    throw PluginConfigureError(ConfigError(file, pc.line, pc.key_path,
-                                           "plugin '" + pc.plugin + "' failed to configure: " + std::string(e.what())));
+    throw PluginConfigureError{ConfigError(file, pc.line, pc.key_path,
+                                           "plugin '" + pc.plugin + "' failed to configure: " + std::string(e.what()))};
   } catch (...) {
-    throw PluginConfigureError(ConfigError(file, pc.line, pc.key_path, "plugin '" + pc.plugin + "' failed to configure"));
+    throw PluginConfigureError{ConfigError(file, pc.line, pc.key_path, "plugin '" + pc.plugin + "' failed to configure")};
   }
   return instance;
 }

@@ -61,8 +61,11 @@ class Client {
   void on_state(std::function<void(const hapticd_msg_DeviceState&)> callback);
   void on_event(std::function<void(const hapticd_msg_Event&)> callback);
   void on_telemetry(std::function<void(const hapticd_msg_Telemetry&)> callback);
-  // A device's fault and the cycles before it (a late joiner gets the newest one per device).
+  // A device's fault and the cycles before it (a late joiner gets the newest one per device). Reports that
+  // arrived before the callback was set are handed to it at once, on the caller's thread.
   void on_fault_report(std::function<void(const hapticd_msg_FaultReport&)> callback);
+  // The newest fault report of a device received so far (a copy: about 100 kB), nullptr if none.
+  [[nodiscard]] std::unique_ptr<hapticd_msg_FaultReport> latest_fault_report(std::string_view device) const;
 
   // ---- requests ----
   Reply request(std::string_view device, hapticd_msg_RequestKind kind, std::string_view name = {},

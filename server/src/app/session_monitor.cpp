@@ -1,0 +1,65 @@
+#include "app/session_monitor.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "dds/dds_bridge.hpp"
+#include "safety/fault_history.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+// The fault and a summary of the cycles before it (the full history goes to the fault report topic).
+void log_fault_report(const DeviceSession& d, const FaultReport& r) {
+  double speed = 0.0, joint_speed = 0.0, torque = 0.0, force = 0.0;
+  for (std::uint32_t k = 0; k < r.count; ++k) {
+    const HistoryRecord& c = r.records[k];
+    speed = std::max(speed, c.handle_velocity.norm());
+    if (c.velocity.size() > 0) joint_speed = std::max(joint_speed, c.velocity.cwiseAbs().maxCoeff());
+    if (c.torque.size() > 0) torque = std::max(torque, c.torque.cwiseAbs().maxCoeff());
+    force = std::max(force, c.operator_force.norm());
+  }
+  spdlog::error("device '{}' fault {} at cycle {}: {}; safe mode (damping, then zero torque). Last {} cycles: "
+                "largest handle speed {:.3f} m/s, joint speed {:.3f}, torque {:.2f}, operator force {:.1f} N",
+                d.name(), fault_code(r.fault), r.cycle, to_string(r.fault), r.count, speed, joint_speed, torque, force);
+}
+
+}  // namespace
+
+SessionMonitor::SessionMonitor(std::vector<DeviceSession*> devices, DdsBridge* bridge,
+                               const std::atomic<bool>* stop_requested)
+    : devices_(std::move(devices)),
+      bridge_(bridge),
+      stop_requested_(stop_requested),
+      reported_(devices_.size(), DeviceFault::none),
+      report_(std::make_unique<FaultReport>()) {}
+
+SessionMonitor::~SessionMonitor() = default;
+
+void SessionMonitor::poll() {
+  for (auto* d : devices_) d->service();
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    DeviceSession& d = *devices_[i];
+    if (d.take_fault_report(*report_)) {
+      ++reports_;
+      log_fault_report(d, *report_);
+      if (bridge_ != nullptr) bridge_->publish_fault_report(i, *report_);
+    }
+    const DeviceFault f = d.fault();
+    if (f == reported_[i]) continue;
+    if (f == DeviceFault::none) {
+      spdlog::info("device '{}' recovered from {} on request", d.name(), fault_code(reported_[i]));
+    } else if (f == DeviceFault::configure) {
+      spdlog::error("device '{}' is in its safe state: {}", d.name(), to_string(f));
+    }
+    reported_[i] = f;
+  }
+  if (stop_requested_ != nullptr && stop_requested_->load() && !stop_logged_) {
+    spdlog::info("stop requested: every device stops through its safe mode (damping, then zero torque)");
+    stop_logged_ = true;
+  }
+}
+
+}  // namespace hapticd::server

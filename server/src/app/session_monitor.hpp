@@ -1,0 +1,40 @@
+#pragma once
+// The executor's monitor, on its non-real-time thread: services the devices (scheme switches finish off the
+// loop), takes each device's fault report from its lock-free outbox, logs it and publishes it on the DDS
+// interface, and logs faults, recoveries and a stop request once each.
+#include <atomic>
+#include <memory>
+#include <vector>
+
+#include "safety/device_fault.hpp"
+
+namespace hapticd::server {
+
+class DeviceSession;
+class DdsBridge;
+struct FaultReport;
+
+class SessionMonitor {
+ public:
+  // bridge may be nullptr (no DDS interface); stop_requested may be nullptr (nothing to log).
+  SessionMonitor(std::vector<DeviceSession*> devices, DdsBridge* bridge, const std::atomic<bool>* stop_requested = nullptr);
+  ~SessionMonitor();
+  SessionMonitor(const SessionMonitor&) = delete;
+  SessionMonitor& operator=(const SessionMonitor&) = delete;
+
+  // One pass; the executor calls it every few milliseconds.
+  void poll();
+  // Fault reports taken (and published) so far.
+  [[nodiscard]] std::size_t reports() const noexcept { return reports_; }
+
+ private:
+  std::vector<DeviceSession*> devices_;
+  DdsBridge* bridge_;
+  const std::atomic<bool>* stop_requested_;
+  std::vector<DeviceFault> reported_;
+  std::unique_ptr<FaultReport> report_;  // large: not on the stack
+  std::size_t reports_ = 0;
+  bool stop_logged_ = false;
+};
+
+}  // namespace hapticd::server
