@@ -72,7 +72,7 @@ void scheme(benchmark::State& st, const std::string& device, const std::string& 
     if (chain.virtual_model) (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, &cs, &engine, nullptr}, task);
     if (chain.inverse_kinematics)
       (void)(*chain.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &cs}, joints);
-    (void)chain.controller->update(t, ControllerInput{state, task, joints, &cs}, command);
+    (void)chain.controller->update(t, ControllerInput{state, task, joints, &cs, nullptr}, command);
     benchmark::DoNotOptimize(command.torque_nm.data());
   };
   for (auto _ : st) one_cycle();

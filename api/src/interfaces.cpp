@@ -11,6 +11,7 @@ namespace hapticd {
 Device::~Device() = default;
 Controller::~Controller() = default;
 InverseKinematics::~InverseKinematics() = default;
+RedundancyResolution::~RedundancyResolution() = default;
 VirtualModel::~VirtualModel() = default;
 
 namespace {

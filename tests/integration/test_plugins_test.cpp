@@ -35,7 +35,7 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   dc.device->activate();
   ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, &chain, &engine, nullptr}), ReturnCode::ok);
   ASSERT_EQ((*c.inverse_kinematics)->activate(InverseKinematicsInput{state, task, &chain}), ReturnCode::ok);
-  ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints, &chain}, command), ReturnCode::ok);
+  ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints, &chain, nullptr}, command), ReturnCode::ok);
 
   std::size_t device = 0, model = 0, ik = 0, controller = 0;
   for (std::uint64_t k = 0; k < 2000; ++k) {
@@ -43,7 +43,7 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
     device += testing::count_allocations([&] { (void)dc.device->read(t, state); });
     model += testing::count_allocations([&] { (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain, &engine, nullptr}, task); });
     ik += testing::count_allocations([&] { (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &chain}, joints); });
-    controller += testing::count_allocations([&] { (void)c.controller->update(t, ControllerInput{state, task, joints, &chain}, command); });
+    controller += testing::count_allocations([&] { (void)c.controller->update(t, ControllerInput{state, task, joints, &chain, nullptr}, command); });
     device += testing::count_allocations([&] { (void)dc.device->write(t, command); });
   }
   EXPECT_EQ(device, 0u);

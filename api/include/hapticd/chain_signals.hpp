@@ -11,6 +11,7 @@
 namespace hapticd {
 
 class RenderGuard;
+class RedundancyResolution;
 
 // One sample read from a device.
 struct DeviceState {
@@ -84,6 +85,9 @@ struct ControllerInput {
   const TaskTarget& task;
   const JointTarget& joints;
   const ChainState* chain;
+  // The chain's inverse kinematics' redundancy resolution at the measured state (redundancy_resolution.hpp),
+  // nullptr when it offers none: task-space controllers then use the minimum-norm solution.
+  RedundancyResolution* redundancy;
 };
 
 }  // namespace hapticd

@@ -4,6 +4,7 @@
 #include "hapticd/export.hpp"
 #include "hapticd/parameters.hpp"
 #include "hapticd/plugin_context.hpp"
+#include "hapticd/redundancy_resolution.hpp"
 #include "hapticd/return_code.hpp"
 
 namespace hapticd {
@@ -21,6 +22,8 @@ class HAPTICD_API InverseKinematics {
   virtual ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) = 0;
   // Not real-time safe. Called after the plugin has left the loop.
   virtual void deactivate() = 0;
+  // The redundancy resolution this plugin offers the chain's controller (after configure), or nullptr.
+  virtual RedundancyResolution* redundancy() noexcept { return nullptr; }
 };
 
 }  // namespace hapticd

@@ -1,6 +1,7 @@
 #include "jacobian_control.hpp"
 
 #include "hapticd/model/task_space.hpp"
+#include "hapticd/redundancy_resolution.hpp"
 
 namespace hapticd::controllers {
 
@@ -66,12 +67,16 @@ ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerI
   const model::TaskJacobian j = d.frame_jacobian.topRows(rows);
   if (kind_ == Kind::kInverse) {
     const model::Vector6d xdd = law_.acceleration(in.task, c) - d.frame_jacobian_dot_qd;
-    const JointVector qdd = model::minimum_norm_solution(j, model::TaskVector(xdd.head(rows)), damping_);
+    const model::TaskVector task(xdd.head(rows));
+    const JointVector qdd = in.redundancy != nullptr ? in.redundancy->task_acceleration(c, task)
+                                                     : model::minimum_norm_solution(j, task, damping_);
     command.torque_nm = joint_inertia_.cwiseProduct(qdd);
   } else {
     const model::Vector6d xdd = law_.acceleration(in.task, c);
     const model::TaskVector force = task_mass_.cwiseProduct(xdd.head(rows));
     command.torque_nm.noalias() = j.transpose() * force;
+    // Redundant chains: the self-motion is left to the dynamically consistent null-space torque.
+    if (in.redundancy != nullptr) command.torque_nm += in.redundancy->null_space_torque(c, rows);
   }
   command.torque_nm += d.gravity_torque;
   law_.add_wrench_compensation(c, command.torque_nm);

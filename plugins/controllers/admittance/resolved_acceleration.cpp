@@ -1,6 +1,7 @@
 #include "resolved_acceleration.hpp"
 
 #include "hapticd/model/task_space.hpp"
+#include "hapticd/redundancy_resolution.hpp"
 
 namespace hapticd::controllers {
 
@@ -23,9 +24,11 @@ ReturnCode ResolvedAcceleration::update(const CycleTime& /*cycle*/, const Contro
   if (!in.task.has_motion) return ReturnCode::error;
   const int rows = law_.rows();
   const model::Vector6d xdd = law_.acceleration(in.task, c) - d.frame_jacobian_dot_qd;
-  // qdd = J^+ (xdd - dJ qd): the inverse for square J, minimum norm for redundant J.
-  const JointVector qdd =
-      model::minimum_norm_solution(d.frame_jacobian.topRows(rows), model::TaskVector(xdd.head(rows)), damping_);
+  // qdd = J^-1 (xdd - dJ qd) for square J; for redundant J the chain's redundancy resolution (its inverse, side
+  // criteria and self-motion damping) if its IK offers one, else the minimum-norm solution.
+  const model::TaskVector task(xdd.head(rows));
+  const JointVector qdd = in.redundancy != nullptr ? in.redundancy->task_acceleration(c, task)
+                                                   : model::minimum_norm_solution(d.frame_jacobian.topRows(rows), task, damping_);
   command.torque_nm.noalias() = d.mass_matrix * qdd;
   command.torque_nm += d.coriolis_torque + d.gravity_torque;
   law_.add_wrench_compensation(c, command.torque_nm);

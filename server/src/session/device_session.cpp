@@ -10,6 +10,14 @@
 #include "session/finite.hpp"
 
 namespace hapticd::server {
+namespace {
+
+// The scheme's redundancy resolution for its controller (nullptr without an IK or when it offers none).
+RedundancyResolution* redundancy_of(SchemeChain& scheme) noexcept {
+  return scheme.inverse_kinematics ? (*scheme.inverse_kinematics)->redundancy() : nullptr;
+}
+
+}  // namespace
 
 DeviceSession::DeviceSession(std::string name, DeviceChain chain)
     : name_(std::move(name)), chain_(std::move(chain)), description_(chain_.device->description()) {
@@ -67,7 +75,8 @@ ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
   if (scheme.inverse_kinematics &&
       (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &chain_state_}) != ReturnCode::ok)
     return ReturnCode::error;
-  return scheme.controller->activate(ControllerInput{state_, task_, joint_target_, &chain_state_}, command_);
+  return scheme.controller->activate(
+      ControllerInput{state_, task_, joint_target_, &chain_state_, redundancy_of(scheme)}, command_);
 }
 
 bool DeviceSession::request_scheme(std::string_view name) {
@@ -221,7 +230,8 @@ DeviceFault DeviceSession::run_chain(const CycleTime& cycle) {
       return DeviceFault::inverse_kinematics;
     if (!is_finite(joint_target_)) return DeviceFault::non_finite_output;
   }
-  if (scheme.controller->update(cycle, ControllerInput{state_, task_, joint_target_, &chain_state_}, command_) != ReturnCode::ok)
+  if (scheme.controller->update(cycle, ControllerInput{state_, task_, joint_target_, &chain_state_, redundancy_of(scheme)},
+                                command_) != ReturnCode::ok)
     return DeviceFault::controller;
   if (!command_.torque_nm.allFinite()) return DeviceFault::non_finite_output;
   blend_after_switch();
