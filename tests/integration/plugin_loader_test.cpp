@@ -92,7 +92,7 @@ TEST(PluginLoader, ScanningReportsBrokenLibrariesButKeepsGoing) {
   for (const auto& handle : all) names.insert(handle.descriptor->name);
   // Every in-tree plugin library was read past the two broken fixtures.
   for (const char* expected : {"test_mass_spring", "test_pd", "test_sine_setpoint", "test_axis_ik", "sim", "admittance", "impedance", "friction_identification", "inverse_jacobian", "transposed_jacobian",
-                               "computed_torque", "joint_pd", "newton_ik", "redundancy_ik",
+                               "computed_torque", "joint_pd", "newton_ik", "redundancy_ik", "vishard10_ik",
                                "resolved_acceleration"}) {
     EXPECT_EQ(names.count(expected), 1u) << expected;
   }
