@@ -17,41 +17,13 @@
 #include "hapticd/model/model_data.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "session/session_builder.hpp"
+#include "session_rig.hpp"
 
 namespace {
 
 using namespace hapticd;
-
-struct Rig {
-  server::SessionConfig config;
-  std::unique_ptr<server::PluginLoader> loader;
-  std::vector<std::unique_ptr<server::DeviceSession>> sessions;
-};
-
-std::unique_ptr<Rig> make_rig(const std::string& device, const std::string& scheme) {
-  auto rig = std::make_unique<Rig>();
-  rig->config = server::load_session_config(std::string(HAPTICD_SOURCE_DIR) + "/config/sessions/" + device + "/" +
-                                            scheme + ".yaml");
-  rig->config.server.plugin_paths.push_back(HAPTICD_PLUGIN_DIR);
-  rig->loader = std::make_unique<server::PluginLoader>(rig->config.server.plugin_paths);
-  rig->sessions = server::build_sessions(rig->config, *rig->loader);
-  server::DeviceSession& d = *rig->sessions[0];
-  d.activate();
-  const std::int64_t period = 500'000;
-  for (std::uint64_t k = 0; k < 2000; ++k) d.cycle(CycleTime{static_cast<std::int64_t>(k) * period, period, k}, 1.0);
-  return rig;
-}
-
-double seconds_per_model_terms(const ChainState& chain, const DeviceState& state) {
-  model::ModelData data(*chain.model);
-  const auto start = std::chrono::steady_clock::now();
-  constexpr int kRuns = 20000;
-  for (int i = 0; i < kRuns; ++i) {
-    model::compute_cycle_terms(*chain.model, data, state.joints.position, chain.velocity, chain.handle_frame);
-    benchmark::DoNotOptimize(data.mass_matrix.data());
-  }
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kRuns;
-}
+using bench::make_rig;
+using bench::seconds_per_model_terms;
 
 void scheme(benchmark::State& st, const std::string& device, const std::string& scheme_file) {
   auto rig = make_rig(device, scheme_file);

@@ -1,0 +1,68 @@
+// Compute time per cycle of each redundancy resolution on the simulated ViSHaRD10 (10 joints, 6-D task): the
+// shipped sessions config/sessions/vishard10/*.yaml after 1 s in lockstep. Two figures per session: the
+// inverse kinematics' update alone (ik/...), and the whole chain (chain/...: virtual model, IK, controller - the
+// task-space controllers call the IK's resolution at the measured state, so part of its cost shows only here).
+// The counter ratio_to_model_terms divides by the server's per-cycle model terms for the same state, timed side
+// by side (machine-independent to first order).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <string>
+
+#include "hapticd/engine_input.hpp"
+#include "session_rig.hpp"
+
+namespace {
+
+using namespace hapticd;
+
+void run(benchmark::State& st, const std::string& session, bool chain_too) {
+  auto rig = bench::make_rig("vishard10", session);
+  server::DeviceSession& d = *rig->sessions[0];
+  const server::SchemeChain& chain = d.chain().schemes[0];
+  const ChainState cs = d.chain_state();
+  const DeviceState state = d.state();
+  const EngineInput engine;
+  TaskTarget task = d.task();
+  JointTarget joints;
+  joints.resize(10);
+  JointCommand command;
+  command.torque_nm = d.command().torque_nm;
+  RedundancyResolution* redundancy = (*chain.inverse_kinematics)->redundancy();
+  std::uint64_t k = 2000;
+  const auto one = [&] {
+    const CycleTime t{static_cast<std::int64_t>(k) * 500'000, 500'000, k};
+    ++k;
+    if (chain_too) (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, &cs, &engine, nullptr}, task);
+    (void)(*chain.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &cs}, joints);
+    if (chain_too) (void)chain.controller->update(t, ControllerInput{state, task, joints, &cs, redundancy}, command);
+    benchmark::DoNotOptimize(joints.position.data());
+    benchmark::DoNotOptimize(command.torque_nm.data());
+  };
+  for (auto _ : st) one();
+  constexpr int kRuns = 5000;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < kRuns; ++i) one();
+  const double own = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kRuns;
+  const double reference = bench::seconds_per_model_terms(cs, state);
+  st.counters["model_terms_us"] = reference * 1e6;
+  st.counters["ratio_to_model_terms"] = own / reference;
+}
+
+const char* kSessions[] = {"admittance-pseudoinverse", "admittance-weighted", "admittance-damped",
+                           "admittance-inertia-weighted", "admittance-torque-level", "admittance-computed-torque",
+                           "admittance-partitioned", "admittance-partitioned-wrist-pseudoinverse"};
+
+const bool kRegistered = [] {
+  for (const char* s : kSessions) {
+    benchmark::RegisterBenchmark((std::string("ik/") + s).c_str(), [s](benchmark::State& st) { run(st, s, false); })
+        ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark((std::string("chain/") + s).c_str(), [s](benchmark::State& st) { run(st, s, true); })
+        ->Unit(benchmark::kMicrosecond);
+  }
+  return true;
+}();
+
+}  // namespace
+
+BENCHMARK_MAIN();
