@@ -51,7 +51,8 @@ void run(benchmark::State& st, const std::string& session, bool chain_too) {
 
 const char* kSessions[] = {"admittance-pseudoinverse", "admittance-weighted", "admittance-damped",
                            "admittance-inertia-weighted", "admittance-torque-level", "admittance-computed-torque",
-                           "admittance-partitioned", "admittance-partitioned-wrist-pseudoinverse"};
+                           "admittance-partitioned", "admittance-partitioned-wrist-pseudoinverse",
+                           "admittance-partitioned-lookup-table"};
 
 const bool kRegistered = [] {
   for (const char* s : kSessions) {

@@ -16,6 +16,7 @@ packages=(
   libgtest-dev libgmock-dev
   libbenchmark-dev
   liborocos-kdl-dev
+  libnlopt-dev
   rt-tests
   clang-14 libclang-rt-14-dev
   python3 python3-matplotlib

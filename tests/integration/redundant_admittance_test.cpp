@@ -15,9 +15,12 @@ namespace {
 
 using test::cycle_at;
 
-// The SCARA folded, the wrist away from q9 = 0; and the partitioned inverse functions' own posture for the handle
-// at (0.2, 0.15, 1.45) with its axis vertical (the plugin refuses to start elsewhere).
+// The SCARA folded, the wrist away from q9 = 0; the partitioned inverse functions' own posture for the handle
+// at (0.2, 0.15, 1.45) with its axis vertical, and the look-up table's for (0.45, 0.1, 1.45) (the plugin refuses
+// to start elsewhere).
 constexpr const char* kFolded = "[0.8, -1.6, 1.6, -1.6, 0.8, 1.0, -2.0, 1.0, 1.3, 0.0]";
+constexpr const char* kLookupTable =
+    "[1.091420, -0.208620, -1.179704, -1.529117, 1.826021, -1.146954, 2.293908, -2.717751, 1.570796, 0.0]";
 constexpr const char* kPartitioned =
     "[1.159279, -2.318559, 3.996179, -2.532207, -0.304693, -1.146954, 2.293908, -2.717751, 1.570796, 0.0]";
 
@@ -50,6 +53,9 @@ const Scheme kSchemes[] = {
      0.12, kPartitioned},
     {"partitioned_wrist_pseudoinverse", "{plugin: vishard10_ik, parameters: {wrist: pseudoinverse}}",
      "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}", 0.12, kPartitioned},
+    {"partitioned_lookup_table",
+     "{plugin: vishard10_ik, parameters: {scara: lookup_table, scara_table: " HAPTICD_SOURCE_DIR "/config/scara/vishard10.table}}",
+     "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}", 0.12, kLookupTable},
 };
 
 std::string vishard10_session(const Scheme& scheme, const std::string& force, const std::string& torque) {

@@ -1,6 +1,7 @@
 #include "vishard10_ik.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 
 #include "hapticd/chain_state.hpp"
@@ -42,9 +43,12 @@ double scara_manipulability(const vishard10::Geometry& g, const double q[4]) {
 
 ParameterSchema Vishard10Ik::parameter_schema() {
   ParameterSchema s;
-  s.string("scara", "joints 1-4: inverse_function (two prismatic pairs) or pseudoinverse (with the manipulability "
-                    "criterion; failed on hardware, kept as an option)")
-      .choices({"inverse_function", "pseudoinverse"}).default_value(std::string("inverse_function"));
+  s.string("scara", "joints 1-4: inverse_function (two prismatic pairs), lookup_table (the optimised table of "
+                    "hapticd-scara-lut, scara_table) or pseudoinverse (with the manipulability criterion; failed on "
+                    "hardware, kept as an option)")
+      .choices({"inverse_function", "lookup_table", "pseudoinverse"}).default_value(std::string("inverse_function"));
+  s.string("scara_table", "lookup_table: the table file (relative paths: from the session file's folder)")
+      .default_value(std::string());
   s.real("scara_axes_yaw_rad", "inverse function: pair 1-2 moves along this world direction, pair 3-4 across it")
       .unit("rad").default_value(0.0);
   s.integer("scara_branch_12", "inverse function: elbow side of pair 1-2 (+1 or -1)").minimum(-1).maximum(1)
@@ -88,7 +92,19 @@ void Vishard10Ik::configure(const Parameters& p, const PluginContext& context) {
     throw ParameterError("scara", e.what());
   }
   data_ = std::make_unique<model::ModelData>(*model_);
-  scara_function_ = p.string("scara") == "inverse_function";
+  const std::string& scara = p.string("scara");
+  scara_ = scara == "lookup_table" ? Scara::kLookupTable : scara == "pseudoinverse" ? Scara::kPseudoinverse : Scara::kInverseFunction;
+  if (scara_ == Scara::kLookupTable) {
+    const std::string& file = p.string("scara_table");
+    if (file.empty()) throw ParameterError("scara_table", "scara: lookup_table needs a table file (hapticd-scara-lut)");
+    std::filesystem::path path(file);
+    if (path.is_relative()) path = context.config_directory / path;
+    try {
+      table_ = vishard10::ScaraTable::load(path);
+    } catch (const std::runtime_error& e) {
+      throw ParameterError("scara_table", e.what());
+    }
+  }
   wrist_function_ = p.string("wrist") == "inverse_function";
   scara_yaw_ = p.real("scara_axes_yaw_rad");
   branch12_ = p.integer("scara_branch_12") >= 0 ? 1 : -1;
@@ -113,9 +129,13 @@ void Vishard10Ik::configure(const Parameters& p, const PluginContext& context) {
 }
 
 void Vishard10Ik::solve_scara(const Eigen::Vector2d& target, const Eigen::Vector2d& velocity, double dt) noexcept {
-  if (scara_function_) {
+  if (scara_ == Scara::kInverseFunction) {
     if (!vishard10::scara_inverse_function(geometry_, target, scara_yaw_, branch12_, branch34_, scara_q_, scara_limit_))
       ++clamped_;
+    return;
+  }
+  if (scara_ == Scara::kLookupTable) {
+    if (!table_.solve(geometry_, target - geometry_.base, scara_q_)) ++clamped_;
     return;
   }
   // Pseudoinverse of the 2 x 4 SCARA Jacobian, the manipulability gradient in its null space.
@@ -186,7 +206,7 @@ const JointVector& Vishard10Ik::solve(const Pose& pose, const Twist& twist, doub
     q_[9] = rot_q_[3];
   };
   assemble();
-  if (scara_function_) {
+  if (scara_ != Scara::kPseudoinverse) {
     // l6 and l7 differ by 0.1 mm: the pair leaves the handle that far off joint 5's axis, sideways. One shift of
     // the SCARA target removes it (the offset depends on q6 and q5' only, not on joints 1-4).
     model::forward_kinematics(*model_, *data_, q_);

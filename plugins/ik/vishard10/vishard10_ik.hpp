@@ -1,8 +1,8 @@
 #pragma once
 // Inverse kinematics `vishard10_ik`: the ViSHaRD10 partitioned solution (partitioned_solution.hpp,
 // docs/redundancy.md). Joints 6 and 7 always mimic a prismatic joint (the height). The x-y position by the
-// SCARA inverse function (two prismatic pairs) or a pseudoinverse of joints 1-4 with a manipulability
-// criterion; the orientation by the wrist inverse function (link 5 keeps the world yaw q5_0) or the weighted
+// SCARA inverse function (two prismatic pairs), the optimised look-up table of tools/scara_lut, or a
+// pseudoinverse of joints 1-4 with a manipulability criterion; the orientation by the wrist inverse function (link 5 keeps the world yaw q5_0) or the weighted
 // wrist pseudoinverse (weights on q5', q8', q9, q10; the criterion (q9 - pi/2)^2 and a virtual wall keeping q9 in
 // [zeta, pi - zeta]). With both inverse functions the whole map from handle pose to joints is a function:
 // closed handle paths give closed joint paths. The joint target's rates are differentiated from its
@@ -14,6 +14,7 @@
 #include "hapticd/model/redundancy.hpp"
 #include "hapticd/signal/differentiator.hpp"
 #include "partitioned_solution.hpp"
+#include "scara_table.hpp"
 
 namespace hapticd::ik {
 
@@ -42,7 +43,10 @@ class Vishard10Ik final : public InverseKinematics {
   std::unique_ptr<model::ModelData> data_;
   int handle_ = -1;
   vishard10::Geometry geometry_;
-  bool scara_function_ = true, wrist_function_ = true;
+  enum class Scara { kInverseFunction, kLookupTable, kPseudoinverse };
+  Scara scara_ = Scara::kInverseFunction;
+  bool wrist_function_ = true;
+  vishard10::ScaraTable table_;
   double scara_yaw_ = 0.0, scara_limit_ = 0.999;
   int branch12_ = 1, branch34_ = 1;
   double scara_manipulability_ = 1.0;
