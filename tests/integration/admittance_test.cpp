@@ -123,20 +123,8 @@ TEST(AdmittanceDisplay, JointPdBaselineRendersTheMassWorstOfAll) {
 std::string vishard6_session(const std::string& force, const std::string& torque, double damping = 0.0,
                              double rotational_damping = 0.0) {
   const std::string d = std::to_string(damping), r = std::to_string(rotational_damping);
-  return std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") + R"(  - name: v6
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard6.urdf
-        initial_position: [-0.5, 1.0, -0.5, 0.5, 1.57, 0.0]
-        attachment: wrench
-        wrench_force: step
-        wrench_force_n: )" + force + R"(
-        wrench_force_start_s: 0.2
-        wrench_torque: step
-        wrench_torque_nm: )" + torque + R"(
-        wrench_torque_start_s: 0.2
-    virtual_model:
+  return std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") +
+         test::sim_wrench_step_device_yaml("v6", "vishard6", "[-0.5, 1.0, -0.5, 0.5, 1.57, 0.0]", force, torque) + R"(    virtual_model:
       plugin: admittance
       parameters:
         mass_kg: [4, 4, 4]

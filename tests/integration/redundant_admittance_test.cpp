@@ -59,20 +59,8 @@ const Scheme kSchemes[] = {
 };
 
 std::string vishard10_session(const Scheme& scheme, const std::string& force, const std::string& torque) {
-  return std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") + R"(  - name: v10
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard10.urdf
-        initial_position: )" + scheme.initial + R"(
-        attachment: wrench
-        wrench_force: step
-        wrench_force_n: )" + force + R"(
-        wrench_force_start_s: 0.2
-        wrench_torque: step
-        wrench_torque_nm: )" + torque + R"(
-        wrench_torque_start_s: 0.2
-    virtual_model:
+  return std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") +
+         test::sim_wrench_step_device_yaml("v10", "vishard10", scheme.initial, force, torque) + R"(    virtual_model:
       plugin: admittance
       parameters: {mass_kg: [4, 4, 4], damping_n_s_per_m: [0, 0, 0], inertia_kg_m2: [0.1, 0.1, 0.1],
                    rotational_damping_n_m_s: [0, 0, 0]}

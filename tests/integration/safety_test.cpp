@@ -214,6 +214,16 @@ TEST(Safety, RenderedForceAndItsRateAreLimited) {
   EXPECT_LE(largest_rate, 2000.0 + 1e-6);
 }
 
+// One cycle with a wrench engine's fresh input (sequence k + 1) asking for `force`.
+void cycle_with_engine_wrench(DeviceSession& d, std::uint64_t k, const Eigen::Vector3d& force) {
+  EngineInput e;
+  e.has_wrench = true;
+  e.wrench.force = force;
+  e.sequence = k + 1;
+  d.publish_engine_input(e);
+  d.cycle(cycle_at(k), 1.0);
+}
+
 TEST(Safety, SoftStartRampsTheRenderedForceAtActivation) {
   // A wrench engine at 20 N from the first cycle on (engine ramp-in off): the rendered force follows the
   // soft-start ramp 0 -> limit over 0.2 s (max_force_n 40 N: 0.2 N per cycle) rather than stepping.
@@ -225,12 +235,7 @@ TEST(Safety, SoftStartRampsTheRenderedForceAtActivation) {
   double previous = 0.0, largest_step = 0.0;
   std::uint64_t full = 0;
   for (std::uint64_t k = 0; k < 800; ++k) {
-    EngineInput e;
-    e.has_wrench = true;
-    e.wrench.force = Eigen::Vector3d(0.0, 20.0, 0.0);
-    e.sequence = k + 1;
-    d.publish_engine_input(e);
-    d.cycle(cycle_at(k), 1.0);
+    cycle_with_engine_wrench(d, k, Eigen::Vector3d(0.0, 20.0, 0.0));
     const double f = d.task().wrench.force.norm();
     largest_step = std::max(largest_step, std::abs(f - previous));
     if (full == 0 && f >= 20.0 - 1e-9) full = k;
@@ -266,12 +271,7 @@ TEST(Safety, SoftStartRampsTheRenderedForceAgainAfterASchemeSwitch) {
     if (k == 1800) {
       EXPECT_TRUE(d.request_scheme("default"));
     }
-    EngineInput e;
-    e.has_wrench = true;
-    e.wrench.force = Eigen::Vector3d(0.0, 20.0, 0.0);
-    e.sequence = k + 1;
-    d.publish_engine_input(e);
-    d.cycle(cycle_at(k), 1.0);
+    cycle_with_engine_wrench(d, k, Eigen::Vector3d(0.0, 20.0, 0.0));
     force.push_back(d.task().wrench.force.norm());
     d.service();
   }

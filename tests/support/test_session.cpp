@@ -55,6 +55,24 @@ std::string sim_vishard3_device_yaml(const std::string& name, const std::string&
         wrench_force_n: )" + force_n + "\n";
 }
 
+std::string sim_wrench_step_device_yaml(const std::string& name, const std::string& model, const std::string& initial,
+                                        const std::string& force_n, const std::string& torque_nm) {
+  return "  - name: " + name + R"(
+    device:
+      plugin: sim
+      parameters:
+        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/)" + model + R"(.urdf
+        initial_position: )" + initial + R"(
+        attachment: wrench
+        wrench_force: step
+        wrench_force_n: )" + force_n + R"(
+        wrench_force_start_s: 0.2
+        wrench_torque: step
+        wrench_torque_nm: )" + torque_nm + R"(
+        wrench_torque_start_s: 0.2
+)";
+}
+
 TestSession build_test_session(const std::string& yaml) {
   TestSession s;
   s.config = server::load_session_config(write_temp_file("session.yaml", yaml));

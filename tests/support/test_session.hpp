@@ -44,6 +44,11 @@ std::string sim_vishard3_session_head(const std::string& name, std::uint64_t see
 // The head of a device entry for the simulated ViSHaRD3 (sim plugin, start pose, passive gimbal, pushed by a
 // scripted force `force_profile` of `force_n`); the caller appends more sim parameters (8 spaces of indent)
 // and the rest of the chain.
+// A simulated device `name` (config/urdf/<model>.urdf, joints at `initial`) pushed by a force step `force_n`
+// and a torque step `torque_nm` from 0.2 s on (the `device:` block of a device entry).
+std::string sim_wrench_step_device_yaml(const std::string& name, const std::string& model, const std::string& initial,
+                                        const std::string& force_n, const std::string& torque_nm);
+
 std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,
                                      const std::string& force_n);
 

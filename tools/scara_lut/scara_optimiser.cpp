@@ -106,6 +106,15 @@ struct Problem {
   }
 };
 
+Problem empty_problem(const Geometry& g, const std::array<double, 4>& limits, int branch12, int branch34) {
+  Problem p;
+  p.g = &g;
+  p.limits = limits;
+  p.branch12 = branch12;
+  p.branch34 = branch34;
+  return p;
+}
+
 double objective(unsigned n, const double* x, double* gradient, void* data) {
   (void)n;
   return static_cast<Problem*>(data)->evaluate(x, gradient);
@@ -164,11 +173,7 @@ Eigen::Vector2d prismatic_pairs_code(const Geometry& g, const Eigen::Vector2d& t
 
 double worst_normalised_rate(const Geometry& g, const ScaraTable& table, const std::array<double, 4>& speed_limits,
                              std::array<double, 4>* per_joint) {
-  Problem problem;
-  problem.g = &g;
-  problem.limits = speed_limits;
-  problem.branch12 = table.branch12;
-  problem.branch34 = table.branch34;
+  Problem problem = empty_problem(g, speed_limits, table.branch12, table.branch34);
   for (int ir = 0; ir < table.radius_count; ++ir)
     for (int ia = 0; ia < table.angle_count; ++ia) problem.points.push_back(table.point(ir, ia));
   add_grid_edges(problem, table.radius_count, table.angle_count);
@@ -208,15 +213,9 @@ ScaraOptimiserResult optimise_scara_table(const Geometry& g, const std::array<do
 
   // 1. Radial lines, each by multistart.
   std::vector<std::vector<double>> lines;
-  std::vector<double> line_angles;
   for (int l = 0; l < settings.radial_lines; ++l) {
     const double angle = table.angle_min + (table.angle_max - table.angle_min) * l / (settings.radial_lines - 1);
-    line_angles.push_back(angle);
-    Problem line;
-    line.g = &g;
-    line.limits = speed_limits;
-    line.branch12 = settings.branch12;
-    line.branch34 = settings.branch34;
+    Problem line = empty_problem(g, speed_limits, settings.branch12, settings.branch34);
     for (int ir = 0; ir < w.radii; ++ir) {
       const double r = w.radius_min + (w.radius_max - w.radius_min) * ir / (w.radii - 1);
       line.points.push_back(r * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
@@ -249,11 +248,7 @@ ScaraOptimiserResult optimise_scara_table(const Geometry& g, const std::array<do
   }
 
   // 2. The initial guess: the lines interpolated over the angle.
-  Problem full;
-  full.g = &g;
-  full.limits = speed_limits;
-  full.branch12 = settings.branch12;
-  full.branch34 = settings.branch34;
+  Problem full = empty_problem(g, speed_limits, settings.branch12, settings.branch34);
   std::vector<double> x;
   for (int ir = 0; ir < w.radii; ++ir) {
     for (int ia = 0; ia < w.angles; ++ia) {
