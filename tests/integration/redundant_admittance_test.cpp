@@ -8,6 +8,7 @@
 
 #include "hapticd/chain_state.hpp"
 #include "hapticd/model/redundancy.hpp"
+#include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -137,6 +138,12 @@ TEST_P(RedundantAdmittance, RendersTheVirtualMassAndInertiaInAllSixDirections) {
     RecordProperty(std::string(rotation ? "angular_" : "linear_") + "xyz"[axis], std::to_string(measured));
     EXPECT_NEAR(measured, 1.0, scheme.tolerance) << scheme.name << (rotation ? " torque about " : " force along ") << "xyz"[axis];
   }
+}
+
+TEST_P(RedundantAdmittance, TheChainDoesNotAllocate) {
+  if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
+  auto s = test::build_test_session(vishard10_session(GetParam(), "[4, 0, 0]", "[0.0, 0.1, 0.0]"));
+  EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 1000), 0u);
 }
 
 TEST(RedundantSelfMotion, NeedsItsNullSpaceDamping) {
