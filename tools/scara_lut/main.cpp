@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "hapticd/model/urdf_loader.hpp"
@@ -38,26 +39,37 @@ int main(int argc, char** argv) {
     fmt::print("SCARA links {:.3f} {:.3f} {:.3f} {:.3f} m, speed limits {:.2f} {:.2f} {:.2f} {:.2f} rad/s\n",
                geometry.scara_link[0], geometry.scara_link[1], geometry.scara_link[2], geometry.scara_link[3], speed[0],
                speed[1], speed[2], speed[3]);
+    // Smallest first: each workspace starts from the table of the one before (warm start).
     tries.push_back(w.radius_max);
+    std::sort(tries.begin(), tries.end());
+    tries.erase(std::unique(tries.begin(), tries.end()), tries.end());
+    ik::vishard10::ScaraTable previous;
     for (double radius : tries) {
       tools::ScaraWorkspace attempt = w;
       attempt.radius_max = radius;
       const auto start = std::chrono::steady_clock::now();
-      const auto r = tools::optimise_scara_table(geometry, speed, attempt, settings);
+      tools::ScaraOptimiserSettings run = settings;
+      if (!previous.code.empty()) run.warm_start = &previous;
+      const auto r = tools::optimise_scara_table(geometry, speed, attempt, run);
+      previous = r.table;
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       fmt::print("workspace r {:.2f}..{:.2f} m without {:.0f} deg at {:.0f} deg ({} x {} mesh): worst joint rates per tip "
-                 "speed {:.2f} {:.2f} {:.2f} {:.2f} rad/s per m/s -> tip speed {:.3f} m/s (initial guess {:.3f}, two "
+                 "speed {:.2f} {:.2f} {:.2f} {:.2f} rad/s per m/s -> tip speed {:.3f} m/s (initial guess {:.3f}{}, two "
                  "prismatic pairs {:.3f} m/s); {:.1f} s\n",
                  attempt.radius_min, radius, attempt.excluded_sector_deg, attempt.excluded_sector_centre_deg, attempt.radii,
                  attempt.angles, r.worst_rate_per_joint[0], r.worst_rate_per_joint[1], r.worst_rate_per_joint[2],
                  r.worst_rate_per_joint[3], r.table.tip_speed, 1.0 / r.initial_worst_rate,
-                 1.0 / r.prismatic_pairs_worst_rate, seconds);
+                 run.warm_start != nullptr ? " warm" : "", 1.0 / r.prismatic_pairs_worst_rate, seconds);
       if (radius == w.radius_max && !output.empty()) {
+        std::string warm;
+        for (double t : tries)
+          if (t < radius) warm += fmt::format(" --try {}", t);
         r.table.save(output, fmt::format("ViSHaRD10 SCARA elbow codes, made by hapticd-scara-lut --radius-min {} "
                                          "--radius-max {} --excluded-sector-deg {} --excluded-sector-centre-deg {} "
-                                         "--radii {} --angles {} --seed {}\ntip speed the joint limits allow: {:.3f} m/s",
+                                         "--radii {} --angles {} --seed {}{}\n(each workspace warm-started from the "
+                                         "one before)\ntip speed the joint limits allow: {:.3f} m/s",
                                          w.radius_min, w.radius_max, w.excluded_sector_deg, w.excluded_sector_centre_deg,
-                                         w.radii, w.angles, settings.seed, r.table.tip_speed));
+                                         w.radii, w.angles, settings.seed, warm, r.table.tip_speed));
         fmt::print("wrote {}\n", output);
       }
     }

@@ -269,6 +269,17 @@ ScaraOptimiserResult optimise_scara_table(const Geometry& g, const std::array<do
     }
   }
   add_grid_edges(full, w.radii, w.angles);
+  if (settings.warm_start != nullptr) {
+    // Beyond its mesh the smaller table's border codes continue outwards (a continuous guess).
+    std::size_t inside = 0;
+    for (std::size_t k = 0; k < full.points.size(); ++k) {
+      Eigen::Vector2d code, clamped;
+      if (settings.warm_start->code_at(full.points[k], code, clamped)) ++inside;
+      x[2 * k] = std::clamp(code.x(), -0.999, 0.999);
+      x[2 * k + 1] = std::clamp(code.y(), -0.999, 0.999);
+    }
+    log << "warm start: " << inside << " of " << full.points.size() << " mesh points inside the smaller workspace\n";
+  }
   result.initial_worst_rate = full.largest_rate(x.data());
 
   // The two-prismatic-pairs inverse function on the same mesh, for comparison (where it reaches).

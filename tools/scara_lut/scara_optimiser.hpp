@@ -28,6 +28,9 @@ struct ScaraOptimiserSettings {
   int starts_per_line = 8;
   std::uint64_t seed = 1;
   int branch12 = 1, branch34 = 1;
+  // Optional: a table of a smaller workspace whose codes (continued outwards beyond its border) replace the radial
+  // lines' initial guess (growing the workspace step by step: the smaller one's optimum is a good start).
+  const ik::vishard10::ScaraTable* warm_start = nullptr;
 };
 
 struct ScaraOptimiserResult {

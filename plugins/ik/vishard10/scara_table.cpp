@@ -63,20 +63,25 @@ Eigen::Vector2d ScaraTable::point(int i_radius, int i_angle) const noexcept {
   return r * Eigen::Vector2d(std::cos(a), std::sin(a));
 }
 
-bool ScaraTable::solve(const Geometry& g, const Eigen::Vector2d& tip, double q[4]) const noexcept {
+bool ScaraTable::code_at(const Eigen::Vector2d& tip, Eigen::Vector2d& c, Eigen::Vector2d& clamped_tip) const noexcept {
   const double r_free = tip.norm(), a_free = std::atan2(tip.y(), tip.x());
   const double r = std::clamp(r_free, radius_min, radius_max), a = std::clamp(a_free, angle_min, angle_max);
   const double fr = (r - radius_min) / (radius_max - radius_min) * (radius_count - 1);
   const double fa = (a - angle_min) / (angle_max - angle_min) * (angle_count - 1);
   const int ir = std::min(static_cast<int>(fr), radius_count - 2), ia = std::min(static_cast<int>(fa), angle_count - 2);
   const double wr = fr - ir, wa = fa - ia;
-  const Eigen::Vector2d c = (1 - wr) * ((1 - wa) * at(ir, ia) + wa * at(ir, ia + 1)) +
-                            wr * ((1 - wa) * at(ir + 1, ia) + wa * at(ir + 1, ia + 1));
-  const Eigen::Vector2d clamped = r * Eigen::Vector2d(std::cos(a), std::sin(a));
+  c = (1 - wr) * ((1 - wa) * at(ir, ia) + wa * at(ir, ia + 1)) + wr * ((1 - wa) * at(ir + 1, ia) + wa * at(ir + 1, ia + 1));
+  clamped_tip = r * Eigen::Vector2d(std::cos(a), std::sin(a));
+  return r == r_free && a == a_free;
+}
+
+bool ScaraTable::solve(const Geometry& g, const Eigen::Vector2d& tip, double q[4]) const noexcept {
+  Eigen::Vector2d c, clamped;
+  const bool inside = code_at(tip, c, clamped);
   Eigen::Vector2d elbow;
   if (!elbow_from_code(g, clamped, c.x(), c.y(), elbow)) return false;
   if (!scara_joints_from_elbow(g, clamped, elbow, branch12, branch34, q)) return false;
-  return r == r_free && a == a_free;
+  return inside;
 }
 
 void ScaraTable::save(const std::filesystem::path& file, const std::string& header) const {

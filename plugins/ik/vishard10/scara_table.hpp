@@ -44,6 +44,9 @@ struct ScaraTable {
   static ScaraTable load(const std::filesystem::path& file);
   void save(const std::filesystem::path& file, const std::string& header) const;
 
+  // Real-time safe: the interpolated elbow code for a tip position (relative to the base), the tip clamped into
+  // the mesh first (returns false if it had to be).
+  bool code_at(const Eigen::Vector2d& tip, Eigen::Vector2d& code, Eigen::Vector2d& clamped_tip) const noexcept;
   // Real-time safe: joints 1-4 for a tip position (relative to the base); a tip outside the mesh is clamped to it
   // (returns false then).
   bool solve(const Geometry& g, const Eigen::Vector2d& tip, double q[4]) const noexcept;
