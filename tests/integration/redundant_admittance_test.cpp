@@ -15,6 +15,7 @@ namespace hapticd::server {
 namespace {
 
 using test::cycle_at;
+constexpr double kPi = 3.14159265358979323846;
 
 // The SCARA folded, the wrist away from q9 = 0; the partitioned inverse functions' own posture for the handle
 // at (0.2, 0.15, 1.45) with its axis vertical, and the look-up table's for (0.45, 0.1, 1.45) (the plugin refuses
@@ -173,6 +174,32 @@ TEST(RedundantSelfMotion, NeedsItsNullSpaceDamping) {
               free, std::string(fault_code(free_fault)).c_str());
   EXPECT_EQ(damped_fault, DeviceFault::none);
   EXPECT_TRUE(free_fault != DeviceFault::none || free > 3.0 * damped);
+}
+
+TEST(RedundantSelfMotion, TheWristCriterionMovesTheDeviceNotJustItsTarget) {
+  // Resolved acceleration control with the wrist criterion in the null space and nobody pushing: the device's
+  // own joint 9 (1.3 rad at the start) goes towards pi/2 while the handle holds its pose - the self-motion of
+  // the measured arm, not only of the IK's integrated target. (With null_space_gain 1 the drives' stiction held
+  // joint 9 where it was for the whole 2 s: the self-motion servo has no position memory.)
+  const Scheme scheme{"wrist", "{plugin: redundancy_ik, parameters: {task: full, inverse: pseudoinverse, wrist: 1.0, null_space_gain: 10}}",
+                      kSchemes[0].controller, 0.0};
+  auto s = test::build_test_session(vishard10_session(scheme, "[0, 0, 0]", "[0.0, 0.0, 0.0]"));
+  DeviceSession& d = *s.devices[0];
+  d.activate();
+  d.cycle(cycle_at(0), 1.0);
+  const double q9_start = d.state().joints.position[8];
+  const Pose start = d.chain_state().handle_pose;
+  for (std::uint64_t k = 1; k < 4000; ++k) d.cycle(cycle_at(k), 1.0);
+  ASSERT_EQ(d.fault(), DeviceFault::none);
+  const double q9_end = d.state().joints.position[8];
+  const Pose& end = d.chain_state().handle_pose;
+  const double moved = (end.position - start.position).norm();
+  const double turned = Eigen::AngleAxisd(end.orientation * start.orientation.conjugate()).angle();
+  std::printf("wrist criterion under RAC: q9 %.3f -> %.3f rad in 2 s (target pi/2); handle moved %.2f mm, %.4f rad\n",
+              q9_start, q9_end, 1e3 * moved, turned);
+  EXPECT_LT(std::abs(q9_end - kPi / 2), 0.5 * std::abs(q9_start - kPi / 2));
+  EXPECT_LT(moved, 2e-3);
+  EXPECT_LT(turned, 0.01);
 }
 
 INSTANTIATE_TEST_SUITE_P(IkPlugins, RedundantAdmittance, ::testing::ValuesIn(kSchemes),

@@ -46,9 +46,9 @@ struct Problem {
     return std::abs(difference) / (e.length * limits[static_cast<std::size_t>(j)]);
   }
 
-  // The p-norm of all normalised rates and its gradient over the codes x = (s0, t0, s1, t1, ...).
-  double evaluate(const double* x, double* gradient) {
-    ++evaluations;
+  // The joints of every mesh point for the codes x = (s0, t0, s1, t1, ...), with their derivatives by the codes
+  // when `derivatives`; false if a code leaves a pair out of reach.
+  bool all_joints(const double* x, bool derivatives) {
     const auto n = points.size();
     q.resize(n);
     dq_ds.resize(n);
@@ -56,8 +56,8 @@ struct Problem {
     constexpr double kStep = 1e-6;
     for (std::size_t k = 0; k < n; ++k) {
       const double s = x[2 * k], t = x[2 * k + 1];
-      if (!joints(static_cast<int>(k), s, t, q[k])) return 1e9;
-      if (gradient != nullptr) {
+      if (!joints(static_cast<int>(k), s, t, q[k])) return false;
+      if (derivatives) {
         std::array<double, 4> probe{};
         const double hs = s > 0 ? -kStep : kStep, ht = t > 0 ? -kStep : kStep;  // step inwards
         (void)joints(static_cast<int>(k), s + hs, t, probe);
@@ -66,9 +66,27 @@ struct Problem {
         for (int j = 0; j < 4; ++j) dq_dt[k][static_cast<std::size_t>(j)] = std::remainder(probe[static_cast<std::size_t>(j)] - q[k][static_cast<std::size_t>(j)], 2 * kPi) / ht;
       }
     }
+    return true;
+  }
+
+  // The largest normalised rate over the edges, for the joints all_joints left in q.
+  double largest_of_joints() const {
     double largest = 0.0, difference = 0.0;
     for (const Edge& e : edges)
       for (int j = 0; j < 4; ++j) largest = std::max(largest, rate(e, j, difference));
+    return largest;
+  }
+
+  // The p-norm of all normalised rates and its gradient over the codes.
+  double evaluate(const double* x, double* gradient) {
+    ++evaluations;
+    const auto n = points.size();
+    if (!all_joints(x, gradient != nullptr)) {
+      if (gradient != nullptr) std::fill(gradient, gradient + 2 * n, 0.0);
+      return 1e9;  // cannot happen inside [-1, 1]^2 for a reachable tip; a wall if it does
+    }
+    double difference = 0.0;
+    const double largest = largest_of_joints();
     if (largest == 0.0) return 0.0;
     double sum = 0.0;
     for (const Edge& e : edges)
@@ -94,16 +112,7 @@ struct Problem {
     return f;
   }
 
-  double largest_rate(const double* x) {
-    const double keep = p;
-    p = 1e9;  // not used by the largest
-    (void)evaluate(x, nullptr);
-    p = keep;
-    double largest = 0.0, difference = 0.0;
-    for (const Edge& e : edges)
-      for (int j = 0; j < 4; ++j) largest = std::max(largest, rate(e, j, difference));
-    return largest;
-  }
+  double largest_rate(const double* x) { return all_joints(x, false) ? largest_of_joints() : 1e9; }
 };
 
 Problem empty_problem(const Geometry& g, const std::array<double, 4>& limits, int branch12, int branch34) {

@@ -149,7 +149,10 @@ ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsI
   const model::Vector6d error = model::pose_difference(desired, model::frame_pose(*model_, *data_, handle_));
   model::Vector6d xd;
   xd << in.task.twist.linear, in.task.twist.angular;
-  criterion_ = criteria_.empty() ? 0.0 : criteria_.evaluate(q_, gradient_);
+  // The side criterion once per cycle, at the measured joints: the resolution the controller asks for at the
+  // measured state needs it there, and the integrated target tracks the measured joints closely enough to share
+  // it (a target that drifted from them in the null space serves no controller of this chain).
+  criterion_ = criteria_.empty() ? 0.0 : criteria_.evaluate(in.device.joints.position, gradient_);
   const JointVector qd0 = -null_gain_ * inverse_.weight_inverse_times(gradient_);
   if (level_ == Level::kVelocity) {
     qd_ = model::resolve_velocity(inverse_, model::TaskVector((xd + kp_ * error).head(rows_)), qd0);

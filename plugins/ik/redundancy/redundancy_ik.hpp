@@ -6,8 +6,9 @@
 // Joint target (for joint-space controllers), integrated from the device's state at activation:
 //   velocity level      qd_d = J^W# (xd_d + kp e) + N qd0,              qd0 = -k W^-1 grad H
 //   acceleration level  qdd_d = J^W# (xdd_d + kd (xd_d - J qd_d) + kp e - Jd qd_d) + N d (qd0 - qd_d)
-// with e the pose error between the task target and FK(q_d), q_d integrated each cycle. Task-space controllers
-// get the same resolution at the measured state through redundancy() (acceleration and torque level).
+// with e the pose error between the task target and FK(q_d), q_d integrated each cycle, and grad H taken at the
+// measured joints (once per cycle). Task-space controllers get the same resolution at the measured state
+// through redundancy() (acceleration and torque level).
 #include <memory>
 
 #include "hapticd/inverse_kinematics.hpp"

@@ -89,6 +89,19 @@ Eigen::Matrix3d wrist_rotation(double q5_abs, double q8_abs, double q9, double q
   return rz(q5_abs) * fixed_a() * rz(q8_abs) * fixed_b() * rz(q9) * fixed_c() * rz(q10);
 }
 
+Eigen::Matrix3d wrist_axes(double q5_abs, double q8_abs, double q9, double q10, Eigen::Matrix<double, 3, 4>& axes) noexcept {
+  // Each joint turns about the z axis of the frame before it: the z columns of the partial products.
+  const Eigen::Matrix3d r5 = rz(q5_abs);
+  const Eigen::Matrix3d r8 = r5 * fixed_a() * rz(q8_abs);
+  const Eigen::Matrix3d r9 = r8 * fixed_b() * rz(q9);
+  const Eigen::Matrix3d r10 = r9 * fixed_c() * rz(q10);
+  axes.col(0) = r5.col(2);
+  axes.col(1) = r8.col(2);
+  axes.col(2) = r9.col(2);
+  axes.col(3) = r10.col(2);
+  return r10;
+}
+
 double wrist_inverse_function(const Eigen::Matrix3d& rotation, double q5_abs, double& q8_abs, double& q9,
                               double& q10) noexcept {
   const Eigen::Matrix3d m = (rz(q5_abs) * fixed_a()).transpose() * rotation;

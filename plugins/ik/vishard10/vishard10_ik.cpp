@@ -161,16 +161,10 @@ void Vishard10Ik::solve_wrist(const Eigen::Matrix3d& rotation, const Eigen::Vect
     (void)vishard10::wrist_inverse_function(rotation, q5_0_, rot_q_[1], rot_q_[2], rot_q_[3]);
     return;
   }
-  // Weighted pseudoinverse of the 3 x 4 angular Jacobian of q_rot (joint axes 5, 8, 9, 10 at the current target).
-  const Eigen::Matrix3d now = vishard10::wrist_rotation(rot_q_[0], rot_q_[1], rot_q_[2], rot_q_[3]);
-  model::TaskJacobian j(3, 4);
-  for (int i = 0; i < 4; ++i) {  // columns by differences of the forward map (exact enough: 1e-7 rad)
-    double probe[4] = {rot_q_[0], rot_q_[1], rot_q_[2], rot_q_[3]};
-    probe[i] += 1e-7;
-    const Eigen::AngleAxisd d(vishard10::wrist_rotation(probe[0], probe[1], probe[2], probe[3]) * now.transpose());
-    j.col(i) = d.angle() * d.axis() / 1e-7;
-  }
-  wrist_inverse_.compute(j);
+  // Weighted pseudoinverse of the 3 x 4 angular Jacobian of q_rot: its columns are the joint axes of 5, 8, 9, 10.
+  Eigen::Matrix<double, 3, 4> axes;
+  const Eigen::Matrix3d now = vishard10::wrist_axes(rot_q_[0], rot_q_[1], rot_q_[2], rot_q_[3], axes);
+  wrist_inverse_.compute(model::TaskJacobian(axes));
   const Eigen::AngleAxisd error(rotation * now.transpose());
   model::TaskVector w(3);
   w = angular_velocity + kp_ * error.angle() * error.axis();
