@@ -38,6 +38,6 @@ ctl operator vishard3 release
 wait "$engine" || true
 wait "$server"
 trap - EXIT
-grep -E "round trip|engine commands|cycles in|device " "$out/server.log" | sed 's/^\[[^]]*\] \[[a-z]*\] /server: /'
+grep -E "round trip|engine commands|commands applied|cycles in|device " "$out/server.log" | sed 's/^\[[^]]*\] \[[a-z]*\] /server: /'
 /usr/bin/python3 scripts/plot_engine_run.py "$out/engine.csv" "$out/demo.png"
 echo "== engine view: $out/engine.csv, server recording: $out/recording.csv, server log: $out/server.log, plot: $out/demo.png"

@@ -3,7 +3,8 @@
 #   asan (AddressSanitizer + UndefinedBehaviorSanitizer): the safety supervisor with fault injection, the
 #     fuzzed session loader and the fuzzed DDS command validation, the device session;
 #   tsan (ThreadSanitizer): the DDS end-to-end tests (the bridge's threads, Cyclone's receive thread, the
-#     loop's lock-free hand-offs) and the scheme switching (loop and monitor threads);
+#     loop's lock-free hand-offs), the bridge's round-trip probe and the scheme switching (loop and monitor
+#     threads);
 #   fuzz (libFuzzer with ASan + UBSan, Debian's clang-14): the DDS engine-command validation and the session
 #     loader, each for a fixed number of inputs from a fixed seed (FUZZ_RUNS scales them; findings are written to
 #     build/fuzz/findings and fail the run).
@@ -32,8 +33,8 @@ for preset in "${presets[@]}"; do
   case "$preset" in
     asan) targets=(safety_test config_fuzz_test command_gate_test device_session_test)
           tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession)\.' ;;
-    tsan) targets=(dds_engine_test scheme_switching_test)
-          tests='^(DdsEngine|SchemeSwitching)\.' ;;
+    tsan) targets=(dds_engine_test scheme_switching_test round_trip_probe_test)
+          tests='^(DdsEngine|SchemeSwitching|RoundTripProbe)\.' ;;
     fuzz) fuzz ; continue ;;
     *) echo "unknown preset '$preset' (asan, tsan, fuzz)" >&2; exit 2 ;;
   esac

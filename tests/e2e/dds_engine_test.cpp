@@ -186,6 +186,16 @@ TEST(DdsEngine, TheEnginesWallStopsThePushingOperator) {
   EXPECT_EQ(server.device().fault(), DeviceFault::none);
   EXPECT_GT(server.bridge().commands_accepted(0), 4000u);
   EXPECT_EQ(server.bridge().commands_rejected(0), 0u);
+  // In lockstep the loop waits for each answer: every command is applied in the cycle after its state's.
+  const RoundTripStatistics rt = server.bridge().round_trip();
+  std::printf("round trips %llu, commands applied %llu, of them in the next cycle %llu\n",
+              static_cast<unsigned long long>(rt.count), static_cast<unsigned long long>(rt.applied()),
+              static_cast<unsigned long long>(rt.applied_after_cycles[1]));
+  EXPECT_GT(rt.count, 4000u);
+  EXPECT_GT(rt.applied(), 4000u);
+  if (server.bridge().lockstep_timeouts() == 0) {
+    EXPECT_EQ(rt.applied_after_cycles[1], rt.applied());
+  }
 }
 
 // The next tests need the server running while clients come and go: the real-time clock (their checks do not

@@ -167,19 +167,25 @@ int run_session(const RunOptions& options) {
                    bridge->commands_accepted(i), bridge->commands_rejected(i), bridge->deadline_misses(i));
     }
     const RoundTripStatistics rt = bridge->round_trip();
-    if (rt.count > 0)
+    if (rt.count > 0) {
       spdlog::info("round trip state -> engine -> command accepted: {} samples, p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us",
                    rt.count, rt.p50_us, rt.p99_us, rt.max_us);
+      if (const std::uint64_t applied = rt.applied(); applied > 0)
+        spdlog::info("commands applied in the cycle after their state's: {} of {} ({:.2f} %), later: {}", rt.applied_after_cycles[1],
+                     applied, 100.0 * static_cast<double>(rt.applied_after_cycles[1]) / static_cast<double>(applied),
+                     applied - rt.applied_after_cycles[1] - rt.applied_after_cycles[0]);
+    }
   }
 
-  SessionReport report{&s->config, &result, &s->sessions, recorder ? recorder->written() : 0,
-                       recorder ? recorder->dropped() : 0};
+  SessionReport report;
+  report.config = &s->config;
+  report.result = &result;
+  report.sessions = &s->sessions;
+  report.records_written = recorder ? recorder->written() : 0;
+  report.records_dropped = recorder ? recorder->dropped() : 0;
   if (bridge) {
-    const RoundTripStatistics rt = bridge->round_trip();
-    report.has_round_trip = rt.count > 0;
-    report.round_trip_count = rt.count;
-    report.round_trip_p50_us = rt.p50_us;
-    report.round_trip_p99_us = rt.p99_us;
+    report.round_trip = bridge->round_trip();
+    report.has_round_trip = report.round_trip.count > 0;
   }
   for (const auto& line : report_lines(report)) spdlog::info("{}", line);
   if (recorder) spdlog::info("recorded {} device-cycles to {} ({} dropped)", recorder->written(), options.record_csv, recorder->dropped());

@@ -1,6 +1,7 @@
 #include "app/session_report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace hapticd::server {
 
@@ -16,9 +17,12 @@ std::string report_json(const SessionReport& r) {
   out += "  \"wakeup_latency_us\": " + histogram_json(s.wakeup_latency) + ",\n";
   out += "  \"compute_time_us\": " + histogram_json(s.compute_time) + ",\n";
   out += fmt::format("  \"recorder\": {{\"records\": {}, \"dropped\": {}}},\n", r.records_written, r.records_dropped);
-  if (r.has_round_trip)
-    out += fmt::format("  \"dds_round_trip_us\": {{\"count\": {}, \"p50\": {:.3f}, \"p99\": {:.3f}}},\n", r.round_trip_count,
-                       r.round_trip_p50_us, r.round_trip_p99_us);
+  if (r.has_round_trip) {
+    const RoundTripStatistics& rt = r.round_trip;
+    out += fmt::format("  \"dds_round_trip_us\": {{\"count\": {}, \"p50\": {:.3f}, \"p99\": {:.3f}, \"max\": {:.3f}}},\n",
+                       rt.count, rt.p50_us, rt.p99_us, rt.max_us);
+    out += fmt::format("  \"dds_applied_after_cycles\": [{}],\n", fmt::join(rt.applied_after_cycles, ", "));
+  }
   out += "  \"devices\": [";
   for (std::size_t i = 0; i < r.sessions->size(); ++i) {
     const DeviceSession& d = *(*r.sessions)[i];

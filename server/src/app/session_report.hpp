@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "config/session_config.hpp"
+#include "dds/round_trip_probe.hpp"
 #include "executor/executor.hpp"
 #include "session/device_session.hpp"
 
@@ -17,10 +18,9 @@ struct SessionReport {
   const std::vector<std::unique_ptr<DeviceSession>>* sessions = nullptr;
   std::uint64_t records_written = 0;
   std::uint64_t records_dropped = 0;
-  // With the DDS interface: state written -> engine -> command accepted, in microseconds.
+  // With the DDS interface: state written -> engine -> command accepted, and the cycles until it was applied.
   bool has_round_trip = false;
-  std::uint64_t round_trip_count = 0;
-  double round_trip_p50_us = 0.0, round_trip_p99_us = 0.0;
+  RoundTripStatistics round_trip;
 };
 
 std::string report_json(const SessionReport& report);

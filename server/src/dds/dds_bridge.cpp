@@ -56,6 +56,7 @@ struct DdsBridge::Device {
   bool last_stale = false;
   std::atomic<std::uint64_t> states{0};     // read by telemetry
   std::atomic<std::int64_t> loop_time_ns{0}; // of the newest snapshot, for events from any thread
+  RoundTripProbe round_trip;
   hapticd_msg_DeviceState last_state{};
   std::int64_t last_write_ns = 0;
   Pose start_pose;
@@ -252,9 +253,8 @@ void DdsBridge::publish_states() {
     }
     m.engine_serial = s.engine_sequence;
     fill_loop_summary(m.loop);
-    const std::size_t slot = m.serial % kWriteTimes;
-    write_time_ns_[slot].store(steady_ns(), std::memory_order_relaxed);
-    write_serial_[slot].store(m.serial, std::memory_order_release);
+    d.round_trip.command_applied(s.engine_sequence, s.cycle);
+    d.round_trip.state_written(m.serial, s.cycle, steady_ns());
     (void)dds_->state.write(m);
     d.states.fetch_add(1, std::memory_order_relaxed);
     d.loop_time_ns.store(s.time_ns, std::memory_order_relaxed);
@@ -425,14 +425,10 @@ void DdsBridge::handle_commands() {
                          std::string(dds::to_string(v.reason)));
         return;
       }
+      d.round_trip.command_accepted(c.serial, c.state_serial);
       d.session->publish_engine_input(dds::to_engine_input(c));
       if (c.state_serial > 0) {
-        const std::size_t slot = c.state_serial % kWriteTimes;
-        if (write_serial_[slot].load(std::memory_order_acquire) == c.state_serial) {
-          const std::int64_t rt = steady_ns() - write_time_ns_[slot].load(std::memory_order_relaxed);
-          std::lock_guard lock(round_trip_mutex_);
-          if (round_trip_ns_.size() < 10'000'000) round_trip_ns_.push_back(rt);
-        }
+        d.round_trip.command_handed_over(c.state_serial, steady_ns());
         if (c.state_serial > d.answered.load(std::memory_order_relaxed)) d.answered.store(c.state_serial, std::memory_order_release);
         d.synced.store(true, std::memory_order_release);
       }
@@ -634,20 +630,10 @@ std::string DdsBridge::owner(std::size_t device) const {
 std::uint64_t DdsBridge::deadline_misses(std::size_t device) const { return devices_.at(device)->deadline_misses.load(); }
 
 RoundTripStatistics DdsBridge::round_trip() const {
-  std::vector<std::int64_t> v;
-  {
-    std::lock_guard lock(round_trip_mutex_);
-    v = round_trip_ns_;
-  }
-  RoundTripStatistics r;
-  r.count = v.size();
-  if (v.empty()) return r;
-  std::sort(v.begin(), v.end());
-  const auto at = [&](double q) { return static_cast<double>(v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))]) * 1e-3; };
-  r.p50_us = at(0.5);
-  r.p99_us = at(0.99);
-  r.max_us = static_cast<double>(v.back()) * 1e-3;
-  return r;
+  std::vector<std::int64_t> samples;
+  RoundTripStatistics counts;
+  for (const auto& d : devices_) d->round_trip.merge_into(samples, counts);
+  return summarise_round_trips(std::move(samples), counts);
 }
 
 }  // namespace hapticd::server

@@ -19,6 +19,7 @@
 
 #include "config/session_config.hpp"
 #include "dds/command_gate.hpp"
+#include "dds/round_trip_probe.hpp"
 #include "safety/fault_history.hpp"
 #include "executor/executor.hpp"
 #include "hapticd_msg.h"
@@ -26,11 +27,6 @@
 namespace hapticd::server {
 
 class DeviceSession;
-
-struct RoundTripStatistics {
-  std::uint64_t count = 0;
-  double p50_us = 0.0, p99_us = 0.0, max_us = 0.0;
-};
 
 class DdsBridge final : public CycleListener {
  public:
@@ -59,7 +55,8 @@ class DdsBridge final : public CycleListener {
   [[nodiscard]] std::array<std::uint64_t, dds::kRejectReasons> rejected_by_reason(std::size_t device) const;
   [[nodiscard]] std::string owner(std::size_t device) const;
   [[nodiscard]] std::uint64_t deadline_misses(std::size_t device) const;
-  // Time from writing a state to accepting the command that answers it, over the session.
+  // Time from writing a state to accepting the command that answers it, and the cycles until the loop applied
+  // it, over the session and every device (RoundTripProbe).
   [[nodiscard]] RoundTripStatistics round_trip() const;
   [[nodiscard]] std::uint64_t lockstep_timeouts() const noexcept { return lockstep_timeouts_.load(); }
 
@@ -93,14 +90,7 @@ class DdsBridge final : public CycleListener {
   std::thread publisher_, receiver_;
   std::atomic<std::uint64_t> event_serial_{0};
   std::atomic<std::uint64_t> lockstep_timeouts_{0};
-
-  // State serial -> write time (steady ns), for the round trip; receiver reads it.
-  static constexpr std::size_t kWriteTimes = 4096;
-  std::array<std::atomic<std::uint64_t>, kWriteTimes> write_serial_{};
-  std::array<std::atomic<std::int64_t>, kWriteTimes> write_time_ns_{};
   std::mutex command_take_mutex_;
-  mutable std::mutex round_trip_mutex_;
-  std::vector<std::int64_t> round_trip_ns_;
 };
 
 }  // namespace hapticd::server
