@@ -43,6 +43,24 @@ TEST(LatencyHistogram, QuantilesMatchSortedSamplesWithinResolution) {
   EXPECT_EQ(h.count(), samples.size());
 }
 
+TEST(LatencyHistogram, MergedHistogramsEqualOneOverAllSamples) {
+  std::mt19937_64 rng(11);
+  std::lognormal_distribution<double> dist(10.0, 1.0);
+  LatencyHistogram a, b, all;
+  for (int i = 0; i < 5000; ++i) {
+    const auto v = static_cast<std::int64_t>(dist(rng));
+    (i % 3 == 0 ? a : b).record(v);
+    all.record(v);
+  }
+  a.merge(b);
+  EXPECT_EQ(a.count(), all.count());
+  EXPECT_EQ(a.min_ns(), all.min_ns());
+  EXPECT_EQ(a.max_ns(), all.max_ns());
+  EXPECT_DOUBLE_EQ(a.mean_ns(), all.mean_ns());
+  for (double q : {0.1, 0.5, 0.99}) EXPECT_EQ(a.quantile_ns(q), all.quantile_ns(q)) << q;
+  EXPECT_EQ(a.nonempty_buckets(), all.nonempty_buckets());
+}
+
 TEST(CycleStatistics, CountsOverrunsAndLongestRun) {
   CycleStatistics s;
   for (bool overrun : {false, true, true, false, true, true, true, false}) s.record(1000, 500, overrun);

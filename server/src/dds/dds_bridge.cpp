@@ -425,10 +425,10 @@ void DdsBridge::handle_commands() {
                          std::string(dds::to_string(v.reason)));
         return;
       }
-      d.round_trip.command_accepted(c.serial, c.state_serial);
+      const std::int64_t state_written_ns = d.round_trip.command_accepted(c.serial, c.state_serial);
       d.session->publish_engine_input(dds::to_engine_input(c));
+      d.round_trip.command_handed_over(state_written_ns, steady_ns());
       if (c.state_serial > 0) {
-        d.round_trip.command_handed_over(c.state_serial, steady_ns());
         if (c.state_serial > d.answered.load(std::memory_order_relaxed)) d.answered.store(c.state_serial, std::memory_order_release);
         d.synced.store(true, std::memory_order_release);
       }
@@ -630,10 +630,10 @@ std::string DdsBridge::owner(std::size_t device) const {
 std::uint64_t DdsBridge::deadline_misses(std::size_t device) const { return devices_.at(device)->deadline_misses.load(); }
 
 RoundTripStatistics DdsBridge::round_trip() const {
-  std::vector<std::int64_t> samples;
+  LatencyHistogram round_trips;
   RoundTripStatistics counts;
-  for (const auto& d : devices_) d->round_trip.merge_into(samples, counts);
-  return summarise_round_trips(std::move(samples), counts);
+  for (const auto& d : devices_) d->round_trip.merge_into(round_trips, counts);
+  return summarise_round_trips(round_trips, counts);
 }
 
 }  // namespace hapticd::server

@@ -9,8 +9,6 @@ std::uint64_t RoundTripStatistics::applied() const noexcept {
   return std::accumulate(applied_after_cycles.begin(), applied_after_cycles.end(), std::uint64_t{0});
 }
 
-RoundTripProbe::RoundTripProbe() { round_trips_ns_.reserve(1 << 16); }
-
 void RoundTripProbe::state_written(std::uint64_t state_serial, std::uint64_t cycle, std::int64_t now_ns) noexcept {
   StateSlot& s = states_[state_serial % kSlots];
   s.serial.store(0, std::memory_order_relaxed);  // invalid while it changes (a sequence lock)
@@ -20,33 +18,26 @@ void RoundTripProbe::state_written(std::uint64_t state_serial, std::uint64_t cyc
   s.serial.store(state_serial, std::memory_order_release);
 }
 
-bool RoundTripProbe::read_state(std::uint64_t state_serial, std::uint64_t& cycle, std::int64_t& written_ns) const noexcept {
-  if (state_serial == 0) return false;
+std::int64_t RoundTripProbe::command_accepted(std::uint64_t command_serial, std::uint64_t state_serial) noexcept {
+  if (state_serial == 0) return 0;
   const StateSlot& s = states_[state_serial % kSlots];
-  if (s.serial.load(std::memory_order_acquire) != state_serial) return false;  // too old: its slot was reused
-  cycle = s.cycle.load(std::memory_order_relaxed);
-  written_ns = s.written_ns.load(std::memory_order_relaxed);
+  if (s.serial.load(std::memory_order_acquire) != state_serial) return 0;  // too old: its slot was reused
+  const std::uint64_t cycle = s.cycle.load(std::memory_order_relaxed);
+  const std::int64_t written = s.written_ns.load(std::memory_order_relaxed);
   std::atomic_thread_fence(std::memory_order_acquire);
-  return s.serial.load(std::memory_order_relaxed) == state_serial;  // not reused while we read it
-}
-
-void RoundTripProbe::command_accepted(std::uint64_t command_serial, std::uint64_t state_serial) noexcept {
-  std::uint64_t cycle = 0;
-  std::int64_t written = 0;
-  if (!read_state(state_serial, cycle, written)) return;
+  if (s.serial.load(std::memory_order_relaxed) != state_serial) return 0;  // reused while we read it
   CommandSlot& c = commands_[command_serial % kSlots];
   c.serial.store(0, std::memory_order_relaxed);
   std::atomic_thread_fence(std::memory_order_release);
   c.state_cycle.store(cycle, std::memory_order_relaxed);
   c.serial.store(command_serial, std::memory_order_release);
+  return written;
 }
 
-void RoundTripProbe::command_handed_over(std::uint64_t state_serial, std::int64_t now_ns) {
-  std::uint64_t cycle = 0;
-  std::int64_t written = 0;
-  if (!read_state(state_serial, cycle, written)) return;
+void RoundTripProbe::command_handed_over(std::int64_t state_written_ns, std::int64_t now_ns) noexcept {
+  if (state_written_ns == 0) return;
   std::lock_guard lock(mutex_);
-  if (round_trips_ns_.size() < kMaxSamples) round_trips_ns_.push_back(now_ns - written);
+  round_trips_.record(now_ns - state_written_ns);
 }
 
 void RoundTripProbe::command_applied(std::uint64_t command_serial, std::uint64_t cycle) noexcept {
@@ -61,32 +52,27 @@ void RoundTripProbe::command_applied(std::uint64_t command_serial, std::uint64_t
   applied_[bin].fetch_add(1, std::memory_order_relaxed);
 }
 
-void RoundTripProbe::merge_into(std::vector<std::int64_t>& round_trips_ns, RoundTripStatistics& counts) const {
+void RoundTripProbe::merge_into(LatencyHistogram& round_trips, RoundTripStatistics& counts) const {
   {
     std::lock_guard lock(mutex_);
-    round_trips_ns.insert(round_trips_ns.end(), round_trips_ns_.begin(), round_trips_ns_.end());
+    round_trips.merge(round_trips_);
   }
   for (std::size_t i = 0; i < applied_.size(); ++i) counts.applied_after_cycles[i] += applied_[i].load(std::memory_order_relaxed);
 }
 
-RoundTripStatistics summarise_round_trips(std::vector<std::int64_t> samples, RoundTripStatistics counts) {
-  counts.count = samples.size();
-  if (samples.empty()) return counts;
-  std::sort(samples.begin(), samples.end());
-  const auto at = [&](double q) {
-    return static_cast<double>(samples[static_cast<std::size_t>(q * static_cast<double>(samples.size() - 1))]) * 1e-3;
-  };
-  counts.p50_us = at(0.5);
-  counts.p99_us = at(0.99);
-  counts.max_us = static_cast<double>(samples.back()) * 1e-3;
+RoundTripStatistics summarise_round_trips(const LatencyHistogram& round_trips, RoundTripStatistics counts) {
+  counts.count = round_trips.count();
+  counts.p50_us = static_cast<double>(round_trips.quantile_ns(0.5)) * 1e-3;
+  counts.p99_us = static_cast<double>(round_trips.quantile_ns(0.99)) * 1e-3;
+  counts.max_us = static_cast<double>(round_trips.max_ns()) * 1e-3;
   return counts;
 }
 
 RoundTripStatistics RoundTripProbe::statistics() const {
-  std::vector<std::int64_t> samples;
+  LatencyHistogram round_trips;
   RoundTripStatistics counts;
-  merge_into(samples, counts);
-  return summarise_round_trips(std::move(samples), counts);
+  merge_into(round_trips, counts);
+  return summarise_round_trips(round_trips, counts);
 }
 
 }  // namespace hapticd::server

@@ -6,13 +6,14 @@
 //               cycle, the least a sampled loop can do). Seen from the first published state that shows the
 //               command applied, so a publisher that skipped snapshots can only make it look later.
 // Threads: the publisher calls state_written and command_applied, Cyclone's receive thread command_accepted
-// and command_handed_over;
-// the slot hand-off between them is lock-free, the samples are kept under a mutex off the loop.
+// and command_handed_over; the slot hand-off between them is lock-free, the round trips go into a fixed-size
+// histogram (no allocation, any session length) under a mutex off the loop.
 #include <array>
 #include <atomic>
 #include <cstdint>
 #include <mutex>
-#include <vector>
+
+#include "executor/latency_histogram.hpp"
 
 namespace hapticd::server {
 
@@ -24,29 +25,26 @@ struct RoundTripStatistics {
   [[nodiscard]] std::uint64_t applied() const noexcept;
 };
 
-// Percentiles of the samples (ns) into counts.
-[[nodiscard]] RoundTripStatistics summarise_round_trips(std::vector<std::int64_t> round_trips_ns, RoundTripStatistics counts);
+// The round trips' percentiles (histogram resolution 1.6 %, never understated; the maximum exact) into counts.
+[[nodiscard]] RoundTripStatistics summarise_round_trips(const LatencyHistogram& round_trips, RoundTripStatistics counts);
 
 class RoundTripProbe {
  public:
-  RoundTripProbe();
-
   void state_written(std::uint64_t state_serial, std::uint64_t cycle, std::int64_t now_ns) noexcept;
-  // An accepted command, before it is handed to the loop (so that command_applied finds it); state_serial 0
-  // (it answers no state) is ignored.
-  void command_accepted(std::uint64_t command_serial, std::uint64_t state_serial) noexcept;
-  // The same command handed to the loop at now_ns: the end of its round trip.
-  void command_handed_over(std::uint64_t state_serial, std::int64_t now_ns);
+  // An accepted command, before it is handed to the loop (so that command_applied finds it). Returns the write
+  // time of the state it answers, 0 when that is unknown (state_serial 0, or a slot since reused).
+  std::int64_t command_accepted(std::uint64_t command_serial, std::uint64_t state_serial) noexcept;
+  // The same command handed to the loop at now_ns: the end of its round trip (state_written_ns 0: none).
+  void command_handed_over(std::int64_t state_written_ns, std::int64_t now_ns) noexcept;
   // A published state of `cycle` shows command_serial as the newest command the loop applied.
   void command_applied(std::uint64_t command_serial, std::uint64_t cycle) noexcept;
 
   [[nodiscard]] RoundTripStatistics statistics() const;
-  // Adds this probe's samples and counts (a server's devices in one figure: summarise_round_trips).
-  void merge_into(std::vector<std::int64_t>& round_trips_ns, RoundTripStatistics& counts) const;
+  // Adds this probe's round trips and counts (a server's devices in one figure: summarise_round_trips).
+  void merge_into(LatencyHistogram& round_trips, RoundTripStatistics& counts) const;
 
  private:
   static constexpr std::size_t kSlots = 4096;
-  static constexpr std::size_t kMaxSamples = 10'000'000;
   struct StateSlot {
     std::atomic<std::uint64_t> serial{0};
     std::atomic<std::uint64_t> cycle{0};
@@ -56,14 +54,12 @@ class RoundTripProbe {
     std::atomic<std::uint64_t> serial{0};
     std::atomic<std::uint64_t> state_cycle{0};
   };
-  bool read_state(std::uint64_t state_serial, std::uint64_t& cycle, std::int64_t& written_ns) const noexcept;
-
   std::array<StateSlot, kSlots> states_{};
   std::array<CommandSlot, kSlots> commands_{};
   std::uint64_t last_applied_ = 0;  // publisher only
   std::array<std::atomic<std::uint64_t>, RoundTripStatistics::kAppliedBins> applied_{};
   mutable std::mutex mutex_;
-  std::vector<std::int64_t> round_trips_ns_;
+  LatencyHistogram round_trips_;
 };
 
 }  // namespace hapticd::server

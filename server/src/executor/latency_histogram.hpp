@@ -17,6 +17,8 @@ class LatencyHistogram {
   static constexpr int kBuckets = kExact + kOctaves * kSubBuckets;
 
   void record(std::int64_t value_ns) noexcept;
+  // Adds other's samples (histograms of several sources in one).
+  void merge(const LatencyHistogram& other) noexcept;
 
   [[nodiscard]] std::uint64_t count() const noexcept { return count_; }
   [[nodiscard]] std::int64_t min_ns() const noexcept { return count_ ? min_ : 0; }
