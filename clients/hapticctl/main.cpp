@@ -41,6 +41,7 @@ const char* event_name(hapticd_msg_EventKind k) {
     case hapticd_msg_EVENT_ENGINE_STALE: return "engine stale";
     case hapticd_msg_EVENT_ENGINE_REJECTED: return "rejected";
     case hapticd_msg_EVENT_RECOVERED: return "recovered";
+    case hapticd_msg_EVENT_RECORDING: return "recording";
   }
   return "?";
 }
@@ -85,9 +86,12 @@ int main(int argc, char** argv) {
   watch->add_option("device", device, "device name")->required();
   watch->add_option("--rate", rate, "lines per second")->check(CLI::Range(0.1, 1000.0));
   watch->add_option("--duration", duration, "stop after this many seconds");
-  auto* claim = app.add_subcommand("claim", "claim a device (as --id)");
+  double hold = 0.0;
+  auto* claim = app.add_subcommand("claim", "claim a device (as --id); a claim ends with the process that made it");
   claim->add_option("device", device)->required();
-  auto* release = app.add_subcommand("release", "release a device claimed as --id");
+  claim->add_option("--hold", hold, "keep the claim this many seconds (until Ctrl-C with -1), then release it")
+      ->check(CLI::Range(-1.0, 1e6));
+  auto* release = app.add_subcommand("release", "release a device this process claimed (useful with --hold only)");
   release->add_option("device", device)->required();
   auto* switch_cmd = app.add_subcommand("scheme", "switch a device's control scheme");
   switch_cmd->add_option("device", device)->required();
@@ -140,7 +144,12 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "no device '{}' on domain {}\n", device, domain);
     return 2;
   }
-  if (*claim) return report(client.claim(device, wait));
+  if (*claim) {
+    const int code = report(client.claim(device, wait));
+    if (code != 0 || hold == 0.0) return code;
+    run_for(hold < 0.0 ? 0.0 : hold);
+    return report(client.release(device, wait));
+  }
   if (*release) return report(client.release(device, wait));
   if (*switch_cmd) return report(client.switch_scheme(device, scheme, wait));
   if (*set) return report(client.set_parameter(device, parameter, values, wait));

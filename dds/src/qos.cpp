@@ -18,14 +18,21 @@ Qos topic_qos(TopicKind kind, const CommandTiming& timing) {
       dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
       dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 1);
       break;
-    case TopicKind::command:  // latest wins; a silent or dead engine is visible quickly
+    case TopicKind::command:  // latest wins; a silent or dead engine is visible quickly. One instance per device
+      // (every engine's commands share it): a few samples of history, so that a burst from another writer does
+      // not displace the owner's before the server's listener has taken it.
       dds_qset_reliability(p, DDS_RELIABILITY_BEST_EFFORT, 0);
       dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
-      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 1);
+      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 8);
       dds_qset_deadline(p, DDS_SECS(1) * timing.deadline_s);
       dds_qset_liveliness(p, DDS_LIVELINESS_AUTOMATIC, static_cast<dds_duration_t>(DDS_SECS(1) * timing.liveliness_lease_s));
       break;
-    case TopicKind::request:  // nothing lost; a burst of requests is kept
+    case TopicKind::request:  // nothing lost; a burst of requests is kept (one instance per device: every
+      // client's requests share it, so the history is deep)
+      dds_qset_reliability(p, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+      dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
+      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 256);
+      break;
     case TopicKind::reply:
       dds_qset_reliability(p, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
       dds_qset_durability(p, DDS_DURABILITY_VOLATILE);

@@ -10,10 +10,7 @@
 #include <cmath>
 #include <thread>
 
-#include "../../examples/engines/scene.hpp"
-#include "app/session_monitor.hpp"
-#include "dds/dds_bridge.hpp"
-#include "hapticd/client/client.hpp"
+#include "e2e/dds_server_rig.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
@@ -23,141 +20,11 @@ namespace hapticd::server {
 namespace {
 
 using client::Client;
-
-// Records, on the loop thread, the environment force the device renders and the handle position each cycle.
-class RecordingListener final : public CycleListener {
- public:
-  RecordingListener(CycleListener* next, DeviceSession* device) : next_(next), device_(device) {
-    force_.reserve(20000);
-    position_.reserve(20000);
-    weight_.reserve(20000);
-    index_.reserve(20000);
-  }
-  void after_cycle(std::uint64_t index, bool lockstep) noexcept override {
-    index_.push_back(index);
-    force_.push_back(device_->task().wrench.force);
-    position_.push_back(device_->chain_state().handle_pose.position);
-    weight_.push_back(device_->engine_weight());
-    next_->after_cycle(index, lockstep);
-  }
-  const std::vector<Eigen::Vector3d>& force() const { return force_; }
-  const std::vector<Eigen::Vector3d>& position() const { return position_; }
-  const std::vector<double>& engine_weight() const { return weight_; }
-  // The loop's period index of each recorded cycle (a real-time loop that fell behind skips periods).
-  const std::vector<std::uint64_t>& index() const { return index_; }
-
- private:
-  CycleListener* next_;
-  DeviceSession* device_;
-  std::vector<Eigen::Vector3d> force_, position_;
-  std::vector<double> weight_;
-  std::vector<std::uint64_t> index_;
-};
-
-// Under a sanitizer the real-time loop runs several times slower than its period: the overrun watchdog (a
-// device fault after 10 consecutive overruns) is off there, these runs look for races, not for timing.
-#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-
-// A session (lockstep unless told otherwise) with the DDS interface on `domain`: the simulated ViSHaRD3 in admittance display with the
-// virtual coupling, pushed by a scripted force.
-std::string session_yaml(int domain, double duration_s, const std::string& force_profile, const std::string& force_n,
-                         const std::string& clock = "lockstep", const std::string& safety = "") {
-  return "server: {clock: " + clock + ", seed: 11, realtime_priority: 0, lock_memory: false, duration_s: " +
-         std::to_string(duration_s) + "}\n" +
-         "dds: {domain_id: " + std::to_string(domain) + ", lockstep_start_wait_s: 20, lockstep_wait_s: 2}\n" +
-         "devices:\n" + test::sim_vishard3_device_yaml("v3", force_profile, force_n) + R"(        wrench_force_start_s: 0.3
-    virtual_model:
-      plugin: admittance
-      parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [30.0, 30.0, 30.0], rotation: false,
-                   coupling: true, coupling_stiffness_n_per_m: 3000, coupling_damping_n_s_per_m: 40}
-    controller:
-      plugin: resolved_acceleration
-      parameters: {task: translation}
-    safety: {)" + safety +
-         (kSanitized && clock == "realtime" ? std::string(safety.empty() ? "" : ", ") + "max_consecutive_overruns: 0" : "") +
-         "}\n";
-}
-
-class Server {
- public:
-  explicit Server(const std::string& yaml) : session_(test::build_test_session(yaml)) {
-    std::vector<DeviceSession*> devices;
-    for (auto& d : session_.devices) devices.push_back(d.get());
-    bridge_ = std::make_unique<DdsBridge>(session_.config.dds, session_.config.server.rate_hz, devices);
-    executor_ = std::make_unique<Executor>(session_.executor_settings(), devices, nullptr);
-    listener_ = std::make_unique<RecordingListener>(bridge_.get(), devices[0]);
-    executor_->set_cycle_listener(listener_.get());
-    bridge_->set_loop_statistics(&executor_->live());
-    monitor_ = std::make_unique<SessionMonitor>(devices, bridge_.get());
-    bridge_->start();
-  }
-  ~Server() {
-    stop();  // a failed check must not wait for the session's end
-    join();
-  }
-  void start() {
-    thread_ = std::thread([this] { result_ = executor_->run(stop_, [this] { monitor_->poll(); }); });
-  }
-  // Ends the session now (the device stops through its safe mode); the real-time tests stop when their checks
-  // are done.
-  void stop() { stop_.store(true); }
-  void join() {
-    if (thread_.joinable()) thread_.join();
-    bridge_->stop();
-  }
-  DdsBridge& bridge() { return *bridge_; }
-  DeviceSession& device() { return *session_.devices[0]; }
-  const RecordingListener& recording() const { return *listener_; }
-  const ExecutorResult& result() const { return result_; }
-  const SessionMonitor& monitor() const { return *monitor_; }
-
- private:
-  test::TestSession session_;
-  std::unique_ptr<DdsBridge> bridge_;
-  std::unique_ptr<Executor> executor_;
-  std::unique_ptr<RecordingListener> listener_;
-  std::unique_ptr<SessionMonitor> monitor_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-  ExecutorResult result_;
-};
-
-// The scene engine of examples/engines: answers every state with the proxy of the handle in the scene.
-struct SceneEngine {
-  SceneEngine(int domain, const std::string& id) : client({id, domain, {}, 0.05}) {}
-  ~SceneEngine() { client.on_state({}); }  // before the members the callback uses are gone
-  SceneEngine(const SceneEngine&) = delete;
-  SceneEngine& operator=(const SceneEngine&) = delete;
-  bool connect() {
-    if (!client.wait_for_state("v3", std::chrono::seconds(20))) return false;
-    // The scene sits at the device's start pose (from the description, re-sent once the loop has run).
-    const auto described = client.wait_for_device("v3", std::chrono::seconds(5), true);
-    if (!described) return false;
-    origin = client::pose_of(described->start_pose).position;
-    if (!client.claim("v3", std::chrono::seconds(10)).accepted) return false;
-    client.on_state([this](const hapticd_msg_DeviceState& s) {
-      if (!answering.load()) return;
-      const Eigen::Vector3d x = client::pose_of(s.target_pose).position - origin;  // the virtual body
-      const Eigen::Vector3d p = scene.proxy(x);
-      depth = std::max(depth.load(), (p - x).norm());
-      Pose proxy = client::pose_of(s.pose);
-      proxy.position = origin + p;
-      Twist twist;  // slides with the handle along a surface, never into it
-      twist.linear = scene.proxy_velocity(x, p, client::twist_of(s.twist).linear);
-      client.send_coupling("v3", proxy, twist, s.serial);
-    });
-    return true;
-  }
-  Client client;
-  examples::Scene scene = examples::demo_scene();
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  std::atomic<double> depth{0.0};
-  std::atomic<bool> answering{true};
-};
+using e2e::RecordingListener;
+using e2e::SceneEngine;
+using e2e::Server;
+using e2e::kSanitized;
+using e2e::session_yaml;
 
 TEST(DdsEngine, TheEnginesWallStopsThePushingOperator) {
   // 15 N along +x into the engine's wall 30 mm ahead; through the 3000 N/m coupling the handle settles
@@ -294,11 +161,22 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   });
   server.start();
   ASSERT_TRUE(engine.wait_for_state("v3", std::chrono::seconds(20)));
-  ASSERT_TRUE(engine.claim("v3", std::chrono::seconds(10)).accepted);
-  // A raw writer in the engine's name, to write what the client library would never write.
+  // A raw participant claims the device in the engine's name and writes what the client library never would
+  // (the claim binds to the participant: its own command writer must belong to it).
   dds::Participant raw_participant(dds::ParticipantOptions{64, {}});
   dds::Writer<hapticd_msg_EngineCommand> raw(raw_participant);
-  for (int i = 0; i < 200 && raw.matched() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  dds::Writer<hapticd_msg_ControlRequest> raw_requests(raw_participant);
+  for (int i = 0; i < 200 && (raw.matched() == 0 || raw_requests.matched() == 0); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  hapticd_msg_ControlRequest claim{};
+  dds::set_text(claim.device, "v3");
+  dds::set_text(claim.client, "careful-engine");
+  claim.request_id = 1;
+  claim.kind = hapticd_msg_REQUEST_CLAIM;
+  ASSERT_TRUE(raw_requests.write(claim));
+  for (int i = 0; i < 500 && server.bridge().owner(0) != "careful-engine"; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(server.bridge().owner(0), "careful-engine");
   const auto good = [](std::uint64_t serial) {
     hapticd_msg_EngineCommand c{};
     dds::set_text(c.device, "v3");
@@ -338,7 +216,11 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   c = good(16);
   dds::set_text(c.engine, "someone-else");  // not the owner
   send(c);
-  for (int i = 0; i < 500 && server.bridge().commands_rejected(0) < 7; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  c = good(17);
+  dds::set_text(c.device, "no-such-device");  // a device the server does not have: counted as malformed
+  send(c);
+  for (int i = 0; i < 500 && (server.bridge().commands_rejected(0) < 7 || server.bridge().unknown_device_commands() < 1); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   server.stop();
   server.join();
   const auto r = server.bridge().rejected_by_reason(0);
@@ -350,6 +232,7 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   EXPECT_EQ(n(RejectReason::out_of_order), 1u);
   EXPECT_EQ(n(RejectReason::stale), 1u);
   EXPECT_EQ(n(RejectReason::not_owner), 1u);
+  EXPECT_EQ(server.bridge().unknown_device_commands(), 1u);
   EXPECT_EQ(server.bridge().commands_accepted(0), 1u);
   EXPECT_EQ(server.device().fault(), DeviceFault::none);
   // Events: the rejections (the first of each reason) and the mode change at the end of the session.

@@ -42,8 +42,9 @@ grep -q "owner scene-engine" watch.txt || fail "the watcher never saw the engine
 grep -q "event engine stale" watch.txt || fail "no stale-engine event after the engine was killed"
 
 # E-stop: the device goes to its safe state; a watcher started afterwards still gets the fault report with the
-# cycles before the stop (transient-local); the device stays safe until `hapticctl recover`, then runs again
-# and the session ends normally (exit code 0; a device still in its safe mode at the end would give 3).
+# cycles before the stop (transient-local); the device stays safe until `hapticctl recover`, then runs again;
+# the session ends with exit code 3 (a device faulted during the session, even though it recovered) and the
+# final report lists the stop and the recovery.
 ctl estop vishard3 || fail "e-stop refused"
 ctl watch vishard3 --rate 4 --duration 1 > fault.txt || true
 cat fault.txt
@@ -61,5 +62,8 @@ set -e
 trap - EXIT
 grep -q "fault emergency_stop at cycle" server.log || fail "the server log does not mention the emergency stop"
 grep -q "recovered from emergency_stop on request" server.log || fail "the server log does not mention the recovery"
-[ "$code" -eq 0 ] || fail "server exit code $code, expected 0 (recovered)"
+grep -q "device 'vishard3': 1 fault, 1 recovery; running at the end" server.log || fail "the final report does not count the fault"
+grep -q "FAULT emergency_stop at cycle" server.log || fail "the final report does not list the stop"
+grep -q "recovered from emergency_stop at cycle" server.log || fail "the final report does not list the recovery"
+[ "$code" -eq 3 ] || fail "server exit code $code, expected 3 (a device faulted during the session)"
 echo "dds tools: ok"

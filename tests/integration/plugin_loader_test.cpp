@@ -1,7 +1,11 @@
 // Each plugin-loading failure has its own clear message; libraries outlive their objects.
+#include "plugins/elf_exports.hpp"
 #include "plugins/plugin_loader.hpp"
 
 #include <gtest/gtest.h>
+#include <link.h>
+
+#include <fstream>
 
 #include <set>
 
@@ -44,7 +48,9 @@ TEST(PluginLoader, NotALoadableLibrary) {
   FILE* f = std::fopen(path.c_str(), "w");
   std::fputs("not an ELF file", f);
   std::fclose(f);
-  EXPECT_NE(load_error(loader, path).find("cannot load plugin library"), std::string::npos);
+  const std::string e = load_error(loader, path);
+  EXPECT_NE(e.find("is not a hapticd plugin library"), std::string::npos) << e;
+  EXPECT_NE(e.find("it was not loaded"), std::string::npos) << e;
 }
 
 TEST(PluginLoader, MissingSymbol) {
@@ -96,7 +102,48 @@ TEST(PluginLoader, ScanningReportsBrokenLibrariesButKeepsGoing) {
                                "resolved_acceleration"}) {
     EXPECT_EQ(names.count(expected), 1u) << expected;
   }
-  EXPECT_EQ(problems.size(), 2u);  // the two fixtures
+  // The library of another API version is reported; the one that is no plugin at all is passed over unloaded
+  // (its initialiser would leave a mark).
+  EXPECT_EQ(problems.size(), 1u);
+  EXPECT_EQ(std::getenv("HAPTICD_FIXTURE_NOT_A_PLUGIN_LOADED"), nullptr);
+}
+
+TEST(PluginLoader, ASystemLibraryFolderIsNotLoaded) {
+  // The attack: plugin_paths: [/usr/lib/x86_64-linux-gnu] dlopened all 168 system libraries. Now none is
+  // loaded: a library is opened only when its symbol table exports hapticd's entry point.
+  std::size_t before = 0;
+  dl_iterate_phdr([](dl_phdr_info*, std::size_t, void* n) { return ++*static_cast<std::size_t*>(n), 0; }, &before);
+  PluginLoader loader({"/usr/lib/x86_64-linux-gnu", "/lib/x86_64-linux-gnu"});
+  std::vector<std::string> problems;
+  EXPECT_TRUE(loader.list_all(&problems).empty());
+  EXPECT_TRUE(problems.empty());
+  std::size_t after = 0;
+  dl_iterate_phdr([](dl_phdr_info*, std::size_t, void* n) { return ++*static_cast<std::size_t*>(n), 0; }, &after);
+  EXPECT_EQ(after, before) << "libraries were loaded while scanning a system folder";
+}
+
+TEST(PluginLoader, TheElfCheckFindsTheEntryPoint) {
+  EXPECT_TRUE(elf_exports_symbol(std::string(HAPTICD_TEST_PLUGIN_DIR) + "/libhapticd_test_plugins.so", "hapticd_plugin_api_version"));
+  EXPECT_FALSE(elf_exports_symbol(std::string(HAPTICD_TEST_FIXTURE_DIR) + "/libhapticd_fixture_not_a_plugin.so",
+                                  "hapticd_plugin_api_version"));
+  EXPECT_TRUE(elf_exports_symbol(std::string(HAPTICD_TEST_FIXTURE_DIR) + "/libhapticd_fixture_not_a_plugin.so",
+                                 "some_unrelated_function"));
+  EXPECT_FALSE(elf_exports_symbol("/dev/zero", "x"));
+  EXPECT_FALSE(elf_exports_symbol("/nonexistent.so", "x"));
+  // Truncated and corrupted copies of a real library: never a crash, never a false yes.
+  std::ifstream in(std::string(HAPTICD_TEST_PLUGIN_DIR) + "/libhapticd_test_plugins.so", std::ios::binary);
+  const std::string image((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string path = ::testing::TempDir() + "/libcut.so";
+  std::uint64_t state = 1;
+  for (int k = 0; k < 200; ++k) {
+    std::string copy = image.substr(0, k < 100 ? image.size() * static_cast<std::size_t>(k) / 100 : image.size());
+    for (int flips = 0; k >= 100 && flips < 64; ++flips) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      copy[(state >> 33) % std::min<std::size_t>(copy.size(), 4096)] ^= static_cast<char>(state >> 20);
+    }
+    std::ofstream(path, std::ios::binary) << copy;
+    (void)elf_exports_symbol(path, "hapticd_plugin_api_version");
+  }
 }
 
 TEST(PluginLoader, EnvironmentPathIsSearched) {

@@ -21,8 +21,11 @@ namespace {
 
 using test::cycle_at;
 
-// The simulated ViSHaRD3 in admittance control pushed by a scripted force, with a `safety` section.
-std::string sim_device(const std::string& push, const std::string& safety, const std::string& model_extra = "") {
+// The simulated ViSHaRD3 in admittance control pushed by a scripted force, with a `safety` section. The fault
+// tests below check the damping safe mode (zero torque after safe_damping_s): gravity_hold is off unless the
+// section says otherwise (the gravity-holding safe mode has tests of its own).
+std::string sim_device(const std::string& push, std::string safety, const std::string& model_extra = "") {
+  if (safety.find("gravity_hold") == std::string::npos) safety = "gravity_hold: false" + (safety.empty() ? "" : ", " + safety);
   return test::sim_vishard3_device_yaml("v3", "constant", push) + R"(    virtual_model:
       plugin: admittance
       parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [40.0, 40.0, 40.0], rotation: false)" +
@@ -327,15 +330,15 @@ TEST(Safety, SafeModeWithAnUntrustedMeasurementStaysAtZeroTorque) {
   last << 10.0;
   velocity << 0.5;
   supervisor.enter_safe_mode(last);
-  supervisor.safe_torque(velocity, false, torque);
+  supervisor.safe_torque(last, velocity, false, nullptr, torque);
   EXPECT_EQ(torque[0], 0.0);
   EXPECT_TRUE(supervisor.at_rest());
   for (int k = 0; k < 100; ++k) {
-    supervisor.safe_torque(velocity, true, torque);
+    supervisor.safe_torque(last, velocity, true, nullptr, torque);
     ASSERT_EQ(torque[0], 0.0) << "cycle " << k;
   }
   supervisor.enter_safe_mode(last);
-  supervisor.safe_torque(velocity, true, torque);
+  supervisor.safe_torque(last, velocity, true, nullptr, torque);
   EXPECT_NEAR(torque[0], 10.0 * (1.0 - 1.0 / 40.0) - 3.0 * 0.5, 1e-12);  // fade 1/40 down, damping 3 N m s/rad
   EXPECT_FALSE(supervisor.at_rest());
 }
@@ -384,6 +387,7 @@ TEST(Safety, SensorSaturationStopsTheDevice) {
     controller:
       plugin: resolved_acceleration
       parameters: {task: translation}
+    safety: {gravity_hold: false}
 )",
                     3000);
   expect_safe_stop(r, DeviceFault::sensor_saturation, reference, 10.0);

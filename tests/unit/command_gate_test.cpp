@@ -30,25 +30,72 @@ hapticd_msg_EngineCommand command(const char* engine, std::uint64_t serial) {
   return c;
 }
 
+// A participant (by its GUID's first byte) and one of its writers.
+PeerId peer(unsigned char n) {
+  PeerId p;
+  p.guid[0] = n;
+  return p;
+}
+Sender from(unsigned char participant, dds_instance_handle_t writer) { return Sender{peer(participant), writer}; }
+
 TEST(CommandGate, OnlyTheOwnerIsHeardAndOnlyInOrderAndFresh) {
   CommandGate gate(dds::CommandBounds{}, 0.1);
-  EXPECT_EQ(gate.admit(command("a", 1), kNow, kNow).reason, RejectReason::not_owner);  // nobody claimed yet
-  EXPECT_TRUE(gate.claim("a"));
-  EXPECT_FALSE(gate.claim("b"));
-  EXPECT_TRUE(gate.claim("a"));  // re-claiming one's own device is fine
-  EXPECT_TRUE(gate.admit(command("a", 1), kNow, kNow).accepted);
-  EXPECT_EQ(gate.admit(command("a", 1), kNow, kNow).reason, RejectReason::out_of_order);
-  EXPECT_EQ(gate.admit(command("b", 2), kNow, kNow).reason, RejectReason::not_owner);
-  EXPECT_EQ(gate.admit(command("a", 3), kNow - 200'000'000, kNow).reason, RejectReason::stale);
-  EXPECT_EQ(gate.admit(command("a", 4), kNow + 200'000'000, kNow).reason, RejectReason::stale);  // from the future
-  EXPECT_TRUE(gate.admit(command("a", 5), kNow - 50'000'000, kNow).accepted);
-  EXPECT_FALSE(gate.release("b"));
-  EXPECT_TRUE(gate.release("a"));
-  EXPECT_TRUE(gate.claim("b"));
-  EXPECT_TRUE(gate.admit(command("b", 1), kNow, kNow).accepted);  // a new claim restarts the serials
+  const Sender a = from(1, 11), b = from(2, 21);
+  EXPECT_EQ(gate.admit(command("a", 1), a, kNow, kNow).reason, RejectReason::not_owner);  // nobody claimed yet
+  EXPECT_TRUE(gate.claim("a", peer(1)));
+  EXPECT_FALSE(gate.claim("b", peer(2)));
+  EXPECT_TRUE(gate.claim("a", peer(1)));  // re-claiming one's own device is fine
+  EXPECT_TRUE(gate.admit(command("a", 1), a, kNow, kNow).accepted);
+  EXPECT_EQ(gate.admit(command("a", 1), a, kNow, kNow).reason, RejectReason::out_of_order);
+  EXPECT_EQ(gate.admit(command("b", 2), b, kNow, kNow).reason, RejectReason::not_owner);
+  EXPECT_EQ(gate.admit(command("a", 3), a, kNow - 200'000'000, kNow).reason, RejectReason::stale);
+  EXPECT_EQ(gate.admit(command("a", 4), a, kNow + 200'000'000, kNow).reason, RejectReason::stale);  // from the future
+  EXPECT_TRUE(gate.admit(command("a", 5), a, kNow - 50'000'000, kNow).accepted);
+  EXPECT_FALSE(gate.release(peer(2)));
+  EXPECT_TRUE(gate.release(peer(1)));
+  EXPECT_TRUE(gate.claim("b", peer(2)));
+  EXPECT_TRUE(gate.admit(command("b", 1), b, kNow, kNow).accepted);  // a new claim restarts the serials
   EXPECT_EQ(gate.accepted(), 3u);
   EXPECT_EQ(gate.rejected_total(), 5u);
   EXPECT_EQ(gate.received(), 8u);
+}
+
+TEST(CommandGate, TheOwnersIdFromAnotherParticipantIsNotTheOwner) {
+  // The attack: a second process writes under the owner's client id with a serial near 2^64, and asks to
+  // release the device or claims it under the same id.
+  CommandGate gate(dds::CommandBounds{}, 0.1);
+  ASSERT_TRUE(gate.claim("engine", peer(1)));
+  const Sender owner = from(1, 11), spoofer = from(2, 21);
+  EXPECT_TRUE(gate.admit(command("engine", 1), owner, kNow, kNow).accepted);
+  EXPECT_EQ(gate.admit(command("engine", ~std::uint64_t{0} - 5), spoofer, kNow, kNow).reason, RejectReason::not_owner);
+  EXPECT_FALSE(gate.claim("engine", peer(2)));
+  EXPECT_FALSE(gate.release(peer(2)));
+  EXPECT_TRUE(gate.owned_by(peer(1)));
+  EXPECT_FALSE(gate.owned_by(peer(2)));
+  // The owner's own serials go on: the spoofer's huge serial was never recorded.
+  EXPECT_TRUE(gate.admit(command("engine", 2), owner, kNow, kNow).accepted);
+  // The owner's participant under another client id is not the claim either.
+  EXPECT_EQ(gate.admit(command("other", 3), owner, kNow, kNow).reason, RejectReason::not_owner);
+  EXPECT_FALSE(gate.claim("other", peer(1)));
+  // A writer whose participant is unknown (no longer matched) is nobody.
+  EXPECT_EQ(gate.admit(command("engine", 4), Sender{PeerId{}, 99}, kNow, kNow).reason, RejectReason::not_owner);
+  EXPECT_EQ(gate.rejected()[static_cast<std::size_t>(RejectReason::not_owner)], 3u);
+}
+
+TEST(CommandGate, SerialsAreOrderedPerWriterOfTheOwner) {
+  CommandGate gate(dds::CommandBounds{}, 0.1);
+  ASSERT_TRUE(gate.claim("engine", peer(1)));
+  const Sender first = from(1, 11), second = from(1, 12);
+  EXPECT_TRUE(gate.admit(command("engine", 100), first, kNow, kNow).accepted);
+  EXPECT_TRUE(gate.admit(command("engine", 1), second, kNow, kNow).accepted);  // its own sequence
+  EXPECT_EQ(gate.admit(command("engine", 100), first, kNow, kNow).reason, RejectReason::out_of_order);
+  EXPECT_TRUE(gate.admit(command("engine", 2), second, kNow, kNow).accepted);
+  // The table is bounded: more writers than it holds evict the least recently used, never grow it.
+  for (dds_instance_handle_t w = 100; w < 100 + 4 * CommandGate::kWriters; ++w)
+    EXPECT_TRUE(gate.admit(command("engine", 5), from(1, w), kNow, kNow).accepted);
+  EXPECT_TRUE(gate.admit(command("engine", 6), from(1, 100 + 4 * CommandGate::kWriters - 1), kNow, kNow).accepted);
+  EXPECT_EQ(gate.admit(command("engine", 6), from(1, 100 + 4 * CommandGate::kWriters - 1), kNow, kNow).reason,
+            RejectReason::out_of_order);
 }
 
 TEST(CommandValidation, EachKindIsCheckedForItsOwnFields) {

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 
+#include "hapticd/input_file.hpp"
 #include "hapticd/model/urdf_loader.hpp"
 
 namespace hapticd::model {
@@ -37,11 +38,15 @@ void numbers(const std::filesystem::path& file, const YAML::Node& node, const st
 }  // namespace
 
 FrictionFile read_friction_file(const std::filesystem::path& file) {
+  std::string text;
+  try {
+    text = read_input_file(file, "friction file");
+  } catch (const std::runtime_error& e) {
+    throw ModelError(e.what());
+  }
   YAML::Node root;
   try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::BadFile&) {
-    throw ModelError(file.string() + ": cannot read the friction file");
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw ModelError(file.string() + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }

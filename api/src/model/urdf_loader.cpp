@@ -1,5 +1,6 @@
 #include "hapticd/model/urdf_loader.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
@@ -8,6 +9,8 @@
 #include <map>
 #include <set>
 #include <sstream>
+
+#include "hapticd/input_file.hpp"
 
 namespace hapticd::model {
 namespace {
@@ -192,6 +195,46 @@ void read_drives(const TiXmlDocument& doc, const std::string& source, std::vecto
   }
 }
 
+// Every <inertial> must be physical: a finite mass above zero, a finite inertia tensor that is positive definite
+// and whose principal moments satisfy the triangle inequality (each at most the sum of the other two). urdfdom
+// accepts "nan" and negative masses, and the dynamics would run on them.
+void check_inertials(const TiXmlElement& robot, const std::string& source) {
+  for (const TiXmlElement* link = robot.FirstChildElement("link"); link != nullptr; link = link->NextSiblingElement("link")) {
+    const TiXmlElement* inertial = link->FirstChildElement("inertial");
+    if (inertial == nullptr) continue;
+    const std::string name = link->Attribute("name") != nullptr ? link->Attribute("name") : "?";
+    const auto fail = [&](const TiXmlElement& at, const std::string& what) {
+      throw ModelError(source + ":" + std::to_string(at.Row()) + ": link '" + name + "': " + what);
+    };
+    const auto number = [&](const TiXmlElement& at, const char* attribute) {
+      const char* text = at.Attribute(attribute);
+      if (text == nullptr) fail(at, std::string("<") + at.Value() + "> has no '" + attribute + "'");
+      char* end = nullptr;
+      const double v = std::strtod(text, &end);
+      if (end == text || *end != '\0' || !std::isfinite(v))
+        fail(at, std::string(at.Value()) + " " + attribute + "=\"" + text + "\" is not a finite number");
+      return v;
+    };
+    const TiXmlElement* mass = inertial->FirstChildElement("mass");
+    if (mass == nullptr) fail(*inertial, "<inertial> without <mass>");
+    if (const double m = number(*mass, "value"); !(m > 0.0)) fail(*mass, "mass " + std::to_string(m) + " kg: must be above zero");
+    const TiXmlElement* inertia = inertial->FirstChildElement("inertia");
+    if (inertia == nullptr) fail(*inertial, "<inertial> without <inertia>");
+    Eigen::Matrix3d i;
+    i << number(*inertia, "ixx"), number(*inertia, "ixy"), number(*inertia, "ixz"), 0, number(*inertia, "iyy"),
+        number(*inertia, "iyz"), 0, 0, number(*inertia, "izz");
+    i(1, 0) = i(0, 1);
+    i(2, 0) = i(0, 2);
+    i(2, 1) = i(1, 2);
+    const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(i, Eigen::EigenvaluesOnly).eigenvalues();
+    if (!(moments.minCoeff() > 0.0)) fail(*inertia, "the inertia tensor is not positive definite");
+    const double tolerance = 1e-9 * moments.maxCoeff();
+    for (int k = 0; k < 3; ++k)
+      if (moments[k] > moments[(k + 1) % 3] + moments[(k + 2) % 3] + tolerance)
+        fail(*inertia, "the principal moments of inertia violate the triangle inequality (one exceeds the sum of the others)");
+  }
+}
+
 }  // namespace
 
 RobotModel parse_robot_model(const std::string& urdf_text, const std::string& source_name) {
@@ -203,6 +246,7 @@ RobotModel parse_robot_model(const std::string& urdf_text, const std::string& so
   if (doc.RootElement() == nullptr || std::string(doc.RootElement()->Value()) != "robot") {
     throw ModelError(source_name + ": the root element is not <robot>");
   }
+  check_inertials(*doc.RootElement(), source_name);
   const urdf::ModelInterfaceSharedPtr urdf_model = urdf::parseURDF(urdf_text);
   if (!urdf_model) {
     throw ModelError(source_name + ": not a valid URDF (urdfdom rejected it; its reason is printed above)");
@@ -217,11 +261,13 @@ RobotModel parse_robot_model(const std::string& urdf_text, const std::string& so
 }
 
 RobotModel load_robot_model(const std::filesystem::path& urdf_file) {
-  std::ifstream in(urdf_file);
-  if (!in) throw ModelError(urdf_file.string() + ": cannot open the robot model file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_robot_model(text.str(), urdf_file.string());
+  std::string text;
+  try {
+    text = read_input_file(urdf_file, "robot model");
+  } catch (const std::runtime_error& e) {
+    throw ModelError(e.what());
+  }
+  return parse_robot_model(text, urdf_file.string());
 }
 
 }  // namespace hapticd::model

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <random>
 #include <thread>
 
 #include "hapticd/dds/conversion.hpp"
@@ -134,7 +135,9 @@ struct Client::Impl {
     return nullptr;
   }
   std::map<std::uint64_t, Reply> replies;
-  std::atomic<std::uint64_t> next_request{1};
+  // Request ids start at a random point: replies are matched by (client id, request id), and two clients that
+  // declare the same id must not take each other's replies.
+  std::atomic<std::uint64_t> next_request{std::random_device{}() | (std::uint64_t{std::random_device{}()} << 32) | 1};
   std::atomic<std::uint64_t> serial{0};
 
   std::mutex callback_mutex;

@@ -20,12 +20,15 @@ Eigen::Vector3d clamp_norm(const Eigen::Vector3d& v, double limit) noexcept {
 
 ParameterSchema VirtualAdmittance::parameter_schema() {
   ParameterSchema s;
-  s.real_vector("mass_kg", "virtual mass along the world axes").size(3).greater_than(0.0)
+  // Sane bounds: below about 0.1 kg no inner loop renders a mass stably (the thesis's devices reach 0.4 kg at
+  // best); a tiny value makes the body fly off and the device fault on speed.
+  s.real_vector("mass_kg", "virtual mass along the world axes").unit("kg").size(3).minimum(0.1).maximum(1000.0)
       .default_value(std::vector<double>{5.0, 5.0, 5.0});
   s.real_vector("damping_n_s_per_m", "virtual damping along the world axes").size(3).minimum(0.0)
       .default_value(std::vector<double>{10.0, 10.0, 10.0});
   s.boolean("rotation", "render rotations too (devices with actuated handle orientation)").default_value(true);
-  s.real_vector("inertia_kg_m2", "virtual principal inertia about the handle axes").size(3).greater_than(0.0)
+  s.real_vector("inertia_kg_m2", "virtual principal inertia about the handle axes").unit("kg m^2").size(3).minimum(0.001)
+      .maximum(100.0)
       .default_value(std::vector<double>{0.02, 0.02, 0.02});
   s.real_vector("rotational_damping_n_m_s", "virtual rotational damping about the handle axes").size(3).minimum(0.0)
       .default_value(std::vector<double>{0.1, 0.1, 0.1});

@@ -10,8 +10,10 @@
 #include "app/session_monitor.hpp"
 #include "app/session_report.hpp"
 #include "app/signals.hpp"
+#include "app/startup_checks.hpp"
 #include "config/config_error.hpp"
 #include "config/session_config.hpp"
+#include "dds/cyclone_log.hpp"
 #include "dds/dds_bridge.hpp"
 #include "executor/executor.hpp"
 #include "recorder/recorder.hpp"
@@ -85,6 +87,13 @@ int run_session(const RunOptions& options) {
   if (lockstep && server.duration_s <= 0.0)
     spdlog::warn("lockstep clock without a duration: the session runs as fast as possible until SIGINT/SIGTERM");
 
+  // The stacks the threads still to come reserve (loop, recorder, bridge; Cyclone creates its own with smaller
+  // stacks), and 8 MB of working memory: calibrated with ulimit -v (docs/safety.md).
+  if (const std::string missing = check_address_space(s->config.dds.enabled ? 6 : 3, 8u << 20); !missing.empty()) {
+    spdlog::error("cannot start the session: {}; no device was powered", missing);
+    return kExitRuntimeError;
+  }
+
   std::unique_ptr<Recorder> recorder;
   if (!options.record_csv.empty()) {
     std::vector<std::string> names;
@@ -123,15 +132,15 @@ int run_session(const RunOptions& options) {
 
   std::unique_ptr<DdsBridge> bridge;
   if (s->config.dds.enabled) {
-    try {
+    try {  // before any device is powered (Executor::run)
       bridge = std::make_unique<DdsBridge>(s->config.dds, server.rate_hz, sessions, dds_cpus);
+      bridge->set_loop_statistics(&executor.live());
+      executor.set_cycle_listener(bridge.get());
+      bridge->start();
     } catch (const std::exception& e) {
-      spdlog::error("DDS interface: {}", e.what());
+      spdlog::error("DDS interface: {}; no device was powered", e.what());
       return kExitRuntimeError;
     }
-    bridge->set_loop_statistics(&executor.live());
-    executor.set_cycle_listener(bridge.get());
-    bridge->start();
     std::string cpus;
     for (int c : dds_cpus) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
     spdlog::info("DDS interface on domain {} ({}){}", s->config.dds.domain_id,
@@ -149,23 +158,35 @@ int run_session(const RunOptions& options) {
                lockstep ? "lockstep" : "realtime",
                server.duration_s > 0 ? fmt::format(", {} s", server.duration_s) : std::string(", until stopped"));
 
-  SessionMonitor monitor(sessions, bridge.get(), &stop);
+  SessionMonitor monitor(sessions, bridge.get(), &stop, recorder.get());
 
   ExecutorResult result;
   try {
     result = executor.run(stop, [&] { monitor.poll(); });
+  } catch (const std::bad_alloc&) {
+    spdlog::error("session failed: out of memory (no device was left powered)");
+    return kExitRuntimeError;
   } catch (const std::exception& e) {
-    spdlog::error("session failed: {}", e.what());
+    spdlog::error("session failed: {} (no device was left powered)", e.what());
     return kExitRuntimeError;
   }
   for (const auto& w : result.warnings) spdlog::warn("{}", w);
-  if (recorder) recorder->finish();
+  if (recorder) {
+    recorder->finish();
+    monitor.poll();  // a failure at the end (the last chunk, the sync, the close) is announced too
+  }
   if (bridge) {
     bridge->stop();
     for (std::size_t i = 0; i < sessions.size(); ++i) {
       spdlog::info("{}: engine commands accepted {}, rejected {}, deadline misses {}", sessions[i]->name(),
                    bridge->commands_accepted(i), bridge->commands_rejected(i), bridge->deadline_misses(i));
     }
+    if (const std::uint64_t unknown = bridge->unknown_device_commands(); unknown > 0)
+      spdlog::warn("{} engine commands named a device this server does not have: rejected as malformed", unknown);
+    if (const std::uint64_t unknown = bridge->unknown_device_requests(); unknown > 0)
+      spdlog::info("{} requests named a device this server does not have: left to the server that has it", unknown);
+    if (const std::uint64_t ended = bridge->claims_ended(); ended > 0)
+      spdlog::info("{} claims ended because their claimant was gone", ended);
     const RoundTripStatistics rt = bridge->round_trip();
     if (rt.count > 0) {
       spdlog::info("round trip state -> engine -> command accepted: {} samples, p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us",
@@ -181,14 +202,34 @@ int run_session(const RunOptions& options) {
   report.config = &s->config;
   report.result = &result;
   report.sessions = &s->sessions;
+  report.monitor = &monitor;
   report.records_written = recorder ? recorder->written() : 0;
   report.records_dropped = recorder ? recorder->dropped() : 0;
+  report.records_lost = recorder ? recorder->lost() : 0;
+  report.recording_failed = recorder && recorder->failed();
   if (bridge) {
     report.round_trip = bridge->round_trip();
     report.has_round_trip = report.round_trip.count > 0;
+    report.dds.enabled = true;
+    for (std::size_t i = 0; i < sessions.size(); ++i) {
+      report.dds.deadline_misses += bridge->deadline_misses(i);
+      report.dds.commands_rejected += bridge->commands_rejected(i);
+    }
+    report.dds.commands_rejected += bridge->unknown_device_commands();
+    report.dds.claims_ended = bridge->claims_ended();
+    const cyclone_log::Counts log = cyclone_log::counts();
+    report.dds.log_forwarded = log.forwarded;
+    report.dds.log_suppressed = log.suppressed;
   }
   for (const auto& line : report_lines(report)) spdlog::info("{}", line);
-  if (recorder) spdlog::info("recorded {} device-cycles to {} ({} dropped)", recorder->written(), options.record_csv, recorder->dropped());
+  if (recorder) {
+    if (recorder->failed()) {
+      spdlog::error("recording FAILED: {}; {} device-cycles in {} (whole rows), {} lost, {} dropped", recorder->error(),
+                    recorder->written(), options.record_csv, recorder->lost(), recorder->dropped());
+    } else {
+      spdlog::info("recorded {} device-cycles to {} ({} dropped)", recorder->written(), options.record_csv, recorder->dropped());
+    }
+  }
   if (!options.stats_json.empty()) {
     std::ofstream out(options.stats_json);
     out << report_json(report);
@@ -197,9 +238,8 @@ int run_session(const RunOptions& options) {
       return kExitRuntimeError;
     }
   }
-  for (const auto& d : s->sessions)
-    if (d->fault() != DeviceFault::none) return kExitDeviceFault;
-  return kExitOk;
+  if (any_device_faulted(report)) return kExitDeviceFault;
+  return recorder && recorder->failed() ? kExitRecordingFailed : kExitOk;
 }
 
 int list_plugins(const std::string& config_file) {

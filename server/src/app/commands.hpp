@@ -1,7 +1,9 @@
 #pragma once
 // The hapticd commands. Each returns the process exit code:
-//   0 success; 2 configuration or plugin-loading error; 3 a device faulted during the session;
-//   4 any other run-time error (e.g. an output file that cannot be written).
+//   0 success; 2 configuration or plugin-loading error; 3 a device faulted during the session (also when it
+//   recovered);
+//   4 any other run-time error (e.g. an output file that cannot be written, a resource that cannot be had at
+//   start-up); 5 the recording failed (a write, sync or close: cycles were lost) - 3 takes precedence.
 #include <optional>
 #include <string>
 
@@ -20,6 +22,7 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitConfigError = 2;
 inline constexpr int kExitDeviceFault = 3;
 inline constexpr int kExitRuntimeError = 4;
+inline constexpr int kExitRecordingFailed = 5;
 
 int run_session(const RunOptions& options);
 int check_config(const std::string& config_file);

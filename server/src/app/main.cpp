@@ -2,10 +2,17 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
+#include <exception>
+#include <new>
+
 #include "app/commands.hpp"
+#include "config/config_error.hpp"
 #include "hapticd/api_version.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_command(int argc, char** argv) {
   using namespace hapticd::server;
   CLI::App app{"hapticd - real-time haptic control server"};
   app.set_version_flag("--version", std::string("hapticd 0.1.0 (plugin API ") + std::to_string(hapticd::kApiVersion) + ")");
@@ -53,4 +60,27 @@ int main(int argc, char** argv) {
   if (!run.config_file.empty()) return run_session(run);
   std::fputs(app.help().c_str(), stdout);
   return 1;
+}
+
+}  // namespace
+
+// Every error ends with a message and an exit code: nothing escapes as an abort. Devices are powered only
+// once every resource of the session is in place (commands.cpp, Executor::run), so an error here leaves them off.
+int main(int argc, char** argv) {
+  using namespace hapticd::server;
+  try {
+    return run_command(argc, argv);
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitConfigError;
+  } catch (const std::bad_alloc&) {
+    std::fputs("error: out of memory (raise the process's memory limit)\n", stderr);
+    return kExitRuntimeError;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitRuntimeError;
+  } catch (...) {
+    std::fputs("error: an unknown error ended hapticd\n", stderr);
+    return kExitRuntimeError;
+  }
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "dds/dds_bridge.hpp"
+#include "recorder/recorder.hpp"
 #include "safety/fault_history.hpp"
 #include "session/device_session.hpp"
 
@@ -29,12 +30,14 @@ void log_fault_report(const DeviceSession& d, const FaultReport& r) {
 }  // namespace
 
 SessionMonitor::SessionMonitor(std::vector<DeviceSession*> devices, DdsBridge* bridge,
-                               const std::atomic<bool>* stop_requested)
+                               const std::atomic<bool>* stop_requested, const Recorder* recorder)
     : devices_(std::move(devices)),
       bridge_(bridge),
       stop_requested_(stop_requested),
       reported_(devices_.size(), DeviceFault::none),
-      report_(std::make_unique<FaultReport>()) {}
+      logs_(devices_.size()),
+      report_(std::make_unique<FaultReport>()),
+      recorder_(recorder) {}
 
 SessionMonitor::~SessionMonitor() = default;
 
@@ -47,14 +50,30 @@ void SessionMonitor::poll() {
       log_fault_report(d, *report_);
       if (bridge_ != nullptr) bridge_->publish_fault_report(i, *report_);
     }
+    SafetyEvent e;
+    while (d.take_safety_event(e)) {
+      if (e.kind == SafetyEvent::Kind::recovery)
+        spdlog::info("device '{}' recovered from {} on request at cycle {}", d.name(), fault_code(e.fault), e.cycle);
+      Log& log = logs_[i];
+      if (log.events.size() < kMaxLoggedEvents) {
+        log.events.push_back(e);
+      } else {
+        ++log.not_kept;
+      }
+    }
     const DeviceFault f = d.fault();
     if (f == reported_[i]) continue;
-    if (f == DeviceFault::none) {
-      spdlog::info("device '{}' recovered from {} on request", d.name(), fault_code(reported_[i]));
-    } else if (f == DeviceFault::configure) {
+    if (f == DeviceFault::configure) {
       spdlog::error("device '{}' is in its safe state: {}", d.name(), to_string(f));
     }
     reported_[i] = f;
+  }
+  if (recorder_ != nullptr && recorder_->failed() && !recording_failure_logged_) {
+    recording_failure_logged_ = true;
+    const std::string message = recorder_->error() + "; the recording stops here (" + std::to_string(recorder_->lost()) +
+                                " device-cycles lost so far), the session runs on";
+    spdlog::error("{}", message);
+    if (bridge_ != nullptr) bridge_->announce(hapticd_msg_EVENT_RECORDING, "recording_failed", message);
   }
   if (stop_requested_ != nullptr && stop_requested_->load() && !stop_logged_) {
     spdlog::info("stop requested: every device stops through its safe mode (damping, then zero torque)");

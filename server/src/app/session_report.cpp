@@ -3,7 +3,30 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "app/session_monitor.hpp"
+
 namespace hapticd::server {
+namespace {
+
+const char* kind_name(SafetyEvent::Kind k) { return k == SafetyEvent::Kind::fault ? "fault" : "recovery"; }
+
+std::string events_json(const SessionReport& r, std::size_t device) {
+  if (r.monitor == nullptr) return "[]";
+  std::string out = "[";
+  const auto& log = r.monitor->safety_log(device);
+  for (std::size_t k = 0; k < log.size(); ++k)
+    out += fmt::format("{}{{\"event\": \"{}\", \"fault\": \"{}\", \"cycle\": {}, \"time_s\": {:.6f}}}", k ? ", " : "",
+                       kind_name(log[k].kind), fault_code(log[k].fault), log[k].cycle, static_cast<double>(log[k].time_ns) * 1e-9);
+  return out + "]";
+}
+
+}  // namespace
+
+bool any_device_faulted(const SessionReport& r) {
+  for (const auto& d : *r.sessions)
+    if (d->faults_raised() > 0 || d->fault() != DeviceFault::none) return true;
+  return false;
+}
 
 std::string report_json(const SessionReport& r) {
   const CycleStatistics& s = r.result->statistics;
@@ -16,18 +39,26 @@ std::string report_json(const SessionReport& r) {
                      r.result->loop_time_s, r.result->wall_time_s, r.result->stop_requested);
   out += "  \"wakeup_latency_us\": " + histogram_json(s.wakeup_latency) + ",\n";
   out += "  \"compute_time_us\": " + histogram_json(s.compute_time) + ",\n";
-  out += fmt::format("  \"recorder\": {{\"records\": {}, \"dropped\": {}}},\n", r.records_written, r.records_dropped);
+  out += fmt::format("  \"recorder\": {{\"records\": {}, \"dropped\": {}, \"lost\": {}, \"failed\": {}}},\n", r.records_written,
+                     r.records_dropped, r.records_lost, r.recording_failed);
   if (r.has_round_trip) {
     const RoundTripStatistics& rt = r.round_trip;
     out += fmt::format("  \"dds_round_trip_us\": {{\"count\": {}, \"p50\": {:.3f}, \"p99\": {:.3f}, \"max\": {:.3f}}},\n",
                        rt.count, rt.p50_us, rt.p99_us, rt.max_us);
     out += fmt::format("  \"dds_applied_after_cycles\": [{}],\n", fmt::join(rt.applied_after_cycles, ", "));
   }
+  if (r.dds.enabled)
+    out += fmt::format("  \"dds\": {{\"deadline_misses\": {}, \"commands_rejected\": {}, \"claims_ended\": {}, "
+                       "\"log_forwarded\": {}, \"log_suppressed\": {}}},\n",
+                       r.dds.deadline_misses, r.dds.commands_rejected, r.dds.claims_ended, r.dds.log_forwarded,
+                       r.dds.log_suppressed);
   out += "  \"devices\": [";
   for (std::size_t i = 0; i < r.sessions->size(); ++i) {
     const DeviceSession& d = *(*r.sessions)[i];
-    out += fmt::format("{}\n    {{\"name\": \"{}\", \"fault\": \"{}\", \"fault_cycle\": {}, \"saturated_cycles\": {}}}",
-                       i ? "," : "", d.name(), to_string(d.fault()), d.fault_cycle(), d.saturated_cycles());
+    out += fmt::format("{}\n    {{\"name\": \"{}\", \"fault\": \"{}\", \"fault_cycle\": {}, \"faults\": {}, \"recoveries\": {}, "
+                       "\"saturated_cycles\": {}, \"safety_events\": {}}}",
+                       i ? "," : "", d.name(), to_string(d.fault()), d.fault_cycle(), d.faults_raised(), d.recoveries(),
+                       d.saturated_cycles(), events_json(r, i));
   }
   out += "\n  ]\n}\n";
   return out;
@@ -41,11 +72,26 @@ std::vector<std::string> report_lines(const SessionReport& r) {
   if (r.config->server.clock == ClockMode::realtime)
     lines.push_back("wake-up latency: " + histogram_summary(s.wakeup_latency));
   lines.push_back("compute time:    " + histogram_summary(s.compute_time));
-  for (const auto& d : *r.sessions)
-    lines.push_back(fmt::format("device '{}': {}{}", d->name(),
-                                d->fault() == DeviceFault::none ? std::string("ok")
-                                                                : fmt::format("FAULT at cycle {}: {}", d->fault_cycle(), to_string(d->fault())),
-                                d->saturated_cycles() ? fmt::format(", torque saturated in {} cycles", d->saturated_cycles()) : ""));
+  for (std::size_t i = 0; i < r.sessions->size(); ++i) {
+    const DeviceSession& d = *(*r.sessions)[i];
+    const std::string saturated =
+        d.saturated_cycles() ? fmt::format(", torque saturated in {} cycles", d.saturated_cycles()) : std::string();
+    if (d.faults_raised() == 0 && d.fault() == DeviceFault::none) {
+      lines.push_back(fmt::format("device '{}': ok{}", d.name(), saturated));
+      continue;
+    }
+    lines.push_back(fmt::format("device '{}': {} fault{}, {} recover{}; {}{}", d.name(), d.faults_raised(),
+                                d.faults_raised() == 1 ? "" : "s", d.recoveries(), d.recoveries() == 1 ? "y" : "ies",
+                                d.fault() == DeviceFault::none ? std::string("running at the end")
+                                                               : fmt::format("in its safe mode at the end ({})", fault_code(d.fault())),
+                                saturated));
+    if (r.monitor == nullptr) continue;
+    for (const SafetyEvent& e : r.monitor->safety_log(i))
+      lines.push_back(fmt::format("  {} {} at cycle {} ({:.3f} s): {}", e.kind == SafetyEvent::Kind::fault ? "FAULT" : "recovered from",
+                                  fault_code(e.fault), e.cycle, static_cast<double>(e.time_ns) * 1e-9, to_string(e.fault)));
+    if (const std::uint64_t more = r.monitor->safety_events_not_kept(i) + d.lost_safety_events(); more > 0)
+      lines.push_back(fmt::format("  ... and {} more faults and recoveries not kept", more));
+  }
   return lines;
 }
 

@@ -1,5 +1,7 @@
 #include "config/session_config.hpp"
 
+#include "hapticd/input_file.hpp"
+
 #include <set>
 
 #include "config/config_error.hpp"
@@ -134,6 +136,9 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
   d.lockstep_wait_s = p.real("lockstep_wait_s");
   d.lockstep_start_wait_s = p.real("lockstep_start_wait_s");
   d.cpu = static_cast<int>(p.integer("cpu"));
+  d.max_peers = static_cast<int>(p.integer("max_peers"));
+  d.claim_grace_s = p.real("claim_grace_s");
+  d.log_lines_per_s = p.real("log_lines_per_s");
   return d;
 }
 
@@ -192,6 +197,15 @@ ParameterSchema dds_settings_schema() {
   s.integer("cpu", "CPU of the DDS threads: -2 auto (real-time clock, 2 or more CPUs: the loop on the last CPU "
                    "unless server.cpu is set, the DDS threads on the others), -1 no pinning").minimum(-2).maximum(1023)
       .default_value(std::int64_t{d.cpu});
+  s.integer("max_peers", "DDS writers whose participant the server remembers for ownership checks (least recently "
+                         "used first out), and writers remembered as having lost their liveliness")
+      .minimum(8).maximum(65536).default_value(std::int64_t{d.max_peers});
+  s.real("claim_grace_s", "a claim whose participant has no live engine command writer this long after the claim "
+                          "ends (a claimant that cannot be watched)").unit("s").greater_than(0.0).maximum(1.0)
+      .default_value(d.claim_grace_s);
+  s.real("log_lines_per_s", "Cyclone DDS's own log lines (e.g. warnings about malformed packets) pass through the "
+                            "server's log at most this often, in bursts of 20; the rest are counted and summarised")
+      .unit("1/s").greater_than(0.0).maximum(1000.0).default_value(d.log_lines_per_s);
   return s;
 }
 
@@ -230,13 +244,19 @@ namespace {
 SessionConfig read_session_config(const std::filesystem::path& path) {
   const std::string file = path.string();
   if (!std::filesystem::exists(path)) throw ConfigError(file, 0, "", "no such file");
+  std::string text;
+  try {
+    text = read_input_file(path, "session file");
+  } catch (const std::runtime_error& e) {
+    std::string message = e.what();  // "<file>: what is wrong"; the error names the file itself
+    if (message.rfind(file + ": ", 0) == 0) message.erase(0, file.size() + 2);
+    throw ConfigError(file, 0, "", message);
+  }
   YAML::Node root;
   try {
-    root = YAML::LoadFile(file);
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(file, e.mark.is_null() ? 0 : e.mark.line + 1, "", "YAML syntax error: " + e.msg);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError(file, 0, "", "cannot read the file");
   }
   if (!root.IsDefined() || root.IsNull()) throw ConfigError(file, 0, "", "the file is empty");
 

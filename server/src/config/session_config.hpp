@@ -51,6 +51,14 @@ struct DdsSettings {
   // CPU of the DDS threads (the bridge's and Cyclone's): -2 auto (real-time clock on 2+ CPUs: the loop gets
   // the last CPU unless server.cpu says otherwise, the DDS threads the others), -1 no pinning, else that CPU.
   int cpu = -2;
+  // Writers whose participant the server remembers (for ownership) and writers that lost their liveliness: a
+  // bounded table, least recently used first out (docs/safety.md, "Ownership").
+  int max_peers = 256;
+  // A claim whose participant has no live engine command writer this long after the claim ends (the claimant
+  // cannot be watched; docs/safety.md).
+  double claim_grace_s = 0.5;
+  // Cyclone DDS's own log lines pass through the server's logger at most this often (the rest are counted).
+  double log_lines_per_s = 5.0;
 };
 
 struct PluginConfig {

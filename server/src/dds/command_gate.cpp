@@ -1,21 +1,30 @@
 #include "dds/command_gate.hpp"
 
+#include <algorithm>
+
 #include "hapticd/dds/conversion.hpp"
 
 namespace hapticd::server {
 
-bool CommandGate::claim(std::string_view client) {
-  if (client.empty()) return false;
-  if (!owner_.empty() && owner_ != client) return false;
+bool CommandGate::claim(std::string_view client, const PeerId& participant) {
+  if (client.empty() || participant.empty()) return false;
+  if (!owner_.empty() && (owner_participant_ != participant || owner_ != client)) return false;
   owner_ = std::string(client);
-  last_serial_ = 0;  // a (re)claiming engine starts its serial numbers again
+  owner_participant_ = participant;
+  serials_ = {};  // a (re)claiming engine starts its serial numbers again
   return true;
 }
 
-bool CommandGate::release(std::string_view client) {
-  if (owner_.empty() || owner_ != client) return false;
-  owner_.clear();
+bool CommandGate::release(const PeerId& participant) {
+  if (!owned_by(participant)) return false;
+  release_any();
   return true;
+}
+
+void CommandGate::release_any() {
+  owner_.clear();
+  owner_participant_ = PeerId{};
+  serials_ = {};
 }
 
 CommandGate::Verdict CommandGate::reject(dds::RejectReason reason) {
@@ -29,15 +38,30 @@ std::uint64_t CommandGate::rejected_total() const noexcept {
   return n;
 }
 
-CommandGate::Verdict CommandGate::admit(const hapticd_msg_EngineCommand& command, std::int64_t source_ns, std::int64_t now_ns) {
+std::uint64_t& CommandGate::last_serial_of(dds_instance_handle_t writer) {
+  ++clock_;
+  for (WriterSerial& w : serials_)
+    if (w.writer == writer) {
+      w.used = clock_;
+      return w.serial;
+    }
+  WriterSerial& slot = *std::min_element(serials_.begin(), serials_.end(),
+                                         [](const WriterSerial& a, const WriterSerial& b) { return a.used < b.used; });
+  slot = WriterSerial{writer, 0, clock_};
+  return slot.serial;
+}
+
+CommandGate::Verdict CommandGate::admit(const hapticd_msg_EngineCommand& command, const Sender& sender, std::int64_t source_ns,
+                                        std::int64_t now_ns) {
   ++received_;
   if (const dds::ContentCheck c = dds::check_command_content(command, bounds_); !c.ok) return reject(c.reason);
-  if (owner_.empty() || dds::text_of(command.engine) != owner_) return reject(dds::RejectReason::not_owner);
-  if (command.serial <= last_serial_) return reject(dds::RejectReason::out_of_order);
+  if (!owned_by(sender.participant) || dds::text_of(command.engine) != owner_) return reject(dds::RejectReason::not_owner);
+  std::uint64_t& last_serial = last_serial_of(sender.writer);
+  if (command.serial <= last_serial) return reject(dds::RejectReason::out_of_order);
   // Fresh: not older than the limit, and not from the future beyond it either (a clock that is off).
   const std::int64_t age = now_ns - source_ns;
   if (age > max_age_ns_ || age < -max_age_ns_) return reject(dds::RejectReason::stale);
-  last_serial_ = command.serial;
+  last_serial = command.serial;
   ++accepted_;
   return {true, dds::RejectReason::other};
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 
+#include "dds/cyclone_log.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
 #include "session/device_session.hpp"
@@ -40,7 +41,10 @@ struct DdsBridge::Device {
   DeviceSession* session;
   mutable std::mutex mutex;  // the gate (the receiver changes it; the others read owner and counters)
   CommandGate gate;
-  dds_instance_handle_t owner_writer = 0;  // the owner's command writer, once it has sent one
+  // The claim: the request writer that made it (the claimant's participant is gone once it is unmatched) and
+  // when (steady clock; a claimant without a live command writer is given claim_grace_s).
+  dds_instance_handle_t claim_writer = 0;
+  std::int64_t claimed_ns = 0;
   std::atomic<dds_instance_handle_t> instance{0};  // its instance on the command reader (listener -> receiver)
   std::atomic<std::uint64_t> answered{0};  // newest state serial an accepted command answered
   std::atomic<bool> synced{false};         // the owner answers every state (lockstep sync waits for it)
@@ -51,6 +55,7 @@ struct DdsBridge::Device {
   DeviceSnapshot snapshot;
   bool have_snapshot = false;
   DeviceFault last_fault = DeviceFault::none;
+  std::uint64_t last_faults = 0;
   hapticd_msg_DeviceMode last_mode = hapticd_msg_MODE_STARTING;
   int last_scheme = 0;
   bool last_stale = false;
@@ -63,7 +68,8 @@ struct DdsBridge::Device {
 };
 
 struct DdsBridge::Dds {
-  Dds(const DdsSettings& s, const dds::CommandTiming& timing)
+  Dds(const DdsSettings& s, const dds::CommandTiming& timing, const dds_topic_filter& command_filter,
+      const dds_topic_filter& request_filter)
       : participant(dds::ParticipantOptions{s.domain_id, s.cyclone_config}),
         description(participant),
         state(participant),
@@ -71,10 +77,11 @@ struct DdsBridge::Dds {
         telemetry(participant),
         fault_report(participant),
         reply(participant),
-        command(participant, timing),
-        request(participant),
+        command(participant, timing, &command_filter),
+        request(participant, {}, &request_filter),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
-        wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {}
+        wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")),
+        peers(static_cast<std::size_t>(s.max_peers)) {}
   dds::Participant participant;
   dds::Writer<hapticd_msg_DeviceDescription> description;
   dds::Writer<hapticd_msg_DeviceState> state;
@@ -86,6 +93,7 @@ struct DdsBridge::Dds {
   dds::Reader<hapticd_msg_ControlRequest> request;
   dds::Entity waitset;
   dds::Entity wake;
+  PeerDirectory peers;  // who wrote a command or request: the writer's participant
 };
 
 namespace {
@@ -116,11 +124,16 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
     s->set_snapshot_interval(snapshot_interval_);
     devices_.push_back(std::make_unique<Device>(s, settings));
   }
+  cyclone_log::route_to_logger(settings.log_lines_per_s, 20.0);  // before Cyclone has anything to say
   // Engine commands are taken on Cyclone's receive thread (a listener): no thread wake-up between a command's
   // arrival and its hand-over to the loop. Requests, engine health and telemetry are the receiver thread's.
   // Cyclone's threads (receive, timed events, ...) start with the participant and inherit this thread's CPUs.
   const std::optional<cpu_set_t> previous = set_cpus(cpus_);
-  dds_ = std::make_unique<Dds>(settings, dds::CommandTiming{deadline, 0.5});
+  // Samples for a device this server does not drive are dropped before Cyclone stores them (and counted): an
+  // attacker inventing device names creates no state here.
+  const dds_topic_filter command_filter{DDS_TOPIC_FILTER_SAMPLE_ARG, {.sample_arg = &DdsBridge::command_for_us}, this};
+  const dds_topic_filter request_filter{DDS_TOPIC_FILTER_SAMPLE_ARG, {.sample_arg = &DdsBridge::request_for_us}, this};
+  dds_ = std::make_unique<Dds>(settings, dds::CommandTiming{deadline, 0.5}, command_filter, request_filter);
   if (previous) (void)pthread_setaffinity_np(pthread_self(), sizeof *previous, &*previous);
   dds::check(dds_set_status_mask(dds_->request.get(), DDS_DATA_AVAILABLE_STATUS), "cannot set the request reader's status mask");
   dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->request.get(), 1), "waitset");
@@ -129,6 +142,12 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
   // Last: the listener may run at once, and needs everything above.
   const dds::Listener listener(dds_create_listener(this));
   dds_lset_data_available(listener.get(), [](dds_entity_t, void* self) { static_cast<DdsBridge*>(self)->handle_commands(); });
+  // A command writer that loses its liveliness (its process died or froze): the receiver checks the claims.
+  dds_lset_liveliness_changed(listener.get(), [](dds_entity_t, const dds_liveliness_changed_status_t status, void* self) {
+    auto* bridge = static_cast<DdsBridge*>(self);
+    bridge->dds_->peers.liveliness_changed(status);
+    (void)dds_set_guardcondition(bridge->dds_->wake.get(), true);
+  });
   dds_->command.set_listener(listener.get());
 }
 
@@ -149,6 +168,7 @@ void DdsBridge::stop() {
   if (receiver_.joinable()) receiver_.join();
   publish_states();  // the final state (mode off after the shutdown ramp)
   publish_telemetry();
+  cyclone_log::report_suppressed();
 }
 
 void DdsBridge::after_cycle(std::uint64_t index, bool lockstep) noexcept {
@@ -268,7 +288,7 @@ void DdsBridge::publish_states() {
       send_event(d, hapticd_msg_EVENT_MODE, mode < 5 ? kModes[mode] : "?", std::string("mode: ") + (mode < 5 ? kModes[mode] : "?"));
       d.last_mode = m.mode;
     }
-    if (s.fault != d.last_fault) {
+    if (s.fault != d.last_fault || s.faults != d.last_faults) {
       if (s.fault == DeviceFault::none) {
         send_event(d, hapticd_msg_EVENT_RECOVERED, fault_code(d.last_fault), "the device left its safe mode on request");
       } else {
@@ -278,6 +298,7 @@ void DdsBridge::publish_states() {
                                                      "its history is on the fault report topic");
       }
       d.last_fault = s.fault;
+      d.last_faults = s.faults;
     }
     if (s.scheme != d.last_scheme && !d.session->chain().schemes.empty()) {
       d.last_scheme = s.scheme;
@@ -367,6 +388,10 @@ void DdsBridge::publish_fault_report(std::size_t device, const FaultReport& repo
   (void)dds_->fault_report.write(*m);
 }
 
+void DdsBridge::announce(int kind, std::string_view code, std::string_view message) {
+  for (auto& d : devices_) send_event(*d, kind, code, message);
+}
+
 void DdsBridge::send_event(Device& d, int kind, std::string_view code, std::string_view message) {
   hapticd_msg_Event e{};
   dds::set_text(e.device, d.session->name());
@@ -384,14 +409,21 @@ void DdsBridge::receiver_thread() {
   pin_this_thread();
   const auto telemetry_period = std::chrono::duration<double>(1.0 / settings_.telemetry_rate_hz);
   auto next_telemetry = Clock::now();
+  auto next_log_report = Clock::now() + std::chrono::seconds(10);
   std::array<dds_attach_t, 4> triggered{};
   while (!stopping_.load(std::memory_order_acquire)) {
     const auto now = Clock::now();
-    const auto wait = std::max<std::int64_t>(
-        0, std::chrono::duration_cast<std::chrono::nanoseconds>(next_telemetry - now).count());
+    const auto wait = std::clamp<std::int64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(next_telemetry - now).count(), 0, kClaimCheckPeriodNs);
     (void)dds_waitset_wait(dds_->waitset.get(), triggered.data(), triggered.size(), wait);
+    (void)dds_set_guardcondition(dds_->wake.get(), false);
     handle_requests();
-    check_engine_health();
+    check_claims();
+    check_engine_deadlines();
+    if (Clock::now() >= next_log_report) {
+      cyclone_log::report_suppressed();
+      next_log_report = Clock::now() + std::chrono::seconds(10);
+    }
     if (Clock::now() >= next_telemetry) {
       publish_telemetry();
       next_telemetry += std::chrono::duration_cast<Clock::duration>(telemetry_period);
@@ -407,6 +439,9 @@ void DdsBridge::handle_commands() {
   dds_->command.take([&](const hapticd_msg_EngineCommand& c, const dds_sample_info_t& info) {
     const std::int64_t now_wall = dds::wall_clock_ns();
     const std::string_view device = dds::text_of(c.device);
+    // Who wrote it (a writer no longer matched has no participant: it is nobody's command).
+    const Sender sender{dds_->peers.participant_of(dds_->command.get(), info.publication_handle).value_or(PeerId{}),
+                        info.publication_handle};
     for (auto& dp : devices_) {
       Device& d = *dp;
       if (device != d.session->name()) continue;
@@ -414,8 +449,7 @@ void DdsBridge::handle_commands() {
       CommandGate::Verdict v;
       {
         std::lock_guard lock(d.mutex);
-        v = d.gate.admit(c, info.source_timestamp, now_wall);
-        if (v.accepted) d.owner_writer = info.publication_handle;
+        v = d.gate.admit(c, sender, info.source_timestamp, now_wall);
       }
       if (!v.accepted) {
         const auto r = static_cast<std::size_t>(v.reason);
@@ -434,30 +468,50 @@ void DdsBridge::handle_commands() {
       }
       return;
     }
-    // A command for a device this server does not drive: not ours to count.
+    // (Commands for a device this server does not drive never get here: command_for_us counts them.)
   });
 }
 
-void DdsBridge::check_engine_health() {
-  dds_liveliness_changed_status_t live{};
-  if (dds_get_liveliness_changed_status(dds_->command.get(), &live) == DDS_RETCODE_OK && live.not_alive_count_change > 0) {
-    for (auto& dp : devices_) {
-      Device& d = *dp;
-      std::string lost;
-      {
-        std::lock_guard lock(d.mutex);
-        if (d.owner_writer != 0 && d.owner_writer == live.last_publication_handle && !d.gate.owner().empty()) {
-          lost = d.gate.owner();
-          d.gate.release_any();
-          d.owner_writer = 0;
-        }
-      }
-      if (!lost.empty()) {
-        d.synced.store(false, std::memory_order_release);
-        send_event(d, hapticd_msg_EVENT_OWNER, "", "engine '" + lost + "' lost liveliness: the device is free again");
-      }
+void DdsBridge::check_claims() {
+  // A claim ends when its claimant's participant is gone: its request writer is no longer matched (a clean exit
+  // deletes it; a vanished participant is removed when its lease runs out), or it has no engine command writer
+  // whose liveliness holds (a killed or frozen process stops asserting it: the command reader's lease, 0.5 s)
+  // once claim_grace_s have passed since the claim.
+  const std::int64_t now = steady_ns();
+  const auto grace_ns = static_cast<std::int64_t>(settings_.claim_grace_s * 1e9);
+  for (auto& dp : devices_) {
+    Device& d = *dp;
+    PeerId owner;
+    dds_instance_handle_t claim_writer = 0;
+    std::int64_t claimed_ns = 0;
+    {
+      std::lock_guard lock(d.mutex);
+      if (d.gate.owner().empty()) continue;
+      owner = d.gate.owner_participant();
+      claim_writer = d.claim_writer;
+      claimed_ns = d.claimed_ns;
     }
+    const char* why = nullptr;
+    if (!PeerDirectory::matched(dds_->request.get(), claim_writer)) {
+      why = "left the domain";
+    } else if (now - claimed_ns > grace_ns && !dds_->peers.has_live_writer(dds_->command.get(), owner)) {
+      why = "has no live command writer (its process died, froze or never had one)";
+    }
+    if (why == nullptr) continue;
+    std::string lost;
+    {
+      std::lock_guard lock(d.mutex);
+      if (!d.gate.owned_by(owner) || d.claimed_ns != claimed_ns) continue;  // released or claimed anew meanwhile
+      lost = d.gate.owner();
+      d.gate.release_any();
+    }
+    d.synced.store(false, std::memory_order_release);
+    claims_ended_.fetch_add(1, std::memory_order_relaxed);
+    send_event(d, hapticd_msg_EVENT_OWNER, "", "engine '" + lost + "' " + why + ": the device is free again");
   }
+}
+
+void DdsBridge::check_engine_deadlines() {
   dds_requested_deadline_missed_status_t missed{};
   if (dds_get_requested_deadline_missed_status(dds_->command.get(), &missed) == DDS_RETCODE_OK && missed.total_count_change > 0) {
     for (auto& dp : devices_)
@@ -466,8 +520,10 @@ void DdsBridge::check_engine_health() {
 }
 
 void DdsBridge::handle_requests() {
-  dds_->request.take([&](const hapticd_msg_ControlRequest& r, const dds_sample_info_t&) {
+  dds_->request.take([&](const hapticd_msg_ControlRequest& r, const dds_sample_info_t& info) {
     const std::string_view device = dds::text_of(r.device);
+    // The requester is the participant of the writer that sent it, whatever client id the request declares.
+    const std::optional<PeerId> requester = dds_->peers.participant_of(dds_->request.get(), info.publication_handle);
     const std::string_view client = dds::text_of(r.client);
     const std::string_view name = dds::text_of(r.name);
     for (auto& dp : devices_) {
@@ -481,27 +537,32 @@ void DdsBridge::handle_requests() {
       std::string message;
       bool ok = false;
       std::string owner;
+      bool may_drive = false;  // free, or claimed by the requester's participant
       {
         std::lock_guard lock(d.mutex);
         owner = d.gate.owner();
+        may_drive = owner.empty() || (requester && d.gate.owned_by(*requester));
       }
-      const bool may_drive = owner.empty() || owner == client;
       const std::vector<double> values(r.values, r.values + std::clamp<std::int32_t>(r.value_count, 0, hapticd_msg_MAX_VALUES));
       if (client.empty() || !dds::terminated(r.client) || !dds::terminated(r.name)) {
         message = "malformed request (no client id)";
+      } else if (!requester) {
+        message = "request from a writer that is no longer known";
       } else {
         switch (r.kind) {
           case hapticd_msg_REQUEST_CLAIM: {
             std::lock_guard lock(d.mutex);
-            ok = d.gate.claim(client);
-            if (ok) d.owner_writer = 0;
-            message = ok ? "claimed" : "claimed by '" + d.gate.owner() + "'";
+            ok = d.gate.claim(client, *requester);
+            if (ok) {
+              d.claim_writer = info.publication_handle;
+              d.claimed_ns = steady_ns();
+            }
+            message = ok ? "claimed" : "claimed by '" + d.gate.owner() + "' (another participant)";
             break;
           }
           case hapticd_msg_REQUEST_RELEASE: {
             std::lock_guard lock(d.mutex);
-            ok = d.gate.release(client);
-            if (ok) d.owner_writer = 0;
+            ok = d.gate.release(*requester);
             message = ok ? "released" : "not the owner";
             break;
           }
@@ -562,7 +623,7 @@ void DdsBridge::handle_requests() {
       }
       reply.accepted = ok;
       dds::set_text(reply.message, message);
-      (void)dds_->reply.write(reply);
+      (void)dds_->reply.write_once(reply);
       if (ok && (r.kind == hapticd_msg_REQUEST_CLAIM || r.kind == hapticd_msg_REQUEST_RELEASE)) {
         if (r.kind == hapticd_msg_REQUEST_RELEASE) d.synced.store(false, std::memory_order_release);
         send_event(d, hapticd_msg_EVENT_OWNER, r.kind == hapticd_msg_REQUEST_CLAIM ? client : std::string_view(),
@@ -570,15 +631,27 @@ void DdsBridge::handle_requests() {
       }
       return;
     }
-    // Unknown device: say so, so a client does not wait for its timeout.
-    hapticd_msg_ControlReply reply{};
-    dds::set_text(reply.device, device);
-    dds::set_text(reply.client, client);
-    reply.request_id = r.request_id;
-    reply.accepted = false;
-    dds::set_text(reply.message, "this server has no device named '" + std::string(device) + "'");
-    (void)dds_->reply.write(reply);
+    // (Requests for a device this server does not drive never get here: request_for_us counts them. Another
+    // server on the domain may drive it and answers; this one stays silent.)
   });
+}
+
+bool DdsBridge::serves(std::string_view device) const noexcept {
+  return std::any_of(devices_.begin(), devices_.end(), [&](const auto& d) { return d->session->name() == device; });
+}
+
+bool DdsBridge::command_for_us(const void* sample, void* self) {
+  auto* bridge = static_cast<DdsBridge*>(self);
+  if (bridge->serves(dds::text_of(static_cast<const hapticd_msg_EngineCommand*>(sample)->device))) return true;
+  bridge->unknown_device_commands_.fetch_add(1, std::memory_order_relaxed);  // malformed (the IDL's reason 0)
+  return false;
+}
+
+bool DdsBridge::request_for_us(const void* sample, void* self) {
+  auto* bridge = static_cast<DdsBridge*>(self);
+  if (bridge->serves(dds::text_of(static_cast<const hapticd_msg_ControlRequest*>(sample)->device))) return true;
+  bridge->unknown_device_requests_.fetch_add(1, std::memory_order_relaxed);
+  return false;
 }
 
 void DdsBridge::publish_telemetry() {

@@ -48,6 +48,8 @@ class DdsBridge final : public CycleListener {
   void after_cycle(std::uint64_t index, bool lockstep) noexcept override;
   // Any thread (the server's monitor, which takes the reports from the devices): publishes a fault report.
   void publish_fault_report(std::size_t device, const FaultReport& report);
+  // Any thread: an event about the whole session (e.g. EVENT_RECORDING), sent for every device.
+  void announce(int kind, std::string_view code, std::string_view message);
 
   // Any thread, while running or after stop().
   [[nodiscard]] std::uint64_t commands_accepted(std::size_t device) const;
@@ -59,6 +61,12 @@ class DdsBridge final : public CycleListener {
   // it, over the session and every device (RoundTripProbe).
   [[nodiscard]] RoundTripStatistics round_trip() const;
   [[nodiscard]] std::uint64_t lockstep_timeouts() const noexcept { return lockstep_timeouts_.load(); }
+  // Engine commands naming a device this server does not have (malformed; rejected, never applied).
+  [[nodiscard]] std::uint64_t unknown_device_commands() const noexcept { return unknown_device_commands_.load(); }
+  // Requests naming a device this server does not have (dropped unanswered: another server may have it).
+  [[nodiscard]] std::uint64_t unknown_device_requests() const noexcept { return unknown_device_requests_.load(); }
+  // Claims that ended because their claimant's participant was gone (not released).
+  [[nodiscard]] std::uint64_t claims_ended() const noexcept { return claims_ended_.load(); }
 
  private:
   struct Device;
@@ -69,13 +77,18 @@ class DdsBridge final : public CycleListener {
   void publish_states();
   void handle_commands();
   void handle_requests();
-  void check_engine_health();
+  void check_claims();
+  void check_engine_deadlines();
   void publish_telemetry();
   void publish_description(Device& d);
   void fill_loop_summary(hapticd_msg_LoopSummary& loop) const;
   void send_event(Device& d, int kind, std::string_view code, std::string_view message);
 
   void pin_this_thread() const;
+  [[nodiscard]] bool serves(std::string_view device) const noexcept;
+  // The readers' topic filters (Cyclone's receive threads): only samples for this server's devices are stored.
+  static bool command_for_us(const void* sample, void* self);
+  static bool request_for_us(const void* sample, void* self);
 
   DdsSettings settings_;
   double rate_hz_;
@@ -90,6 +103,11 @@ class DdsBridge final : public CycleListener {
   std::thread publisher_, receiver_;
   std::atomic<std::uint64_t> event_serial_{0};
   std::atomic<std::uint64_t> lockstep_timeouts_{0};
+  std::atomic<std::uint64_t> unknown_device_commands_{0};
+  std::atomic<std::uint64_t> unknown_device_requests_{0};
+  std::atomic<std::uint64_t> claims_ended_{0};
+  // The receiver checks the claims at least this often (and whenever a command writer's liveliness changes).
+  static constexpr std::int64_t kClaimCheckPeriodNs = 50'000'000;
   std::mutex command_take_mutex_;
 };
 

@@ -54,7 +54,7 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
 
     const CycleTime cycle{deadline_ns - start_ns, period_ns_, index};
     for (std::size_t d = 0; d < sessions_.size(); ++d) {
-      sessions_[d]->cycle(cycle, scale, consecutive_overruns);
+      sessions_[d]->cycle(cycle, scale, consecutive_overruns, wake_ns - deadline_ns);
       if (recorder_ != nullptr) recorder_->record(cycle, static_cast<std::uint16_t>(d), sessions_[d]->state(), sessions_[d]->command());
     }
 
@@ -99,13 +99,15 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
   if (!settings_.lockstep && settings_.lock_memory)
     if (std::string w = lock_process_memory(); !w.empty()) result.warnings.push_back(std::move(w));
 
-  for (DeviceSession* s : sessions_) s->activate();
-
+  // The loop thread exists before any device is powered: a thread that cannot be created (no memory) ends the
+  // start with an error while every drive is still off.
   std::atomic<bool> go{false};
+  std::atomic<bool> cancelled{false};
   std::atomic<bool> done{false};
-  const std::int64_t wall_start_ns = monotonic_now_ns();
+  std::int64_t wall_start_ns = 0;
   std::thread thread([&] {
     while (!go.load(std::memory_order_acquire)) std::this_thread::yield();
+    if (cancelled.load(std::memory_order_acquire)) return;
     if (!settings_.lockstep) minimise_timer_slack();
     if (!settings_.lockstep && settings_.lock_memory) prefault_stack();
     if (settings_.lockstep) {
@@ -117,10 +119,22 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
     }
     done.store(true, std::memory_order_release);
   });
-  if (!settings_.lockstep) {
-    auto warnings = make_thread_realtime(thread, settings_.realtime_priority, settings_.cpu);
-    result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
+  std::size_t activated = 0;
+  try {
+    if (!settings_.lockstep) {
+      auto warnings = make_thread_realtime(thread, settings_.realtime_priority, settings_.cpu);
+      result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
+    }
+    for (; activated < sessions_.size(); ++activated) sessions_[activated]->activate();
+  } catch (...) {
+    // A device that could not be powered: the ones that were go off again, the loop never runs.
+    for (std::size_t k = 0; k < activated; ++k) sessions_[k]->deactivate();
+    cancelled.store(true, std::memory_order_release);
+    go.store(true, std::memory_order_release);
+    thread.join();
+    throw;
   }
+  wall_start_ns = monotonic_now_ns();
   go.store(true, std::memory_order_release);
 
   while (!done.load(std::memory_order_acquire)) {

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "plugins/elf_exports.hpp"
+
 namespace hapticd::server {
 namespace fs = std::filesystem;
 namespace {
@@ -73,12 +75,19 @@ std::shared_ptr<const LoadedLibrary> PluginLoader::open(const fs::path& file) {
 std::shared_ptr<const LoadedLibrary> PluginLoader::load_library(const std::string& name) {
   if (looks_like_path(name)) {
     if (!fs::exists(name)) throw PluginLoadError("plugin library " + name + " does not exist");
+    if (!elf_exports_symbol(name, kVersionSymbol))
+      throw PluginLoadError(name + " is not a hapticd plugin library: it exports no '" + std::string(kVersionSymbol) +
+                            "' symbol (declare its plugins with HAPTICD_PLUGIN_LIBRARY); it was not loaded");
     return open(name);
   }
   for (const auto& dir : search_paths_) {
     for (const std::string& file : {"lib" + name + ".so", name + ".so"}) {
       const fs::path candidate = dir / file;
-      if (fs::exists(candidate)) return open(candidate);
+      if (!fs::exists(candidate)) continue;
+      if (!elf_exports_symbol(candidate, kVersionSymbol))
+        throw PluginLoadError(candidate.string() + " is not a hapticd plugin library: it exports no '" +
+                              std::string(kVersionSymbol) + "' symbol; it was not loaded");
+      return open(candidate);
     }
   }
   throw PluginLoadError("plugin library '" + name + "' not found (looked for lib" + name + ".so in: " +
@@ -91,8 +100,11 @@ std::vector<fs::path> PluginLoader::candidate_files() const {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) continue;
     std::vector<fs::path> here;
+    // Only hapticd plugin libraries: a library is loaded (its initialisers run) only when its symbol table says
+    // it is one. A folder of other libraries (plugin_paths: [/usr/lib/...]) is passed over, not loaded.
     for (const auto& entry : fs::directory_iterator(dir, ec))
-      if (entry.is_regular_file() && entry.path().extension() == ".so") here.push_back(entry.path());
+      if (entry.is_regular_file() && entry.path().extension() == ".so" && elf_exports_symbol(entry.path(), kVersionSymbol))
+        here.push_back(entry.path());
     std::sort(here.begin(), here.end());
     files.insert(files.end(), here.begin(), here.end());
   }

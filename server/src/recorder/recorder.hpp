@@ -5,10 +5,14 @@
 // Long format, one row per joint and cycle: cycle,time_s,device,joint,position,velocity,effort,torque_command,
 // then the device's sensor wrench (sensor_fx .. sensor_tz, repeated on each joint's row)
 // Numbers are printed with 17 significant digits: identical files mean bit-identical values.
+// Every write is checked. Rows are written in chunks of whole records; a write that fails (a full disk, an
+// I/O error) is cut back to the last whole record (the file always ends on a whole row), the recorder stops
+// writing, and every record from then on is counted as lost (failed(), error(), lost()). The data is synced
+// to the disk every few megabytes and at the end; a failing sync cuts the file back to what was synced.
 #include <atomic>
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -46,18 +50,37 @@ class Recorder {
 
   [[nodiscard]] std::uint64_t written() const noexcept { return written_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
+  // A write, sync or close failed: the records not in the file (the failed chunk and all after it).
+  [[nodiscard]] bool failed() const noexcept { return failed_.load(std::memory_order_acquire); }
+  [[nodiscard]] std::uint64_t lost() const noexcept { return lost_.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::string error() const;
+  [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
 
  private:
   void write_loop();
-  void write_record(const CycleRecord& r);
+  void format_record(const CycleRecord& r);
+  // Writes the chunk (whole records); false on failure (then the recorder has failed).
+  bool flush_chunk();
+  bool sync_file();
+  void fail(const std::string& what, int error_number, std::uint64_t records_lost);
 
   std::vector<std::string> device_names_;
   bool wait_when_full_;
   SpscRing<CycleRecord> ring_;
-  std::FILE* out_ = nullptr;
+  std::filesystem::path file_;
+  int fd_ = -1;
+  std::string chunk_;                  // formatted whole records not yet written (writer thread)
+  std::uint64_t chunk_records_ = 0;
+  std::int64_t written_bytes_ = 0;     // file offset after the last whole record written
+  std::int64_t synced_bytes_ = 0;      // ... and synced to the disk
+  std::uint64_t synced_records_ = 0;
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> written_{0};
   std::atomic<std::uint64_t> dropped_{0};
+  std::atomic<std::uint64_t> lost_{0};
+  std::atomic<bool> failed_{false};
+  mutable std::mutex error_mutex_;  // error_ (writer thread -> any thread; never the loop)
+  std::string error_;
   std::thread writer_;
 };
 

@@ -20,6 +20,7 @@ std::string_view fault_code(DeviceFault fault) noexcept {
     case DeviceFault::cartesian_velocity: return "cartesian_velocity_violation";
     case DeviceFault::workspace: return "workspace_violation";
     case DeviceFault::loop_overrun: return "loop_overrun_violation";
+    case DeviceFault::loop_stall: return "loop_stall";
     case DeviceFault::emergency_stop: return "emergency_stop";
   }
   return "unknown";
@@ -43,6 +44,7 @@ std::string_view to_string(DeviceFault fault) noexcept {
     case DeviceFault::cartesian_velocity: return "the handle exceeded its speed limit";
     case DeviceFault::workspace: return "the handle went through a workspace wall";
     case DeviceFault::loop_overrun: return "too many consecutive loop overruns";
+    case DeviceFault::loop_stall: return "the loop stalled (woke far too late for a cycle)";
     case DeviceFault::emergency_stop: return "emergency stop";
   }
   return "unknown";

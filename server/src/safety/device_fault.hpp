@@ -23,6 +23,7 @@ enum class DeviceFault : std::uint8_t {
   cartesian_velocity,      // the handle exceeded its speed limit despite the damping
   workspace,               // the handle went through a workspace wall by more than the allowed depth
   loop_overrun,            // too many consecutive loop overruns
+  loop_stall,              // the loop woke far too late (the process was stopped, the machine stalled)
   emergency_stop,          // requested (DDS, hapticctl, signal)
 };
 

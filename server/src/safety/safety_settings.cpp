@@ -52,6 +52,19 @@ ParameterSchema safety_settings_schema() {
   s.integer("max_consecutive_overruns", "this many consecutive loop overruns put the device in its safe mode; 0: "
                                         "never").minimum(0).maximum(100000)
       .default_value(std::int64_t{d.max_consecutive_overruns});
+  s.real("max_stall_s", "a loop that wakes this late for a cycle (the process was stopped or stalled) puts the "
+                        "device in its safe mode (fault loop_stall); 0: off; real-time clock only").unit("s")
+      .minimum(0.0).maximum(1.0).default_value(d.max_stall_s);
+  s.boolean("gravity_hold", "safe mode of a device with a robot model: hold the posture with gravity compensation "
+                            "and damping for safe_hold_s, then release the gravity torque over safe_release_s")
+      .default_value(d.gravity_hold);
+  s.real("safe_hold_s", "safe mode with gravity_hold: how long the posture is held").unit("s").minimum(0.0)
+      .maximum(3600.0).default_value(d.safe_hold_s);
+  s.real("safe_hold_range", "safe mode with gravity_hold: a spring holds the posture at the stop; it gives half "
+                            "each joint's continuous torque (its limit) at this deviation").unit("rad or m")
+      .minimum(1e-4).maximum(1.0).default_value(d.safe_hold_range);
+  s.real("safe_release_s", "safe mode with gravity_hold: the gravity torque fades out over this time after the hold")
+      .unit("s").minimum(0.0).maximum(10.0).default_value(d.safe_release_s);
   s.real("safe_fade_s", "safe mode: the last torque written fades linearly to zero over this time (no step); "
                         "0: at once").unit("s").minimum(0.0).maximum(1.0).default_value(d.safe_fade_s);
   s.real("safe_damping_s", "safe mode: joint damping for this long, then zero torque").unit("s").minimum(0.0)
@@ -100,6 +113,11 @@ SafetySettings safety_settings_from(const Parameters& p) {
   s.passivity_max_damping_n_s_per_m = p.real("passivity_max_damping_n_s_per_m");
   s.passivity_max_rotational_damping_n_m_s = p.real("passivity_max_rotational_damping_n_m_s");
   s.max_consecutive_overruns = static_cast<std::uint32_t>(p.integer("max_consecutive_overruns"));
+  s.max_stall_s = p.real("max_stall_s");
+  s.gravity_hold = p.boolean("gravity_hold");
+  s.safe_hold_s = p.real("safe_hold_s");
+  s.safe_release_s = p.real("safe_release_s");
+  s.safe_hold_range = p.real("safe_hold_range");
   s.safe_fade_s = p.real("safe_fade_s");
   s.safe_damping_s = p.real("safe_damping_s");
   if (s.safe_damping_s < s.safe_fade_s) throw ParameterError("safe_damping_s", "must not be shorter than safe_fade_s");

@@ -41,11 +41,21 @@ struct SafetySettings {
   double passivity_max_rotational_damping_n_m_s = 2.0;
   // Watchdogs.
   std::uint32_t max_consecutive_overruns = 10;  // 0: overruns never stop the device
+  // A loop that wakes this late for a cycle (the process was stopped, the machine stalled) faults the device
+  // with loop_stall; 0: off. Real-time clock only.
+  double max_stall_s = 0.005;
   // Safe mode: the last torque written fades out over safe_fade_s (no step) while joint damping acts for
   // safe_damping_s; then zero torque.
   double safe_fade_s = 0.02;
   double safe_damping_s = 0.5;
   double safe_damping_gain = 3.0;          // N m s/rad (N s/m), bounded by each joint's continuous torque
+  // Devices with a robot model hold their posture in the safe mode: gravity compensation plus damping (from
+  // the measured state) for safe_hold_s, then the gravity torque fades out over safe_release_s (the device has
+  // no brakes yet) and the torque is zero. A stop of the server skips the hold.
+  bool gravity_hold = true;
+  double safe_hold_s = 10.0;
+  double safe_release_s = 0.5;
+  double safe_hold_range = 0.02;  // rad (m): the hold's posture spring gives half the continuous torque here
   // The fault event carries this many cycles of history.
   std::uint32_t history_cycles = 50;
 };

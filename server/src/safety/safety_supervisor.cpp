@@ -29,6 +29,11 @@ void SafetySupervisor::configure(const SafetySettings& settings, const DeviceDes
   soft_start_done_ = soft_start_cycles_;
   damping_cycles_ = std::llround(settings.safe_damping_s / period_s);
   fade_cycles_ = std::llround(settings.safe_fade_s / period_s);
+  configured_hold_cycles_ = std::llround(settings.safe_hold_s / period_s);
+  release_cycles_ = std::max<std::int64_t>(1, std::llround(settings.safe_release_s / period_s));
+  hold_stiffness_ = continuous_ * (0.5 / settings.safe_hold_range);
+  hold_posture_.setZero(dof);
+  stall_ns_ = static_cast<std::int64_t>(std::llround(settings.max_stall_s * 1e9));
   fade_from_.setZero(dof);
   safe_cycles_ = damping_cycles_;
   zero_written_ = true;
@@ -66,17 +71,44 @@ std::uint32_t SafetySupervisor::flags() const noexcept {
          (guard_.limited_this_cycle() ? kRecordRenderLimited : 0u) | (thermal_.derating() ? kRecordThermalDerating : 0u);
 }
 
-void SafetySupervisor::safe_torque(const JointVector& velocity, bool velocity_valid, JointVector& torque) noexcept {
-  if (safe_cycles_ < damping_cycles_ && !velocity_valid) safe_cycles_ = damping_cycles_;  // untrusted: zero, for good
-  if (safe_cycles_ < damping_cycles_) {
+void SafetySupervisor::enter_safe_mode(const JointVector& last, const JointVector* hold_posture, bool skip_hold) noexcept {
+  safe_cycles_ = 0;
+  const bool gravity_hold = hold_posture != nullptr && hold_posture->size() == last.size() && hold_posture->allFinite();
+  if (gravity_hold) hold_posture_ = *hold_posture;
+  zero_written_ = false;
+  fade_from_ = last;
+  holding_gravity_ = gravity_hold && settings_.gravity_hold;
+  hold_cycles_ = skip_hold ? 0 : configured_hold_cycles_;
+}
+
+double SafetySupervisor::hold_weight() const noexcept {
+  if (!holding_gravity_) return 0.0;
+  const std::int64_t release_from = damping_cycles_ + hold_cycles_;
+  if (safe_cycles_ < release_from) return 1.0;
+  // 1 - (k+1)/N over the release: the last release cycle commands zero gravity torque.
+  return std::max(0.0, 1.0 - static_cast<double>(safe_cycles_ - release_from + 1) / static_cast<double>(release_cycles_));
+}
+
+void SafetySupervisor::safe_torque(const JointVector& position, const JointVector& velocity, bool velocity_valid,
+                                   const JointVector* gravity, JointVector& torque) noexcept {
+  const std::int64_t end = holding_gravity_ ? damping_cycles_ + hold_cycles_ + release_cycles_ : damping_cycles_;
+  if (safe_cycles_ < end && (!velocity_valid || (holding_gravity_ && gravity == nullptr))) safe_cycles_ = end;  // untrusted: zero, for good
+  if (safe_cycles_ < end) {
     // Fade: 1 - (k+1)/N, so the first safe cycle already steps down by one N-th and cycle N-1 reaches zero.
     const double fade = safe_cycles_ < fade_cycles_
                             ? 1.0 - static_cast<double>(safe_cycles_ + 1) / static_cast<double>(fade_cycles_)
                             : 0.0;
+    const double hold = hold_weight();
     ++safe_cycles_;
-    for (int i = 0; i < torque.size(); ++i)
-      torque[i] = std::clamp(fade * fade_from_[i] - std::clamp(settings_.safe_damping_gain * velocity[i], -continuous_[i], continuous_[i]),
+    for (int i = 0; i < torque.size(); ++i) {
+      // Holding: gravity compensation and a spring back to the posture at the stop (it reaches half the
+      // continuous torque at safe_hold_range from it), released together.
+      const double spring = std::clamp(hold_stiffness_[i] * (hold_posture_[i] - position[i]), -0.5 * continuous_[i], 0.5 * continuous_[i]);
+      const double held = hold > 0.0 ? hold * ((*gravity)[i] + spring) : 0.0;
+      torque[i] = std::clamp(fade * fade_from_[i] + held -
+                                 std::clamp(settings_.safe_damping_gain * velocity[i], -continuous_[i], continuous_[i]),
                              -peak_[i], peak_[i]);
+    }
     zero_written_ = false;
     return;
   }

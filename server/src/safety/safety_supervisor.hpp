@@ -47,16 +47,23 @@ class SafetySupervisor {
 
   // Safe mode: the clock starts now. safe_torque() gives the last torque written (`last`, when it can be
   // trusted; else pass zero) fading linearly to zero over safe_fade_s, plus damping against `velocity`
-  // bounded by each joint's continuous torque, for safe_damping_s; then zero. A cycle without a valid
-  // velocity ends the damping phase: zero torque from then on (no step back up if the measurement returns).
-  void enter_safe_mode(const JointVector& last) noexcept {
-    safe_cycles_ = 0;
-    zero_written_ = false;
-    fade_from_ = last;
-  }
-  void safe_torque(const JointVector& velocity, bool velocity_valid, JointVector& torque) noexcept;
-  // The safe mode's last torque was zero (the damping phase is over, or could not run).
+  // bounded by each joint's continuous torque, for safe_damping_s; then zero. With gravity_hold (the device has
+  // a robot model and the setting is on) the gravity torque is added and the damping continues for safe_hold_s
+  // more (skip_hold: not at all, a stop of the server), then the gravity torque fades out over safe_release_s.
+  // A cycle without a valid velocity (or gravity torque, when holding) ends it: zero torque from then on (no
+  // step back up if the measurement returns).
+  // hold_posture: the measured joint positions to hold (gravity_hold; nullptr: no hold).
+  void enter_safe_mode(const JointVector& last, const JointVector* hold_posture = nullptr, bool skip_hold = false) noexcept;
+  void safe_torque(const JointVector& position, const JointVector& velocity, bool velocity_valid, const JointVector* gravity,
+                   JointVector& torque) noexcept;
+  // The safe mode's last torque was zero (the damping phase is over, or could not run; with gravity hold, the
+  // release is over).
   [[nodiscard]] bool at_rest() const noexcept { return zero_written_; }
+  // The safe mode has settled: the last torque has faded out and the damping phase is over (holding or at
+  // rest). A recovery waits for it.
+  [[nodiscard]] bool settled() const noexcept { return zero_written_ || (holding_gravity_ && safe_cycles_ >= damping_cycles_); }
+  // The loop woke `lateness_ns` late for a cycle: a stall (max_stall_s)?
+  [[nodiscard]] bool stalled(std::int64_t lateness_ns) const noexcept { return stall_ns_ > 0 && lateness_ns > stall_ns_; }
 
  private:
   SafetySettings settings_;
@@ -71,6 +78,11 @@ class SafetySupervisor {
   std::int64_t fade_cycles_ = 0;
   JointVector fade_from_;
   std::int64_t safe_cycles_ = 0;
+  std::int64_t configured_hold_cycles_ = 0, hold_cycles_ = 0, release_cycles_ = 1;
+  bool holding_gravity_ = false;
+  JointVector hold_posture_, hold_stiffness_;
+  std::int64_t stall_ns_ = 0;
+  [[nodiscard]] double hold_weight() const noexcept;
   bool saturated_ = false;
   bool zero_written_ = true;
   Eigen::Vector3d handle_force_ = Eigen::Vector3d::Zero();

@@ -12,9 +12,50 @@
 namespace hapticd::server {
 namespace {
 
+std::string name_text(std::string_view name) { return "'" + std::string(name) + "'"; }
+
 // The scheme's redundancy resolution for its controller (nullptr without an IK or when it offers none).
 RedundancyResolution* redundancy_of(SchemeChain& scheme) noexcept {
   return scheme.inverse_kinematics ? (*scheme.inverse_kinematics)->redundancy() : nullptr;
+}
+
+// A run-time set of a parameter the plugin's schema declares obeys the schema's type, size and bounds, as the
+// session file does; the message says what would be valid. Requests the schema does not name (operator.push,
+// ...) are the plugin's to check.
+std::optional<std::string> check_against_schema(const PluginDescriptor& plugin, std::string_view name,
+                                                const std::vector<double>& values) {
+  const ParameterSchema schema = plugin.parameter_schema();
+  const ParameterSpec* spec = schema.find(name);
+  if (spec == nullptr) return std::nullopt;
+  ParameterValue value;
+  switch (spec->type) {
+    case ParameterType::real:
+      if (values.size() != 1) return name_text(name) + " takes one number";
+      value = values[0];
+      break;
+    case ParameterType::integer:
+      if (values.size() != 1 || values[0] != std::floor(values[0]) || std::abs(values[0]) > 9.0e15)
+        return name_text(name) + " takes one whole number";
+      value = static_cast<std::int64_t>(values[0]);
+      break;
+    case ParameterType::boolean:
+      if (values.size() != 1 || (values[0] != 0.0 && values[0] != 1.0)) return name_text(name) + " takes 0 or 1";
+      value = values[0] == 1.0;
+      break;
+    case ParameterType::real_vector:
+      value = values;
+      break;
+    case ParameterType::string:
+      return name_text(name) + " is a text parameter: it cannot be set at run time";
+  }
+  for (double v : values)
+    if (!std::isfinite(v)) return name_text(name) + ": values must be finite";
+  try {
+    spec->check(value);
+  } catch (const ParameterError& e) {
+    return name_text(name) + ": " + e.what();
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -107,7 +148,10 @@ void DeviceSession::service() {
 }
 
 RuntimeReply DeviceSession::handle_request(std::string_view stage, std::string_view name, const std::vector<double>& values) {
-  if (stage == "device") return chain_.device->handle_request(name, values);
+  if (stage == "device") {
+    if (auto error = check_against_schema(*chain_.device.descriptor, name, values)) return {false, *error};
+    return chain_.device->handle_request(name, values);
+  }
   if (stage == "safety") {
     if (name == "recover") return request_recovery();
     if (name == "passivity_control") {
@@ -119,9 +163,13 @@ RuntimeReply DeviceSession::handle_request(std::string_view stage, std::string_v
   }
   if (chain_.schemes.empty()) return {false, "device '" + name_ + "' has no running scheme"};
   SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_acquire))];
-  if (stage == "controller") return scheme.controller->handle_request(name, values);
+  if (stage == "controller") {
+    if (auto error = check_against_schema(*scheme.controller.descriptor, name, values)) return {false, *error};
+    return scheme.controller->handle_request(name, values);
+  }
   if (stage == "virtual_model") {
     if (!scheme.virtual_model) return {false, "scheme '" + scheme.name + "' has no virtual model"};
+    if (auto error = check_against_schema(*scheme.virtual_model->descriptor, name, values)) return {false, *error};
     return (*scheme.virtual_model)->handle_request(name, values);
   }
   return {false, "unknown stage '" + std::string(stage) + "' (device, virtual_model, controller or safety)"};
@@ -274,6 +322,7 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.velocity = chain_state_.velocity;
   s.torque = command_.torque_nm;
   s.fault = fault();
+  s.faults = fault_serial_.load(std::memory_order_relaxed);
   s.estop = s.fault == DeviceFault::emergency_stop;
   s.stopping = torque_scale < 1.0;
   s.saturated = chain_state_.output_saturated;
@@ -304,13 +353,15 @@ void DeviceSession::blend_after_switch() noexcept {
   --switch_ramp_left_;
 }
 
-void DeviceSession::cycle(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns) noexcept {
-  cycle_checked(cycle, torque_scale, consecutive_overruns);
+void DeviceSession::cycle(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns,
+                          std::int64_t lateness_ns) noexcept {
+  cycle_checked(cycle, torque_scale, consecutive_overruns, lateness_ns);
   record_history(cycle);
   publish_snapshot(cycle, torque_scale);
 }
 
-void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns) noexcept {
+void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns,
+                                  std::int64_t lateness_ns) noexcept {
   if (!safety_configured_) {  // fixed-size state: no allocation
     safety_.configure(chain_.safety, description_, static_cast<double>(cycle.period_ns) * 1e-9);
     safety_configured_ = true;
@@ -322,14 +373,21 @@ void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, s
   } catch (...) {
     read = ReturnCode::error;
   }
-  if (fault() == DeviceFault::none && estop_requested_.load(std::memory_order_acquire))
-    enter_safe_state(DeviceFault::emergency_stop, cycle);
-  if (fault() == DeviceFault::none && safety_.overruns_exceeded(consecutive_overruns))
-    enter_safe_state(DeviceFault::loop_overrun, cycle);
+  if (const std::uint64_t estops = estop_requests_.load(std::memory_order_acquire); estops != estops_handled_) {
+    estops_handled_ = estops;
+    if (fault() == DeviceFault::none && !stopped_) {
+      raise_fault(DeviceFault::emergency_stop, cycle);
+    } else {
+      relatch_emergency_stop(cycle);  // already safe: the stop is logged and voids any pending recovery
+    }
+  }
+  if (fault() == DeviceFault::none && !stopped_ && safety_.overruns_exceeded(consecutive_overruns))
+    raise_fault(DeviceFault::loop_overrun, cycle);
+  if (fault() == DeviceFault::none && !stopped_ && safety_.stalled(lateness_ns)) raise_fault(DeviceFault::loop_stall, cycle);
   if (fault() == DeviceFault::none && !stopped_ && safe_stop_requested_.load(std::memory_order_acquire)) {
     stopped_ = true;
     leave_chain();
-    safety_.enter_safe_mode(last_written_);
+    safety_.enter_safe_mode(last_written_, robot_ != nullptr ? &state_.joints.position : nullptr, true);  // stopping: no hold
     at_rest_.store(false, std::memory_order_release);
   }
   if (fault() != DeviceFault::none || stopped_) return safe_mode_cycle(cycle, read == ReturnCode::ok);
@@ -376,39 +434,51 @@ void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, s
 }
 
 void DeviceSession::safe_mode_cycle(const CycleTime& cycle, bool read_ok) noexcept {
-  // Joint damping while the measurement can be trusted, then zero torque.
-  bool valid = read_ok && state_.joints.position.allFinite() && differentiator_ready_;
-  JointVector& velocity = chain_state_.velocity;
+  // The measured state goes on being estimated and published (an arm that sags is seen); joint damping (and,
+  // with a robot model, gravity compensation holding the posture) while the measurement can be trusted, then
+  // zero torque.
+  bool valid = read_ok && state_.joints.position.allFinite();
   if (valid) {
-    if (description_.reports_joint_velocity) {
-      velocity = state_.joints.velocity;
+    if (!differentiator_ready_) {  // a fault before the chain's first activation
+      differentiator_.configure(static_cast<double>(cycle.period_ns) * 1e-9, kVelocityFilterHz);
+      update_chain_state(cycle, true);
+      differentiator_ready_ = true;
     } else {
-      velocity = differentiate(cycle);
+      update_chain_state(cycle, false);
     }
-    valid = velocity.allFinite();
+    valid = chain_state_.velocity.allFinite() && (robot_ == nullptr || model_data_->gravity_torque.allFinite());
   }
-  safety_.safe_torque(velocity, valid, command_.torque_nm);
+  safety_.safe_torque(state_.joints.position, chain_state_.velocity, valid, robot_ != nullptr ? &model_data_->gravity_torque : nullptr,
+                      command_.torque_nm);
   at_rest_.store(safety_.at_rest(), std::memory_order_release);
   try {
     (void)chain_.device->write(cycle, command_);
   } catch (...) {
   }
   last_written_ = command_.torque_nm;
-  recover_if_requested();
+  recover_if_requested(cycle);
 }
 
-void DeviceSession::recover_if_requested() noexcept {
-  if (stopped_ || !recovery_requested_.load(std::memory_order_acquire) || !safety_.at_rest()) return;
+void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
+  if (stopped_ || !safety_.settled()) return;
+  std::uint64_t wanted = recovery_for_epoch_.load(std::memory_order_acquire);
+  // Only a request made after the last stop: a stop since then (stop_epoch_ moved on) voids it.
+  if (wanted == 0 || wanted != stop_epoch_.load(std::memory_order_acquire) + 1) return;
+  if (estop_requests_.load(std::memory_order_acquire) != estops_handled_) return;  // a stop not handled yet
   // The scheme that ran must have been deactivated off the loop (service()) before it activates again.
   const auto active = static_cast<std::size_t>(active_.load(std::memory_order_relaxed));
   if (scheme_state_[active].load(std::memory_order_acquire) != kIdle) return;
-  recovery_requested_.store(false, std::memory_order_relaxed);
-  estop_requested_.store(false, std::memory_order_relaxed);
-  chain_active_ = false;  // the next cycle activates the chain from the current state, with a soft start
-  switch_ramp_left_ = 0;
+  if (!recovery_for_epoch_.compare_exchange_strong(wanted, 0, std::memory_order_acq_rel)) return;
+  chain_active_ = false;  // the next cycle activates the chain from the measured state, with a soft start
+  // Whatever the safe mode holds (gravity, damping) fades out against the chain's first commands: no step.
+  switch_offset_ = last_written_;
+  switch_ramp_cycles_ = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(std::llround(chain_.switch_ramp_s * 1e9 / static_cast<double>(cycle.period_ns))));
+  switch_ramp_left_ = last_written_.isZero(0.0) ? 0 : -1;
   engine_seen_ = false;   // engine input ramps in again
   engine_weight_ = 0.0;
   recoveries_.fetch_add(1, std::memory_order_relaxed);
+  log_safety_event(SafetyEvent::Kind::recovery, fault(), cycle);
   fault_.store(DeviceFault::none, std::memory_order_release);
 }
 
@@ -417,8 +487,8 @@ RuntimeReply DeviceSession::request_recovery() {
   if (f == DeviceFault::none) return {false, "device '" + name_ + "' is not in its safe mode"};
   if (f == DeviceFault::configure)
     return {false, "device '" + name_ + "' never configured (" + chain_.configure_error + "); fix the session and restart"};
-  recovery_requested_.store(true, std::memory_order_release);
-  return {true, "device '" + name_ + "' recovers once its safe mode has reached zero torque"};
+  recovery_for_epoch_.store(stop_epoch_.load(std::memory_order_acquire) + 1, std::memory_order_release);
+  return {true, "device '" + name_ + "' recovers once its safe mode has settled (unless it is stopped again first)"};
 }
 
 void DeviceSession::record_history(const CycleTime& cycle) noexcept {
@@ -444,7 +514,12 @@ void DeviceSession::leave_chain() noexcept {
   chain_active_ = false;
 }
 
-void DeviceSession::enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept {
+void DeviceSession::log_safety_event(SafetyEvent::Kind kind, DeviceFault fault, const CycleTime& cycle) noexcept {
+  if (!safety_events_.try_push(SafetyEvent{kind, fault, cycle.index, cycle.time_ns}))
+    lost_safety_events_.fetch_add(1, std::memory_order_relaxed);
+}
+
+void DeviceSession::publish_fault(DeviceFault fault, const CycleTime& cycle) noexcept {
   // The report: the cycles before this one, as recorded (this cycle never wrote its chain's command).
   report_.fault = fault;
   report_.serial = fault_serial_.load(std::memory_order_relaxed) + 1;
@@ -454,13 +529,27 @@ void DeviceSession::enter_safe_state(DeviceFault fault, const CycleTime& cycle) 
   report_outbox_.publish(report_);
   fault_cycle_.store(cycle.index, std::memory_order_relaxed);
   fault_serial_.store(report_.serial, std::memory_order_relaxed);
+  log_safety_event(SafetyEvent::Kind::fault, fault, cycle);
+  stop_epoch_.fetch_add(1, std::memory_order_acq_rel);  // voids a recovery asked before this fault
   fault_.store(fault, std::memory_order_release);
+}
+
+void DeviceSession::relatch_emergency_stop(const CycleTime& cycle) noexcept {
+  // The safe mode (or the server's stop) goes on as it is; the stop is a fault of its own.
+  publish_fault(DeviceFault::emergency_stop, cycle);
+}
+
+void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle) noexcept {
+  publish_fault(fault, cycle);
   leave_chain();
-  recovery_requested_.store(false, std::memory_order_relaxed);
   // The last torque that reached the drives fades out, unless the measurement cannot be trusted (then the
   // damping cannot run either, and the safe mode is zero torque at once).
-  safety_.enter_safe_mode(last_written_);
+  safety_.enter_safe_mode(last_written_, robot_ != nullptr ? &state_.joints.position : nullptr);
   at_rest_.store(safety_.at_rest(), std::memory_order_release);
+}
+
+void DeviceSession::enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept {
+  raise_fault(fault, cycle);
   safe_mode_cycle(cycle, fault != DeviceFault::device_read && fault != DeviceFault::non_finite_measurement);
 }
 

@@ -29,6 +29,7 @@
 #include "hapticd/plugin.hpp"
 #include "hapticd/signal/differentiator.hpp"
 #include "plugins/plugin_loader.hpp"
+#include "recorder/spsc_ring.hpp"
 #include "safety/device_fault.hpp"
 #include "safety/fault_history.hpp"
 #include "safety/safety_supervisor.hpp"
@@ -40,6 +41,15 @@ struct SchemeChain {
   std::optional<PluginInstance<VirtualModel>> virtual_model;
   std::optional<PluginInstance<InverseKinematics>> inverse_kinematics;
   PluginInstance<Controller> controller;
+};
+
+// A fault or a recovery of a device, as the session's log keeps it (the final report lists every one).
+struct SafetyEvent {
+  enum class Kind : std::uint8_t { fault, recovery };
+  Kind kind = Kind::fault;
+  DeviceFault fault = DeviceFault::none;  // the fault raised, or the one recovered from
+  std::uint64_t cycle = 0;
+  std::int64_t time_ns = 0;
 };
 
 struct DeviceChain {
@@ -67,8 +77,9 @@ class DeviceSession {
   // Not real-time safe. Powers the device; the chain activates in the first cycle from the first sample.
   void activate();
   // Real-time safe. torque_scale in [0, 1] ramps the output (shutdown); consecutive_overruns: the loop's
-  // current run of overrun cycles (the watchdog).
-  void cycle(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns = 0) noexcept;
+  // current run of overrun cycles, lateness_ns: how late the loop woke for this cycle (the watchdogs).
+  void cycle(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns = 0,
+             std::int64_t lateness_ns = 0) noexcept;
   // Not real-time safe. Zero torque, chain and device off.
   void deactivate();
 
@@ -101,16 +112,25 @@ class DeviceSession {
   // Before activate(): the loop publishes a snapshot every `cycles` cycles (0: never, the default).
   void set_snapshot_interval(std::uint64_t cycles) noexcept { snapshot_interval_ = cycles; }
   // Any thread: emergency stop. The loop puts the device in its safe state at the next cycle (fault
-  // emergency_stop); the session keeps running for the other devices.
-  void request_emergency_stop() noexcept { estop_requested_.store(true, std::memory_order_release); }
+  // emergency_stop); the session keeps running for the other devices. A stop latches: it cancels every
+  // recovery requested before it, and a stop while the device is already safe is a fault of its own (report,
+  // log, exit code).
+  void request_emergency_stop() noexcept {
+    stop_epoch_.fetch_add(1, std::memory_order_acq_rel);  // first: a recovery asked before this stop is void
+    estop_requests_.fetch_add(1, std::memory_order_acq_rel);
+  }
   // Any thread: the server is stopping (SIGINT/SIGTERM): the device goes through its safe mode - damping,
   // then zero torque - without a fault. at_rest() tells when it is done.
   void request_safe_stop() noexcept { safe_stop_requested_.store(true, std::memory_order_release); }
   [[nodiscard]] bool safe_stopping() const noexcept { return safe_stop_requested_.load(std::memory_order_relaxed); }
   // Any thread: leave the safe mode. Refused when there is no fault or the device never configured; otherwise
-  // the loop recovers once the safe mode has reached zero torque: the chain activates again from the current
-  // state with a soft start.
+  // the loop recovers once the safe mode has settled (the last torque faded out, damping done): the chain
+  // activates again from the measured state with a soft start. Only a request made after the last stop counts.
   RuntimeReply request_recovery();
+  // Any thread (the monitor): the next fault or recovery from the device's log, oldest first; false if none.
+  // One reader. The loop counts what did not fit (lost_safety_events).
+  bool take_safety_event(SafetyEvent& out) noexcept { return safety_events_.try_pop(out); }
+  [[nodiscard]] std::uint64_t lost_safety_events() const noexcept { return lost_safety_events_.load(std::memory_order_relaxed); }
   // Any thread: the safe mode has reached zero torque (or there is no fault).
   [[nodiscard]] bool at_rest() const noexcept { return at_rest_.load(std::memory_order_acquire); }
   // Any thread: the newest fault report (the fault and the cycles before it); false if none since the last take.
@@ -134,12 +154,20 @@ class DeviceSession {
   void service();
 
  private:
-  void cycle_checked(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns) noexcept;
+  void cycle_checked(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns,
+                     std::int64_t lateness_ns) noexcept;
+  // A fault: report, log, counters, the stop epoch (voids pending recoveries).
+  void publish_fault(DeviceFault fault, const CycleTime& cycle) noexcept;
+  // A fault that puts the running device in its safe mode (this cycle's safe-mode step still to come).
+  void raise_fault(DeviceFault fault, const CycleTime& cycle) noexcept;
+  // raise_fault, then this cycle's safe-mode step.
   void enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept;
   void leave_chain() noexcept;
   void safe_mode_cycle(const CycleTime& cycle, bool read_ok) noexcept;
-  void recover_if_requested() noexcept;
+  void recover_if_requested(const CycleTime& cycle) noexcept;
   void record_history(const CycleTime& cycle) noexcept;
+  void log_safety_event(SafetyEvent::Kind kind, DeviceFault fault, const CycleTime& cycle) noexcept;
+  void relatch_emergency_stop(const CycleTime& cycle) noexcept;
   ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
   void switch_scheme_if_requested(const CycleTime& cycle) noexcept;
   void blend_after_switch() noexcept;
@@ -176,7 +204,15 @@ class DeviceSession {
   realtime::LatestValue<DeviceSnapshot> snapshot_outbox_;
   DeviceSnapshot snapshot_;
   std::uint64_t snapshot_interval_ = 0;
-  std::atomic<bool> estop_requested_{false};
+  // E-stops and recoveries (any thread -> loop). Every stop (an E-stop request, a fault the loop raises)
+  // increments stop_epoch_; a recovery request records the epoch it was made in (+1, 0: none) and is carried
+  // out only while no stop has come since.
+  std::atomic<std::uint64_t> stop_epoch_{0};
+  std::atomic<std::uint64_t> estop_requests_{0};
+  std::uint64_t estops_handled_ = 0;  // loop thread
+  std::atomic<std::uint64_t> recovery_for_epoch_{0};
+  SpscRing<SafetyEvent> safety_events_{256};
+  std::atomic<std::uint64_t> lost_safety_events_{0};
   JointVector switch_offset_;       // torque difference at the last switch, fading out
   std::int64_t switch_ramp_cycles_ = 0;
   std::int64_t switch_ramp_left_ = 0;
@@ -197,7 +233,6 @@ class DeviceSession {
   realtime::LatestValue<FaultReport> report_outbox_;
   std::atomic<bool> safe_stop_requested_{false};
   bool stopped_ = false;  // loop thread: the safe stop has begun
-  std::atomic<bool> recovery_requested_{false};
   std::atomic<int> passivity_request_{-1};  // -1: none, else 0/1
   std::atomic<bool> at_rest_{true};
   std::atomic<std::uint64_t> fault_serial_{0};

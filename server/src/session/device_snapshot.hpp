@@ -20,6 +20,7 @@ struct DeviceSnapshot {
   Pose target_pose;                  // the chain's desired pose
   JointVector position, velocity, torque;  // torque: commanded
   DeviceFault fault{};
+  std::uint64_t faults = 0;          // faults raised so far (a stop while already safe counts too)
   bool estop = false;
   bool stopping = false;             // shutdown ramp running
   bool saturated = false;

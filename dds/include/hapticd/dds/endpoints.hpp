@@ -25,6 +25,12 @@ class Writer {
     writer_ = Entity(check(dds_create_writer(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS writer"));
   }
   bool write(const T& sample) const noexcept { return dds_write(writer_.get(), &sample) == DDS_RETCODE_OK; }
+  // Writes, then unregisters the sample's instance: a writer of one-off messages (replies to ever new client
+  // ids) keeps no state per key.
+  bool write_once(const T& sample) const noexcept {
+    const bool written = dds_write(writer_.get(), &sample) == DDS_RETCODE_OK;
+    return dds_unregister_instance(writer_.get(), &sample) == DDS_RETCODE_OK && written;
+  }
   // With an explicit source timestamp (ns since the epoch, the wall clock).
   bool write(const T& sample, dds_time_t source_time) const noexcept {
     return dds_write_ts(writer_.get(), &sample, source_time) == DDS_RETCODE_OK;
@@ -46,10 +52,13 @@ class Reader {
  public:
   static constexpr std::size_t kBatch = 16;
 
-  explicit Reader(const Participant& participant, const CommandTiming& timing = {})
+  // filter: samples it refuses are dropped before the reader stores them (no instance is created for them); it
+  // runs on Cyclone's receive threads. The reader has a topic entity of its own, so the filter is the reader's.
+  explicit Reader(const Participant& participant, const CommandTiming& timing = {}, const dds_topic_filter* filter = nullptr)
       : topic_(make_topic<T>(participant, timing)) {
     for (std::size_t i = 0; i < kBatch; ++i) pointers_[i] = &samples_[i];
     const Qos qos = topic_qos(TopicOf<T>::kind, timing);
+    if (filter != nullptr) check(dds_set_topic_filter_extended(topic_.get(), filter), "cannot set a DDS topic filter");
     reader_ = Entity(check(dds_create_reader(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS reader"));
   }
   // Callbacks on Cyclone's receive thread from now on (Cyclone copies the listener). Set it once the owner

@@ -1,0 +1,202 @@
+// Ownership over DDS, as an attacker on the same host tried it (issue 17, items 2 and 3): a claim is bound to
+// the claimant's DDS participant, not to the client id it declares, and it ends when that participant is gone -
+// a clean exit without a release, a kill before or after the first command, a freeze beyond the liveliness
+// lease - within 1 s. Real time on loopback, each test on a domain of its own, bounded in time; the killed and
+// frozen claimants are separate processes (hapticctl, the scene engine).
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "e2e/dds_server_rig.hpp"
+#include "hapticd/dds/conversion.hpp"
+#include "hapticd/dds/endpoints.hpp"
+
+extern char** environ;
+
+namespace hapticd::server {
+namespace {
+
+using client::Client;
+using e2e::SceneEngine;
+using e2e::Server;
+using e2e::session_yaml;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// The owner the device's newest state names, as a client sees it.
+std::string owner_seen(Client& watcher) {
+  const auto s = watcher.wait_for_state("v3", std::chrono::seconds(2), watcher.latest_state("v3") ? watcher.latest_state("v3")->serial : 0);
+  return s ? std::string(client::name_of(s->owner)) : "?";
+}
+
+// Waits (at most `limit` s) until the device's owner is `owner`; returns the time it took, or nullopt.
+std::optional<double> wait_for_owner(Client& watcher, const std::string& owner, double limit) {
+  const auto start = Clock::now();
+  while (seconds_since(start) < limit) {
+    if (owner_seen(watcher) == owner) return seconds_since(start);
+  }
+  return std::nullopt;
+}
+
+// A separate process, killed at the end of the test whatever happened.
+class Process {
+ public:
+  explicit Process(std::vector<std::string> argv) {
+    std::vector<char*> args;
+    for (auto& a : argv) args.push_back(a.data());
+    args.push_back(nullptr);
+    if (posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), environ) != 0) pid_ = -1;
+  }
+  ~Process() {
+    if (pid_ <= 0) return;
+    (void)kill(pid_, SIGCONT);
+    (void)kill(pid_, SIGKILL);
+    (void)waitpid(pid_, nullptr, 0);
+  }
+  Process(const Process&) = delete;
+  Process& operator=(const Process&) = delete;
+  [[nodiscard]] bool started() const noexcept { return pid_ > 0; }
+  void signal(int sig) const { (void)kill(pid_, sig); }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+std::string bin(const char* name) { return std::string(HAPTICD_BIN_DIR) + "/" + name; }
+
+TEST(DdsOwnership, AnotherParticipantWritingUnderTheOwnersIdIsNotTheOwner) {
+  // The attack: a second process writes commands under the owning engine's id with serials near 2^64 (60 N,
+  // the handle dragged), and sends release, recover, set and switch under that id. Before, 4409 such commands
+  // were accepted and the real engine's were all rejected "out of order" afterwards.
+  Server server(session_yaml(71, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
+  SceneEngine owner(71, "engine");
+  server.start();
+  ASSERT_TRUE(owner.connect());
+  const auto not_owner = [&] { return server.bridge().rejected_by_reason(0)[static_cast<std::size_t>(dds::RejectReason::not_owner)]; };
+  const auto accepted_before = server.bridge().commands_accepted(0);
+
+  // The requests, from a client of its own that declares the owner's id.
+  Client spoofer({"engine", 71, {}, 0.05});
+  ASSERT_TRUE(spoofer.wait_for_state("v3", std::chrono::seconds(10)));
+  for (const client::Reply& r : {spoofer.claim("v3"), spoofer.release("v3"), spoofer.recover("v3"),
+                                 spoofer.switch_scheme("v3", "default"),
+                                 spoofer.set_parameter("v3", "virtual_model.coupling_stiffness_n_per_m", {100.0})}) {
+    EXPECT_TRUE(r.answered) << r.message;
+    EXPECT_FALSE(r.accepted) << r.message;
+  }
+
+  // The commands, raw: a participant and writer of their own, the owner's id, serials from 2^64 - 10000.
+  dds::Participant participant(dds::ParticipantOptions{71, {}});
+  dds::Writer<hapticd_msg_EngineCommand> writer(participant, dds::CommandTiming{0.05, 0.5});
+  const auto state = spoofer.latest_state("v3");
+  ASSERT_TRUE(state.has_value());
+  std::uint64_t serial = ~std::uint64_t{0} - 10000;
+  const auto flood_start = Clock::now();
+  const std::uint64_t not_owner_before = not_owner();
+  while (seconds_since(flood_start) < 1.5 && serial < ~std::uint64_t{0}) {
+    hapticd_msg_EngineCommand c{};
+    dds::set_text(c.device, "v3");
+    dds::set_text(c.engine, "engine");
+    c.serial = ++serial;
+    c.state_serial = state->serial;
+    c.kind = hapticd_msg_COMMAND_WRENCH;
+    c.wrench[0] = 60.0;
+    c.pose.orientation[0] = 1.0;
+    c.anchor.orientation[0] = 1.0;
+    (void)writer.write(c);
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  const std::uint64_t spoofed = not_owner() - not_owner_before;
+  // The real engine goes on being heard.
+  const auto accepted_after_flood = server.bridge().commands_accepted(0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto accepted_later = server.bridge().commands_accepted(0);
+  server.stop();
+  server.join();
+  std::printf("spoofed commands rejected as not the owner: %llu; the owner's accepted: %llu during, %llu after\n",
+              static_cast<unsigned long long>(spoofed), static_cast<unsigned long long>(accepted_after_flood - accepted_before),
+              static_cast<unsigned long long>(accepted_later - accepted_after_flood));
+  EXPECT_GT(spoofed, 500u);  // the flood reached the server, and was rejected
+  EXPECT_GT(accepted_later - accepted_after_flood, 100u);
+  EXPECT_EQ(server.bridge().owner(0), "engine");
+  EXPECT_EQ(server.bridge().rejected_by_reason(0)[static_cast<std::size_t>(dds::RejectReason::out_of_order)], 0u);
+  // The device never felt the spoofed 60 N (the owner's proxy on the free handle gives a few newtons at most).
+  double largest = 0.0;
+  for (const auto& f : server.recording().force()) largest = std::max(largest, f.norm());
+  EXPECT_LT(largest, 10.0);
+}
+
+TEST(DdsOwnership, AClaimEndsWhenItsClaimantExitsWithoutReleasing) {
+  Server server(session_yaml(72, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
+  server.start();
+  Client watcher({"watcher", 72, {}, 0.05});
+  ASSERT_TRUE(watcher.wait_for_state("v3", std::chrono::seconds(20)));
+  {
+    Client quitter({"quitter", 72, {}, 0.05});
+    ASSERT_TRUE(quitter.claim("v3").accepted);
+    ASSERT_TRUE(wait_for_owner(watcher, "quitter", 2.0));
+    EXPECT_FALSE(watcher.claim("v3").accepted);
+  }  // gone without RELEASE
+  const auto gone = Clock::now();
+  const auto freed = wait_for_owner(watcher, "", 5.0);
+  ASSERT_TRUE(freed.has_value()) << "the claim outlived its claimant";
+  const client::Reply r = watcher.claim("v3");
+  const double claimed_after = seconds_since(gone);
+  EXPECT_TRUE(r.accepted) << r.message;
+  std::printf("clean exit without release: device free after %.3f s, claimed by another client after %.3f s\n", *freed,
+              claimed_after);
+  EXPECT_LE(*freed, 1.0);
+  EXPECT_EQ(server.bridge().claims_ended(), 1u);
+  server.stop();
+}
+
+TEST(DdsOwnership, AClaimEndsWhenItsClaimantIsKilledOrFrozen) {
+  Server server(session_yaml(73, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
+  server.start();
+  Client watcher({"watcher", 73, {}, 0.05});
+  ASSERT_TRUE(watcher.wait_for_state("v3", std::chrono::seconds(20)));
+  const auto measure = [&](const char* what, Process& claimant, const std::string& id, int sig) {
+    ASSERT_TRUE(claimant.started());
+    ASSERT_TRUE(wait_for_owner(watcher, id, 15.0)) << what << ": never claimed";
+    claimant.signal(sig);
+    const auto freed = wait_for_owner(watcher, "", 5.0);
+    ASSERT_TRUE(freed.has_value()) << what << ": the claim outlived its claimant";
+    std::printf("%s: device free after %.3f s\n", what, *freed);
+    EXPECT_LE(*freed, 1.0) << what;
+    const client::Reply r = watcher.claim("v3");
+    EXPECT_TRUE(r.accepted) << what << ": " << r.message;
+    EXPECT_TRUE(watcher.release("v3").accepted);
+  };
+  const std::string domain = "73";
+  {
+    Process holder({bin("hapticctl"), "--domain", domain, "--id", "holder", "claim", "v3", "--hold", "60"});
+    measure("claimed, killed before any command", holder, "holder", SIGKILL);
+  }
+  {
+    Process holder({bin("hapticctl"), "--domain", domain, "--id", "sleeper", "claim", "v3", "--hold", "60"});
+    measure("claimed, frozen (SIGSTOP)", holder, "sleeper", SIGSTOP);
+  }
+  {
+    Process engine({bin("hapticd-scene-engine"), "--domain", domain, "--device", "v3", "--id", "scene"});
+    ASSERT_TRUE(wait_for_owner(watcher, "scene", 15.0));
+    const auto start = Clock::now();
+    while (server.bridge().commands_accepted(0) < 100 && seconds_since(start) < 10.0)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ASSERT_GE(server.bridge().commands_accepted(0), 100u);
+    measure("engine killed after its commands", engine, "scene", SIGKILL);
+  }
+  EXPECT_EQ(server.bridge().claims_ended(), 3u);
+  server.stop();
+}
+
+}  // namespace
+}  // namespace hapticd::server
