@@ -47,7 +47,6 @@ void sink(void*, const dds_log_data_t* data) {
   }
   r.forwarded.fetch_add(1, std::memory_order_relaxed);
   std::string_view text(data->message, data->size);
-  if (data->hdrsize <= text.size()) text.remove_prefix(data->hdrsize);  // Cyclone's own time/thread header
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.remove_suffix(1);
   const auto level = (data->priority & (DDS_LC_FATAL | DDS_LC_ERROR)) != 0 ? spdlog::level::err
                      : (data->priority & DDS_LC_WARNING) != 0           ? spdlog::level::warn

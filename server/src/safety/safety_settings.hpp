@@ -43,7 +43,7 @@ struct SafetySettings {
   std::uint32_t max_consecutive_overruns = 10;  // 0: overruns never stop the device
   // A loop that wakes this late for a cycle (the process was stopped, the machine stalled) faults the device
   // with loop_stall; 0: off. Real-time clock only.
-  double max_stall_s = 0.005;
+  double max_stall_s = 0.02;
   // Safe mode: the last torque written fades out over safe_fade_s (no step) while joint damping acts for
   // safe_damping_s; then zero torque.
   double safe_fade_s = 0.02;
