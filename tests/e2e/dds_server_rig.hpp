@@ -16,7 +16,7 @@
 
 #include "../../examples/engines/scene.hpp"
 #include "app/session_monitor.hpp"
-#include "dds/dds_bridge.hpp"
+#include "bridge/dds_bridge.hpp"
 #include "hapticd/client/client.hpp"
 #include "support/test_session.hpp"
 

@@ -1,4 +1,4 @@
-// The engine-command gate (server/src/dds/command_gate) and the content checks it relies on
+// The engine-command gate (server/src/bridge/command_gate) and the content checks it relies on
 // (dds/command_validation): ownership, order, freshness, and a bounded randomised fuzz of the content checks
 // (fixed seed) - no input may crash them or pass with non-finite or out-of-bounds content.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "dds/command_gate.hpp"
+#include "bridge/command_gate.hpp"
 #include "hapticd/dds/conversion.hpp"
 
 namespace hapticd::server {

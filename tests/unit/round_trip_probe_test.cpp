@@ -1,4 +1,4 @@
-// The DDS bridge's round-trip probe (server/src/dds/round_trip_probe): state written -> command handed to the
+// The DDS bridge's round-trip probe (server/src/bridge/round_trip_probe): state written -> command handed to the
 // loop, and how many cycles after the state's the loop applied the command; slots reused by newer states are
 // never mistaken for the old ones, and the hand-off between the publisher and the receive thread is consistent.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <atomic>
 #include <thread>
 
-#include "dds/round_trip_probe.hpp"
+#include "bridge/round_trip_probe.hpp"
 
 namespace hapticd::server {
 namespace {

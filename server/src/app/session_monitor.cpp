@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "dds/dds_bridge.hpp"
+#include "bridge/dds_bridge.hpp"
 #include "recorder/recorder.hpp"
 #include "safety/fault_history.hpp"
 #include "session/device_session.hpp"

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "config/session_config.hpp"
-#include "dds/round_trip_probe.hpp"
+#include "bridge/round_trip_probe.hpp"
 #include "executor/executor.hpp"
 #include "session/device_session.hpp"
 

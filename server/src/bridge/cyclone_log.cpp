@@ -1,4 +1,4 @@
-#include "dds/cyclone_log.hpp"
+#include "bridge/cyclone_log.hpp"
 
 #include <dds/dds.h>
 #include <spdlog/spdlog.h>

@@ -1,4 +1,4 @@
-#include "dds/round_trip_probe.hpp"
+#include "bridge/round_trip_probe.hpp"
 
 #include <algorithm>
 #include <numeric>

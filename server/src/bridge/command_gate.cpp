@@ -1,4 +1,4 @@
-#include "dds/command_gate.hpp"
+#include "bridge/command_gate.hpp"
 
 #include <algorithm>
 

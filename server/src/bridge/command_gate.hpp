@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-#include "dds/peer_directory.hpp"
+#include "bridge/peer_directory.hpp"
 #include "hapticd/dds/command_validation.hpp"
 
 namespace hapticd::server {

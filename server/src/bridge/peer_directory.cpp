@@ -1,4 +1,4 @@
-#include "dds/peer_directory.hpp"
+#include "bridge/peer_directory.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -1,0 +1,34 @@
+#pragma once
+// The bridge's command path, on Cyclone's receive threads (a listener: no thread wake-up between a command's
+// arrival and its hand-over to the loop): who wrote it (PeerDirectory), whether its device accepts it
+// (CommandGate: owner, order, freshness, content), the hand-over (DeviceSession::publish_engine_input,
+// lock-free), the round-trip probe and the lockstep hand-shake. Rejections are counted by the gate and announced
+// (the first, then every 100th per reason). Command writers' liveliness changes go to the PeerDirectory and
+// wake the receiver, which checks the claims.
+#include <array>
+#include <mutex>
+#include <vector>
+
+#include "bridge/dds_endpoints.hpp"
+#include "bridge/device_link.hpp"
+#include "bridge/event_sender.hpp"
+
+namespace hapticd::server {
+
+class CommandIntake {
+ public:
+  CommandIntake(DdsEndpoints& dds, DeviceLinks& links, EventSender& events);
+  // Attaches the listener to the command reader; from then on commands flow. Last, once everything is built.
+  void listen();
+
+ private:
+  void take_commands();
+  void liveliness_changed(const dds_liveliness_changed_status_t& status);
+
+  DdsEndpoints& dds_;
+  DeviceLinks& links_;
+  EventSender& events_;
+  std::mutex take_mutex_;  // one take at a time: local writers deliver on their own threads, buffers are shared
+};
+
+}  // namespace hapticd::server

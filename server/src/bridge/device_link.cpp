@@ -1,0 +1,49 @@
+#include "bridge/device_link.hpp"
+
+#include "hapticd/dds/conversion.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server {
+
+DeviceLink::DeviceLink(std::size_t i, DeviceSession* s, const DdsSettings& settings)
+    : index(i),
+      session(s),
+      gate(dds::CommandBounds{settings.max_force_n, settings.max_torque_nm, settings.max_stiffness_n_per_m,
+                              settings.max_rotational_stiffness_n_m_per_rad, settings.max_damping_n_s_per_m,
+                              settings.max_rotational_damping_n_m_s, settings.max_distance_m, settings.max_speed_m_s,
+                              settings.max_angular_speed_rad_s},
+           settings.max_sample_age_s) {}
+
+DeviceLinks::DeviceLinks(const std::vector<DeviceSession*>& sessions, const DdsSettings& settings) {
+  for (DeviceSession* s : sessions) links_.push_back(std::make_unique<DeviceLink>(links_.size(), s, settings));
+}
+
+DeviceLink* DeviceLinks::find(std::string_view device) noexcept {
+  for (auto& l : links_)
+    if (l->session->name() == device) return l.get();
+  return nullptr;
+}
+
+dds_topic_filter DeviceLinks::command_filter() noexcept {
+  return dds_topic_filter{DDS_TOPIC_FILTER_SAMPLE_ARG, {.sample_arg = &DeviceLinks::command_for_us}, this};
+}
+
+dds_topic_filter DeviceLinks::request_filter() noexcept {
+  return dds_topic_filter{DDS_TOPIC_FILTER_SAMPLE_ARG, {.sample_arg = &DeviceLinks::request_for_us}, this};
+}
+
+bool DeviceLinks::command_for_us(const void* sample, void* self) {
+  auto* links = static_cast<DeviceLinks*>(self);
+  if (links->find(dds::text_of(static_cast<const hapticd_msg_EngineCommand*>(sample)->device)) != nullptr) return true;
+  links->unknown_commands_.fetch_add(1, std::memory_order_relaxed);  // malformed (the IDL's reason 0)
+  return false;
+}
+
+bool DeviceLinks::request_for_us(const void* sample, void* self) {
+  auto* links = static_cast<DeviceLinks*>(self);
+  if (links->find(dds::text_of(static_cast<const hapticd_msg_ControlRequest*>(sample)->device)) != nullptr) return true;
+  links->unknown_requests_.fetch_add(1, std::memory_order_relaxed);
+  return false;
+}
+
+}  // namespace hapticd::server

@@ -1,0 +1,175 @@
+#include "bridge/request_dispatcher.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "hapticd/dds/conversion.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+std::int64_t steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+RequestDispatcher::RequestDispatcher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, StatePublisher& publisher,
+                                     double claim_grace_s)
+    : dds_(dds), links_(links), events_(events), publisher_(publisher),
+      claim_grace_ns_(static_cast<std::int64_t>(claim_grace_s * 1e9)) {}
+
+void RequestDispatcher::handle_requests() {
+  dds_.request.take([&](const hapticd_msg_ControlRequest& m, const dds_sample_info_t& info) {
+    DeviceLink* d = links_.find(dds::text_of(m.device));
+    if (d == nullptr) return;  // (the reader's filter keeps other devices' requests out: another server's)
+    d->requests.fetch_add(1, std::memory_order_relaxed);
+    const std::optional<PeerId> requester = dds_.peers.participant_of(dds_.request.get(), info.publication_handle);
+    Answer answer;
+    if (dds::text_of(m.client).empty() || !dds::terminated(m.client) || !dds::terminated(m.name)) {
+      answer.message = "malformed request (no client id)";
+    } else if (!requester) {
+      answer.message = "request from a writer that is no longer known";
+    } else {
+      const Request r{m, info, *requester, dds::text_of(m.client), dds::text_of(m.name),
+                      std::vector<double>(m.values, m.values + std::clamp<std::int32_t>(m.value_count, 0, hapticd_msg_MAX_VALUES))};
+      answer = dispatch(*d, r);
+    }
+    hapticd_msg_ControlReply reply{};
+    dds::set_text(reply.device, d->session->name());
+    dds::set_text(reply.client, dds::text_of(m.client));
+    reply.request_id = m.request_id;
+    reply.accepted = answer.accepted;
+    dds::set_text(reply.message, answer.message);
+    (void)dds_.reply.write_once(reply);  // no state kept per client id
+  });
+}
+
+RequestDispatcher::Answer RequestDispatcher::dispatch(DeviceLink& d, const Request& r) {
+  switch (r.message.kind) {
+    case hapticd_msg_REQUEST_CLAIM: return claim(d, r);
+    case hapticd_msg_REQUEST_RELEASE: return release(d, r);
+    case hapticd_msg_REQUEST_SWITCH_SCHEME: return switch_scheme(d, r);
+    case hapticd_msg_REQUEST_SET_PARAMETER: return set_parameter(d, r);
+    case hapticd_msg_REQUEST_OPERATOR: return drive_operator(d, r);
+    case hapticd_msg_REQUEST_ESTOP: return emergency_stop(d, r);
+    case hapticd_msg_REQUEST_RECOVER: return recover(d, r);
+    case hapticd_msg_REQUEST_DESCRIBE: return describe(d, r);
+  }
+  return {false, "unknown request kind"};
+}
+
+std::optional<RequestDispatcher::Answer> RequestDispatcher::refused_unless_owner(const DeviceLink& d, const Request& r) const {
+  std::lock_guard lock(d.mutex);
+  if (d.gate.owner().empty() || d.gate.owned_by(r.requester)) return std::nullopt;
+  return Answer{false, "claimed by '" + d.gate.owner() + "'"};
+}
+
+RequestDispatcher::Answer RequestDispatcher::claim(DeviceLink& d, const Request& r) {
+  Answer a;
+  {
+    std::lock_guard lock(d.mutex);
+    a.accepted = d.gate.claim(r.client, r.requester);
+    if (a.accepted) {
+      d.claim_writer = r.info.publication_handle;
+      d.claimed_ns = steady_ns();
+    }
+    a.message = a.accepted ? "claimed" : "claimed by '" + d.gate.owner() + "' (another participant)";
+  }
+  if (a.accepted) events_.send(d, hapticd_msg_EVENT_OWNER, r.client, std::string(r.client) + " claimed the device");
+  return a;
+}
+
+RequestDispatcher::Answer RequestDispatcher::release(DeviceLink& d, const Request& r) {
+  bool released = false;
+  {
+    std::lock_guard lock(d.mutex);
+    released = d.gate.release(r.requester);
+  }
+  if (!released) return {false, "not the owner"};
+  d.synced.store(false, std::memory_order_release);
+  events_.send(d, hapticd_msg_EVENT_OWNER, "", std::string(r.client) + " released the device");
+  return {true, "released"};
+}
+
+RequestDispatcher::Answer RequestDispatcher::switch_scheme(DeviceLink& d, const Request& r) {
+  if (auto refused = refused_unless_owner(d, r)) return *refused;
+  if (!d.session->request_scheme(r.name)) return {false, "no scheme named '" + std::string(r.name) + "'"};
+  return {true, "switching to " + std::string(r.name)};
+}
+
+RequestDispatcher::Answer RequestDispatcher::set_parameter(DeviceLink& d, const Request& r) {
+  if (auto refused = refused_unless_owner(d, r)) return *refused;
+  const auto dot = r.name.find('.');
+  if (dot == std::string_view::npos) return {false, "expected <stage>.<parameter>, e.g. virtual_model.mass_kg"};
+  const RuntimeReply rr = d.session->handle_request(r.name.substr(0, dot), std::string(r.name.substr(dot + 1)), r.values);
+  return {rr.accepted, rr.message};
+}
+
+RequestDispatcher::Answer RequestDispatcher::drive_operator(DeviceLink& d, const Request& r) {
+  // The simulated operator is the person at the device, not the device: anyone may drive it.
+  const RuntimeReply rr = d.session->handle_request("device", "operator." + std::string(r.name), r.values);
+  return {rr.accepted, rr.message};
+}
+
+RequestDispatcher::Answer RequestDispatcher::emergency_stop(DeviceLink& d, const Request&) {
+  d.session->request_emergency_stop();  // anyone may stop a device
+  return {true, "emergency stop"};
+}
+
+RequestDispatcher::Answer RequestDispatcher::recover(DeviceLink& d, const Request& r) {
+  if (auto refused = refused_unless_owner(d, r)) return *refused;
+  const RuntimeReply rr = d.session->request_recovery();
+  return {rr.accepted, rr.message};
+}
+
+RequestDispatcher::Answer RequestDispatcher::describe(DeviceLink& d, const Request&) {
+  publisher_.publish_description(d.index);
+  return {true, "description republished"};
+}
+
+void RequestDispatcher::check_claims() {
+  const std::int64_t now = steady_ns();
+  for (auto& link : links_) {
+    DeviceLink& d = *link;
+    PeerId owner;
+    dds_instance_handle_t claim_writer = 0;
+    std::int64_t claimed_ns = 0;
+    {
+      std::lock_guard lock(d.mutex);
+      if (d.gate.owner().empty()) continue;
+      owner = d.gate.owner_participant();
+      claim_writer = d.claim_writer;
+      claimed_ns = d.claimed_ns;
+    }
+    const char* why = nullptr;
+    if (!PeerDirectory::matched(dds_.request.get(), claim_writer)) {
+      why = "left the domain";
+    } else if (now - claimed_ns > claim_grace_ns_ && !dds_.peers.has_live_writer(dds_.command.get(), owner)) {
+      why = "has no live command writer (its process died, froze or never had one)";
+    }
+    if (why == nullptr) continue;
+    std::string lost;
+    {
+      std::lock_guard lock(d.mutex);
+      if (!d.gate.owned_by(owner) || d.claimed_ns != claimed_ns) continue;  // released or claimed anew meanwhile
+      lost = d.gate.owner();
+      d.gate.release_any();
+    }
+    d.synced.store(false, std::memory_order_release);
+    claims_ended_.fetch_add(1, std::memory_order_relaxed);
+    events_.send(d, hapticd_msg_EVENT_OWNER, "", "engine '" + lost + "' " + why + ": the device is free again");
+  }
+}
+
+void RequestDispatcher::check_engine_deadlines() {
+  dds_requested_deadline_missed_status_t missed{};
+  if (dds_get_requested_deadline_missed_status(dds_.command.get(), &missed) != DDS_RETCODE_OK || missed.total_count_change <= 0)
+    return;
+  for (auto& link : links_)
+    if (link->instance.load(std::memory_order_relaxed) == missed.last_instance_handle)
+      link->deadline_misses.fetch_add(static_cast<std::uint64_t>(missed.total_count_change));
+}
+
+}  // namespace hapticd::server

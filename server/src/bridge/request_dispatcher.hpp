@@ -1,0 +1,73 @@
+#pragma once
+// The bridge's requests, on its receiver thread: each request is answered by the handler of its kind (claim,
+// release, switch scheme, set parameter, operator, E-stop, recover, describe). The requester is the participant
+// of the request's writer, whatever client id the request declares; owner-only requests (release, switch, set,
+// recover) are accepted only from the claimant's participant, or on a free device. The same thread ends claims
+// whose claimant's participant is gone, and counts the engines' missed deadlines.
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bridge/dds_endpoints.hpp"
+#include "bridge/device_link.hpp"
+#include "bridge/event_sender.hpp"
+#include "bridge/state_publisher.hpp"
+
+namespace hapticd::server {
+
+class RequestDispatcher {
+ public:
+  RequestDispatcher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, StatePublisher& publisher,
+                    double claim_grace_s);
+
+  // Answers every request waiting on the reader.
+  void handle_requests();
+  // Ends the claims whose claimant is gone: its request writer no longer matched (a clean exit deletes it; a
+  // vanished participant is removed when its lease runs out), or no command writer of its participant whose
+  // liveliness holds, once claim_grace_s have passed since the claim (a killed or frozen process stops
+  // asserting it: the command reader's lease, 0.5 s).
+  void check_claims();
+  // Counts the DDS deadlines the devices' engines missed.
+  void check_engine_deadlines();
+
+  [[nodiscard]] std::uint64_t claims_ended() const noexcept { return claims_ended_.load(); }
+
+ private:
+  // A request as its handler sees it.
+  struct Request {
+    const hapticd_msg_ControlRequest& message;
+    const dds_sample_info_t& info;
+    const PeerId& requester;
+    std::string_view client;
+    std::string_view name;
+    std::vector<double> values;
+  };
+  struct Answer {
+    bool accepted = false;
+    std::string message;
+  };
+  Answer dispatch(DeviceLink& d, const Request& r);
+  // Whether the requester may drive the device (free, or claimed by the requester's participant); else the
+  // refusal names the owner.
+  std::optional<Answer> refused_unless_owner(const DeviceLink& d, const Request& r) const;
+
+  Answer claim(DeviceLink& d, const Request& r);
+  Answer release(DeviceLink& d, const Request& r);
+  Answer switch_scheme(DeviceLink& d, const Request& r);
+  Answer set_parameter(DeviceLink& d, const Request& r);
+  Answer drive_operator(DeviceLink& d, const Request& r);
+  Answer emergency_stop(DeviceLink& d, const Request& r);
+  Answer recover(DeviceLink& d, const Request& r);
+  Answer describe(DeviceLink& d, const Request& r);
+
+  DdsEndpoints& dds_;
+  DeviceLinks& links_;
+  EventSender& events_;
+  StatePublisher& publisher_;
+  std::int64_t claim_grace_ns_;
+  std::atomic<std::uint64_t> claims_ended_{0};
+};
+
+}  // namespace hapticd::server

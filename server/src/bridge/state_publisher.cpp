@@ -1,0 +1,122 @@
+#include "bridge/state_publisher.hpp"
+
+#include <chrono>
+
+#include "hapticd/dds/conversion.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+std::int64_t steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+StatePublisher::StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, double rate_hz,
+                               std::uint64_t snapshot_interval)
+    : dds_(dds), links_(links), events_(events), rate_hz_(rate_hz), snapshot_interval_(snapshot_interval), published_(links.size()) {
+  for (std::size_t i = 0; i < links.size(); ++i)
+    for (const SchemeChain& s : links[i].session->chain().schemes) published_[i].scheme_names.push_back(s.name);
+}
+
+hapticd_msg_LoopSummary StatePublisher::loop_summary() const noexcept {
+  hapticd_msg_LoopSummary loop{};
+  loop.rate_hz = rate_hz_;
+  if (live_ == nullptr) return loop;
+  loop.cycles = live_->cycles.load(std::memory_order_relaxed);
+  loop.overruns = live_->overruns.load(std::memory_order_relaxed);
+  loop.latency_max_us = static_cast<double>(live_->window_latency_max_ns.load(std::memory_order_relaxed)) * 1e-3;
+  loop.compute_max_us = static_cast<double>(live_->window_compute_max_ns.load(std::memory_order_relaxed)) * 1e-3;
+  return loop;
+}
+
+void StatePublisher::publish_states() {
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    DeviceLink& d = links_[i];
+    Published& p = published_[i];
+    if (!d.session->take_snapshot(p.snapshot)) {
+      // Nothing new (the loop waits, e.g. for the first engine in lockstep): repeat the last state now and
+      // then, for readers that matched after it was written.
+      if (d.states.load(std::memory_order_relaxed) > 0 && steady_ns() - p.last_write_ns > 10'000'000) {
+        (void)dds_.state.write(p.last);
+        p.last_write_ns = steady_ns();
+      }
+      continue;
+    }
+    const DeviceSnapshot& s = p.snapshot;
+    bool first = false;
+    {
+      std::lock_guard lock(description_mutex_);
+      if (!p.start_pose) {
+        p.start_pose = s.handle_pose;
+        first = true;
+      }
+    }
+    if (first) publish_description(i);  // now with the start pose
+    std::string owner;
+    {
+      std::lock_guard lock(d.mutex);
+      owner = d.gate.owner();
+    }
+    const StateLabels labels{d.session->name(), s.cycle / snapshot_interval_ + 1, d.session->active_scheme(), owner, loop_summary()};
+    p.last = state_message(s, labels);
+    d.round_trip.command_applied(s.engine_sequence, s.cycle);
+    d.round_trip.state_written(p.last.serial, s.cycle, steady_ns());
+    (void)dds_.state.write(p.last);
+    d.states.fetch_add(1, std::memory_order_relaxed);
+    d.loop_time_ns.store(s.time_ns, std::memory_order_relaxed);
+    p.last_write_ns = steady_ns();
+
+    const PublishedView now = view_of(s);
+    for (const EventText& e : events_between(p.view, now, p.scheme_names)) events_.send(d, e.kind, e.code, e.message);
+    p.view = now;
+  }
+}
+
+void StatePublisher::publish_description(std::size_t device) {
+  std::optional<Pose> start;
+  {
+    std::lock_guard lock(description_mutex_);
+    start = published_[device].start_pose;
+  }
+  (void)dds_.description.write(description_message(*links_[device].session, rate_hz_, start));
+}
+
+void StatePublisher::publish_fault_report(std::size_t device, const FaultReport& report) {
+  const DeviceSession& s = *links_[device].session;
+  auto m = std::make_unique<hapticd_msg_FaultReport>();  // 100 kB: not on the stack
+  fill_fault_report(*m, s.name(), s.description().dof(), report);
+  (void)dds_.fault_report.write(*m);
+}
+
+void StatePublisher::publish_telemetry() {
+  for (const auto& link : links_) {
+    const DeviceLink& d = *link;
+    hapticd_msg_Telemetry t{};
+    dds::set_text(t.device, d.session->name());
+    t.wall_time_ns = dds::wall_clock_ns();
+    t.loop = loop_summary();
+    t.states_published = d.states.load(std::memory_order_relaxed);
+    {
+      std::lock_guard lock(d.mutex);
+      t.commands_received = d.gate.received();
+      t.commands_accepted = d.gate.accepted();
+      for (int i = 0; i < dds::kRejectReasons; ++i) t.rejected[i] = d.gate.rejected()[static_cast<std::size_t>(i)];
+    }
+    t.requests = d.requests.load(std::memory_order_relaxed);
+    t.deadline_misses = d.deadline_misses.load(std::memory_order_relaxed);
+    t.scheme_switches = d.session->scheme_switches();
+    t.saturated_cycles = d.session->saturated_cycles();
+    t.limited_cycles = d.session->limited_cycles();
+    t.render_limited_cycles = d.session->render_limited_cycles();
+    t.faults = d.session->faults_raised();
+    t.recoveries = d.session->recoveries();
+    t.thermal_load = d.session->thermal_load();
+    t.dissipated_j = d.session->dissipated_j();
+    (void)dds_.telemetry.write(t);
+  }
+}
+
+}  // namespace hapticd::server

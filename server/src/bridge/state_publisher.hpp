@@ -1,0 +1,57 @@
+#pragma once
+// The bridge's publishing side: each device's state (the publisher thread, woken by the loop after each cycle,
+// takes the snapshots from their lock-free hand-off) and the events it reveals (events_between), the
+// descriptions, fault reports (the monitor's thread) and telemetry (the receiver thread).
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "bridge/device_link.hpp"
+#include "bridge/dds_endpoints.hpp"
+#include "bridge/event_sender.hpp"
+#include "bridge/messages.hpp"
+#include "executor/executor.hpp"
+
+namespace hapticd::server {
+
+class StatePublisher {
+ public:
+  StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, double rate_hz, std::uint64_t snapshot_interval);
+
+  // Before the threads start: where the loop's live statistics are (the executor's).
+  void set_loop_statistics(const LiveLoopStatistics* live) noexcept { live_ = live; }
+
+  // Publisher thread (and once more at the end): the new snapshot of every device as a state, and its events.
+  // A device with nothing new has its last state repeated now and then, for readers that matched after it.
+  void publish_states();
+  // Any thread: a device's description (with its start pose once the loop has run).
+  void publish_description(std::size_t device);
+  // Any thread: a fault report.
+  void publish_fault_report(std::size_t device, const FaultReport& report);
+  // Receiver thread: every device's telemetry.
+  void publish_telemetry();
+
+ private:
+  struct Published {  // per device, publisher thread (start_pose: under description_mutex)
+    DeviceSnapshot snapshot;
+    PublishedView view;
+    hapticd_msg_DeviceState last{};
+    std::int64_t last_write_ns = 0;
+    std::optional<Pose> start_pose;
+    std::vector<std::string> scheme_names;
+  };
+  [[nodiscard]] hapticd_msg_LoopSummary loop_summary() const noexcept;
+
+  DdsEndpoints& dds_;
+  DeviceLinks& links_;
+  EventSender& events_;
+  double rate_hz_;
+  std::uint64_t snapshot_interval_;
+  const LiveLoopStatistics* live_ = nullptr;
+  std::vector<Published> published_;
+  std::mutex description_mutex_;
+};
+
+}  // namespace hapticd::server
