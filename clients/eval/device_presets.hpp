@@ -1,7 +1,7 @@
 #pragma once
 // What the evaluations assume per shipped device: where its URDF is, which task-space rows it controls,
 // its nominal configuration and the workspace (box and orientation ranges) it is evaluated over.
-// The workspace sizes are the published ones (spec/DEVICE-MODELS.md); their placement is our choice,
+// The workspace sizes are the published ones ([U06] device data (docs/references.md)); their placement is our choice,
 // documented in docs/output-capability.md.
 #include <Eigen/Core>
 #include <filesystem>

@@ -10,7 +10,9 @@ rm -rf "$work"; mkdir -p "$work"; cd "$work"
 fail() { echo "FAIL: $*"; tail -20 server.log || true; exit 1; }
 ctl() { timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 "$@"; }
 
-"$bin/hapticd" --config "$src/config/sessions/vishard3/dds-coupling.yaml" --dds-domain "$domain" \
+source "$src/tests/e2e/session_copy.sh"
+session_copy "$src/config/sessions/vishard3/dds-coupling.yaml" "$src" session.yaml
+"$bin/hapticd" --config session.yaml --dds-domain "$domain" \
   --duration 150 > server.log 2>&1 &
 server=$!
 trap 'kill -9 $server 2>/dev/null || true' EXIT

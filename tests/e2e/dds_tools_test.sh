@@ -9,7 +9,9 @@ cd "$work"
 ctl() { timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 "$@"; }
 fail() { echo "FAIL: $*"; cat server.log || true; exit 1; }
 
-timeout 60 "$bin/hapticd" --config "$src/config/sessions/vishard3/dds-coupling.yaml" --dds-domain "$domain" \
+source "$src/tests/e2e/session_copy.sh"
+session_copy "$src/config/sessions/vishard3/dds-coupling.yaml" "$src" session.yaml
+timeout 60 "$bin/hapticd" --config session.yaml --dds-domain "$domain" \
   --duration 12 > server.log 2>&1 &
 server=$!
 trap 'kill -9 $server 2>/dev/null || true; kill -9 ${engine:-} 2>/dev/null || true' EXIT

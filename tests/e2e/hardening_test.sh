@@ -47,7 +47,9 @@ awk -F, 'NF != 14 { exit 1 }' rec.csv || fail "the recording has a partial row"
 grep -q "lost" out.txt || fail "the lost cycles are not reported"
 
 # A stalled process (SIGSTOP for 0.3 s) is a fault: loop_stall, the device's safe mode, exit code 3.
-"$hapticd" --config "$session" --duration 3 > stall.txt 2>&1 &
+source "$src/tests/e2e/session_copy.sh"
+session_copy "$session" "$src" stall.yaml
+"$hapticd" --config stall.yaml --duration 3 > stall.txt 2>&1 &
 server=$!
 sleep 1.2
 kill -STOP "$server"; sleep 0.3; kill -CONT "$server"

@@ -1,5 +1,5 @@
 // The redundancy toolbox (hapticd/model/redundancy.hpp, side_criteria.hpp) on the ViSHaRD10 model (10 joints,
-// 6-D task) at random configurations: the properties of CONTROL-METHODS section 3 that hold whatever the
+// 6-D task) at random configurations: the properties of [U06] methods 3 that hold whatever the
 // configuration.
 #include <gtest/gtest.h>
 

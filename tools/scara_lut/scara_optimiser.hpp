@@ -1,5 +1,5 @@
 #pragma once
-// Builds the ViSHaRD10 SCARA look-up table by numerical optimisation (CONTROL-METHODS section 3, [3.46-3.48];
+// Builds the ViSHaRD10 SCARA look-up table by numerical optimisation ([U06] methods 3, [3.46-3.48];
 // docs/redundancy.md): the unknowns are the elbow codes (s, t) in [-1, 1]^2 of every mesh point; the objective
 // is the largest joint difference between neighbouring mesh points per tip distance, each joint normalised by its
 // speed limit (so its inverse is the tip speed the joints allow), reached from the 2-norm by continuation

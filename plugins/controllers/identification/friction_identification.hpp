@@ -1,7 +1,7 @@
 #pragma once
 // Friction identification as a controller plugin ("friction_identification"): run in a session on the device
 // (simulated or real), it identifies each selected joint in turn and writes the friction file the impedance
-// controller loads (friction_file). Per joint (CONTROL-METHODS.md section 1, friction model):
+// controller loads (friction_file). Per joint ([U06] methods 1, friction model):
 //   1. break-away: from rest, the joint's torque ramps up (alternating directions) until the joint moves; the
 //      torque beyond the model's gravity and Coriolis terms at that moment is a break-away sample;
 //   2. Stribeck curve and load dependency: constant-velocity strokes at increasing speeds (a stepped velocity

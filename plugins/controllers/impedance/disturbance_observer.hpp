@@ -1,5 +1,5 @@
 #pragma once
-// Joint-space disturbance observer (CONTROL-METHODS.md section 1, [4.6-4.9]). With the nominal model of the
+// Joint-space disturbance observer ([U06] methods 1, [4.6-4.9]). With the nominal model of the
 // device, M qdd + C qd + g = tau + J^T F_h + d, the disturbance (friction, model errors) is estimated as
 //   d_hat = Q(s) [ a M qdd + C qd + g - tau_prev - J^T F_h ]
 // with qdd from the differentiated joint velocity, tau_prev the torque commanded in the previous cycle and

@@ -1,5 +1,5 @@
 #pragma once
-// Model-based compensation of sliding friction, per joint (CONTROL-METHODS.md section 1):
+// Model-based compensation of sliding friction, per joint ([U06] methods 1):
 //   h_i = fraction * s(qd_i) * f_i(|qd_i|, t_i),   s(qd) = clamp(qd / v_s, -1, 1),
 // with f_i the joint's FrictionModel and t_i its static load torque. The smooth sign keeps quantised
 // velocities from chattering the compensation; the fraction below 1 guards against over-compensation.

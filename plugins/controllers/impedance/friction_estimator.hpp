@@ -1,5 +1,5 @@
 #pragma once
-// The in-loop half of the adaptive sliding-friction compensation (CONTROL-METHODS.md section 1, [4.24]):
+// The in-loop half of the adaptive sliding-friction compensation ([U06] methods 1, [4.24]):
 // every sample, per joint, the friction torque is estimated from the device's rigid-body model,
 //   h_hat = tau + J^T F_h - (M qdd + C qd + g) - s(qd) f_load(t),
 // with qd and qdd from backward differences of the positions over a window of N samples and tau, J^T F_h

@@ -1,5 +1,5 @@
 #pragma once
-// The off-loop half of the adaptive sliding-friction compensation (CONTROL-METHODS.md section 1, [4.24]):
+// The off-loop half of the adaptive sliding-friction compensation ([U06] methods 1, [4.24]):
 // a worker thread receives the loop's binned friction estimates every T_update (lock-free hand-over), adds
 // them to its memory (older data weighted down by `memory`), fits the 4th-order sliding-friction model per
 // joint by least squares, checks the fit and hands accepted parameters back (lock-free). A rejected fit keeps

@@ -22,7 +22,8 @@ ParameterSchema ImpedanceController::parameter_schema() {
   s.boolean("gravity_compensation", "add the model's gravity torques").default_value(true);
   // Sliding friction.
   s.boolean("friction_compensation", "add the model's sliding friction in the direction of motion").default_value(false);
-  s.string("friction_file", "identified friction per joint (hapticd-eval identify-friction); empty: the polynomial "
+  s.string("friction_file", "identified friction per joint (written by the friction_identification controller, "
+                            "e.g. config/sessions/vishard3/identify-friction.yaml); empty: the polynomial "
                             "below for every joint").default_value(std::string());
   s.real_vector("friction_polynomial", "p0 .. p4 of the sliding friction [N m vs rad/s] (default: the 26 C curve)")
       .size(5).default_value(std::vector<double>{1.183, 1.008, -0.2642, 0.0487, -0.0037});

@@ -1,5 +1,5 @@
 #pragma once
-// Impedance control with force feedback and the thesis's compensators (CONTROL-METHODS.md section 1):
+// Impedance control with force feedback and the thesis's compensators ([U06] methods 1):
 //   tau_d = J^T ( F_d + Kp e + Kd de/dt ) + g(q) + [friction] + [disturbance observer],  e = F_d - f,  f = -F_h
 //   tau   = tau_d + Kt (tau_d - tau_joint)          (joint-torque feedback, devices with joint torque sensors)
 //   tau  -> notch filters -> drives

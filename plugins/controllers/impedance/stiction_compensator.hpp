@@ -1,5 +1,5 @@
 #pragma once
-// Variable-structure force control against static friction (CONTROL-METHODS.md section 1, [4.22, 4.23]).
+// Variable-structure force control against static friction ([U06] methods 1, [4.22, 4.23]).
 // Per joint, a relay with hysteresis on the joint velocity selects the structure:
 //   moving:  the sliding-friction compensation h_i(qd_i, t_i) is added (PD force control);
 //   at rest: tau0_i + I_i is added (PID force control), where tau0_i is h_i at the switching instant (no

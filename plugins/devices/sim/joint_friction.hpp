@@ -1,5 +1,5 @@
 #pragma once
-// Harmonic-drive joint friction at the joint output (spec/DEVICE-MODELS.md, "Joint friction data"):
+// Harmonic-drive joint friction at the joint output ([U06] device data (docs/references.md), "Joint friction data"):
 // sliding friction as a 4th-order polynomial of |velocity| interpolated over the gear temperature (26, 32,
 // 36 C curves; a warm-up drifts it from 26 C towards 36 C), load-dependent friction quadratic in the
 // transmitted torque, and stiction with a break-away level that is drawn anew each time the joint sticks

@@ -1,6 +1,6 @@
 #pragma once
-// Inverse kinematics `redundancy_ik` for any chain with more joints than task rows (CONTROL-METHODS
-// section 3; docs/redundancy.md): a generalised inverse (pseudoinverse by SVD, weighted, singularity-robust
+// Inverse kinematics `redundancy_ik` for any chain with more joints than task rows ([U06] methods 3;
+// docs/redundancy.md): a generalised inverse (pseudoinverse by SVD, weighted, singularity-robust
 // damped, or inertia-weighted) with a null-space term descending a weighted sum of side criteria.
 //
 // Joint target (for joint-space controllers), integrated from the device's state at activation:

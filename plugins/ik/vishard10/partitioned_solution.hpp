@@ -1,5 +1,5 @@
 #pragma once
-// The ViSHaRD10 partitioned inverse kinematics (CONTROL-METHODS section 3, "ViSHaRD10 partitioned solution";
+// The ViSHaRD10 partitioned inverse kinematics ([U06] methods 3, "ViSHaRD10 partitioned solution";
 // docs/redundancy.md derives it). The axes of joints 5, 8, 9 and 10 meet in the handle point W, so
 //   - the height of W is set by joints 6 and 7 alone when they mimic a prismatic joint: q7 = -2 q6,
 //     z = z6 + (l6 + l7) cos q6 (q6 <= 0 branch);

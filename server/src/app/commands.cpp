@@ -13,6 +13,7 @@
 #include "app/startup_checks.hpp"
 #include "config/config_error.hpp"
 #include "config/session_config.hpp"
+#include "config/yaml_reader.hpp"
 #include "bridge/cyclone_log.hpp"
 #include "bridge/dds_bridge.hpp"
 #include "executor/executor.hpp"
@@ -271,24 +272,47 @@ int describe_plugin(const std::string& name, const std::string& config_file) {
   std::vector<std::filesystem::path> configured;
   if (!config_file.empty()) configured = load_session_config(config_file).server.plugin_paths;
   PluginLoader loader(PluginLoader::search_paths_for(configured));
+  std::vector<std::string> names;
   for (const auto& h : loader.list_all()) {
+    names.emplace_back(h.descriptor->name);
     if (name != h.descriptor->name) continue;
     fmt::print("{} {} ({} plugin): {}\nlibrary: {}\nparameters:\n", h.descriptor->name, h.descriptor->version,
                to_string(h.descriptor->kind), h.descriptor->summary, h.library->path.string());
     print_schema(h.descriptor->parameter_schema());
     return kExitOk;
   }
-  fmt::print(stderr, "error: no plugin named '{}' on the search paths\n", name);
+  const std::string guess = closest_match(name, names);
+  fmt::print(stderr, "error: no plugin named '{}' on the search paths{}\n", name,
+             guess.empty() ? std::string(" (hapticd --list-plugins lists them)") : " (did you mean '" + guess + "'?)");
   return kExitConfigError;
 }
 
-int describe_config() {
+int describe_config(const std::string& config_file) {
+  if (!config_file.empty()) {
+    // The file's own values first (validated as a session would be), then what every key means.
+    const SessionConfig c = load_session_config(config_file);
+    fmt::print("{}: {} Hz, {} clock, duration {}; DDS {}\n", config_file, c.server.rate_hz,
+               c.server.clock == ClockMode::lockstep ? "lockstep" : "realtime",
+               c.server.duration_s > 0 ? fmt::format("{} s", c.server.duration_s) : std::string("until stopped"),
+               c.dds.enabled ? fmt::format("on domain {}", c.dds.domain_id) : std::string("off"));
+    for (const DeviceConfig& d : c.devices) {
+      fmt::print("  device '{}': {}, scheme '{}' ({}{}{}){}\n", d.name, d.device.plugin, d.scheme,
+                 d.virtual_model ? d.virtual_model->plugin + " -> " : "",
+                 d.inverse_kinematics ? d.inverse_kinematics->plugin + " -> " : "", d.controller.plugin,
+                 d.alternatives.empty() ? "" : fmt::format(" and {} more", d.alternatives.size()));
+      fmt::print("    switch_ramp_s {}, engine_deadline_s {}, engine_fade_s {}, engine_ramp_in_s {}\n", d.switch_ramp_s,
+                 d.engine_deadline_s, d.engine_fade_s, d.engine_ramp_in_s);
+    }
+    fmt::print("\n");
+  }
   fmt::print("server section of a session file:\n");
   print_schema(server_settings_schema());
   fmt::print("  {:<24} {}\n  {:<24}   {}\n", "plugin_paths", "folders searched for plugin libraries before "
              "HAPTICD_PLUGIN_PATH and the installed plugin folder", "", "list of folders, relative to the session file");
   fmt::print("\ndds section of a session file (present: the DDS interface runs):\n");
   print_schema(dds_settings_schema());
+  fmt::print("\na device entry (devices: [...]):\n");
+  for (const EntryKey& k : device_entry_keys()) fmt::print("  {:<24} {}\n", k.key, k.text);
   fmt::print("\nsafety section of a device entry (docs/safety.md):\n");
   print_schema(safety_settings_schema());
   return kExitOk;

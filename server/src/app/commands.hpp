@@ -28,6 +28,6 @@ int run_session(const RunOptions& options);
 int check_config(const std::string& config_file);
 int list_plugins(const std::string& config_file);
 int describe_plugin(const std::string& name, const std::string& config_file);
-int describe_config();
+int describe_config(const std::string& config_file);
 
 }  // namespace hapticd::server

@@ -43,7 +43,7 @@ int run_command(int argc, char** argv) {
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
   check_opt->excludes(config_opt);
-  server_opt->excludes(config_opt)->excludes(check_opt)->excludes(list_opt)->excludes(describe_opt);
+  server_opt->excludes(check_opt)->excludes(list_opt)->excludes(describe_opt);
   CLI11_PARSE(app, argc, argv);
 
   spdlog::set_level(spdlog::level::from_str(log_level));
@@ -53,7 +53,7 @@ int run_command(int argc, char** argv) {
   if (*clock_opt) run.clock = clock;
   if (*dds_opt) run.dds_domain = dds_domain;
 
-  if (describe_server) return describe_config();
+  if (describe_server) return describe_config(run.config_file);
   if (!describe_name.empty()) return describe_plugin(describe_name, run.config_file);
   if (list) return list_plugins(run.config_file);
   if (!check_file.empty()) return check_config(check_file);

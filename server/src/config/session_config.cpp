@@ -158,6 +158,25 @@ SafetySettings read_safety(const YAML::Node& node, const std::string& file, cons
 
 }  // namespace
 
+const std::vector<EntryKey>& device_entry_keys() {
+  static const std::vector<EntryKey> keys{
+      {"name", "the device's name (1-31 letters, digits, '_', '-'), unique in the session; its DDS key"},
+      {"device", "the device plugin: {plugin: NAME, library: FILE (optional), parameters: {...}}"},
+      {"virtual_model", "the starting scheme's virtual model plugin (optional), as for device"},
+      {"inverse_kinematics", "the starting scheme's inverse kinematics plugin (optional), as for device"},
+      {"controller", "the starting scheme's controller plugin, as for device"},
+      {"scheme", "the starting scheme's name (default \"default\")"},
+      {"schemes", "schemes to switch to at run time: a list of {name, virtual_model?, inverse_kinematics?, controller}"},
+      {"switch_ramp_s", "a torque difference at a scheme switch (or after a recovery) fades out over this time, s "
+                        "(0 .. 5, default 0.1)"},
+      {"engine_deadline_s", "engine input older than this fades out, s (0.001 .. 10, default 0.05)"},
+      {"engine_fade_s", "... over this time, s (0 .. 10, default 0.02)"},
+      {"engine_ramp_in_s", "engine input starting after a silence ramps in over this time, s (0 .. 10, default 0.1)"},
+      {"safety", "the device's safety section (below)"},
+  };
+  return keys;
+}
+
 ParameterSchema dds_settings_schema() {
   ParameterSchema s;
   const DdsSettings d;
@@ -272,10 +291,9 @@ SessionConfig read_session_config(const std::filesystem::path& path) {
   std::set<std::string> names;
   for (std::size_t i = 0; i < devices.size(); ++i) {
     const std::string key_path = "devices[" + std::to_string(i) + "]";
-    MappingReader reader(devices[i], key_path, file,
-                         {"name", "device", "virtual_model", "inverse_kinematics", "controller", "scheme", "schemes",
-                          "switch_ramp_s", "engine_deadline_s", "engine_fade_s",
-                          "engine_ramp_in_s", "safety"});
+    std::vector<std::string> allowed;
+    for (const EntryKey& k : device_entry_keys()) allowed.emplace_back(k.key);
+    MappingReader reader(devices[i], key_path, file, allowed);
     DeviceConfig device;
     device.name = reader.required_string("name");
     if (!valid_device_name(device.name))

@@ -102,6 +102,14 @@ struct SessionConfig {
   std::vector<DeviceConfig> devices;
 };
 
+// The keys of a device entry (`devices[i]`) and what each is: the reader's allowed keys and
+// hapticd --describe-config print this one list.
+struct EntryKey {
+  const char* key;
+  const char* text;
+};
+const std::vector<EntryKey>& device_entry_keys();
+
 // The schema of the `server` section: validates it and documents it (hapticd --describe-config).
 ParameterSchema server_settings_schema();
 // The schema of the `dds` section.

@@ -23,7 +23,7 @@ struct HAPTICD_API DriveData {
   int encoder_counts_per_motor_rev = 0; // after quadrature
   bool present = false;                 // false: a joint without drive data (ideal actuator)
 
-  // Derived joint-output quantities (DEVICE-MODELS.md).
+  // Derived joint-output quantities ([U06] device data).
   [[nodiscard]] double peak_joint_torque() const noexcept {
     const double motor_limit = motor_stall_torque * gear_ratio;
     return motor_limit < gear_peak_torque ? motor_limit : gear_peak_torque;

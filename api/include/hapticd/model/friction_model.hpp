@@ -1,5 +1,5 @@
 #pragma once
-// The joint friction model of the compensators (CONTROL-METHODS.md section 1, "Friction model used for
+// The joint friction model of the compensators ([U06] methods 1, "Friction model used for
 // compensation"), and its least-squares identification:
 //   sliding magnitude  f(|qd|, t) = p0 + p1|qd| + p2|qd|^2 + p3|qd|^3 + p4|qd|^4 + a2 t^2 + a1|t| + a0,
 // with t the load torque transmitted by the joint. Beyond velocity_max (the highest velocity seen in the

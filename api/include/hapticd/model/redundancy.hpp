@@ -1,7 +1,7 @@
 #pragma once
 // Redundancy resolution for an m x n task Jacobian (m <= 6 <= n <= 10, or any m <= n): generalised inverses,
 // the null-space projector, and the velocity-, acceleration- and torque-level resolutions of
-// docs/redundancy.md (CONTROL-METHODS section 3). Real-time safe: fixed-capacity Eigen storage only.
+// docs/redundancy.md ([U06] methods 3). Real-time safe: fixed-capacity Eigen storage only.
 //
 // Every inverse is computed the same way: with the joint weighting W = L L^T (identity, a diagonal, or the
 // joint-space inertia M), the singular value decomposition of A = J L^-T gives

@@ -1,5 +1,5 @@
 #pragma once
-// Side criteria for the null space of a redundant chain (CONTROL-METHODS section 3), written as costs H(q)
+// Side criteria for the null space of a redundant chain ([U06] methods 3), written as costs H(q)
 // to minimise, and their weighted sum with its gradient. The null-space term descends along it:
 // qd0 = -k W^-1 grad H. Criteria (each with its own weight; 0 leaves it out):
 //   manipulability            H = -sqrt(det(J J^T))

@@ -1,5 +1,5 @@
 #pragma once
-// Resolved acceleration control, the inner motion loop of admittance display (CONTROL-METHODS.md section 2):
+// Resolved acceleration control, the inner motion loop of admittance display ([U06] methods 2):
 //   xdd_c = xdd_d + Kd (xd_d - xd) + Kp (x_d - x)         (TaskMotionLaw)
 //   qdd_c = J^+ (xdd_c - dJ/dt qd)
 //   tau   = M qdd_c + C qd + g - J^T F_h                   (F_h: the operator's wrench on the handle)

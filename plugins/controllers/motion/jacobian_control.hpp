@@ -1,6 +1,6 @@
 #pragma once
 // Inverse- and transposed-Jacobian control, the thesis's cheaper inner loops of admittance display
-// (CONTROL-METHODS.md section 2), with constant diagonal inertias (no coupling, no gyroscopic terms):
+// ([U06] methods 2), with constant diagonal inertias (no coupling, no gyroscopic terms):
 //   inverse_jacobian:    tau = M_hat J^+ (xdd_c - dJ/dt qd) + g - J^T F_h     (M_hat: joint space)
 //   transposed_jacobian: tau = J^T Mx_hat xdd_c + g - J^T F_h                   (Mx_hat: task space)
 // The inertias are parameters (the thesis's ViSHaRD3 workspace means: M_hat = diag(0.930, 0.416, 0.279) kg m^2,

@@ -1,5 +1,5 @@
 #pragma once
-// The virtual admittance (CONTROL-METHODS.md section 2): the operator's wrench drives a virtual rigid body,
+// The virtual admittance ([U06] methods 2): the operator's wrench drives a virtual rigid body,
 //   translation  M_t xdd + D_t xd = F              (world axes)
 //   rotation     M_r wd + w x (M_r w) + D_r w = T  (Euler's equations in the body frame)
 // whose pose (a unit quaternion: no representation singularities) is the desired handle pose of the inner
