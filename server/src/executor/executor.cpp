@@ -52,9 +52,17 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
     const double scale =
         ramping ? std::max(0.0, 1.0 - static_cast<double>(index - ramp_start + 1) / static_cast<double>(ramp_cycles)) : 1.0;
 
+    // One cycle in phases, each for every device before the next (docs/architecture.md, "One cycle"):
     const CycleTime cycle{deadline_ns - start_ns, period_ns_, index};
+    // (a) read and estimate: every device's state of this instant, before any chain runs;
+    for (DeviceSession* s : sessions_) s->read_and_estimate(cycle, consecutive_overruns, wake_ns - deadline_ns);
+    // (b) the group stage, where group-level logic sees the estimated states of all devices of the group (none
+    //     yet: dual-arm sessions bring the first);
+    // (c) the chains: virtual model -> inverse kinematics -> controller;
+    for (DeviceSession* s : sessions_) s->run_chain(cycle);
+    // (d) limit and write, then record.
     for (std::size_t d = 0; d < sessions_.size(); ++d) {
-      sessions_[d]->cycle(cycle, scale, consecutive_overruns, wake_ns - deadline_ns);
+      sessions_[d]->limit_and_write(cycle, scale);
       if (recorder_ != nullptr) recorder_->record(cycle, static_cast<std::uint16_t>(d), sessions_[d]->state(), sessions_[d]->command());
     }
 

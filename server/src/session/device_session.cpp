@@ -85,6 +85,11 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   command_.torque_nm.setZero(dof);
   last_written_.setZero(dof);
   chain_state_.velocity.setZero(dof);
+  if (!(chain_.period_s > 0.0)) throw std::invalid_argument("device '" + name_ + "': no loop period");
+  // Everything sized and set up for the loop's period here, before the first cycle: nothing lazily on the loop.
+  safety_.configure(chain_.safety, description_, chain_.period_s);
+  differentiator_.configure(chain_.period_s, kVelocityFilterHz);
+  switch_ramp_cycles_ = std::max<std::int64_t>(1, std::llround(chain_.switch_ramp_s / chain_.period_s));
   if (!description_.robot_model_file.empty()) {
     robot_ = std::make_unique<model::RobotModel>(model::load_robot_model(description_.robot_model_file));
     if (robot_->dof() != dof) {
@@ -104,9 +109,9 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
 void DeviceSession::activate() {
   chain_.device->activate();
   chain_active_ = false;
-  differentiator_ready_ = false;
+  estimator_ready_ = false;
   command_.torque_nm.setZero();
-  switch_ramp_left_ = 0;
+  blend_ = Blend::none;
 }
 
 ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
@@ -175,7 +180,7 @@ RuntimeReply DeviceSession::handle_request(std::string_view stage, std::string_v
   return {false, "unknown stage '" + std::string(stage) + "' (device, virtual_model, controller or safety)"};
 }
 
-void DeviceSession::switch_scheme_if_requested(const CycleTime& cycle) noexcept {
+void DeviceSession::switch_scheme_if_requested() noexcept {
   const int wanted = requested_.load(std::memory_order_acquire);
   const int current = active_.load(std::memory_order_relaxed);
   if (wanted == current) return;
@@ -193,11 +198,9 @@ void DeviceSession::switch_scheme_if_requested(const CycleTime& cycle) noexcept 
   scheme_state_[w].store(kActive, std::memory_order_release);
   active_.store(wanted, std::memory_order_release);
   switches_.fetch_add(1, std::memory_order_relaxed);
-  // The offset is measured against the new scheme's first command in run_chain.
+  // The offset is measured against the new scheme's first command (blend_after_switch).
   switch_offset_ = before;
-  switch_ramp_cycles_ = std::max<std::int64_t>(
-      1, static_cast<std::int64_t>(std::llround(chain_.switch_ramp_s * 1e9 / static_cast<double>(cycle.period_ns))));
-  switch_ramp_left_ = -1;  // marks "offset not yet taken"
+  blend_ = Blend::pending;
   safety_.restart_soft_start();
 }
 
@@ -239,19 +242,15 @@ void DeviceSession::update_chain_state(const CycleTime& cycle, bool first_cycle)
   }
 }
 
-DeviceFault DeviceSession::run_chain(const CycleTime& cycle) {
-  if (!chain_active_) {
-    differentiator_.configure(static_cast<double>(cycle.period_ns) * 1e-9, kVelocityFilterHz);
-    update_chain_state(cycle, true);
+DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
+  if (!chain_active_) {  // the first cycle, or the first after a recovery: activate from the measured state
     const int first = active_.load(std::memory_order_relaxed);
     if (activate_scheme(chain_.schemes[static_cast<std::size_t>(first)]) != ReturnCode::ok) return DeviceFault::activation;
     scheme_state_[static_cast<std::size_t>(first)].store(kActive, std::memory_order_release);
     chain_active_ = true;
-    differentiator_ready_ = true;
     safety_.restart_soft_start();
   } else {
-    update_chain_state(cycle, false);
-    switch_scheme_if_requested(cycle);
+    switch_scheme_if_requested();
   }
   // The supervisor's speed and workspace checks on the measured state, before the chain renders anything.
   if (const DeviceFault f = safety_.begin_cycle(chain_state_); f != DeviceFault::none) return f;
@@ -326,7 +325,7 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.estop = s.fault == DeviceFault::emergency_stop;
   s.stopping = torque_scale < 1.0;
   s.saturated = chain_state_.output_saturated;
-  s.switching = switch_ramp_left_ != 0;
+  s.switching = blend_ != Blend::none;
   s.scheme = active_.load(std::memory_order_relaxed);
   s.engine_weight = engine_.weight;
   s.engine_stale = engine_seen_ && engine_late_;
@@ -344,28 +343,18 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
 }
 
 void DeviceSession::blend_after_switch() noexcept {
-  if (switch_ramp_left_ == 0) return;
-  if (switch_ramp_left_ < 0) {  // the new scheme's first command: take the difference to the old one
+  if (blend_ == Blend::none) return;
+  if (blend_ == Blend::pending) {  // the new chain's first command: take the difference to what was written
     switch_offset_ -= command_.torque_nm;
-    switch_ramp_left_ = switch_ramp_cycles_;
+    blend_ = Blend::fading;
+    blend_left_ = switch_ramp_cycles_;
   }
-  command_.torque_nm += switch_offset_ * (static_cast<double>(switch_ramp_left_) / static_cast<double>(switch_ramp_cycles_));
-  --switch_ramp_left_;
+  command_.torque_nm += switch_offset_ * (static_cast<double>(blend_left_) / static_cast<double>(switch_ramp_cycles_));
+  if (--blend_left_ == 0) blend_ = Blend::none;
 }
 
-void DeviceSession::cycle(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns,
-                          std::int64_t lateness_ns) noexcept {
-  cycle_checked(cycle, torque_scale, consecutive_overruns, lateness_ns);
-  record_history(cycle);
-  publish_snapshot(cycle, torque_scale);
-}
-
-void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns,
-                                  std::int64_t lateness_ns) noexcept {
-  if (!safety_configured_) {  // fixed-size state: no allocation
-    safety_.configure(chain_.safety, description_, static_cast<double>(cycle.period_ns) * 1e-9);
-    safety_configured_ = true;
-  }
+void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns,
+                                      std::int64_t lateness_ns) noexcept {
   if (const int p = passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0) safety_.guard().set_passivity_control(p == 1);
   ReturnCode read = ReturnCode::error;
   try {
@@ -373,6 +362,7 @@ void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, s
   } catch (...) {
     read = ReturnCode::error;
   }
+  // The watchdogs and requests that stop the device.
   if (const std::uint64_t estops = estop_requests_.load(std::memory_order_acquire); estops != estops_handled_) {
     estops_handled_ = estops;
     if (fault() == DeviceFault::none && !stopped_) {
@@ -390,64 +380,86 @@ void DeviceSession::cycle_checked(const CycleTime& cycle, double torque_scale, s
     safety_.enter_safe_mode(last_written_, robot_ != nullptr ? &state_.joints.position : nullptr, true);  // stopping: no hold
     at_rest_.store(false, std::memory_order_release);
   }
-  if (fault() != DeviceFault::none || stopped_) return safe_mode_cycle(cycle, read == ReturnCode::ok);
-  if (read != ReturnCode::ok) return enter_safe_state(DeviceFault::device_read, cycle);
-  if (!is_finite(state_)) return enter_safe_state(DeviceFault::non_finite_measurement, cycle);
-  if (state_.sensor_saturated) return enter_safe_state(DeviceFault::sensor_saturation, cycle);
+  // The measurement: a running device faults on a read error, a non-finite value or a saturated sensor; in the
+  // safe mode it is estimated as long as its positions can be trusted (an arm that sags is seen).
+  measurement_valid_ = read == ReturnCode::ok && state_.joints.position.allFinite();
+  if (fault() == DeviceFault::none && !stopped_) {
+    if (read != ReturnCode::ok) {
+      raise_fault(DeviceFault::device_read, cycle);
+    } else if (!is_finite(state_)) {
+      measurement_valid_ = false;
+      raise_fault(DeviceFault::non_finite_measurement, cycle);
+    } else if (state_.sensor_saturated) {
+      raise_fault(DeviceFault::sensor_saturation, cycle);
+    }
+  }
+  safe_path_ = fault() != DeviceFault::none || stopped_;
+  if (measurement_valid_) estimate(cycle);
+}
 
+void DeviceSession::estimate(const CycleTime& cycle) noexcept {
+  // The velocity estimate starts again from this sample when the chain (re)activates from the measured state.
+  update_chain_state(cycle, !estimator_ready_ || (!safe_path_ && !chain_active_));
+  estimator_ready_ = true;
+}
+
+void DeviceSession::run_chain(const CycleTime& cycle) noexcept {
+  if (safe_path_) return;
   DeviceFault chain_fault = DeviceFault::none;
   try {
-    chain_fault = run_chain(cycle);
+    chain_fault = chain_step(cycle);
   } catch (...) {
     chain_fault = DeviceFault::plugin_exception;
   }
-  if (chain_fault != DeviceFault::none) return enter_safe_state(chain_fault, cycle);
-
-  bool saturated = false;
-  safety_.limit(chain_state_, command_.torque_nm, saturated);
-  chain_state_.output_saturated = saturated;
-  if (saturated) saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
-  const std::uint32_t flags = safety_.flags();
-  if ((flags & kRecordLimitEngaged) != 0) limited_cycles_.fetch_add(1, std::memory_order_relaxed);
-  if ((flags & kRecordRenderLimited) != 0) render_limited_cycles_.fetch_add(1, std::memory_order_relaxed);
-  const double scale = std::clamp(torque_scale, 0.0, 1.0);
-  if (scale > 0.0) {
-    command_.torque_nm *= scale;
-  } else {
-    command_.torque_nm.setZero();  // exactly +0, not -0 from a negative torque times zero
-  }
-
-  ReturnCode written = ReturnCode::error;
-  try {
-    written = chain_.device->write(cycle, command_);
-  } catch (...) {
-    written = ReturnCode::error;
-  }
-  if (written != ReturnCode::ok) {
-    last_written_.setZero();  // unknown what the drive holds: do not fade from it
-    return enter_safe_state(DeviceFault::device_write, cycle);
-  }
-  last_written_ = command_.torque_nm;
-  safety_.written(command_.torque_nm);
-  dissipated_j_.store(safety_.guard().dissipated_j(), std::memory_order_relaxed);
-  thermal_load_.store(safety_.thermal().max_load(), std::memory_order_relaxed);
+  if (chain_fault == DeviceFault::none) return;
+  raise_fault(chain_fault, cycle);
+  safe_path_ = true;
 }
 
-void DeviceSession::safe_mode_cycle(const CycleTime& cycle, bool read_ok) noexcept {
-  // The measured state goes on being estimated and published (an arm that sags is seen); joint damping (and,
-  // with a robot model, gravity compensation holding the posture) while the measurement can be trusted, then
-  // zero torque.
-  bool valid = read_ok && state_.joints.position.allFinite();
-  if (valid) {
-    if (!differentiator_ready_) {  // a fault before the chain's first activation
-      differentiator_.configure(static_cast<double>(cycle.period_ns) * 1e-9, kVelocityFilterHz);
-      update_chain_state(cycle, true);
-      differentiator_ready_ = true;
+void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale) noexcept {
+  if (safe_path_) {
+    safe_mode_step(cycle);
+  } else {
+    bool saturated = false;
+    safety_.limit(chain_state_, command_.torque_nm, saturated);
+    chain_state_.output_saturated = saturated;
+    if (saturated) saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
+    const std::uint32_t flags = safety_.flags();
+    if ((flags & kRecordLimitEngaged) != 0) limited_cycles_.fetch_add(1, std::memory_order_relaxed);
+    if ((flags & kRecordRenderLimited) != 0) render_limited_cycles_.fetch_add(1, std::memory_order_relaxed);
+    const double scale = std::clamp(torque_scale, 0.0, 1.0);
+    if (scale > 0.0) {
+      command_.torque_nm *= scale;
     } else {
-      update_chain_state(cycle, false);
+      command_.torque_nm.setZero();  // exactly +0, not -0 from a negative torque times zero
     }
-    valid = chain_state_.velocity.allFinite() && (robot_ == nullptr || model_data_->gravity_torque.allFinite());
+    ReturnCode written = ReturnCode::error;
+    try {
+      written = chain_.device->write(cycle, command_);
+    } catch (...) {
+      written = ReturnCode::error;
+    }
+    if (written == ReturnCode::ok) {
+      last_written_ = command_.torque_nm;
+      safety_.written(command_.torque_nm);
+      dissipated_j_.store(safety_.guard().dissipated_j(), std::memory_order_relaxed);
+      thermal_load_.store(safety_.thermal().max_load(), std::memory_order_relaxed);
+    } else {
+      last_written_.setZero();  // unknown what the drive holds: do not fade from it
+      raise_fault(DeviceFault::device_write, cycle);
+      safe_path_ = true;
+      safe_mode_step(cycle);
+    }
   }
+  record_history(cycle);
+  publish_snapshot(cycle, torque_scale);
+}
+
+void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
+  // Joint damping (and, with a robot model, gravity compensation holding the posture) while the measurement can
+  // be trusted, then zero torque.
+  const bool valid = measurement_valid_ && chain_state_.velocity.allFinite() &&
+                     (robot_ == nullptr || model_data_->gravity_torque.allFinite());
   safety_.safe_torque(state_.joints.position, chain_state_.velocity, valid, robot_ != nullptr ? &model_data_->gravity_torque : nullptr,
                       command_.torque_nm);
   at_rest_.store(safety_.at_rest(), std::memory_order_release);
@@ -472,9 +484,7 @@ void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
   chain_active_ = false;  // the next cycle activates the chain from the measured state, with a soft start
   // Whatever the safe mode holds (gravity, damping) fades out against the chain's first commands: no step.
   switch_offset_ = last_written_;
-  switch_ramp_cycles_ = std::max<std::int64_t>(
-      1, static_cast<std::int64_t>(std::llround(chain_.switch_ramp_s * 1e9 / static_cast<double>(cycle.period_ns))));
-  switch_ramp_left_ = last_written_.isZero(0.0) ? 0 : -1;
+  blend_ = last_written_.isZero(0.0) ? Blend::none : Blend::pending;
   engine_seen_ = false;   // engine input ramps in again
   engine_weight_ = 0.0;
   recoveries_.fetch_add(1, std::memory_order_relaxed);
@@ -546,11 +556,6 @@ void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle) noexc
   // damping cannot run either, and the safe mode is zero torque at once).
   safety_.enter_safe_mode(last_written_, robot_ != nullptr ? &state_.joints.position : nullptr);
   at_rest_.store(safety_.at_rest(), std::memory_order_release);
-}
-
-void DeviceSession::enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept {
-  raise_fault(fault, cycle);
-  safe_mode_cycle(cycle, fault != DeviceFault::device_read && fault != DeviceFault::non_finite_measurement);
 }
 
 void DeviceSession::deactivate() {

@@ -61,6 +61,7 @@ struct DeviceChain {
   double engine_fade_s = 0.02;
   double engine_ramp_in_s = 0.1;  // engine input starting after a silence ramps in over this time
   SafetySettings safety;
+  double period_s = 0.0005;  // the loop's period (the session's rate): filters and ramps are set up for it
   // The device's plugins could not all be configured (configure_error says why): the device is held in its
   // safe state from the first cycle, and may have no scheme.
   std::string configure_error;
@@ -76,10 +77,25 @@ class DeviceSession {
 
   // Not real-time safe. Powers the device; the chain activates in the first cycle from the first sample.
   void activate();
-  // Real-time safe. torque_scale in [0, 1] ramps the output (shutdown); consecutive_overruns: the loop's
-  // current run of overrun cycles, lateness_ns: how late the loop woke for this cycle (the watchdogs).
+
+  // Real-time safe: one cycle in phases (docs/architecture.md, "One cycle"). The executor runs each phase for
+  // every device of a group before the next phase, so the chains of a group see their devices' states of the
+  // same instant.
+  // (a) Read the device; the watchdogs (E-stop, overruns, a stall: lateness_ns is how late the loop woke, the
+  //     server's stop); check the measurement; estimate the chain state (model terms, the one joint velocity).
+  void read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns = 0, std::int64_t lateness_ns = 0) noexcept;
+  // (c) The chain - virtual model, inverse kinematics, controller - unless the device is in its safe mode.
+  void run_chain(const CycleTime& cycle) noexcept;
+  // (d) Limit and write the torque (or the safe mode's torque; torque_scale in [0, 1] ramps the output down at
+  //     a planned end), keep the cycle in the history and publish the snapshot.
+  void limit_and_write(const CycleTime& cycle, double torque_scale) noexcept;
+  // The three phases for this device alone.
   void cycle(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns = 0,
-             std::int64_t lateness_ns = 0) noexcept;
+             std::int64_t lateness_ns = 0) noexcept {
+    read_and_estimate(cycle, consecutive_overruns, lateness_ns);
+    run_chain(cycle);
+    limit_and_write(cycle, torque_scale);
+  }
   // Not real-time safe. Zero torque, chain and device off.
   void deactivate();
 
@@ -154,29 +170,29 @@ class DeviceSession {
   void service();
 
  private:
-  void cycle_checked(const CycleTime& cycle, double torque_scale, std::uint32_t consecutive_overruns,
-                     std::int64_t lateness_ns) noexcept;
   // A fault: report, log, counters, the stop epoch (voids pending recoveries).
   void publish_fault(DeviceFault fault, const CycleTime& cycle) noexcept;
-  // A fault that puts the running device in its safe mode (this cycle's safe-mode step still to come).
+  // A fault that puts the device in its safe mode: this cycle takes the safe-mode step in phase (d).
   void raise_fault(DeviceFault fault, const CycleTime& cycle) noexcept;
-  // raise_fault, then this cycle's safe-mode step.
-  void enter_safe_state(DeviceFault fault, const CycleTime& cycle) noexcept;
   void leave_chain() noexcept;
-  void safe_mode_cycle(const CycleTime& cycle, bool read_ok) noexcept;
+  // Phase (a)'s estimate; the chain restarts from the measured state when it (re)activates.
+  void estimate(const CycleTime& cycle) noexcept;
+  // Phase (c)'s work; plugins may throw despite the contract: caught by run_chain.
+  DeviceFault chain_step(const CycleTime& cycle);
+  // Phase (d) in the safe mode: damping (and gravity hold) while the measurement can be trusted, then zero.
+  void safe_mode_step(const CycleTime& cycle) noexcept;
   void recover_if_requested(const CycleTime& cycle) noexcept;
   void record_history(const CycleTime& cycle) noexcept;
   void log_safety_event(SafetyEvent::Kind kind, DeviceFault fault, const CycleTime& cycle) noexcept;
   void relatch_emergency_stop(const CycleTime& cycle) noexcept;
   ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
-  void switch_scheme_if_requested(const CycleTime& cycle) noexcept;
+  void switch_scheme_if_requested() noexcept;
   void blend_after_switch() noexcept;
   void update_chain_state(const CycleTime& cycle, bool first_cycle) noexcept;
   // The joint velocity from the encoder positions, over the time since the previous sample.
   const JointVector& differentiate(const CycleTime& cycle) noexcept;
   void take_engine_input(const CycleTime& cycle) noexcept;
   void publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept;
-  DeviceFault run_chain(const CycleTime& cycle);  // plugins may throw despite the contract: caught by the caller
 
   std::string name_;
   DeviceChain chain_;
@@ -213,9 +229,13 @@ class DeviceSession {
   std::atomic<std::uint64_t> recovery_for_epoch_{0};
   SpscRing<SafetyEvent> safety_events_{256};
   std::atomic<std::uint64_t> lost_safety_events_{0};
-  JointVector switch_offset_;       // torque difference at the last switch, fading out
-  std::int64_t switch_ramp_cycles_ = 0;
-  std::int64_t switch_ramp_left_ = 0;
+  // The blend after a scheme switch or a recovery: the torque difference to what was written before fades out
+  // over switch_ramp_cycles_. pending: the difference is taken against the next command of the chain.
+  enum class Blend : std::uint8_t { none, pending, fading };
+  Blend blend_ = Blend::none;
+  JointVector switch_offset_;
+  std::int64_t switch_ramp_cycles_ = 1;
+  std::int64_t blend_left_ = 0;
 
   // Per-cycle model terms shared by the chain (when the device names a robot model).
   std::unique_ptr<model::RobotModel> robot_;
@@ -241,8 +261,10 @@ class DeviceSession {
   std::atomic<std::uint64_t> render_limited_cycles_{0};
   std::atomic<double> dissipated_j_{0.0};
   std::atomic<double> thermal_load_{0.0};
-  bool differentiator_ready_ = false;
-  bool safety_configured_ = false;
+  bool estimator_ready_ = false;   // the velocity estimate has a previous sample
+  // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
+  bool safe_path_ = false;
+  bool measurement_valid_ = false;
   JointVector last_written_;  // the last torque the device accepted
 
   std::atomic<DeviceFault> fault_{DeviceFault::none};

@@ -116,6 +116,7 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
     chain.engine_fade_s = dc.engine_fade_s;
     chain.engine_ramp_in_s = dc.engine_ramp_in_s;
     chain.safety = dc.safety;
+    chain.period_s = 1.0 / config.server.rate_hz;
 
     try {
       sessions.push_back(std::make_unique<DeviceSession>(dc.name, std::move(chain)));
