@@ -4,9 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "hapticd/model/dynamics.hpp"
-#include "hapticd/model/kinematics.hpp"
-#include "hapticd/model/urdf_loader.hpp"
 #include "session/finite.hpp"
 
 namespace hapticd::server {
@@ -60,19 +57,29 @@ std::optional<std::string> check_against_schema(const PluginDescriptor& plugin, 
 
 }  // namespace
 
-DeviceSession::DeviceSession(std::string name, DeviceChain chain)
-    : name_(std::move(name)), chain_(std::move(chain)), description_(chain_.device->description()) {
-  const int dof = description_.dof();
+const DeviceDescription& DeviceSession::checked(const std::string& name, const DeviceChain& chain) {
+  const DeviceDescription& description = chain.device->description();
+  const int dof = description.dof();
   if (dof < 1 || dof > kMaxJoints)
-    throw std::invalid_argument("device '" + name_ + "' reports " + std::to_string(dof) + " joints; supported: 1.." +
+    throw std::invalid_argument("device '" + name + "' reports " + std::to_string(dof) + " joints; supported: 1.." +
                                 std::to_string(kMaxJoints));
   for (int i = 0; i < dof; ++i) {
-    const double peak = description_.joints[static_cast<std::size_t>(i)].torque_peak_nm;
+    const double peak = description.joints[static_cast<std::size_t>(i)].torque_peak_nm;
     if (!(peak > 0.0) || !std::isfinite(peak))
-      throw std::invalid_argument("device '" + name_ + "' joint " + std::to_string(i) + " has no valid peak torque");
+      throw std::invalid_argument("device '" + name + "' joint " + std::to_string(i) + " has no valid peak torque");
   }
-  if (chain_.schemes.empty() && chain_.configure_error.empty())
-    throw std::invalid_argument("device '" + name_ + "' has no control scheme");
+  if (chain.schemes.empty() && chain.configure_error.empty())
+    throw std::invalid_argument("device '" + name + "' has no control scheme");
+  if (!(chain.period_s > 0.0)) throw std::invalid_argument("device '" + name + "': no loop period");
+  return description;
+}
+
+DeviceSession::DeviceSession(std::string name, DeviceChain chain)
+    : name_(std::move(name)),
+      chain_(std::move(chain)),
+      description_(checked(name_, chain_)),
+      estimator_(name_, description_, chain_.period_s) {
+  const int dof = description_.dof();
   scheme_state_ = std::vector<std::atomic<std::uint8_t>>(chain_.schemes.size());
   for (auto& st : scheme_state_) st.store(kIdle);
   switch_offset_.setZero(dof);
@@ -84,45 +91,28 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   joint_target_.resize(dof);
   command_.torque_nm.setZero(dof);
   last_written_.setZero(dof);
-  chain_state_.velocity.setZero(dof);
-  if (!(chain_.period_s > 0.0)) throw std::invalid_argument("device '" + name_ + "': no loop period");
   // Everything sized and set up for the loop's period here, before the first cycle: nothing lazily on the loop.
   safety_.configure(chain_.safety, description_, chain_.period_s);
-  differentiator_.configure(chain_.period_s, kVelocityFilterHz);
   switch_ramp_cycles_ = std::max<std::int64_t>(1, std::llround(chain_.switch_ramp_s / chain_.period_s));
-  if (!description_.robot_model_file.empty()) {
-    robot_ = std::make_unique<model::RobotModel>(model::load_robot_model(description_.robot_model_file));
-    if (robot_->dof() != dof) {
-      throw std::invalid_argument("device '" + name_ + "': its robot model " + description_.robot_model_file + " has " +
-                                  std::to_string(robot_->dof()) + " joints, the device " + std::to_string(dof));
-    }
-    model_data_ = std::make_unique<model::ModelData>(*robot_);
-    chain_state_.model = robot_.get();
-    chain_state_.data = model_data_.get();
-    chain_state_.handle_frame = robot_->require_frame(description_.handle_frame.empty() ? "handle" : description_.handle_frame);
-    if (description_.reports_wrench && !description_.sensor_frame.empty()) {
-      sensor_frame_ = robot_->require_frame(description_.sensor_frame);
-    }
-  }
 }
 
 void DeviceSession::activate() {
   chain_.device->activate();
   chain_active_ = false;
-  estimator_ready_ = false;
+  estimator_.reset();
   command_.torque_nm.setZero();
   blend_ = Blend::none;
 }
 
 ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
   if (scheme.virtual_model &&
-      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &chain_state_, &engine_, &safety_.guard()}) != ReturnCode::ok)
+      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &estimator_.state(), &engine_, &safety_.guard()}) != ReturnCode::ok)
     return ReturnCode::error;
   if (scheme.inverse_kinematics &&
-      (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &chain_state_}) != ReturnCode::ok)
+      (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &estimator_.state()}) != ReturnCode::ok)
     return ReturnCode::error;
   return scheme.controller->activate(
-      ControllerInput{state_, task_, joint_target_, &chain_state_, redundancy_of(scheme)}, command_);
+      ControllerInput{state_, task_, joint_target_, &estimator_.state(), redundancy_of(scheme)}, command_);
 }
 
 bool DeviceSession::request_scheme(std::string_view name) {
@@ -204,44 +194,6 @@ void DeviceSession::switch_scheme_if_requested() noexcept {
   safety_.restart_soft_start();
 }
 
-const JointVector& DeviceSession::differentiate(const CycleTime& cycle) noexcept {
-  // After skipped periods (an overloaded real-time loop) the difference spans the time that really passed.
-  const std::int64_t elapsed_ns = std::max<std::int64_t>(cycle.period_ns, cycle.time_ns - differentiated_ns_);
-  differentiated_ns_ = cycle.time_ns;
-  return differentiator_.update(state_.joints.position, static_cast<double>(elapsed_ns) * 1e-9);
-}
-
-void DeviceSession::update_chain_state(const CycleTime& cycle, bool first_cycle) noexcept {
-  ChainState& c = chain_state_;
-  if (description_.reports_joint_velocity) {
-    c.velocity = state_.joints.velocity;
-  } else if (first_cycle) {
-    differentiator_.reset(state_.joints.position);
-    differentiated_ns_ = cycle.time_ns;
-    c.velocity.setZero();
-  } else {
-    c.velocity = differentiate(cycle);
-  }
-  if (robot_ == nullptr) return;
-  model::compute_cycle_terms(*robot_, *model_data_, state_.joints.position, c.velocity, c.handle_frame);
-  const model::ModelData& d = *model_data_;
-  c.handle_pose.position = d.frame_pose.translation();
-  c.handle_pose.orientation = Eigen::Quaterniond(d.frame_pose.linear());
-  const model::Vector6d twist = d.frame_jacobian * c.velocity;
-  c.handle_twist.linear = twist.head<3>();
-  c.handle_twist.angular = twist.tail<3>();
-  if (sensor_frame_ >= 0) {
-    // The sensor's wrench, turned into the world and moved to the handle point (the handle's own dynamics
-    // beyond the sensor are not subtracted yet).
-    const Eigen::Isometry3d sensor = model::frame_pose(*robot_, d, sensor_frame_);
-    const Eigen::Vector3d force = sensor.linear() * state_.sensor_wrench.force;
-    const Eigen::Vector3d moment = sensor.linear() * state_.sensor_wrench.torque;
-    c.operator_wrench.force = force;
-    c.operator_wrench.torque = moment + (sensor.translation() - c.handle_pose.position).cross(force);
-    c.has_operator_wrench = true;
-  }
-}
-
 DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
   if (!chain_active_) {  // the first cycle, or the first after a recovery: activate from the measured state
     const int first = active_.load(std::memory_order_relaxed);
@@ -253,11 +205,11 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
     switch_scheme_if_requested();
   }
   // The supervisor's speed and workspace checks on the measured state, before the chain renders anything.
-  if (const DeviceFault f = safety_.begin_cycle(chain_state_); f != DeviceFault::none) return f;
+  if (const DeviceFault f = safety_.begin_cycle(estimator_.state()); f != DeviceFault::none) return f;
   take_engine_input(cycle);
   SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_relaxed))];
   if (scheme.virtual_model) {
-    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &chain_state_, &engine_, &safety_.guard()}, task_) !=
+    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &estimator_.state(), &engine_, &safety_.guard()}, task_) !=
         ReturnCode::ok)
       return DeviceFault::virtual_model;
     if (!is_finite(task_)) return DeviceFault::non_finite_output;
@@ -273,11 +225,11 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
     task_ = TaskTarget{};  // a scheme without a virtual model renders nothing (free space)
   }
   if (scheme.inverse_kinematics) {
-    if ((*scheme.inverse_kinematics)->update(cycle, InverseKinematicsInput{state_, task_, &chain_state_}, joint_target_) != ReturnCode::ok)
+    if ((*scheme.inverse_kinematics)->update(cycle, InverseKinematicsInput{state_, task_, &estimator_.state()}, joint_target_) != ReturnCode::ok)
       return DeviceFault::inverse_kinematics;
     if (!is_finite(joint_target_)) return DeviceFault::non_finite_output;
   }
-  if (scheme.controller->update(cycle, ControllerInput{state_, task_, joint_target_, &chain_state_, redundancy_of(scheme)},
+  if (scheme.controller->update(cycle, ControllerInput{state_, task_, joint_target_, &estimator_.state(), redundancy_of(scheme)},
                                 command_) != ReturnCode::ok)
     return DeviceFault::controller;
   if (!command_.torque_nm.allFinite()) return DeviceFault::non_finite_output;
@@ -312,19 +264,19 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   DeviceSnapshot& s = snapshot_;
   s.cycle = cycle.index;
   s.time_ns = cycle.time_ns;
-  s.handle_pose = chain_state_.handle_pose;
-  s.handle_twist = chain_state_.handle_twist;
-  s.operator_wrench = chain_state_.operator_wrench;
+  s.handle_pose = estimator_.state().handle_pose;
+  s.handle_twist = estimator_.state().handle_twist;
+  s.operator_wrench = estimator_.state().operator_wrench;
   s.environment_wrench = task_.wrench;
   s.target_pose = task_.pose;
   s.position = state_.joints.position;
-  s.velocity = chain_state_.velocity;
+  s.velocity = estimator_.state().velocity;
   s.torque = command_.torque_nm;
   s.fault = fault();
   s.faults = fault_serial_.load(std::memory_order_relaxed);
   s.estop = s.fault == DeviceFault::emergency_stop;
   s.stopping = torque_scale < 1.0;
-  s.saturated = chain_state_.output_saturated;
+  s.saturated = estimator_.state().output_saturated;
   s.switching = blend_ != Blend::none;
   s.scheme = active_.load(std::memory_order_relaxed);
   s.engine_weight = engine_.weight;
@@ -377,7 +329,7 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
   if (fault() == DeviceFault::none && !stopped_ && safe_stop_requested_.load(std::memory_order_acquire)) {
     stopped_ = true;
     leave_chain();
-    safety_.enter_safe_mode(last_written_, robot_ != nullptr ? &state_.joints.position : nullptr, true);  // stopping: no hold
+    safety_.enter_safe_mode(last_written_, estimator_.has_model() ? &state_.joints.position : nullptr, true);  // stopping: no hold
     at_rest_.store(false, std::memory_order_release);
   }
   // The measurement: a running device faults on a read error, a non-finite value or a saturated sensor; in the
@@ -399,8 +351,7 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
 
 void DeviceSession::estimate(const CycleTime& cycle) noexcept {
   // The velocity estimate starts again from this sample when the chain (re)activates from the measured state.
-  update_chain_state(cycle, !estimator_ready_ || (!safe_path_ && !chain_active_));
-  estimator_ready_ = true;
+  estimator_.estimate(state_, cycle.time_ns, cycle.period_ns, !safe_path_ && !chain_active_);
 }
 
 void DeviceSession::run_chain(const CycleTime& cycle) noexcept {
@@ -421,8 +372,8 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
     safe_mode_step(cycle);
   } else {
     bool saturated = false;
-    safety_.limit(chain_state_, command_.torque_nm, saturated);
-    chain_state_.output_saturated = saturated;
+    safety_.limit(estimator_.state(), command_.torque_nm, saturated);
+    estimator_.state().output_saturated = saturated;
     if (saturated) saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
     const std::uint32_t flags = safety_.flags();
     if ((flags & kRecordLimitEngaged) != 0) limited_cycles_.fetch_add(1, std::memory_order_relaxed);
@@ -458,10 +409,9 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
 void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
   // Joint damping (and, with a robot model, gravity compensation holding the posture) while the measurement can
   // be trusted, then zero torque.
-  const bool valid = measurement_valid_ && chain_state_.velocity.allFinite() &&
-                     (robot_ == nullptr || model_data_->gravity_torque.allFinite());
-  safety_.safe_torque(state_.joints.position, chain_state_.velocity, valid, robot_ != nullptr ? &model_data_->gravity_torque : nullptr,
-                      command_.torque_nm);
+  const JointVector* gravity = estimator_.gravity_torque();
+  const bool valid = measurement_valid_ && estimator_.state().velocity.allFinite() && (gravity == nullptr || gravity->allFinite());
+  safety_.safe_torque(state_.joints.position, estimator_.state().velocity, valid, gravity, command_.torque_nm);
   at_rest_.store(safety_.at_rest(), std::memory_order_release);
   try {
     (void)chain_.device->write(cycle, command_);
@@ -506,11 +456,11 @@ void DeviceSession::record_history(const CycleTime& cycle) noexcept {
   r.cycle = cycle.index;
   r.time_ns = cycle.time_ns;
   r.position = state_.joints.position;
-  r.velocity = chain_state_.velocity;
+  r.velocity = estimator_.state().velocity;
   r.torque = command_.torque_nm;
-  r.handle_position = chain_state_.handle_pose.position;
-  r.handle_velocity = chain_state_.handle_twist.linear;
-  r.operator_force = chain_state_.operator_wrench.force;
+  r.handle_position = estimator_.state().handle_pose.position;
+  r.handle_velocity = estimator_.state().handle_twist.linear;
+  r.operator_force = estimator_.state().operator_wrench.force;
   r.environment_force = task_.wrench.force;
   r.flags = safety_.flags();
   safety_.history().record(r);
@@ -554,7 +504,7 @@ void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle) noexc
   leave_chain();
   // The last torque that reached the drives fades out, unless the measurement cannot be trusted (then the
   // damping cannot run either, and the safe mode is zero torque at once).
-  safety_.enter_safe_mode(last_written_, robot_ != nullptr ? &state_.joints.position : nullptr);
+  safety_.enter_safe_mode(last_written_, estimator_.has_model() ? &state_.joints.position : nullptr);
   at_rest_.store(safety_.at_rest(), std::memory_order_release);
 }
 

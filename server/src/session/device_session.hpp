@@ -23,16 +23,14 @@
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/realtime/latest_value.hpp"
-#include "session/device_snapshot.hpp"
-#include "hapticd/model/model_data.hpp"
-#include "hapticd/model/robot_model.hpp"
 #include "hapticd/plugin.hpp"
-#include "hapticd/signal/differentiator.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "recorder/spsc_ring.hpp"
 #include "safety/device_fault.hpp"
 #include "safety/fault_history.hpp"
 #include "safety/safety_supervisor.hpp"
+#include "session/chain_state_estimator.hpp"
+#include "session/device_snapshot.hpp"
 
 namespace hapticd::server {
 
@@ -110,7 +108,7 @@ class DeviceSession {
   [[nodiscard]] const DeviceState& state() const noexcept { return state_; }
   [[nodiscard]] const JointCommand& command() const noexcept { return command_; }
   [[nodiscard]] const TaskTarget& task() const noexcept { return task_; }
-  [[nodiscard]] const ChainState& chain_state() const noexcept { return chain_state_; }
+  [[nodiscard]] const ChainState& chain_state() const noexcept { return estimator_.state(); }
   [[nodiscard]] double engine_weight() const noexcept { return engine_.weight; }
 
   // Any thread: asks for the scheme `name` from the next cycle on; false if there is no such scheme.
@@ -170,6 +168,8 @@ class DeviceSession {
   void service();
 
  private:
+  // The device's description, checked (joints, peak torques, a scheme, the period); throws std::invalid_argument.
+  static const DeviceDescription& checked(const std::string& name, const DeviceChain& chain);
   // A fault: report, log, counters, the stop epoch (voids pending recoveries).
   void publish_fault(DeviceFault fault, const CycleTime& cycle) noexcept;
   // A fault that puts the device in its safe mode: this cycle takes the safe-mode step in phase (d).
@@ -188,15 +188,13 @@ class DeviceSession {
   ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
   void switch_scheme_if_requested() noexcept;
   void blend_after_switch() noexcept;
-  void update_chain_state(const CycleTime& cycle, bool first_cycle) noexcept;
-  // The joint velocity from the encoder positions, over the time since the previous sample.
-  const JointVector& differentiate(const CycleTime& cycle) noexcept;
   void take_engine_input(const CycleTime& cycle) noexcept;
   void publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept;
 
   std::string name_;
   DeviceChain chain_;
   DeviceDescription description_;
+  ChainStateEstimator estimator_;  // phase (a): the chain state of the cycle
 
   DeviceState state_;
   TaskTarget task_;
@@ -237,16 +235,6 @@ class DeviceSession {
   std::int64_t switch_ramp_cycles_ = 1;
   std::int64_t blend_left_ = 0;
 
-  // Per-cycle model terms shared by the chain (when the device names a robot model).
-  std::unique_ptr<model::RobotModel> robot_;
-  std::unique_ptr<model::ModelData> model_data_;
-  int sensor_frame_ = -1;
-  signal::Differentiator<JointVector> differentiator_;
-  std::int64_t differentiated_ns_ = 0;  // loop time of the differentiator's last sample
-  ChainState chain_state_;
-  // Cut-off of the joint-velocity estimate for devices without velocity measurement (encoder differences).
-  static constexpr double kVelocityFilterHz = 100.0;
-
   // Safety.
   SafetySupervisor safety_;
   FaultReport report_;
@@ -261,7 +249,6 @@ class DeviceSession {
   std::atomic<std::uint64_t> render_limited_cycles_{0};
   std::atomic<double> dissipated_j_{0.0};
   std::atomic<double> thermal_load_{0.0};
-  bool estimator_ready_ = false;   // the velocity estimate has a previous sample
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;
   bool measurement_valid_ = false;

@@ -1,0 +1,65 @@
+#include "session/chain_state_estimator.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "hapticd/model/dynamics.hpp"
+#include "hapticd/model/kinematics.hpp"
+#include "hapticd/model/urdf_loader.hpp"
+
+namespace hapticd::server {
+
+ChainStateEstimator::ChainStateEstimator(const std::string& device, const DeviceDescription& description, double period_s)
+    : measures_velocity_(description.reports_joint_velocity) {
+  const int dof = description.dof();
+  state_.velocity.setZero(dof);
+  differentiator_.configure(period_s, kVelocityFilterHz);
+  if (description.robot_model_file.empty()) return;
+  robot_ = std::make_unique<model::RobotModel>(model::load_robot_model(description.robot_model_file));
+  if (robot_->dof() != dof) {
+    throw std::invalid_argument("device '" + device + "': its robot model " + description.robot_model_file + " has " +
+                                std::to_string(robot_->dof()) + " joints, the device " + std::to_string(dof));
+  }
+  model_data_ = std::make_unique<model::ModelData>(*robot_);
+  state_.model = robot_.get();
+  state_.data = model_data_.get();
+  state_.handle_frame = robot_->require_frame(description.handle_frame.empty() ? "handle" : description.handle_frame);
+  if (description.reports_wrench && !description.sensor_frame.empty()) sensor_frame_ = robot_->require_frame(description.sensor_frame);
+}
+
+void ChainStateEstimator::estimate(const DeviceState& measured, std::int64_t time_ns, std::int64_t period_ns, bool restart) noexcept {
+  ChainState& c = state_;
+  if (measures_velocity_) {
+    c.velocity = measured.joints.velocity;
+  } else if (restart || !ready_) {
+    differentiator_.reset(measured.joints.position);
+    c.velocity.setZero();
+  } else {
+    // After skipped periods (an overloaded real-time loop) the difference spans the time that really passed.
+    const std::int64_t elapsed_ns = std::max<std::int64_t>(period_ns, time_ns - differentiated_ns_);
+    c.velocity = differentiator_.update(measured.joints.position, static_cast<double>(elapsed_ns) * 1e-9);
+  }
+  differentiated_ns_ = time_ns;
+  ready_ = true;
+  if (robot_ == nullptr) return;
+  model::compute_cycle_terms(*robot_, *model_data_, measured.joints.position, c.velocity, c.handle_frame);
+  const model::ModelData& d = *model_data_;
+  c.handle_pose.position = d.frame_pose.translation();
+  c.handle_pose.orientation = Eigen::Quaterniond(d.frame_pose.linear());
+  const model::Vector6d twist = d.frame_jacobian * c.velocity;
+  c.handle_twist.linear = twist.head<3>();
+  c.handle_twist.angular = twist.tail<3>();
+  if (sensor_frame_ >= 0) {
+    // The sensor's wrench, turned into the world and moved to the handle point (the handle's own dynamics
+    // beyond the sensor are not subtracted yet).
+    const Eigen::Isometry3d sensor = model::frame_pose(*robot_, d, sensor_frame_);
+    const Eigen::Vector3d force = sensor.linear() * measured.sensor_wrench.force;
+    const Eigen::Vector3d moment = sensor.linear() * measured.sensor_wrench.torque;
+    c.operator_wrench.force = force;
+    c.operator_wrench.torque = moment + (sensor.translation() - c.handle_pose.position).cross(force);
+    c.has_operator_wrench = true;
+  }
+}
+
+}  // namespace hapticd::server

@@ -1,0 +1,55 @@
+#pragma once
+// Phase (a)'s estimate for one device (docs/architecture.md, "One cycle"): from the measured state, the chain
+// state every plugin of the chain reads - the one joint-velocity estimate (the device's own measurement, or
+// filtered encoder differences over the time that really passed) and, when the device names a robot model, the
+// model terms of the cycle (forward kinematics, Jacobian, mass matrix, Coriolis and gravity terms), the handle's
+// pose and twist, and the operator's wrench from the force/torque sensor moved to the handle.
+#include <cstdint>
+#include <memory>
+
+#include "hapticd/chain_state.hpp"
+#include "hapticd/device.hpp"
+#include "hapticd/model/model_data.hpp"
+#include "hapticd/model/robot_model.hpp"
+#include "hapticd/signal/differentiator.hpp"
+
+namespace hapticd::server {
+
+class ChainStateEstimator {
+ public:
+  // Loads the robot model the description names (if any) and checks it against the device; throws
+  // std::invalid_argument naming the device when they disagree.
+  ChainStateEstimator(const std::string& device, const DeviceDescription& description, double period_s);
+  ChainStateEstimator(const ChainStateEstimator&) = delete;
+  ChainStateEstimator& operator=(const ChainStateEstimator&) = delete;
+
+  // Real-time safe. restart: the velocity estimate starts from this sample (zero, unless the device measures
+  // velocity) - when the chain (re)activates from the measured state.
+  void estimate(const DeviceState& state, std::int64_t time_ns, std::int64_t period_ns, bool restart) noexcept;
+  // Whether a sample has been estimated since activate() (the velocity estimate has a previous sample).
+  [[nodiscard]] bool ready() const noexcept { return ready_; }
+  void reset() noexcept { ready_ = false; }
+
+  [[nodiscard]] const ChainState& state() const noexcept { return state_; }
+  ChainState& state() noexcept { return state_; }  // the chain adds its own findings (output saturated)
+  // The gravity torque of the latest estimate, nullptr without a robot model.
+  [[nodiscard]] const JointVector* gravity_torque() const noexcept {
+    return model_data_ ? &model_data_->gravity_torque : nullptr;
+  }
+  [[nodiscard]] bool has_model() const noexcept { return robot_ != nullptr; }
+
+  // Cut-off of the joint-velocity estimate for devices without velocity measurement (encoder differences).
+  static constexpr double kVelocityFilterHz = 100.0;
+
+ private:
+  bool measures_velocity_;
+  std::unique_ptr<model::RobotModel> robot_;
+  std::unique_ptr<model::ModelData> model_data_;
+  int sensor_frame_ = -1;
+  signal::Differentiator<JointVector> differentiator_;
+  std::int64_t differentiated_ns_ = 0;  // loop time of the differentiator's last sample
+  bool ready_ = false;
+  ChainState state_;
+};
+
+}  // namespace hapticd::server
