@@ -78,7 +78,8 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
     : name_(std::move(name)),
       chain_(std::move(chain)),
       description_(checked(name_, chain_)),
-      estimator_(name_, description_, chain_.period_s) {
+      estimator_(name_, description_, chain_.period_s),
+      engine_(EngineTiming{chain_.engine_deadline_s, chain_.engine_fade_s, chain_.engine_ramp_in_s}) {
   const int dof = description_.dof();
   scheme_state_ = std::vector<std::atomic<std::uint8_t>>(chain_.schemes.size());
   for (auto& st : scheme_state_) st.store(kIdle);
@@ -106,7 +107,7 @@ void DeviceSession::activate() {
 
 ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
   if (scheme.virtual_model &&
-      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &estimator_.state(), &engine_, &safety_.guard()}) != ReturnCode::ok)
+      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &estimator_.state(), &engine_.input(), &safety_.guard()}) != ReturnCode::ok)
     return ReturnCode::error;
   if (scheme.inverse_kinematics &&
       (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &estimator_.state()}) != ReturnCode::ok)
@@ -206,10 +207,10 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
   }
   // The supervisor's speed and workspace checks on the measured state, before the chain renders anything.
   if (const DeviceFault f = safety_.begin_cycle(estimator_.state()); f != DeviceFault::none) return f;
-  take_engine_input(cycle);
+  engine_.take(cycle);
   SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_relaxed))];
   if (scheme.virtual_model) {
-    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &estimator_.state(), &engine_, &safety_.guard()}, task_) !=
+    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &estimator_.state(), &engine_.input(), &safety_.guard()}, task_) !=
         ReturnCode::ok)
       return DeviceFault::virtual_model;
     if (!is_finite(task_)) return DeviceFault::non_finite_output;
@@ -237,27 +238,6 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
   return DeviceFault::none;
 }
 
-void DeviceSession::take_engine_input(const CycleTime& cycle) noexcept {
-  if (engine_inbox_.take(engine_incoming_)) {
-    engine_ = engine_incoming_;
-    engine_.received_ns = cycle.time_ns;
-    engine_seen_ = true;
-  }
-  if (!engine_seen_) {
-    engine_.weight = engine_weight_ = 0.0;
-    return;
-  }
-  // Fresh until the deadline, then a linear fade to zero (the safety deadline of docs/dds-interface.md). Input
-  // that (re)starts after a silence is ramped in over engine_ramp_in_s (soft start: no force step when an
-  // engine connects or reconnects).
-  const double age = static_cast<double>(cycle.time_ns - engine_.received_ns) * 1e-9;
-  const double late = age - chain_.engine_deadline_s;
-  const double target = late <= 0.0 ? 1.0 : std::clamp(1.0 - late / std::max(chain_.engine_fade_s, 1e-9), 0.0, 1.0);
-  const double step = static_cast<double>(cycle.period_ns) * 1e-9 / std::max(chain_.engine_ramp_in_s, 1e-9);
-  engine_.weight = target > engine_weight_ ? std::min(target, engine_weight_ + step) : target;
-  engine_weight_ = engine_.weight;
-  engine_late_ = late > 0.0;
-}
 
 void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept {
   if (snapshot_interval_ == 0 || cycle.index % snapshot_interval_ != 0) return;
@@ -279,9 +259,9 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.saturated = estimator_.state().output_saturated;
   s.switching = blend_ != Blend::none;
   s.scheme = active_.load(std::memory_order_relaxed);
-  s.engine_weight = engine_.weight;
-  s.engine_stale = engine_seen_ && engine_late_;
-  s.engine_sequence = engine_.sequence;
+  s.engine_weight = engine_.input().weight;
+  s.engine_stale = engine_.stale();
+  s.engine_sequence = engine_.input().sequence;
   s.safe_damping = (s.fault != DeviceFault::none || stopped_) && !safety_.at_rest();
   s.stopping = s.stopping || stopped_;
   const std::uint32_t flags = safety_.flags();
@@ -435,8 +415,7 @@ void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
   // Whatever the safe mode holds (gravity, damping) fades out against the chain's first commands: no step.
   switch_offset_ = last_written_;
   blend_ = last_written_.isZero(0.0) ? Blend::none : Blend::pending;
-  engine_seen_ = false;   // engine input ramps in again
-  engine_weight_ = 0.0;
+  engine_.restart();  // engine input ramps in again
   recoveries_.fetch_add(1, std::memory_order_relaxed);
   log_safety_event(SafetyEvent::Kind::recovery, fault(), cycle);
   fault_.store(DeviceFault::none, std::memory_order_release);

@@ -30,6 +30,7 @@
 #include "safety/fault_history.hpp"
 #include "safety/safety_supervisor.hpp"
 #include "session/chain_state_estimator.hpp"
+#include "session/engine_input_port.hpp"
 #include "session/device_snapshot.hpp"
 
 namespace hapticd::server {
@@ -109,7 +110,7 @@ class DeviceSession {
   [[nodiscard]] const JointCommand& command() const noexcept { return command_; }
   [[nodiscard]] const TaskTarget& task() const noexcept { return task_; }
   [[nodiscard]] const ChainState& chain_state() const noexcept { return estimator_.state(); }
-  [[nodiscard]] double engine_weight() const noexcept { return engine_.weight; }
+  [[nodiscard]] double engine_weight() const noexcept { return engine_.input().weight; }
 
   // Any thread: asks for the scheme `name` from the next cycle on; false if there is no such scheme.
   bool request_scheme(std::string_view name);
@@ -119,7 +120,7 @@ class DeviceSession {
   [[nodiscard]] std::uint64_t refused_switches() const noexcept { return refused_switches_.load(std::memory_order_relaxed); }
   // Any thread (the DDS interface): the rendering engine's newest input; the loop picks it up at the next cycle
   // and stamps it with that cycle's time.
-  void publish_engine_input(const EngineInput& input) { engine_inbox_.publish(input); }
+  void publish_engine_input(const EngineInput& input) { engine_.publish(input); }
   // Any thread: the newest snapshot the loop published (see set_snapshot_interval); false if none since the
   // last take. One reader at a time.
   bool take_snapshot(DeviceSnapshot& out) noexcept { return snapshot_outbox_.take(out); }
@@ -188,13 +189,13 @@ class DeviceSession {
   ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
   void switch_scheme_if_requested() noexcept;
   void blend_after_switch() noexcept;
-  void take_engine_input(const CycleTime& cycle) noexcept;
   void publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept;
 
   std::string name_;
   DeviceChain chain_;
   DeviceDescription description_;
   ChainStateEstimator estimator_;  // phase (a): the chain state of the cycle
+  EngineInputPort engine_;         // phase (c): the engine's input, weighted by its age
 
   DeviceState state_;
   TaskTarget task_;
@@ -210,11 +211,6 @@ class DeviceSession {
   std::atomic<int> requested_{0};
   std::atomic<std::uint64_t> switches_{0};
   std::atomic<std::uint64_t> refused_switches_{0};
-  realtime::LatestValue<EngineInput> engine_inbox_;
-  EngineInput engine_incoming_, engine_;
-  bool engine_seen_ = false;
-  double engine_weight_ = 0.0;  // carried over the engine_ copies
-  bool engine_late_ = false;
   realtime::LatestValue<DeviceSnapshot> snapshot_outbox_;
   DeviceSnapshot snapshot_;
   std::uint64_t snapshot_interval_ = 0;

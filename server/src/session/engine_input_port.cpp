@@ -1,0 +1,29 @@
+#include "session/engine_input_port.hpp"
+
+#include <algorithm>
+
+namespace hapticd::server {
+
+double engine_weight(double age_s, double previous, double period_s, const EngineTiming& timing) noexcept {
+  const double late = age_s - timing.deadline_s;
+  const double target = late <= 0.0 ? 1.0 : std::clamp(1.0 - late / std::max(timing.fade_s, 1e-9), 0.0, 1.0);
+  const double step = period_s / std::max(timing.ramp_in_s, 1e-9);
+  return target > previous ? std::min(target, previous + step) : target;
+}
+
+void EngineInputPort::take(const CycleTime& cycle) noexcept {
+  if (inbox_.take(incoming_)) {
+    input_ = incoming_;
+    input_.received_ns = cycle.time_ns;
+    seen_ = true;
+  }
+  if (!seen_) {
+    input_.weight = weight_ = 0.0;
+    return;
+  }
+  const double age = static_cast<double>(cycle.time_ns - input_.received_ns) * 1e-9;
+  input_.weight = weight_ = engine_weight(age, weight_, static_cast<double>(cycle.period_ns) * 1e-9, timing_);
+  late_ = age > timing_.deadline_s;
+}
+
+}  // namespace hapticd::server
