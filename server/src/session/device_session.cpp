@@ -86,8 +86,8 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   switch_offset_.setZero(dof);
   state_.joints.resize(dof);
   if (!chain_.configure_error.empty()) {
-    fault_.store(DeviceFault::configure);
-    fault_serial_.store(1);
+    status_.fault.store(DeviceFault::configure);
+    status_.faults.store(1);
   }
   joint_target_.resize(dof);
   command_.torque_nm.setZero(dof);
@@ -253,7 +253,7 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.velocity = estimator_.state().velocity;
   s.torque = command_.torque_nm;
   s.fault = fault();
-  s.faults = fault_serial_.load(std::memory_order_relaxed);
+  s.faults = status_.faults.load(std::memory_order_relaxed);
   s.estop = s.fault == DeviceFault::emergency_stop;
   s.stopping = torque_scale < 1.0;
   s.saturated = estimator_.state().output_saturated;
@@ -271,7 +271,7 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.thermal_load = safety_.thermal().max_load();
   s.dissipated_j = safety_.guard().dissipated_j();
   s.passivity_control = safety_.guard().passivity_control();
-  snapshot_outbox_.publish(s);
+  status_.snapshots.publish(s);
 }
 
 void DeviceSession::blend_after_switch() noexcept {
@@ -310,7 +310,7 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
     stopped_ = true;
     leave_chain();
     safety_.enter_safe_mode(last_written_, estimator_.has_model() ? &state_.joints.position : nullptr, true);  // stopping: no hold
-    at_rest_.store(false, std::memory_order_release);
+    status_.at_rest.store(false, std::memory_order_release);
   }
   // The measurement: a running device faults on a read error, a non-finite value or a saturated sensor; in the
   // safe mode it is estimated as long as its positions can be trusted (an arm that sags is seen).
@@ -354,10 +354,10 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
     bool saturated = false;
     safety_.limit(estimator_.state(), command_.torque_nm, saturated);
     estimator_.state().output_saturated = saturated;
-    if (saturated) saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
+    if (saturated) status_.saturated_cycles.fetch_add(1, std::memory_order_relaxed);
     const std::uint32_t flags = safety_.flags();
-    if ((flags & kRecordLimitEngaged) != 0) limited_cycles_.fetch_add(1, std::memory_order_relaxed);
-    if ((flags & kRecordRenderLimited) != 0) render_limited_cycles_.fetch_add(1, std::memory_order_relaxed);
+    if ((flags & kRecordLimitEngaged) != 0) status_.limited_cycles.fetch_add(1, std::memory_order_relaxed);
+    if ((flags & kRecordRenderLimited) != 0) status_.render_limited_cycles.fetch_add(1, std::memory_order_relaxed);
     const double scale = std::clamp(torque_scale, 0.0, 1.0);
     if (scale > 0.0) {
       command_.torque_nm *= scale;
@@ -373,8 +373,8 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
     if (written == ReturnCode::ok) {
       last_written_ = command_.torque_nm;
       safety_.written(command_.torque_nm);
-      dissipated_j_.store(safety_.guard().dissipated_j(), std::memory_order_relaxed);
-      thermal_load_.store(safety_.thermal().max_load(), std::memory_order_relaxed);
+      status_.dissipated_j.store(safety_.guard().dissipated_j(), std::memory_order_relaxed);
+      status_.thermal_load.store(safety_.thermal().max_load(), std::memory_order_relaxed);
     } else {
       last_written_.setZero();  // unknown what the drive holds: do not fade from it
       raise_fault(DeviceFault::device_write, cycle);
@@ -392,7 +392,7 @@ void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
   const JointVector* gravity = estimator_.gravity_torque();
   const bool valid = measurement_valid_ && estimator_.state().velocity.allFinite() && (gravity == nullptr || gravity->allFinite());
   safety_.safe_torque(state_.joints.position, estimator_.state().velocity, valid, gravity, command_.torque_nm);
-  at_rest_.store(safety_.at_rest(), std::memory_order_release);
+  status_.at_rest.store(safety_.at_rest(), std::memory_order_release);
   try {
     (void)chain_.device->write(cycle, command_);
   } catch (...) {
@@ -416,9 +416,9 @@ void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
   switch_offset_ = last_written_;
   blend_ = last_written_.isZero(0.0) ? Blend::none : Blend::pending;
   engine_.restart();  // engine input ramps in again
-  recoveries_.fetch_add(1, std::memory_order_relaxed);
+  status_.recoveries.fetch_add(1, std::memory_order_relaxed);
   log_safety_event(SafetyEvent::Kind::recovery, fault(), cycle);
-  fault_.store(DeviceFault::none, std::memory_order_release);
+  status_.fault.store(DeviceFault::none, std::memory_order_release);
 }
 
 RuntimeReply DeviceSession::request_recovery() {
@@ -454,23 +454,23 @@ void DeviceSession::leave_chain() noexcept {
 }
 
 void DeviceSession::log_safety_event(SafetyEvent::Kind kind, DeviceFault fault, const CycleTime& cycle) noexcept {
-  if (!safety_events_.try_push(SafetyEvent{kind, fault, cycle.index, cycle.time_ns}))
-    lost_safety_events_.fetch_add(1, std::memory_order_relaxed);
+  if (!status_.safety_events.try_push(SafetyEvent{kind, fault, cycle.index, cycle.time_ns}))
+    status_.lost_safety_events.fetch_add(1, std::memory_order_relaxed);
 }
 
 void DeviceSession::publish_fault(DeviceFault fault, const CycleTime& cycle) noexcept {
   // The report: the cycles before this one, as recorded (this cycle never wrote its chain's command).
   report_.fault = fault;
-  report_.serial = fault_serial_.load(std::memory_order_relaxed) + 1;
+  report_.serial = status_.faults.load(std::memory_order_relaxed) + 1;
   report_.cycle = cycle.index;
   report_.time_ns = cycle.time_ns;
   safety_.history().copy_to(report_);
-  report_outbox_.publish(report_);
-  fault_cycle_.store(cycle.index, std::memory_order_relaxed);
-  fault_serial_.store(report_.serial, std::memory_order_relaxed);
+  status_.reports.publish(report_);
+  status_.fault_cycle.store(cycle.index, std::memory_order_relaxed);
+  status_.faults.store(report_.serial, std::memory_order_relaxed);
   log_safety_event(SafetyEvent::Kind::fault, fault, cycle);
   stop_epoch_.fetch_add(1, std::memory_order_acq_rel);  // voids a recovery asked before this fault
-  fault_.store(fault, std::memory_order_release);
+  status_.fault.store(fault, std::memory_order_release);
 }
 
 void DeviceSession::relatch_emergency_stop(const CycleTime& cycle) noexcept {
@@ -484,7 +484,7 @@ void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle) noexc
   // The last torque that reached the drives fades out, unless the measurement cannot be trusted (then the
   // damping cannot run either, and the safe mode is zero torque at once).
   safety_.enter_safe_mode(last_written_, estimator_.has_model() ? &state_.joints.position : nullptr);
-  at_rest_.store(safety_.at_rest(), std::memory_order_release);
+  status_.at_rest.store(safety_.at_rest(), std::memory_order_release);
 }
 
 void DeviceSession::deactivate() {

@@ -32,6 +32,7 @@
 #include "session/chain_state_estimator.hpp"
 #include "session/engine_input_port.hpp"
 #include "session/device_snapshot.hpp"
+#include "session/device_status.hpp"
 
 namespace hapticd::server {
 
@@ -40,15 +41,6 @@ struct SchemeChain {
   std::optional<PluginInstance<VirtualModel>> virtual_model;
   std::optional<PluginInstance<InverseKinematics>> inverse_kinematics;
   PluginInstance<Controller> controller;
-};
-
-// A fault or a recovery of a device, as the session's log keeps it (the final report lists every one).
-struct SafetyEvent {
-  enum class Kind : std::uint8_t { fault, recovery };
-  Kind kind = Kind::fault;
-  DeviceFault fault = DeviceFault::none;  // the fault raised, or the one recovered from
-  std::uint64_t cycle = 0;
-  std::int64_t time_ns = 0;
 };
 
 struct DeviceChain {
@@ -102,9 +94,9 @@ class DeviceSession {
   [[nodiscard]] const DeviceDescription& description() const noexcept { return description_; }
   [[nodiscard]] const DeviceChain& chain() const noexcept { return chain_; }
   // Readable from any thread.
-  [[nodiscard]] DeviceFault fault() const noexcept { return fault_.load(std::memory_order_acquire); }
-  [[nodiscard]] std::uint64_t fault_cycle() const noexcept { return fault_cycle_.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t saturated_cycles() const noexcept { return saturated_cycles_.load(std::memory_order_relaxed); }
+  [[nodiscard]] DeviceFault fault() const noexcept { return status_.fault.load(std::memory_order_acquire); }
+  [[nodiscard]] std::uint64_t fault_cycle() const noexcept { return status_.fault_cycle.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t saturated_cycles() const noexcept { return status_.saturated_cycles.load(std::memory_order_relaxed); }
   // Loop thread only (or after the loop has stopped).
   [[nodiscard]] const DeviceState& state() const noexcept { return state_; }
   [[nodiscard]] const JointCommand& command() const noexcept { return command_; }
@@ -123,7 +115,7 @@ class DeviceSession {
   void publish_engine_input(const EngineInput& input) { engine_.publish(input); }
   // Any thread: the newest snapshot the loop published (see set_snapshot_interval); false if none since the
   // last take. One reader at a time.
-  bool take_snapshot(DeviceSnapshot& out) noexcept { return snapshot_outbox_.take(out); }
+  bool take_snapshot(DeviceSnapshot& out) noexcept { return status_.snapshots.take(out); }
   // Before activate(): the loop publishes a snapshot every `cycles` cycles (0: never, the default).
   void set_snapshot_interval(std::uint64_t cycles) noexcept { snapshot_interval_ = cycles; }
   // Any thread: emergency stop. The loop puts the device in its safe state at the next cycle (fault
@@ -144,20 +136,20 @@ class DeviceSession {
   RuntimeReply request_recovery();
   // Any thread (the monitor): the next fault or recovery from the device's log, oldest first; false if none.
   // One reader. The loop counts what did not fit (lost_safety_events).
-  bool take_safety_event(SafetyEvent& out) noexcept { return safety_events_.try_pop(out); }
-  [[nodiscard]] std::uint64_t lost_safety_events() const noexcept { return lost_safety_events_.load(std::memory_order_relaxed); }
+  bool take_safety_event(SafetyEvent& out) noexcept { return status_.safety_events.try_pop(out); }
+  [[nodiscard]] std::uint64_t lost_safety_events() const noexcept { return status_.lost_safety_events.load(std::memory_order_relaxed); }
   // Any thread: the safe mode has reached zero torque (or there is no fault).
-  [[nodiscard]] bool at_rest() const noexcept { return at_rest_.load(std::memory_order_acquire); }
+  [[nodiscard]] bool at_rest() const noexcept { return status_.at_rest.load(std::memory_order_acquire); }
   // Any thread: the newest fault report (the fault and the cycles before it); false if none since the last take.
   // One reader at a time.
-  bool take_fault_report(FaultReport& out) noexcept { return report_outbox_.take(out); }
-  [[nodiscard]] std::uint64_t faults_raised() const noexcept { return fault_serial_.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t recoveries() const noexcept { return recoveries_.load(std::memory_order_relaxed); }
+  bool take_fault_report(FaultReport& out) noexcept { return status_.reports.take(out); }
+  [[nodiscard]] std::uint64_t faults_raised() const noexcept { return status_.faults.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t recoveries() const noexcept { return status_.recoveries.load(std::memory_order_relaxed); }
   // Any thread: counters and gauges of the safety supervisor.
-  [[nodiscard]] std::uint64_t limited_cycles() const noexcept { return limited_cycles_.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t render_limited_cycles() const noexcept { return render_limited_cycles_.load(std::memory_order_relaxed); }
-  [[nodiscard]] double dissipated_j() const noexcept { return dissipated_j_.load(std::memory_order_relaxed); }
-  [[nodiscard]] double thermal_load() const noexcept { return thermal_load_.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t limited_cycles() const noexcept { return status_.limited_cycles.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t render_limited_cycles() const noexcept { return status_.render_limited_cycles.load(std::memory_order_relaxed); }
+  [[nodiscard]] double dissipated_j() const noexcept { return status_.dissipated_j.load(std::memory_order_relaxed); }
+  [[nodiscard]] double thermal_load() const noexcept { return status_.thermal_load.load(std::memory_order_relaxed); }
   // Loop thread only (tests): the supervisor.
   [[nodiscard]] const SafetySupervisor& safety() const noexcept { return safety_; }
   // Not real-time safe, not the loop thread: a run-time request to one stage of the chain - "device", or
@@ -195,6 +187,7 @@ class DeviceSession {
   DeviceChain chain_;
   DeviceDescription description_;
   ChainStateEstimator estimator_;  // phase (a): the chain state of the cycle
+  DeviceStatus status_;            // what the loop tells the other threads
   EngineInputPort engine_;         // phase (c): the engine's input, weighted by its age
 
   DeviceState state_;
@@ -211,7 +204,6 @@ class DeviceSession {
   std::atomic<int> requested_{0};
   std::atomic<std::uint64_t> switches_{0};
   std::atomic<std::uint64_t> refused_switches_{0};
-  realtime::LatestValue<DeviceSnapshot> snapshot_outbox_;
   DeviceSnapshot snapshot_;
   std::uint64_t snapshot_interval_ = 0;
   // E-stops and recoveries (any thread -> loop). Every stop (an E-stop request, a fault the loop raises)
@@ -221,8 +213,6 @@ class DeviceSession {
   std::atomic<std::uint64_t> estop_requests_{0};
   std::uint64_t estops_handled_ = 0;  // loop thread
   std::atomic<std::uint64_t> recovery_for_epoch_{0};
-  SpscRing<SafetyEvent> safety_events_{256};
-  std::atomic<std::uint64_t> lost_safety_events_{0};
   // The blend after a scheme switch or a recovery: the torque difference to what was written before fades out
   // over switch_ramp_cycles_. pending: the difference is taken against the next command of the chain.
   enum class Blend : std::uint8_t { none, pending, fading };
@@ -234,25 +224,14 @@ class DeviceSession {
   // Safety.
   SafetySupervisor safety_;
   FaultReport report_;
-  realtime::LatestValue<FaultReport> report_outbox_;
   std::atomic<bool> safe_stop_requested_{false};
   bool stopped_ = false;  // loop thread: the safe stop has begun
   std::atomic<int> passivity_request_{-1};  // -1: none, else 0/1
-  std::atomic<bool> at_rest_{true};
-  std::atomic<std::uint64_t> fault_serial_{0};
-  std::atomic<std::uint64_t> recoveries_{0};
-  std::atomic<std::uint64_t> limited_cycles_{0};
-  std::atomic<std::uint64_t> render_limited_cycles_{0};
-  std::atomic<double> dissipated_j_{0.0};
-  std::atomic<double> thermal_load_{0.0};
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;
   bool measurement_valid_ = false;
   JointVector last_written_;  // the last torque the device accepted
 
-  std::atomic<DeviceFault> fault_{DeviceFault::none};
-  std::atomic<std::uint64_t> fault_cycle_{0};
-  std::atomic<std::uint64_t> saturated_cycles_{0};
 };
 
 }  // namespace hapticd::server
