@@ -1,19 +1,12 @@
 #include "bridge/command_intake.hpp"
 
-#include <chrono>
 #include <string>
 
+#include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
-namespace {
-
-std::int64_t steady_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
 
 CommandIntake::CommandIntake(DdsEndpoints& dds, DeviceLinks& links, EventSender& events)
     : dds_(dds), links_(links), events_(events) {}
@@ -56,7 +49,7 @@ void CommandIntake::take_commands() {
     }
     const std::int64_t state_written_ns = d->round_trip.command_accepted(c.serial, c.state_serial);
     d->session->publish_engine_input(dds::to_engine_input(c));
-    d->round_trip.command_handed_over(state_written_ns, steady_ns());
+    d->round_trip.command_handed_over(state_written_ns, monotonic_now_ns());
     if (c.state_serial > 0) {
       if (c.state_serial > d->answered.load(std::memory_order_relaxed)) d->answered.store(c.state_serial, std::memory_order_release);
       d->synced.store(true, std::memory_order_release);

@@ -98,9 +98,4 @@ bool PeerDirectory::has_live_writer(dds_entity_t reader, const PeerId& participa
   return false;
 }
 
-std::size_t PeerDirectory::size() const {
-  std::lock_guard lock(mutex_);
-  return entries_.size();
-}
-
 }  // namespace hapticd::server

@@ -41,8 +41,6 @@ class PeerDirectory {
   // Whether `participant` has a writer matched on `reader` whose liveliness has not been lost.
   [[nodiscard]] bool has_live_writer(dds_entity_t reader, const PeerId& participant);
 
-  [[nodiscard]] std::size_t capacity() const noexcept { return capacity_; }
-  [[nodiscard]] std::size_t size() const;
 
  private:
   struct Entry {

@@ -1,19 +1,12 @@
 #include "bridge/request_dispatcher.hpp"
 
 #include <algorithm>
-#include <chrono>
 
+#include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
-namespace {
-
-std::int64_t steady_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
 
 RequestDispatcher::RequestDispatcher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, StatePublisher& publisher,
                                      double claim_grace_s)
@@ -73,7 +66,7 @@ RequestDispatcher::Answer RequestDispatcher::claim(DeviceLink& d, const Request&
     a.accepted = d.gate.claim(r.client, r.requester);
     if (a.accepted) {
       d.claim_writer = r.info.publication_handle;
-      d.claimed_ns = steady_ns();
+      d.claimed_ns = monotonic_now_ns();
     }
     a.message = a.accepted ? "claimed" : "claimed by '" + d.gate.owner() + "' (another participant)";
   }
@@ -130,7 +123,7 @@ RequestDispatcher::Answer RequestDispatcher::describe(DeviceLink& d, const Reque
 }
 
 void RequestDispatcher::check_claims() {
-  const std::int64_t now = steady_ns();
+  const std::int64_t now = monotonic_now_ns();
   for (auto& link : links_) {
     DeviceLink& d = *link;
     PeerId owner;

@@ -1,18 +1,11 @@
 #include "bridge/state_publisher.hpp"
 
-#include <chrono>
 
+#include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
-namespace {
-
-std::int64_t steady_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
 
 StatePublisher::StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, double rate_hz,
                                std::uint64_t snapshot_interval)
@@ -39,9 +32,9 @@ void StatePublisher::publish_states() {
     if (!d.session->take_snapshot(p.snapshot)) {
       // Nothing new (the loop waits, e.g. for the first engine in lockstep): repeat the last state now and
       // then, for readers that matched after it was written.
-      if (d.states.load(std::memory_order_relaxed) > 0 && steady_ns() - p.last_write_ns > 10'000'000) {
+      if (d.states.load(std::memory_order_relaxed) > 0 && monotonic_now_ns() - p.last_write_ns > 10'000'000) {
         (void)dds_.state.write(p.last);
-        p.last_write_ns = steady_ns();
+        p.last_write_ns = monotonic_now_ns();
       }
       continue;
     }
@@ -63,11 +56,11 @@ void StatePublisher::publish_states() {
     const StateLabels labels{d.session->name(), s.cycle / snapshot_interval_ + 1, d.session->active_scheme(), owner, loop_summary()};
     p.last = state_message(s, labels);
     d.round_trip.command_applied(s.engine_sequence, s.cycle);
-    d.round_trip.state_written(p.last.serial, s.cycle, steady_ns());
+    d.round_trip.state_written(p.last.serial, s.cycle, monotonic_now_ns());
     (void)dds_.state.write(p.last);
     d.states.fetch_add(1, std::memory_order_relaxed);
     d.loop_time_ns.store(s.time_ns, std::memory_order_relaxed);
-    p.last_write_ns = steady_ns();
+    p.last_write_ns = monotonic_now_ns();
 
     const PublishedView now = view_of(s);
     for (const EventText& e : events_between(p.view, now, p.scheme_names)) events_.send(d, e.kind, e.code, e.message);

@@ -26,8 +26,7 @@ class ChainStateEstimator {
   // Real-time safe. restart: the velocity estimate starts from this sample (zero, unless the device measures
   // velocity) - when the chain (re)activates from the measured state.
   void estimate(const DeviceState& state, std::int64_t time_ns, std::int64_t period_ns, bool restart) noexcept;
-  // Whether a sample has been estimated since activate() (the velocity estimate has a previous sample).
-  [[nodiscard]] bool ready() const noexcept { return ready_; }
+  // The next estimate restarts the velocity estimate (the device was activated again).
   void reset() noexcept { ready_ = false; }
 
   [[nodiscard]] const ChainState& state() const noexcept { return state_; }
