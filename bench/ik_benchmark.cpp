@@ -49,17 +49,24 @@ void run(benchmark::State& st, const std::string& session, bool chain_too) {
   st.counters["ratio_to_model_terms"] = own / reference;
 }
 
-const char* kSessions[] = {"admittance-pseudoinverse", "admittance-weighted", "admittance-damped",
-                           "admittance-inertia-weighted", "admittance-torque-level", "admittance-computed-torque",
-                           "admittance-partitioned", "admittance-partitioned-wrist-pseudoinverse",
+const char* kSessions[] = {"admittance-pseudoinverse",
+                           "admittance-weighted",
+                           "admittance-damped",
+                           "admittance-inertia-weighted",
+                           "admittance-torque-level",
+                           "admittance-computed-torque",
+                           "admittance-partitioned",
+                           "admittance-partitioned-wrist-pseudoinverse",
                            "admittance-partitioned-lookup-table"};
 
 const bool kRegistered = [] {
   for (const char* s : kSessions) {
-    benchmark::RegisterBenchmark((std::string("ik/") + s).c_str(), [s](benchmark::State& st) { run(st, s, false); })
-        ->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark((std::string("chain/") + s).c_str(), [s](benchmark::State& st) { run(st, s, true); })
-        ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark((std::string("ik/") + s).c_str(), [s](benchmark::State& st) {
+      run(st, s, false);
+    })->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark((std::string("chain/") + s).c_str(), [s](benchmark::State& st) {
+      run(st, s, true);
+    })->Unit(benchmark::kMicrosecond);
   }
   return true;
 }();

@@ -128,8 +128,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
       if (pos == std::string::npos) continue;
       const auto kdl = times_.find(name.substr(0, pos) + "/kdl");
       if (kdl == times_.end()) continue;
-      std::printf("  %-32s ours %9.1f ns  kdl %9.1f ns  ratio %5.2fx\n", name.substr(0, pos).c_str(), ours,
-                  kdl->second, kdl->second / ours);
+      std::printf("  %-32s ours %9.1f ns  kdl %9.1f ns  ratio %5.2fx\n", name.substr(0, pos).c_str(), ours, kdl->second,
+                  kdl->second / ours);
     }
   }
 

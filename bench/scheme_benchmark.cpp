@@ -41,7 +41,8 @@ void scheme(benchmark::State& st, const std::string& device, const std::string& 
   const auto one_cycle = [&] {
     const CycleTime t{static_cast<std::int64_t>(k) * 500'000, 500'000, k};
     ++k;
-    if (chain.virtual_model) (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, &cs, &engine, nullptr}, task);
+    if (chain.virtual_model)
+      (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, &cs, &engine, nullptr}, task);
     if (chain.inverse_kinematics)
       (void)(*chain.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &cs}, joints);
     (void)chain.controller->update(t, ControllerInput{state, task, joints, &cs, nullptr}, command);
@@ -58,19 +59,28 @@ void scheme(benchmark::State& st, const std::string& device, const std::string& 
   st.counters["ratio_to_model_terms"] = own / reference;
 }
 
-const char* kSchemes[] = {"impedance-open-loop", "impedance-force-feedback", "impedance-friction-compensation",
-                          "impedance-stiction", "impedance-adaptive-friction", "impedance-disturbance-observer",
-                          "impedance-joint-torque-feedback", "admittance-resolved-acceleration",
-                          "admittance-inverse-jacobian", "admittance-transposed-jacobian",
-                          "admittance-computed-torque", "admittance-joint-pd", "admittance-motion-based",
+const char* kSchemes[] = {"impedance-open-loop",
+                          "impedance-force-feedback",
+                          "impedance-friction-compensation",
+                          "impedance-stiction",
+                          "impedance-adaptive-friction",
+                          "impedance-disturbance-observer",
+                          "impedance-joint-torque-feedback",
+                          "admittance-resolved-acceleration",
+                          "admittance-inverse-jacobian",
+                          "admittance-transposed-jacobian",
+                          "admittance-computed-torque",
+                          "admittance-joint-pd",
+                          "admittance-motion-based",
                           "admittance-virtual-coupling"};
 
 const bool kRegistered = [] {
   for (const char* device : {"vishard3", "vishard6"}) {
     for (const char* s : kSchemes) {
-      benchmark::RegisterBenchmark((std::string("scheme/") + device + "/" + s).c_str(),
-                                   [device, s](benchmark::State& st) { scheme(st, device, s); })
-          ->Unit(benchmark::kMicrosecond);
+      benchmark::RegisterBenchmark((std::string("scheme/") + device + "/" + s).c_str(), [device,
+                                                                                         s](benchmark::State& st) {
+        scheme(st, device, s);
+      })->Unit(benchmark::kMicrosecond);
     }
   }
   return true;

@@ -29,8 +29,9 @@ void vishard6(benchmark::State& s) {
   run(s, "urdf: ../urdf/vishard6.urdf\ninitial_position: [-0.5, 1.0, -0.5, 0.3, 0.3, 0.0]\n");
 }
 void vishard10(benchmark::State& s) {
-  run(s, "urdf: ../urdf/vishard10.urdf\n"
-         "initial_position: [0.3, -0.6, 0.6, -0.6, 0.3, 1.0, -2.0, 1.0, 0.8, 0.0]\n");
+  run(s,
+      "urdf: ../urdf/vishard10.urdf\n"
+      "initial_position: [0.3, -0.6, 0.6, -0.6, 0.3, 1.0, -2.0, 1.0, 0.8, 0.0]\n");
 }
 
 }  // namespace

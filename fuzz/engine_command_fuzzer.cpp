@@ -3,12 +3,12 @@
 // a well-formed command whose kind, flag and numeric fields are then patched from the bytes (index, 8-byte
 // value), which reaches the accepting paths. Whatever the validation accepts must turn into finite, bounded
 // engine input with unit quaternions. A violation aborts (the finding).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <algorithm>
 
 #include "hapticd/dds/command_validation.hpp"
 #include "hapticd/dds/conversion.hpp"

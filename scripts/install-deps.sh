@@ -18,7 +18,7 @@ packages=(
   liborocos-kdl-dev
   libnlopt-dev
   rt-tests
-  clang-14 libclang-rt-14-dev
+  clang-14 libclang-rt-14-dev clang-format-14
   python3 python3-matplotlib
 )
 

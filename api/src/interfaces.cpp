@@ -26,10 +26,14 @@ RuntimeReply VirtualModel::handle_request(std::string_view name, const std::vect
 
 std::string_view to_string(PluginKind kind) noexcept {
   switch (kind) {
-    case PluginKind::device: return "device";
-    case PluginKind::controller: return "controller";
-    case PluginKind::inverse_kinematics: return "inverse_kinematics";
-    case PluginKind::virtual_model: return "virtual_model";
+    case PluginKind::device:
+      return "device";
+    case PluginKind::controller:
+      return "controller";
+    case PluginKind::inverse_kinematics:
+      return "inverse_kinematics";
+    case PluginKind::virtual_model:
+      return "virtual_model";
   }
   return "unknown";
 }

@@ -19,23 +19,31 @@ void check_number(const ParameterSpec& spec, double v, const std::string& what) 
   if (!std::isfinite(v)) throw ParameterError(spec.name, what + " must be a finite number");
   if (spec.minimum) {
     if (spec.minimum_exclusive && !(v > *spec.minimum))
-      throw ParameterError(spec.name, what + " " + number_text(v) + " must be greater than " + number_text(*spec.minimum));
+      throw ParameterError(spec.name,
+                           what + " " + number_text(v) + " must be greater than " + number_text(*spec.minimum));
     if (!spec.minimum_exclusive && v < *spec.minimum)
-      throw ParameterError(spec.name, what + " " + number_text(v) + " is below the minimum " + number_text(*spec.minimum));
+      throw ParameterError(spec.name,
+                           what + " " + number_text(v) + " is below the minimum " + number_text(*spec.minimum));
   }
   if (spec.maximum && v > *spec.maximum)
-    throw ParameterError(spec.name, what + " " + number_text(v) + " is above the maximum " + number_text(*spec.maximum));
+    throw ParameterError(spec.name,
+                         what + " " + number_text(v) + " is above the maximum " + number_text(*spec.maximum));
 }
 
 }  // namespace
 
 std::string_view to_string(ParameterType type) noexcept {
   switch (type) {
-    case ParameterType::boolean: return "boolean";
-    case ParameterType::integer: return "integer";
-    case ParameterType::real: return "real";
-    case ParameterType::string: return "string";
-    case ParameterType::real_vector: return "list of reals";
+    case ParameterType::boolean:
+      return "boolean";
+    case ParameterType::integer:
+      return "integer";
+    case ParameterType::real:
+      return "real";
+    case ParameterType::string:
+      return "string";
+    case ParameterType::real_vector:
+      return "list of reals";
   }
   return "unknown";
 }
@@ -106,7 +114,10 @@ std::string ParameterSpec::constraints_text() const {
 }
 
 ParameterSpec& ParameterBuilder::spec() { return schema_.specs_[index_]; }
-ParameterBuilder& ParameterBuilder::unit(std::string unit) { spec().unit = std::move(unit); return *this; }
+ParameterBuilder& ParameterBuilder::unit(std::string unit) {
+  spec().unit = std::move(unit);
+  return *this;
+}
 ParameterBuilder& ParameterBuilder::minimum(double value) {
   spec().minimum = value;
   spec().minimum_exclusive = false;
@@ -117,8 +128,14 @@ ParameterBuilder& ParameterBuilder::greater_than(double value) {
   spec().minimum_exclusive = true;
   return *this;
 }
-ParameterBuilder& ParameterBuilder::maximum(double value) { spec().maximum = value; return *this; }
-ParameterBuilder& ParameterBuilder::size(std::size_t elements) { spec().size = elements; return *this; }
+ParameterBuilder& ParameterBuilder::maximum(double value) {
+  spec().maximum = value;
+  return *this;
+}
+ParameterBuilder& ParameterBuilder::size(std::size_t elements) {
+  spec().size = elements;
+  return *this;
+}
 ParameterBuilder& ParameterBuilder::choices(std::vector<std::string> allowed) {
   spec().choices = std::move(allowed);
   return *this;
@@ -139,11 +156,21 @@ ParameterBuilder ParameterSchema::add(std::string name, ParameterType type, std:
   specs_.push_back(std::move(spec));
   return ParameterBuilder(*this, specs_.size() - 1);
 }
-ParameterBuilder ParameterSchema::boolean(std::string n, std::string d) { return add(std::move(n), ParameterType::boolean, std::move(d)); }
-ParameterBuilder ParameterSchema::integer(std::string n, std::string d) { return add(std::move(n), ParameterType::integer, std::move(d)); }
-ParameterBuilder ParameterSchema::real(std::string n, std::string d) { return add(std::move(n), ParameterType::real, std::move(d)); }
-ParameterBuilder ParameterSchema::string(std::string n, std::string d) { return add(std::move(n), ParameterType::string, std::move(d)); }
-ParameterBuilder ParameterSchema::real_vector(std::string n, std::string d) { return add(std::move(n), ParameterType::real_vector, std::move(d)); }
+ParameterBuilder ParameterSchema::boolean(std::string n, std::string d) {
+  return add(std::move(n), ParameterType::boolean, std::move(d));
+}
+ParameterBuilder ParameterSchema::integer(std::string n, std::string d) {
+  return add(std::move(n), ParameterType::integer, std::move(d));
+}
+ParameterBuilder ParameterSchema::real(std::string n, std::string d) {
+  return add(std::move(n), ParameterType::real, std::move(d));
+}
+ParameterBuilder ParameterSchema::string(std::string n, std::string d) {
+  return add(std::move(n), ParameterType::string, std::move(d));
+}
+ParameterBuilder ParameterSchema::real_vector(std::string n, std::string d) {
+  return add(std::move(n), ParameterType::real_vector, std::move(d));
+}
 
 const ParameterSpec* ParameterSchema::find(std::string_view name) const noexcept {
   for (const auto& s : specs_)
@@ -179,7 +206,9 @@ static const T& typed(const ParameterValue& v, std::string_view name, const char
 bool Parameters::boolean(std::string_view n) const { return typed<bool>(entry(n).value, n, "boolean"); }
 std::int64_t Parameters::integer(std::string_view n) const { return typed<std::int64_t>(entry(n).value, n, "integer"); }
 double Parameters::real(std::string_view n) const { return typed<double>(entry(n).value, n, "real"); }
-const std::string& Parameters::string(std::string_view n) const { return typed<std::string>(entry(n).value, n, "string"); }
+const std::string& Parameters::string(std::string_view n) const {
+  return typed<std::string>(entry(n).value, n, "string");
+}
 const std::vector<double>& Parameters::real_vector(std::string_view n) const {
   return typed<std::vector<double>>(entry(n).value, n, "list of reals");
 }

@@ -56,14 +56,17 @@ void RenderGuard::reset(const Vector6& from) noexcept {
 RenderGuard::Vector6 RenderGuard::engine_port(const Vector6& wrench, const Vector6& port_twist) noexcept {
   Vector6 out;
   out.head<3>() = linear_.filter(wrench.head<3>(), port_twist.head<3>(), dt_, passivity_control_, max_damping_);
-  out.tail<3>() = angular_.filter(wrench.tail<3>(), port_twist.tail<3>(), dt_, passivity_control_, max_rotational_damping_);
+  out.tail<3>() =
+      angular_.filter(wrench.tail<3>(), port_twist.tail<3>(), dt_, passivity_control_, max_rotational_damping_);
   return out;
 }
 
 RenderGuard::Vector6 RenderGuard::limit(const Vector6& wrench) noexcept {
   Eigen::Vector3d force = wrench.head<3>(), torque = wrench.tail<3>();
-  const bool f = limit_vector(force, last_.head<3>(), scale_ * limits_.max_force_n, limits_.max_force_rate_n_per_s * dt_);
-  const bool t = limit_vector(torque, last_.tail<3>(), scale_ * limits_.max_torque_nm, limits_.max_torque_rate_nm_per_s * dt_);
+  const bool f =
+      limit_vector(force, last_.head<3>(), scale_ * limits_.max_force_n, limits_.max_force_rate_n_per_s * dt_);
+  const bool t =
+      limit_vector(torque, last_.tail<3>(), scale_ * limits_.max_torque_nm, limits_.max_torque_rate_nm_per_s * dt_);
   last_ << force, torque;
   limited_this_cycle_ = limited_this_cycle_ || f || t;
   limit_applied_ = true;

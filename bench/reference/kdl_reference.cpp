@@ -23,8 +23,8 @@ KDL::Chain kdl_chain(const model::RobotModel& model, int frame_id) {
                                         KDL::RotationalInertia(i(0, 0), i(1, 1), i(2, 2), i(0, 1), i(0, 2), i(1, 2)));
     chain.addSegment(KDL::Segment(b.link_name, joint, KDL::Frame::Identity(), inertia));
   }
-  chain.addSegment(KDL::Segment(model.frame(frame_id).name, KDL::Joint(KDL::Joint::Fixed),
-                                to_kdl(model.frame(frame_id).placement)));
+  chain.addSegment(
+      KDL::Segment(model.frame(frame_id).name, KDL::Joint(KDL::Joint::Fixed), to_kdl(model.frame(frame_id).placement)));
   return chain;
 }
 

@@ -1,8 +1,9 @@
 #include "device_presets.hpp"
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace hapticd::eval {
 

@@ -16,7 +16,7 @@ namespace hapticd::eval {
 struct DevicePreset {
   std::string name;
   model::TaskRows task = model::TaskRows::kFull;
-  std::vector<double> seed;              // nominal configuration, the position solver's start
+  std::vector<double> seed;  // nominal configuration, the position solver's start
   Eigen::Vector3d workspace_center = Eigen::Vector3d::Zero();
   Eigen::Vector3d workspace_size = Eigen::Vector3d::Zero();
   // Orientation ranges about the world axes (full widths, degrees); all zero for translational devices.

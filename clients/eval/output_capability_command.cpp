@@ -31,8 +31,7 @@ std::vector<double> angles(double range_deg, int steps) {
   const double r = range_deg * std::numbers::pi / 180.0;
   const bool full_turn = range_deg >= 360.0 - 1e-9;
   for (int i = 0; i < steps; ++i) {
-    a.push_back(full_turn ? -std::numbers::pi + 2 * std::numbers::pi * i / steps
-                          : -r / 2 + r * i / (steps - 1));
+    a.push_back(full_turn ? -std::numbers::pi + 2 * std::numbers::pi * i / steps : -r / 2 + r * i / (steps - 1));
   }
   return a;
 }
@@ -76,7 +75,7 @@ int run(const Options& o) {
   grid.nominal_orientation = model::frame_pose(robot, data, frame).linear();
   grid.orientation_offsets.clear();
   model::CapabilityOptions options;
-  options.task = o.task.empty() ? preset.task
+  options.task = o.task.empty()            ? preset.task
                  : o.task == "translation" ? model::TaskRows::kTranslation
                                            : model::TaskRows::kFull;
   // Orientation targets only where the device's task includes the orientation.
@@ -84,7 +83,8 @@ int run(const Options& o) {
   const Eigen::Vector3d used_range = orientation_targets ? range : Eigen::Vector3d::Zero();
   for (double roll : angles(used_range.x(), o.orientation_steps)) {
     for (double pitch : angles(used_range.y(), o.orientation_steps > 1 ? 3 : 1)) {
-      for (double yaw : angles(used_range.z(), o.orientation_steps)) grid.orientation_offsets.emplace_back(roll, pitch, yaw);
+      for (double yaw : angles(used_range.z(), o.orientation_steps))
+        grid.orientation_offsets.emplace_back(roll, pitch, yaw);
     }
   }
 
@@ -97,8 +97,8 @@ int run(const Options& o) {
     results.emplace_back("rotation", model::grid_output_capability(robot, frame, grid, seed, options));
   }
 
-  fmt::print("output capability of {} ({}), frame '{}', {} task, gravity {}\n", robot.name(), urdf.string(),
-             o.frame, options.task == model::TaskRows::kFull ? "6-D" : "translational",
+  fmt::print("output capability of {} ({}), frame '{}', {} task, gravity {}\n", robot.name(), urdf.string(), o.frame,
+             options.task == model::TaskRows::kFull ? "6-D" : "translational",
              options.include_gravity ? "included" : "ignored");
   fmt::print("grid: centre {} m, size {} m, {}^3 positions x {}\n", vec_json(grid.center), vec_json(grid.size),
              grid.points_per_axis,
@@ -117,17 +117,17 @@ int run(const Options& o) {
   }
   if (!o.json.empty()) {
     auto out = fmt::output_file(o.json);
-    out.print(R"({{"device": "{}", "urdf": "{}", "frame": "{}", "task": "{}", "include_gravity": {},)",
-              robot.name(), urdf.string(), o.frame, options.task == model::TaskRows::kFull ? "full" : "translation",
+    out.print(R"({{"device": "{}", "urdf": "{}", "frame": "{}", "task": "{}", "include_gravity": {},)", robot.name(),
+              urdf.string(), o.frame, options.task == model::TaskRows::kFull ? "full" : "translation",
               options.include_gravity);
     out.print(R"( "grid": {{"center": {}, "size": {}, "points_per_axis": {}, "orientations": {}}})",
               vec_json(grid.center), vec_json(grid.size), grid.points_per_axis, grid.orientation_offsets.size());
     for (const auto& [name, r] : results) {
-      out.print(R"(, "{}": {{"poses": {}, "reached": {}, "worst_condition": {:.6g}, "force": {}, "velocity": {}, "acceleration": {}}})",
-                name, r.poses, r.reached, r.worst_condition,
-                worst_json(r.force, r.force_worst_position, r.mean_force),
-                worst_json(r.velocity, r.velocity_worst_position, r.mean_velocity),
-                worst_json(r.acceleration, r.acceleration_worst_position, r.mean_acceleration));
+      out.print(
+          R"(, "{}": {{"poses": {}, "reached": {}, "worst_condition": {:.6g}, "force": {}, "velocity": {}, "acceleration": {}}})",
+          name, r.poses, r.reached, r.worst_condition, worst_json(r.force, r.force_worst_position, r.mean_force),
+          worst_json(r.velocity, r.velocity_worst_position, r.mean_velocity),
+          worst_json(r.acceleration, r.acceleration_worst_position, r.mean_acceleration));
     }
     out.print("}}\n");
   }
@@ -149,16 +149,18 @@ void add_output_capability_command(CLI::App& app, int& exit_code) {
       "Worst-direction peak force, velocity and acceleration of the handle over a workspace grid (appendix C)");
   cmd->add_option("--device", options->device, "vishard3, vishard6, vishard10 or a URDF file")->required();
   cmd->add_option("--frame", options->frame, "frame evaluated")->capture_default_str();
-  cmd->add_option("--center", options->center, "workspace box centre x y z [m] (default: device preset)")
-      ->expected(3);
+  cmd->add_option("--center", options->center, "workspace box centre x y z [m] (default: device preset)")->expected(3);
   cmd->add_option("--size", options->size, "workspace box edge lengths x y z [m]")->expected(3);
-  cmd->add_option("--points", options->points, "grid points per box axis")->check(CLI::Range(1, 50))
+  cmd->add_option("--points", options->points, "grid points per box axis")
+      ->check(CLI::Range(1, 50))
       ->capture_default_str();
   cmd->add_option("--orientation-steps", options->orientation_steps,
                   "steps per rotation axis with a nonzero range (pitch: 3)")
-      ->check(CLI::Range(1, 36))->capture_default_str();
+      ->check(CLI::Range(1, 36))
+      ->capture_default_str();
   cmd->add_option("--rotation-range", options->rotation_range,
-                  "full widths of roll, pitch, yaw about the world axes [deg]")->expected(3);
+                  "full widths of roll, pitch, yaw about the world axes [deg]")
+      ->expected(3);
   cmd->add_option("--seed", options->seed, "the position solver's start configuration");
   cmd->add_option("--task", options->task,
                   "rows the device controls: full (6-D) or translation (orientation free); default: preset")

@@ -1,7 +1,7 @@
 // hapticctl: the command-line client of hapticd's DDS interface (docs/dds-interface.md).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -22,26 +22,40 @@ void on_signal(int) { g_stop.store(true); }
 
 const char* mode_name(hapticd_msg_DeviceMode m) {
   switch (m) {
-    case hapticd_msg_MODE_STARTING: return "starting";
-    case hapticd_msg_MODE_RUNNING: return "running";
-    case hapticd_msg_MODE_STOPPING: return "stopping";
-    case hapticd_msg_MODE_SAFE: return "SAFE";
-    case hapticd_msg_MODE_OFF: return "off";
+    case hapticd_msg_MODE_STARTING:
+      return "starting";
+    case hapticd_msg_MODE_RUNNING:
+      return "running";
+    case hapticd_msg_MODE_STOPPING:
+      return "stopping";
+    case hapticd_msg_MODE_SAFE:
+      return "SAFE";
+    case hapticd_msg_MODE_OFF:
+      return "off";
   }
   return "?";
 }
 
 const char* event_name(hapticd_msg_EventKind k) {
   switch (k) {
-    case hapticd_msg_EVENT_FAULT: return "fault";
-    case hapticd_msg_EVENT_ESTOP: return "e-stop";
-    case hapticd_msg_EVENT_MODE: return "mode";
-    case hapticd_msg_EVENT_SCHEME: return "scheme";
-    case hapticd_msg_EVENT_OWNER: return "owner";
-    case hapticd_msg_EVENT_ENGINE_STALE: return "engine stale";
-    case hapticd_msg_EVENT_ENGINE_REJECTED: return "rejected";
-    case hapticd_msg_EVENT_RECOVERED: return "recovered";
-    case hapticd_msg_EVENT_RECORDING: return "recording";
+    case hapticd_msg_EVENT_FAULT:
+      return "fault";
+    case hapticd_msg_EVENT_ESTOP:
+      return "e-stop";
+    case hapticd_msg_EVENT_MODE:
+      return "mode";
+    case hapticd_msg_EVENT_SCHEME:
+      return "scheme";
+    case hapticd_msg_EVENT_OWNER:
+      return "owner";
+    case hapticd_msg_EVENT_ENGINE_STALE:
+      return "engine stale";
+    case hapticd_msg_EVENT_ENGINE_REJECTED:
+      return "rejected";
+    case hapticd_msg_EVENT_RECOVERED:
+      return "recovered";
+    case hapticd_msg_EVENT_RECORDING:
+      return "recording";
   }
   return "?";
 }
@@ -58,7 +72,8 @@ int report(const Reply& r) {
 bool run_for(double duration_s) {  // false when interrupted
   const auto start = std::chrono::steady_clock::now();
   while (!g_stop.load()) {
-    if (duration_s > 0.0 && std::chrono::steady_clock::now() - start > std::chrono::duration<double>(duration_s)) return true;
+    if (duration_s > 0.0 && std::chrono::steady_clock::now() - start > std::chrono::duration<double>(duration_s))
+      return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   return false;
@@ -104,11 +119,13 @@ int main(int argc, char** argv) {
   record->add_option("device", device)->required();
   record->add_option("file", file)->required();
   record->add_option("--duration", duration, "seconds (default: until Ctrl-C)");
-  auto* estop = app.add_subcommand("estop", "emergency stop: the device goes to its safe mode (damping, then zero torque)");
+  auto* estop =
+      app.add_subcommand("estop", "emergency stop: the device goes to its safe mode (damping, then zero torque)");
   estop->add_option("device", device)->required();
   auto* recover = app.add_subcommand("recover", "leave the safe mode after a fault or an E-stop");
   recover->add_option("device", device)->required();
-  auto* op = app.add_subcommand("operator", "drive a simulated device's operator: push FX FY FZ [RAMP_S] | release | grasp G");
+  auto* op =
+      app.add_subcommand("operator", "drive a simulated device's operator: push FX FY FZ [RAMP_S] | release | grasp G");
   op->add_option("device", device)->required();
   op->add_option("command", what)->required()->check(CLI::IsMember({"push", "release", "grasp"}));
   op->add_option("values", values);
@@ -173,11 +190,13 @@ int main(int argc, char** argv) {
                  name_of(r.message), r.record_count);
       for (int k = std::max(0, r.record_count - 5); k < r.record_count; ++k) {
         const hapticd_msg_CycleRecord& c = r.records[k];
-        fmt::print("  cycle {:>8}  pos ({:+.4f} {:+.4f} {:+.4f}) m  vel ({:+.3f} {:+.3f} {:+.3f}) m/s  F_op ({:+6.2f} {:+6.2f} "
-                   "{:+6.2f}) N  flags {:#x}\n",
-                   c.cycle, c.handle_position[0], c.handle_position[1], c.handle_position[2], c.handle_velocity[0],
-                   c.handle_velocity[1], c.handle_velocity[2], c.operator_force[0], c.operator_force[1],
-                   c.operator_force[2], c.flags);
+        fmt::print(
+            "  cycle {:>8}  pos ({:+.4f} {:+.4f} {:+.4f}) m  vel ({:+.3f} {:+.3f} {:+.3f}) m/s  F_op ({:+6.2f} "
+            "{:+6.2f} "
+            "{:+6.2f}) N  flags {:#x}\n",
+            c.cycle, c.handle_position[0], c.handle_position[1], c.handle_position[2], c.handle_velocity[0],
+            c.handle_velocity[1], c.handle_velocity[2], c.operator_force[0], c.operator_force[1], c.operator_force[2],
+            c.flags);
       }
     });
     client.on_state([&](const hapticd_msg_DeviceState& s) {
@@ -186,12 +205,14 @@ int main(int argc, char** argv) {
       if (now - last < period) return;
       last = now;
       std::lock_guard lock(m);
-      fmt::print("t={:8.3f} {:<8} scheme {:<22} owner {:<14} pos ({:+.4f} {:+.4f} {:+.4f}) m  F_op ({:+6.2f} {:+6.2f} {:+6.2f}) N  "
-                 "F_env ({:+6.2f} {:+6.2f} {:+6.2f}) N  flags {:#x}\n",
-                 static_cast<double>(s.loop_time_ns) * 1e-9, mode_name(s.mode), name_of(s.scheme),
-                 name_of(s.owner).empty() ? "-" : name_of(s.owner), s.pose.position[0], s.pose.position[1],
-                 s.pose.position[2], s.operator_wrench[0], s.operator_wrench[1], s.operator_wrench[2],
-                 s.environment_wrench[0], s.environment_wrench[1], s.environment_wrench[2], s.flags);
+      fmt::print(
+          "t={:8.3f} {:<8} scheme {:<22} owner {:<14} pos ({:+.4f} {:+.4f} {:+.4f}) m  F_op ({:+6.2f} {:+6.2f} "
+          "{:+6.2f}) N  "
+          "F_env ({:+6.2f} {:+6.2f} {:+6.2f}) N  flags {:#x}\n",
+          static_cast<double>(s.loop_time_ns) * 1e-9, mode_name(s.mode), name_of(s.scheme),
+          name_of(s.owner).empty() ? "-" : name_of(s.owner), s.pose.position[0], s.pose.position[1], s.pose.position[2],
+          s.operator_wrench[0], s.operator_wrench[1], s.operator_wrench[2], s.environment_wrench[0],
+          s.environment_wrench[1], s.environment_wrench[2], s.flags);
     });
     run_for(duration);
     client.on_state({});

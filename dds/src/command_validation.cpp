@@ -37,14 +37,22 @@ bool non_negative_within(const double (&v)[6], double linear, double angular) no
 
 std::string_view to_string(RejectReason reason) noexcept {
   switch (reason) {
-    case RejectReason::malformed: return "malformed";
-    case RejectReason::non_finite: return "non-finite";
-    case RejectReason::out_of_bounds: return "out of bounds";
-    case RejectReason::out_of_order: return "out of order";
-    case RejectReason::stale: return "stale";
-    case RejectReason::not_owner: return "not the owner";
-    case RejectReason::wrong_kind: return "wrong kind for the scheme";
-    case RejectReason::other: return "other";
+    case RejectReason::malformed:
+      return "malformed";
+    case RejectReason::non_finite:
+      return "non-finite";
+    case RejectReason::out_of_bounds:
+      return "out of bounds";
+    case RejectReason::out_of_order:
+      return "out of order";
+    case RejectReason::stale:
+      return "stale";
+    case RejectReason::not_owner:
+      return "not the owner";
+    case RejectReason::wrong_kind:
+      return "wrong kind for the scheme";
+    case RejectReason::other:
+      return "other";
   }
   return "other";
 }
@@ -92,7 +100,7 @@ ContentCheck check_command_content(const hapticd_msg_EngineCommand& c, const Com
 EngineInput to_engine_input(const hapticd_msg_EngineCommand& c) noexcept {
   EngineInput e;
   e.sequence = c.serial;
-  const auto twist = [](const double (&v)[6]) {
+  const auto twist = [](const double(&v)[6]) {
     Twist t;
     t.linear = Eigen::Vector3d(v[0], v[1], v[2]);
     t.angular = Eigen::Vector3d(v[3], v[4], v[5]);

@@ -24,8 +24,8 @@ std::shared_ptr<Entity> shared_domain(int id, const std::filesystem::path& confi
   std::lock_guard lock(mutex);
   if (auto existing = domains[id].lock()) return existing;
   const std::string config = config_file.empty() ? std::string(loopback_config_xml()) : read_file(config_file);
-  auto domain = std::make_shared<Entity>(check(dds_create_domain(static_cast<dds_domainid_t>(id), config.c_str()),
-                                               "cannot create the DDS domain"));
+  auto domain = std::make_shared<Entity>(
+      check(dds_create_domain(static_cast<dds_domainid_t>(id), config.c_str()), "cannot create the DDS domain"));
   domains[id] = domain;
   return domain;
 }

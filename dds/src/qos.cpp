@@ -25,7 +25,8 @@ Qos topic_qos(TopicKind kind, const CommandTiming& timing) {
       dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
       dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 8);
       dds_qset_deadline(p, DDS_SECS(1) * timing.deadline_s);
-      dds_qset_liveliness(p, DDS_LIVELINESS_AUTOMATIC, static_cast<dds_duration_t>(DDS_SECS(1) * timing.liveliness_lease_s));
+      dds_qset_liveliness(p, DDS_LIVELINESS_AUTOMATIC,
+                          static_cast<dds_duration_t>(DDS_SECS(1) * timing.liveliness_lease_s));
       break;
     case TopicKind::request:  // nothing lost; a burst of requests is kept (one instance per device: every
       // client's requests share it, so the history is deep)

@@ -90,10 +90,14 @@ int main(int argc, char** argv) {
   dds_qset_reliability(reliable, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
   dds_qset_history(reliable, DDS_HISTORY_KEEP_LAST, 32);
 
-  const dds_entity_t state_topic = dds_create_topic(participant, &hapticd_msg_DeviceState_desc, "hapticd_state", best_effort, NULL);
-  const dds_entity_t command_topic = dds_create_topic(participant, &hapticd_msg_EngineCommand_desc, "hapticd_command", command_qos, NULL);
-  const dds_entity_t request_topic = dds_create_topic(participant, &hapticd_msg_ControlRequest_desc, "hapticd_request", reliable, NULL);
-  const dds_entity_t reply_topic = dds_create_topic(participant, &hapticd_msg_ControlReply_desc, "hapticd_reply", reliable, NULL);
+  const dds_entity_t state_topic =
+      dds_create_topic(participant, &hapticd_msg_DeviceState_desc, "hapticd_state", best_effort, NULL);
+  const dds_entity_t command_topic =
+      dds_create_topic(participant, &hapticd_msg_EngineCommand_desc, "hapticd_command", command_qos, NULL);
+  const dds_entity_t request_topic =
+      dds_create_topic(participant, &hapticd_msg_ControlRequest_desc, "hapticd_request", reliable, NULL);
+  const dds_entity_t reply_topic =
+      dds_create_topic(participant, &hapticd_msg_ControlReply_desc, "hapticd_reply", reliable, NULL);
   const dds_entity_t states = dds_create_reader(participant, state_topic, best_effort, NULL);
   const dds_entity_t commands = dds_create_writer(participant, command_topic, command_qos, NULL);
   const dds_entity_t requests = dds_create_writer(participant, request_topic, reliable, NULL);

@@ -2,9 +2,9 @@
 // from each device state, integrates its own virtual object - a mass with damping resting against a soft
 // floor below the start position - and sends the object's motion as a MOTION command, which the server's
 // admittance model follows. The device then displays the engine's object: pushing down meets the floor.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
     last_time = s.loop_time_ns;
     Eigen::Vector3d force = hapticd::client::wrench_of(s.operator_wrench).force - damping * velocity;
     const double below = floor_z - object.position.z();
-    if (below > 0.0) force.z() += floor_stiffness * below - 2.0 * std::sqrt(floor_stiffness * mass) * std::min(0.0, velocity.z());
+    if (below > 0.0)
+      force.z() += floor_stiffness * below - 2.0 * std::sqrt(floor_stiffness * mass) * std::min(0.0, velocity.z());
     velocity += dt * force / mass;
     object.position += dt * velocity;
     hapticd::Twist twist;

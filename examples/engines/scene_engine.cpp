@@ -2,9 +2,9 @@
 // sphere through the server's virtual coupling: for every device state it computes the proxy (the handle
 // kept on the objects' surfaces) and sends it as a COUPLING command; the server's coupling spring turns the
 // difference into force. It prints contacts as they happen and can write a CSV of position, proxy and force.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -97,14 +97,17 @@ int main(int argc, char** argv) {
     }
     deepest = std::max(deepest, depth);
     if (out.is_open()) {
-      out << fmt::format("{:.4f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{}\n",
-                         static_cast<double>(s.loop_time_ns) * 1e-9, x.x(), x.y(), x.z(), p.x(), p.y(), p.z(),
-                         s.environment_wrench[0], s.environment_wrench[1], s.environment_wrench[2], s.operator_wrench[0],
-                         s.operator_wrench[1], s.operator_wrench[2], contact);
+      out << fmt::format(
+          "{:.4f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{}\n",
+          static_cast<double>(s.loop_time_ns) * 1e-9, x.x(), x.y(), x.z(), p.x(), p.y(), p.z(), s.environment_wrench[0],
+          s.environment_wrench[1], s.environment_wrench[2], s.operator_wrench[0], s.operator_wrench[1],
+          s.operator_wrench[2], contact);
     }
   });
-  fmt::print("scene-engine: claimed '{}'; rendering a wall at x = +30 mm, a cube below it (top at y = -35 mm) and a "
-             "sphere at (-30, -35) mm, r = 25 mm\n", device);
+  fmt::print(
+      "scene-engine: claimed '{}'; rendering a wall at x = +30 mm, a cube below it (top at y = -35 mm) and a "
+      "sphere at (-30, -35) mm, r = 25 mm\n",
+      device);
   const auto start = std::chrono::steady_clock::now();
   std::uint64_t last_answered = 0;
   auto last_progress = start;

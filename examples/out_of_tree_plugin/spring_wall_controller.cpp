@@ -38,7 +38,8 @@ class SpringWallController final : public hapticd::Controller {
     const auto& q = in.device.joints.position;
     const auto& qd = in.device.joints.velocity;
     for (int i = 0; i < dof_; ++i)
-      out.torque_nm[i] = in.joints.valid ? kp_ * (in.joints.position[i] - q[i]) + kd_ * (in.joints.velocity[i] - qd[i]) : 0.0;
+      out.torque_nm[i] =
+          in.joints.valid ? kp_ * (in.joints.position[i] - q[i]) + kd_ * (in.joints.velocity[i] - qd[i]) : 0.0;
     const double penetration = q[0] - wall_;
     if (penetration > 0.0) out.torque_nm[0] -= k_wall_ * penetration + d_wall_ * qd[0];
     return hapticd::ReturnCode::ok;

@@ -10,7 +10,8 @@ void AxisInverseKinematics::configure(const Parameters&, const PluginContext& co
 
 ReturnCode AxisInverseKinematics::activate(const InverseKinematicsInput&) noexcept { return ReturnCode::ok; }
 
-ReturnCode AxisInverseKinematics::update(const CycleTime&, const InverseKinematicsInput& in, JointTarget& target) noexcept {
+ReturnCode AxisInverseKinematics::update(const CycleTime&, const InverseKinematicsInput& in,
+                                         JointTarget& target) noexcept {
   if (!in.task.has_motion) {
     target.valid = false;
     return ReturnCode::ok;

@@ -16,14 +16,20 @@ ParameterSchema MassSpringDevice::parameter_schema() {
   s.real("force_limit_n", "actuator saturation (peak force)").unit("N").greater_than(0.0).default_value(50.0);
   s.integer("substeps", "integration steps per control period").minimum(1).maximum(1000).default_value(10);
   s.real("encoder_resolution_m", "position quantum; 0 is an ideal encoder").unit("m").minimum(0.0).default_value(0.0);
-  s.real("position_noise_m", "standard deviation of Gaussian position noise (seeded)").unit("m").minimum(0.0)
+  s.real("position_noise_m", "standard deviation of Gaussian position noise (seeded)")
+      .unit("m")
+      .minimum(0.0)
       .default_value(0.0);
-  s.integer("fail_read_at_cycle", "fault injection: read() fails from this cycle on; -1 never").minimum(-1)
+  s.integer("fail_read_at_cycle", "fault injection: read() fails from this cycle on; -1 never")
+      .minimum(-1)
       .default_value(-1);
-  s.integer("fail_write_at_cycle", "fault injection: write() fails from this cycle on; -1 never").minimum(-1)
+  s.integer("fail_write_at_cycle", "fault injection: write() fails from this cycle on; -1 never")
+      .minimum(-1)
       .default_value(-1);
   s.real("velocity_limit_m_s", "velocity limit in the description").unit("m/s").greater_than(0.0).default_value(10.0);
-  s.real("continuous_force_n", "thermally sustainable force in the description; 0: the peak").unit("N").minimum(0.0)
+  s.real("continuous_force_n", "thermally sustainable force in the description; 0: the peak")
+      .unit("N")
+      .minimum(0.0)
       .default_value(0.0);
   return s;
 }
@@ -53,7 +59,8 @@ void MassSpringDevice::configure(const Parameters& p, const PluginContext& conte
   description_ = DeviceDescription{};
   description_.model = "test_mass_spring";
   const double continuous = p.real("continuous_force_n") > 0.0 ? p.real("continuous_force_n") : force_limit_n_;
-  description_.joints.push_back(JointDescription{"x", -1.0, 1.0, p.real("velocity_limit_m_s"), force_limit_n_, continuous});
+  description_.joints.push_back(
+      JointDescription{"x", -1.0, 1.0, p.real("velocity_limit_m_s"), force_limit_n_, continuous});
   description_.reports_joint_velocity = true;
 }
 
@@ -65,13 +72,15 @@ void MassSpringDevice::activate() {
 }
 
 void MassSpringDevice::step(double dt) noexcept {
-  const double acceleration = (-stiffness_n_per_m_ * position_m_ - damping_n_s_per_m_ * velocity_m_s_ + force_n_) / mass_kg_;
+  const double acceleration =
+      (-stiffness_n_per_m_ * position_m_ - damping_n_s_per_m_ * velocity_m_s_ + force_n_) / mass_kg_;
   velocity_m_s_ += acceleration * dt;
   position_m_ += velocity_m_s_ * dt;
 }
 
 ReturnCode MassSpringDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
-  if (fail_read_at_cycle_ >= 0 && cycle.index >= static_cast<std::uint64_t>(fail_read_at_cycle_)) return ReturnCode::error;
+  if (fail_read_at_cycle_ >= 0 && cycle.index >= static_cast<std::uint64_t>(fail_read_at_cycle_))
+    return ReturnCode::error;
   // Advance to the cycle's time in fixed substeps; a gap of more than 10 periods (a stalled real-time loop)
   // is not integrated, which bounds the time read() takes.
   const std::int64_t substep_ns = std::max<std::int64_t>(1, cycle.period_ns / substeps_);

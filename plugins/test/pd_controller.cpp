@@ -1,8 +1,7 @@
 #include "pd_controller.hpp"
 
-#include <stdexcept>
-
 #include <limits>
+#include <stdexcept>
 
 namespace hapticd::test_plugins {
 
@@ -11,13 +10,18 @@ ParameterSchema PdController::parameter_schema() {
   s.real("kp", "proportional gain").unit("N/m").minimum(0.0).maximum(1e6).default_value(400.0);
   s.real("kd", "derivative gain").unit("N s/m").minimum(0.0).maximum(1e4).default_value(20.0);
   s.real("setpoint", "joint target used when the chain has no inverse kinematics").unit("m").default_value(0.0);
-  s.boolean("hold_at_activation", "without inverse kinematics: hold the joint positions of activation instead "
-            "of the setpoint").default_value(false);
-  s.real("velocity_filter_hz", "devices without velocity: cut-off of the differentiated positions").unit("Hz")
-      .greater_than(0.0).default_value(100.0);
+  s.boolean("hold_at_activation",
+            "without inverse kinematics: hold the joint positions of activation instead "
+            "of the setpoint")
+      .default_value(false);
+  s.real("velocity_filter_hz", "devices without velocity: cut-off of the differentiated positions")
+      .unit("Hz")
+      .greater_than(0.0)
+      .default_value(100.0);
   s.integer("fault_at_cycle", "fault injection: output NaN at this cycle; -1 never").minimum(-1).default_value(-1);
   s.integer("throw_at_cycle", "fault injection: update() throws at this cycle (against the contract); -1 never")
-      .minimum(-1).default_value(-1);
+      .minimum(-1)
+      .default_value(-1);
   s.boolean("throw_in_configure", "fault injection: configure() throws a plugin failure").default_value(false);
   return s;
 }

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <mutex>
 #include <cmath>
+#include <mutex>
 #include <thread>
 
 #include "e2e/dds_server_rig.hpp"
@@ -20,10 +20,10 @@ namespace hapticd::server {
 namespace {
 
 using client::Client;
+using e2e::kSanitized;
 using e2e::RecordingListener;
 using e2e::SceneEngine;
 using e2e::Server;
-using e2e::kSanitized;
 using e2e::session_yaml;
 
 TEST(DdsEngine, TheEnginesWallStopsThePushingOperator) {
@@ -39,13 +39,14 @@ TEST(DdsEngine, TheEnginesWallStopsThePushingOperator) {
   double furthest = -1.0;
   for (const auto& p : x) furthest = std::max(furthest, p.x() - start.x());
   const double settled = x[x.size() - 600].x() - start.x();  // before the shutdown ramp
-  std::printf("wall at 30 mm: handle furthest %.2f mm, settled %.2f mm (5.00 mm behind the wall expected); "
-              "engine saw %.2f mm; %llu commands accepted, %llu lockstep timeouts\n",
-              1e3 * furthest, 1e3 * settled, 1e3 * engine.depth.load(),
-              static_cast<unsigned long long>(server.bridge().commands_accepted(0)),
-              static_cast<unsigned long long>(server.bridge().lockstep_timeouts()));
+  std::printf(
+      "wall at 30 mm: handle furthest %.2f mm, settled %.2f mm (5.00 mm behind the wall expected); "
+      "engine saw %.2f mm; %llu commands accepted, %llu lockstep timeouts\n",
+      1e3 * furthest, 1e3 * settled, 1e3 * engine.depth.load(),
+      static_cast<unsigned long long>(server.bridge().commands_accepted(0)),
+      static_cast<unsigned long long>(server.bridge().lockstep_timeouts()));
   RecordProperty("wall_penetration_mm", std::to_string(1e3 * (furthest - 0.03)));
-  EXPECT_GT(furthest, 0.030);            // it did reach the wall
+  EXPECT_GT(furthest, 0.030);  // it did reach the wall
   // Stated bound: the coupling spring alone gives 5 mm at rest; arriving at 0.3 m/s the 3 kg body overshoots,
   // the peak stays within twice that.
   EXPECT_LT(furthest, 0.030 + 0.0105);
@@ -142,8 +143,8 @@ TEST(DdsEngine, AKilledEngineFadesToZeroWithinTheDeadline) {
   ASSERT_GT(first_zero, last_full);
   // Cycles at 2 kHz: the fade lasts 20 ms = 40 cycles.
   const double fade_ms = 0.5 * static_cast<double>(first_zero - last_full);
-  std::printf("engine killed: force 10 N -> 0 over %.1f ms after the deadline; largest step per cycle %.3f N\n", fade_ms,
-              largest_step);
+  std::printf("engine killed: force 10 N -> 0 over %.1f ms after the deadline; largest step per cycle %.3f N\n",
+              fade_ms, largest_step);
   RecordProperty("fade_ms", std::to_string(fade_ms));
   EXPECT_LE(fade_ms, 20.5);
   EXPECT_LE(largest_step, 10.0 / 40.0 + 1e-9);
@@ -219,7 +220,8 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   c = good(17);
   dds::set_text(c.device, "no-such-device");  // a device the server does not have: counted as malformed
   send(c);
-  for (int i = 0; i < 500 && (server.bridge().commands_rejected(0) < 7 || server.bridge().unknown_device_commands() < 1); ++i)
+  for (int i = 0;
+       i < 500 && (server.bridge().commands_rejected(0) < 7 || server.bridge().unknown_device_commands() < 1); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   server.stop();
   server.join();
@@ -265,7 +267,8 @@ TEST(DdsEngine, AReconnectingEngineStartsWithoutAJump) {
   server.start();
   ASSERT_TRUE(engine->connect());
   // Wait (at most 10 s) until the handle rests on the wall, then disconnect.
-  for (int i = 0; i < 2000 && engine->depth.load() < 0.003; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  for (int i = 0; i < 2000 && engine->depth.load() < 0.003; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   ASSERT_GE(engine->depth.load(), 0.003);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   engine->answering.store(false);
@@ -296,8 +299,10 @@ TEST(DdsEngine, AReconnectingEngineStartsWithoutAJump) {
     largest_step = std::max(largest_step, (f[k] - f[k - 1]).norm() / periods);
     largest = std::max(largest, f[k].norm());
   }
-  std::printf("reconnect after %.0f ms: force rises to %.1f N over the ramp-in, largest change per period %.3f N "
-              "(ramp-in over 0.1 s)\n", 0.5 * static_cast<double>(back - faded), largest, largest_step);
+  std::printf(
+      "reconnect after %.0f ms: force rises to %.1f N over the ramp-in, largest change per period %.3f N "
+      "(ramp-in over 0.1 s)\n",
+      0.5 * static_cast<double>(back - faded), largest, largest_step);
   RecordProperty("reconnect_largest_step_n", std::to_string(largest_step));
   EXPECT_GT(largest, 5.0);  // the wall did push back
   // Without the ramp the whole force would come in one cycle. With it (0.1 s = 200 cycles) the largest change
@@ -421,8 +426,10 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   running = running_again(stopped->serial, false);
   ASSERT_TRUE(running && running->mode == hapticd_msg_MODE_RUNNING);
   const double after_s = 1e-9 * static_cast<double>(running->loop_time_ns - stopped_ns);
-  std::printf("e-stop over DDS: report with %d cycles; asked at once, recovered %.4f s after the stop (safe mode "
-              "0.5 s)\n", report->record_count, after_s);
+  std::printf(
+      "e-stop over DDS: report with %d cycles; asked at once, recovered %.4f s after the stop (safe mode "
+      "0.5 s)\n",
+      report->record_count, after_s);
   // Loop times on the real-time clock are measured wake-up times: one period (0.5 ms) of jitter allowed.
   EXPECT_GE(after_s, 0.5 - 0.0005);
   EXPECT_LT(after_s, 1.0);

@@ -34,7 +34,8 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 // The owner the device's newest state names, as a client sees it.
 std::string owner_seen(Client& watcher) {
-  const auto s = watcher.wait_for_state("v3", std::chrono::seconds(2), watcher.latest_state("v3") ? watcher.latest_state("v3")->serial : 0);
+  const auto s = watcher.wait_for_state("v3", std::chrono::seconds(2),
+                                        watcher.latest_state("v3") ? watcher.latest_state("v3")->serial : 0);
   return s ? std::string(client::name_of(s->owner)) : "?";
 }
 
@@ -81,15 +82,17 @@ TEST(DdsOwnership, AnotherParticipantWritingUnderTheOwnersIdIsNotTheOwner) {
   SceneEngine owner(71, "engine");
   server.start();
   ASSERT_TRUE(owner.connect());
-  const auto not_owner = [&] { return server.bridge().rejected_by_reason(0)[static_cast<std::size_t>(dds::RejectReason::not_owner)]; };
+  const auto not_owner = [&] {
+    return server.bridge().rejected_by_reason(0)[static_cast<std::size_t>(dds::RejectReason::not_owner)];
+  };
   const auto accepted_before = server.bridge().commands_accepted(0);
 
   // The requests, from a client of its own that declares the owner's id.
   Client spoofer({"engine", 71, {}, 0.05});
   ASSERT_TRUE(spoofer.wait_for_state("v3", std::chrono::seconds(10)));
-  for (const client::Reply& r : {spoofer.claim("v3"), spoofer.release("v3"), spoofer.recover("v3"),
-                                 spoofer.switch_scheme("v3", "default"),
-                                 spoofer.set_parameter("v3", "virtual_model.coupling_stiffness_n_per_m", {100.0})}) {
+  for (const client::Reply& r :
+       {spoofer.claim("v3"), spoofer.release("v3"), spoofer.recover("v3"), spoofer.switch_scheme("v3", "default"),
+        spoofer.set_parameter("v3", "virtual_model.coupling_stiffness_n_per_m", {100.0})}) {
     EXPECT_TRUE(r.answered) << r.message;
     EXPECT_FALSE(r.accepted) << r.message;
   }
@@ -126,7 +129,8 @@ TEST(DdsOwnership, AnotherParticipantWritingUnderTheOwnersIdIsNotTheOwner) {
   server.stop();
   server.join();
   std::printf("spoofed commands rejected as not the owner: %llu; the owner's accepted: %llu during, %llu after\n",
-              static_cast<unsigned long long>(spoofed), static_cast<unsigned long long>(accepted_after_flood - accepted_before),
+              static_cast<unsigned long long>(spoofed),
+              static_cast<unsigned long long>(accepted_after_flood - accepted_before),
               static_cast<unsigned long long>(accepted_later - accepted_after_flood));
   EXPECT_GT(spoofed, 500u);  // the flood reached the server, and was rejected
   EXPECT_GE(accepted_later - accepted_after_flood, 100u);

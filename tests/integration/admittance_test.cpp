@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "hapticd/chain_state.hpp"
-#include "hapticd/model/urdf_loader.hpp"
 #include "hapticd/model/kinematics.hpp"
+#include "hapticd/model/urdf_loader.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_session.hpp"
 
@@ -24,12 +24,18 @@ std::string admittance_session(const std::string& force, double mass, double dam
     virtual_model:
       plugin: admittance
       parameters:
-        mass_kg: [)" + m + ", " + m + ", " + m + R"(]
-        damping_n_s_per_m: [)" + d + ", " + d + ", " + d + R"(]
+        mass_kg: [)" +
+         m + ", " + m + ", " + m + R"(]
+        damping_n_s_per_m: [)" +
+         d + ", " + d + ", " + d + R"(]
         rotation: false
-)" + (controller == "computed_torque" || controller == "joint_pd" ? "    inverse_kinematics:\n      plugin: newton_ik\n" : "") +
+)" +
+         (controller == "computed_torque" || controller == "joint_pd"
+              ? "    inverse_kinematics:\n      plugin: newton_ik\n"
+              : "") +
          R"(    controller:
-      plugin: )" + controller + R"(
+      plugin: )" +
+         controller + R"(
       parameters: {task: translation}
 )";
 }
@@ -124,13 +130,16 @@ std::string vishard6_session(const std::string& force, const std::string& torque
                              double rotational_damping = 0.0) {
   const std::string d = std::to_string(damping), r = std::to_string(rotational_damping);
   return std::string("server: {clock: lockstep, seed: 7}\ndevices:\n") +
-         test::sim_wrench_step_device_yaml("v6", "vishard6", "[-0.5, 1.0, -0.5, 0.5, 1.57, 0.0]", force, torque) + R"(    virtual_model:
+         test::sim_wrench_step_device_yaml("v6", "vishard6", "[-0.5, 1.0, -0.5, 0.5, 1.57, 0.0]", force, torque) +
+         R"(    virtual_model:
       plugin: admittance
       parameters:
         mass_kg: [4, 4, 4]
-        damping_n_s_per_m: [)" + d + ", " + d + ", " + d + R"(]
+        damping_n_s_per_m: [)" +
+         d + ", " + d + ", " + d + R"(]
         inertia_kg_m2: [0.1, 0.1, 0.1]
-        rotational_damping_n_m_s: [)" + r + ", " + r + ", " + r + R"(]
+        rotational_damping_n_m_s: [)" +
+         r + ", " + r + ", " + r + R"(]
     controller:
       plugin: resolved_acceleration
       parameters: {task: full, bandwidth_rad_s: 60, rotational_bandwidth_rad_s: 20}
@@ -208,7 +217,8 @@ class VirtualWall : public ::testing::TestWithParam<bool> {};
 
 TEST_P(VirtualWall, HoldsThePushingOperator) {
   // The handle's start position, from the model at the start pose.
-  const model::RobotModel robot = model::load_robot_model(std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/vishard3.urdf");
+  const model::RobotModel robot =
+      model::load_robot_model(std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/vishard3.urdf");
   model::ModelData data(robot);
   JointVector q0(3);
   q0 << -0.3, 1.6, 0.0;
@@ -226,11 +236,13 @@ TEST_P(VirtualWall, HoldsThePushingOperator) {
         mass_kg: [3, 3, 3]
         damping_n_s_per_m: [20, 20, 20]
         rotation: false
-        walls: [)" + std::to_string(wall.x()) + ", " + std::to_string(wall.y()) + ", " + std::to_string(wall.z()) +
+        walls: [)" + std::to_string(wall.x()) +
+                           ", " + std::to_string(wall.y()) + ", " + std::to_string(wall.z()) +
                            R"(, -1, 0, 0]
         wall_stiffness_n_per_m: 5000
         wall_damping_n_s_per_m: 100
-        motion_based: )" + std::string(GetParam() ? "true" : "false") + R"(
+        motion_based: )" + std::string(GetParam() ? "true" : "false") +
+                           R"(
     controller:
       plugin: resolved_acceleration
       parameters: {task: translation, bandwidth_rad_s: 60}

@@ -19,7 +19,8 @@ double runaway(double limit_m, bool saturated) {
                            test::sim_vishard3_device_yaml("v3", "constant", "[0.0, 0.0, 0.0]") + R"(    virtual_model:
       plugin: admittance
       parameters: {mass_kg: [2.0, 2.0, 2.0], damping_n_s_per_m: [10.0, 10.0, 10.0], rotation: false,
-                   max_tracking_error_m: )" + std::to_string(limit_m) + R"(}
+                   max_tracking_error_m: )" +
+                           std::to_string(limit_m) + R"(}
     controller:
       plugin: resolved_acceleration
       parameters: {task: translation}
@@ -37,7 +38,8 @@ double runaway(double limit_m, bool saturated) {
   TaskTarget target;
   EXPECT_EQ(model.activate(VirtualModelInput{d.state(), &chain, &engine, nullptr}), ReturnCode::ok);
   for (std::uint64_t k = 1; k <= 2000; ++k) {
-    EXPECT_EQ(model.update(cycle_at(k), VirtualModelInput{d.state(), &chain, &engine, nullptr}, target), ReturnCode::ok);
+    EXPECT_EQ(model.update(cycle_at(k), VirtualModelInput{d.state(), &chain, &engine, nullptr}, target),
+              ReturnCode::ok);
   }
   EXPECT_LE(target.twist.linear.x(), 1.0);
   return (target.pose.position - chain.handle_pose.position).norm();
@@ -47,12 +49,13 @@ TEST(AntiWindup, ASaturatedDeviceHoldsTheVirtualBodyWithinTheLimit) {
   const double saturated_limited = runaway(0.01, true);
   const double saturated_free = runaway(0.0, true);
   const double unsaturated_limited = runaway(0.01, false);
-  std::printf("virtual body ahead of a blocked handle after 1 s of 20 N: %.1f mm (saturated, 10 mm limit), "
-              "%.0f mm (no limit), %.0f mm (limit, drives not saturated)\n",
-              1e3 * saturated_limited, 1e3 * saturated_free, 1e3 * unsaturated_limited);
+  std::printf(
+      "virtual body ahead of a blocked handle after 1 s of 20 N: %.1f mm (saturated, 10 mm limit), "
+      "%.0f mm (no limit), %.0f mm (limit, drives not saturated)\n",
+      1e3 * saturated_limited, 1e3 * saturated_free, 1e3 * unsaturated_limited);
   EXPECT_NEAR(saturated_limited, 0.01, 1e-9);
-  EXPECT_GT(saturated_free, 0.5);        // 20 N on 2 kg with 10 N s/m: well over a metre per second
-  EXPECT_GT(unsaturated_limited, 0.5);   // the limit acts only while the drives saturate
+  EXPECT_GT(saturated_free, 0.5);       // 20 N on 2 kg with 10 N s/m: well over a metre per second
+  EXPECT_GT(unsaturated_limited, 0.5);  // the limit acts only while the drives saturate
 }
 
 }  // namespace

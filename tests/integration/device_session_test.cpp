@@ -4,10 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "hapticd/model/kinematics.hpp"
-
 #include "hapticd/chain_state.hpp"
-
+#include "hapticd/model/kinematics.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_session.hpp"
 
@@ -82,8 +80,8 @@ TEST(DeviceSession, TorqueIsClampedToThePeak) {
 TEST(DeviceSession, FaultOfOneDeviceLeavesTheOtherUndisturbed) {
   // Device "b" runs alone, then beside a device that faults: its trajectory must be bit-identical.
   auto alone = session_with(test::mass_spring_device_yaml("b"));
-  auto together = session_with(test::mass_spring_device_yaml("a", "", ", fault_at_cycle: 50") +
-                               test::mass_spring_device_yaml("b"));
+  auto together =
+      session_with(test::mass_spring_device_yaml("a", "", ", fault_at_cycle: 50") + test::mass_spring_device_yaml("b"));
   alone.devices[0]->activate();
   for (auto& d : together.devices) d->activate();
   for (std::uint64_t k = 0; k < 2000; ++k) {
@@ -107,7 +105,8 @@ TEST(DeviceSession, CycleOfTheWholeChainDoesNotAllocate) {
 }
 
 // A simulated ViSHaRD3 pushed by a scripted force, held by the test PD controller.
-const std::string kSimVishard3 = test::sim_vishard3_device_yaml("v3", "constant", "[10.0, 0.0, 0.0]") + R"(    controller:
+const std::string kSimVishard3 =
+    test::sim_vishard3_device_yaml("v3", "constant", "[10.0, 0.0, 0.0]") + R"(    controller:
       plugin: test_pd
       parameters: {kp: 300, kd: 3, hold_at_activation: true}
 )";

@@ -70,7 +70,8 @@ TEST(Executor, LockstepIsBitIdenticalAcrossRunsAndDependsOnTheSeed) {
 TEST(Executor, StopRequestTakesEveryDeviceThroughItsSafeModeThenEnds) {
   // No duration: runs until stopped (SIGINT/SIGTERM in the server). The monitor (caller's thread) requests the
   // stop; every device then damps for safe_damping_s (0.5 s = 1000 cycles) and the loop ends at zero torque.
-  auto s = test::build_test_session(lockstep_yaml(0.0, test::mass_spring_device_yaml("a") + test::mass_spring_device_yaml("b")));
+  auto s = test::build_test_session(
+      lockstep_yaml(0.0, test::mass_spring_device_yaml("a") + test::mass_spring_device_yaml("b")));
   const auto file = test::write_temp_file("stop.csv", "");
   Recorder recorder(file, {"a", "b"}, true);
   Executor executor(s.executor_settings(), s.device_pointers(), &recorder);

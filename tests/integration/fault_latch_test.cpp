@@ -11,7 +11,9 @@ namespace {
 
 using test::cycle_at;
 
-std::string vishard3_session(const std::string& safety = "") { return test::sim_vishard3_admittance_session("v3", 5, safety); }
+std::string vishard3_session(const std::string& safety = "") {
+  return test::sim_vishard3_admittance_session("v3", 5, safety);
+}
 
 std::vector<SafetyEvent> drain(DeviceSession& d) {
   std::vector<SafetyEvent> events;
@@ -27,11 +29,11 @@ TEST(FaultLatch, AStopAfterARecoveryRequestCancelsIt) {
   DeviceSession& d = *s.devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 6000; ++k) {
-    if (k == 2000) d.request_emergency_stop();      // A
+    if (k == 2000) d.request_emergency_stop();  // A
     if (k == 2300) {
       EXPECT_TRUE(d.request_recovery().accepted);  // A
     }
-    if (k == 2600) d.request_emergency_stop();      // B
+    if (k == 2600) d.request_emergency_stop();  // B
     d.cycle(cycle_at(k), 1.0);
     d.service();
   }

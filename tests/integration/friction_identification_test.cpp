@@ -19,13 +19,15 @@ std::string identification_session(const std::string& output, const std::string&
                                    const std::string& attachment = "none") {
   return test::sim_vishard3_session_head("v3", 7) + R"(        warm_up: false
         friction_variation: 0.0
-        attachment: )" + attachment + R"(
+        attachment: )" +
+         attachment + R"(
         operator_grasp: 1.0
         operator_arm_stiffness: 1000.0
         operator_arm_damping: 0.0
     controller:
       plugin: friction_identification
-      parameters: {output_file: )" + output + controller_extra + "}\n";
+      parameters: {output_file: )" +
+         output + controller_extra + "}\n";
 }
 
 model::FrictionFile identify(const std::string& yaml, const std::string& output, double seconds) {
@@ -54,10 +56,12 @@ TEST(FrictionIdentification, RecoversTheSimulatedSlidingFrictionAndBreakAway) {
     const model::FrictionModel& m = f.joints[j];
     double worst = 0.0;
     for (double v = 0.1; v <= 2.0 + 1e-9; v += 0.1) {
-      worst = std::max(worst, std::abs(m.sliding(v) - truth.sliding_magnitude(v, 0.0)) / truth.sliding_magnitude(v, 0.0));
+      worst =
+          std::max(worst, std::abs(m.sliding(v) - truth.sliding_magnitude(v, 0.0)) / truth.sliding_magnitude(v, 0.0));
     }
-    std::printf("joint %zu: worst sliding error %.1f %% over 0.1..2.0 rad/s, break-away %.2f N m (drawn in 1.19..1.5)\n",
-                j + 1, 100 * worst, m.breakaway_nm);
+    std::printf(
+        "joint %zu: worst sliding error %.1f %% over 0.1..2.0 rad/s, break-away %.2f N m (drawn in 1.19..1.5)\n", j + 1,
+        100 * worst, m.breakaway_nm);
     RecordProperty("sliding_error_percent_joint" + std::to_string(j + 1), std::to_string(100 * worst));
     EXPECT_LT(worst, 0.05) << "joint " << j + 1;
     EXPECT_EQ(m.load[1], 0.0) << "nothing loads the free joints: the load part is not identified";

@@ -8,11 +8,10 @@
 #include <sstream>
 #include <vector>
 
-#include "hapticd/model/friction_model.hpp"
-#include "joint_friction.hpp"
-
 #include "hapticd/chain_state.hpp"
+#include "hapticd/model/friction_model.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
+#include "joint_friction.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -27,7 +26,8 @@ double breakaway_force(const std::string& controller_parameters) {
                            test::sim_vishard3_device_yaml("v3", "ramp", "[4.0, 0.0, 0.0]") + R"(        warm_up: false
     controller:
       plugin: impedance
-      parameters: {task: translation, )" + controller_parameters + "}\n";
+      parameters: {task: translation, )" +
+                           controller_parameters + "}\n";
   auto s = test::build_test_session(yaml);
   DeviceSession& d = *s.devices[0];
   d.activate();
@@ -110,7 +110,8 @@ TEST(AdaptiveFriction, ConvergesWhileTheJointsWarmUpAndNeverOverCompensates) {
     controller:
       plugin: impedance
       parameters: {task: translation, force_gain: 3, friction_compensation: true, adaptive_friction: true,
-                   adaptive_update_s: 10, adaptive_log: )" + log + R"(}
+                   adaptive_update_s: 10, adaptive_log: )" +
+                           log + R"(}
 )";
   {
     auto s = test::build_test_session(yaml);
@@ -134,7 +135,8 @@ TEST(AdaptiveFriction, ConvergesWhileTheJointsWarmUpAndNeverOverCompensates) {
     for (double v = 0.1; v <= std::min(0.8, r.model.velocity_max); v += 0.1) {
       const double truth = true_sliding_friction(v, r.time_s, kWarmUp);
       // Never over-compensates: what is compensated stays below the friction present at that time.
-      EXPECT_LE(fraction * r.model.sliding(v), truth) << "joint " << r.joint << " at " << r.time_s << " s, " << v << " rad/s";
+      EXPECT_LE(fraction * r.model.sliding(v), truth)
+          << "joint " << r.joint << " at " << r.time_s << " s, " << v << " rad/s";
     }
   }
   EXPECT_GE(accepted, 3 * 5) << "most fits are accepted with this excitation";
@@ -148,9 +150,11 @@ TEST(AdaptiveFriction, ConvergesWhileTheJointsWarmUpAndNeverOverCompensates) {
       final_error[static_cast<std::size_t>(j)] += std::abs(last->model.sliding(v) - truth) / truth / 5.0;
       initial_error[static_cast<std::size_t>(j)] += std::abs(initial.sliding(v) - truth) / truth / 5.0;
     }
-    std::printf("joint %d at %.0f s: mean relative error of the sliding friction 0.1..0.5 rad/s: start curve %.1f %%, "
-                "re-tuned %.1f %%\n", j, last->time_s, 100 * initial_error[static_cast<std::size_t>(j)],
-                100 * final_error[static_cast<std::size_t>(j)]);
+    std::printf(
+        "joint %d at %.0f s: mean relative error of the sliding friction 0.1..0.5 rad/s: start curve %.1f %%, "
+        "re-tuned %.1f %%\n",
+        j, last->time_s, 100 * initial_error[static_cast<std::size_t>(j)],
+        100 * final_error[static_cast<std::size_t>(j)]);
     RecordProperty("adaptive_error_joint" + std::to_string(j) + "_percent",
                    std::to_string(100 * final_error[static_cast<std::size_t>(j)]));
     // Converges towards the warmed-up friction: closer than the start curve, and within 15 %.
@@ -174,7 +178,8 @@ TEST(ImpedanceCompensators, EveryVariantUpdatesWithoutAllocating) {
     const std::string yaml = "server: {clock: lockstep, seed: 5}\ndevices:\n" +
                              test::sim_vishard3_device_yaml("v3", "sine", "[3.0, 2.0, 1.0]") +
                              "        joint_torque_sensors: true\n    controller:\n      plugin: impedance\n"
-                             "      parameters: {task: translation, " + v + "}\n";
+                             "      parameters: {task: translation, " +
+                             v + "}\n";
     auto s = test::build_test_session(yaml);
     EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 2000), 0u) << v;
     EXPECT_EQ(s.devices[0]->fault(), DeviceFault::none) << v;

@@ -23,7 +23,8 @@ double rms_operator_force(const std::string& controller, const std::string& devi
         operator_motion_frequency_hz: 1.0
 )" + device + R"(    controller:
       plugin: impedance
-      parameters: {task: translation, )" + controller + R"(}
+      parameters: {task: translation, )" +
+                           controller + R"(}
 )";
   auto s = test::build_test_session(yaml);
   DeviceSession& d = *s.devices[0];
@@ -83,8 +84,8 @@ TEST(ImpedanceDisplay, DisturbanceObserverLowersTheOpenLoopForce) {
   const double lighter = rms_operator_force("disturbance_observer: true, observer_nominal_inertia: 0.5");
   RecordProperty("rms_force_disturbance_observer_n", std::to_string(observer));
   RecordProperty("rms_force_disturbance_observer_half_inertia_n", std::to_string(lighter));
-  std::printf("RMS force: open loop %.2f N, disturbance observer %.2f N, with half the nominal inertia %.2f N\n",
-              plain, observer, lighter);
+  std::printf("RMS force: open loop %.2f N, disturbance observer %.2f N, with half the nominal inertia %.2f N\n", plain,
+              observer, lighter);
   EXPECT_LT(observer, 0.99 * plain);
   EXPECT_LT(lighter, 0.7 * plain);
 }

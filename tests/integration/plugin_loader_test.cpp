@@ -1,15 +1,14 @@
 // Each plugin-loading failure has its own clear message; libraries outlive their objects.
-#include "plugins/elf_exports.hpp"
 #include "plugins/plugin_loader.hpp"
 
 #include <gtest/gtest.h>
 #include <link.h>
 
+#include <cstdlib>
 #include <fstream>
-
 #include <set>
 
-#include <cstdlib>
+#include "plugins/elf_exports.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -35,8 +34,9 @@ TEST(PluginLoader, FindsEveryKindInTheTestLibrary) {
 
 TEST(PluginLoader, MissingFile) {
   PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
-  EXPECT_NE(load_error(loader, "no_such_plugins").find("plugin library 'no_such_plugins' not found (looked for "
-                                                        "libno_such_plugins.so in: " HAPTICD_TEST_PLUGIN_DIR),
+  EXPECT_NE(load_error(loader, "no_such_plugins")
+                .find("plugin library 'no_such_plugins' not found (looked for "
+                      "libno_such_plugins.so in: " HAPTICD_TEST_PLUGIN_DIR),
             std::string::npos);
   EXPECT_NE(load_error(loader, "/nowhere/libx.so").find("does not exist"), std::string::npos);
 }
@@ -56,7 +56,9 @@ TEST(PluginLoader, NotALoadableLibrary) {
 TEST(PluginLoader, MissingSymbol) {
   PluginLoader loader({HAPTICD_TEST_FIXTURE_DIR});
   const std::string e = load_error(loader, "hapticd_fixture_not_a_plugin");
-  EXPECT_NE(e.find("is not a hapticd plugin library: it exports no 'hapticd_plugin_api_version' symbol"), std::string::npos) << e;
+  EXPECT_NE(e.find("is not a hapticd plugin library: it exports no 'hapticd_plugin_api_version' symbol"),
+            std::string::npos)
+      << e;
 }
 
 TEST(PluginLoader, WrongApiVersion) {
@@ -74,7 +76,8 @@ TEST(PluginLoader, WrongKind) {
     (void)loader.find(PluginKind::controller, "test_mass_spring", std::nullopt);
     FAIL();
   } catch (const PluginLoadError& e) {
-    EXPECT_NE(std::string(e.what()).find("is a device plugin, but a controller plugin is needed"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("is a device plugin, but a controller plugin is needed"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -84,7 +87,8 @@ TEST(PluginLoader, UnknownNameListsTheAvailableOnes) {
     (void)loader.find(PluginKind::controller, "no_such_controller", std::nullopt);
     FAIL();
   } catch (const PluginLoadError& e) {
-    EXPECT_NE(std::string(e.what()).find("no controller plugin named 'no_such_controller'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no controller plugin named 'no_such_controller'"), std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("available: "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("test_pd"), std::string::npos) << e.what();
   }
@@ -97,9 +101,10 @@ TEST(PluginLoader, ScanningReportsBrokenLibrariesButKeepsGoing) {
   std::set<std::string> names;
   for (const auto& handle : all) names.insert(handle.descriptor->name);
   // Every in-tree plugin library was read past the two broken fixtures.
-  for (const char* expected : {"test_mass_spring", "test_pd", "test_sine_setpoint", "test_axis_ik", "sim", "admittance", "impedance", "friction_identification", "inverse_jacobian", "transposed_jacobian",
-                               "computed_torque", "joint_pd", "newton_ik", "redundancy_ik", "vishard10_ik",
-                               "resolved_acceleration"}) {
+  for (const char* expected :
+       {"test_mass_spring", "test_pd", "test_sine_setpoint", "test_axis_ik", "sim", "admittance", "impedance",
+        "friction_identification", "inverse_jacobian", "transposed_jacobian", "computed_torque", "joint_pd",
+        "newton_ik", "redundancy_ik", "vishard10_ik", "resolved_acceleration"}) {
     EXPECT_EQ(names.count(expected), 1u) << expected;
   }
   // The library of another API version is reported; the one that is no plugin at all is passed over unloaded
@@ -123,7 +128,8 @@ TEST(PluginLoader, ASystemLibraryFolderIsNotLoaded) {
 }
 
 TEST(PluginLoader, TheElfCheckFindsTheEntryPoint) {
-  EXPECT_TRUE(elf_exports_symbol(std::string(HAPTICD_TEST_PLUGIN_DIR) + "/libhapticd_test_plugins.so", "hapticd_plugin_api_version"));
+  EXPECT_TRUE(elf_exports_symbol(std::string(HAPTICD_TEST_PLUGIN_DIR) + "/libhapticd_test_plugins.so",
+                                 "hapticd_plugin_api_version"));
   EXPECT_FALSE(elf_exports_symbol(std::string(HAPTICD_TEST_FIXTURE_DIR) + "/libhapticd_fixture_not_a_plugin.so",
                                   "hapticd_plugin_api_version"));
   EXPECT_TRUE(elf_exports_symbol(std::string(HAPTICD_TEST_FIXTURE_DIR) + "/libhapticd_fixture_not_a_plugin.so",

@@ -27,36 +27,45 @@ constexpr const char* kPartitioned =
     "[1.159279, -2.318559, 3.996179, -2.532207, -0.304693, -1.146954, 2.293908, -2.717751, 1.570796, 0.0]";
 
 struct Scheme {
-  const char* name;        // test label
-  const char* ik;          // the inverse_kinematics entry
-  const char* controller;  // the controller entry
-  double tolerance;        // relative, on the rendered acceleration
+  const char* name;               // test label
+  const char* ik;                 // the inverse_kinematics entry
+  const char* controller;         // the controller entry
+  double tolerance;               // relative, on the rendered acceleration
   const char* initial = kFolded;  // initial joint positions
 };
 
 const Scheme kSchemes[] = {
     {"pseudoinverse", "{plugin: redundancy_ik, parameters: {task: full, inverse: pseudoinverse}}",
-     "{plugin: resolved_acceleration, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}", 0.08},
-    {"weighted", "{plugin: redundancy_ik, parameters: {task: full, inverse: weighted, joint_weights: [1, 1, 1, 1, 3, 1, 1, 0.2, 1, 0.1]}}",
-     "{plugin: resolved_acceleration, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}", 0.08},
+     "{plugin: resolved_acceleration, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}",
+     0.08},
+    {"weighted",
+     "{plugin: redundancy_ik, parameters: {task: full, inverse: weighted, joint_weights: [1, 1, 1, 1, 3, 1, 1, 0.2, 1, "
+     "0.1]}}",
+     "{plugin: resolved_acceleration, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}",
+     0.08},
     {"damped", "{plugin: redundancy_ik, parameters: {task: full, inverse: damped, damping: 0.005}}",
-     "{plugin: resolved_acceleration, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}", 0.08},
+     "{plugin: resolved_acceleration, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}",
+     0.08},
     {"inertia_weighted", "{plugin: redundancy_ik, parameters: {task: full, inverse: inertia_weighted}}",
-     "{plugin: resolved_acceleration, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}", 0.08},
+     "{plugin: resolved_acceleration, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}",
+     0.08},
     {"torque_level", "{plugin: redundancy_ik, parameters: {task: full, inverse: inertia_weighted}}",
-     "{plugin: transposed_jacobian, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}", 0.08},
+     "{plugin: transposed_jacobian, parameters: {task: full, bandwidth_rad_s: 20, rotational_bandwidth_rad_s: 40}}",
+     0.08},
     {"velocity_level", "{plugin: redundancy_ik, parameters: {task: full, inverse: inertia_weighted, level: velocity}}",
      "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}", 0.08},
-    {"acceleration_level", "{plugin: redundancy_ik, parameters: {task: full, inverse: inertia_weighted, level: acceleration}}",
+    {"acceleration_level",
+     "{plugin: redundancy_ik, parameters: {task: full, inverse: inertia_weighted, level: acceleration}}",
      "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}", 0.08},
     // The handle axis stands vertical here: the rotation about it is joint 10's alone, whose friction the single
     // joint-space bandwidth (30 rad/s) leaves 9-11 % of the rendered inertia.
-    {"partitioned", "{plugin: vishard10_ik}", "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}",
-     0.12, kPartitioned},
+    {"partitioned", "{plugin: vishard10_ik}",
+     "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}", 0.12, kPartitioned},
     {"partitioned_wrist_pseudoinverse", "{plugin: vishard10_ik, parameters: {wrist: pseudoinverse}}",
      "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}", 0.12, kPartitioned},
     {"partitioned_lookup_table",
-     "{plugin: vishard10_ik, parameters: {scara: lookup_table, scara_table: " HAPTICD_SOURCE_DIR "/config/scara/vishard10.table}}",
+     "{plugin: vishard10_ik, parameters: {scara: lookup_table, scara_table: " HAPTICD_SOURCE_DIR
+     "/config/scara/vishard10.table}}",
      "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}", 0.12, kLookupTable},
 };
 
@@ -66,8 +75,10 @@ std::string vishard10_session(const Scheme& scheme, const std::string& force, co
       plugin: admittance
       parameters: {mass_kg: [4, 4, 4], damping_n_s_per_m: [0, 0, 0], inertia_kg_m2: [0.1, 0.1, 0.1],
                    rotational_damping_n_m_s: [0, 0, 0]}
-    inverse_kinematics: )" + scheme.ik + R"(
-    controller: )" + scheme.controller + "\n";
+    inverse_kinematics: )" +
+         scheme.ik + R"(
+    controller: )" +
+         scheme.controller + "\n";
 }
 
 struct Trace {
@@ -108,7 +119,8 @@ double acceleration(const Trace& trace, double t0, double t1, int axis, bool rot
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const double t = trace.t[rows[r]] - t0;
     a.row(static_cast<Eigen::Index>(r)) << 1.0, t, t * t;
-    const auto& series = target ? (rotation ? trace.target_rotation : trace.target_x) : (rotation ? trace.rotation : trace.x);
+    const auto& series =
+        target ? (rotation ? trace.target_rotation : trace.target_x) : (rotation ? trace.rotation : trace.x);
     b[static_cast<Eigen::Index>(r)] = series[rows[r]][axis];
   }
   return 2.0 * a.colPivHouseholderQr().solve(b)[2];
@@ -134,10 +146,10 @@ TEST_P(RedundantAdmittance, RendersTheVirtualMassAndInertiaInAllSixDirections) {
     const double measured = acceleration(trace, 0.35, 0.6, axis, rotation);
     std::printf("%-16s %s %c: %.3f %s (1.0 expected; target %.3f), largest joint speed %.2f rad/s\n", scheme.name,
                 rotation ? "torque about" : "force along ", "xyz"[axis], measured, rotation ? "rad/s^2" : "m/s^2",
-                acceleration(trace, 0.35, 0.6, axis, rotation, true),
-                trace.largest_joint_speed);
+                acceleration(trace, 0.35, 0.6, axis, rotation, true), trace.largest_joint_speed);
     RecordProperty(std::string(rotation ? "angular_" : "linear_") + "xyz"[axis], std::to_string(measured));
-    EXPECT_NEAR(measured, 1.0, scheme.tolerance) << scheme.name << (rotation ? " torque about " : " force along ") << "xyz"[axis];
+    EXPECT_NEAR(measured, 1.0, scheme.tolerance)
+        << scheme.name << (rotation ? " torque about " : " force along ") << "xyz"[axis];
   }
 }
 
@@ -152,8 +164,10 @@ TEST(RedundantSelfMotion, NeedsItsNullSpaceDamping) {
   // term. Without its damping (d = 0) nothing holds it and it drifts away under the push; with the default
   // (20 /s) it stays small.
   const auto self_motion = [](const char* damping) {
-    const std::string ik = std::string("{plugin: redundancy_ik, parameters: {task: full, inverse: pseudoinverse, "
-                                       "null_space_damping: ") + damping + "}}";
+    const std::string ik = std::string(
+                               "{plugin: redundancy_ik, parameters: {task: full, inverse: pseudoinverse, "
+                               "null_space_damping: ") +
+                           damping + "}}";
     const Scheme scheme{"pseudoinverse", ik.c_str(), kSchemes[0].controller, 0.0};
     auto s = test::build_test_session(vishard10_session(scheme, "[4, 0, 0]", "[0.0, 0.0, 0.0]"));
     DeviceSession& d = *s.devices[0];
@@ -170,8 +184,9 @@ TEST(RedundantSelfMotion, NeedsItsNullSpaceDamping) {
   };
   const auto [damped, damped_fault] = self_motion("20");
   const auto [free, free_fault] = self_motion("0");
-  std::printf("largest self-motion speed over 1 s: %.3f rad/s with null-space damping, %.3f rad/s without (fault: %s)\n", damped,
-              free, std::string(fault_code(free_fault)).c_str());
+  std::printf(
+      "largest self-motion speed over 1 s: %.3f rad/s with null-space damping, %.3f rad/s without (fault: %s)\n",
+      damped, free, std::string(fault_code(free_fault)).c_str());
   EXPECT_EQ(damped_fault, DeviceFault::none);
   EXPECT_TRUE(free_fault != DeviceFault::none || free > 3.0 * damped);
 }
@@ -181,8 +196,10 @@ TEST(RedundantSelfMotion, TheWristCriterionMovesTheDeviceNotJustItsTarget) {
   // own joint 9 (1.3 rad at the start) goes towards pi/2 while the handle holds its pose - the self-motion of
   // the measured arm, not only of the IK's integrated target. (With null_space_gain 1 the drives' stiction held
   // joint 9 where it was for the whole 2 s: the self-motion servo has no position memory.)
-  const Scheme scheme{"wrist", "{plugin: redundancy_ik, parameters: {task: full, inverse: pseudoinverse, wrist: 1.0, null_space_gain: 10}}",
-                      kSchemes[0].controller, 0.0};
+  const Scheme scheme{
+      "wrist",
+      "{plugin: redundancy_ik, parameters: {task: full, inverse: pseudoinverse, wrist: 1.0, null_space_gain: 10}}",
+      kSchemes[0].controller, 0.0};
   auto s = test::build_test_session(vishard10_session(scheme, "[0, 0, 0]", "[0.0, 0.0, 0.0]"));
   DeviceSession& d = *s.devices[0];
   d.activate();

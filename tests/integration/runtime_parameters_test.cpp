@@ -19,9 +19,9 @@ TEST(RuntimeParameters, SetsObeyTheSchemaBounds) {
   const RuntimeReply tiny = d.handle_request("virtual_model", "mass_kg", {1e-9, 1e-9, 1e-9});
   EXPECT_FALSE(tiny.accepted);
   EXPECT_NE(tiny.message.find("mass_kg"), std::string::npos) << tiny.message;
-  EXPECT_NE(tiny.message.find("0.1"), std::string::npos) << tiny.message;  // says what would be valid
-  EXPECT_FALSE(d.handle_request("virtual_model", "mass_kg", {2.0, 2.0}).accepted);           // size
-  EXPECT_FALSE(d.handle_request("virtual_model", "mass_kg", {2.0, NAN, 2.0}).accepted);      // finite
+  EXPECT_NE(tiny.message.find("0.1"), std::string::npos) << tiny.message;                // says what would be valid
+  EXPECT_FALSE(d.handle_request("virtual_model", "mass_kg", {2.0, 2.0}).accepted);       // size
+  EXPECT_FALSE(d.handle_request("virtual_model", "mass_kg", {2.0, NAN, 2.0}).accepted);  // finite
   EXPECT_FALSE(d.handle_request("virtual_model", "damping_n_s_per_m", {-1.0, 0.0, 0.0}).accepted);
   EXPECT_FALSE(d.handle_request("virtual_model", "coupling_stiffness_n_per_m", {1.0, 2.0}).accepted);
   EXPECT_FALSE(d.handle_request("virtual_model", "rotation", {0.5}).accepted);  // a boolean takes 0 or 1

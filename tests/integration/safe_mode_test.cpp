@@ -23,13 +23,14 @@ std::string shipped_session(const std::string& file, const std::string& safety) 
   std::string yaml = text.str();
   for (std::size_t at; (at = yaml.find("../../urdf/")) != std::string::npos;)
     yaml.replace(at, 11, std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/");
-  for (std::size_t at; (at = yaml.find("clock: realtime")) != std::string::npos;) yaml.replace(at, 15, "clock: lockstep");
+  for (std::size_t at; (at = yaml.find("clock: realtime")) != std::string::npos;)
+    yaml.replace(at, 15, "clock: lockstep");
   return yaml + "    safety: {" + safety + "}\n";
 }
 
 struct SafeModeRun {
-  double largest_sag_m = 0.0;          // handle displacement (true pose) during the 2 s after the stop
-  double published_sag_m = 0.0;        // the same, as the published state (snapshots) shows it
+  double largest_sag_m = 0.0;             // handle displacement (true pose) during the 2 s after the stop
+  double published_sag_m = 0.0;           // the same, as the published state (snapshots) shows it
   double largest_recovery_step_nm = 0.0;  // torque step per cycle in the 100 ms after the recovery
   double largest_running_step_nm = 0.0;   // the same over the 0.5 s before the stop (normal running)
   DeviceFault final_fault = DeviceFault::none;
@@ -64,7 +65,8 @@ SafeModeRun stop_hold_and_recover(const std::string& yaml) {
     if (k > 0) {
       const double step = (torque - previous).cwiseAbs().maxCoeff();
       if (k + 1000 >= stop && k < stop) r.largest_running_step_nm = std::max(r.largest_running_step_nm, step);
-      if (recovered_at > 0 && k < recovered_at + 200) r.largest_recovery_step_nm = std::max(r.largest_recovery_step_nm, step);
+      if (recovered_at > 0 && k < recovered_at + 200)
+        r.largest_recovery_step_nm = std::max(r.largest_recovery_step_nm, step);
     }
     previous = torque;
     if (recovered_at == 0 && k > recover && d.fault() == DeviceFault::none) recovered_at = k;
@@ -76,7 +78,8 @@ SafeModeRun stop_hold_and_recover(const std::string& yaml) {
     if (k > stop && k < recover) {
       EXPECT_EQ(d.fault(), DeviceFault::emergency_stop);
       r.largest_sag_m = std::max(r.largest_sag_m, (x - at_stop).norm());
-      if (have_snapshot) r.published_sag_m = std::max(r.published_sag_m, (snapshot.handle_pose.position - published_at_stop).norm());
+      if (have_snapshot)
+        r.published_sag_m = std::max(r.published_sag_m, (snapshot.handle_pose.position - published_at_stop).norm());
     }
   }
   r.final_fault = d.fault();
@@ -88,10 +91,11 @@ SafeModeRun stop_hold_and_recover(const std::string& yaml) {
 void expect_held(const std::string& file) {
   const SafeModeRun held = stop_hold_and_recover(shipped_session(file, ""));
   const SafeModeRun falls = stop_hold_and_recover(shipped_session(file, "gravity_hold: false"));
-  std::printf("%s: 2 s of safe mode, hand off: handle moved %.2f mm holding (published %.2f mm), %.1f mm with damping "
-              "only (published %.1f mm); torque step after the recovery %.3f N m (running before the stop: %.3f)\n",
-              file.c_str(), 1e3 * held.largest_sag_m, 1e3 * held.published_sag_m, 1e3 * falls.largest_sag_m,
-              1e3 * falls.published_sag_m, held.largest_recovery_step_nm, held.largest_running_step_nm);
+  std::printf(
+      "%s: 2 s of safe mode, hand off: handle moved %.2f mm holding (published %.2f mm), %.1f mm with damping "
+      "only (published %.1f mm); torque step after the recovery %.3f N m (running before the stop: %.3f)\n",
+      file.c_str(), 1e3 * held.largest_sag_m, 1e3 * held.published_sag_m, 1e3 * falls.largest_sag_m,
+      1e3 * falls.published_sag_m, held.largest_recovery_step_nm, held.largest_running_step_nm);
   EXPECT_LT(held.largest_sag_m, 0.005);
   // The published state is the measured one: it shows the hold, and it shows the fall without it.
   EXPECT_NEAR(held.published_sag_m, held.largest_sag_m, 1e-9);
@@ -103,8 +107,12 @@ void expect_held(const std::string& file) {
   EXPECT_LE(held.largest_recovery_step_nm, std::max(0.5, 2.0 * held.largest_running_step_nm));
 }
 
-TEST(SafeMode, GravityHoldKeepsTheViSHaRD3HandleStill) { expect_held("vishard3/admittance-resolved-acceleration.yaml"); }
-TEST(SafeMode, GravityHoldKeepsTheViSHaRD6HandleStill) { expect_held("vishard6/admittance-resolved-acceleration.yaml"); }
+TEST(SafeMode, GravityHoldKeepsTheViSHaRD3HandleStill) {
+  expect_held("vishard3/admittance-resolved-acceleration.yaml");
+}
+TEST(SafeMode, GravityHoldKeepsTheViSHaRD6HandleStill) {
+  expect_held("vishard6/admittance-resolved-acceleration.yaml");
+}
 TEST(SafeMode, GravityHoldKeepsTheViSHaRD10HandleStill) { expect_held("vishard10/admittance-pseudoinverse.yaml"); }
 
 }  // namespace

@@ -25,7 +25,8 @@ using test::cycle_at;
 // tests below check the damping safe mode (zero torque after safe_damping_s): gravity_hold is off unless the
 // section says otherwise (the gravity-holding safe mode has tests of its own).
 std::string sim_device(const std::string& push, std::string safety, const std::string& model_extra = "") {
-  if (safety.find("gravity_hold") == std::string::npos) safety = "gravity_hold: false" + (safety.empty() ? "" : ", " + safety);
+  if (safety.find("gravity_hold") == std::string::npos)
+    safety = "gravity_hold: false" + (safety.empty() ? "" : ", " + safety);
   return test::sim_vishard3_device_yaml("v3", "constant", push) + R"(    virtual_model:
       plugin: admittance
       parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [40.0, 40.0, 40.0], rotation: false)" +
@@ -33,17 +34,18 @@ std::string sim_device(const std::string& push, std::string safety, const std::s
     controller:
       plugin: resolved_acceleration
       parameters: {task: translation}
-    safety: {)" + safety + "}\n";
+    safety: {)" +
+         safety + "}\n";
 }
 
 struct Outcome {
-  std::vector<JointVector> torque;       // device 0, every cycle
-  std::vector<Eigen::Vector3d> position; // device 0 handle
-  std::vector<Eigen::Vector3d> velocity; // device 0 handle
-  std::vector<double> bystander;         // device 1 position
+  std::vector<JointVector> torque;        // device 0, every cycle
+  std::vector<Eigen::Vector3d> position;  // device 0 handle
+  std::vector<Eigen::Vector3d> velocity;  // device 0 handle
+  std::vector<double> bystander;          // device 1 position
   DeviceFault fault = DeviceFault::none;
   std::uint64_t fault_cycle = 0;
-  std::uint64_t at_rest_cycle = 0;       // first cycle at zero torque after the fault
+  std::uint64_t at_rest_cycle = 0;  // first cycle at zero torque after the fault
   std::uint64_t limited_cycles = 0, render_limited_cycles = 0, recoveries = 0;
   DeviceFault final_fault = DeviceFault::none;
   bool has_report = false;
@@ -52,7 +54,7 @@ struct Outcome {
 
 // Runs `first_device` with a mass-spring bystander for `cycles`; `each(d, k)` runs before cycle k.
 Outcome drive(const std::string& first_device, std::uint64_t cycles,
-        const std::function<void(DeviceSession&, std::uint64_t)>& each = {}, std::uint32_t overruns_from = 0) {
+              const std::function<void(DeviceSession&, std::uint64_t)>& each = {}, std::uint32_t overruns_from = 0) {
   auto s = test::build_test_session("server: {clock: lockstep, seed: 7}\ndevices:\n" + first_device +
                                     test::mass_spring_device_yaml("b"));
   DeviceSession& d = *s.devices[0];
@@ -124,8 +126,8 @@ TEST(Safety, JointVelocityIsDampedFirstThenFaults) {
   const Outcome reference = drive(sim_device(kNoPush, ""), 3000);
   // A 1-DOF device with a 0.2 m/s limit driven by a stiff PD towards a far target (sine setpoint amplitude
   // 0.05 m at 2 Hz = 0.63 m/s peak): damping from 0.15 m/s, fault at 0.19 m/s.
-  const std::string fast = test::mass_spring_device_yaml("v3", ", velocity_limit_m_s: 0.2", "") +
-                           "    safety: {joint_damping_gain: 5.0}\n";
+  const std::string fast =
+      test::mass_spring_device_yaml("v3", ", velocity_limit_m_s: 0.2", "") + "    safety: {joint_damping_gain: 5.0}\n";
   const Outcome r = drive(fast, 3000);
   EXPECT_GT(r.limited_cycles, 0u);  // the damping acted before the fault
   expect_safe_stop(r, DeviceFault::joint_velocity, reference, 60.0 / 40.0 + 1.0);
@@ -137,15 +139,16 @@ TEST(Safety, HandleSpeedIsDampedFirstThenFaults) {
   // 20 N on a light, undamped virtual mass: the handle speeds up through 0.3 m/s (damping) to 0.5 m/s (fault).
   const std::string safety = "speed_damping_from_m_s: 0.3, max_speed_m_s: 0.5";
   const Outcome damped = drive(sim_device("[6.0, 0.0, 0.0]", safety + ", speed_damping_n_s_per_m: 400",
-                                    ", max_velocity_m_s: 3.0, damping_n_s_per_m: [20.0, 20.0, 20.0]"),
-                         4000);
+                                          ", max_velocity_m_s: 3.0, damping_n_s_per_m: [20.0, 20.0, 20.0]"),
+                               4000);
   EXPECT_EQ(damped.fault, DeviceFault::none) << "a moderate push is held by the damping";
   EXPECT_GT(damped.limited_cycles, 0u);
   double top = 0.0;
   for (const auto& v : damped.velocity) top = std::max(top, v.norm());
   std::printf("6 N: handle speed at most %.3f m/s (damping from 0.3, fault at 0.5)\n", top);
   EXPECT_LT(top, 0.5);
-  const Outcome r = drive(sim_device("[40.0, 0.0, 0.0]", safety, ", max_velocity_m_s: 3.0, damping_n_s_per_m: [1.0, 1.0, 1.0]"), 4000);
+  const Outcome r = drive(
+      sim_device("[40.0, 0.0, 0.0]", safety, ", max_velocity_m_s: 3.0, damping_n_s_per_m: [1.0, 1.0, 1.0]"), 4000);
   EXPECT_GT(r.limited_cycles, 0u);
   expect_safe_stop(r, DeviceFault::cartesian_velocity, reference, 10.0);
   EXPECT_GT(r.report->records[49].handle_velocity.norm(), 0.45);
@@ -165,13 +168,15 @@ TEST(Safety, WorkspaceWallsPushBackThenFault) {
   EXPECT_GT(beyond, 0.0);
   EXPECT_LT(beyond, 0.008);
   // With a soft wall (1000 N/m) 40 N go through by more than the 30 mm fault depth.
-  const Outcome r = drive(sim_device("[40.0, 0.0, 0.0]", box + ", wall_stiffness_n_per_m: 1000, wall_fault_depth_m: 0.03"), 6000);
+  const Outcome r =
+      drive(sim_device("[40.0, 0.0, 0.0]", box + ", wall_stiffness_n_per_m: 1000, wall_fault_depth_m: 0.03"), 6000);
   expect_safe_stop(r, DeviceFault::workspace, reference, 10.0);
   EXPECT_GT(r.report->records[49].handle_position.x(), x0 + 0.045);
 }
 
 // An engine's input published every cycle (or by `input(k)`), as the DDS interface does.
-std::function<void(DeviceSession&, std::uint64_t)> engine(std::function<EngineInput(const DeviceSession&, std::uint64_t)> input) {
+std::function<void(DeviceSession&, std::uint64_t)> engine(
+    std::function<EngineInput(const DeviceSession&, std::uint64_t)> input) {
   return [input](DeviceSession& d, std::uint64_t k) {
     if (k == 0) return;  // the chain state is known from cycle 0 on
     EngineInput e = input(d, k);
@@ -183,18 +188,20 @@ std::function<void(DeviceSession&, std::uint64_t)> engine(std::function<EngineIn
 TEST(Safety, RenderedForceAndItsRateAreLimited) {
   // The engine renders 200 N: limited to 30 N, rising at most 2000 N/s (1 N per cycle).
   const std::string coupling = ", coupling: true";
-  const Outcome r = drive(sim_device(kNoPush, "max_force_n: 30, max_force_rate_n_per_s: 2000, soft_start_s: 0", coupling), 400,
-                    engine([](const DeviceSession&, std::uint64_t) {
-                      EngineInput e;
-                      e.has_wrench = true;
-                      e.wrench.force = Eigen::Vector3d(0.0, 200.0, 0.0);
-                      return e;
-                    }));
+  const Outcome r =
+      drive(sim_device(kNoPush, "max_force_n: 30, max_force_rate_n_per_s: 2000, soft_start_s: 0", coupling), 400,
+            engine([](const DeviceSession&, std::uint64_t) {
+              EngineInput e;
+              e.has_wrench = true;
+              e.wrench.force = Eigen::Vector3d(0.0, 200.0, 0.0);
+              return e;
+            }));
   EXPECT_EQ(r.fault, DeviceFault::none);
   EXPECT_GT(r.render_limited_cycles, 0u);
   // Replay through the snapshot values: the rendered force is the environment wrench of the task.
-  auto s = test::build_test_session("server: {clock: lockstep, seed: 7}\ndevices:\n" +
-                                    sim_device(kNoPush, "max_force_n: 30, max_force_rate_n_per_s: 2000, soft_start_s: 0", coupling));
+  auto s = test::build_test_session(
+      "server: {clock: lockstep, seed: 7}\ndevices:\n" +
+      sim_device(kNoPush, "max_force_n: 30, max_force_rate_n_per_s: 2000, soft_start_s: 0", coupling));
   DeviceSession& d = *s.devices[0];
   d.activate();
   double largest = 0.0, largest_rate = 0.0, previous = 0.0;
@@ -244,8 +251,8 @@ TEST(Safety, SoftStartRampsTheRenderedForceAtActivation) {
     if (full == 0 && f >= 20.0 - 1e-9) full = k;
     previous = f;
   }
-  std::printf("soft start: 20 N reached after %.1f ms, largest step %.3f N per cycle\n", 0.5 * static_cast<double>(full),
-              largest_step);
+  std::printf("soft start: 20 N reached after %.1f ms, largest step %.3f N per cycle\n",
+              0.5 * static_cast<double>(full), largest_step);
   EXPECT_NEAR(0.5 * static_cast<double>(full), 100.0, 1.0);  // 20 N of a 40 N limit rising over 200 ms
   EXPECT_LE(largest_step, 40.0 / 400.0 + 1e-9);
 }
@@ -289,9 +296,10 @@ TEST(Safety, SoftStartRampsTheRenderedForceAgainAfterASchemeSwitch) {
       largest_rise = std::max(largest_rise, force[k] - force[k - 1]);
       if (full == 0 && force[k] >= 20.0 - 1e-9) full = k - at;
     }
-    std::printf("switch at cycle %llu: rendered force %.2f N in the switching cycle, 20 N again after %.1f ms, largest "
-                "rise per cycle %.3f N\n",
-                static_cast<unsigned long long>(at), force[at], 0.5 * static_cast<double>(full), largest_rise);
+    std::printf(
+        "switch at cycle %llu: rendered force %.2f N in the switching cycle, 20 N again after %.1f ms, largest "
+        "rise per cycle %.3f N\n",
+        static_cast<unsigned long long>(at), force[at], 0.5 * static_cast<double>(full), largest_rise);
     EXPECT_LE(force[at], 0.2 + 1e-9);                          // the ramp starts again from zero
     EXPECT_NEAR(0.5 * static_cast<double>(full), 100.0, 1.0);  // 20 N of a 40 N limit rising over 200 ms
     EXPECT_LE(largest_rise, 40.0 / 400.0 + 1e-9);
@@ -346,17 +354,18 @@ TEST(Safety, SafeModeWithAnUntrustedMeasurementStaysAtZeroTorque) {
 TEST(Safety, ThermalLimitActsInTheChain) {
   // The 1-DOF device, peak 50 N, continuous 10 N, thermal time constant 2 s; the PD pushes to a far setpoint
   // (saturating): after 10 s the command is held near 10 N.
-  const std::string hot = test::mass_spring_device_yaml("v3", ", continuous_force_n: 10.0, stiffness_n_per_m: 2000",
-                                                        ", kp: 100000") +
-                          "    safety: {thermal_time_constant_s: 2.0}\n";
+  const std::string hot =
+      test::mass_spring_device_yaml("v3", ", continuous_force_n: 10.0, stiffness_n_per_m: 2000", ", kp: 100000") +
+      "    safety: {thermal_time_constant_s: 2.0}\n";
   const Outcome r = drive(hot, 20000);
   EXPECT_EQ(r.fault, DeviceFault::none);
   double late = 0.0;
   for (std::size_t k = 18000; k < r.torque.size(); ++k) late = std::max(late, std::abs(r.torque[k][0]));
   double early = 0.0;
   for (std::size_t k = 0; k < 400; ++k) early = std::max(early, std::abs(r.torque[k][0]));
-  std::printf("thermal in the chain: largest force in the first 0.2 s %.1f N, in the last second %.2f N (continuous 10)\n",
-              early, late);
+  std::printf(
+      "thermal in the chain: largest force in the first 0.2 s %.1f N, in the last second %.2f N (continuous 10)\n",
+      early, late);
   EXPECT_GT(early, 45.0);
   EXPECT_LT(late, 10.6);
 }
@@ -379,7 +388,8 @@ TEST(Safety, DeviceWriteErrorsStopTheDevice) {
 TEST(Safety, SensorSaturationStopsTheDevice) {
   const Outcome reference = drive(sim_device(kNoPush, ""), 3000);
   // A sensor with a 30 N range, pushed with 40 N from 0.5 s on.
-  const Outcome r = drive(test::sim_vishard3_device_yaml("v3", "step", "[40.0, 0.0, 0.0]") + R"(        wrench_force_start_s: 0.5
+  const Outcome r =
+      drive(test::sim_vishard3_device_yaml("v3", "step", "[40.0, 0.0, 0.0]") + R"(        wrench_force_start_s: 0.5
         sensor_force_range_n: [30.0, 30.0, 30.0]
     virtual_model:
       plugin: admittance
@@ -389,7 +399,7 @@ TEST(Safety, SensorSaturationStopsTheDevice) {
       parameters: {task: translation}
     safety: {gravity_hold: false}
 )",
-                    3000);
+            3000);
   expect_safe_stop(r, DeviceFault::sensor_saturation, reference, 10.0);
 }
 
@@ -444,7 +454,8 @@ TEST(Safety, PassivityControllerDissipatesWhatASampledStiffWallGenerates) {
   // port's energy never goes below zero by more than one step, and the dissipated energy is reported.
   const auto measure = [&](const std::string& passivity, double& lowest_energy, double& dissipated) {
     auto s = test::build_test_session("server: {clock: lockstep, seed: 7}\ndevices:\n" +
-                                      sim_device("[10.0, 0.0, 0.0]", passivity + "max_force_n: 300, max_force_rate_n_per_s: 1.0e6",
+                                      sim_device("[10.0, 0.0, 0.0]",
+                                                 passivity + "max_force_n: 300, max_force_rate_n_per_s: 1.0e6",
                                                  ", coupling: true, damping_n_s_per_m: [5.0, 5.0, 5.0]"));
     DeviceSession& d = *s.devices[0];
     d.activate();
@@ -473,8 +484,9 @@ TEST(Safety, PassivityControllerDissipatesWhatASampledStiffWallGenerates) {
   double low_off = 0.0, dis_off = 0.0, low_on = 0.0, dis_on = 0.0;
   measure("passivity_control: false, ", low_off, dis_off);
   measure("passivity_control: true, ", low_on, dis_on);
-  std::printf("sampled stiff wall: port energy at least %.4f J without the controller, %.4f J with it; dissipated %.4f J\n",
-              low_off, low_on, dis_on);
+  std::printf(
+      "sampled stiff wall: port energy at least %.4f J without the controller, %.4f J with it; dissipated %.4f J\n",
+      low_off, low_on, dis_on);
   EXPECT_LT(low_off, -0.01) << "the sampled wall should be active (else this test proves nothing)";
   EXPECT_EQ(dis_off, 0.0);
   // Bounded damping (200 N s/m) cannot always take the whole excess at once: at most a few mJ remain.
@@ -525,12 +537,13 @@ TEST(Safety, TheSupervisedCycleDoesNotAllocate) {
   // Every limit engaged: walls, speed damping, thermal derating, render limits, passivity control, then a
   // fault and the safe mode.
   const double x0 = drive(sim_device(kNoPush, ""), 1).position[0].x();
-  auto s = test::build_test_session("server: {clock: lockstep, seed: 7}\ndevices:\n" +
-                                    sim_device("[12.0, 0.0, 0.0]",
-                                               "workspace_min_m: [-1.0, -1.0, -1.0], workspace_max_m: [" +
-                                                   std::to_string(x0 + 0.005) + ", 1.0, 1.0], speed_damping_from_m_s: 0.02, "
-                                               "thermal_time_constant_s: 0.5, passivity_control: true, max_force_n: 5",
-                                               ", coupling: true"));
+  auto s = test::build_test_session(
+      "server: {clock: lockstep, seed: 7}\ndevices:\n" +
+      sim_device("[12.0, 0.0, 0.0]",
+                 "workspace_min_m: [-1.0, -1.0, -1.0], workspace_max_m: [" + std::to_string(x0 + 0.005) +
+                     ", 1.0, 1.0], speed_damping_from_m_s: 0.02, "
+                     "thermal_time_constant_s: 0.5, passivity_control: true, max_force_n: 5",
+                 ", coupling: true"));
   DeviceSession& d = *s.devices[0];
   EngineInput e;
   e.has_wrench = true;

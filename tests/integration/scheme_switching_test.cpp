@@ -32,11 +32,12 @@ std::string switching_session(double ramp_s) {
         controller:
           plugin: impedance
           parameters: {task: translation, force_gain: 3, friction_compensation: true}
-    switch_ramp_s: )" + std::to_string(ramp_s) + "\n";
+    switch_ramp_s: )" +
+         std::to_string(ramp_s) + "\n";
 }
 
 struct SwitchSteps {
-  double before = 0.0;   // largest torque change per cycle in the 0.5 s before the first switch
+  double before = 0.0;     // largest torque change per cycle in the 0.5 s before the first switch
   double at_switch = 0.0;  // largest torque change per cycle within 0.2 s after either switch
 };
 
@@ -80,8 +81,10 @@ SwitchSteps run_switches(double ramp_s) {
 TEST(SchemeSwitching, NoTorqueStepWhenSwitchingBetweenAdmittanceAndImpedance) {
   const SwitchSteps ramped = run_switches(0.1);
   const SwitchSteps abrupt = run_switches(0.0);
-  std::printf("largest torque change per cycle: before the switch %.3f N m; at the switches %.3f N m with a 0.1 s "
-              "ramp, %.3f N m without\n", ramped.before, ramped.at_switch, abrupt.at_switch);
+  std::printf(
+      "largest torque change per cycle: before the switch %.3f N m; at the switches %.3f N m with a 0.1 s "
+      "ramp, %.3f N m without\n",
+      ramped.before, ramped.at_switch, abrupt.at_switch);
   RecordProperty("torque_step_before_nm", std::to_string(ramped.before));
   RecordProperty("torque_step_switch_ramped_nm", std::to_string(ramped.at_switch));
   RecordProperty("torque_step_switch_abrupt_nm", std::to_string(abrupt.at_switch));

@@ -2,13 +2,12 @@
 // it claims, so the foundation's end-to-end tests stand on something checked.
 #include <gtest/gtest.h>
 
-#include "hapticd/chain_state.hpp"
-
 #include <cmath>
 #include <numbers>
 
-#include "hapticd/testing/allocation_guard.hpp"
+#include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
+#include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -41,9 +40,15 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   for (std::uint64_t k = 0; k < 2000; ++k) {
     const CycleTime t = cycle_at(k);
     device += testing::count_allocations([&] { (void)dc.device->read(t, state); });
-    model += testing::count_allocations([&] { (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain, &engine, nullptr}, task); });
-    ik += testing::count_allocations([&] { (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &chain}, joints); });
-    controller += testing::count_allocations([&] { (void)c.controller->update(t, ControllerInput{state, task, joints, &chain, nullptr}, command); });
+    model += testing::count_allocations([&] {
+      (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain, &engine, nullptr}, task);
+    });
+    ik += testing::count_allocations([&] {
+      (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &chain}, joints);
+    });
+    controller += testing::count_allocations([&] {
+      (void)c.controller->update(t, ControllerInput{state, task, joints, &chain, nullptr}, command);
+    });
     device += testing::count_allocations([&] { (void)dc.device->write(t, command); });
   }
   EXPECT_EQ(device, 0u);
@@ -56,7 +61,8 @@ TEST(TestPlugins, MassSpringOscillatesAtItsNaturalFrequency) {
   // m = 1 kg, k = 100 N/m, no damping, released from 0.1 m: period 2 pi / 10 s; count zero crossings.
   auto s = test::build_test_session(
       "server: {clock: lockstep}\ndevices:\n  - name: a\n    device:\n      plugin: test_mass_spring\n"
-      "      parameters: {mass_kg: 1, stiffness_n_per_m: 100, damping_n_s_per_m: 0, initial_position_m: 0.1, substeps: 20}\n"
+      "      parameters: {mass_kg: 1, stiffness_n_per_m: 100, damping_n_s_per_m: 0, initial_position_m: 0.1, substeps: "
+      "20}\n"
       "    controller: {plugin: test_pd, parameters: {kp: 0, kd: 0}}\n");
   Device& device = *s.devices[0]->chain().device;
   device.activate();

@@ -16,8 +16,8 @@ namespace {
 using test::cycle_at;
 
 std::string coupling_session(const std::string& push_n) {
-  return "server: {clock: lockstep, seed: 7}\ndevices:\n" +
-         test::sim_vishard3_device_yaml("v3", "constant", push_n) + R"(    virtual_model:
+  return "server: {clock: lockstep, seed: 7}\ndevices:\n" + test::sim_vishard3_device_yaml("v3", "constant", push_n) +
+         R"(    virtual_model:
       plugin: admittance
       parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [40.0, 40.0, 40.0], rotation: false,
                    coupling: true, coupling_stiffness_n_per_m: 2000, coupling_damping_n_s_per_m: 40}
@@ -72,7 +72,8 @@ TEST(VirtualCoupling, AStaleEngineLetsGoOfTheDevice) {
   // The operator pushes 8 N against the proxy; the engine falls silent after 1 s. 0.1 s later the coupling
   // fades out (over 0.2 s) and the push moves the device freely (virtual damping 40 N s/m: 0.2 m/s), instead
   // of an engine that no longer runs holding it 4 mm away.
-  const Eigen::Vector3d moved = run("[8.0, 0.0, 0.0]", Eigen::Vector3d::Zero(), [](std::uint64_t k) { return k < 2000; });
+  const Eigen::Vector3d moved =
+      run("[8.0, 0.0, 0.0]", Eigen::Vector3d::Zero(), [](std::uint64_t k) { return k < 2000; });
   std::printf("engine silent from 1 s on: the pushed handle moved %.0f mm by 3 s\n", 1e3 * moved.x());
   EXPECT_GT(moved.x(), 0.1);
 }

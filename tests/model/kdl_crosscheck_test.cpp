@@ -22,7 +22,8 @@ template <typename A, typename B>
   const double bound = kRelative * b.norm() + 1e-12;
   if (err <= bound) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << what << ": |ours - KDL| = " << err << " > " << bound << "\nours:\n"
-                                       << a << "\nKDL:\n" << b;
+                                       << a << "\nKDL:\n"
+                                       << b;
 }
 
 class KdlCrossCheck : public ::testing::TestWithParam<const char*> {};

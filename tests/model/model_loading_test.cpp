@@ -40,15 +40,15 @@ TEST(ModelLoading, ShippedModelsHaveTheirJointsFramesAndDrives) {
 TEST(ModelLoading, DriveDataGivesTheDerivedJointLimits) {
   const model::RobotModel v3 = test::load_device_model("vishard3");
   EXPECT_NEAR(v3.body(0).reflected_inertia, (1.34e-5 + 7.9e-6) * 100 * 100, 1e-12);
-  EXPECT_DOUBLE_EQ(v3.peak_torques()[0], 54.0);                       // min(gear 54, 2.5 * 100)
+  EXPECT_DOUBLE_EQ(v3.peak_torques()[0], 54.0);  // min(gear 54, 2.5 * 100)
   EXPECT_NEAR(v3.body(0).drive.continuous_joint_torque(), 20.1, 1e-12);
   EXPECT_NEAR(v3.speed_limits()[0], 7300.0 / 100.0 * 2 * M_PI / 60.0, 1e-12);
   EXPECT_DOUBLE_EQ(v3.body(0).drive.joint_counts_per_rev(), 200000.0);
   const model::RobotModel v10 = test::load_device_model("vishard10");
-  EXPECT_NEAR(v10.speed_limits()[0], 3.665, 1e-3);                   // 5600 rpm / 160
-  EXPECT_DOUBLE_EQ(v10.peak_torques()[9], 4.8);                       // gear-limited
-  EXPECT_DOUBLE_EQ(v10.peak_torques()[2], 87.0);                      // min(87, 1.07 * 120 = 128.4)
-  EXPECT_DOUBLE_EQ(v10.peak_torques()[7], 13.0);                      // min(13, 0.538 * 100)
+  EXPECT_NEAR(v10.speed_limits()[0], 3.665, 1e-3);  // 5600 rpm / 160
+  EXPECT_DOUBLE_EQ(v10.peak_torques()[9], 4.8);     // gear-limited
+  EXPECT_DOUBLE_EQ(v10.peak_torques()[2], 87.0);    // min(87, 1.07 * 120 = 128.4)
+  EXPECT_DOUBLE_EQ(v10.peak_torques()[7], 13.0);    // min(13, 0.538 * 100)
 }
 
 TEST(ModelLoading, UnknownFrameIsAnErrorListingTheFrames) {
@@ -69,10 +69,12 @@ std::string two_link(const std::string& extra, const std::string& joint2_type = 
   <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
     <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="2"/></joint>
   <link name="l1"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
-  <joint name="j2" type=")" + joint2_type + R"("><parent link="l1"/><child link="l2"/>
+  <joint name="j2" type=")" +
+         joint2_type + R"("><parent link="l1"/><child link="l2"/>
     <origin xyz="0.5 0 0"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="10" velocity="2"/></joint>
   <link name="l2"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
-)" + extra + "</robot>\n";
+)" + extra +
+         "</robot>\n";
 }
 
 std::string error_of(const std::string& text) {
@@ -132,8 +134,7 @@ TEST(ModelLoading, EachBadModelGetsItsOwnMessage) {
       {two_link("<hapticd_drive joint=\"j1\" " + good_drive + " colour=\"red\"/>\n"), "unknown attribute 'colour'"},
       {two_link("<hapticd_drive joint=\"j9\" " + good_drive + "/>\n"), "joint 'j9' is not a movable joint"},
       {two_link("<hapticd_drive joint=\"j1\" gear_ratio=\"100\"/>\n"), "attribute 'gear_peak_torque' missing"},
-      {two_link("<hapticd_drive joint=\"j1\" " + good_drive + "/>\n<hapticd_drive joint=\"j1\" " + good_drive +
-                "/>\n"),
+      {two_link("<hapticd_drive joint=\"j1\" " + good_drive + "/>\n<hapticd_drive joint=\"j1\" " + good_drive + "/>\n"),
        "second drive for joint 'j1'"},
       {two_link("<hapticd_drive " + good_drive + "/>\n"), "attribute 'joint' missing"},
   };

@@ -1,13 +1,14 @@
 // The output-capability analysis: the closed-form worst direction (inscribed ball of the polytope) against
 // a brute-force search over sampled directions, and the grid evaluation of ViSHaRD3 against its published
 // figures (peak force 86 N, velocity 1.0 m/s, acceleration 14.7 m/s^2).
+#include "hapticd/model/output_capability.hpp"
+
 #include <gtest/gtest.h>
 
 #include <numbers>
 
 #include "hapticd/model/dynamics.hpp"
 #include "hapticd/model/kinematics.hpp"
-#include "hapticd/model/output_capability.hpp"
 #include "support/device_models.hpp"
 
 namespace hapticd {
@@ -99,9 +100,9 @@ TEST(OutputCapabilityGrid, Vishard3MeetsItsPublishedFigures) {
   grid.points_per_axis = 5;
   JointVector seed(3);
   seed << -0.3, 1.6, 0.0;
-  const model::GridCapability r = model::grid_output_capability(
-      robot, robot.require_frame("handle"), grid, seed,
-      {model::TaskRows::kTranslation, model::CapabilitySubspace::kTranslation, true});
+  const model::GridCapability r =
+      model::grid_output_capability(robot, robot.require_frame("handle"), grid, seed,
+                                    {model::TaskRows::kTranslation, model::CapabilitySubspace::kTranslation, true});
   EXPECT_EQ(r.reached, r.poses);
   // Published: 86 N, 1.0 m/s, 14.7 m/s^2. The model's worst case over the box lies within 15 % of each.
   EXPECT_NEAR(r.force.value, 86.0, 0.15 * 86.0);

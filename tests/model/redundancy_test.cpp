@@ -1,6 +1,8 @@
 // The redundancy toolbox (hapticd/model/redundancy.hpp, side_criteria.hpp) on the ViSHaRD10 model (10 joints,
 // 6-D task) at random configurations: the properties of [U06] methods 3 that hold whatever the
 // configuration.
+#include "hapticd/model/redundancy.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>
@@ -8,7 +10,6 @@
 
 #include "hapticd/model/dynamics.hpp"
 #include "hapticd/model/kinematics.hpp"
-#include "hapticd/model/redundancy.hpp"
 #include "hapticd/model/side_criteria.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "support/device_models.hpp"
@@ -88,8 +89,10 @@ TEST_F(Redundancy, ExactInversesSolveJqdEqualsXd) {
       }
     }
   }
-  std::printf("J qd = xd: worst relative error %.2e (exact inverses); damped: up to %.0f %% of its bound "
-              "lambda^2 / (s_min^2 + lambda^2)\n", worst_exact, 100.0 * worst_damped_share);
+  std::printf(
+      "J qd = xd: worst relative error %.2e (exact inverses); damped: up to %.0f %% of its bound "
+      "lambda^2 / (s_min^2 + lambda^2)\n",
+      worst_exact, 100.0 * worst_damped_share);
   EXPECT_LT(worst_exact, 1e-10);
   EXPECT_GT(worst_damped_share, 0.01);  // the damping is there
 }
@@ -153,7 +156,8 @@ TEST_F(Redundancy, TheInertiaWeightedInverseMakesNoNullSpaceAccelerationFromAHan
     at(random_q());
     const TaskVector f = TaskVector::Random(6) * 10.0;
     const JointVector qdd = data_->mass_llt.solve(JointVector(jacobian_.transpose() * f));
-    consistent = std::max(consistent, (inverse(InverseKind::kInertiaWeighted).null_space_projector() * qdd).norm() / qdd.norm());
+    consistent =
+        std::max(consistent, (inverse(InverseKind::kInertiaWeighted).null_space_projector() * qdd).norm() / qdd.norm());
     plain = std::max(plain, (inverse(InverseKind::kPseudoinverse).null_space_projector() * qdd).norm() / qdd.norm());
   }
   std::printf("null-space share of the acceleration from a handle wrench: %.2e inertia-weighted, %.2f pseudoinverse\n",
@@ -207,8 +211,10 @@ TEST_F(Redundancy, TheDampedInverseBoundsJointRatesNearASingularity) {
   plain.compute(near);
   damped.compute(near);
   const double plain_rate = plain.solve(xd).norm(), damped_rate = damped.solve(xd).norm();
-  std::printf("0.1 along the lost direction (s_min 1e-5): joint rate %.0f rad/s (pseudoinverse), %.3f rad/s (damped, "
-              "lambda 0.05)\n", plain_rate, damped_rate);
+  std::printf(
+      "0.1 along the lost direction (s_min 1e-5): joint rate %.0f rad/s (pseudoinverse), %.3f rad/s (damped, "
+      "lambda 0.05)\n",
+      plain_rate, damped_rate);
   EXPECT_GT(plain_rate, 1000.0);
   EXPECT_LE(damped_rate, 0.1 / (2.0 * 0.05) + 1e-12);
 }

@@ -1,6 +1,8 @@
 // The ViSHaRD10 partitioned solution (plugins/ik/vishard10): its inverse functions reproduce the handle pose,
 // they are cyclic where the plain pseudoinverse is not, and the weighted wrist pseudoinverse with the wrist
 // criterion and the virtual wall takes the critical wrist motion without reaching the singularity.
+#include "vishard10_ik.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,14 +12,13 @@
 
 #include "hapticd/chain_signals.hpp"
 #include "hapticd/device_description.hpp"
-#include "hapticd/parameters.hpp"
-#include "hapticd/plugin_context.hpp"
 #include "hapticd/model/kinematics.hpp"
 #include "hapticd/model/redundancy.hpp"
+#include "hapticd/parameters.hpp"
+#include "hapticd/plugin_context.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "partitioned_solution.hpp"
 #include "support/device_models.hpp"
-#include "vishard10_ik.hpp"
 
 namespace hapticd {
 namespace {
@@ -121,7 +122,8 @@ TEST_F(Vishard10Ik, InverseFunctionsAreCyclicThePseudoinverseIsNot) {
     const double a = 2.0 * kPi * s;
     Pose p;
     p.position = centre + Eigen::Vector3d(0.1 * std::cos(a) - 0.1, 0.1 * std::sin(a), 0.05 * std::sin(2.0 * a));
-    p.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.4 * std::sin(a), Eigen::Vector3d::UnitY()).toRotationMatrix() * upright);
+    p.orientation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(0.4 * std::sin(a), Eigen::Vector3d::UnitY()).toRotationMatrix() * upright);
     return p;
   };
   const int steps = 4000;  // 2 s per lap at 2 kHz
@@ -150,8 +152,10 @@ TEST_F(Vishard10Ik, InverseFunctionsAreCyclicThePseudoinverseIsNot) {
   }
   const double handle_gap = (fk(q).translation() - pose_at(0.0).position).norm();
   const double pinv_gap = (q - start).cwiseAbs().maxCoeff();
-  std::printf("three laps: inverse functions return to within %.1e rad; the pseudoinverse's handle to %.1e m, its "
-              "joints drift by up to %.3f rad\n", function_gap, handle_gap, pinv_gap);
+  std::printf(
+      "three laps: inverse functions return to within %.1e rad; the pseudoinverse's handle to %.1e m, its "
+      "joints drift by up to %.3f rad\n",
+      function_gap, handle_gap, pinv_gap);
   EXPECT_LT(function_gap, 1e-9);
   EXPECT_LT(handle_gap, 1e-6);
   EXPECT_GT(pinv_gap, 1e-3);
@@ -233,10 +237,12 @@ WristRun critical_wrist_motion(ik::Vishard10Ik& ik, const JointVector& start_pos
     run.smallest_q9 = std::min(run.smallest_q9, q[8]);
     const double q5 = q[0] + q[1] + q[2] + q[3] + q[4];
     const double q5_rate = (q5 - q5_previous) / kDt;
-    if (k > 1) run.largest_q5_acceleration = std::max(run.largest_q5_acceleration, std::abs(q5_rate - q5_rate_previous) / kDt);
+    if (k > 1)
+      run.largest_q5_acceleration = std::max(run.largest_q5_acceleration, std::abs(q5_rate - q5_rate_previous) / kDt);
     q5_previous = q5;
     q5_rate_previous = q5_rate;
-    if (k > 10) run.largest_error = std::max(run.largest_error, Eigen::AngleAxisd(fk(q).linear() * r.transpose()).angle());
+    if (k > 10)
+      run.largest_error = std::max(run.largest_error, Eigen::AngleAxisd(fk(q).linear() * r.transpose()).angle());
   }
   return run;
 }
@@ -256,16 +262,17 @@ TEST_F(Vishard10Ik, TheWristCriterionAndWallKeepTheCriticalMotionAwayFromTheSing
   // Without criterion and wall the pseudoinverse drifts into the singularity too.
   auto bare = make({{"wrist", std::string("pseudoinverse")}, {"wrist_criterion", 0.0}, {"wall_zeta_rad", 0.0}});
   const WristRun free = critical_wrist_motion(*bare, posture, fk_of);
-  std::printf("critical wrist motion: smallest q9 %.3f rad (inverse function), %.3f rad (criterion + wall, zeta 0.35), "
-              "%.3f rad (bare pseudoinverse); largest joint-5 acceleration %.1f / %.1f / %.1f rad/s^2; orientation "
-              "error %.1e / %.1e / %.1e rad\n",
-              held.smallest_q9, moved.smallest_q9, free.smallest_q9, held.largest_q5_acceleration,
-              moved.largest_q5_acceleration, free.largest_q5_acceleration, held.largest_error, moved.largest_error,
-              free.largest_error);
-  EXPECT_LT(held.smallest_q9, kLink5Yaw + 1e-6);          // the inverse function ends next to the singularity
+  std::printf(
+      "critical wrist motion: smallest q9 %.3f rad (inverse function), %.3f rad (criterion + wall, zeta 0.35), "
+      "%.3f rad (bare pseudoinverse); largest joint-5 acceleration %.1f / %.1f / %.1f rad/s^2; orientation "
+      "error %.1e / %.1e / %.1e rad\n",
+      held.smallest_q9, moved.smallest_q9, free.smallest_q9, held.largest_q5_acceleration,
+      moved.largest_q5_acceleration, free.largest_q5_acceleration, held.largest_error, moved.largest_error,
+      free.largest_error);
+  EXPECT_LT(held.smallest_q9, kLink5Yaw + 1e-6);  // the inverse function ends next to the singularity
   EXPECT_GT(moved.smallest_q9, 0.25);  // the wall holds (it gives 0.07 rad: a spring in the null space, gain 50)
   EXPECT_LT(moved.largest_q5_acceleration, 30.0);  // bounded joint-5 acceleration (gain 200: 0.32 rad, 66 rad/s^2)
-  EXPECT_LT(moved.largest_error, 2e-3);                   // and the handle still gets its orientation
+  EXPECT_LT(moved.largest_error, 2e-3);            // and the handle still gets its orientation
   EXPECT_LT(free.smallest_q9, moved.smallest_q9);
 }
 

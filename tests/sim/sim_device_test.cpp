@@ -50,8 +50,9 @@ TEST(SimDevice, PositionsAreWholeEncoderCountsAndVelocitiesAreNotReported) {
 
 TEST(SimDevice, SensorReadsTheWrenchInResolutionStepsWithinNoise) {
   // Hold the device with a stiff joint PD on the encoder positions; push the handle with 20 N along x.
-  SimRig rig(kVishard3 + "attachment: wrench\nwrench_force: step\nwrench_force_n: [20, 0, 0]\n"
-                         "wrench_force_start_s: 0.1\n");
+  SimRig rig(kVishard3 +
+             "attachment: wrench\nwrench_force: step\nwrench_force_n: [20, 0, 0]\n"
+             "wrench_force_start_s: 0.1\n");
   const JointVector hold = [&] {
     rig.cycle();
     return rig.state.joints.position;
@@ -76,8 +77,9 @@ TEST(SimDevice, SensorReadsTheWrenchInResolutionStepsWithinNoise) {
 }
 
 TEST(SimDevice, Vishard3SensorMeasuresAccelerations) {
-  SimRig rig(kVishard3 + "sensor_accelerations: true\nattachment: wrench\nwrench_force: step\n"
-                         "wrench_force_n: [0, 30, 0]\nwrench_force_start_s: 0.3\n");
+  SimRig rig(kVishard3 +
+             "sensor_accelerations: true\nattachment: wrench\nwrench_force: step\n"
+             "wrench_force_n: [0, 30, 0]\nwrench_force_start_s: 0.3\n");
   EXPECT_TRUE(rig.device.description().reports_sensor_acceleration);
   JointVector hold;
   for (int k = 0; k < 700; ++k) {
@@ -97,16 +99,18 @@ TEST(SimDevice, Vishard3SensorMeasuresAccelerations) {
   double largest = 0.0;
   for (int k = 0; k < 40; ++k) {
     rig.cycle();
-    largest = std::max(largest, (rig.state.sensor_acceleration.linear -
-                                 rig.device.ground_truth().handle_pose.linear().transpose() * Eigen::Vector3d(0, 0, 9.81))
-                                    .norm());
+    largest =
+        std::max(largest, (rig.state.sensor_acceleration.linear -
+                           rig.device.ground_truth().handle_pose.linear().transpose() * Eigen::Vector3d(0, 0, 9.81))
+                              .norm());
   }
   EXPECT_GT(largest, 1.0);
 }
 
 TEST(SimDevice, SensorSaturatesAtItsRange) {
-  SimRig rig(kVishard3 + "attachment: wrench\nwrench_force: constant\nwrench_force_n: [0, 0, -900]\n"
-                         "speed_monitor: false\n");
+  SimRig rig(kVishard3 +
+             "attachment: wrench\nwrench_force: constant\nwrench_force_n: [0, 0, -900]\n"
+             "speed_monitor: false\n");
   bool saturated = false;
   for (int k = 0; k < 20; ++k) {
     rig.cycle();
@@ -119,8 +123,9 @@ TEST(SimDevice, SensorSaturatesAtItsRange) {
 }
 
 TEST(SimDevice, OperatorGraspsWithoutJumpAndPushesTheFreeHandle) {
-  SimRig rig(kVishard3 + "attachment: operator\nfriction: false\noperator_force: step\n"
-                         "operator_force_n: [0, 10, 0]\noperator_force_start_s: 0.2\n");
+  SimRig rig(kVishard3 +
+             "attachment: operator\nfriction: false\noperator_force: step\n"
+             "operator_force_n: [0, 10, 0]\noperator_force_start_s: 0.2\n");
   rig.cycle();
   const Eigen::Vector3d start = rig.device.ground_truth().handle_pose.translation();
   for (int k = 0; k < 399; ++k) {
@@ -190,8 +195,9 @@ TEST(SimDevice, SameSeedSameReadingsOtherSeedOtherReadings) {
 
 TEST(SimDevice, ReadAndWriteDoNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
-  SimRig rig("urdf: ../urdf/vishard10.urdf\ninitial_position: [0.3, -0.6, 0.6, -0.6, 0.3, 1.0, -2.0, 1.0, 0.8, 0.0]\n"
-             "attachment: operator\noperator_motion: sine\noperator_motion_m: [0.03, 0, 0]\n");
+  SimRig rig(
+      "urdf: ../urdf/vishard10.urdf\ninitial_position: [0.3, -0.6, 0.6, -0.6, 0.3, 1.0, -2.0, 1.0, 0.8, 0.0]\n"
+      "attachment: operator\noperator_motion: sine\noperator_motion_m: [0.03, 0, 0]\n");
   rig.cycle();
   const std::size_t allocations = testing::count_allocations([&] {
     for (int k = 0; k < 50; ++k) rig.cycle();

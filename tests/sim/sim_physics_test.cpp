@@ -55,8 +55,8 @@ TEST_P(LosslessEnergy, IsConserved) {
       const double e = chain.energy();
       worst = std::max(worst, std::abs(e - e0));
       // energy() ran FK and M at the current q.
-      largest_kinetic = std::max(largest_kinetic, 0.5 * chain.link_velocity().dot(chain.data().mass_matrix *
-                                                                                     chain.link_velocity()));
+      largest_kinetic =
+          std::max(largest_kinetic, 0.5 * chain.link_velocity().dot(chain.data().mass_matrix * chain.link_velocity()));
     }
   }
   ASSERT_GT(largest_kinetic, 0.1) << "the chain should move";

@@ -13,7 +13,8 @@ namespace hapticd::test {
 struct SimRig {
   explicit SimRig(const std::string& parameters_yaml, double rate_hz = 2000.0, std::uint64_t seed = 42) {
     const YAML::Node node = YAML::Load(parameters_yaml);
-    const Parameters p = server::read_parameters(node, sim::SimDevice::parameter_schema(), "test.yaml", "parameters", 1);
+    const Parameters p =
+        server::read_parameters(node, sim::SimDevice::parameter_schema(), "test.yaml", "parameters", 1);
     PluginContext context;
     context.device_name = "sim";
     context.rate_hz = rate_hz;

@@ -56,14 +56,17 @@ std::string sim_vishard3_admittance_session(const std::string& name, std::uint64
     controller:
       plugin: resolved_acceleration
       parameters: {task: translation}
-    safety: {)" + safety + "}\n";
+    safety: {)" +
+         safety + "}\n";
 }
 
 std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,
                                      const std::string& force_n) {
   return sim_vishard3_entry(name) + R"(        attachment: wrench
-        wrench_force: )" + force_profile + R"(
-        wrench_force_n: )" + force_n + "\n";
+        wrench_force: )" +
+         force_profile + R"(
+        wrench_force_n: )" +
+         force_n + "\n";
 }
 
 std::string sim_wrench_step_device_yaml(const std::string& name, const std::string& model, const std::string& initial,
@@ -72,14 +75,18 @@ std::string sim_wrench_step_device_yaml(const std::string& name, const std::stri
     device:
       plugin: sim
       parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/)" + model + R"(.urdf
-        initial_position: )" + initial + R"(
+        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/)" +
+         model + R"(.urdf
+        initial_position: )" +
+         initial + R"(
         attachment: wrench
         wrench_force: step
-        wrench_force_n: )" + force_n + R"(
+        wrench_force_n: )" +
+         force_n + R"(
         wrench_force_start_s: 0.2
         wrench_torque: step
-        wrench_torque_nm: )" + torque_nm + R"(
+        wrench_torque_nm: )" +
+         torque_nm + R"(
         wrench_torque_start_s: 0.2
 )";
 }
@@ -100,7 +107,8 @@ std::string mass_spring_device_yaml(const std::string& name, const std::string& 
          "    device:\n      plugin: test_mass_spring\n      parameters: {encoder_resolution_m: 1.0e-6" +
          device_parameters +
          "}\n"
-         "    virtual_model:\n      plugin: test_sine_setpoint\n      parameters: {amplitude_m: 0.05, frequency_hz: 2}\n"
+         "    virtual_model:\n      plugin: test_sine_setpoint\n      parameters: {amplitude_m: 0.05, frequency_hz: "
+         "2}\n"
          "    inverse_kinematics:\n      plugin: test_axis_ik\n"
          "    controller:\n      plugin: test_pd\n      parameters: {kp: 400, kd: 20" +
          controller_parameters + "}\n";

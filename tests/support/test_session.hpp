@@ -51,7 +51,8 @@ std::string sim_wrench_step_device_yaml(const std::string& name, const std::stri
 
 // A lockstep session: the simulated ViSHaRD3 `name` held by the simulated operator, in admittance display (3 kg,
 // 40 N s/m, translation) with resolved acceleration control, and a `safety` section with these entries.
-std::string sim_vishard3_admittance_session(const std::string& name, std::uint64_t seed, const std::string& safety = "");
+std::string sim_vishard3_admittance_session(const std::string& name, std::uint64_t seed,
+                                            const std::string& safety = "");
 
 std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,
                                      const std::string& force_n);

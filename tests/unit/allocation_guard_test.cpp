@@ -29,14 +29,37 @@ class AllocationGuardTest : public ::testing::Test {
 };
 
 TEST_F(AllocationGuardTest, SeesMallocNewVectorStringAndEigen) {
-  EXPECT_GE(count_allocations([] { void* p = std::malloc(16); escape(p); std::free(p); }), 1u);
-  EXPECT_GE(count_allocations([] { auto p = std::make_unique<int>(3); escape(p.get()); }), 1u);
-  EXPECT_GE(count_allocations([] { void* p = std::calloc(4, 8); escape(p); std::free(p); }), 1u);
+  EXPECT_GE(count_allocations([] {
+              void* p = std::malloc(16);
+              escape(p);
+              std::free(p);
+            }),
+            1u);
+  EXPECT_GE(count_allocations([] {
+              auto p = std::make_unique<int>(3);
+              escape(p.get());
+            }),
+            1u);
+  EXPECT_GE(count_allocations([] {
+              void* p = std::calloc(4, 8);
+              escape(p);
+              std::free(p);
+            }),
+            1u);
   EXPECT_GE(count_allocations([] { std::vector<double> v(100); }), 1u);
   EXPECT_GE(count_allocations([] { std::string s(100, 'x'); }), 1u);
   EXPECT_GE(count_allocations([] { Eigen::VectorXd v = Eigen::VectorXd::Ones(50); }), 1u);
-  EXPECT_GE(count_allocations([] { Eigen::MatrixXd m(6, 6); m.setZero(); }), 1u);
-  EXPECT_GE(count_allocations([] { void* p = nullptr; EXPECT_EQ(posix_memalign(&p, 64, 128), 0); std::free(p); }), 1u);
+  EXPECT_GE(count_allocations([] {
+              Eigen::MatrixXd m(6, 6);
+              m.setZero();
+            }),
+            1u);
+  EXPECT_GE(count_allocations([] {
+              void* p = nullptr;
+              EXPECT_EQ(posix_memalign(&p, 64, 128), 0);
+              std::free(p);
+            }),
+            1u);
 }
 
 TEST_F(AllocationGuardTest, FixedCapacityJointVectorsDoNotAllocate) {

@@ -1,6 +1,8 @@
 // The engine-command gate (server/src/bridge/command_gate) and the content checks it relies on
 // (dds/command_validation): ownership, order, freshness, and a bounded randomised fuzz of the content checks
 // (fixed seed) - no input may crash them or pass with non-finite or out-of-bounds content.
+#include "bridge/command_gate.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <limits>
 #include <random>
 
-#include "bridge/command_gate.hpp"
 #include "hapticd/dds/conversion.hpp"
 
 namespace hapticd::server {

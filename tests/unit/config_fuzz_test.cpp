@@ -31,7 +31,8 @@ std::vector<std::string> seed_files() {
     std::string t = ss.str();
     for (const std::string rel : {"../../urdf/", "../urdf/", "../../friction/"}) {
       const std::string abs = std::string(HAPTICD_SOURCE_DIR) + "/config/" + rel.substr(rel.rfind("../") + 3);
-      for (std::size_t at = t.find(rel); at != std::string::npos; at = t.find(rel, at + abs.size())) t.replace(at, rel.size(), abs);
+      for (std::size_t at = t.find(rel); at != std::string::npos; at = t.find(rel, at + abs.size()))
+        t.replace(at, rel.size(), abs);
     }
     texts.push_back(t);
   }
@@ -48,9 +49,26 @@ devices:
   return texts;
 }
 
-const std::vector<std::string> kHostile = {".nan", "-.inf", "1e308", "-1", "0", "abc", "[]", "{}", "[1, 2, 3, 4, 5]",
-                                           "~", "\"\"", "{a: {b: {c: {d: [[[[1]]]]}}}}", "true", "-9223372036854775809",
-                                           "0x7fffffff", "'\\x00'", "&anchor x", "*nothing", "!!binary AAAA", "1:2:3"};
+const std::vector<std::string> kHostile = {".nan",
+                                           "-.inf",
+                                           "1e308",
+                                           "-1",
+                                           "0",
+                                           "abc",
+                                           "[]",
+                                           "{}",
+                                           "[1, 2, 3, 4, 5]",
+                                           "~",
+                                           "\"\"",
+                                           "{a: {b: {c: {d: [[[[1]]]]}}}}",
+                                           "true",
+                                           "-9223372036854775809",
+                                           "0x7fffffff",
+                                           "'\\x00'",
+                                           "&anchor x",
+                                           "*nothing",
+                                           "!!binary AAAA",
+                                           "1:2:3"};
 
 std::string mutate(const std::string& text, std::mt19937_64& rng) {
   std::string s = text;
@@ -69,7 +87,8 @@ std::string mutate(const std::string& text, std::mt19937_64& rng) {
         const std::size_t colon = s.find(": ", at);
         if (colon == std::string::npos) break;
         const std::size_t end = s.find_first_of(",}\n", colon + 2);
-        s.replace(colon + 2, (end == std::string::npos ? s.size() : end) - colon - 2, kHostile[rng() % kHostile.size()]);
+        s.replace(colon + 2, (end == std::string::npos ? s.size() : end) - colon - 2,
+                  kHostile[rng() % kHostile.size()]);
         break;
       }
       case 3: {  // drop a line
@@ -125,7 +144,8 @@ TEST(ConfigFuzz, EveryMutatedSessionLoadsOrFailsWithALocatedConfigError) {
       FAIL() << "not a ConfigError: " << e.what() << "\n--- input ---\n" << text;
     }
   }
-  std::printf("3000 mutated sessions: %d loaded (%d built), %d rejected with a located error\n", loaded, built, rejected);
+  std::printf("3000 mutated sessions: %d loaded (%d built), %d rejected with a located error\n", loaded, built,
+              rejected);
   EXPECT_GT(rejected, 300);  // the mutations do reach the checks
   EXPECT_GT(loaded, 300);    // and do not only produce garbage
 }

@@ -1,8 +1,8 @@
 // The engine input's weight (server/src/session/engine_input_port): fresh until the deadline, then a linear
 // fade to zero; input that starts after a silence ramps in - and the port that applies it each cycle.
-#include <gtest/gtest.h>
-
 #include "session/engine_input_port.hpp"
+
+#include <gtest/gtest.h>
 
 namespace hapticd::server {
 namespace {

@@ -78,7 +78,7 @@ TEST(FrictionRetuning, RejectsPoorExcitation) {
 TEST(FrictionRetuning, RejectsAFitThatWouldOverCompensateAtLowSpeed) {
   // Data with a spike in the lowest bins pulls the fitted curve above the measurements near rest.
   FrictionBinData b = bins_from(kCurve36, 0.05, 1.5);
-  b.sum[0][0] = 500.0 * 0.3;   // very low friction measured in the lowest bin
+  b.sum[0][0] = 500.0 * 0.3;  // very low friction measured in the lowest bin
   b.sum[0][1] = 500.0 * 0.35;
   RetuneChecks checks;
   checks.fraction = 1.0;

@@ -34,8 +34,8 @@ TEST(LatencyHistogram, QuantilesMatchSortedSamplesWithinResolution) {
   for (double q : {0.5, 0.9, 0.99, 0.999}) {
     const auto exact = samples[static_cast<std::size_t>(std::ceil(q * samples.size())) - 1];
     const auto reported = h.quantile_ns(q);
-    EXPECT_GE(reported, exact) << q;                        // never understates
-    EXPECT_LE(reported, exact + exact / 64 + 1) << q;       // within one bucket (1/64 relative)
+    EXPECT_GE(reported, exact) << q;                   // never understates
+    EXPECT_LE(reported, exact + exact / 64 + 1) << q;  // within one bucket (1/64 relative)
   }
   EXPECT_EQ(h.min_ns(), samples.front());
   EXPECT_EQ(h.max_ns(), samples.back());

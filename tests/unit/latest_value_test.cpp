@@ -1,9 +1,9 @@
 // LatestValue: the reader sees whole values only, each at most once, in publication order, never waiting.
+#include "hapticd/realtime/latest_value.hpp"
+
 #include <gtest/gtest.h>
 
 #include <thread>
-
-#include "hapticd/realtime/latest_value.hpp"
 
 namespace hapticd {
 namespace {

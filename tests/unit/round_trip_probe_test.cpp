@@ -1,12 +1,12 @@
 // The DDS bridge's round-trip probe (server/src/bridge/round_trip_probe): state written -> command handed to the
 // loop, and how many cycles after the state's the loop applied the command; slots reused by newer states are
 // never mistaken for the old ones, and the hand-off between the publisher and the receive thread is consistent.
+#include "bridge/round_trip_probe.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <thread>
-
-#include "bridge/round_trip_probe.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -47,7 +47,7 @@ TEST(RoundTripProbe, IgnoresCommandsForStatesItNoLongerKnows) {
   RoundTripProbe p;
   p.state_written(5, 4, 1'000'000);
   p.state_written(5 + 4096, 4100, 9'000'000);  // the same slot, a newer state
-  EXPECT_EQ(p.command_accepted(1, 5), 0);  // unknown now
+  EXPECT_EQ(p.command_accepted(1, 5), 0);      // unknown now
   p.command_handed_over(p.command_accepted(1, 5), 9'500'000);
   EXPECT_EQ(p.command_accepted(2, 0), 0);  // answers no state
   p.command_handed_over(p.command_accepted(3, 0), 9'500'000);

@@ -1,12 +1,13 @@
 // The SCARA look-up table optimiser (tools/scara_lut) on a small mesh: it improves on its own initial guess,
 // the figure it reports is the table's, and tables survive a save and load; a broken table file is refused
 // with its file and line.
+#include "scara_optimiser.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "hapticd/model/urdf_loader.hpp"
-#include "scara_optimiser.hpp"
 #include "support/temp_file.hpp"
 
 namespace hapticd {

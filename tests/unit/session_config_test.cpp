@@ -1,8 +1,9 @@
 // Every class of bad session file gives a ConfigError naming the file, the line and the key.
+#include "config/session_config.hpp"
+
 #include <gtest/gtest.h>
 
 #include "config/config_error.hpp"
-#include "config/session_config.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "session/session_builder.hpp"
 #include "support/temp_file.hpp"
@@ -36,10 +37,10 @@ void load_and_build(const std::filesystem::path& file) {
 
 struct BadConfig {
   const char* name;
-  std::string text;        // the whole file
-  std::string key;         // expected key path
-  std::string line_marker; // the error's line is the line of this text
-  std::string message;     // expected part of the message
+  std::string text;         // the whole file
+  std::string key;          // expected key path
+  std::string line_marker;  // the error's line is the line of this text
+  std::string message;      // expected part of the message
 };
 
 void PrintTo(const BadConfig& c, std::ostream* os) { *os << c.name; }
@@ -67,15 +68,16 @@ std::string with_controller_parameters(const std::string& params) {
 }
 
 std::string with_device_parameters(const std::string& params) {
-  return kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n      parameters:\n" + params +
-         "    controller:\n      plugin: test_pd\n";
+  return kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n      parameters:\n" +
+         params + "    controller:\n      plugin: test_pd\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(
     SessionFile, BadConfigTest,
     ::testing::Values(
         // Unknown keys, at every level, with a suggestion.
-        BadConfig{"unknown_top_level_key", kHeader + "devcies:\n  - name: a\n", "devcies", "devcies:", "did you mean 'devices'"},
+        BadConfig{"unknown_top_level_key", kHeader + "devcies:\n  - name: a\n", "devcies",
+                  "devcies:", "did you mean 'devices'"},
         BadConfig{"unknown_server_key", kHeader + "  rate_hx: 1000\n" + kValidDevices, "server.rate_hx", "rate_hx",
                   "did you mean 'rate_hz'"},
         BadConfig{"unknown_device_key", kHeader + kValidDevices + "    controler:\n      plugin: test_pd\n",
@@ -86,51 +88,66 @@ INSTANTIATE_TEST_SUITE_P(
                   "devices[0].controller.parameters.gian", "gian", "valid keys: kp, kd"},
         // Missing keys.
         BadConfig{"missing_devices", kHeader, "devices", "server:", "missing required key 'devices'"},
-        BadConfig{"missing_controller", kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n",
+        BadConfig{"missing_controller",
+                  kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n",
                   "devices[0].controller", "name: axis", "missing required key 'controller'"},
-        BadConfig{"missing_plugin_name", kHeader + "devices:\n  - name: axis\n    device:\n      library: x\n"
-                  "    controller:\n      plugin: test_pd\n", "devices[0].device.plugin", "library: x", "missing required key 'plugin'"},
-        BadConfig{"missing_required_parameter", kHeader + kValidDevices + "    virtual_model:\n      plugin: test_sine_setpoint\n",
+        BadConfig{"missing_plugin_name",
+                  kHeader + "devices:\n  - name: axis\n    device:\n      library: x\n"
+                            "    controller:\n      plugin: test_pd\n",
+                  "devices[0].device.plugin", "library: x", "missing required key 'plugin'"},
+        BadConfig{"missing_required_parameter",
+                  kHeader + kValidDevices + "    virtual_model:\n      plugin: test_sine_setpoint\n",
                   "devices[0].virtual_model.parameters.amplitude_m", "plugin: test_sine_setpoint",
                   "missing required parameter 'amplitude_m'"},
         // Wrong types.
-        BadConfig{"string_for_real", with_controller_parameters("        kp: fast\n"), "devices[0].controller.parameters.kp",
-                  "kp: fast", "expected a real number, got 'fast'"},
-        BadConfig{"bool_for_real", with_controller_parameters("        kd: true\n"), "devices[0].controller.parameters.kd",
-                  "kd: true", "expected a real number"},
-        BadConfig{"real_for_integer", with_device_parameters("        substeps: 2.5\n"), "devices[0].device.parameters.substeps",
-                  "substeps", "expected an integer"},
+        BadConfig{"string_for_real", with_controller_parameters("        kp: fast\n"),
+                  "devices[0].controller.parameters.kp", "kp: fast", "expected a real number, got 'fast'"},
+        BadConfig{"bool_for_real", with_controller_parameters("        kd: true\n"),
+                  "devices[0].controller.parameters.kd", "kd: true", "expected a real number"},
+        BadConfig{"real_for_integer", with_device_parameters("        substeps: 2.5\n"),
+                  "devices[0].device.parameters.substeps", "substeps", "expected an integer"},
         BadConfig{"list_for_real", kHeader + "  rate_hz: [1000]\n" + kValidDevices, "server.rate_hz", "rate_hz",
                   "expected a real number, got a list"},
         BadConfig{"devices_not_a_list", kHeader + "devices: 3\n", "devices", "devices: 3", "expected a non-empty list"},
-        BadConfig{"device_not_a_mapping", kHeader + "devices:\n  - axis\n", "devices[0]", "- axis", "expected a mapping"},
+        BadConfig{"device_not_a_mapping", kHeader + "devices:\n  - axis\n", "devices[0]", "- axis",
+                  "expected a mapping"},
         // Out of range.
-        BadConfig{"below_minimum", with_controller_parameters("        kp: -3\n"), "devices[0].controller.parameters.kp",
-                  "kp: -3", "below the minimum 0"},
+        BadConfig{"below_minimum", with_controller_parameters("        kp: -3\n"),
+                  "devices[0].controller.parameters.kp", "kp: -3", "below the minimum 0"},
         BadConfig{"above_maximum", kHeader + "  rate_hz: 50000\n" + kValidDevices, "server.rate_hz", "rate_hz",
                   "above the maximum 20000"},
-        BadConfig{"exclusive_minimum", with_device_parameters("        mass_kg: 0\n"), "devices[0].device.parameters.mass_kg",
-                  "mass_kg", "must be greater than 0"},
+        BadConfig{"exclusive_minimum", with_device_parameters("        mass_kg: 0\n"),
+                  "devices[0].device.parameters.mass_kg", "mass_kg", "must be greater than 0"},
         BadConfig{"not_a_choice", kHeader + "  clock: fast\n" + kValidDevices, "server.clock", "clock: fast",
                   "not one of: realtime, lockstep"},
         BadConfig{"rejected_by_configure", with_device_parameters("        stiffness_n_per_m: 1.0e9\n"),
                   "devices[0].device.parameters.stiffness_n_per_m", "stiffness_n_per_m", "natural frequency"},
         // Devices.
-        BadConfig{"duplicate_device_name", kHeader + kValidDevices + "  - name: axis\n    device: {plugin: test_mass_spring}\n"
-                  "    controller: {plugin: test_pd}\n", "devices[1].name", "  - name: axis\n    device: {", "used twice"},
-        BadConfig{"invalid_device_name", kHeader + "devices:\n  - name: my arm\n    device: {plugin: test_mass_spring}\n"
-                  "    controller: {plugin: test_pd}\n", "devices[0].name", "my arm", "must be 1-31 characters"},
+        BadConfig{"duplicate_device_name",
+                  kHeader + kValidDevices +
+                      "  - name: axis\n    device: {plugin: test_mass_spring}\n"
+                      "    controller: {plugin: test_pd}\n",
+                  "devices[1].name", "  - name: axis\n    device: {", "used twice"},
+        BadConfig{"invalid_device_name",
+                  kHeader + "devices:\n  - name: my arm\n    device: {plugin: test_mass_spring}\n"
+                            "    controller: {plugin: test_pd}\n",
+                  "devices[0].name", "my arm", "must be 1-31 characters"},
         BadConfig{"empty_device_list", kHeader + "devices: []\n", "devices", "devices: []", "non-empty list"},
         // Plugins.
-        BadConfig{"unknown_plugin", kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n"
-                  "    controller:\n      plugin: test_pdd\n", "devices[0].controller.plugin", "plugin: test_pdd",
-                  "no controller plugin named 'test_pdd'"},
-        BadConfig{"wrong_plugin_kind", kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n"
-                  "    controller: {plugin: test_mass_spring}\n", "devices[0].controller.plugin",
-                  "{plugin: test_mass_spring}", "is a device plugin, but a controller plugin is needed"},
-        BadConfig{"missing_library", kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n"
-                  "      library: no_such_library\n    controller:\n      plugin: test_pd\n", "devices[0].device.plugin",
-                  "plugin: test_mass_spring", "plugin library 'no_such_library' not found"}),
+        BadConfig{"unknown_plugin",
+                  kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n"
+                            "    controller:\n      plugin: test_pdd\n",
+                  "devices[0].controller.plugin", "plugin: test_pdd", "no controller plugin named 'test_pdd'"},
+        BadConfig{"wrong_plugin_kind",
+                  kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n"
+                            "    controller: {plugin: test_mass_spring}\n",
+                  "devices[0].controller.plugin", "{plugin: test_mass_spring}",
+                  "is a device plugin, but a controller plugin is needed"},
+        BadConfig{"missing_library",
+                  kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n"
+                            "      library: no_such_library\n    controller:\n      plugin: test_pd\n",
+                  "devices[0].device.plugin", "plugin: test_mass_spring",
+                  "plugin library 'no_such_library' not found"}),
     [](const ::testing::TestParamInfo<BadConfig>& param_info) { return std::string(param_info.param.name); });
 
 TEST(SessionConfig, YamlSyntaxErrorNamesTheLine) {
@@ -157,7 +174,8 @@ TEST(SessionConfig, MissingAndEmptyFiles) {
 }
 
 TEST(SessionConfig, ValidFileGivesDefaultsAndOverrides) {
-  const auto file = test::write_temp_file("session.yaml", kHeader + "  rate_hz: 4000\n  clock: lockstep\n" + kValidDevices);
+  const auto file =
+      test::write_temp_file("session.yaml", kHeader + "  rate_hz: 4000\n  clock: lockstep\n" + kValidDevices);
   const SessionConfig c = load_session_config(file);
   EXPECT_EQ(c.server.rate_hz, 4000.0);
   EXPECT_EQ(c.server.clock, ClockMode::lockstep);

@@ -1,9 +1,9 @@
 // hapticd-scara-lut: builds the ViSHaRD10 SCARA inverse-function look-up table by numerical optimisation
 // (scara_optimiser.hpp, docs/redundancy.md), reports the worst joint rate per tip speed for each workspace it
 // tries, and writes the table for the chosen one (vishard10_ik reads it: scara: lookup_table).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 
@@ -53,23 +53,25 @@ int main(int argc, char** argv) {
       const auto r = tools::optimise_scara_table(geometry, speed, attempt, run);
       previous = r.table;
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      fmt::print("workspace r {:.2f}..{:.2f} m without {:.0f} deg at {:.0f} deg ({} x {} mesh): worst joint rates per tip "
-                 "speed {:.2f} {:.2f} {:.2f} {:.2f} rad/s per m/s -> tip speed {:.3f} m/s (initial guess {:.3f}{}, two "
-                 "prismatic pairs {:.3f} m/s); {:.1f} s\n",
-                 attempt.radius_min, radius, attempt.excluded_sector_deg, attempt.excluded_sector_centre_deg, attempt.radii,
-                 attempt.angles, r.worst_rate_per_joint[0], r.worst_rate_per_joint[1], r.worst_rate_per_joint[2],
-                 r.worst_rate_per_joint[3], r.table.tip_speed, 1.0 / r.initial_worst_rate,
-                 run.warm_start != nullptr ? " warm" : "", 1.0 / r.prismatic_pairs_worst_rate, seconds);
+      fmt::print(
+          "workspace r {:.2f}..{:.2f} m without {:.0f} deg at {:.0f} deg ({} x {} mesh): worst joint rates per tip "
+          "speed {:.2f} {:.2f} {:.2f} {:.2f} rad/s per m/s -> tip speed {:.3f} m/s (initial guess {:.3f}{}, two "
+          "prismatic pairs {:.3f} m/s); {:.1f} s\n",
+          attempt.radius_min, radius, attempt.excluded_sector_deg, attempt.excluded_sector_centre_deg, attempt.radii,
+          attempt.angles, r.worst_rate_per_joint[0], r.worst_rate_per_joint[1], r.worst_rate_per_joint[2],
+          r.worst_rate_per_joint[3], r.table.tip_speed, 1.0 / r.initial_worst_rate,
+          run.warm_start != nullptr ? " warm" : "", 1.0 / r.prismatic_pairs_worst_rate, seconds);
       if (radius == w.radius_max && !output.empty()) {
         std::string warm;
         for (double t : tries)
           if (t < radius) warm += fmt::format(" --try {}", t);
-        r.table.save(output, fmt::format("ViSHaRD10 SCARA elbow codes, made by hapticd-scara-lut --radius-min {} "
-                                         "--radius-max {} --excluded-sector-deg {} --excluded-sector-centre-deg {} "
-                                         "--radii {} --angles {} --seed {}{}\n(each workspace warm-started from the "
-                                         "one before)\ntip speed the joint limits allow: {:.3f} m/s",
-                                         w.radius_min, w.radius_max, w.excluded_sector_deg, w.excluded_sector_centre_deg,
-                                         w.radii, w.angles, settings.seed, warm, r.table.tip_speed));
+        r.table.save(output,
+                     fmt::format("ViSHaRD10 SCARA elbow codes, made by hapticd-scara-lut --radius-min {} "
+                                 "--radius-max {} --excluded-sector-deg {} --excluded-sector-centre-deg {} "
+                                 "--radii {} --angles {} --seed {}{}\n(each workspace warm-started from the "
+                                 "one before)\ntip speed the joint limits allow: {:.3f} m/s",
+                                 w.radius_min, w.radius_max, w.excluded_sector_deg, w.excluded_sector_centre_deg,
+                                 w.radii, w.angles, settings.seed, warm, r.table.tip_speed));
         fmt::print("wrote {}\n", output);
       }
     }

@@ -35,7 +35,8 @@ struct Problem {
   bool joints(int k, double s, double t, std::array<double, 4>& out) const {
     Eigen::Vector2d elbow;
     if (!ik::vishard10::elbow_from_code(*g, points[static_cast<std::size_t>(k)], s, t, elbow)) return false;
-    return ik::vishard10::scara_joints_from_elbow(*g, points[static_cast<std::size_t>(k)], elbow, branch12, branch34, out.data());
+    return ik::vishard10::scara_joints_from_elbow(*g, points[static_cast<std::size_t>(k)], elbow, branch12, branch34,
+                                                  out.data());
   }
 
   // Normalised rate of joint j on edge e (and the signed difference).
@@ -61,9 +62,13 @@ struct Problem {
         std::array<double, 4> probe{};
         const double hs = s > 0 ? -kStep : kStep, ht = t > 0 ? -kStep : kStep;  // step inwards
         (void)joints(static_cast<int>(k), s + hs, t, probe);
-        for (int j = 0; j < 4; ++j) dq_ds[k][static_cast<std::size_t>(j)] = std::remainder(probe[static_cast<std::size_t>(j)] - q[k][static_cast<std::size_t>(j)], 2 * kPi) / hs;
+        for (int j = 0; j < 4; ++j)
+          dq_ds[k][static_cast<std::size_t>(j)] =
+              std::remainder(probe[static_cast<std::size_t>(j)] - q[k][static_cast<std::size_t>(j)], 2 * kPi) / hs;
         (void)joints(static_cast<int>(k), s, t + ht, probe);
-        for (int j = 0; j < 4; ++j) dq_dt[k][static_cast<std::size_t>(j)] = std::remainder(probe[static_cast<std::size_t>(j)] - q[k][static_cast<std::size_t>(j)], 2 * kPi) / ht;
+        for (int j = 0; j < 4; ++j)
+          dq_dt[k][static_cast<std::size_t>(j)] =
+              std::remainder(probe[static_cast<std::size_t>(j)] - q[k][static_cast<std::size_t>(j)], 2 * kPi) / ht;
       }
     }
     return true;
@@ -204,7 +209,8 @@ double worst_normalised_rate(const Geometry& g, const ScaraTable& table, const s
     for (const Edge& e : problem.edges)
       for (int j = 0; j < 4; ++j)
         (*per_joint)[static_cast<std::size_t>(j)] =
-            std::max((*per_joint)[static_cast<std::size_t>(j)], problem.rate(e, j, difference) * speed_limits[static_cast<std::size_t>(j)]);
+            std::max((*per_joint)[static_cast<std::size_t>(j)],
+                     problem.rate(e, j, difference) * speed_limits[static_cast<std::size_t>(j)]);
   }
   return worst;
 }
@@ -273,8 +279,10 @@ ScaraOptimiserResult optimise_scara_table(const Geometry& g, const std::array<do
       const int l = std::min(static_cast<int>(f), settings.radial_lines - 2);
       const double u = f - l;
       for (int c = 0; c < 2; ++c)
-        x.push_back((1 - u) * lines[static_cast<std::size_t>(l)][2 * static_cast<std::size_t>(ir) + static_cast<std::size_t>(c)] +
-                    u * lines[static_cast<std::size_t>(l) + 1][2 * static_cast<std::size_t>(ir) + static_cast<std::size_t>(c)]);
+        x.push_back(
+            (1 - u) *
+                lines[static_cast<std::size_t>(l)][2 * static_cast<std::size_t>(ir) + static_cast<std::size_t>(c)] +
+            u * lines[static_cast<std::size_t>(l) + 1][2 * static_cast<std::size_t>(ir) + static_cast<std::size_t>(c)]);
     }
   }
   add_grid_edges(full, w.radii, w.angles);

@@ -35,8 +35,8 @@ struct ScaraOptimiserSettings {
 
 struct ScaraOptimiserResult {
   ik::vishard10::ScaraTable table;
-  double initial_worst_rate = 0.0;         // of the radial-line initial guess [rad/s per m/s, normalised]
-  double prismatic_pairs_worst_rate = 0.0;  // of the two-prismatic-pairs inverse function on the same mesh
+  double initial_worst_rate = 0.0;               // of the radial-line initial guess [rad/s per m/s, normalised]
+  double prismatic_pairs_worst_rate = 0.0;       // of the two-prismatic-pairs inverse function on the same mesh
   std::array<double, 4> worst_rate_per_joint{};  // rad/s per m/s
   std::string log;
 };

@@ -6,9 +6,9 @@ namespace hapticd {
 // another version is refused by the loader before any of its code is called. Bump on every change to a type
 // in api/include/hapticd that a plugin compiles against.
 inline constexpr int kApiVersion = 7;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
-                                        // 4: EngineInput in VirtualModelInput; 5: EngineInput weight,
-                                        //    local model and motion; 6: RenderGuard in
-                                        //    VirtualModelInput, update() may throw;
-                                        // 7: RedundancyResolution (IK -> controller)
+                                       // 4: EngineInput in VirtualModelInput; 5: EngineInput weight,
+                                       //    local model and motion; 6: RenderGuard in
+                                       //    VirtualModelInput, update() may throw;
+                                       // 7: RedundancyResolution (IK -> controller)
 
 }  // namespace hapticd

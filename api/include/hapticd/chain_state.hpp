@@ -18,10 +18,10 @@ struct ChainState {
   // [linear; angular]), frame_jacobian_dot_qd, mass_matrix (+ mass_llt), coriolis_torque, gravity_torque.
   const model::ModelData* data = nullptr;
   int handle_frame = -1;
-  JointVector velocity;            // reported by the device, or differentiated from its positions (filtered)
-  Pose handle_pose;                // world
-  Twist handle_twist;              // world, at the handle point
-  Wrench operator_wrench;          // world, at the handle point: the wrench the operator applies TO the handle
+  JointVector velocity;              // reported by the device, or differentiated from its positions (filtered)
+  Pose handle_pose;                  // world
+  Twist handle_twist;                // world, at the handle point
+  Wrench operator_wrench;            // world, at the handle point: the wrench the operator applies TO the handle
   bool has_operator_wrench = false;  // the device has a force/torque sensor
   bool output_saturated = false;     // the previous cycle's torque command was clamped at a drive's peak torque
 };

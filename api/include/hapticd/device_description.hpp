@@ -17,11 +17,11 @@ struct JointDescription {
 // What a device plugin tells the server about itself after configure(). Not used in the loop (strings and
 // vectors): the server copies what the loop needs into fixed-size storage.
 struct DeviceDescription {
-  std::string model;                // e.g. "vishard3", "test_mass_spring"
+  std::string model;  // e.g. "vishard3", "test_mass_spring"
   std::vector<JointDescription> joints;
-  std::string handle_frame;         // name of the handle (end-effector) frame in the robot model, if any
-  std::string sensor_frame;         // name of the force/torque sensor frame, if any
-  std::string robot_model_file;     // URDF of the chain, if any
+  std::string handle_frame;      // name of the handle (end-effector) frame in the robot model, if any
+  std::string sensor_frame;      // name of the force/torque sensor frame, if any
+  std::string robot_model_file;  // URDF of the chain, if any
   bool reports_joint_velocity = false;
   bool reports_wrench = false;
   bool reports_joint_torque = false;

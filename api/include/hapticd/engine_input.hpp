@@ -9,9 +9,8 @@
 // The server owns staleness: `weight` is 1 while the engine keeps its deadline and falls linearly to 0 over
 // the fade time after a missed deadline (and is 0 before the first input). Virtual models scale everything
 // they take from the engine by it, so a stalled or disconnected engine lets go of the device smoothly.
-#include <cstdint>
-
 #include <Eigen/Core>
+#include <cstdint>
 
 #include "hapticd/spatial.hpp"
 

@@ -16,6 +16,6 @@ inline constexpr std::size_t kMaxInputFileBytes = 4u * 1024u * 1024u;
 
 // `what` names the kind of file in messages ("session file", "robot model").
 HAPTICD_API std::string read_input_file(const std::filesystem::path& file, std::string_view what,
-                            std::size_t max_bytes = kMaxInputFileBytes);
+                                        std::size_t max_bytes = kMaxInputFileBytes);
 
 }  // namespace hapticd

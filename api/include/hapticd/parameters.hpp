@@ -39,13 +39,13 @@ struct ParameterSpec {
   std::string name;
   ParameterType type = ParameterType::real;
   std::string description;
-  std::string unit;                           // empty for dimensionless
+  std::string unit;                             // empty for dimensionless
   std::optional<ParameterValue> default_value;  // absent: the parameter is required
-  std::optional<double> minimum;              // numbers and every element of a vector
+  std::optional<double> minimum;                // numbers and every element of a vector
   std::optional<double> maximum;
   bool minimum_exclusive = false;
-  std::optional<std::size_t> size;            // vectors: exact number of elements
-  std::vector<std::string> choices;           // strings: the allowed values (empty: any)
+  std::optional<std::size_t> size;   // vectors: exact number of elements
+  std::vector<std::string> choices;  // strings: the allowed values (empty: any)
 
   [[nodiscard]] bool required() const noexcept { return !default_value.has_value(); }
   // Throws ParameterError if the value breaks a bound, size or choice; the message says what would be valid.

@@ -61,8 +61,9 @@ PluginDescriptor describe_plugin(const char* name, const char* version, const ch
     d.kind = PluginKind::inverse_kinematics;
     d.create_inverse_kinematics = []() -> std::unique_ptr<InverseKinematics> { return std::make_unique<T>(); };
   } else {
-    static_assert(std::is_base_of_v<VirtualModel, T>, "a plugin derives from Device, Controller, "
-                                                      "InverseKinematics or VirtualModel");
+    static_assert(std::is_base_of_v<VirtualModel, T>,
+                  "a plugin derives from Device, Controller, "
+                  "InverseKinematics or VirtualModel");
     d.kind = PluginKind::virtual_model;
     d.create_virtual_model = []() -> std::unique_ptr<VirtualModel> { return std::make_unique<T>(); };
   }
@@ -71,10 +72,10 @@ PluginDescriptor describe_plugin(const char* name, const char* version, const ch
 
 }  // namespace hapticd
 
-#define HAPTICD_PLUGIN_LIBRARY(...)                                                                     \
-  extern "C" HAPTICD_API int hapticd_plugin_api_version() { return ::hapticd::kApiVersion; }           \
-  extern "C" HAPTICD_API const ::hapticd::PluginCatalog* hapticd_plugin_catalog() {                    \
-    static const ::hapticd::PluginDescriptor entries[] = {__VA_ARGS__};                                 \
-    static const ::hapticd::PluginCatalog catalog{entries, sizeof(entries) / sizeof(entries[0])};       \
-    return &catalog;                                                                                    \
+#define HAPTICD_PLUGIN_LIBRARY(...)                                                               \
+  extern "C" HAPTICD_API int hapticd_plugin_api_version() { return ::hapticd::kApiVersion; }      \
+  extern "C" HAPTICD_API const ::hapticd::PluginCatalog* hapticd_plugin_catalog() {               \
+    static const ::hapticd::PluginDescriptor entries[] = {__VA_ARGS__};                           \
+    static const ::hapticd::PluginCatalog catalog{entries, sizeof(entries) / sizeof(entries[0])}; \
+    return &catalog;                                                                              \
   }

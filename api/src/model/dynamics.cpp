@@ -91,13 +91,11 @@ void coriolis_matrix(const RobotModel& model, ModelData& data, JointMatrix& cori
   }
 }
 
-void inverse_dynamics(const RobotModel& model, ModelData& data, const JointVector& qdd,
-                      JointVector& tau) noexcept {
+void inverse_dynamics(const RobotModel& model, ModelData& data, const JointVector& qdd, JointVector& tau) noexcept {
   newton_euler(model, data, gravity_base_acceleration(model), &qdd, true, tau);
 }
 
-void forward_dynamics(const RobotModel& model, ModelData& data, const JointVector& tau,
-                      JointVector& qdd) noexcept {
+void forward_dynamics(const RobotModel& model, ModelData& data, const JointVector& tau, JointVector& qdd) noexcept {
   joint_space_inertia(model, data);
   newton_euler(model, data, gravity_base_acceleration(model), nullptr, true, data.scratch);
   qdd = tau - data.scratch;

@@ -31,7 +31,8 @@ double number(const std::filesystem::path& file, const YAML::Node& node, const s
 
 template <std::size_t N>
 void numbers(const std::filesystem::path& file, const YAML::Node& node, const std::string& key, double* out) {
-  if (!node.IsSequence() || node.size() != N) fail(file, node, key, "must be a list of " + std::to_string(N) + " numbers");
+  if (!node.IsSequence() || node.size() != N)
+    fail(file, node, key, "must be a list of " + std::to_string(N) + " numbers");
   for (std::size_t i = 0; i < N; ++i) out[i] = number(file, node[i], key + "[" + std::to_string(i) + "]");
 }
 
@@ -62,7 +63,8 @@ FrictionFile read_friction_file(const std::filesystem::path& file) {
     for (const auto& entry : j) {
       const std::string k = entry.first.as<std::string>();
       if (k != "name" && k != "coulomb" && k != "viscous" && k != "load" && k != "velocity_max" && k != "breakaway")
-        fail(file, entry.first, key + "." + k, "unknown key (known: name, coulomb, viscous, load, velocity_max, breakaway)");
+        fail(file, entry.first, key + "." + k,
+             "unknown key (known: name, coulomb, viscous, load, velocity_max, breakaway)");
     }
     FrictionModel m;
     if (!j["coulomb"]) fail(file, j, key + ".coulomb", "missing");

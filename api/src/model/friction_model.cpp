@@ -22,10 +22,9 @@ namespace {
 // Weighted least squares for the columns produced by `row`; nothing when rank-deficient.
 // ridge: weight (relative to the summed sample weights) pulling the solution towards prior.
 template <int N, class Row>
-std::optional<Eigen::Matrix<double, N, 1>> weighted_fit(std::span<const FrictionSample> samples, Row row,
-                                                        double ridge = 0.0,
-                                                        const Eigen::Matrix<double, N, 1>& prior =
-                                                            Eigen::Matrix<double, N, 1>::Zero()) {
+std::optional<Eigen::Matrix<double, N, 1>> weighted_fit(
+    std::span<const FrictionSample> samples, Row row, double ridge = 0.0,
+    const Eigen::Matrix<double, N, 1>& prior = Eigen::Matrix<double, N, 1>::Zero()) {
   Eigen::Matrix<double, N, N> ata = Eigen::Matrix<double, N, N>::Zero();
   Eigen::Matrix<double, N, 1> atb = Eigen::Matrix<double, N, 1>::Zero();
   double total = 0.0;

@@ -34,8 +34,7 @@ void forward_kinematics(const RobotModel& model, ModelData& data, const JointVec
   }
 }
 
-void forward_velocity(const RobotModel& model, ModelData& data, const JointVector& q,
-                      const JointVector& qd) noexcept {
+void forward_velocity(const RobotModel& model, ModelData& data, const JointVector& q, const JointVector& qd) noexcept {
   forward_kinematics(model, data, q);
   data.qd = qd;
   Motion v;
@@ -59,8 +58,7 @@ Eigen::Isometry3d frame_pose(const RobotModel& model, const ModelData& data, int
   return body * f.placement;
 }
 
-void frame_jacobian(const RobotModel& model, const ModelData& data, int frame_id,
-                    TaskJacobian& jacobian) noexcept {
+void frame_jacobian(const RobotModel& model, const ModelData& data, int frame_id, TaskJacobian& jacobian) noexcept {
   const int n = model.dof();
   jacobian.setZero(6, n);
   const Frame& f = model.frame(frame_id);

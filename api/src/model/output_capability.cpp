@@ -92,11 +92,11 @@ GridCapability grid_output_capability(const RobotModel& model, int frame_id, con
   solver.rows = grid.free_orientation ? TaskRows::kTranslation : options.task;
   const int k = grid.points_per_axis;
   for (const Eigen::Vector3d& rpy : grid.orientation_offsets) {
-    const Eigen::Matrix3d orientation = (Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
-                                         Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
-                                         Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX()))
-                                            .toRotationMatrix() *
-                                        grid.nominal_orientation;
+    const Eigen::Matrix3d orientation =
+        (Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+         Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX()))
+            .toRotationMatrix() *
+        grid.nominal_orientation;
     JointVector q = q_seed;  // carried along the grid in serpentine order
     for (int a = 0; a < k; ++a) {
       for (int b0 = 0; b0 < k; ++b0) {

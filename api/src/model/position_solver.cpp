@@ -9,18 +9,20 @@ namespace {
 
 TaskVector select(const Vector6d& e, TaskRows rows) {
   switch (rows) {
-    case TaskRows::kTranslation: return e.head<3>();
-    case TaskRows::kRotation: return e.tail<3>();
-    case TaskRows::kFull: break;
+    case TaskRows::kTranslation:
+      return e.head<3>();
+    case TaskRows::kRotation:
+      return e.tail<3>();
+    case TaskRows::kFull:
+      break;
   }
   return e;
 }
 
 }  // namespace
 
-PositionSolution solve_position(const RobotModel& model, ModelData& data, int frame_id,
-                                const Eigen::Isometry3d& target, JointVector& q,
-                                const PositionSolverOptions& options) noexcept {
+PositionSolution solve_position(const RobotModel& model, ModelData& data, int frame_id, const Eigen::Isometry3d& target,
+                                JointVector& q, const PositionSolverOptions& options) noexcept {
   PositionSolution result;
   TaskJacobian full;
   TaskJacobian j;

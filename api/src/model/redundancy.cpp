@@ -7,10 +7,14 @@ namespace hapticd::model {
 
 const char* to_string(InverseKind kind) noexcept {
   switch (kind) {
-    case InverseKind::kPseudoinverse: return "pseudoinverse";
-    case InverseKind::kWeighted: return "weighted";
-    case InverseKind::kDamped: return "damped";
-    case InverseKind::kInertiaWeighted: return "inertia_weighted";
+    case InverseKind::kPseudoinverse:
+      return "pseudoinverse";
+    case InverseKind::kWeighted:
+      return "weighted";
+    case InverseKind::kDamped:
+      return "damped";
+    case InverseKind::kInertiaWeighted:
+      return "inertia_weighted";
   }
   return "?";
 }

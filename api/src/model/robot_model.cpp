@@ -12,8 +12,8 @@ double DriveData::max_joint_speed() const noexcept {
   return max_input_speed_rpm * 2.0 * std::numbers::pi / 60.0 / gear_ratio;
 }
 
-RobotModel::RobotModel(std::string name, std::string source_file, std::vector<Body> bodies,
-                       std::vector<Frame> frames, Eigen::Vector3d gravity)
+RobotModel::RobotModel(std::string name, std::string source_file, std::vector<Body> bodies, std::vector<Frame> frames,
+                       Eigen::Vector3d gravity)
     : name_(std::move(name)),
       source_file_(std::move(source_file)),
       bodies_(std::move(bodies)),

@@ -19,7 +19,8 @@ void SideCriteria::configure(const RobotModel& model, const SideCriteriaSettings
   const int n = model.dof();
   const auto frames = static_cast<int>(model.frames().size());
   if (settings.wrist != 0.0 && (settings.wrist_joint < 0 || settings.wrist_joint >= n))
-    throw std::invalid_argument("wrist joint " + std::to_string(settings.wrist_joint + 1) + " outside 1.." + std::to_string(n));
+    throw std::invalid_argument("wrist joint " + std::to_string(settings.wrist_joint + 1) + " outside 1.." +
+                                std::to_string(n));
   if (settings.frame < 0 || settings.frame >= frames) throw std::invalid_argument("no frame for the side criteria");
   model_ = &model;
   settings_ = settings;

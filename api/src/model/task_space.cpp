@@ -9,9 +9,15 @@ namespace hapticd::model {
 
 void select_rows(const TaskJacobian& full, TaskRows rows, TaskJacobian& task) noexcept {
   switch (rows) {
-    case TaskRows::kFull: task = full; break;
-    case TaskRows::kTranslation: task = full.topRows(3); break;
-    case TaskRows::kRotation: task = full.bottomRows(3); break;
+    case TaskRows::kFull:
+      task = full;
+      break;
+    case TaskRows::kTranslation:
+      task = full.topRows(3);
+      break;
+    case TaskRows::kRotation:
+      task = full.bottomRows(3);
+      break;
   }
 }
 

@@ -1,9 +1,9 @@
 #include "hapticd/model/urdf_loader.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -136,10 +136,17 @@ class ChainBuilder {
 
 // <hapticd_drive joint="..." .../>: every numeric attribute is required, gear and motor are optional names.
 void read_drives(const TiXmlDocument& doc, const std::string& source, std::vector<Body>& bodies) {
-  static const char* const kNumeric[] = {
-      "gear_ratio",          "gear_peak_torque",      "gear_average_torque",     "stiffness_min",
-      "stiffness_max",       "max_input_speed_rpm",   "wave_generator_inertia",  "motor_stall_torque",
-      "motor_continuous_torque", "rotor_inertia",     "encoder_counts_per_motor_rev"};
+  static const char* const kNumeric[] = {"gear_ratio",
+                                         "gear_peak_torque",
+                                         "gear_average_torque",
+                                         "stiffness_min",
+                                         "stiffness_max",
+                                         "max_input_speed_rpm",
+                                         "wave_generator_inertia",
+                                         "motor_stall_torque",
+                                         "motor_continuous_torque",
+                                         "rotor_inertia",
+                                         "encoder_counts_per_motor_rev"};
   const TiXmlElement* robot = doc.RootElement();
   std::set<std::string> seen;
   for (const TiXmlElement* e = robot->FirstChildElement("hapticd_drive"); e != nullptr;
@@ -199,7 +206,8 @@ void read_drives(const TiXmlDocument& doc, const std::string& source, std::vecto
 // and whose principal moments satisfy the triangle inequality (each at most the sum of the other two). urdfdom
 // accepts "nan" and negative masses, and the dynamics would run on them.
 void check_inertials(const TiXmlElement& robot, const std::string& source) {
-  for (const TiXmlElement* link = robot.FirstChildElement("link"); link != nullptr; link = link->NextSiblingElement("link")) {
+  for (const TiXmlElement* link = robot.FirstChildElement("link"); link != nullptr;
+       link = link->NextSiblingElement("link")) {
     const TiXmlElement* inertial = link->FirstChildElement("inertial");
     if (inertial == nullptr) continue;
     const std::string name = link->Attribute("name") != nullptr ? link->Attribute("name") : "?";
@@ -217,7 +225,8 @@ void check_inertials(const TiXmlElement& robot, const std::string& source) {
     };
     const TiXmlElement* mass = inertial->FirstChildElement("mass");
     if (mass == nullptr) fail(*inertial, "<inertial> without <mass>");
-    if (const double m = number(*mass, "value"); !(m > 0.0)) fail(*mass, "mass " + std::to_string(m) + " kg: must be above zero");
+    if (const double m = number(*mass, "value"); !(m > 0.0))
+      fail(*mass, "mass " + std::to_string(m) + " kg: must be above zero");
     const TiXmlElement* inertia = inertial->FirstChildElement("inertia");
     if (inertia == nullptr) fail(*inertial, "<inertial> without <inertia>");
     Eigen::Matrix3d i;
@@ -226,12 +235,14 @@ void check_inertials(const TiXmlElement& robot, const std::string& source) {
     i(1, 0) = i(0, 1);
     i(2, 0) = i(0, 2);
     i(2, 1) = i(1, 2);
-    const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(i, Eigen::EigenvaluesOnly).eigenvalues();
+    const Eigen::Vector3d moments =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(i, Eigen::EigenvaluesOnly).eigenvalues();
     if (!(moments.minCoeff() > 0.0)) fail(*inertia, "the inertia tensor is not positive definite");
     const double tolerance = 1e-9 * moments.maxCoeff();
     for (int k = 0; k < 3; ++k)
       if (moments[k] > moments[(k + 1) % 3] + moments[(k + 2) % 3] + tolerance)
-        fail(*inertia, "the principal moments of inertia violate the triangle inequality (one exceeds the sum of the others)");
+        fail(*inertia,
+             "the principal moments of inertia violate the triangle inequality (one exceeds the sum of the others)");
   }
 }
 

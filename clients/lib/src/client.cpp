@@ -145,7 +145,8 @@ struct Client::Impl {
   std::function<void(const hapticd_msg_Event&)> event_callback;
   std::function<void(const hapticd_msg_Telemetry&)> telemetry_callback;
   std::function<void(const hapticd_msg_FaultReport&)> fault_report_callback;
-  std::map<std::string, std::unique_ptr<hapticd_msg_FaultReport>> fault_reports;  // the newest per device (~100 kB each)
+  std::map<std::string, std::unique_ptr<hapticd_msg_FaultReport>>
+      fault_reports;  // the newest per device (~100 kB each)
   std::mutex state_take_mutex;
   dds::Participant participant;
   dds::CommandTiming timing;
@@ -160,7 +161,6 @@ struct Client::Impl {
   dds::Entity waitset, wake;
   std::thread thread;
   std::atomic<bool> stopping{false};
-
 };
 
 Client::Client(ClientOptions options) {
@@ -179,7 +179,8 @@ std::vector<hapticd_msg_DeviceDescription> Client::devices() const {
   return v;
 }
 
-std::optional<hapticd_msg_DeviceDescription> Client::wait_for_device(std::string_view device, Timeout timeout, bool started) {
+std::optional<hapticd_msg_DeviceDescription> Client::wait_for_device(std::string_view device, Timeout timeout,
+                                                                     bool started) {
   std::unique_lock lock(impl_->mutex);
   const std::string key(device);
   const auto ready = [&] {
@@ -199,7 +200,8 @@ std::optional<hapticd_msg_DeviceState> Client::latest_state(std::string_view dev
   return *s;
 }
 
-std::optional<hapticd_msg_DeviceState> Client::wait_for_state(std::string_view device, Timeout timeout, std::uint64_t after) {
+std::optional<hapticd_msg_DeviceState> Client::wait_for_state(std::string_view device, Timeout timeout,
+                                                              std::uint64_t after) {
   std::unique_lock lock(impl_->mutex);
   const std::string key(device);
   impl_->waiters.fetch_add(1);
@@ -231,7 +233,8 @@ void Client::on_fault_report(std::function<void(const hapticd_msg_FaultReport&)>
     std::lock_guard lock(impl_->callback_mutex);
     impl_->fault_report_callback = callback;
     if (callback)
-      for (const auto& [device, r] : impl_->fault_reports) received.push_back(std::make_unique<hapticd_msg_FaultReport>(*r));
+      for (const auto& [device, r] : impl_->fault_reports)
+        received.push_back(std::make_unique<hapticd_msg_FaultReport>(*r));
   }
   for (const auto& r : received) callback(*r);  // those that arrived before (a late joiner's transient-local ones)
 }
@@ -254,7 +257,8 @@ Reply Client::request(std::string_view device, hapticd_msg_RequestKind kind, std
   r.value_count = static_cast<std::int32_t>(std::min<std::size_t>(values.size(), hapticd_msg_MAX_VALUES));
   for (std::int32_t i = 0; i < r.value_count; ++i) r.values[i] = values[static_cast<std::size_t>(i)];
   // A reliable writer delivers to the readers it has matched: give discovery a moment after start-up.
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout);
+  const auto until =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout);
   while (impl_->request.matched() == 0 && std::chrono::steady_clock::now() < until)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   if (!impl_->request.write(r)) return Reply{false, false, "cannot write the request"};
@@ -271,16 +275,24 @@ Reply Client::claim(std::string_view device, Timeout timeout) {
   if (r.accepted) reset_serial();
   return r;
 }
-Reply Client::release(std::string_view device, Timeout timeout) { return request(device, hapticd_msg_REQUEST_RELEASE, {}, {}, timeout); }
+Reply Client::release(std::string_view device, Timeout timeout) {
+  return request(device, hapticd_msg_REQUEST_RELEASE, {}, {}, timeout);
+}
 Reply Client::switch_scheme(std::string_view device, std::string_view scheme, Timeout timeout) {
   return request(device, hapticd_msg_REQUEST_SWITCH_SCHEME, scheme, {}, timeout);
 }
-Reply Client::set_parameter(std::string_view device, std::string_view parameter, const std::vector<double>& values, Timeout timeout) {
+Reply Client::set_parameter(std::string_view device, std::string_view parameter, const std::vector<double>& values,
+                            Timeout timeout) {
   return request(device, hapticd_msg_REQUEST_SET_PARAMETER, parameter, values, timeout);
 }
-Reply Client::emergency_stop(std::string_view device, Timeout timeout) { return request(device, hapticd_msg_REQUEST_ESTOP, {}, {}, timeout); }
-Reply Client::recover(std::string_view device, Timeout timeout) { return request(device, hapticd_msg_REQUEST_RECOVER, {}, {}, timeout); }
-Reply Client::operator_command(std::string_view device, std::string_view command, const std::vector<double>& values, Timeout timeout) {
+Reply Client::emergency_stop(std::string_view device, Timeout timeout) {
+  return request(device, hapticd_msg_REQUEST_ESTOP, {}, {}, timeout);
+}
+Reply Client::recover(std::string_view device, Timeout timeout) {
+  return request(device, hapticd_msg_REQUEST_RECOVER, {}, {}, timeout);
+}
+Reply Client::operator_command(std::string_view device, std::string_view command, const std::vector<double>& values,
+                               Timeout timeout) {
   return request(device, hapticd_msg_REQUEST_OPERATOR, command, values, timeout);
 }
 
@@ -304,7 +316,8 @@ hapticd_msg_EngineCommand pose_command(hapticd_msg_CommandKind kind, const Pose&
 }
 }  // namespace
 
-bool Client::send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist, std::uint64_t state_serial) {
+bool Client::send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist,
+                           std::uint64_t state_serial) {
   hapticd_msg_EngineCommand c = pose_command(hapticd_msg_COMMAND_COUPLING, proxy, proxy_twist, state_serial);
   return send(device, c);
 }

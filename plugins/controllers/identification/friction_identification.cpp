@@ -17,26 +17,45 @@ ParameterSchema FrictionIdentification::parameter_schema() {
   ParameterSchema s;
   s.string("output_file", "friction file to write (relative: to the session file's folder)");
   s.real_vector("joints", "joints to identify, counted from 1; empty: all").default_value(std::vector<double>{});
-  s.real_vector("speeds", "cruise speeds of the strokes, increasing").unit("rad/s")
+  s.real_vector("speeds", "cruise speeds of the strokes, increasing")
+      .unit("rad/s")
       .default_value(std::vector<double>{0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0});
-  s.real("stroke_rad", "length of each stroke, centred on the joint's start position").unit("rad").greater_than(0.0)
+  s.real("stroke_rad", "length of each stroke, centred on the joint's start position")
+      .unit("rad")
+      .greater_than(0.0)
       .default_value(0.6);
-  s.real("max_stroke_time_s", "slow strokes are shortened to cruise for at most this long").unit("s")
-      .greater_than(0.0).default_value(4.0);
-  s.real("acceleration", "acceleration at the ends of each stroke").unit("rad/s^2").greater_than(0.0)
+  s.real("max_stroke_time_s", "slow strokes are shortened to cruise for at most this long")
+      .unit("s")
+      .greater_than(0.0)
+      .default_value(4.0);
+  s.real("acceleration", "acceleration at the ends of each stroke")
+      .unit("rad/s^2")
+      .greater_than(0.0)
       .default_value(30.0);
   s.real("breakaway_rate", "torque ramp of the break-away test").unit("N m/s").greater_than(0.0).default_value(2.0);
-  s.integer("breakaway_repeats", "break-away tests per joint (alternating directions)").minimum(1).maximum(50)
+  s.integer("breakaway_repeats", "break-away tests per joint (alternating directions)")
+      .minimum(1)
+      .maximum(50)
       .default_value(4);
-  s.real("breakaway_motion_rad", "motion that ends a break-away ramp").unit("rad").greater_than(0.0)
+  s.real("breakaway_motion_rad", "motion that ends a break-away ramp")
+      .unit("rad")
+      .greater_than(0.0)
       .default_value(0.0005);
   s.real("hold_hz", "bandwidth of the computed-torque position hold").unit("Hz").greater_than(0.0).default_value(5.0);
-  s.real("load_scale_nm", "typical load torque (scales the fit's load features)").unit("N m").greater_than(0.0)
+  s.real("load_scale_nm", "typical load torque (scales the fit's load features)")
+      .unit("N m")
+      .greater_than(0.0)
       .default_value(20.0);
-  s.real("min_load_spread_nm", "the load part is identified only when the load torque varied this much (standard "
-                                "deviation)").unit("N m").greater_than(0.0).default_value(2.0);
-  s.integer("window", "samples of the friction estimator's differences and averages").minimum(2)
-      .maximum(kMaxEstimationWindow).default_value(40);
+  s.real("min_load_spread_nm",
+         "the load part is identified only when the load torque varied this much (standard "
+         "deviation)")
+      .unit("N m")
+      .greater_than(0.0)
+      .default_value(2.0);
+  s.integer("window", "samples of the friction estimator's differences and averages")
+      .minimum(2)
+      .maximum(kMaxEstimationWindow)
+      .default_value(40);
   return s;
 }
 
@@ -112,7 +131,8 @@ ReturnCode FrictionIdentification::activate(const ControllerInput& current, cons
   q_ref_ = current.device.joints.position;
   qd_ref_.setZero(dof_);
   qdd_ref_.setZero(dof_);
-  previous_command_ = last_command.torque_nm.size() == dof_ ? last_command.torque_nm : current.chain->data->gravity_torque;
+  previous_command_ =
+      last_command.torque_nm.size() == dof_ ? last_command.torque_nm : current.chain->data->gravity_torque;
   estimator_.reset(current.device.joints.position);
   for (auto& n : normal_) n.setZero();
   for (auto& r : rhs_) r.setZero();
@@ -170,7 +190,8 @@ ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const Cont
   const ChainState& c = *in.chain;
   const model::ModelData& d = *c.data;
   const JointVector& q = in.device.joints.position;
-  const JointVector operator_torques = model::operator_wrench_torques(c, std::min(6, static_cast<int>(d.frame_jacobian.rows())));
+  const JointVector operator_torques =
+      model::operator_wrench_torques(c, std::min(6, static_cast<int>(d.frame_jacobian.rows())));
   estimator_.sample(q, previous_command_, operator_torques, d, no_load_model_, false);
   phase_time_ += period_s_;
 

@@ -12,12 +12,11 @@
 //      arm spring resist the strokes: the other joints hold, coupling the moving joint to the load).
 // All other joints hold their position under computed-torque control. The experiment's timeline is fixed by
 // the parameters (duration() tells how long a session must run); the file is written at deactivate().
+#include <Eigen/Core>
 #include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "friction_compensation.hpp"
 #include "friction_estimator.hpp"
@@ -48,8 +47,8 @@ class FrictionIdentification final : public Controller {
   void start_move(double target, double speed) noexcept;
   void advance_stroke(const JointVector& q) noexcept;
   [[nodiscard]] double stroke_length(double speed) const noexcept;
-  static constexpr double kPositioningSpeed = 0.5;   // [rad/s] moves that are not recorded
-  static constexpr double kMaxBreakaway = 4.5;       // [N m] a ramp that has not broken away by then ends
+  static constexpr double kPositioningSpeed = 0.5;  // [rad/s] moves that are not recorded
+  static constexpr double kMaxBreakaway = 4.5;      // [N m] a ramp that has not broken away by then ends
 
   // Settings.
   std::vector<int> joints_;
@@ -70,11 +69,11 @@ class FrictionIdentification final : public Controller {
 
   // State.
   Phase phase_ = Phase::kSettle;
-  int joint_index_ = -1;    // into joints_
-  int joint_ = 0;           // the joint under identification
+  int joint_index_ = -1;  // into joints_
+  int joint_ = 0;         // the joint under identification
   double phase_time_ = 0.0;
   int repeat_ = 0;
-  int move_ = 0;            // stroke index within the speed list (two per speed)
+  int move_ = 0;  // stroke index within the speed list (two per speed)
   double centre_ = 0.0, breakaway_start_ = 0.0;
   TrapezoidMove trapezoid_;
   JointVector q_ref_, qd_ref_, qdd_ref_, previous_command_, qdd_c_, peak_torque_, continuous_torque_;

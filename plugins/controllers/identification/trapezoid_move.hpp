@@ -6,13 +6,11 @@
 namespace hapticd::controllers {
 
 struct TrapezoidMove {
-  double start = 0.0, distance = 0.0;   // [rad], signed
+  double start = 0.0, distance = 0.0;  // [rad], signed
   double speed = 1.0, acceleration = 10.0;
 
   [[nodiscard]] double accel_time() const noexcept { return speed / acceleration; }
-  [[nodiscard]] double cruise_time() const noexcept {
-    return std::max(0.0, std::abs(distance) / speed - accel_time());
-  }
+  [[nodiscard]] double cruise_time() const noexcept { return std::max(0.0, std::abs(distance) / speed - accel_time()); }
   [[nodiscard]] double duration() const noexcept { return 2.0 * accel_time() + cruise_time(); }
   // The stroke must be long enough to reach the cruise speed.
   [[nodiscard]] static bool reaches_speed(double distance, double speed, double acceleration) noexcept {

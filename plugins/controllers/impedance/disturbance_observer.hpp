@@ -4,8 +4,8 @@
 //   d_hat = Q(s) [ a M qdd + C qd + g - tau_prev - J^T F_h ]
 // with qdd from the differentiated joint velocity, tau_prev the torque commanded in the previous cycle and
 // Q a second-order low-pass; the controller adds -d_hat to its command. The nominal inertia a M (a <= 1)
-// sets what the operator feels: a = 1 removes friction and model errors, a < 1 also (1 - a) of the inertia. At rest the estimate acts as an
-// integrator of the operator's force (it breaks stiction), so it is limited to +-limit per joint.
+// sets what the operator feels: a = 1 removes friction and model errors, a < 1 also (1 - a) of the inertia. At rest the
+// estimate acts as an integrator of the operator's force (it breaks stiction), so it is limited to +-limit per joint.
 // Real-time safe.
 #include "hapticd/joint_vector.hpp"
 #include "hapticd/signal/biquad.hpp"

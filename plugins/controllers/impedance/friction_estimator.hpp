@@ -23,10 +23,10 @@ inline constexpr int kMaxEstimationWindow = 64;
 struct FrictionBinData {
   int dof = 0;
   double bin_width = 0.05;
-  double time_s = 0.0;            // cycle time of the hand-over
+  double time_s = 0.0;  // cycle time of the hand-over
   std::uint64_t sequence = 0;
-  std::array<std::array<double, kFrictionBins>, kMaxJoints> sum{};       // sum of friction estimates [N m]
-  std::array<std::array<double, kFrictionBins>, kMaxJoints> speed_sum{}; // sum of speeds [rad/s]
+  std::array<std::array<double, kFrictionBins>, kMaxJoints> sum{};        // sum of friction estimates [N m]
+  std::array<std::array<double, kFrictionBins>, kMaxJoints> speed_sum{};  // sum of speeds [rad/s]
   std::array<std::array<double, kFrictionBins>, kMaxJoints> count{};
 
   void clear() noexcept {

@@ -23,8 +23,8 @@ RetuneResult retune_joint(const FrictionBinData& bins, int joint, const model::F
   }
   r.bins = static_cast<int>(samples.size());
   if (r.bins < checks.min_bins || highest - lowest < checks.min_span) {
-    r.reason = "poor excitation (" + std::to_string(r.bins) + " bins over " + std::to_string(std::max(0.0, highest - lowest)) +
-               " rad/s)";
+    r.reason = "poor excitation (" + std::to_string(r.bins) + " bins over " +
+               std::to_string(std::max(0.0, highest - lowest)) + " rad/s)";
     return r;
   }
   // Equal weight per bin: the bins the device dwells in must not dominate the curve.

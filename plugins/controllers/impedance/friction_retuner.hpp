@@ -28,17 +28,17 @@ namespace hapticd::controllers {
 struct RetuneChecks {
   int min_bins = 6;
   double min_bin_samples = 100.0;
-  double min_span = 0.4;             // [rad/s]
-  double low_speed = 1.0;            // [rad/s]
-  double fraction = 0.8;             // share of the model the compensator applies
-  double regularization = 0.01;      // ridge weight towards the present curve
-  double memory = 0.5;               // weight of the previous data at each update
+  double min_span = 0.4;         // [rad/s]
+  double low_speed = 1.0;        // [rad/s]
+  double fraction = 0.8;         // share of the model the compensator applies
+  double regularization = 0.01;  // ridge weight towards the present curve
+  double memory = 0.5;           // weight of the previous data at each update
 };
 
 // Outcome of one joint's fit.
 struct RetuneResult {
   bool accepted = false;
-  std::string reason;                // why it was rejected; empty when accepted
+  std::string reason;  // why it was rejected; empty when accepted
   model::FrictionModel model;
   int bins = 0;
 };
@@ -49,7 +49,7 @@ RetuneResult retune_joint(const FrictionBinData& bins, int joint, const model::F
 
 struct RetunedModels {
   FrictionModels models{};
-  std::uint64_t sequence = 0;        // the sequence of the bin data they were fitted to
+  std::uint64_t sequence = 0;  // the sequence of the bin data they were fitted to
 };
 
 class FrictionRetuner {

@@ -14,69 +14,113 @@ namespace hapticd::controllers {
 ParameterSchema ImpedanceController::parameter_schema() {
   ParameterSchema s;
   model::declare_task_parameter(s, "rendered handle wrench");
-  s.real("force_gain", "proportional force feedback Kp (0: open-loop impedance control)").minimum(0.0).maximum(50.0)
+  s.real("force_gain", "proportional force feedback Kp (0: open-loop impedance control)")
+      .minimum(0.0)
+      .maximum(50.0)
       .default_value(0.0);
-  s.real("force_derivative_gain", "derivative force feedback Kd").unit("s").minimum(0.0).maximum(1.0).default_value(0.0);
-  s.real("derivative_filter_hz", "low-pass of the force-error derivative").unit("Hz").greater_than(0.0)
+  s.real("force_derivative_gain", "derivative force feedback Kd")
+      .unit("s")
+      .minimum(0.0)
+      .maximum(1.0)
+      .default_value(0.0);
+  s.real("derivative_filter_hz", "low-pass of the force-error derivative")
+      .unit("Hz")
+      .greater_than(0.0)
       .default_value(100.0);
   s.boolean("gravity_compensation", "add the model's gravity torques").default_value(true);
   // Sliding friction.
-  s.boolean("friction_compensation", "add the model's sliding friction in the direction of motion").default_value(false);
-  s.string("friction_file", "identified friction per joint (written by the friction_identification controller, "
-                            "e.g. config/sessions/vishard3/identify-friction.yaml); empty: the polynomial "
-                            "below for every joint").default_value(std::string());
+  s.boolean("friction_compensation", "add the model's sliding friction in the direction of motion")
+      .default_value(false);
+  s.string("friction_file",
+           "identified friction per joint (written by the friction_identification controller, "
+           "e.g. config/sessions/vishard3/identify-friction.yaml); empty: the polynomial "
+           "below for every joint")
+      .default_value(std::string());
   s.real_vector("friction_polynomial", "p0 .. p4 of the sliding friction [N m vs rad/s] (default: the 26 C curve)")
-      .size(5).default_value(std::vector<double>{1.183, 1.008, -0.2642, 0.0487, -0.0037});
-  s.real_vector("friction_load", "a0, a1, a2 of the load-dependent friction").size(3)
+      .size(5)
+      .default_value(std::vector<double>{1.183, 1.008, -0.2642, 0.0487, -0.0037});
+  s.real_vector("friction_load", "a0, a1, a2 of the load-dependent friction")
+      .size(3)
       .default_value(std::vector<double>{0.0, 0.02, 0.0});
-  s.real("friction_velocity_max", "highest identified velocity: the polynomial is held beyond it").unit("rad/s")
-      .greater_than(0.0).default_value(5.0);
-  s.real("friction_smooth_velocity", "velocity over which the compensation direction blends in").unit("rad/s")
-      .greater_than(0.0).default_value(0.05);
-  s.real("friction_fraction", "share of the modelled friction compensated").minimum(0.0).maximum(1.0)
+  s.real("friction_velocity_max", "highest identified velocity: the polynomial is held beyond it")
+      .unit("rad/s")
+      .greater_than(0.0)
+      .default_value(5.0);
+  s.real("friction_smooth_velocity", "velocity over which the compensation direction blends in")
+      .unit("rad/s")
+      .greater_than(0.0)
+      .default_value(0.05);
+  s.real("friction_fraction", "share of the modelled friction compensated")
+      .minimum(0.0)
+      .maximum(1.0)
       .default_value(0.8);
   // Static friction: variable-structure PID/PD force control.
-  s.boolean("stiction_compensation", "variable-structure force control: PID at rest, PD with friction "
-                                     "compensation while moving").default_value(false);
+  s.boolean("stiction_compensation",
+            "variable-structure force control: PID at rest, PD with friction "
+            "compensation while moving")
+      .default_value(false);
   s.real("stiction_integral_gain", "Ki of the force error at rest").unit("1/s").minimum(0.0).default_value(100.0);
-  s.real("stiction_integrator_limit_nm", "limit of each joint's integrator").unit("N m").greater_than(0.0)
+  s.real("stiction_integrator_limit_nm", "limit of each joint's integrator")
+      .unit("N m")
+      .greater_than(0.0)
       .default_value(2.0);
-  s.real("stiction_moving_velocity", "relay: a joint counts as moving above this speed").unit("rad/s")
-      .greater_than(0.0).default_value(0.05);
-  s.real("stiction_rest_velocity", "relay: a moving joint counts as at rest below this speed").unit("rad/s")
-      .greater_than(0.0).default_value(0.01);
+  s.real("stiction_moving_velocity", "relay: a joint counts as moving above this speed")
+      .unit("rad/s")
+      .greater_than(0.0)
+      .default_value(0.05);
+  s.real("stiction_rest_velocity", "relay: a moving joint counts as at rest below this speed")
+      .unit("rad/s")
+      .greater_than(0.0)
+      .default_value(0.01);
   // Disturbance observer.
   s.boolean("disturbance_observer", "compensate the disturbance estimated against the rigid-body model")
       .default_value(false);
   s.real("observer_cutoff_hz", "bandwidth of the observer's Q filter").unit("Hz").greater_than(0.0).default_value(15.0);
   s.real("observer_nominal_inertia", "nominal inertia as a share of the model's: below 1 also lightens the device")
-      .greater_than(0.0).maximum(1.0).default_value(1.0);
-  s.real("observer_limit_nm", "limit of the compensated disturbance per joint").unit("N m").greater_than(0.0)
+      .greater_than(0.0)
+      .maximum(1.0)
+      .default_value(1.0);
+  s.real("observer_limit_nm", "limit of the compensated disturbance per joint")
+      .unit("N m")
+      .greater_than(0.0)
       .default_value(2.0);
   // Joint-torque feedback.
-  s.real("joint_torque_gain", "inner joint-torque loop gain Kt (needs joint torque sensors); 0: off").minimum(0.0)
-      .maximum(20.0).default_value(0.0);
+  s.real("joint_torque_gain", "inner joint-torque loop gain Kt (needs joint torque sensors); 0: off")
+      .minimum(0.0)
+      .maximum(20.0)
+      .default_value(0.0);
   // Adaptive sliding friction.
-  s.boolean("adaptive_friction", "re-tune the sliding-friction model on line (batch least squares)").default_value(false);
+  s.boolean("adaptive_friction", "re-tune the sliding-friction model on line (batch least squares)")
+      .default_value(false);
   s.real("adaptive_update_s", "re-tuning period T_update").unit("s").greater_than(0.0).default_value(40.0);
-  s.integer("adaptive_window", "samples of the backward differences and averages").minimum(2)
-      .maximum(kMaxEstimationWindow).default_value(40);
-  s.real("adaptive_min_speed", "estimates below this speed are not used").unit("rad/s").greater_than(0.0)
+  s.integer("adaptive_window", "samples of the backward differences and averages")
+      .minimum(2)
+      .maximum(kMaxEstimationWindow)
+      .default_value(40);
+  s.real("adaptive_min_speed", "estimates below this speed are not used")
+      .unit("rad/s")
+      .greater_than(0.0)
       .default_value(0.05);
   s.real("adaptive_bin_width", "width of the velocity bins").unit("rad/s").greater_than(0.0).default_value(0.05);
   s.real("adaptive_memory", "weight of the earlier data at each update").minimum(0.0).maximum(1.0).default_value(0.5);
-  s.real("adaptive_regularization", "ridge weight pulling each fit towards the present curve").minimum(0.0)
+  s.real("adaptive_regularization", "ridge weight pulling each fit towards the present curve")
+      .minimum(0.0)
       .default_value(0.01);
-  s.integer("adaptive_min_bins", "excitation check: filled velocity bins needed").minimum(5).maximum(kFrictionBins)
+  s.integer("adaptive_min_bins", "excitation check: filled velocity bins needed")
+      .minimum(5)
+      .maximum(kFrictionBins)
       .default_value(6);
   s.real("adaptive_min_span", "excitation check: speed range needed").unit("rad/s").minimum(0.0).default_value(0.4);
   s.string("adaptive_log", "CSV of every re-tuning attempt (relative: to the session file); empty: none")
       .default_value(std::string());
   // Resonance.
-  s.real("notch_hz", "centre of the torque notch filters (the joint resonance); 0: off").unit("Hz").minimum(0.0)
+  s.real("notch_hz", "centre of the torque notch filters (the joint resonance); 0: off")
+      .unit("Hz")
+      .minimum(0.0)
       .default_value(0.0);
   s.integer("notch_sections", "notch sections in series").minimum(1).maximum(4).default_value(2);
-  s.real("notch_zeta_numerator", "damping ratio of the notch zeros (depth = numerator / denominator)").minimum(0.0)
+  s.real("notch_zeta_numerator", "damping ratio of the notch zeros (depth = numerator / denominator)")
+      .minimum(0.0)
       .default_value(0.01);
   s.real("notch_zeta_denominator", "damping ratio of the notch poles (width)").greater_than(0.0).default_value(0.2);
   return s;
@@ -101,7 +145,7 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
   if (disturbance_observer_) {
     try {
       observer_.configure(dof_, context.rate_hz, p.real("observer_cutoff_hz"), p.real("observer_limit_nm"),
-                         p.real("observer_nominal_inertia"));
+                          p.real("observer_nominal_inertia"));
     } catch (const std::invalid_argument& e) {
       throw ParameterError("observer_cutoff_hz", e.what());
     }
@@ -177,7 +221,8 @@ void ImpedanceController::configure_friction(const Parameters& p, const PluginCo
   retuner_.reset();
   if (adaptive_) {
     const double update_s = p.real("adaptive_update_s");
-    adapt_period_cycles_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(update_s * context.rate_hz)));
+    adapt_period_cycles_ =
+        std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(update_s * context.rate_hz)));
     estimator_.configure(dof_, 1.0 / context.rate_hz, static_cast<int>(p.integer("adaptive_window")),
                          p.real("adaptive_bin_width"), p.real("adaptive_min_speed"));
     RetuneChecks checks;
@@ -263,8 +308,8 @@ ReturnCode ImpedanceController::update(const CycleTime& cycle, const ControllerI
   if (adaptive_) adapt(cycle, in, operator_torques);
   if (friction_compensation_ || stiction_compensation_) {
     for (int i = 0; i < dof_; ++i) {
-      sliding_[i] = friction_compensation_ ? friction_.torque(i, c.velocity[i], d.gravity_torque[i] - operator_torques[i])
-                                           : 0.0;
+      sliding_[i] =
+          friction_compensation_ ? friction_.torque(i, c.velocity[i], d.gravity_torque[i] - operator_torques[i]) : 0.0;
     }
     if (stiction_compensation_) {
       projected_error_.noalias() = d.frame_jacobian.topRows(rows_).transpose() * error.head(rows_);
@@ -278,7 +323,8 @@ ReturnCode ImpedanceController::update(const CycleTime& cycle, const ControllerI
   if (joint_torque_gain_ > 0.0) {
     command.torque_nm += joint_torque_gain_ * (command.torque_nm - in.device.joints.effort);
   }
-  for (int i = 0; i < notch_count_; ++i) command.torque_nm = notches_[static_cast<std::size_t>(i)].update(command.torque_nm);
+  for (int i = 0; i < notch_count_; ++i)
+    command.torque_nm = notches_[static_cast<std::size_t>(i)].update(command.torque_nm);
   previous_command_ = command.torque_nm;
   return ReturnCode::ok;
 }

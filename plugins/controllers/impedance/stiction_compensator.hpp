@@ -14,10 +14,10 @@
 namespace hapticd::controllers {
 
 struct StictionSettings {
-  double integral_gain = 100.0;         // Ki [1/s] on the task-space force error
-  double integrator_limit_nm = 2.0;     // |I_i| limit
-  double moving_velocity = 0.05;        // [rad/s] relay: at rest -> moving
-  double rest_velocity = 0.01;          // [rad/s] relay: moving -> at rest
+  double integral_gain = 100.0;      // Ki [1/s] on the task-space force error
+  double integrator_limit_nm = 2.0;  // |I_i| limit
+  double moving_velocity = 0.05;     // [rad/s] relay: at rest -> moving
+  double rest_velocity = 0.01;       // [rad/s] relay: moving -> at rest
 };
 
 class StictionCompensator {
@@ -38,8 +38,8 @@ class StictionCompensator {
   StictionSettings s_;
   double period_s_ = 5e-4;
   std::array<bool, kMaxJoints> moving_{};
-  std::array<double, kMaxJoints> held_{};       // tau0_i
-  std::array<double, kMaxJoints> integral_{};   // I_i
+  std::array<double, kMaxJoints> held_{};      // tau0_i
+  std::array<double, kMaxJoints> integral_{};  // I_i
   std::array<double, kMaxJoints> last_sliding_{};
 };
 

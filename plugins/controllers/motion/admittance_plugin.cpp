@@ -14,6 +14,7 @@ HAPTICD_PLUGIN_LIBRARY(
                                             "admittance display: inverse-Jacobian control, constant joint inertia"),
     describe_plugin<TransposedJacobianControl>("transposed_jacobian", "1.0.0",
                                                "admittance display: transposed-Jacobian control, constant task mass"),
-    describe_plugin<ComputedTorqueControl>("computed_torque", "1.0.0",
-                                           "admittance display: computed torque on the inverse kinematics' joint targets"),
-    describe_plugin<JointPdControl>("joint_pd", "1.0.0", "admittance display: independent joint PD with gravity compensation"))
+    describe_plugin<ComputedTorqueControl>(
+        "computed_torque", "1.0.0", "admittance display: computed torque on the inverse kinematics' joint targets"),
+    describe_plugin<JointPdControl>("joint_pd", "1.0.0",
+                                    "admittance display: independent joint PD with gravity compensation"))

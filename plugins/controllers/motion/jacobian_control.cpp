@@ -8,10 +8,13 @@ namespace hapticd::controllers {
 ParameterSchema JacobianControl::parameter_schema() {
   ParameterSchema s;
   TaskMotionLaw::declare(s);
-  s.real_vector("joint_inertia", "inverse_jacobian: constant diagonal joint inertia M_hat (empty: diag M at "
-                                 "activation)").default_value(std::vector<double>{});
-  s.real_vector("task_mass", "transposed_jacobian: constant diagonal task-space mass Mx_hat, one per task row "
-                             "(empty: diag of the operational-space inertia at activation)")
+  s.real_vector("joint_inertia",
+                "inverse_jacobian: constant diagonal joint inertia M_hat (empty: diag M at "
+                "activation)")
+      .default_value(std::vector<double>{});
+  s.real_vector("task_mass",
+                "transposed_jacobian: constant diagonal task-space mass Mx_hat, one per task row "
+                "(empty: diag of the operational-space inertia at activation)")
       .default_value(std::vector<double>{});
   return s;
 }

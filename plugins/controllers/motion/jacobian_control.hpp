@@ -26,8 +26,8 @@ class JacobianControl : public Controller {
  private:
   Kind kind_;
   TaskMotionLaw law_;
-  JointVector joint_inertia_;       // M_hat diagonal
-  model::TaskVector task_mass_;     // Mx_hat diagonal
+  JointVector joint_inertia_;    // M_hat diagonal
+  model::TaskVector task_mass_;  // Mx_hat diagonal
   bool inertia_from_model_ = true;
   double damping_ = 1e-6;
 };

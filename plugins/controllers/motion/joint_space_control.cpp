@@ -8,8 +8,11 @@ namespace hapticd::controllers {
 ParameterSchema JointSpaceControl::parameter_schema() {
   ParameterSchema s;
   model::declare_task_parameter(s, "rows of the operator-wrench compensation");
-  s.real("bandwidth_rad_s", "computed_torque: error dynamics bandwidth w (Kp = w^2, Kd = 2 zeta w)").unit("rad/s")
-      .greater_than(0.0).maximum(1000.0).default_value(60.0);
+  s.real("bandwidth_rad_s", "computed_torque: error dynamics bandwidth w (Kp = w^2, Kd = 2 zeta w)")
+      .unit("rad/s")
+      .greater_than(0.0)
+      .maximum(1000.0)
+      .default_value(60.0);
   s.real("damping_ratio", "computed_torque: zeta").greater_than(0.0).maximum(5.0).default_value(1.0);
   s.real("joint_stiffness", "joint_pd: Kp").unit("N m/rad").minimum(0.0).default_value(500.0);
   s.real("joint_damping", "joint_pd: Kd").unit("N m s/rad").minimum(0.0).default_value(10.0);
@@ -48,8 +51,8 @@ ReturnCode JointSpaceControl::update(const CycleTime& /*cycle*/, const Controlle
     command.torque_nm.noalias() = d.mass_matrix * qdd;
     command.torque_nm += d.coriolis_torque + d.gravity_torque;
   } else {
-    command.torque_nm = joint_kp_ * (in.joints.position - q) + joint_kd_ * (in.joints.velocity - c.velocity) +
-                        d.gravity_torque;
+    command.torque_nm =
+        joint_kp_ * (in.joints.position - q) + joint_kd_ * (in.joints.velocity - c.velocity) + d.gravity_torque;
   }
   if (wrench_compensation_) command.torque_nm -= model::operator_wrench_torques(c, rows_);
   return ReturnCode::ok;

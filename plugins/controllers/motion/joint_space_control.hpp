@@ -22,8 +22,8 @@ class JointSpaceControl : public Controller {
 
  private:
   Kind kind_;
-  double kp_ = 0.0, kd_ = 0.0;                 // computed torque: [1/s^2], [1/s]
-  double joint_kp_ = 0.0, joint_kd_ = 0.0;     // joint PD: [N m/rad], [N m s/rad]
+  double kp_ = 0.0, kd_ = 0.0;              // computed torque: [1/s^2], [1/s]
+  double joint_kp_ = 0.0, joint_kd_ = 0.0;  // joint PD: [N m/rad], [N m s/rad]
   bool acceleration_feedforward_ = true;
   bool wrench_compensation_ = true;
   int rows_ = 3;

@@ -27,8 +27,9 @@ ReturnCode ResolvedAcceleration::update(const CycleTime& /*cycle*/, const Contro
   // qdd = J^-1 (xdd - dJ qd) for square J; for redundant J the chain's redundancy resolution (its inverse, side
   // criteria and self-motion damping) if its IK offers one, else the minimum-norm solution.
   const model::TaskVector task(xdd.head(rows));
-  const JointVector qdd = in.redundancy != nullptr ? in.redundancy->task_acceleration(c, task)
-                                                   : model::minimum_norm_solution(d.frame_jacobian.topRows(rows), task, damping_);
+  const JointVector qdd = in.redundancy != nullptr
+                              ? in.redundancy->task_acceleration(c, task)
+                              : model::minimum_norm_solution(d.frame_jacobian.topRows(rows), task, damping_);
   command.torque_nm.noalias() = d.mass_matrix * qdd;
   command.torque_nm += d.coriolis_torque + d.gravity_torque;
   law_.add_wrench_compensation(c, command.torque_nm);

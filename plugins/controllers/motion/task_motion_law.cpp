@@ -6,13 +6,20 @@ namespace hapticd::controllers {
 
 void TaskMotionLaw::declare(ParameterSchema& s) {
   model::declare_task_parameter(s, "controlled handle motion");
-  s.real("bandwidth_rad_s", "translational loop bandwidth w: Kp = w^2, Kd = 2 zeta w").unit("rad/s").greater_than(0.0)
-      .maximum(1000.0).default_value(60.0);
-  s.real("rotational_bandwidth_rad_s", "rotational loop bandwidth").unit("rad/s").greater_than(0.0).maximum(1000.0)
+  s.real("bandwidth_rad_s", "translational loop bandwidth w: Kp = w^2, Kd = 2 zeta w")
+      .unit("rad/s")
+      .greater_than(0.0)
+      .maximum(1000.0)
+      .default_value(60.0);
+  s.real("rotational_bandwidth_rad_s", "rotational loop bandwidth")
+      .unit("rad/s")
+      .greater_than(0.0)
+      .maximum(1000.0)
       .default_value(40.0);
   s.real("damping_ratio", "zeta of both loops").greater_than(0.0).maximum(5.0).default_value(1.0);
   s.boolean("acceleration_feedforward", "add the desired acceleration").default_value(true);
-  s.boolean("wrench_compensation", "cancel the measured operator wrench (positive feedback, + J^T F)").default_value(true);
+  s.boolean("wrench_compensation", "cancel the measured operator wrench (positive feedback, + J^T F)")
+      .default_value(true);
 }
 
 void TaskMotionLaw::configure(const Parameters& p, const PluginContext& context) {

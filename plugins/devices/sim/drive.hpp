@@ -8,19 +8,25 @@
 namespace hapticd::sim {
 
 struct DriveParameters {
-  double peak_torque = 54.0;          // [N m]
-  double continuous_torque = 20.1;    // [N m]
+  double peak_torque = 54.0;        // [N m]
+  double continuous_torque = 20.1;  // [N m]
   double current_bandwidth_hz = 2500.0;
   double thermal_time_constant_s = 30.0;  // I^2 t model of the winding
-  double current_offset_nm = 0.0;     // direction asymmetry of friction tests (spec: about 0.2 N m)
+  double current_offset_nm = 0.0;         // direction asymmetry of friction tests (spec: about 0.2 N m)
   bool current_loop = true;
   bool thermal_limit = true;
 };
 
 class Drive {
  public:
-  void configure(const DriveParameters& p) noexcept { p_ = p; reset(); }
-  void reset() noexcept { torque_ = 0.0; heat_ = 0.0; }
+  void configure(const DriveParameters& p) noexcept {
+    p_ = p;
+    reset();
+  }
+  void reset() noexcept {
+    torque_ = 0.0;
+    heat_ = 0.0;
+  }
 
   // Advances by dt under the commanded torque; returns the torque the motor delivers.
   double step(double command, double dt) noexcept {

@@ -16,10 +16,10 @@ namespace hapticd::sim {
 
 struct JointPhysics {
   GearSpring spring;
-  double motor_inertia = 0.2;      // reflected rotor + wave generator [kg m^2]
-  double damping = 0.0;            // structural damping across the spring [N m s/rad]
-  double ripple_amplitude = 0.0;   // [N m]
-  double ripple_phase = 0.0;       // [rad]
+  double motor_inertia = 0.2;     // reflected rotor + wave generator [kg m^2]
+  double damping = 0.0;           // structural damping across the spring [N m s/rad]
+  double ripple_amplitude = 0.0;  // [N m]
+  double ripple_phase = 0.0;      // [rad]
   double gear_ratio = 100.0;
   FrictionParameters friction;
 };
@@ -27,8 +27,7 @@ struct JointPhysics {
 class FlexibleChain {
  public:
   // link_model: the rigid-link model (reflected inertia removed); joints: one entry per joint.
-  FlexibleChain(model::RobotModel link_model, std::vector<JointPhysics> joints, int handle_frame,
-                std::uint64_t seed);
+  FlexibleChain(model::RobotModel link_model, std::vector<JointPhysics> joints, int handle_frame, std::uint64_t seed);
 
   // Everything at rest at q0 (springs relaxed under gravity: the motors are placed at q0 + g/k).
   void reset(const JointVector& q0) noexcept;

@@ -12,7 +12,7 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 struct ForceSensorParameters {
   Vector6d range = (Vector6d() << 200, 200, 400, 12, 12, 12).finished();  // [N, N m]
   double resolution_fraction = 1.0 / 4000.0;
-  double noise_lsb = 0.5;                 // noise standard deviation in resolution steps
+  double noise_lsb = 0.5;  // noise standard deviation in resolution steps
   double bandwidth_hz = 8000.0;
   bool quantise = true;
 };

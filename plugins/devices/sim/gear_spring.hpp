@@ -8,8 +8,8 @@
 namespace hapticd::sim {
 
 struct GearSpring {
-  double k_min = 1e4;        // [N m/rad]
-  double k_max = 1.6e4;      // [N m/rad]
+  double k_min = 1e4;                      // [N m/rad]
+  double k_max = 1.6e4;                    // [N m/rad]
   double rated_deflection = 39.0 / 1.6e4;  // [rad]
 
   [[nodiscard]] double torque(double d) const noexcept {

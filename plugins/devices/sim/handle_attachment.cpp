@@ -20,7 +20,8 @@ Vector6d HandleAttachment::step(double t, double dt, const Eigen::Isometry3d& ha
   const Eigen::AngleAxisd rotation(handle.linear() * anchor_rotation_.transpose());
   const Eigen::Vector3d rotation_error = rotation.axis() * rotation.angle();
   switch (settings_.kind) {
-    case AttachmentKind::kNone: break;
+    case AttachmentKind::kNone:
+      break;
     case AttachmentKind::kOperator: {
       const AttachmentSettings& s = settings_;
       const Eigen::Vector3d grasp_force =

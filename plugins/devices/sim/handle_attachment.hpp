@@ -17,21 +17,21 @@ enum class AttachmentKind { kNone, kOperator, kPositionSource, kWrench };
 struct AttachmentSettings {
   AttachmentKind kind = AttachmentKind::kNone;
   // Operator.
-  double grasp = 0.5;                   // 0 loose .. 1 firm
+  double grasp = 0.5;  // 0 loose .. 1 firm
   double hand_mass_kg = 1.0;
-  double arm_stiffness = 300.0;         // [N/m] towards the target motion
-  double arm_damping = 25.0;            // [N s/m]
-  Profile motion;                       // target offset from the grasp position [m]
-  Profile force;                        // voluntary force [N]
+  double arm_stiffness = 300.0;  // [N/m] towards the target motion
+  double arm_damping = 25.0;     // [N s/m]
+  Profile motion;                // target offset from the grasp position [m]
+  Profile force;                 // voluntary force [N]
   // Position source.
-  double source_stiffness = 1e5;        // [N/m]
-  double source_damping = 500.0;        // [N s/m]
+  double source_stiffness = 1e5;               // [N/m]
+  double source_damping = 500.0;               // [N s/m]
   double source_rotational_stiffness = 500.0;  // [N m/rad]
   double source_rotational_damping = 5.0;      // [N m s/rad]
-  Profile path;                         // offset from the attach position [m]
+  Profile path;                                // offset from the attach position [m]
   // Scripted wrench.
-  Profile wrench_force;                 // [N]
-  Profile wrench_torque;                // [N m]
+  Profile wrench_force;   // [N]
+  Profile wrench_torque;  // [N m]
 };
 
 class HandleAttachment {

@@ -37,7 +37,8 @@ double JointFriction::sliding_magnitude(double speed, double load_torque) const 
     const auto& t = p_.temperatures_c;
     const double temp = std::clamp(temperature_c_, t[0], t[2]);
     const int i = temp <= t[1] ? 0 : 1;
-    const double w = (temp - t[static_cast<std::size_t>(i)]) / (t[static_cast<std::size_t>(i) + 1] - t[static_cast<std::size_t>(i)]);
+    const double w =
+        (temp - t[static_cast<std::size_t>(i)]) / (t[static_cast<std::size_t>(i) + 1] - t[static_cast<std::size_t>(i)]);
     f = p_.size * ((1.0 - w) * curve(i, speed) + w * curve(i + 1, speed));
   }
   if (p_.load_dependent) {

@@ -19,7 +19,7 @@ struct FrictionParameters {
   bool load_dependent = true;
   bool stiction = true;
   bool warm_up = true;
-  double scale = 1.0;                     // per-joint variation of the whole friction
+  double scale = 1.0;  // per-joint variation of the whole friction
   // Gear size relative to the HFUC-17 the curves were measured on (rated torque ratio): scales the sliding
   // friction and the break-away, not the load-dependent part (which follows the transmitted torque).
   double size = 1.0;
@@ -28,12 +28,12 @@ struct FrictionParameters {
   std::array<StribeckCurve, 3> curves{StribeckCurve{{1.183, 1.008, -0.2642, 0.0487, -0.0037}},
                                       StribeckCurve{{1.050, 0.808, -0.2427, 0.0500, -0.0041}},
                                       StribeckCurve{{1.033, 0.619, -0.1509, 0.0257, -0.0019}}};
-  double fit_velocity_max = 5.0;          // [rad/s] beyond it the curve continues with its slope there (>= 0)
+  double fit_velocity_max = 5.0;  // [rad/s] beyond it the curve continues with its slope there (>= 0)
   double start_temperature_c = 26.0;
   double end_temperature_c = 36.0;
   double warm_up_time_constant_s = 600.0;
   double load_a0 = 0.0, load_a1 = 0.02, load_a2 = 0.0;  // f_load = a2 t^2 + a1 |t| + a0
-  double breakaway_min_nm = 1.19;         // full break-away between these (spec), drawn per sticking
+  double breakaway_min_nm = 1.19;                       // full break-away between these (spec), drawn per sticking
   double breakaway_max_nm = 1.5;
 };
 

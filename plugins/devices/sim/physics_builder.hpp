@@ -6,10 +6,10 @@
 namespace hapticd::sim {
 
 struct PhysicsOptions {
-  double damping_ratio = 0.02;          // structural damping of each spring (on the motor inertia)
-  double friction_variation = 0.1;      // relative standard deviation of the per-joint friction scale
-  bool friction = true;                 // master switch of all friction effects
-  FrictionParameters friction_template; // switches and curves shared by the joints
+  double damping_ratio = 0.02;           // structural damping of each spring (on the motor inertia)
+  double friction_variation = 0.1;       // relative standard deviation of the per-joint friction scale
+  bool friction = true;                  // master switch of all friction effects
+  FrictionParameters friction_template;  // switches and curves shared by the joints
   bool ripple = true;
   double ripple_min_nm = 0.12, ripple_max_nm = 0.19;
 };

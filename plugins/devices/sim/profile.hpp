@@ -20,11 +20,15 @@ struct Profile {
 
   [[nodiscard]] Eigen::Vector3d at(double t) const noexcept {
     switch (kind) {
-      case Kind::kConstant: return value;
-      case Kind::kStep: return t >= start_s ? value : Eigen::Vector3d::Zero();
-      case Kind::kRamp: return t >= start_s ? Eigen::Vector3d(value * (t - start_s)) : Eigen::Vector3d::Zero();
+      case Kind::kConstant:
+        return value;
+      case Kind::kStep:
+        return t >= start_s ? value : Eigen::Vector3d::Zero();
+      case Kind::kRamp:
+        return t >= start_s ? Eigen::Vector3d(value * (t - start_s)) : Eigen::Vector3d::Zero();
       case Kind::kRampTo: {
-        const double a = duration_s > 0.0 ? std::clamp((t - start_s) / duration_s, 0.0, 1.0) : (t >= start_s ? 1.0 : 0.0);
+        const double a =
+            duration_s > 0.0 ? std::clamp((t - start_s) / duration_s, 0.0, 1.0) : (t >= start_s ? 1.0 : 0.0);
         return from + a * (value - from);
       }
       case Kind::kSine:
@@ -35,12 +39,14 @@ struct Profile {
   }
   [[nodiscard]] Eigen::Vector3d rate_at(double t) const noexcept {
     switch (kind) {
-      case Kind::kRamp: return t >= start_s ? value : Eigen::Vector3d::Zero();
+      case Kind::kRamp:
+        return t >= start_s ? value : Eigen::Vector3d::Zero();
       case Kind::kSine:
         return t >= start_s ? Eigen::Vector3d(value * 2.0 * M_PI * frequency_hz *
                                               std::cos(2.0 * M_PI * frequency_hz * (t - start_s)))
                             : Eigen::Vector3d::Zero();
-      default: return Eigen::Vector3d::Zero();
+      default:
+        return Eigen::Vector3d::Zero();
     }
   }
   // "constant", "step", "ramp", "sine"; throws std::invalid_argument otherwise.

@@ -15,8 +15,11 @@ const std::vector<std::string> kProfiles{"constant", "step", "ramp", "sine"};
 void declare_profile(ParameterSchema& s, const std::string& prefix, const std::string& what, const std::string& unit,
                      const std::string& default_kind) {
   s.string(prefix, what + ": constant, step (at _start_s), ramp (value per second) or sine (amplitude)")
-      .choices(kProfiles).default_value(default_kind);
-  s.real_vector(prefix + "_" + unit, what + " value (x, y, z, world)").size(3).default_value(std::vector<double>{0, 0, 0});
+      .choices(kProfiles)
+      .default_value(default_kind);
+  s.real_vector(prefix + "_" + unit, what + " value (x, y, z, world)")
+      .size(3)
+      .default_value(std::vector<double>{0, 0, 0});
   s.real(prefix + "_start_s", what + ": start of the step, ramp or sine").unit("s").minimum(0.0).default_value(0.0);
   s.real(prefix + "_frequency_hz", what + ": frequency of the sine").unit("Hz").greater_than(0.0).default_value(0.5);
 }
@@ -47,7 +50,8 @@ ParameterSchema SimDevice::parameter_schema() {
   s.string("sensor_frame", "frame of the force/torque sensor; empty: no sensor").default_value(std::string("sensor"));
   s.boolean("passive_gimbal", "the handle turns freely (ViSHaRD3's thimble): attachments apply no torques")
       .default_value(false);
-  s.real_vector("initial_position", "joint positions at activation; empty: all zero").default_value(std::vector<double>{});
+  s.real_vector("initial_position", "joint positions at activation; empty: all zero")
+      .default_value(std::vector<double>{});
   s.real("substep_hz", "physics integration rate").unit("Hz").minimum(2000.0).maximum(1e6).default_value(20000.0);
   s.real("structural_damping_ratio", "damping of each gear spring").minimum(0.0).maximum(1.0).default_value(0.02);
   s.boolean("friction", "master switch of all gear friction").default_value(true);
@@ -56,8 +60,10 @@ ParameterSchema SimDevice::parameter_schema() {
   s.boolean("load_friction", "friction rising with the transmitted torque").default_value(true);
   s.boolean("warm_up", "friction drifts from the 26 C to the 36 C curve").default_value(true);
   s.real("warm_up_time_constant_s", "time constant of the warm-up").unit("s").greater_than(0.0).default_value(600.0);
-  s.real("friction_variation", "relative standard deviation of the per-joint friction scale").minimum(0.0)
-      .maximum(0.5).default_value(0.1);
+  s.real("friction_variation", "relative standard deviation of the per-joint friction scale")
+      .minimum(0.0)
+      .maximum(0.5)
+      .default_value(0.1);
   s.boolean("ripple", "position-dependent torque ripple, 2 cycles per motor revolution").default_value(true);
   s.boolean("current_loop", "first-order current loop (else the torque is applied at once)").default_value(true);
   s.real("current_bandwidth_hz", "current-loop bandwidth").unit("Hz").greater_than(0.0).default_value(2500.0);
@@ -65,29 +71,45 @@ ParameterSchema SimDevice::parameter_schema() {
   s.real("thermal_time_constant_s", "winding time constant").unit("s").greater_than(0.0).default_value(30.0);
   s.real("current_offset_nm", "amplifier current offset, as a joint torque").unit("N m").default_value(0.0);
   s.boolean("speed_monitor", "a joint above its speed limit faults the device (latched)").default_value(true);
-  s.boolean("joint_torque_sensors", "each joint measures its output torque (the gear spring's); effort is the "
-                                    "drive torque otherwise").default_value(false);
-  s.real("joint_torque_resolution_nm", "resolution of the joint torque sensors").unit("N m").greater_than(0.0)
+  s.boolean("joint_torque_sensors",
+            "each joint measures its output torque (the gear spring's); effort is the "
+            "drive torque otherwise")
+      .default_value(false);
+  s.real("joint_torque_resolution_nm", "resolution of the joint torque sensors")
+      .unit("N m")
+      .greater_than(0.0)
       .default_value(0.01);
   s.boolean("encoder_quantisation", "positions in whole encoder counts (motor side)").default_value(true);
-  s.real_vector("sensor_force_range_n", "force ranges of the sensor").size(3).minimum(0.0)
+  s.real_vector("sensor_force_range_n", "force ranges of the sensor")
+      .size(3)
+      .minimum(0.0)
       .default_value(std::vector<double>{200, 200, 400});
-  s.real_vector("sensor_torque_range_nm", "torque ranges of the sensor").size(3).minimum(0.0)
+  s.real_vector("sensor_torque_range_nm", "torque ranges of the sensor")
+      .size(3)
+      .minimum(0.0)
       .default_value(std::vector<double>{12, 12, 12});
   s.real("sensor_noise_lsb", "sensor noise standard deviation, in resolution steps (1/4000 of the range)")
-      .minimum(0.0).default_value(0.5);
+      .minimum(0.0)
+      .default_value(0.5);
   s.real("sensor_bandwidth_hz", "sensor bandwidth").unit("Hz").greater_than(0.0).default_value(8000.0);
   s.boolean("sensor_accelerations", "the sensor also measures linear and angular acceleration (ViSHaRD3's JR3)")
       .default_value(false);
   s.real_vector("sensor_acceleration_range", "ranges of the linear [m/s^2] and angular [rad/s^2] acceleration")
-      .size(2).greater_than(0.0).default_value(std::vector<double>{49.0, 100.0});
-  s.real_vector("sensor_acceleration_resolution", "resolution of the linear and angular acceleration").size(2)
-      .greater_than(0.0).default_value(std::vector<double>{0.0981, 0.1});
-  s.string("attachment", "what holds the handle at activation").choices({"none", "operator", "position_source", "wrench"})
+      .size(2)
+      .greater_than(0.0)
+      .default_value(std::vector<double>{49.0, 100.0});
+  s.real_vector("sensor_acceleration_resolution", "resolution of the linear and angular acceleration")
+      .size(2)
+      .greater_than(0.0)
+      .default_value(std::vector<double>{0.0981, 0.1});
+  s.string("attachment", "what holds the handle at activation")
+      .choices({"none", "operator", "position_source", "wrench"})
       .default_value(std::string("none"));
   s.real("operator_grasp", "operator's grasp, 0 loose .. 1 firm").minimum(0.0).maximum(1.0).default_value(0.5);
   s.real("operator_hand_mass_kg", "operator's hand-arm mass").unit("kg").greater_than(0.0).default_value(1.0);
-  s.real("operator_arm_stiffness", "operator's arm stiffness towards the target motion").unit("N/m").minimum(0.0)
+  s.real("operator_arm_stiffness", "operator's arm stiffness towards the target motion")
+      .unit("N/m")
+      .minimum(0.0)
       .default_value(300.0);
   s.real("operator_arm_damping", "operator's arm damping").unit("N s/m").minimum(0.0).default_value(25.0);
   declare_profile(s, "operator_motion", "operator's target motion from the grasp position", "m", "constant");
@@ -112,7 +134,8 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   }();
   const int n = robot.dof();
   handle_frame_ = robot.frame_id(p.string("handle_frame"));
-  if (handle_frame_ < 0) throw ParameterError("handle_frame", "no frame '" + p.string("handle_frame") + "' in " + urdf.string());
+  if (handle_frame_ < 0)
+    throw ParameterError("handle_frame", "no frame '" + p.string("handle_frame") + "' in " + urdf.string());
   sensor_present_ = !p.string("sensor_frame").empty();
   sensor_frame_ = sensor_present_ ? robot.frame_id(p.string("sensor_frame")) : -1;
   if (sensor_present_ && sensor_frame_ < 0) {
@@ -240,7 +263,8 @@ void SimDevice::activate() {
 
 void SimDevice::substep() noexcept {
   const int n = chain_->dof();
-  for (int i = 0; i < n; ++i) truth_.motor_torque[i] = drives_[static_cast<std::size_t>(i)].step(command_[i], substep_s_);
+  for (int i = 0; i < n; ++i)
+    truth_.motor_torque[i] = drives_[static_cast<std::size_t>(i)].step(command_[i], substep_s_);
   chain_->prepare();
   const Eigen::Isometry3d handle = chain_->handle_pose();
   const Vector6d twist = chain_->handle_twist();
@@ -291,7 +315,8 @@ RuntimeReply SimDevice::handle_request(std::string_view name, const std::vector<
     a.force.start_s = 0.0;
     a.force.duration_s = ramp;
   } else if (name == "operator.grasp") {
-    if (values.size() != 1 || !(values[0] >= 0.0 && values[0] <= 1.0)) return {false, "operator.grasp takes one value in 0..1"};
+    if (values.size() != 1 || !(values[0] >= 0.0 && values[0] <= 1.0))
+      return {false, "operator.grasp takes one value in 0..1"};
     a.grasp = values[0];
   } else {
     return {false, "the simulated device accepts operator.push, operator.release and operator.grasp"};
@@ -321,9 +346,9 @@ ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept 
   for (int i = 0; i < n; ++i) {
     state.joints.position[i] = quantise_encoder(chain_->motor_position()[i], counts_per_rev_[i]);
     state.joints.velocity[i] = 0.0;  // not measured: controllers differentiate, as on the hardware
-    state.joints.effort[i] = joint_torque_sensors_
-                                 ? std::round(chain_->spring_torque()[i] / joint_torque_resolution_) * joint_torque_resolution_
-                                 : truth_.motor_torque[i];
+    state.joints.effort[i] = joint_torque_sensors_ ? std::round(chain_->spring_torque()[i] / joint_torque_resolution_) *
+                                                         joint_torque_resolution_
+                                                   : truth_.motor_torque[i];
   }
   if (sensor_present_) {
     const Vector6d w = sensor_.read();

@@ -22,13 +22,13 @@ struct GroundTruth {
   JointVector link_position, link_velocity, motor_position, motor_velocity;
   JointVector spring_torque, friction_torque, motor_torque;
   Eigen::Isometry3d handle_pose = Eigen::Isometry3d::Identity();
-  Vector6d handle_twist = Vector6d::Zero();    // [linear; angular], world
-  Vector6d handle_wrench = Vector6d::Zero();   // applied to the handle by the attachment, world
-  Vector6d sensor_wrench = Vector6d::Zero();   // the same in the sensor frame, before the sensor's effects
+  Vector6d handle_twist = Vector6d::Zero();         // [linear; angular], world
+  Vector6d handle_wrench = Vector6d::Zero();        // applied to the handle by the attachment, world
+  Vector6d sensor_wrench = Vector6d::Zero();        // the same in the sensor frame, before the sensor's effects
   Vector6d sensor_acceleration = Vector6d::Zero();  // proper linear and angular acceleration, sensor frame
   double time_s = 0.0;
   bool sensor_saturated = false;
-  int overspeed_joint = -1;                    // first joint above its speed limit, -1 if none
+  int overspeed_joint = -1;  // first joint above its speed limit, -1 if none
 };
 
 class SimDevice final : public Device {
@@ -64,8 +64,8 @@ class SimDevice final : public Device {
   AttachmentSettings initial_attachment_;
   realtime::LatestValue<AttachmentSettings> attachment_requests_;
   AttachmentSettings pending_;
-  AttachmentSettings requested_;              // the last attachment asked for (request thread)
-  double requested_at_s_ = 0.0;               // ... and when (simulated time)
+  AttachmentSettings requested_;                   // the last attachment asked for (request thread)
+  double requested_at_s_ = 0.0;                    // ... and when (simulated time)
   std::atomic<std::int64_t> simulated_now_ns_{0};  // for requests: when "now" is
   GroundTruth truth_;
   JointVector initial_position_, command_, counts_per_rev_, speed_limits_;

@@ -3,4 +3,5 @@
 #include "sim_device.hpp"
 
 HAPTICD_PLUGIN_LIBRARY(hapticd::describe_plugin<hapticd::sim::SimDevice>(
-    "sim", "1.0.0", "simulated haptic device from a URDF with drive data (flexible joints, friction, sensors, operator)"))
+    "sim", "1.0.0",
+    "simulated haptic device from a URDF with drive data (flexible joints, friction, sensors, operator)"))

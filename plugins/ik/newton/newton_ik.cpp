@@ -11,8 +11,10 @@ ParameterSchema NewtonIk::parameter_schema() {
   ParameterSchema s;
   model::declare_task_parameter(s, "task rows");
   s.integer("newton_steps", "Newton steps per cycle").minimum(1).maximum(10).default_value(1);
-  s.real("acceleration_filter_hz", "low-pass of the differentiated joint-velocity target").unit("Hz")
-      .greater_than(0.0).default_value(200.0);
+  s.real("acceleration_filter_hz", "low-pass of the differentiated joint-velocity target")
+      .unit("Hz")
+      .greater_than(0.0)
+      .default_value(200.0);
   return s;
 }
 
@@ -37,7 +39,8 @@ ReturnCode NewtonIk::activate(const InverseKinematicsInput& current) noexcept {
   return ReturnCode::ok;
 }
 
-ReturnCode NewtonIk::update(const CycleTime& /*cycle*/, const InverseKinematicsInput& in, JointTarget& target) noexcept {
+ReturnCode NewtonIk::update(const CycleTime& /*cycle*/, const InverseKinematicsInput& in,
+                            JointTarget& target) noexcept {
   if (!in.task.has_motion) return ReturnCode::error;
   Eigen::Isometry3d desired = Eigen::Isometry3d::Identity();
   desired.translation() = in.task.pose.position;

@@ -21,46 +21,72 @@ model::InverseKind inverse_kind(const std::string& name) {
 ParameterSchema RedundancyIk::parameter_schema() {
   ParameterSchema s;
   model::declare_task_parameter(s, "task rows");
-  s.string("inverse", "generalised inverse: pseudoinverse (SVD), weighted (joint_weights), damped "
-                      "(singularity-robust, damping), inertia_weighted (dynamically consistent)")
+  s.string("inverse",
+           "generalised inverse: pseudoinverse (SVD), weighted (joint_weights), damped "
+           "(singularity-robust, damping), inertia_weighted (dynamically consistent)")
       .choices({"pseudoinverse", "weighted", "damped", "inertia_weighted"})
       .default_value(std::string("pseudoinverse"));
-  s.real_vector("joint_weights", "weighted, damped: W = diag(joint_weights), one positive value per joint; the "
-                                 "solution minimises qd^T W qd (empty: all 1)")
+  s.real_vector("joint_weights",
+                "weighted, damped: W = diag(joint_weights), one positive value per joint; the "
+                "solution minimises qd^T W qd (empty: all 1)")
       .default_value(std::vector<double>{});
-  s.real("damping", "damped: lambda of J^T (J J^T + lambda^2 I)^-1 (task units)").minimum(0.0).maximum(10.0)
+  s.real("damping", "damped: lambda of J^T (J J^T + lambda^2 I)^-1 (task units)")
+      .minimum(0.0)
+      .maximum(10.0)
       .default_value(0.02);
-  s.string("level", "how the joint target is integrated: velocity (qd from J^W#, q integrated) or acceleration "
-                    "(qdd from J^W#, stabilised self-motion)")
+  s.string("level",
+           "how the joint target is integrated: velocity (qd from J^W#, q integrated) or acceleration "
+           "(qdd from J^W#, stabilised self-motion)")
       .choices({"velocity", "acceleration"})
       .default_value(std::string("velocity"));
-  s.real("tracking_bandwidth_rad_s", "feedback of the pose error of the integrated target (velocity level: "
-                                     "kp = w; acceleration level: kp = w^2, kd = 2 w)")
-      .unit("rad/s").greater_than(0.0).maximum(2000.0).default_value(100.0);
-  s.real("null_space_gain", "k of the null-space descent qd0 = -k W^-1 grad H").minimum(0.0).maximum(1000.0)
+  s.real("tracking_bandwidth_rad_s",
+         "feedback of the pose error of the integrated target (velocity level: "
+         "kp = w; acceleration level: kp = w^2, kd = 2 w)")
+      .unit("rad/s")
+      .greater_than(0.0)
+      .maximum(2000.0)
+      .default_value(100.0);
+  s.real("null_space_gain", "k of the null-space descent qd0 = -k W^-1 grad H")
+      .minimum(0.0)
+      .maximum(1000.0)
       .default_value(1.0);
-  s.real("null_space_damping", "d: the self-motion velocity relaxes towards qd0 at this rate (acceleration and "
-                               "torque level)").unit("1/s").minimum(0.0).maximum(1000.0).default_value(20.0);
+  s.real("null_space_damping",
+         "d: the self-motion velocity relaxes towards qd0 at this rate (acceleration and "
+         "torque level)")
+      .unit("1/s")
+      .minimum(0.0)
+      .maximum(1000.0)
+      .default_value(20.0);
   s.real("manipulability", "weight of -sqrt(det(J J^T))").minimum(0.0).default_value(0.0);
   s.real("condition_number", "weight of the condition number of J").minimum(0.0).default_value(0.0);
   s.real("smallest_singular_value", "weight of -sigma_min(J)").minimum(0.0).default_value(0.0);
   s.real("characteristic_length_m", "scales the angular rows against the linear ones in the Jacobian criteria")
-      .unit("m").greater_than(0.0).default_value(0.3);
+      .unit("m")
+      .greater_than(0.0)
+      .default_value(0.3);
   s.real("wrist", "weight of the wrist criterion ((q_k - target) / (pi/2))^2").minimum(0.0).default_value(0.0);
-  s.integer("wrist_joint", "the joint k of the wrist criterion, 1-based (ViSHaRD10: 9)").minimum(1).maximum(kMaxJoints)
+  s.integer("wrist_joint", "the joint k of the wrist criterion, 1-based (ViSHaRD10: 9)")
+      .minimum(1)
+      .maximum(kMaxJoints)
       .default_value(std::int64_t{9});
   s.real("wrist_target_rad", "the wrist criterion's target").unit("rad").default_value(1.5707963267948966);
   s.real("joint_limits", "weight of the joint-limit distance sum ((q - mid) / range)^2 (limited joints only)")
-      .minimum(0.0).default_value(0.0);
+      .minimum(0.0)
+      .default_value(0.0);
   s.real("keep_out", "weight of the keep-out sphere criterion").minimum(0.0).default_value(0.0);
   s.string("keep_out_frame", "the frame kept out of the sphere (empty: the handle)").default_value(std::string());
-  s.real_vector("keep_out_center_m", "centre of the keep-out sphere, world").size(3)
+  s.real_vector("keep_out_center_m", "centre of the keep-out sphere, world")
+      .size(3)
       .default_value(std::vector<double>{0.0, 0.0, 0.0});
   s.real("keep_out_radius_m", "radius of the keep-out sphere").unit("m").minimum(0.0).default_value(0.1);
-  s.real("keep_out_margin_m", "the criterion rises from zero this far from the sphere").unit("m").greater_than(0.0)
+  s.real("keep_out_margin_m", "the criterion rises from zero this far from the sphere")
+      .unit("m")
+      .greater_than(0.0)
       .default_value(0.1);
-  s.real("acceleration_filter_hz", "velocity level: low-pass of the differentiated joint-velocity target").unit("Hz")
-      .greater_than(0.0).default_value(200.0);
+  s.real("acceleration_filter_hz", "velocity level: low-pass of the differentiated joint-velocity target")
+      .unit("Hz")
+      .greater_than(0.0)
+      .default_value(200.0);
   return s;
 }
 
@@ -83,9 +109,11 @@ void RedundancyIk::configure(const Parameters& p, const PluginContext& context) 
   JointVector wv = JointVector::Ones(n);
   if (!weights.empty()) {
     if (static_cast<int>(weights.size()) != n)
-      throw ParameterError("joint_weights", "needs " + std::to_string(n) + " values, got " + std::to_string(weights.size()));
+      throw ParameterError("joint_weights",
+                           "needs " + std::to_string(n) + " values, got " + std::to_string(weights.size()));
     for (int i = 0; i < n; ++i) {
-      if (!(weights[static_cast<std::size_t>(i)] > 0.0)) throw ParameterError("joint_weights", "weights must be positive");
+      if (!(weights[static_cast<std::size_t>(i)] > 0.0))
+        throw ParameterError("joint_weights", "weights must be positive");
       wv[i] = weights[static_cast<std::size_t>(i)];
     }
   }
@@ -105,7 +133,8 @@ void RedundancyIk::configure(const Parameters& p, const PluginContext& context) 
   c.wrist = p.real("wrist");
   c.wrist_joint = static_cast<int>(p.integer("wrist_joint")) - 1;
   if (c.wrist != 0.0 && c.wrist_joint >= n)
-    throw ParameterError("wrist_joint", "joint " + std::to_string(c.wrist_joint + 1) + " outside 1.." + std::to_string(n));
+    throw ParameterError("wrist_joint",
+                         "joint " + std::to_string(c.wrist_joint + 1) + " outside 1.." + std::to_string(n));
   c.wrist_target_rad = p.real("wrist_target_rad");
   c.joint_limits = p.real("joint_limits");
   c.keep_out = p.real("keep_out");
@@ -135,7 +164,8 @@ ReturnCode RedundancyIk::activate(const InverseKinematicsInput& current) noexcep
   return q_.size() == model_->dof() ? ReturnCode::ok : ReturnCode::error;
 }
 
-ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsInput& in, JointTarget& target) noexcept {
+ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsInput& in,
+                                JointTarget& target) noexcept {
   if (!in.task.has_motion) return ReturnCode::error;
   const double dt = static_cast<double>(cycle.period_ns) * 1e-9;
   Eigen::Isometry3d desired = Eigen::Isometry3d::Identity();

@@ -44,9 +44,9 @@ class RedundancyIk final : public InverseKinematics, public RedundancyResolution
   int handle_ = -1;
   int rows_ = 3;
   Level level_ = Level::kVelocity;
-  double kp_ = 0.0, kd_ = 0.0;        // pose-error feedback of the integrated target
-  double null_gain_ = 0.0;            // k
-  double null_damping_ = 0.0;         // d [1/s]
+  double kp_ = 0.0, kd_ = 0.0;          // pose-error feedback of the integrated target
+  double null_gain_ = 0.0;              // k
+  double null_damping_ = 0.0;           // d [1/s]
   model::GeneralizedInverse inverse_;   // at the joint target
   model::GeneralizedInverse measured_;  // at the measured state (task_acceleration)
   model::GeneralizedInverse dynamic_;   // inertia-weighted at the measured state (null_space_torque)

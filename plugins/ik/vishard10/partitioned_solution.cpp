@@ -34,13 +34,15 @@ const Eigen::Matrix3d& fixed_c() {
 }  // namespace
 
 Geometry Geometry::from(const model::RobotModel& model, int handle_frame) {
-  if (model.dof() != 10) throw std::invalid_argument("the ViSHaRD10 solution needs a 10-joint model, got " + std::to_string(model.dof()));
+  if (model.dof() != 10)
+    throw std::invalid_argument("the ViSHaRD10 solution needs a 10-joint model, got " + std::to_string(model.dof()));
   model::ModelData d(model);
   const JointVector zero = JointVector::Zero(10);
   model::forward_kinematics(model, d, zero);
   Geometry g;
   g.base = d.position[0].head<2>();
-  for (int i = 0; i < 4; ++i) g.scara_link[static_cast<std::size_t>(i)] = (d.position[i + 1] - d.position[i]).head<2>().norm();
+  for (int i = 0; i < 4; ++i)
+    g.scara_link[static_cast<std::size_t>(i)] = (d.position[i + 1] - d.position[i]).head<2>().norm();
   g.z6 = d.position[5].z();
   const Eigen::Isometry3d handle = model::frame_pose(model, d, handle_frame);
   g.l67 = handle.translation().z() - g.z6;
@@ -52,7 +54,8 @@ Geometry Geometry::from(const model::RobotModel& model, int handle_frame) {
     fail("SCARA links 1, 2 and 3, 4 must be equal");
   if ((handle.translation().head<2>() - d.position[4].head<2>()).norm() > 1e-6)
     fail("the handle point must lie on joint 5's axis");
-  if ((d.rotation[5] - fixed_a()).norm() > 1e-9 || (d.rotation[7].transpose() * d.rotation[8] - fixed_b()).norm() > 1e-9 ||
+  if ((d.rotation[5] - fixed_a()).norm() > 1e-9 ||
+      (d.rotation[7].transpose() * d.rotation[8] - fixed_b()).norm() > 1e-9 ||
       (d.rotation[8].transpose() * d.rotation[9] - fixed_c()).norm() > 1e-9 ||
       (d.rotation[9].transpose() * handle.linear() - Eigen::Matrix3d::Identity()).norm() > 1e-9)
     fail("the wrist's fixed rotations differ");
@@ -89,7 +92,8 @@ Eigen::Matrix3d wrist_rotation(double q5_abs, double q8_abs, double q9, double q
   return rz(q5_abs) * fixed_a() * rz(q8_abs) * fixed_b() * rz(q9) * fixed_c() * rz(q10);
 }
 
-Eigen::Matrix3d wrist_axes(double q5_abs, double q8_abs, double q9, double q10, Eigen::Matrix<double, 3, 4>& axes) noexcept {
+Eigen::Matrix3d wrist_axes(double q5_abs, double q8_abs, double q9, double q10,
+                           Eigen::Matrix<double, 3, 4>& axes) noexcept {
   // Each joint turns about the z axis of the frame before it: the z columns of the partial products.
   const Eigen::Matrix3d r5 = rz(q5_abs);
   const Eigen::Matrix3d r8 = r5 * fixed_a() * rz(q8_abs);

@@ -46,7 +46,8 @@ double wrist_inverse_function(const Eigen::Matrix3d& rotation, double q5_abs, do
 [[nodiscard]] Eigen::Matrix3d wrist_rotation(double q5_abs, double q8_abs, double q9, double q10) noexcept;
 // The world axes of q5', q8', q9 and q10 (the columns of the wrist's 3 x 4 angular Jacobian), and the handle
 // orientation, at these angles.
-Eigen::Matrix3d wrist_axes(double q5_abs, double q8_abs, double q9, double q10, Eigen::Matrix<double, 3, 4>& axes) noexcept;
+Eigen::Matrix3d wrist_axes(double q5_abs, double q8_abs, double q9, double q10,
+                           Eigen::Matrix<double, 3, 4>& axes) noexcept;
 
 // The joint closest to `previous` among value + 2 pi k (continuous joints: no jump where atan2 wraps).
 [[nodiscard]] double unwrap_near(double value, double previous) noexcept;

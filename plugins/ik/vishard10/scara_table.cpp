@@ -30,7 +30,8 @@ double wrap(double a) noexcept { return std::remainder(a, 2.0 * kPi); }
 
 }  // namespace
 
-bool elbow_from_code(const Geometry& g, const Eigen::Vector2d& tip, double s, double t, Eigen::Vector2d& elbow) noexcept {
+bool elbow_from_code(const Geometry& g, const Eigen::Vector2d& tip, double s, double t,
+                     Eigen::Vector2d& elbow) noexcept {
   const double r1 = g.scara_link[0] + g.scara_link[1], r2 = g.scara_link[2] + g.scara_link[3];
   const double d = tip.norm();
   if (!(d > 1e-9) || d >= r1 + r2 || d <= std::abs(r1 - r2)) return false;
@@ -58,7 +59,8 @@ bool scara_joints_from_elbow(const Geometry& g, const Eigen::Vector2d& tip, cons
 }
 
 Eigen::Vector2d ScaraTable::point(int i_radius, int i_angle) const noexcept {
-  const double r = radius_count > 1 ? radius_min + (radius_max - radius_min) * i_radius / (radius_count - 1) : radius_min;
+  const double r =
+      radius_count > 1 ? radius_min + (radius_max - radius_min) * i_radius / (radius_count - 1) : radius_min;
   const double a = angle_count > 1 ? angle_min + (angle_max - angle_min) * i_angle / (angle_count - 1) : angle_min;
   return r * Eigen::Vector2d(std::cos(a), std::sin(a));
 }
@@ -70,7 +72,8 @@ bool ScaraTable::code_at(const Eigen::Vector2d& tip, Eigen::Vector2d& c, Eigen::
   const double fa = (a - angle_min) / (angle_max - angle_min) * (angle_count - 1);
   const int ir = std::min(static_cast<int>(fr), radius_count - 2), ia = std::min(static_cast<int>(fa), angle_count - 2);
   const double wr = fr - ir, wa = fa - ia;
-  c = (1 - wr) * ((1 - wa) * at(ir, ia) + wa * at(ir, ia + 1)) + wr * ((1 - wa) * at(ir + 1, ia) + wa * at(ir + 1, ia + 1));
+  c = (1 - wr) * ((1 - wa) * at(ir, ia) + wa * at(ir, ia + 1)) +
+      wr * ((1 - wa) * at(ir + 1, ia) + wa * at(ir + 1, ia + 1));
   clamped_tip = r * Eigen::Vector2d(std::cos(a), std::sin(a));
   return r == r_free && a == a_free;
 }

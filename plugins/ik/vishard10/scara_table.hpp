@@ -18,7 +18,8 @@
 namespace hapticd::ik::vishard10 {
 
 // E from its code (s, t) for a tip position; false where the circles of reach do not meet.
-bool elbow_from_code(const Geometry& g, const Eigen::Vector2d& tip, double s, double t, Eigen::Vector2d& elbow) noexcept;
+bool elbow_from_code(const Geometry& g, const Eigen::Vector2d& tip, double s, double t,
+                     Eigen::Vector2d& elbow) noexcept;
 // Joints 1-4 with the elbow at E (pairs on the elbow sides branch12, branch34); false if E or the tip is out of
 // a pair's reach.
 bool scara_joints_from_elbow(const Geometry& g, const Eigen::Vector2d& tip, const Eigen::Vector2d& elbow, int branch12,

@@ -43,40 +43,71 @@ double scara_manipulability(const vishard10::Geometry& g, const double q[4]) {
 
 ParameterSchema Vishard10Ik::parameter_schema() {
   ParameterSchema s;
-  s.string("scara", "joints 1-4: inverse_function (two prismatic pairs), lookup_table (the optimised table of "
-                    "hapticd-scara-lut, scara_table) or pseudoinverse (with the manipulability criterion; failed on "
-                    "hardware, kept as an option)")
-      .choices({"inverse_function", "lookup_table", "pseudoinverse"}).default_value(std::string("inverse_function"));
+  s.string("scara",
+           "joints 1-4: inverse_function (two prismatic pairs), lookup_table (the optimised table of "
+           "hapticd-scara-lut, scara_table) or pseudoinverse (with the manipulability criterion; failed on "
+           "hardware, kept as an option)")
+      .choices({"inverse_function", "lookup_table", "pseudoinverse"})
+      .default_value(std::string("inverse_function"));
   s.string("scara_table", "lookup_table: the table file (relative paths: from the session file's folder)")
       .default_value(std::string());
   s.real("scara_axes_yaw_rad", "inverse function: pair 1-2 moves along this world direction, pair 3-4 across it")
-      .unit("rad").default_value(0.0);
-  s.integer("scara_branch_12", "inverse function: elbow side of pair 1-2 (+1 or -1)").minimum(-1).maximum(1)
+      .unit("rad")
+      .default_value(0.0);
+  s.integer("scara_branch_12", "inverse function: elbow side of pair 1-2 (+1 or -1)")
+      .minimum(-1)
+      .maximum(1)
       .default_value(std::int64_t{1});
-  s.integer("scara_branch_34", "inverse function: elbow side of pair 3-4 (+1 or -1)").minimum(-1).maximum(1)
+  s.integer("scara_branch_34", "inverse function: elbow side of pair 3-4 (+1 or -1)")
+      .minimum(-1)
+      .maximum(1)
       .default_value(std::int64_t{1});
-  s.real("scara_extension_limit", "inverse function: the usable rectangle, as a share of each pair's reach "
-                                  "(targets beyond are clamped: the handle stops there)")
-      .greater_than(0.0).maximum(0.999).default_value(0.95);
+  s.real("scara_extension_limit",
+         "inverse function: the usable rectangle, as a share of each pair's reach "
+         "(targets beyond are clamped: the handle stops there)")
+      .greater_than(0.0)
+      .maximum(0.999)
+      .default_value(0.95);
   s.real("scara_manipulability", "pseudoinverse: gain of the manipulability criterion").minimum(0.0).default_value(1.0);
-  s.string("wrist", "the orientation: inverse_function (link 5 keeps the world yaw q5_0) or pseudoinverse (weighted, "
-                    "with the wrist criterion and the virtual wall on joint 9)")
-      .choices({"inverse_function", "pseudoinverse"}).default_value(std::string("inverse_function"));
-  s.real("q5_0_rad", "inverse function: the world yaw of link 5 (places the wrist singularity: the handle axis "
-                     "horizontal along this yaw)").unit("rad").default_value(0.0);
+  s.string("wrist",
+           "the orientation: inverse_function (link 5 keeps the world yaw q5_0) or pseudoinverse (weighted, "
+           "with the wrist criterion and the virtual wall on joint 9)")
+      .choices({"inverse_function", "pseudoinverse"})
+      .default_value(std::string("inverse_function"));
+  s.real("q5_0_rad",
+         "inverse function: the world yaw of link 5 (places the wrist singularity: the handle axis "
+         "horizontal along this yaw)")
+      .unit("rad")
+      .default_value(0.0);
   s.real_vector("wrist_weights", "pseudoinverse: W on q5', q8', q9, q10 (slow the heavy joint 5, favour joint 10)")
-      .size(4).minimum(1e-6).default_value(std::vector<double>{3.0, 0.2, 1.0, 0.1});
-  s.real("wrist_criterion", "pseudoinverse: gain k of the null-space descent of (q9 - pi/2)^2").minimum(0.0)
+      .size(4)
+      .minimum(1e-6)
+      .default_value(std::vector<double>{3.0, 0.2, 1.0, 0.1});
+  s.real("wrist_criterion", "pseudoinverse: gain k of the null-space descent of (q9 - pi/2)^2")
+      .minimum(0.0)
       .default_value(1.0);
-  s.real("wall_zeta_rad", "pseudoinverse: the virtual wall keeps q9 in [zeta, pi - zeta] (0: no wall)").unit("rad")
-      .minimum(0.0).maximum(0.785).default_value(0.35);
-  s.real("wall_gain", "pseudoinverse: stiffness of the virtual wall in the null space").minimum(0.0).default_value(50.0);
+  s.real("wall_zeta_rad", "pseudoinverse: the virtual wall keeps q9 in [zeta, pi - zeta] (0: no wall)")
+      .unit("rad")
+      .minimum(0.0)
+      .maximum(0.785)
+      .default_value(0.35);
+  s.real("wall_gain", "pseudoinverse: stiffness of the virtual wall in the null space")
+      .minimum(0.0)
+      .default_value(50.0);
   s.real("tracking_bandwidth_rad_s", "pseudoinverse parts: feedback of the integrated target's pose error")
-      .unit("rad/s").greater_than(0.0).maximum(2000.0).default_value(100.0);
-  s.real("activation_tolerance_rad", "inverse functions: the device must stand within this of the function's "
-                                     "posture for its pose at activation").unit("rad").greater_than(0.0)
+      .unit("rad/s")
+      .greater_than(0.0)
+      .maximum(2000.0)
+      .default_value(100.0);
+  s.real("activation_tolerance_rad",
+         "inverse functions: the device must stand within this of the function's "
+         "posture for its pose at activation")
+      .unit("rad")
+      .greater_than(0.0)
       .default_value(0.05);
-  s.real("acceleration_filter_hz", "low-pass of the differentiated joint-velocity target").unit("Hz").greater_than(0.0)
+  s.real("acceleration_filter_hz", "low-pass of the differentiated joint-velocity target")
+      .unit("Hz")
+      .greater_than(0.0)
       .default_value(200.0);
   return s;
 }
@@ -93,7 +124,9 @@ void Vishard10Ik::configure(const Parameters& p, const PluginContext& context) {
   }
   data_ = std::make_unique<model::ModelData>(*model_);
   const std::string& scara = p.string("scara");
-  scara_ = scara == "lookup_table" ? Scara::kLookupTable : scara == "pseudoinverse" ? Scara::kPseudoinverse : Scara::kInverseFunction;
+  scara_ = scara == "lookup_table"    ? Scara::kLookupTable
+           : scara == "pseudoinverse" ? Scara::kPseudoinverse
+                                      : Scara::kInverseFunction;
   if (scara_ == Scara::kLookupTable) {
     const std::string& file = p.string("scara_table");
     if (file.empty()) throw ParameterError("scara_table", "scara: lookup_table needs a table file (hapticd-scara-lut)");
@@ -155,7 +188,8 @@ void Vishard10Ik::solve_scara(const Eigen::Vector2d& target, const Eigen::Vector
   for (int i = 0; i < 4; ++i) scara_q_[i] += qd[i] * dt;
 }
 
-void Vishard10Ik::solve_wrist(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& angular_velocity, double dt) noexcept {
+void Vishard10Ik::solve_wrist(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& angular_velocity,
+                              double dt) noexcept {
   if (wrist_function_) {
     rot_q_[0] = q5_0_;
     (void)vishard10::wrist_inverse_function(rotation, q5_0_, rot_q_[1], rot_q_[2], rot_q_[3]);
@@ -176,7 +210,8 @@ void Vishard10Ik::solve_wrist(const Eigen::Matrix3d& rotation, const Eigen::Vect
     if (q9 < wall_zeta_) gradient[2] += wall_gain_ * 2.0 * (q9 - wall_zeta_);
     if (q9 > kPi - wall_zeta_) gradient[2] += wall_gain_ * 2.0 * (q9 - (kPi - wall_zeta_));
   }
-  const JointVector qd = model::resolve_velocity(wrist_inverse_, w, JointVector(-wrist_inverse_.weight_inverse_times(gradient)));
+  const JointVector qd =
+      model::resolve_velocity(wrist_inverse_, w, JointVector(-wrist_inverse_.weight_inverse_times(gradient)));
   for (int i = 0; i < 4; ++i) rot_q_[i] += qd[i] * dt;
 }
 
@@ -204,7 +239,8 @@ const JointVector& Vishard10Ik::solve(const Pose& pose, const Twist& twist, doub
     // l6 and l7 differ by 0.1 mm: the pair leaves the handle that far off joint 5's axis, sideways. One shift of
     // the SCARA target removes it (the offset depends on q6 and q5' only, not on joints 1-4).
     model::forward_kinematics(*model_, *data_, q_);
-    const Eigen::Vector2d off = pose.position.head<2>() - model::frame_pose(*model_, *data_, handle_).translation().head<2>();
+    const Eigen::Vector2d off =
+        pose.position.head<2>() - model::frame_pose(*model_, *data_, handle_).translation().head<2>();
     solve_scara(target + off, Eigen::Vector2d::Zero(), dt);
     assemble();
   }

@@ -22,50 +22,85 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
   ParameterSchema s;
   // Sane bounds: below about 0.1 kg no inner loop renders a mass stably (the thesis's devices reach 0.4 kg at
   // best); a tiny value makes the body fly off and the device fault on speed.
-  s.real_vector("mass_kg", "virtual mass along the world axes").unit("kg").size(3).minimum(0.1).maximum(1000.0)
+  s.real_vector("mass_kg", "virtual mass along the world axes")
+      .unit("kg")
+      .size(3)
+      .minimum(0.1)
+      .maximum(1000.0)
       .default_value(std::vector<double>{5.0, 5.0, 5.0});
-  s.real_vector("damping_n_s_per_m", "virtual damping along the world axes").size(3).minimum(0.0)
+  s.real_vector("damping_n_s_per_m", "virtual damping along the world axes")
+      .size(3)
+      .minimum(0.0)
       .default_value(std::vector<double>{10.0, 10.0, 10.0});
   s.boolean("rotation", "render rotations too (devices with actuated handle orientation)").default_value(true);
-  s.real_vector("inertia_kg_m2", "virtual principal inertia about the handle axes").unit("kg m^2").size(3).minimum(0.001)
+  s.real_vector("inertia_kg_m2", "virtual principal inertia about the handle axes")
+      .unit("kg m^2")
+      .size(3)
+      .minimum(0.001)
       .maximum(100.0)
       .default_value(std::vector<double>{0.02, 0.02, 0.02});
-  s.real_vector("rotational_damping_n_m_s", "virtual rotational damping about the handle axes").size(3).minimum(0.0)
+  s.real_vector("rotational_damping_n_m_s", "virtual rotational damping about the handle axes")
+      .size(3)
+      .minimum(0.0)
       .default_value(std::vector<double>{0.1, 0.1, 0.1});
-  s.real_vector("walls", "virtual walls, 6 numbers each: a point on the wall and the normal pointing to the free "
-                 "side (world, m); at most 8").default_value(std::vector<double>{});
+  s.real_vector("walls",
+                "virtual walls, 6 numbers each: a point on the wall and the normal pointing to the free "
+                "side (world, m); at most 8")
+      .default_value(std::vector<double>{});
   s.boolean("walls_relative", "wall points are offsets from the handle's position at activation").default_value(false);
   s.real("wall_stiffness_n_per_m", "stiffness of the walls").unit("N/m").minimum(0.0).default_value(5000.0);
-  s.real("wall_damping_n_s_per_m", "damping of the walls while penetrated").unit("N s/m").minimum(0.0)
+  s.real("wall_damping_n_s_per_m", "damping of the walls while penetrated")
+      .unit("N s/m")
+      .minimum(0.0)
       .default_value(50.0);
   s.boolean("motion_based", "walls act on the measured handle motion (motion-based impedance control)")
       .default_value(false);
-  s.boolean("coupling", "take the rendering engine's input: virtual coupling to its proxy pose, its wrench (and "
-                        "local model), or its desired motion").default_value(false);
+  s.boolean("coupling",
+            "take the rendering engine's input: virtual coupling to its proxy pose, its wrench (and "
+            "local model), or its desired motion")
+      .default_value(false);
   s.real("coupling_stiffness_n_per_m", "coupling spring").unit("N/m").minimum(0.0).default_value(2000.0);
   s.real("coupling_damping_n_s_per_m", "coupling damper").unit("N s/m").minimum(0.0).default_value(20.0);
-  s.real("coupling_rotational_stiffness_n_m_per_rad", "rotational coupling spring").unit("N m/rad").minimum(0.0)
+  s.real("coupling_rotational_stiffness_n_m_per_rad", "rotational coupling spring")
+      .unit("N m/rad")
+      .minimum(0.0)
       .default_value(20.0);
-  s.real("coupling_rotational_damping_n_m_s", "rotational coupling damper").unit("N m s/rad").minimum(0.0)
+  s.real("coupling_rotational_damping_n_m_s", "rotational coupling damper")
+      .unit("N m s/rad")
+      .minimum(0.0)
       .default_value(0.2);
-  s.real("workspace_radius_m", "workspace spring: beyond this distance from the start position a spring pulls "
-                               "the body back; 0: off").unit("m").minimum(0.0).default_value(0.0);
-  s.real("workspace_stiffness_n_per_m", "stiffness of the workspace spring").unit("N/m").minimum(0.0)
+  s.real("workspace_radius_m",
+         "workspace spring: beyond this distance from the start position a spring pulls "
+         "the body back; 0: off")
+      .unit("m")
+      .minimum(0.0)
+      .default_value(0.0);
+  s.real("workspace_stiffness_n_per_m", "stiffness of the workspace spring")
+      .unit("N/m")
+      .minimum(0.0)
       .default_value(1000.0);
-  s.real("max_tracking_error_m", "anti-windup: while the drives saturate, the virtual body stays this close to the "
-                                 "handle; 0: off").unit("m")
-      .minimum(0.0).default_value(0.0);
-  s.real("max_tracking_angle_rad", "anti-windup: the same for the orientation; 0: off").unit("rad").minimum(0.0)
+  s.real("max_tracking_error_m",
+         "anti-windup: while the drives saturate, the virtual body stays this close to the "
+         "handle; 0: off")
+      .unit("m")
+      .minimum(0.0)
+      .default_value(0.0);
+  s.real("max_tracking_angle_rad", "anti-windup: the same for the orientation; 0: off")
+      .unit("rad")
+      .minimum(0.0)
       .default_value(0.0);
   s.real("max_velocity_m_s", "integration limit of the virtual speed").unit("m/s").greater_than(0.0).default_value(1.0);
-  s.real("max_angular_velocity_rad_s", "integration limit of the virtual angular speed").unit("rad/s")
-      .greater_than(0.0).default_value(5.0);
+  s.real("max_angular_velocity_rad_s", "integration limit of the virtual angular speed")
+      .unit("rad/s")
+      .greater_than(0.0)
+      .default_value(5.0);
   return s;
 }
 
 void VirtualAdmittance::configure(const Parameters& p, const PluginContext& context) {
   if (context.device == nullptr || context.device->robot_model_file.empty() || !context.device->reports_wrench) {
-    throw ParameterError("mass_kg", "the virtual admittance needs a device with a robot model and a force/torque sensor");
+    throw ParameterError("mass_kg",
+                         "the virtual admittance needs a device with a robot model and a force/torque sensor");
   }
   mass_ = vector3(p.real_vector("mass_kg"));
   damping_ = vector3(p.real_vector("damping_n_s_per_m"));
@@ -91,7 +126,8 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
   wall_damping_ = p.real("wall_damping_n_s_per_m");
   motion_based_ = p.boolean("motion_based");
   walls_relative_ = p.boolean("walls_relative");
-  for (int i = 0; i < wall_count_; ++i) configured_wall_points_[static_cast<std::size_t>(i)] = walls_[static_cast<std::size_t>(i)].point;
+  for (int i = 0; i < wall_count_; ++i)
+    configured_wall_points_[static_cast<std::size_t>(i)] = walls_[static_cast<std::size_t>(i)].point;
   workspace_radius_ = p.real("workspace_radius_m");
   workspace_stiffness_ = p.real("workspace_stiffness_n_per_m");
   max_tracking_error_ = p.real("max_tracking_error_m");
@@ -114,7 +150,8 @@ Eigen::Matrix<double, 6, 1> VirtualAdmittance::engine_wrench(const EngineInput& 
     w.head<3>() = coupling_k_ * (e.proxy_pose.position - position) + coupling_b_ * (e.proxy_twist.linear - velocity);
     if (rotation_) {
       const Eigen::AngleAxisd error(e.proxy_pose.orientation.normalized() * orientation.conjugate());
-      w.tail<3>() = coupling_kr_ * error.angle() * error.axis() + coupling_br_ * (e.proxy_twist.angular - angular_velocity);
+      w.tail<3>() =
+          coupling_kr_ * error.angle() * error.axis() + coupling_br_ * (e.proxy_twist.angular - angular_velocity);
     }
   }
   if (e.has_wrench) {
@@ -122,8 +159,8 @@ Eigen::Matrix<double, 6, 1> VirtualAdmittance::engine_wrench(const EngineInput& 
     if (rotation_) w.tail<3>() += e.wrench.torque;
     if (e.has_local_model) {
       // The engine's linearisation about its anchor, evaluated at loop rate between the engine's updates.
-      w.head<3>() += e.stiffness.head<3>().cwiseProduct(e.anchor.position - position) -
-                     e.damping.head<3>().cwiseProduct(velocity);
+      w.head<3>() +=
+          e.stiffness.head<3>().cwiseProduct(e.anchor.position - position) - e.damping.head<3>().cwiseProduct(velocity);
       if (rotation_) {
         const Eigen::AngleAxisd error(e.anchor.orientation.normalized() * orientation.conjugate());
         w.tail<3>() += e.stiffness.tail<3>().cwiseProduct(error.angle() * error.axis()) -
@@ -212,14 +249,19 @@ RuntimeReply VirtualAdmittance::handle_request(std::string_view name, const std:
   };
   if (name == "mass_kg" || name == "damping_n_s_per_m") {
     const bool mass = name == "mass_kg";
-    if (values.size() != 3 || !all_finite_positive(!mass)) return {false, std::string(name) + " takes 3 values, " + (mass ? "> 0" : ">= 0")};
+    if (values.size() != 3 || !all_finite_positive(!mass))
+      return {false, std::string(name) + " takes 3 values, " + (mass ? "> 0" : ">= 0")};
     (mass ? t.mass : t.damping) = Eigen::Vector3d(values[0], values[1], values[2]);
-  } else if (name == "coupling_stiffness_n_per_m" || name == "coupling_damping_n_s_per_m" || name == "wall_stiffness_n_per_m") {
+  } else if (name == "coupling_stiffness_n_per_m" || name == "coupling_damping_n_s_per_m" ||
+             name == "wall_stiffness_n_per_m") {
     if (values.size() != 1 || !all_finite_positive(true)) return {false, std::string(name) + " takes one value >= 0"};
-    (name == "coupling_stiffness_n_per_m" ? t.coupling_k : name == "coupling_damping_n_s_per_m" ? t.coupling_b : t.wall_k) = values[0];
+    (name == "coupling_stiffness_n_per_m"   ? t.coupling_k
+     : name == "coupling_damping_n_s_per_m" ? t.coupling_b
+                                            : t.wall_k) = values[0];
   } else {
-    return {false, "admittance run-time parameters: mass_kg, damping_n_s_per_m, coupling_stiffness_n_per_m, "
-                   "coupling_damping_n_s_per_m, wall_stiffness_n_per_m"};
+    return {false,
+            "admittance run-time parameters: mass_kg, damping_n_s_per_m, coupling_stiffness_n_per_m, "
+            "coupling_damping_n_s_per_m, wall_stiffness_n_per_m"};
   }
   requested_ = t;
   tunable_inbox_.publish(t);
@@ -233,7 +275,8 @@ ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcep
   workspace_centre_ = position_;
   for (int i = 0; i < wall_count_; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    walls_[k].point = walls_relative_ ? Eigen::Vector3d(configured_wall_points_[k] + position_) : configured_wall_points_[k];
+    walls_[k].point =
+        walls_relative_ ? Eigen::Vector3d(configured_wall_points_[k] + position_) : configured_wall_points_[k];
   }
   velocity_ = clamp_norm(current.chain->handle_twist.linear, max_velocity_);
   orientation_ = current.chain->handle_pose.orientation.normalized();
@@ -262,10 +305,10 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
   } else {
     port_twist << velocity_, world_angular;
   }
-  Eigen::Matrix<double, 6, 1> engine =
-      motion_based_ ? engine_wrench(e, c.handle_pose.position, c.handle_pose.orientation, c.handle_twist.linear,
-                                    c.handle_twist.angular)
-                    : engine_wrench(e, position_, orientation_, velocity_, world_angular);
+  Eigen::Matrix<double, 6, 1> engine = motion_based_
+                                           ? engine_wrench(e, c.handle_pose.position, c.handle_pose.orientation,
+                                                           c.handle_twist.linear, c.handle_twist.angular)
+                                           : engine_wrench(e, position_, orientation_, velocity_, world_angular);
   // The safety layer: passivity controller on the engine port, then the rendered-wrench limits.
   if (input.guard != nullptr) engine = input.guard->engine_port(engine, port_twist);
   Eigen::Matrix<double, 6, 1> rendered;
@@ -288,8 +331,8 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
   if (rotation_) {
     const Eigen::Vector3d torque_body = orientation_.conjugate() * (c.operator_wrench.torque + rendered.tail<3>());
     const Eigen::Vector3d& w = body_angular_velocity_;
-    const Eigen::Vector3d wd = (torque_body - w.cross(inertia_.cwiseProduct(w)) - rotational_damping_.cwiseProduct(w))
-                                   .cwiseQuotient(inertia_);
+    const Eigen::Vector3d wd =
+        (torque_body - w.cross(inertia_.cwiseProduct(w)) - rotational_damping_.cwiseProduct(w)).cwiseQuotient(inertia_);
     body_angular_velocity_ = clamp_norm(w + dt * wd, max_angular_velocity_);
     // Exact rotation over the step for the body-frame angular velocity.
     const double angle = body_angular_velocity_.norm() * dt;

@@ -11,11 +11,11 @@
 #include "app/session_report.hpp"
 #include "app/signals.hpp"
 #include "app/startup_checks.hpp"
+#include "bridge/cyclone_log.hpp"
+#include "bridge/dds_bridge.hpp"
 #include "config/config_error.hpp"
 #include "config/session_config.hpp"
 #include "config/yaml_reader.hpp"
-#include "bridge/cyclone_log.hpp"
-#include "bridge/dds_bridge.hpp"
 #include "executor/executor.hpp"
 #include "recorder/recorder.hpp"
 #include "session/session_builder.hpp"
@@ -37,7 +37,8 @@ std::optional<LoadedSession> load(const std::string& file, const RunOptions* ove
     s.config = load_session_config(file);
     if (overrides != nullptr) {
       if (overrides->duration_s) s.config.server.duration_s = *overrides->duration_s;
-      if (overrides->clock) s.config.server.clock = *overrides->clock == "lockstep" ? ClockMode::lockstep : ClockMode::realtime;
+      if (overrides->clock)
+        s.config.server.clock = *overrides->clock == "lockstep" ? ClockMode::lockstep : ClockMode::realtime;
       if (overrides->dds_domain) {
         s.config.dds.enabled = true;
         s.config.dds.domain_id = *overrides->dds_domain;
@@ -144,9 +145,10 @@ int run_session(const RunOptions& options) {
     }
     std::string cpus;
     for (int c : dds_cpus) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
-    spdlog::info("DDS interface on domain {} ({}){}", s->config.dds.domain_id,
-                 s->config.dds.cyclone_config.empty() ? std::string("loopback only") : s->config.dds.cyclone_config.string(),
-                 cpus.empty() ? std::string() : fmt::format(", DDS threads on CPU {}, the loop on CPU {}", cpus, settings.cpu));
+    spdlog::info(
+        "DDS interface on domain {} ({}){}", s->config.dds.domain_id,
+        s->config.dds.cyclone_config.empty() ? std::string("loopback only") : s->config.dds.cyclone_config.string(),
+        cpus.empty() ? std::string() : fmt::format(", DDS threads on CPU {}, the loop on CPU {}", cpus, settings.cpu));
   }
 
   for (const ConfigureFailure& f : s->configure_failures)
@@ -190,11 +192,13 @@ int run_session(const RunOptions& options) {
       spdlog::info("{} claims ended because their claimant was gone", ended);
     const RoundTripStatistics rt = bridge->round_trip();
     if (rt.count > 0) {
-      spdlog::info("round trip state -> engine -> command accepted: {} samples, p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us",
-                   rt.count, rt.p50_us, rt.p99_us, rt.max_us);
+      spdlog::info(
+          "round trip state -> engine -> command accepted: {} samples, p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us",
+          rt.count, rt.p50_us, rt.p99_us, rt.max_us);
       if (const std::uint64_t applied = rt.applied(); applied > 0)
-        spdlog::info("commands applied in the cycle after their state's: {} of {} ({:.2f} %), later: {}", rt.applied_after_cycles[1],
-                     applied, 100.0 * static_cast<double>(rt.applied_after_cycles[1]) / static_cast<double>(applied),
+        spdlog::info("commands applied in the cycle after their state's: {} of {} ({:.2f} %), later: {}",
+                     rt.applied_after_cycles[1], applied,
+                     100.0 * static_cast<double>(rt.applied_after_cycles[1]) / static_cast<double>(applied),
                      applied - rt.applied_after_cycles[1] - rt.applied_after_cycles[0]);
     }
   }
@@ -228,7 +232,8 @@ int run_session(const RunOptions& options) {
       spdlog::error("recording FAILED: {}; {} device-cycles in {} (whole rows), {} lost, {} dropped", recorder->error(),
                     recorder->written(), options.record_csv, recorder->lost(), recorder->dropped());
     } else {
-      spdlog::info("recorded {} device-cycles to {} ({} dropped)", recorder->written(), options.record_csv, recorder->dropped());
+      spdlog::info("recorded {} device-cycles to {} ({} dropped)", recorder->written(), options.record_csv,
+                   recorder->dropped());
     }
   }
   if (!options.stats_json.empty()) {
@@ -257,8 +262,8 @@ int list_plugins(const std::string& config_file) {
   std::vector<std::string> problems;
   const auto handles = loader.list_all(&problems);
   for (const auto& h : handles)
-    fmt::print("{:<20} {:<18} {:<8} {}  ({})\n", h.descriptor->name, to_string(h.descriptor->kind), h.descriptor->version,
-               h.descriptor->summary, h.library->path.string());
+    fmt::print("{:<20} {:<18} {:<8} {}  ({})\n", h.descriptor->name, to_string(h.descriptor->kind),
+               h.descriptor->version, h.descriptor->summary, h.library->path.string());
   for (const auto& p : problems) fmt::print(stderr, "warning: {}\n", p);
   if (handles.empty()) {
     std::string paths;
@@ -307,8 +312,10 @@ int describe_config(const std::string& config_file) {
   }
   fmt::print("server section of a session file:\n");
   print_schema(server_settings_schema());
-  fmt::print("  {:<24} {}\n  {:<24}   {}\n", "plugin_paths", "folders searched for plugin libraries before "
-             "HAPTICD_PLUGIN_PATH and the installed plugin folder", "", "list of folders, relative to the session file");
+  fmt::print("  {:<24} {}\n  {:<24}   {}\n", "plugin_paths",
+             "folders searched for plugin libraries before "
+             "HAPTICD_PLUGIN_PATH and the installed plugin folder",
+             "", "list of folders, relative to the session file");
   fmt::print("\ndds section of a session file (present: the DDS interface runs):\n");
   print_schema(dds_settings_schema());
   fmt::print("\na device entry (devices: [...]):\n");

@@ -11,11 +11,11 @@ namespace hapticd::server {
 
 struct RunOptions {
   std::string config_file;
-  std::optional<double> duration_s;   // overrides server.duration_s
-  std::optional<std::string> clock;   // overrides server.clock
-  std::string stats_json;             // write the loop statistics here
-  std::string record_csv;             // record every cycle here
-  std::optional<int> dds_domain;      // turns the DDS interface on, on this domain (overrides dds.domain_id)
+  std::optional<double> duration_s;  // overrides server.duration_s
+  std::optional<std::string> clock;  // overrides server.clock
+  std::string stats_json;            // write the loop statistics here
+  std::string record_csv;            // record every cycle here
+  std::optional<int> dds_domain;     // turns the DDS interface on, on this domain (overrides dds.domain_id)
 };
 
 inline constexpr int kExitOk = 0;

@@ -1,7 +1,7 @@
 // hapticd: the real-time haptic control server.
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -15,7 +15,8 @@ namespace {
 int run_command(int argc, char** argv) {
   using namespace hapticd::server;
   CLI::App app{"hapticd - real-time haptic control server"};
-  app.set_version_flag("--version", std::string("hapticd 0.1.0 (plugin API ") + std::to_string(hapticd::kApiVersion) + ")");
+  app.set_version_flag("--version",
+                       std::string("hapticd 0.1.0 (plugin API ") + std::to_string(hapticd::kApiVersion) + ")");
 
   RunOptions run;
   std::string check_file;
@@ -27,10 +28,14 @@ int run_command(int argc, char** argv) {
   std::string clock;
 
   auto* config_opt = app.add_option("--config", run.config_file, "run the session described by this YAML file");
-  auto* check_opt = app.add_option("--check-config", check_file, "validate a session file (loads and configures its plugins) and exit");
-  auto* list_opt = app.add_flag("--list-plugins", list, "list the plugins on the search paths (with --config: also its plugin_paths)");
-  auto* describe_opt = app.add_option("--describe-plugin", describe_name, "print a plugin's parameters (type, unit, bounds, default)");
-  auto* server_opt = app.add_flag("--describe-config", describe_server, "print the settings of a session file's server and dds sections");
+  auto* check_opt = app.add_option("--check-config", check_file,
+                                   "validate a session file (loads and configures its plugins) and exit");
+  auto* list_opt = app.add_flag("--list-plugins", list,
+                                "list the plugins on the search paths (with --config: also its plugin_paths)");
+  auto* describe_opt =
+      app.add_option("--describe-plugin", describe_name, "print a plugin's parameters (type, unit, bounds, default)");
+  auto* server_opt = app.add_flag("--describe-config", describe_server,
+                                  "print the settings of a session file's server and dds sections");
   auto* duration_opt = app.add_option("--duration", duration, "run for this many seconds (overrides server.duration_s)")
                            ->check(CLI::NonNegativeNumber);
   auto* clock_opt = app.add_option("--clock", clock, "realtime or lockstep (overrides server.clock)")
@@ -38,8 +43,10 @@ int run_command(int argc, char** argv) {
   app.add_option("--stats-json", run.stats_json, "write loop statistics (histograms, percentiles) to this JSON file");
   app.add_option("--record", run.record_csv, "record every cycle of every device to this CSV file");
   int dds_domain = 0;
-  auto* dds_opt = app.add_option("--dds-domain", dds_domain, "run the DDS interface on this domain (loopback-only "
-                                 "configuration unless dds.cyclone_config says otherwise)")->check(CLI::Range(0, 230));
+  auto* dds_opt = app.add_option("--dds-domain", dds_domain,
+                                 "run the DDS interface on this domain (loopback-only "
+                                 "configuration unless dds.cyclone_config says otherwise)")
+                      ->check(CLI::Range(0, 230));
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
   check_opt->excludes(config_opt);

@@ -22,9 +22,10 @@ void log_fault_report(const DeviceSession& d, const FaultReport& r) {
     if (c.torque.size() > 0) torque = std::max(torque, c.torque.cwiseAbs().maxCoeff());
     force = std::max(force, c.operator_force.norm());
   }
-  spdlog::error("device '{}' fault {} at cycle {}: {}; safe mode (damping, then zero torque). Last {} cycles: "
-                "largest handle speed {:.3f} m/s, joint speed {:.3f}, torque {:.2f}, operator force {:.1f} N",
-                d.name(), fault_code(r.fault), r.cycle, to_string(r.fault), r.count, speed, joint_speed, torque, force);
+  spdlog::error(
+      "device '{}' fault {} at cycle {}: {}; safe mode (damping, then zero torque). Last {} cycles: "
+      "largest handle speed {:.3f} m/s, joint speed {:.3f}, torque {:.2f}, operator force {:.1f} N",
+      d.name(), fault_code(r.fault), r.cycle, to_string(r.fault), r.count, speed, joint_speed, torque, force);
 }
 
 }  // namespace
@@ -70,8 +71,8 @@ void SessionMonitor::poll() {
   }
   if (recorder_ != nullptr && recorder_->failed() && !recording_failure_logged_) {
     recording_failure_logged_ = true;
-    const std::string message = recorder_->error() + "; the recording stops here (" + std::to_string(recorder_->lost()) +
-                                " device-cycles lost so far), the session runs on";
+    const std::string message = recorder_->error() + "; the recording stops here (" +
+                                std::to_string(recorder_->lost()) + " device-cycles lost so far), the session runs on";
     spdlog::error("{}", message);
     if (bridge_ != nullptr) bridge_->announce(hapticd_msg_EVENT_RECORDING, "recording_failed", message);
   }

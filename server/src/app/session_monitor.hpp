@@ -20,8 +20,8 @@ class SessionMonitor {
  public:
   // bridge may be nullptr (no DDS interface); stop_requested may be nullptr (nothing to log).
   // recorder may be nullptr; a failing recording is logged and announced once.
-  SessionMonitor(std::vector<DeviceSession*> devices, DdsBridge* bridge, const std::atomic<bool>* stop_requested = nullptr,
-                 const Recorder* recorder = nullptr);
+  SessionMonitor(std::vector<DeviceSession*> devices, DdsBridge* bridge,
+                 const std::atomic<bool>* stop_requested = nullptr, const Recorder* recorder = nullptr);
   ~SessionMonitor();
   SessionMonitor(const SessionMonitor&) = delete;
   SessionMonitor& operator=(const SessionMonitor&) = delete;

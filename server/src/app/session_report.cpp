@@ -16,7 +16,8 @@ std::string events_json(const SessionReport& r, std::size_t device) {
   const auto& log = r.monitor->safety_log(device);
   for (std::size_t k = 0; k < log.size(); ++k)
     out += fmt::format("{}{{\"event\": \"{}\", \"fault\": \"{}\", \"cycle\": {}, \"time_s\": {:.6f}}}", k ? ", " : "",
-                       kind_name(log[k].kind), fault_code(log[k].fault), log[k].cycle, static_cast<double>(log[k].time_ns) * 1e-9);
+                       kind_name(log[k].kind), fault_code(log[k].fault), log[k].cycle,
+                       static_cast<double>(log[k].time_ns) * 1e-9);
   return out + "]";
 }
 
@@ -32,33 +33,37 @@ std::string report_json(const SessionReport& r) {
   const CycleStatistics& s = r.result->statistics;
   const bool lockstep = r.config->server.clock == ClockMode::lockstep;
   std::string out = "{\n";
-  out += fmt::format("  \"clock\": \"{}\",\n  \"rate_hz\": {},\n", lockstep ? "lockstep" : "realtime", r.config->server.rate_hz);
-  out += fmt::format("  \"cycles\": {},\n  \"overruns\": {},\n  \"max_consecutive_overruns\": {},\n  \"skipped_cycles\": {},\n",
-                     s.cycles, s.overruns, s.max_consecutive_overruns, s.skipped_cycles);
+  out += fmt::format("  \"clock\": \"{}\",\n  \"rate_hz\": {},\n", lockstep ? "lockstep" : "realtime",
+                     r.config->server.rate_hz);
+  out += fmt::format(
+      "  \"cycles\": {},\n  \"overruns\": {},\n  \"max_consecutive_overruns\": {},\n  \"skipped_cycles\": {},\n",
+      s.cycles, s.overruns, s.max_consecutive_overruns, s.skipped_cycles);
   out += fmt::format("  \"loop_time_s\": {:.6f},\n  \"wall_time_s\": {:.6f},\n  \"stop_requested\": {},\n",
                      r.result->loop_time_s, r.result->wall_time_s, r.result->stop_requested);
   out += "  \"wakeup_latency_us\": " + histogram_json(s.wakeup_latency) + ",\n";
   out += "  \"compute_time_us\": " + histogram_json(s.compute_time) + ",\n";
-  out += fmt::format("  \"recorder\": {{\"records\": {}, \"dropped\": {}, \"lost\": {}, \"failed\": {}}},\n", r.records_written,
-                     r.records_dropped, r.records_lost, r.recording_failed);
+  out += fmt::format("  \"recorder\": {{\"records\": {}, \"dropped\": {}, \"lost\": {}, \"failed\": {}}},\n",
+                     r.records_written, r.records_dropped, r.records_lost, r.recording_failed);
   if (r.has_round_trip) {
     const RoundTripStatistics& rt = r.round_trip;
-    out += fmt::format("  \"dds_round_trip_us\": {{\"count\": {}, \"p50\": {:.3f}, \"p99\": {:.3f}, \"max\": {:.3f}}},\n",
-                       rt.count, rt.p50_us, rt.p99_us, rt.max_us);
+    out +=
+        fmt::format("  \"dds_round_trip_us\": {{\"count\": {}, \"p50\": {:.3f}, \"p99\": {:.3f}, \"max\": {:.3f}}},\n",
+                    rt.count, rt.p50_us, rt.p99_us, rt.max_us);
     out += fmt::format("  \"dds_applied_after_cycles\": [{}],\n", fmt::join(rt.applied_after_cycles, ", "));
   }
   if (r.dds.enabled)
-    out += fmt::format("  \"dds\": {{\"deadline_misses\": {}, \"commands_rejected\": {}, \"claims_ended\": {}, "
-                       "\"log_forwarded\": {}, \"log_suppressed\": {}}},\n",
-                       r.dds.deadline_misses, r.dds.commands_rejected, r.dds.claims_ended, r.dds.log_forwarded,
-                       r.dds.log_suppressed);
+    out += fmt::format(
+        "  \"dds\": {{\"deadline_misses\": {}, \"commands_rejected\": {}, \"claims_ended\": {}, "
+        "\"log_forwarded\": {}, \"log_suppressed\": {}}},\n",
+        r.dds.deadline_misses, r.dds.commands_rejected, r.dds.claims_ended, r.dds.log_forwarded, r.dds.log_suppressed);
   out += "  \"devices\": [";
   for (std::size_t i = 0; i < r.sessions->size(); ++i) {
     const DeviceSession& d = *(*r.sessions)[i];
-    out += fmt::format("{}\n    {{\"name\": \"{}\", \"fault\": \"{}\", \"fault_cycle\": {}, \"faults\": {}, \"recoveries\": {}, "
-                       "\"saturated_cycles\": {}, \"safety_events\": {}}}",
-                       i ? "," : "", d.name(), to_string(d.fault()), d.fault_cycle(), d.faults_raised(), d.recoveries(),
-                       d.saturated_cycles(), events_json(r, i));
+    out += fmt::format(
+        "{}\n    {{\"name\": \"{}\", \"fault\": \"{}\", \"fault_cycle\": {}, \"faults\": {}, \"recoveries\": {}, "
+        "\"saturated_cycles\": {}, \"safety_events\": {}}}",
+        i ? "," : "", d.name(), to_string(d.fault()), d.fault_cycle(), d.faults_raised(), d.recoveries(),
+        d.saturated_cycles(), events_json(r, i));
   }
   out += "\n  ]\n}\n";
   return out;
@@ -67,8 +72,8 @@ std::string report_json(const SessionReport& r) {
 std::vector<std::string> report_lines(const SessionReport& r) {
   const CycleStatistics& s = r.result->statistics;
   std::vector<std::string> lines;
-  lines.push_back(fmt::format("{} cycles in {:.3f} s loop time ({:.3f} s wall), {} overruns, {} skipped",
-                              s.cycles, r.result->loop_time_s, r.result->wall_time_s, s.overruns, s.skipped_cycles));
+  lines.push_back(fmt::format("{} cycles in {:.3f} s loop time ({:.3f} s wall), {} overruns, {} skipped", s.cycles,
+                              r.result->loop_time_s, r.result->wall_time_s, s.overruns, s.skipped_cycles));
   if (r.config->server.clock == ClockMode::realtime)
     lines.push_back("wake-up latency: " + histogram_summary(s.wakeup_latency));
   lines.push_back("compute time:    " + histogram_summary(s.compute_time));
@@ -82,13 +87,15 @@ std::vector<std::string> report_lines(const SessionReport& r) {
     }
     lines.push_back(fmt::format("device '{}': {} fault{}, {} recover{}; {}{}", d.name(), d.faults_raised(),
                                 d.faults_raised() == 1 ? "" : "s", d.recoveries(), d.recoveries() == 1 ? "y" : "ies",
-                                d.fault() == DeviceFault::none ? std::string("running at the end")
-                                                               : fmt::format("in its safe mode at the end ({})", fault_code(d.fault())),
+                                d.fault() == DeviceFault::none
+                                    ? std::string("running at the end")
+                                    : fmt::format("in its safe mode at the end ({})", fault_code(d.fault())),
                                 saturated));
     if (r.monitor == nullptr) continue;
     for (const SafetyEvent& e : r.monitor->safety_log(i))
-      lines.push_back(fmt::format("  {} {} at cycle {} ({:.3f} s): {}", e.kind == SafetyEvent::Kind::fault ? "FAULT" : "recovered from",
-                                  fault_code(e.fault), e.cycle, static_cast<double>(e.time_ns) * 1e-9, to_string(e.fault)));
+      lines.push_back(fmt::format("  {} {} at cycle {} ({:.3f} s): {}",
+                                  e.kind == SafetyEvent::Kind::fault ? "FAULT" : "recovered from", fault_code(e.fault),
+                                  e.cycle, static_cast<double>(e.time_ns) * 1e-9, to_string(e.fault)));
     if (const std::uint64_t more = r.monitor->safety_events_not_kept(i) + d.lost_safety_events(); more > 0)
       lines.push_back(fmt::format("  ... and {} more faults and recoveries not kept", more));
   }

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "config/session_config.hpp"
 #include "bridge/round_trip_probe.hpp"
+#include "config/session_config.hpp"
 #include "executor/executor.hpp"
 #include "session/device_session.hpp"
 
@@ -22,7 +22,7 @@ struct SessionReport {
   const SessionMonitor* monitor = nullptr;
   std::uint64_t records_written = 0;
   std::uint64_t records_dropped = 0;
-  std::uint64_t records_lost = 0;      // a failed recording: not in the file
+  std::uint64_t records_lost = 0;  // a failed recording: not in the file
   bool recording_failed = false;
   // With the DDS interface: state written -> engine -> command accepted, and the cycles until it was applied.
   bool has_round_trip = false;
@@ -30,11 +30,11 @@ struct SessionReport {
   // With the DDS interface: its defences at work.
   struct Dds {
     bool enabled = false;
-    std::uint64_t deadline_misses = 0;     // over every device
-    std::uint64_t commands_rejected = 0;   // over every device, and commands for unknown devices
-    std::uint64_t claims_ended = 0;        // claims whose claimant's participant was gone
-    std::uint64_t log_forwarded = 0;       // Cyclone's log lines that reached the log
-    std::uint64_t log_suppressed = 0;      // ... and those the rate limit held back
+    std::uint64_t deadline_misses = 0;    // over every device
+    std::uint64_t commands_rejected = 0;  // over every device, and commands for unknown devices
+    std::uint64_t claims_ended = 0;       // claims whose claimant's participant was gone
+    std::uint64_t log_forwarded = 0;      // Cyclone's log lines that reached the log
+    std::uint64_t log_suppressed = 0;     // ... and those the rate limit held back
   } dds;
 };
 

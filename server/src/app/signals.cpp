@@ -11,7 +11,7 @@ extern "C" void on_stop_signal(int) { g_stop_requested.store(true, std::memory_o
 }  // namespace
 
 const std::atomic<bool>& install_stop_signal_handlers() {
-  struct sigaction action{};
+  struct sigaction action {};
   action.sa_handler = on_stop_signal;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);

@@ -1,9 +1,8 @@
 #include "app/startup_checks.hpp"
 
+#include <fmt/format.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
-
-#include <fmt/format.h>
 
 namespace hapticd::server {
 
@@ -19,10 +18,11 @@ std::string check_address_space(int threads, std::size_t extra_bytes) {
     munmap(p, need);
     return {};
   }
-  return fmt::format("not enough address space left for the session's threads ({} MB more needed: {} threads at the "
-                     "stack size limit of {} MB, and working memory); raise the limit (ulimit -v) or lower the stack "
-                     "size (ulimit -s)",
-                     need >> 20, threads, stack_bytes >> 20);
+  return fmt::format(
+      "not enough address space left for the session's threads ({} MB more needed: {} threads at the "
+      "stack size limit of {} MB, and working memory); raise the limit (ulimit -v) or lower the stack "
+      "size (ulimit -s)",
+      need >> 20, threads, stack_bytes >> 20);
 }
 
 }  // namespace hapticd::server

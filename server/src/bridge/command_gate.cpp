@@ -51,11 +51,12 @@ std::uint64_t& CommandGate::last_serial_of(dds_instance_handle_t writer) {
   return slot.serial;
 }
 
-CommandGate::Verdict CommandGate::admit(const hapticd_msg_EngineCommand& command, const Sender& sender, std::int64_t source_ns,
-                                        std::int64_t now_ns) {
+CommandGate::Verdict CommandGate::admit(const hapticd_msg_EngineCommand& command, const Sender& sender,
+                                        std::int64_t source_ns, std::int64_t now_ns) {
   ++received_;
   if (const dds::ContentCheck c = dds::check_command_content(command, bounds_); !c.ok) return reject(c.reason);
-  if (!owned_by(sender.participant) || dds::text_of(command.engine) != owner_) return reject(dds::RejectReason::not_owner);
+  if (!owned_by(sender.participant) || dds::text_of(command.engine) != owner_)
+    return reject(dds::RejectReason::not_owner);
   std::uint64_t& last_serial = last_serial_of(sender.writer);
   if (command.serial <= last_serial) return reject(dds::RejectReason::out_of_order);
   // Fresh: not older than the limit, and not from the future beyond it either (a clock that is off).

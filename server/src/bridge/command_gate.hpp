@@ -25,7 +25,8 @@ struct Sender {
 
 class CommandGate {
  public:
-  CommandGate(dds::CommandBounds bounds, double max_sample_age_s) : bounds_(bounds), max_age_ns_(static_cast<std::int64_t>(max_sample_age_s * 1e9)) {}
+  CommandGate(dds::CommandBounds bounds, double max_sample_age_s)
+      : bounds_(bounds), max_age_ns_(static_cast<std::int64_t>(max_sample_age_s * 1e9)) {}
 
   // true when `participant` (as `client`) now owns the device: it was free, or already that participant's
   // under the same client id.
@@ -33,7 +34,9 @@ class CommandGate {
   // true when `participant` owned the device and released it.
   bool release(const PeerId& participant);
   void release_any();
-  [[nodiscard]] bool owned_by(const PeerId& participant) const noexcept { return !owner_.empty() && owner_participant_ == participant; }
+  [[nodiscard]] bool owned_by(const PeerId& participant) const noexcept {
+    return !owner_.empty() && owner_participant_ == participant;
+  }
   [[nodiscard]] const std::string& owner() const noexcept { return owner_; }  // the claim's client id ("": free)
   [[nodiscard]] const PeerId& owner_participant() const noexcept { return owner_participant_; }
 
@@ -42,7 +45,8 @@ class CommandGate {
     dds::RejectReason reason = dds::RejectReason::other;
   };
   // source_ns: the sample's source timestamp, now_ns: the receiving wall clock (both ns since the epoch).
-  Verdict admit(const hapticd_msg_EngineCommand& command, const Sender& sender, std::int64_t source_ns, std::int64_t now_ns);
+  Verdict admit(const hapticd_msg_EngineCommand& command, const Sender& sender, std::int64_t source_ns,
+                std::int64_t now_ns);
 
   [[nodiscard]] std::uint64_t received() const noexcept { return received_; }
   [[nodiscard]] std::uint64_t accepted() const noexcept { return accepted_; }

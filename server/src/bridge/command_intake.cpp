@@ -13,10 +13,12 @@ CommandIntake::CommandIntake(DdsEndpoints& dds, DeviceLinks& links, EventSender&
 
 void CommandIntake::listen() {
   const dds::Listener listener(dds_create_listener(this));
-  dds_lset_data_available(listener.get(), [](dds_entity_t, void* self) { static_cast<CommandIntake*>(self)->take_commands(); });
-  dds_lset_liveliness_changed(listener.get(), [](dds_entity_t, const dds_liveliness_changed_status_t status, void* self) {
-    static_cast<CommandIntake*>(self)->liveliness_changed(status);
-  });
+  dds_lset_data_available(listener.get(),
+                          [](dds_entity_t, void* self) { static_cast<CommandIntake*>(self)->take_commands(); });
+  dds_lset_liveliness_changed(listener.get(),
+                              [](dds_entity_t, const dds_liveliness_changed_status_t status, void* self) {
+                                static_cast<CommandIntake*>(self)->liveliness_changed(status);
+                              });
   dds_.command.set_listener(listener.get());
 }
 
@@ -43,15 +45,16 @@ void CommandIntake::take_commands() {
     if (!v.accepted) {
       if (d->reject_events[static_cast<std::size_t>(v.reason)]++ % 100 == 0)  // the first, then every 100th per reason
         events_.send(*d, hapticd_msg_EVENT_ENGINE_REJECTED, dds::to_string(v.reason),
-                     "engine command rejected from '" + std::string(dds::text_of(c.engine)) + "': " +
-                         std::string(dds::to_string(v.reason)));
+                     "engine command rejected from '" + std::string(dds::text_of(c.engine)) +
+                         "': " + std::string(dds::to_string(v.reason)));
       return;
     }
     const std::int64_t state_written_ns = d->round_trip.command_accepted(c.serial, c.state_serial);
     d->session->publish_engine_input(dds::to_engine_input(c));
     d->round_trip.command_handed_over(state_written_ns, monotonic_now_ns());
     if (c.state_serial > 0) {
-      if (c.state_serial > d->answered.load(std::memory_order_relaxed)) d->answered.store(c.state_serial, std::memory_order_release);
+      if (c.state_serial > d->answered.load(std::memory_order_relaxed))
+        d->answered.store(c.state_serial, std::memory_order_release);
       d->synced.store(true, std::memory_order_release);
     }
   });

@@ -49,8 +49,8 @@ void sink(void*, const dds_log_data_t* data) {
   std::string_view text(data->message, data->size);
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.remove_suffix(1);
   const auto level = (data->priority & (DDS_LC_FATAL | DDS_LC_ERROR)) != 0 ? spdlog::level::err
-                     : (data->priority & DDS_LC_WARNING) != 0           ? spdlog::level::warn
-                                                                         : spdlog::level::info;
+                     : (data->priority & DDS_LC_WARNING) != 0              ? spdlog::level::warn
+                                                                           : spdlog::level::info;
   spdlog::log(level, "Cyclone DDS: {}", text);
 }
 

@@ -52,7 +52,8 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
   dds_ = std::make_unique<DdsEndpoints>(settings, dds::CommandTiming{deadline, 0.5}, links_.command_filter(),
                                         links_.request_filter());
   if (previous) (void)pthread_setaffinity_np(pthread_self(), sizeof *previous, &*previous);
-  dds::check(dds_set_status_mask(dds_->request.get(), DDS_DATA_AVAILABLE_STATUS), "cannot set the request reader's status mask");
+  dds::check(dds_set_status_mask(dds_->request.get(), DDS_DATA_AVAILABLE_STATUS),
+             "cannot set the request reader's status mask");
   dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->request.get(), 1), "waitset");
   dds::check(dds_waitset_attach(dds_->waitset.get(), dds_->wake.get(), 2), "waitset");
   events_ = std::make_unique<EventSender>(dds_->event);
@@ -110,13 +111,15 @@ void DdsBridge::publisher_thread() {
 
 void DdsBridge::receiver_thread() {
   pin_this_thread();
-  const auto telemetry_period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / settings_.telemetry_rate_hz));
+  const auto telemetry_period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / settings_.telemetry_rate_hz));
   auto next_telemetry = Clock::now();
   auto next_log_report = Clock::now() + std::chrono::seconds(10);
   std::array<dds_attach_t, 4> triggered{};
   while (!stopping_.load(std::memory_order_acquire)) {
     const auto wait = std::clamp<std::int64_t>(
-        std::chrono::duration_cast<std::chrono::nanoseconds>(next_telemetry - Clock::now()).count(), 0, kClaimCheckPeriodNs);
+        std::chrono::duration_cast<std::chrono::nanoseconds>(next_telemetry - Clock::now()).count(), 0,
+        kClaimCheckPeriodNs);
     (void)dds_waitset_wait(dds_->waitset.get(), triggered.data(), triggered.size(), wait);
     (void)dds_set_guardcondition(dds_->wake.get(), false);
     dispatcher_->handle_requests();

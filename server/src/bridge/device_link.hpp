@@ -39,8 +39,8 @@ struct DeviceLink {
   std::atomic<dds_instance_handle_t> instance{0};
   std::atomic<std::uint64_t> deadline_misses{0};
   std::atomic<std::uint64_t> requests{0};
-  std::atomic<std::uint64_t> states{0};          // published (telemetry)
-  std::atomic<std::int64_t> loop_time_ns{0};     // of the newest published state (events from any thread)
+  std::atomic<std::uint64_t> states{0};       // published (telemetry)
+  std::atomic<std::int64_t> loop_time_ns{0};  // of the newest published state (events from any thread)
   RoundTripProbe round_trip;
   // Rejected commands announced so far per reason (the command listener only: the first, then every 100th).
   std::array<std::uint64_t, dds::kRejectReasons> reject_events{};

@@ -5,7 +5,8 @@
 
 namespace hapticd::server {
 
-void EventSender::send(const DeviceLink& device, hapticd_msg_EventKind kind, std::string_view code, std::string_view message) {
+void EventSender::send(const DeviceLink& device, hapticd_msg_EventKind kind, std::string_view code,
+                       std::string_view message) {
   hapticd_msg_Event e{};
   dds::set_text(e.device, device.session->name());
   e.serial = serial_.fetch_add(1) + 1;

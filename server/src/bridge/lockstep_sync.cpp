@@ -13,7 +13,8 @@ void LockstepSync::after_cycle(std::uint64_t index, const std::atomic<bool>& sto
     // Before the virtual clock runs away: wait for an engine to claim a device and answer its first state.
     const auto give_up = Clock::now() + std::chrono::duration<double>(settings_.lockstep_start_wait_s);
     const auto any_synced = [&] {
-      return std::any_of(links_.begin(), links_.end(), [](const auto& d) { return d->synced.load(std::memory_order_acquire); });
+      return std::any_of(links_.begin(), links_.end(),
+                         [](const auto& d) { return d->synced.load(std::memory_order_acquire); });
     };
     while (!any_synced() && Clock::now() < give_up && !stopping.load(std::memory_order_acquire)) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));

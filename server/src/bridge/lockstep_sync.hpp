@@ -15,7 +15,11 @@ class LockstepSync {
   // nudge: wakes the publisher (it repeats the last state for late readers while the first cycle waits).
   LockstepSync(const DdsSettings& settings, DeviceLinks& links, std::uint64_t snapshot_interval, void (*nudge)(void*),
                void* nudge_arg)
-      : settings_(settings), links_(links), snapshot_interval_(snapshot_interval), nudge_(nudge), nudge_arg_(nudge_arg) {}
+      : settings_(settings),
+        links_(links),
+        snapshot_interval_(snapshot_interval),
+        nudge_(nudge),
+        nudge_arg_(nudge_arg) {}
 
   // Loop thread, after cycle `index` was published; stopping: give up waiting at once.
   void after_cycle(std::uint64_t index, const std::atomic<bool>& stopping) noexcept;

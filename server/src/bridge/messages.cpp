@@ -17,8 +17,9 @@ std::uint32_t flags_of(const DeviceSnapshot& s) noexcept {
   return (s.saturated ? hapticd_msg_FLAG_TORQUE_SATURATED : 0u) |
          (s.engine_weight > 0.0 && !s.engine_stale ? hapticd_msg_FLAG_ENGINE_ACTIVE : 0u) |
          (s.engine_stale ? hapticd_msg_FLAG_ENGINE_STALE : 0u) | (s.estop ? hapticd_msg_FLAG_ESTOP : 0u) |
-         (s.fault != DeviceFault::none ? hapticd_msg_FLAG_FAULT : 0u) | (s.switching ? hapticd_msg_FLAG_SWITCHING : 0u) |
-         (s.safe_damping ? hapticd_msg_FLAG_SAFE_DAMPING : 0u) | (s.limit_engaged ? hapticd_msg_FLAG_LIMIT_ENGAGED : 0u) |
+         (s.fault != DeviceFault::none ? hapticd_msg_FLAG_FAULT : 0u) |
+         (s.switching ? hapticd_msg_FLAG_SWITCHING : 0u) | (s.safe_damping ? hapticd_msg_FLAG_SAFE_DAMPING : 0u) |
+         (s.limit_engaged ? hapticd_msg_FLAG_LIMIT_ENGAGED : 0u) |
          (s.render_limited ? hapticd_msg_FLAG_RENDER_LIMITED : 0u) |
          (s.thermal_derating ? hapticd_msg_FLAG_THERMAL_DERATING : 0u) |
          (s.passivity_control ? hapticd_msg_FLAG_PASSIVITY_CONTROL : 0u);
@@ -51,7 +52,8 @@ hapticd_msg_DeviceState state_message(const DeviceSnapshot& s, const StateLabels
   return m;
 }
 
-hapticd_msg_DeviceDescription description_message(const DeviceSession& s, double rate_hz, const std::optional<Pose>& start_pose) {
+hapticd_msg_DeviceDescription description_message(const DeviceSession& s, double rate_hz,
+                                                  const std::optional<Pose>& start_pose) {
   const DeviceDescription& desc = s.description();
   hapticd_msg_DeviceDescription m{};
   dds::set_text(m.device, s.name());
@@ -77,14 +79,16 @@ hapticd_msg_DeviceDescription description_message(const DeviceSession& s, double
   for (std::int32_t k = 0; k < m.scheme_count; ++k) {
     const SchemeChain& sc = schemes[static_cast<std::size_t>(k)];
     dds::set_text(m.schemes[k], sc.name);
-    dds::set_text(m.scheme_virtual_model[k], sc.virtual_model ? std::string_view(sc.virtual_model->descriptor->name) : "");
+    dds::set_text(m.scheme_virtual_model[k],
+                  sc.virtual_model ? std::string_view(sc.virtual_model->descriptor->name) : "");
   }
   m.command_deadline_s = s.chain().engine_deadline_s;
   m.command_fade_s = s.chain().engine_fade_s;
   return m;
 }
 
-void fill_fault_report(hapticd_msg_FaultReport& m, std::string_view device, int dof, const FaultReport& report) noexcept {
+void fill_fault_report(hapticd_msg_FaultReport& m, std::string_view device, int dof,
+                       const FaultReport& report) noexcept {
   m = hapticd_msg_FaultReport{};
   dds::set_text(m.device, device);
   m.serial = report.serial;
@@ -130,13 +134,14 @@ std::vector<EventText> events_between(const PublishedView& before, const Publish
   if (now.fault != before.fault || now.faults != before.faults) {
     if (now.fault == DeviceFault::none) {
       if (before.fault != DeviceFault::none)
-          events.push_back({hapticd_msg_EVENT_RECOVERED, std::string(fault_code(before.fault)),
+        events.push_back({hapticd_msg_EVENT_RECOVERED, std::string(fault_code(before.fault)),
                           "the device left its safe mode on request"});
     } else {
       events.push_back({now.fault == DeviceFault::emergency_stop ? hapticd_msg_EVENT_ESTOP : hapticd_msg_EVENT_FAULT,
                         std::string(fault_code(now.fault)),
-                        std::string(to_string(now.fault)) + ": the device is in its safe mode (damping, then zero torque); "
-                                                            "its history is on the fault report topic"});
+                        std::string(to_string(now.fault)) +
+                            ": the device is in its safe mode (damping, then zero torque); "
+                            "its history is on the fault report topic"});
     }
   }
   if (now.scheme != before.scheme && now.scheme >= 0 && static_cast<std::size_t>(now.scheme) < scheme_names.size()) {

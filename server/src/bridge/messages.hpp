@@ -23,19 +23,20 @@ class DeviceSession;
 // What a state message says besides the snapshot.
 struct StateLabels {
   std::string_view device;
-  std::uint64_t serial = 0;      // the state's serial (cycle / state interval + 1)
-  std::string_view scheme;       // the running scheme's name
-  std::string_view owner;        // the claim's client id ("": free)
+  std::uint64_t serial = 0;  // the state's serial (cycle / state interval + 1)
+  std::string_view scheme;   // the running scheme's name
+  std::string_view owner;    // the claim's client id ("": free)
   hapticd_msg_LoopSummary loop{};
 };
 [[nodiscard]] hapticd_msg_DeviceState state_message(const DeviceSnapshot& s, const StateLabels& labels) noexcept;
 
 // The description of a session's device; start_pose once the loop has run (else all zeros: not known yet).
 [[nodiscard]] hapticd_msg_DeviceDescription description_message(const DeviceSession& session, double rate_hz,
-                                                                 const std::optional<Pose>& start_pose);
+                                                                const std::optional<Pose>& start_pose);
 
 // A fault report into `m` (about 100 kB: the caller owns it, off the stack).
-void fill_fault_report(hapticd_msg_FaultReport& m, std::string_view device, int dof, const FaultReport& report) noexcept;
+void fill_fault_report(hapticd_msg_FaultReport& m, std::string_view device, int dof,
+                       const FaultReport& report) noexcept;
 
 // What the events of a device are derived from: the published mode, fault, count of faults, scheme and
 // engine staleness.

@@ -56,7 +56,8 @@ std::optional<PeerId> PeerDirectory::participant_of(dds_entity_t reader, dds_ins
   if (entries_.size() < capacity_) {
     entries_.push_back(fresh);
   } else {  // the least recently used writer is forgotten (it is looked up again if it writes again)
-    *std::min_element(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) { return a.used < b.used; }) = fresh;
+    *std::min_element(entries_.begin(), entries_.end(),
+                      [](const Entry& a, const Entry& b) { return a.used < b.used; }) = fresh;
   }
   return id;
 }

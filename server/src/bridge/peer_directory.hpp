@@ -41,7 +41,6 @@ class PeerDirectory {
   // Whether `participant` has a writer matched on `reader` whose liveliness has not been lost.
   [[nodiscard]] bool has_live_writer(dds_entity_t reader, const PeerId& participant);
 
-
  private:
   struct Entry {
     dds_entity_t reader = 0;
@@ -53,8 +52,8 @@ class PeerDirectory {
 
   std::size_t capacity_;
   mutable std::mutex mutex_;
-  std::vector<Entry> entries_;                     // at most capacity_
-  std::vector<dds_instance_handle_t> not_alive_;   // writers whose liveliness was lost; at most capacity_
+  std::vector<Entry> entries_;                    // at most capacity_
+  std::vector<dds_instance_handle_t> not_alive_;  // writers whose liveliness was lost; at most capacity_
   std::uint64_t clock_ = 0;
 };
 

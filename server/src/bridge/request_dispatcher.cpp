@@ -8,9 +8,12 @@
 
 namespace hapticd::server {
 
-RequestDispatcher::RequestDispatcher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, StatePublisher& publisher,
-                                     double claim_grace_s)
-    : dds_(dds), links_(links), events_(events), publisher_(publisher),
+RequestDispatcher::RequestDispatcher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events,
+                                     StatePublisher& publisher, double claim_grace_s)
+    : dds_(dds),
+      links_(links),
+      events_(events),
+      publisher_(publisher),
       claim_grace_ns_(static_cast<std::int64_t>(claim_grace_s * 1e9)) {}
 
 void RequestDispatcher::handle_requests() {
@@ -25,8 +28,13 @@ void RequestDispatcher::handle_requests() {
     } else if (!requester) {
       answer.message = "request from a writer that is no longer known";
     } else {
-      const Request r{m, info, *requester, dds::text_of(m.client), dds::text_of(m.name),
-                      std::vector<double>(m.values, m.values + std::clamp<std::int32_t>(m.value_count, 0, hapticd_msg_MAX_VALUES))};
+      const Request r{
+          m,
+          info,
+          *requester,
+          dds::text_of(m.client),
+          dds::text_of(m.name),
+          std::vector<double>(m.values, m.values + std::clamp<std::int32_t>(m.value_count, 0, hapticd_msg_MAX_VALUES))};
       answer = dispatch(*d, r);
     }
     hapticd_msg_ControlReply reply{};
@@ -41,19 +49,28 @@ void RequestDispatcher::handle_requests() {
 
 RequestDispatcher::Answer RequestDispatcher::dispatch(DeviceLink& d, const Request& r) {
   switch (r.message.kind) {
-    case hapticd_msg_REQUEST_CLAIM: return claim(d, r);
-    case hapticd_msg_REQUEST_RELEASE: return release(d, r);
-    case hapticd_msg_REQUEST_SWITCH_SCHEME: return switch_scheme(d, r);
-    case hapticd_msg_REQUEST_SET_PARAMETER: return set_parameter(d, r);
-    case hapticd_msg_REQUEST_OPERATOR: return drive_operator(d, r);
-    case hapticd_msg_REQUEST_ESTOP: return emergency_stop(d, r);
-    case hapticd_msg_REQUEST_RECOVER: return recover(d, r);
-    case hapticd_msg_REQUEST_DESCRIBE: return describe(d, r);
+    case hapticd_msg_REQUEST_CLAIM:
+      return claim(d, r);
+    case hapticd_msg_REQUEST_RELEASE:
+      return release(d, r);
+    case hapticd_msg_REQUEST_SWITCH_SCHEME:
+      return switch_scheme(d, r);
+    case hapticd_msg_REQUEST_SET_PARAMETER:
+      return set_parameter(d, r);
+    case hapticd_msg_REQUEST_OPERATOR:
+      return drive_operator(d, r);
+    case hapticd_msg_REQUEST_ESTOP:
+      return emergency_stop(d, r);
+    case hapticd_msg_REQUEST_RECOVER:
+      return recover(d, r);
+    case hapticd_msg_REQUEST_DESCRIBE:
+      return describe(d, r);
   }
   return {false, "unknown request kind"};
 }
 
-std::optional<RequestDispatcher::Answer> RequestDispatcher::refused_unless_owner(const DeviceLink& d, const Request& r) const {
+std::optional<RequestDispatcher::Answer> RequestDispatcher::refused_unless_owner(const DeviceLink& d,
+                                                                                 const Request& r) const {
   std::lock_guard lock(d.mutex);
   if (d.gate.owner().empty() || d.gate.owned_by(r.requester)) return std::nullopt;
   return Answer{false, "claimed by '" + d.gate.owner() + "'"};
@@ -96,7 +113,8 @@ RequestDispatcher::Answer RequestDispatcher::set_parameter(DeviceLink& d, const 
   if (auto refused = refused_unless_owner(d, r)) return *refused;
   const auto dot = r.name.find('.');
   if (dot == std::string_view::npos) return {false, "expected <stage>.<parameter>, e.g. virtual_model.mass_kg"};
-  const RuntimeReply rr = d.session->handle_request(r.name.substr(0, dot), std::string(r.name.substr(dot + 1)), r.values);
+  const RuntimeReply rr =
+      d.session->handle_request(r.name.substr(0, dot), std::string(r.name.substr(dot + 1)), r.values);
   return {rr.accepted, rr.message};
 }
 
@@ -158,7 +176,8 @@ void RequestDispatcher::check_claims() {
 
 void RequestDispatcher::check_engine_deadlines() {
   dds_requested_deadline_missed_status_t missed{};
-  if (dds_get_requested_deadline_missed_status(dds_.command.get(), &missed) != DDS_RETCODE_OK || missed.total_count_change <= 0)
+  if (dds_get_requested_deadline_missed_status(dds_.command.get(), &missed) != DDS_RETCODE_OK ||
+      missed.total_count_change <= 0)
     return;
   for (auto& link : links_)
     if (link->instance.load(std::memory_order_relaxed) == missed.last_instance_handle)

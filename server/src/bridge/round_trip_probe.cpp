@@ -57,7 +57,8 @@ void RoundTripProbe::merge_into(LatencyHistogram& round_trips, RoundTripStatisti
     std::lock_guard lock(mutex_);
     round_trips.merge(round_trips_);
   }
-  for (std::size_t i = 0; i < applied_.size(); ++i) counts.applied_after_cycles[i] += applied_[i].load(std::memory_order_relaxed);
+  for (std::size_t i = 0; i < applied_.size(); ++i)
+    counts.applied_after_cycles[i] += applied_[i].load(std::memory_order_relaxed);
 }
 
 RoundTripStatistics summarise_round_trips(const LatencyHistogram& round_trips, RoundTripStatistics counts) {

@@ -26,7 +26,8 @@ struct RoundTripStatistics {
 };
 
 // The round trips' percentiles (histogram resolution 1.6 %, never understated; the maximum exact) into counts.
-[[nodiscard]] RoundTripStatistics summarise_round_trips(const LatencyHistogram& round_trips, RoundTripStatistics counts);
+[[nodiscard]] RoundTripStatistics summarise_round_trips(const LatencyHistogram& round_trips,
+                                                        RoundTripStatistics counts);
 
 class RoundTripProbe {
  public:

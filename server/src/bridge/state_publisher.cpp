@@ -1,6 +1,5 @@
 #include "bridge/state_publisher.hpp"
 
-
 #include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "session/device_session.hpp"
@@ -9,7 +8,12 @@ namespace hapticd::server {
 
 StatePublisher::StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, double rate_hz,
                                std::uint64_t snapshot_interval)
-    : dds_(dds), links_(links), events_(events), rate_hz_(rate_hz), snapshot_interval_(snapshot_interval), published_(links.size()) {
+    : dds_(dds),
+      links_(links),
+      events_(events),
+      rate_hz_(rate_hz),
+      snapshot_interval_(snapshot_interval),
+      published_(links.size()) {
   for (std::size_t i = 0; i < links.size(); ++i)
     for (const SchemeChain& s : links[i].session->chain().schemes) published_[i].scheme_names.push_back(s.name);
 }
@@ -53,7 +57,8 @@ void StatePublisher::publish_states() {
       std::lock_guard lock(d.mutex);
       owner = d.gate.owner();
     }
-    const StateLabels labels{d.session->name(), s.cycle / snapshot_interval_ + 1, d.session->active_scheme(), owner, loop_summary()};
+    const StateLabels labels{d.session->name(), s.cycle / snapshot_interval_ + 1, d.session->active_scheme(), owner,
+                             loop_summary()};
     p.last = state_message(s, labels);
     d.round_trip.command_applied(s.engine_sequence, s.cycle);
     d.round_trip.state_written(p.last.serial, s.cycle, monotonic_now_ns());

@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
-#include "bridge/device_link.hpp"
 #include "bridge/dds_endpoints.hpp"
+#include "bridge/device_link.hpp"
 #include "bridge/event_sender.hpp"
 #include "bridge/messages.hpp"
 #include "executor/executor.hpp"
@@ -18,7 +18,8 @@ namespace hapticd::server {
 
 class StatePublisher {
  public:
-  StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, double rate_hz, std::uint64_t snapshot_interval);
+  StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, double rate_hz,
+                 std::uint64_t snapshot_interval);
 
   // Before the threads start: where the loop's live statistics are (the executor's).
   void set_loop_statistics(const LiveLoopStatistics* live) noexcept { live_ = live; }

@@ -1,11 +1,10 @@
 #include "config/session_config.hpp"
 
-#include "hapticd/input_file.hpp"
-
 #include <set>
 
 #include "config/config_error.hpp"
 #include "config/yaml_reader.hpp"
+#include "hapticd/input_file.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -18,7 +17,8 @@ PluginConfig read_plugin(const YAML::Node& node, const std::string& key_path, co
   plugin.plugin = reader.required_string("plugin");
   const YAML::Node library = reader.optional("library");
   if (library.IsDefined() && !library.IsNull()) {
-    if (!library.IsScalar()) throw ConfigError(file, line_of(library), reader.path_of("library"), "expected a library name or path");
+    if (!library.IsScalar())
+      throw ConfigError(file, line_of(library), reader.path_of("library"), "expected a library name or path");
     plugin.library = library.Scalar();
   }
   plugin.parameters = reader.optional("parameters");
@@ -54,7 +54,8 @@ void read_schemes(MappingReader& reader, DeviceConfig& device) {
   }
   const YAML::Node list = reader.optional("schemes");
   if (!list.IsDefined() || list.IsNull()) return;
-  if (!list.IsSequence()) throw ConfigError(file, line_of(list), reader.path_of("schemes"), "expected a list of schemes");
+  if (!list.IsSequence())
+    throw ConfigError(file, line_of(list), reader.path_of("schemes"), "expected a list of schemes");
   std::set<std::string> names{device.scheme};
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string path = reader.path_of("schemes") + "[" + std::to_string(k) + "]";
@@ -62,7 +63,8 @@ void read_schemes(MappingReader& reader, DeviceConfig& device) {
     SchemeConfig scheme;
     scheme.name = r.required_string("name");
     if (!names.insert(scheme.name).second)
-      throw ConfigError(file, line_of(list[k]["name"]), r.path_of("name"), "scheme name '" + scheme.name + "' is used twice");
+      throw ConfigError(file, line_of(list[k]["name"]), r.path_of("name"),
+                        "scheme name '" + scheme.name + "' is used twice");
     scheme.virtual_model = read_optional_plugin(r, "virtual_model");
     scheme.inverse_kinematics = read_optional_plugin(r, "inverse_kinematics");
     scheme.controller = read_plugin(r.required("controller"), r.path_of("controller"), file);
@@ -84,10 +86,12 @@ ServerSettings read_server(const YAML::Node& node, const std::string& file, cons
 
   // plugin_paths is a list of strings, read apart from the schema'd scalar settings.
   if (const YAML::Node paths = node["plugin_paths"]; paths.IsDefined() && !paths.IsNull()) {
-    if (!paths.IsSequence()) throw ConfigError(file, line_of(paths), "server.plugin_paths", "expected a list of folders");
+    if (!paths.IsSequence())
+      throw ConfigError(file, line_of(paths), "server.plugin_paths", "expected a list of folders");
     for (std::size_t i = 0; i < paths.size(); ++i) {
       if (!paths[i].IsScalar())
-        throw ConfigError(file, line_of(paths[i]), "server.plugin_paths[" + std::to_string(i) + "]", "expected a folder path");
+        throw ConfigError(file, line_of(paths[i]), "server.plugin_paths[" + std::to_string(i) + "]",
+                          "expected a folder path");
       std::filesystem::path p = paths[i].Scalar();
       settings.plugin_paths.push_back(p.is_absolute() ? p : base / p);
     }
@@ -118,7 +122,8 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
     const std::filesystem::path cp = c;
     d.cyclone_config = cp.is_absolute() ? cp : base / cp;
     if (!std::filesystem::exists(d.cyclone_config))
-      throw ConfigError(file, line_of(node["cyclone_config"]), "dds.cyclone_config", "no such file: " + d.cyclone_config.string());
+      throw ConfigError(file, line_of(node["cyclone_config"]), "dds.cyclone_config",
+                        "no such file: " + d.cyclone_config.string());
   }
   d.state_rate_hz = p.real("state_rate_hz");
   d.telemetry_rate_hz = p.real("telemetry_rate_hz");
@@ -166,9 +171,11 @@ const std::vector<EntryKey>& device_entry_keys() {
       {"inverse_kinematics", "the starting scheme's inverse kinematics plugin (optional), as for device"},
       {"controller", "the starting scheme's controller plugin, as for device"},
       {"scheme", "the starting scheme's name (default \"default\")"},
-      {"schemes", "schemes to switch to at run time: a list of {name, virtual_model?, inverse_kinematics?, controller}"},
-      {"switch_ramp_s", "a torque difference at a scheme switch (or after a recovery) fades out over this time, s "
-                        "(0 .. 5, default 0.1)"},
+      {"schemes",
+       "schemes to switch to at run time: a list of {name, virtual_model?, inverse_kinematics?, controller}"},
+      {"switch_ramp_s",
+       "a torque difference at a scheme switch (or after a recovery) fades out over this time, s "
+       "(0 .. 5, default 0.1)"},
       {"engine_deadline_s", "engine input older than this fades out, s (0.001 .. 10, default 0.05)"},
       {"engine_fade_s", "... over this time, s (0 .. 10, default 0.02)"},
       {"engine_ramp_in_s", "engine input starting after a silence ramps in over this time, s (0 .. 10, default 0.1)"},
@@ -182,49 +189,99 @@ ParameterSchema dds_settings_schema() {
   const DdsSettings d;
   s.boolean("enabled", "run the DDS interface").default_value(true);
   s.integer("domain_id", "DDS domain").minimum(0).maximum(230).default_value(std::int64_t{0});
-  s.string("cyclone_config", "Cyclone DDS XML file; empty: the built-in loopback-only configuration "
-                             "(config/dds/cyclonedds-loopback.xml)").default_value(std::string());
-  s.real("state_rate_hz", "device state publication rate; 0: every loop cycle").unit("Hz").minimum(0.0)
+  s.string("cyclone_config",
+           "Cyclone DDS XML file; empty: the built-in loopback-only configuration "
+           "(config/dds/cyclonedds-loopback.xml)")
+      .default_value(std::string());
+  s.real("state_rate_hz", "device state publication rate; 0: every loop cycle")
+      .unit("Hz")
+      .minimum(0.0)
       .default_value(d.state_rate_hz);
-  s.real("telemetry_rate_hz", "telemetry publication rate").unit("Hz").greater_than(0.0).maximum(100.0)
+  s.real("telemetry_rate_hz", "telemetry publication rate")
+      .unit("Hz")
+      .greater_than(0.0)
+      .maximum(100.0)
       .default_value(d.telemetry_rate_hz);
-  s.real("max_sample_age_s", "engine commands older than this by their source timestamp are rejected").unit("s")
-      .greater_than(0.0).default_value(d.max_sample_age_s);
+  s.real("max_sample_age_s", "engine commands older than this by their source timestamp are rejected")
+      .unit("s")
+      .greater_than(0.0)
+      .default_value(d.max_sample_age_s);
   s.real("max_force_n", "largest accepted engine force").unit("N").greater_than(0.0).default_value(d.max_force_n);
-  s.real("max_torque_nm", "largest accepted engine torque").unit("N m").greater_than(0.0).default_value(d.max_torque_nm);
-  s.real("max_stiffness_n_per_m", "largest accepted local-model stiffness").unit("N/m").greater_than(0.0)
+  s.real("max_torque_nm", "largest accepted engine torque")
+      .unit("N m")
+      .greater_than(0.0)
+      .default_value(d.max_torque_nm);
+  s.real("max_stiffness_n_per_m", "largest accepted local-model stiffness")
+      .unit("N/m")
+      .greater_than(0.0)
       .default_value(d.max_stiffness_n_per_m);
-  s.real("max_rotational_stiffness_n_m_per_rad", "largest accepted local-model rotational stiffness").unit("N m/rad")
-      .greater_than(0.0).default_value(d.max_rotational_stiffness_n_m_per_rad);
-  s.real("max_damping_n_s_per_m", "largest accepted local-model damping").unit("N s/m").greater_than(0.0)
+  s.real("max_rotational_stiffness_n_m_per_rad", "largest accepted local-model rotational stiffness")
+      .unit("N m/rad")
+      .greater_than(0.0)
+      .default_value(d.max_rotational_stiffness_n_m_per_rad);
+  s.real("max_damping_n_s_per_m", "largest accepted local-model damping")
+      .unit("N s/m")
+      .greater_than(0.0)
       .default_value(d.max_damping_n_s_per_m);
-  s.real("max_rotational_damping_n_m_s", "largest accepted local-model rotational damping").unit("N m s/rad")
-      .greater_than(0.0).default_value(d.max_rotational_damping_n_m_s);
-  s.real("max_distance_m", "engine poses must lie within this distance of the device base").unit("m")
-      .greater_than(0.0).default_value(d.max_distance_m);
-  s.real("max_speed_m_s", "largest accepted engine twist, linear").unit("m/s").greater_than(0.0)
+  s.real("max_rotational_damping_n_m_s", "largest accepted local-model rotational damping")
+      .unit("N m s/rad")
+      .greater_than(0.0)
+      .default_value(d.max_rotational_damping_n_m_s);
+  s.real("max_distance_m", "engine poses must lie within this distance of the device base")
+      .unit("m")
+      .greater_than(0.0)
+      .default_value(d.max_distance_m);
+  s.real("max_speed_m_s", "largest accepted engine twist, linear")
+      .unit("m/s")
+      .greater_than(0.0)
       .default_value(d.max_speed_m_s);
-  s.real("max_angular_speed_rad_s", "largest accepted engine twist, angular").unit("rad/s").greater_than(0.0)
+  s.real("max_angular_speed_rad_s", "largest accepted engine twist, angular")
+      .unit("rad/s")
+      .greater_than(0.0)
       .default_value(d.max_angular_speed_rad_s);
-  s.boolean("lockstep_sync", "with the lockstep clock, each cycle waits for the owning engine's answer to the "
-                             "previous state (deterministic end-to-end runs)").default_value(d.lockstep_sync);
-  s.real("lockstep_wait_s", "longest wait (wall time) for an engine in lockstep before the loop stops waiting for "
-                            "it").unit("s").greater_than(0.0).default_value(d.lockstep_wait_s);
-  s.real("lockstep_start_wait_s", "with the lockstep clock, the first cycle waits up to this long (wall time) for an "
-                                  "engine to claim a device and answer its state; 0: no wait").unit("s").minimum(0.0)
-      .maximum(600.0).default_value(d.lockstep_start_wait_s);
-  s.integer("cpu", "CPU of the DDS threads: -2 auto (real-time clock, 2 or more CPUs: the loop on the last CPU "
-                   "unless server.cpu is set, the DDS threads on the others), -1 no pinning").minimum(-2).maximum(1023)
+  s.boolean("lockstep_sync",
+            "with the lockstep clock, each cycle waits for the owning engine's answer to the "
+            "previous state (deterministic end-to-end runs)")
+      .default_value(d.lockstep_sync);
+  s.real("lockstep_wait_s",
+         "longest wait (wall time) for an engine in lockstep before the loop stops waiting for "
+         "it")
+      .unit("s")
+      .greater_than(0.0)
+      .default_value(d.lockstep_wait_s);
+  s.real("lockstep_start_wait_s",
+         "with the lockstep clock, the first cycle waits up to this long (wall time) for an "
+         "engine to claim a device and answer its state; 0: no wait")
+      .unit("s")
+      .minimum(0.0)
+      .maximum(600.0)
+      .default_value(d.lockstep_start_wait_s);
+  s.integer("cpu",
+            "CPU of the DDS threads: -2 auto (real-time clock, 2 or more CPUs: the loop on the last CPU "
+            "unless server.cpu is set, the DDS threads on the others), -1 no pinning")
+      .minimum(-2)
+      .maximum(1023)
       .default_value(std::int64_t{d.cpu});
-  s.integer("max_peers", "DDS writers whose participant the server remembers for ownership checks (least recently "
-                         "used first out), and writers remembered as having lost their liveliness")
-      .minimum(8).maximum(65536).default_value(std::int64_t{d.max_peers});
-  s.real("claim_grace_s", "a claim whose participant has no live engine command writer this long after the claim "
-                          "ends (a claimant that cannot be watched)").unit("s").greater_than(0.0).maximum(1.0)
+  s.integer("max_peers",
+            "DDS writers whose participant the server remembers for ownership checks (least recently "
+            "used first out), and writers remembered as having lost their liveliness")
+      .minimum(8)
+      .maximum(65536)
+      .default_value(std::int64_t{d.max_peers});
+  s.real("claim_grace_s",
+         "a claim whose participant has no live engine command writer this long after the claim "
+         "ends (a claimant that cannot be watched)")
+      .unit("s")
+      .greater_than(0.0)
+      .maximum(1.0)
       .default_value(d.claim_grace_s);
-  s.real("log_lines_per_s", "Cyclone DDS's own log lines (e.g. warnings about malformed packets) pass through the "
-                            "server's log at most this often, in bursts of 20; the rest are counted and summarised")
-      .unit("1/s").greater_than(0.0).maximum(1000.0).default_value(d.log_lines_per_s);
+  s.real("log_lines_per_s",
+         "Cyclone DDS's own log lines (e.g. warnings about malformed packets) pass through the "
+         "server's log at most this often, in bursts of 20; the rest are counted and summarised")
+      .unit("1/s")
+      .greater_than(0.0)
+      .maximum(1000.0)
+      .default_value(d.log_lines_per_s);
   return s;
 }
 
@@ -232,17 +289,26 @@ ParameterSchema server_settings_schema() {
   ParameterSchema s;
   s.real("rate_hz", "control loop rate").unit("Hz").minimum(100.0).maximum(20000.0).default_value(2000.0);
   s.string("clock", "realtime: absolute deadlines on the monotonic clock; lockstep: virtual clock, as fast as possible")
-      .choices({"realtime", "lockstep"}).default_value(std::string("realtime"));
+      .choices({"realtime", "lockstep"})
+      .default_value(std::string("realtime"));
   s.real("duration_s", "session length; 0 runs until SIGINT/SIGTERM").unit("s").minimum(0.0).default_value(0.0);
-  s.integer("seed", "seed of every random process (simulated noise), per device derived from it").minimum(0)
+  s.integer("seed", "seed of every random process (simulated noise), per device derived from it")
+      .minimum(0)
       .default_value(std::int64_t{1});
-  s.integer("realtime_priority", "SCHED_FIFO priority of the loop thread; 0 keeps the normal scheduler").minimum(0)
-      .maximum(99).default_value(std::int64_t{80});
+  s.integer("realtime_priority", "SCHED_FIFO priority of the loop thread; 0 keeps the normal scheduler")
+      .minimum(0)
+      .maximum(99)
+      .default_value(std::int64_t{80});
   s.boolean("lock_memory", "lock all pages in memory (mlockall) in realtime mode").default_value(true);
-  s.integer("cpu", "pin the loop thread to this CPU; -1 does not pin").minimum(-1).maximum(1023)
+  s.integer("cpu", "pin the loop thread to this CPU; -1 does not pin")
+      .minimum(-1)
+      .maximum(1023)
       .default_value(std::int64_t{-1});
-  s.real("shutdown_ramp_s", "torques ramp linearly to zero over this time when the session ends").unit("s")
-      .minimum(0.0).maximum(5.0).default_value(0.2);
+  s.real("shutdown_ramp_s", "torques ramp linearly to zero over this time when the session ends")
+      .unit("s")
+      .minimum(0.0)
+      .maximum(5.0)
+      .default_value(0.2);
   return s;
 }
 
@@ -300,7 +366,8 @@ SessionConfig read_session_config(const std::filesystem::path& path) {
       throw ConfigError(file, line_of(devices[i]["name"]), reader.path_of("name"),
                         "device name '" + device.name + "' must be 1-31 characters of letters, digits, '_' and '-'");
     if (!names.insert(device.name).second)
-      throw ConfigError(file, line_of(devices[i]["name"]), reader.path_of("name"), "device name '" + device.name + "' is used twice");
+      throw ConfigError(file, line_of(devices[i]["name"]), reader.path_of("name"),
+                        "device name '" + device.name + "' is used twice");
     device.device = read_plugin(reader.required("device"), reader.path_of("device"), file);
     device.virtual_model = read_optional_plugin(reader, "virtual_model");
     device.inverse_kinematics = read_optional_plugin(reader, "inverse_kinematics");

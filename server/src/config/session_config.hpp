@@ -19,12 +19,12 @@ enum class ClockMode { realtime, lockstep };
 struct ServerSettings {
   double rate_hz = 2000.0;
   ClockMode clock = ClockMode::realtime;
-  double duration_s = 0.0;          // 0: until SIGINT/SIGTERM
+  double duration_s = 0.0;  // 0: until SIGINT/SIGTERM
   std::uint64_t seed = 1;
-  int realtime_priority = 80;       // SCHED_FIFO priority; 0: do not ask
+  int realtime_priority = 80;  // SCHED_FIFO priority; 0: do not ask
   bool lock_memory = true;
-  int cpu = -1;                     // pin the loop thread to this CPU; -1: no pinning
-  double shutdown_ramp_s = 0.2;     // torques ramp to zero over this time at the end of a session
+  int cpu = -1;                                     // pin the loop thread to this CPU; -1: no pinning
+  double shutdown_ramp_s = 0.2;                     // torques ramp to zero over this time at the end of a session
   std::vector<std::filesystem::path> plugin_paths;  // resolved against the session file's folder
 };
 
@@ -35,19 +35,19 @@ struct DdsSettings {
   std::filesystem::path cyclone_config;  // empty: the built-in loopback configuration
   double state_rate_hz = 0.0;            // 0: every cycle
   double telemetry_rate_hz = 10.0;
-  double max_sample_age_s = 0.1;         // commands older than this (source timestamp) are rejected
-  double max_force_n = 300.0;            // bounds of accepted engine commands
+  double max_sample_age_s = 0.1;  // commands older than this (source timestamp) are rejected
+  double max_force_n = 300.0;     // bounds of accepted engine commands
   double max_torque_nm = 30.0;
   double max_stiffness_n_per_m = 20000.0;
   double max_rotational_stiffness_n_m_per_rad = 200.0;
   double max_damping_n_s_per_m = 500.0;
   double max_rotational_damping_n_m_s = 5.0;
-  double max_distance_m = 2.0;           // proxy, anchor and motion poses within this distance of the device base
+  double max_distance_m = 2.0;  // proxy, anchor and motion poses within this distance of the device base
   double max_speed_m_s = 5.0;
   double max_angular_speed_rad_s = 20.0;
-  bool lockstep_sync = true;             // lockstep clock: each cycle waits for the owning engine's answer
-  double lockstep_wait_s = 0.5;          // ... at most this long (wall time), then stops waiting for that engine
-  double lockstep_start_wait_s = 0.0;    // lockstep: the first cycle waits this long (wall) for an engine to answer
+  bool lockstep_sync = true;           // lockstep clock: each cycle waits for the owning engine's answer
+  double lockstep_wait_s = 0.5;        // ... at most this long (wall time), then stops waiting for that engine
+  double lockstep_start_wait_s = 0.0;  // lockstep: the first cycle waits this long (wall) for an engine to answer
   // CPU of the DDS threads (the bridge's and Cyclone's): -2 auto (real-time clock on 2+ CPUs: the loop gets
   // the last CPU unless server.cpu says otherwise, the DDS threads the others), -1 no pinning, else that CPU.
   int cpu = -2;
@@ -64,8 +64,8 @@ struct DdsSettings {
 struct PluginConfig {
   std::string plugin;
   std::optional<std::string> library;
-  YAML::Node parameters;   // validated later against the plugin's schema
-  std::string key_path;    // "devices[0].controller"
+  YAML::Node parameters;  // validated later against the plugin's schema
+  std::string key_path;   // "devices[0].controller"
   int line = 0;
 };
 
@@ -88,7 +88,7 @@ struct DeviceConfig {
   std::string scheme = "default";
   // Alternatives the device can switch to at run time (`schemes` list), configured at start-up.
   std::vector<SchemeConfig> alternatives;
-  double switch_ramp_s = 0.1;  // a torque difference at a switch fades out over this time
+  double switch_ramp_s = 0.1;       // a torque difference at a switch fades out over this time
   double engine_deadline_s = 0.05;  // engine input older than this fades out ...
   double engine_fade_s = 0.02;      // ... over this time
   double engine_ramp_in_s = 0.1;    // engine input starting after a silence ramps in over this time

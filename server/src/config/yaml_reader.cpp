@@ -44,7 +44,8 @@ std::string scalar_text(const YAML::Node& node) {
 
 template <class T>
 T convert_scalar(const YAML::Node& node, const std::string& file, const std::string& key, const char* expected) {
-  if (!node.IsScalar()) throw ConfigError(file, line_of(node), key, std::string("expected ") + expected + ", got " + scalar_text(node));
+  if (!node.IsScalar())
+    throw ConfigError(file, line_of(node), key, std::string("expected ") + expected + ", got " + scalar_text(node));
   try {
     return node.as<T>();
   } catch (const YAML::Exception&) {
@@ -52,19 +53,24 @@ T convert_scalar(const YAML::Node& node, const std::string& file, const std::str
   }
 }
 
-ParameterValue convert(const YAML::Node& node, const ParameterSpec& spec, const std::string& file, const std::string& key) {
+ParameterValue convert(const YAML::Node& node, const ParameterSpec& spec, const std::string& file,
+                       const std::string& key) {
   switch (spec.type) {
-    case ParameterType::boolean: return convert_scalar<bool>(node, file, key, "true or false");
-    case ParameterType::integer: return convert_scalar<std::int64_t>(node, file, key, "an integer");
+    case ParameterType::boolean:
+      return convert_scalar<bool>(node, file, key, "true or false");
+    case ParameterType::integer:
+      return convert_scalar<std::int64_t>(node, file, key, "an integer");
     case ParameterType::real: {
       // yaml-cpp reads "true" as a double of 1: a boolean where a number belongs is a mistake worth naming.
       if (node.IsScalar() && (node.Scalar() == "true" || node.Scalar() == "false"))
         throw ConfigError(file, line_of(node), key, "expected a real number, got " + scalar_text(node));
       return convert_scalar<double>(node, file, key, "a real number");
     }
-    case ParameterType::string: return convert_scalar<std::string>(node, file, key, "a string");
+    case ParameterType::string:
+      return convert_scalar<std::string>(node, file, key, "a string");
     case ParameterType::real_vector: {
-      if (!node.IsSequence()) throw ConfigError(file, line_of(node), key, "expected a list of real numbers, got " + scalar_text(node));
+      if (!node.IsSequence())
+        throw ConfigError(file, line_of(node), key, "expected a list of real numbers, got " + scalar_text(node));
       std::vector<double> values;
       for (std::size_t i = 0; i < node.size(); ++i)
         values.push_back(convert_scalar<double>(node[i], file, key + "[" + std::to_string(i) + "]", "a real number"));
@@ -126,9 +132,7 @@ YAML::Node MappingReader::required(const std::string& key) {
   return value;
 }
 
-YAML::Node MappingReader::optional(const std::string& key) {
-  return node_[key];
-}
+YAML::Node MappingReader::optional(const std::string& key) { return node_[key]; }
 
 std::string MappingReader::required_string(const std::string& key) {
   const YAML::Node value = required(key);
@@ -136,7 +140,8 @@ std::string MappingReader::required_string(const std::string& key) {
 }
 
 Parameters read_parameters(const YAML::Node& node, const ParameterSchema& schema, const std::string& file,
-                           const std::string& key_path, int parent_line, const std::vector<std::string>& read_elsewhere) {
+                           const std::string& key_path, int parent_line,
+                           const std::vector<std::string>& read_elsewhere) {
   Parameters parameters;
   const bool present = node.IsDefined() && !node.IsNull();
   if (present && !node.IsMap())
@@ -165,9 +170,9 @@ Parameters read_parameters(const YAML::Node& node, const ParameterSchema& schema
   for (const auto& spec : schema.specs()) {
     if (parameters.has(spec.name)) continue;
     if (spec.required())
-      throw ConfigError(file, present ? line_of(node) : parent_line, key_path + "." + spec.name,
-                        "missing required parameter '" + spec.name + "' (" + spec.constraints_text() + ": " +
-                            spec.description + ")");
+      throw ConfigError(
+          file, present ? line_of(node) : parent_line, key_path + "." + spec.name,
+          "missing required parameter '" + spec.name + "' (" + spec.constraints_text() + ": " + spec.description + ")");
     parameters.set(spec.name, *spec.default_value);
   }
   return parameters;

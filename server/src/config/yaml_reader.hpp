@@ -43,6 +43,7 @@ class MappingReader {
 // parent_line locates errors about missing keys when node itself is absent. Keys in `read_elsewhere` belong
 // to the same mapping but are read by the caller.
 Parameters read_parameters(const YAML::Node& node, const ParameterSchema& schema, const std::string& file,
-                           const std::string& key_path, int parent_line, const std::vector<std::string>& read_elsewhere = {});
+                           const std::string& key_path, int parent_line,
+                           const std::vector<std::string>& read_elsewhere = {});
 
 }  // namespace hapticd::server

@@ -20,15 +20,16 @@ Executor::Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessio
 void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, ExecutorResult& result) noexcept {
   CycleStatistics& stats = result.statistics;
   const std::uint64_t run_cycles =
-      settings_.duration_s > 0.0 ? static_cast<std::uint64_t>(std::llround(settings_.duration_s * settings_.rate_hz)) : 0;
-  const auto ramp_cycles =
-      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(settings_.shutdown_ramp_s * settings_.rate_hz)));
+      settings_.duration_s > 0.0 ? static_cast<std::uint64_t>(std::llround(settings_.duration_s * settings_.rate_hz))
+                                 : 0;
+  const auto ramp_cycles = std::max<std::uint64_t>(
+      1, static_cast<std::uint64_t>(std::llround(settings_.shutdown_ramp_s * settings_.rate_hz)));
 
   const std::int64_t start_ns = clock.now_ns();
   std::int64_t deadline_ns = start_ns;  // cycle 0 runs at once
   std::uint64_t ramp_start = 0;
-  bool ramping = false;    // the duration has passed: torques ramp to zero
-  bool stopping = false;   // stop requested (SIGINT/SIGTERM): every device goes through its safe mode
+  bool ramping = false;   // the duration has passed: torques ramp to zero
+  bool stopping = false;  // stop requested (SIGINT/SIGTERM): every device goes through its safe mode
   std::uint32_t consecutive_overruns = 0;
   const auto window_cycles = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(settings_.rate_hz)));
   std::int64_t window_latency_ns = 0, window_compute_ns = 0;
@@ -50,7 +51,8 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
     }
     // Linear ramp from 1 to 0 over ramp_cycles; the last cycle of the ramp commands exactly zero.
     const double scale =
-        ramping ? std::max(0.0, 1.0 - static_cast<double>(index - ramp_start + 1) / static_cast<double>(ramp_cycles)) : 1.0;
+        ramping ? std::max(0.0, 1.0 - static_cast<double>(index - ramp_start + 1) / static_cast<double>(ramp_cycles))
+                : 1.0;
 
     // One cycle in phases, each for every device before the next (docs/architecture.md, "One cycle"):
     const CycleTime cycle{deadline_ns - start_ns, period_ns_, index};
@@ -63,7 +65,8 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
     // (d) limit and write, then record.
     for (std::size_t d = 0; d < sessions_.size(); ++d) {
       sessions_[d]->limit_and_write(cycle, scale);
-      if (recorder_ != nullptr) recorder_->record(cycle, static_cast<std::uint16_t>(d), sessions_[d]->state(), sessions_[d]->command());
+      if (recorder_ != nullptr)
+        recorder_->record(cycle, static_cast<std::uint16_t>(d), sessions_[d]->state(), sessions_[d]->command());
     }
 
     const std::int64_t compute_end_ns = monotonic_now_ns();
@@ -82,7 +85,8 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
       window_latency_ns = window_compute_ns = 0;
     }
 
-    const bool stopped = stopping && std::all_of(sessions_.begin(), sessions_.end(), [](const DeviceSession* s) { return s->at_rest(); });
+    const bool stopped = stopping && std::all_of(sessions_.begin(), sessions_.end(),
+                                                 [](const DeviceSession* s) { return s->at_rest(); });
     if ((ramping && index - ramp_start + 1 >= ramp_cycles) || stopped) {
       result.periods = index + 1;
       break;

@@ -59,7 +59,8 @@ std::int64_t LatencyHistogram::quantile_ns(double q) const noexcept {
 std::vector<std::pair<std::int64_t, std::uint64_t>> LatencyHistogram::nonempty_buckets() const {
   std::vector<std::pair<std::int64_t, std::uint64_t>> out;
   for (int b = 0; b < kBuckets; ++b)
-    if (buckets_[static_cast<std::size_t>(b)] != 0) out.emplace_back(lower_edge(b), buckets_[static_cast<std::size_t>(b)]);
+    if (buckets_[static_cast<std::size_t>(b)] != 0)
+      out.emplace_back(lower_edge(b), buckets_[static_cast<std::size_t>(b)]);
   return out;
 }
 

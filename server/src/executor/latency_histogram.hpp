@@ -23,7 +23,9 @@ class LatencyHistogram {
   [[nodiscard]] std::uint64_t count() const noexcept { return count_; }
   [[nodiscard]] std::int64_t min_ns() const noexcept { return count_ ? min_ : 0; }
   [[nodiscard]] std::int64_t max_ns() const noexcept { return count_ ? max_ : 0; }
-  [[nodiscard]] double mean_ns() const noexcept { return count_ ? static_cast<double>(sum_) / static_cast<double>(count_) : 0.0; }
+  [[nodiscard]] double mean_ns() const noexcept {
+    return count_ ? static_cast<double>(sum_) / static_cast<double>(count_) : 0.0;
+  }
   // Value below which the fraction q (0..1) of the samples lie: the upper edge of the bucket that holds the
   // q-quantile, clamped to the exact maximum (so it never understates).
   [[nodiscard]] std::int64_t quantile_ns(double q) const noexcept;

@@ -23,8 +23,9 @@ std::vector<std::string> make_thread_realtime(std::thread& thread, int priority,
     sched_param param{};
     param.sched_priority = priority;
     if (const int rc = pthread_setschedparam(thread.native_handle(), SCHED_FIFO, &param); rc != 0)
-      warnings.push_back(std::string("cannot switch the loop thread to SCHED_FIFO priority ") + std::to_string(priority) +
-                         " (" + std::strerror(rc) + "); it runs under the normal scheduler with more jitter. "
+      warnings.push_back(std::string("cannot switch the loop thread to SCHED_FIFO priority ") +
+                         std::to_string(priority) + " (" + std::strerror(rc) +
+                         "); it runs under the normal scheduler with more jitter. "
                          "Run as root, grant CAP_SYS_NICE or set an rtprio limit.");
   }
   if (cpu >= 0) {

@@ -18,7 +18,7 @@ class MappedFile {
   explicit MappedFile(const std::filesystem::path& file) {
     const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
     if (fd < 0) return;
-    struct stat st{};
+    struct stat st {};
     if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0 &&
         static_cast<std::size_t>(st.st_size) <= kMaxPluginLibraryBytes) {
       void* p = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
@@ -56,8 +56,9 @@ class MappedFile {
 bool elf_exports_symbol(const std::filesystem::path& library, std::string_view symbol) {
   const MappedFile f(library);
   const auto* header = f.at<Elf64_Ehdr>(0);
-  if (header == nullptr || std::memcmp(header->e_ident, ELFMAG, SELFMAG) != 0 || header->e_ident[EI_CLASS] != ELFCLASS64 ||
-      header->e_ident[EI_DATA] != ELFDATA2LSB || header->e_type != ET_DYN || header->e_shentsize != sizeof(Elf64_Shdr))
+  if (header == nullptr || std::memcmp(header->e_ident, ELFMAG, SELFMAG) != 0 ||
+      header->e_ident[EI_CLASS] != ELFCLASS64 || header->e_ident[EI_DATA] != ELFDATA2LSB || header->e_type != ET_DYN ||
+      header->e_shentsize != sizeof(Elf64_Shdr))
     return false;
   for (std::uint64_t s = 0; s < header->e_shnum; ++s) {
     const auto* section = f.at<Elf64_Shdr>(header->e_shoff + s * sizeof(Elf64_Shdr));
@@ -66,7 +67,8 @@ bool elf_exports_symbol(const std::filesystem::path& library, std::string_view s
     const auto* strings = section->sh_link < header->e_shnum
                               ? f.at<Elf64_Shdr>(header->e_shoff + section->sh_link * sizeof(Elf64_Shdr))
                               : nullptr;
-    if (strings == nullptr || !f.contains(strings->sh_offset, strings->sh_size) || !f.contains(section->sh_offset, section->sh_size))
+    if (strings == nullptr || !f.contains(strings->sh_offset, strings->sh_size) ||
+        !f.contains(section->sh_offset, section->sh_size))
       return false;
     const char* names = reinterpret_cast<const char*>(f.data() + strings->sh_offset);
     for (std::uint64_t k = 0; k < section->sh_size / sizeof(Elf64_Sym); ++k) {

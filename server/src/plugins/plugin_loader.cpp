@@ -1,8 +1,7 @@
 #include "plugins/plugin_loader.hpp"
 
-#include <boost/dll/runtime_symbol_info.hpp>
-
 #include <algorithm>
+#include <boost/dll/runtime_symbol_info.hpp>
 #include <cstdlib>
 #include <sstream>
 
@@ -103,7 +102,8 @@ std::vector<fs::path> PluginLoader::candidate_files() const {
     // Only hapticd plugin libraries: a library is loaded (its initialisers run) only when its symbol table says
     // it is one. A folder of other libraries (plugin_paths: [/usr/lib/...]) is passed over, not loaded.
     for (const auto& entry : fs::directory_iterator(dir, ec))
-      if (entry.is_regular_file() && entry.path().extension() == ".so" && elf_exports_symbol(entry.path(), kVersionSymbol))
+      if (entry.is_regular_file() && entry.path().extension() == ".so" &&
+          elf_exports_symbol(entry.path(), kVersionSymbol))
         here.push_back(entry.path());
     std::sort(here.begin(), here.end());
     files.insert(files.end(), here.begin(), here.end());
@@ -131,7 +131,8 @@ PluginHandle PluginLoader::find(PluginKind kind, const std::string& name, const 
   std::vector<PluginHandle> candidates;
   if (library) {
     auto lib = load_library(*library);
-    for (std::size_t i = 0; i < lib->catalog->count; ++i) candidates.push_back(PluginHandle{lib, &lib->catalog->entries[i]});
+    for (std::size_t i = 0; i < lib->catalog->count; ++i)
+      candidates.push_back(PluginHandle{lib, &lib->catalog->entries[i]});
   } else {
     candidates = list_all();
   }
@@ -149,9 +150,10 @@ PluginHandle PluginLoader::find(PluginKind kind, const std::string& name, const 
   }
   std::string available;
   for (const auto& n : same_kind) available += (available.empty() ? "" : ", ") + n;
-  throw PluginLoadError("no " + std::string(to_string(kind)) + " plugin named '" + name + "'" +
-                        (library ? " in library '" + *library + "'" : " on the search paths (" + join_paths(search_paths_) + ")") +
-                        "; available: " + (available.empty() ? "none" : available));
+  throw PluginLoadError(
+      "no " + std::string(to_string(kind)) + " plugin named '" + name + "'" +
+      (library ? " in library '" + *library + "'" : " on the search paths (" + join_paths(search_paths_) + ")") +
+      "; available: " + (available.empty() ? "none" : available));
 }
 
 }  // namespace hapticd::server

@@ -3,7 +3,6 @@
 // object created from it lives: PluginInstance holds the library before the object, so the object is always
 // destroyed first.
 #include <boost/dll/shared_library.hpp>
-
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -75,11 +74,16 @@ PluginInstance<T> create_plugin(const PluginHandle& handle) {
   PluginInstance<T> instance;
   instance.library = handle.library;
   instance.descriptor = handle.descriptor;
-  if constexpr (std::is_same_v<T, Device>) instance.object = handle.descriptor->create_device();
-  else if constexpr (std::is_same_v<T, Controller>) instance.object = handle.descriptor->create_controller();
-  else if constexpr (std::is_same_v<T, InverseKinematics>) instance.object = handle.descriptor->create_inverse_kinematics();
-  else instance.object = handle.descriptor->create_virtual_model();
-  if (!instance.object) throw PluginLoadError(std::string("plugin '") + handle.descriptor->name + "' returned no object");
+  if constexpr (std::is_same_v<T, Device>)
+    instance.object = handle.descriptor->create_device();
+  else if constexpr (std::is_same_v<T, Controller>)
+    instance.object = handle.descriptor->create_controller();
+  else if constexpr (std::is_same_v<T, InverseKinematics>)
+    instance.object = handle.descriptor->create_inverse_kinematics();
+  else
+    instance.object = handle.descriptor->create_virtual_model();
+  if (!instance.object)
+    throw PluginLoadError(std::string("plugin '") + handle.descriptor->name + "' returned no object");
   return instance;
 }
 

@@ -13,18 +13,20 @@
 namespace hapticd::server {
 namespace {
 
-constexpr std::size_t kChunkBytes = 64 * 1024;         // written when this full (or when the ring is empty)
-constexpr std::int64_t kSyncBytes = 4 * 1024 * 1024;   // synced to the disk this often
+constexpr std::size_t kChunkBytes = 64 * 1024;        // written when this full (or when the ring is empty)
+constexpr std::int64_t kSyncBytes = 4 * 1024 * 1024;  // synced to the disk this often
 
 }  // namespace
 
 Recorder::Recorder(const std::filesystem::path& file, std::vector<std::string> device_names, bool wait_when_full)
     : device_names_(std::move(device_names)), wait_when_full_(wait_when_full), ring_(1 << 14), file_(file) {
   fd_ = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot open the recording file " + file.string() + ": " + std::strerror(errno));
+  if (fd_ < 0)
+    throw std::runtime_error("cannot open the recording file " + file.string() + ": " + std::strerror(errno));
   chunk_.reserve(2 * kChunkBytes);
-  chunk_ = "cycle,time_s,device,joint,position,velocity,effort,torque_command,"
-           "sensor_fx,sensor_fy,sensor_fz,sensor_tx,sensor_ty,sensor_tz\n";
+  chunk_ =
+      "cycle,time_s,device,joint,position,velocity,effort,torque_command,"
+      "sensor_fx,sensor_fy,sensor_fz,sensor_tx,sensor_ty,sensor_tz\n";
   if (!flush_chunk()) {
     const std::string e = error();
     ::close(fd_);
@@ -80,11 +82,11 @@ void Recorder::format_record(const CycleRecord& r) {
   const std::string& device = device_names_[r.device];
   char line[512];
   for (int i = 0; i < r.dof; ++i) {
-    const int n = std::snprintf(line, sizeof line, "%llu,%.17g,%s,%d,%.17g,%.17g,%.17g,%.17g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
-                                static_cast<unsigned long long>(r.cycle), static_cast<double>(r.time_ns) * 1e-9,
-                                device.c_str(), i, r.position[i], r.velocity[i], r.effort[i], r.torque_command[i],
-                                r.sensor_wrench[0], r.sensor_wrench[1], r.sensor_wrench[2], r.sensor_wrench[3],
-                                r.sensor_wrench[4], r.sensor_wrench[5]);
+    const int n = std::snprintf(
+        line, sizeof line, "%llu,%.17g,%s,%d,%.17g,%.17g,%.17g,%.17g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+        static_cast<unsigned long long>(r.cycle), static_cast<double>(r.time_ns) * 1e-9, device.c_str(), i,
+        r.position[i], r.velocity[i], r.effort[i], r.torque_command[i], r.sensor_wrench[0], r.sensor_wrench[1],
+        r.sensor_wrench[2], r.sensor_wrench[3], r.sensor_wrench[4], r.sensor_wrench[5]);
     chunk_.append(line, static_cast<std::size_t>(std::clamp(n, 0, static_cast<int>(sizeof line) - 1)));
   }
   ++chunk_records_;

@@ -44,7 +44,8 @@ class Recorder {
   Recorder& operator=(const Recorder&) = delete;
 
   // Real-time safe (in real-time mode; in lockstep it may wait for the writer).
-  void record(const CycleTime& cycle, std::uint16_t device, const DeviceState& state, const JointCommand& command) noexcept;
+  void record(const CycleTime& cycle, std::uint16_t device, const DeviceState& state,
+              const JointCommand& command) noexcept;
   // Not real-time safe. Writes what is queued, stops the writer and closes the file.
   void finish();
 
@@ -69,10 +70,10 @@ class Recorder {
   SpscRing<CycleRecord> ring_;
   std::filesystem::path file_;
   int fd_ = -1;
-  std::string chunk_;                  // formatted whole records not yet written (writer thread)
+  std::string chunk_;  // formatted whole records not yet written (writer thread)
   std::uint64_t chunk_records_ = 0;
-  std::int64_t written_bytes_ = 0;     // file offset after the last whole record written
-  std::int64_t synced_bytes_ = 0;      // ... and synced to the disk
+  std::int64_t written_bytes_ = 0;  // file offset after the last whole record written
+  std::int64_t synced_bytes_ = 0;   // ... and synced to the disk
   std::uint64_t synced_records_ = 0;
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> written_{0};

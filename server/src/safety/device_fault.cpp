@@ -4,48 +4,84 @@ namespace hapticd::server {
 
 std::string_view fault_code(DeviceFault fault) noexcept {
   switch (fault) {
-    case DeviceFault::none: return "none";
-    case DeviceFault::device_read: return "device_read_error";
-    case DeviceFault::device_write: return "device_write_error";
-    case DeviceFault::non_finite_measurement: return "non_finite_measurement";
-    case DeviceFault::sensor_saturation: return "sensor_saturation";
-    case DeviceFault::activation: return "activation_failed";
-    case DeviceFault::configure: return "configure_failed";
-    case DeviceFault::virtual_model: return "virtual_model_error";
-    case DeviceFault::inverse_kinematics: return "inverse_kinematics_error";
-    case DeviceFault::controller: return "controller_error";
-    case DeviceFault::plugin_exception: return "plugin_exception";
-    case DeviceFault::non_finite_output: return "non_finite_output";
-    case DeviceFault::joint_velocity: return "joint_velocity_violation";
-    case DeviceFault::cartesian_velocity: return "cartesian_velocity_violation";
-    case DeviceFault::workspace: return "workspace_violation";
-    case DeviceFault::loop_overrun: return "loop_overrun_violation";
-    case DeviceFault::loop_stall: return "loop_stall";
-    case DeviceFault::emergency_stop: return "emergency_stop";
+    case DeviceFault::none:
+      return "none";
+    case DeviceFault::device_read:
+      return "device_read_error";
+    case DeviceFault::device_write:
+      return "device_write_error";
+    case DeviceFault::non_finite_measurement:
+      return "non_finite_measurement";
+    case DeviceFault::sensor_saturation:
+      return "sensor_saturation";
+    case DeviceFault::activation:
+      return "activation_failed";
+    case DeviceFault::configure:
+      return "configure_failed";
+    case DeviceFault::virtual_model:
+      return "virtual_model_error";
+    case DeviceFault::inverse_kinematics:
+      return "inverse_kinematics_error";
+    case DeviceFault::controller:
+      return "controller_error";
+    case DeviceFault::plugin_exception:
+      return "plugin_exception";
+    case DeviceFault::non_finite_output:
+      return "non_finite_output";
+    case DeviceFault::joint_velocity:
+      return "joint_velocity_violation";
+    case DeviceFault::cartesian_velocity:
+      return "cartesian_velocity_violation";
+    case DeviceFault::workspace:
+      return "workspace_violation";
+    case DeviceFault::loop_overrun:
+      return "loop_overrun_violation";
+    case DeviceFault::loop_stall:
+      return "loop_stall";
+    case DeviceFault::emergency_stop:
+      return "emergency_stop";
   }
   return "unknown";
 }
 
 std::string_view to_string(DeviceFault fault) noexcept {
   switch (fault) {
-    case DeviceFault::none: return "none";
-    case DeviceFault::device_read: return "device read failed";
-    case DeviceFault::device_write: return "device write failed";
-    case DeviceFault::non_finite_measurement: return "device reported a non-finite value";
-    case DeviceFault::sensor_saturation: return "the force/torque sensor saturated";
-    case DeviceFault::activation: return "a plugin failed to activate";
-    case DeviceFault::configure: return "a plugin failed to configure";
-    case DeviceFault::virtual_model: return "virtual model update failed";
-    case DeviceFault::inverse_kinematics: return "inverse kinematics update failed";
-    case DeviceFault::controller: return "controller update failed";
-    case DeviceFault::plugin_exception: return "a plugin threw an exception in the loop";
-    case DeviceFault::non_finite_output: return "a plugin produced a non-finite output";
-    case DeviceFault::joint_velocity: return "a joint exceeded its velocity limit";
-    case DeviceFault::cartesian_velocity: return "the handle exceeded its speed limit";
-    case DeviceFault::workspace: return "the handle went through a workspace wall";
-    case DeviceFault::loop_overrun: return "too many consecutive loop overruns";
-    case DeviceFault::loop_stall: return "the loop stalled (woke far too late for a cycle)";
-    case DeviceFault::emergency_stop: return "emergency stop";
+    case DeviceFault::none:
+      return "none";
+    case DeviceFault::device_read:
+      return "device read failed";
+    case DeviceFault::device_write:
+      return "device write failed";
+    case DeviceFault::non_finite_measurement:
+      return "device reported a non-finite value";
+    case DeviceFault::sensor_saturation:
+      return "the force/torque sensor saturated";
+    case DeviceFault::activation:
+      return "a plugin failed to activate";
+    case DeviceFault::configure:
+      return "a plugin failed to configure";
+    case DeviceFault::virtual_model:
+      return "virtual model update failed";
+    case DeviceFault::inverse_kinematics:
+      return "inverse kinematics update failed";
+    case DeviceFault::controller:
+      return "controller update failed";
+    case DeviceFault::plugin_exception:
+      return "a plugin threw an exception in the loop";
+    case DeviceFault::non_finite_output:
+      return "a plugin produced a non-finite output";
+    case DeviceFault::joint_velocity:
+      return "a joint exceeded its velocity limit";
+    case DeviceFault::cartesian_velocity:
+      return "the handle exceeded its speed limit";
+    case DeviceFault::workspace:
+      return "the handle went through a workspace wall";
+    case DeviceFault::loop_overrun:
+      return "too many consecutive loop overruns";
+    case DeviceFault::loop_stall:
+      return "the loop stalled (woke far too late for a cycle)";
+    case DeviceFault::emergency_stop:
+      return "emergency stop";
   }
   return "unknown";
 }

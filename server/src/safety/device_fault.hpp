@@ -17,14 +17,14 @@ enum class DeviceFault : std::uint8_t {
   virtual_model,           // the virtual model's update() returned an error
   inverse_kinematics,
   controller,
-  plugin_exception,        // a plugin threw despite the real-time contract
-  non_finite_output,       // a plugin produced NaN or infinity
-  joint_velocity,          // a joint exceeded its velocity limit despite the damping
-  cartesian_velocity,      // the handle exceeded its speed limit despite the damping
-  workspace,               // the handle went through a workspace wall by more than the allowed depth
-  loop_overrun,            // too many consecutive loop overruns
-  loop_stall,              // the loop woke far too late (the process was stopped, the machine stalled)
-  emergency_stop,          // requested (DDS, hapticctl, signal)
+  plugin_exception,    // a plugin threw despite the real-time contract
+  non_finite_output,   // a plugin produced NaN or infinity
+  joint_velocity,      // a joint exceeded its velocity limit despite the damping
+  cartesian_velocity,  // the handle exceeded its speed limit despite the damping
+  workspace,           // the handle went through a workspace wall by more than the allowed depth
+  loop_overrun,        // too many consecutive loop overruns
+  loop_stall,          // the loop woke far too late (the process was stopped, the machine stalled)
+  emergency_stop,      // requested (DDS, hapticctl, signal)
 };
 
 // The stable code ("joint_velocity_violation"); at most 31 characters.

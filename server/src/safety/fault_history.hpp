@@ -2,10 +2,9 @@
 // The last cycles of a device's state, kept by the loop in a fixed ring, copied into a FaultReport when a fault
 // is raised (the report is what the fault event carries: what the device did just before). Fixed-size: recording
 // and copying never allocate.
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
-
-#include <Eigen/Core>
 
 #include "hapticd/joint_vector.hpp"
 #include "safety/device_fault.hpp"
@@ -25,8 +24,8 @@ struct HistoryRecord {
 };
 
 inline constexpr std::uint32_t kRecordTorqueSaturated = 1;
-inline constexpr std::uint32_t kRecordLimitEngaged = 2;     // velocity damping or a workspace wall acted
-inline constexpr std::uint32_t kRecordRenderLimited = 4;    // the rendered wrench was limited
+inline constexpr std::uint32_t kRecordLimitEngaged = 2;   // velocity damping or a workspace wall acted
+inline constexpr std::uint32_t kRecordRenderLimited = 4;  // the rendered wrench was limited
 inline constexpr std::uint32_t kRecordThermalDerating = 8;
 
 struct FaultReport {
@@ -34,7 +33,7 @@ struct FaultReport {
   std::uint64_t serial = 0;  // one per fault of this device
   std::uint64_t cycle = 0;
   std::int64_t time_ns = 0;
-  std::uint32_t count = 0;   // valid records, oldest first; the last is the cycle before the fault
+  std::uint32_t count = 0;  // valid records, oldest first; the last is the cycle before the fault
   std::array<HistoryRecord, kMaxHistoryCycles> records;
 };
 

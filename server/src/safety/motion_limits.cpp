@@ -17,7 +17,8 @@ void MotionLimits::configure(const SafetySettings& settings, const JointVector& 
   workspace_ = (lo_.array() < hi_.array()).all();
 }
 
-void MotionLimits::add_handle_force(const ChainState& chain, const Eigen::Vector3d& force, JointVector& torque) const noexcept {
+void MotionLimits::add_handle_force(const ChainState& chain, const Eigen::Vector3d& force,
+                                    JointVector& torque) const noexcept {
   torque.noalias() += chain.data->frame_jacobian.topRows<3>().transpose() * force;
 }
 
@@ -68,7 +69,8 @@ void MotionLimits::apply(const ChainState& chain, const Eigen::Vector3d& handle_
   const JointVector& qd = chain.velocity;
   for (int i = 0; i < qd.size(); ++i) {
     const double speed = std::abs(qd[i]);
-    if (speed > damping_from_[i]) torque[i] -= s_.joint_damping_gain * (speed - damping_from_[i]) * std::copysign(1.0, qd[i]);
+    if (speed > damping_from_[i])
+      torque[i] -= s_.joint_damping_gain * (speed - damping_from_[i]) * std::copysign(1.0, qd[i]);
   }
   if (chain.data != nullptr && !force_taken && !handle_force.isZero()) add_handle_force(chain, handle_force, torque);
 }

@@ -24,7 +24,8 @@ class MotionLimits {
   DeviceFault check(const ChainState& chain, Eigen::Vector3d& handle_force) noexcept;
   // After the controller: adds the joint damping, and the handle force as J^T F unless `force_taken` (an
   // admittance model took it into its dynamics).
-  void apply(const ChainState& chain, const Eigen::Vector3d& handle_force, bool force_taken, JointVector& torque) noexcept;
+  void apply(const ChainState& chain, const Eigen::Vector3d& handle_force, bool force_taken,
+             JointVector& torque) noexcept;
   // A damping or wall force acted this cycle.
   [[nodiscard]] bool engaged() const noexcept { return engaged_; }
   [[nodiscard]] bool has_workspace() const noexcept { return workspace_; }

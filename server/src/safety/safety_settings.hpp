@@ -10,15 +10,15 @@ namespace hapticd::server {
 
 struct SafetySettings {
   // Torque: peak from the description; continuous through a first-order thermal model per joint.
-  double thermal_time_constant_s = 30.0;   // 0: no thermal limit
-  double thermal_derate_from = 0.9;        // thermal load (1 = continuous torque forever) where derating begins
+  double thermal_time_constant_s = 30.0;  // 0: no thermal limit
+  double thermal_derate_from = 0.9;       // thermal load (1 = continuous torque forever) where derating begins
   // Joint velocity: damping from a fraction of each joint's velocity_max, fault at another.
   double joint_damping_from = 0.75;
   double joint_fault_at = 0.95;
-  double joint_damping_gain = 2.0;         // N m s/rad (N s/m) per unit of excess speed
+  double joint_damping_gain = 2.0;  // N m s/rad (N s/m) per unit of excess speed
   // Cartesian velocity of the handle (devices with a robot model).
   double speed_damping_from_m_s = 1.0;
-  double max_speed_m_s = 1.5;              // fault above; 0: no Cartesian speed limit
+  double max_speed_m_s = 1.5;  // fault above; 0: no Cartesian speed limit
   double speed_damping_n_s_per_m = 60.0;
   // Workspace walls: an axis-aligned box in world coordinates; off when min >= max on every axis.
   std::array<double, 3> workspace_min_m{0.0, 0.0, 0.0};
@@ -48,7 +48,7 @@ struct SafetySettings {
   // safe_damping_s; then zero torque.
   double safe_fade_s = 0.02;
   double safe_damping_s = 0.5;
-  double safe_damping_gain = 3.0;          // N m s/rad (N s/m), bounded by each joint's continuous torque
+  double safe_damping_gain = 3.0;  // N m s/rad (N s/m), bounded by each joint's continuous torque
   // Devices with a robot model hold their posture in the safe mode: gravity compensation plus damping (from
   // the measured state) for safe_hold_s, then the gravity torque fades out over safe_release_s (the device has
   // no brakes yet) and the torque is zero. A stop of the server skips the hold.

@@ -5,7 +5,8 @@
 
 namespace hapticd::server {
 
-void SafetySupervisor::configure(const SafetySettings& settings, const DeviceDescription& description, double period_s) {
+void SafetySupervisor::configure(const SafetySettings& settings, const DeviceDescription& description,
+                                 double period_s) {
   settings_ = settings;
   const int dof = description.dof();
   peak_.resize(dof);
@@ -14,7 +15,8 @@ void SafetySupervisor::configure(const SafetySettings& settings, const DeviceDes
   for (int i = 0; i < dof; ++i) {
     const JointDescription& j = description.joints[static_cast<std::size_t>(i)];
     peak_[i] = j.torque_peak_nm;
-    continuous_[i] = j.torque_continuous_nm > 0.0 ? std::min(j.torque_continuous_nm, j.torque_peak_nm) : j.torque_peak_nm;
+    continuous_[i] =
+        j.torque_continuous_nm > 0.0 ? std::min(j.torque_continuous_nm, j.torque_peak_nm) : j.torque_peak_nm;
     velocity_max[i] = j.velocity_max;
   }
   thermal_.configure(peak_, continuous_, settings.thermal_time_constant_s, settings.thermal_derate_from, period_s);
@@ -68,10 +70,12 @@ void SafetySupervisor::limit(const ChainState& chain, JointVector& torque, bool&
 
 std::uint32_t SafetySupervisor::flags() const noexcept {
   return (saturated_ ? kRecordTorqueSaturated : 0u) | (motion_.engaged() ? kRecordLimitEngaged : 0u) |
-         (guard_.limited_this_cycle() ? kRecordRenderLimited : 0u) | (thermal_.derating() ? kRecordThermalDerating : 0u);
+         (guard_.limited_this_cycle() ? kRecordRenderLimited : 0u) |
+         (thermal_.derating() ? kRecordThermalDerating : 0u);
 }
 
-void SafetySupervisor::enter_safe_mode(const JointVector& last, const JointVector* hold_posture, bool skip_hold) noexcept {
+void SafetySupervisor::enter_safe_mode(const JointVector& last, const JointVector* hold_posture,
+                                       bool skip_hold) noexcept {
   safe_cycles_ = 0;
   const bool gravity_hold = hold_posture != nullptr && hold_posture->size() == last.size() && hold_posture->allFinite();
   if (gravity_hold) hold_posture_ = *hold_posture;
@@ -86,13 +90,15 @@ double SafetySupervisor::hold_weight() const noexcept {
   const std::int64_t release_from = damping_cycles_ + hold_cycles_;
   if (safe_cycles_ < release_from) return 1.0;
   // 1 - (k+1)/N over the release: the last release cycle commands zero gravity torque.
-  return std::max(0.0, 1.0 - static_cast<double>(safe_cycles_ - release_from + 1) / static_cast<double>(release_cycles_));
+  return std::max(0.0,
+                  1.0 - static_cast<double>(safe_cycles_ - release_from + 1) / static_cast<double>(release_cycles_));
 }
 
 void SafetySupervisor::safe_torque(const JointVector& position, const JointVector& velocity, bool velocity_valid,
                                    const JointVector* gravity, JointVector& torque) noexcept {
   const std::int64_t end = holding_gravity_ ? damping_cycles_ + hold_cycles_ + release_cycles_ : damping_cycles_;
-  if (safe_cycles_ < end && (!velocity_valid || (holding_gravity_ && gravity == nullptr))) safe_cycles_ = end;  // untrusted: zero, for good
+  if (safe_cycles_ < end && (!velocity_valid || (holding_gravity_ && gravity == nullptr)))
+    safe_cycles_ = end;  // untrusted: zero, for good
   if (safe_cycles_ < end) {
     // Fade: 1 - (k+1)/N, so the first safe cycle already steps down by one N-th and cycle N-1 reaches zero.
     const double fade = safe_cycles_ < fade_cycles_
@@ -103,7 +109,8 @@ void SafetySupervisor::safe_torque(const JointVector& position, const JointVecto
     for (int i = 0; i < torque.size(); ++i) {
       // Holding: gravity compensation and a spring back to the posture at the stop (it reaches half the
       // continuous torque at safe_hold_range from it), released together.
-      const double spring = std::clamp(hold_stiffness_[i] * (hold_posture_[i] - position[i]), -0.5 * continuous_[i], 0.5 * continuous_[i]);
+      const double spring = std::clamp(hold_stiffness_[i] * (hold_posture_[i] - position[i]), -0.5 * continuous_[i],
+                                       0.5 * continuous_[i]);
       const double held = hold > 0.0 ? hold * ((*gravity)[i] + spring) : 0.0;
       torque[i] = std::clamp(fade * fade_from_[i] + held -
                                  std::clamp(settings_.safe_damping_gain * velocity[i], -continuous_[i], continuous_[i]),

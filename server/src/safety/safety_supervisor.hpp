@@ -53,17 +53,22 @@ class SafetySupervisor {
   // A cycle without a valid velocity (or gravity torque, when holding) ends it: zero torque from then on (no
   // step back up if the measurement returns).
   // hold_posture: the measured joint positions to hold (gravity_hold; nullptr: no hold).
-  void enter_safe_mode(const JointVector& last, const JointVector* hold_posture = nullptr, bool skip_hold = false) noexcept;
-  void safe_torque(const JointVector& position, const JointVector& velocity, bool velocity_valid, const JointVector* gravity,
-                   JointVector& torque) noexcept;
+  void enter_safe_mode(const JointVector& last, const JointVector* hold_posture = nullptr,
+                       bool skip_hold = false) noexcept;
+  void safe_torque(const JointVector& position, const JointVector& velocity, bool velocity_valid,
+                   const JointVector* gravity, JointVector& torque) noexcept;
   // The safe mode's last torque was zero (the damping phase is over, or could not run; with gravity hold, the
   // release is over).
   [[nodiscard]] bool at_rest() const noexcept { return zero_written_; }
   // The safe mode has settled: the last torque has faded out and the damping phase is over (holding or at
   // rest). A recovery waits for it.
-  [[nodiscard]] bool settled() const noexcept { return zero_written_ || (holding_gravity_ && safe_cycles_ >= damping_cycles_); }
+  [[nodiscard]] bool settled() const noexcept {
+    return zero_written_ || (holding_gravity_ && safe_cycles_ >= damping_cycles_);
+  }
   // The loop woke `lateness_ns` late for a cycle: a stall (max_stall_s)?
-  [[nodiscard]] bool stalled(std::int64_t lateness_ns) const noexcept { return stall_ns_ > 0 && lateness_ns > stall_ns_; }
+  [[nodiscard]] bool stalled(std::int64_t lateness_ns) const noexcept {
+    return stall_ns_ > 0 && lateness_ns > stall_ns_;
+  }
 
  private:
   SafetySettings settings_;

@@ -10,7 +10,8 @@
 
 namespace hapticd::server {
 
-ChainStateEstimator::ChainStateEstimator(const std::string& device, const DeviceDescription& description, double period_s)
+ChainStateEstimator::ChainStateEstimator(const std::string& device, const DeviceDescription& description,
+                                         double period_s)
     : measures_velocity_(description.reports_joint_velocity) {
   const int dof = description.dof();
   state_.velocity.setZero(dof);
@@ -25,10 +26,12 @@ ChainStateEstimator::ChainStateEstimator(const std::string& device, const Device
   state_.model = robot_.get();
   state_.data = model_data_.get();
   state_.handle_frame = robot_->require_frame(description.handle_frame.empty() ? "handle" : description.handle_frame);
-  if (description.reports_wrench && !description.sensor_frame.empty()) sensor_frame_ = robot_->require_frame(description.sensor_frame);
+  if (description.reports_wrench && !description.sensor_frame.empty())
+    sensor_frame_ = robot_->require_frame(description.sensor_frame);
 }
 
-void ChainStateEstimator::estimate(const DeviceState& measured, std::int64_t time_ns, std::int64_t period_ns, bool restart) noexcept {
+void ChainStateEstimator::estimate(const DeviceState& measured, std::int64_t time_ns, std::int64_t period_ns,
+                                   bool restart) noexcept {
   ChainState& c = state_;
   if (measures_velocity_) {
     c.velocity = measured.joints.velocity;

@@ -106,11 +106,13 @@ void DeviceSession::activate() {
 }
 
 ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
-  if (scheme.virtual_model &&
-      (*scheme.virtual_model)->activate(VirtualModelInput{state_, &estimator_.state(), &engine_.input(), &safety_.guard()}) != ReturnCode::ok)
+  if (scheme.virtual_model && (*scheme.virtual_model)
+                                      ->activate(VirtualModelInput{state_, &estimator_.state(), &engine_.input(),
+                                                                   &safety_.guard()}) != ReturnCode::ok)
     return ReturnCode::error;
   if (scheme.inverse_kinematics &&
-      (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &estimator_.state()}) != ReturnCode::ok)
+      (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &estimator_.state()}) !=
+          ReturnCode::ok)
     return ReturnCode::error;
   return scheme.controller->activate(
       ControllerInput{state_, task_, joint_target_, &estimator_.state(), redundancy_of(scheme)}, command_);
@@ -143,7 +145,8 @@ void DeviceSession::service() {
   }
 }
 
-RuntimeReply DeviceSession::handle_request(std::string_view stage, std::string_view name, const std::vector<double>& values) {
+RuntimeReply DeviceSession::handle_request(std::string_view stage, std::string_view name,
+                                           const std::vector<double>& values) {
   if (stage == "device") {
     if (auto error = check_against_schema(*chain_.device.descriptor, name, values)) return {false, *error};
     return chain_.device->handle_request(name, values);
@@ -151,7 +154,8 @@ RuntimeReply DeviceSession::handle_request(std::string_view stage, std::string_v
   if (stage == "safety") {
     if (name == "recover") return request_recovery();
     if (name == "passivity_control") {
-      if (values.size() != 1 || (values[0] != 0.0 && values[0] != 1.0)) return {false, "passivity_control takes 0 or 1"};
+      if (values.size() != 1 || (values[0] != 0.0 && values[0] != 1.0))
+        return {false, "passivity_control takes 0 or 1"};
       passivity_request_.store(values[0] == 1.0 ? 1 : 0, std::memory_order_release);
       return {true, values[0] == 1.0 ? "passivity controller on" : "passivity controller off"};
     }
@@ -198,7 +202,8 @@ void DeviceSession::switch_scheme_if_requested() noexcept {
 DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
   if (!chain_active_) {  // the first cycle, or the first after a recovery: activate from the measured state
     const int first = active_.load(std::memory_order_relaxed);
-    if (activate_scheme(chain_.schemes[static_cast<std::size_t>(first)]) != ReturnCode::ok) return DeviceFault::activation;
+    if (activate_scheme(chain_.schemes[static_cast<std::size_t>(first)]) != ReturnCode::ok)
+      return DeviceFault::activation;
     scheme_state_[static_cast<std::size_t>(first)].store(kActive, std::memory_order_release);
     chain_active_ = true;
     safety_.restart_soft_start();
@@ -210,8 +215,9 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
   engine_.take(cycle);
   SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_relaxed))];
   if (scheme.virtual_model) {
-    if ((*scheme.virtual_model)->update(cycle, VirtualModelInput{state_, &estimator_.state(), &engine_.input(), &safety_.guard()}, task_) !=
-        ReturnCode::ok)
+    if ((*scheme.virtual_model)
+            ->update(cycle, VirtualModelInput{state_, &estimator_.state(), &engine_.input(), &safety_.guard()},
+                     task_) != ReturnCode::ok)
       return DeviceFault::virtual_model;
     if (!is_finite(task_)) return DeviceFault::non_finite_output;
     if (task_.has_wrench && !safety_.guard().limit_applied()) {
@@ -226,18 +232,20 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
     task_ = TaskTarget{};  // a scheme without a virtual model renders nothing (free space)
   }
   if (scheme.inverse_kinematics) {
-    if ((*scheme.inverse_kinematics)->update(cycle, InverseKinematicsInput{state_, task_, &estimator_.state()}, joint_target_) != ReturnCode::ok)
+    if ((*scheme.inverse_kinematics)
+            ->update(cycle, InverseKinematicsInput{state_, task_, &estimator_.state()}, joint_target_) !=
+        ReturnCode::ok)
       return DeviceFault::inverse_kinematics;
     if (!is_finite(joint_target_)) return DeviceFault::non_finite_output;
   }
-  if (scheme.controller->update(cycle, ControllerInput{state_, task_, joint_target_, &estimator_.state(), redundancy_of(scheme)},
-                                command_) != ReturnCode::ok)
+  if (scheme.controller->update(
+          cycle, ControllerInput{state_, task_, joint_target_, &estimator_.state(), redundancy_of(scheme)}, command_) !=
+      ReturnCode::ok)
     return DeviceFault::controller;
   if (!command_.torque_nm.allFinite()) return DeviceFault::non_finite_output;
   blend_after_switch();
   return DeviceFault::none;
 }
-
 
 void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept {
   if (snapshot_interval_ == 0 || cycle.index % snapshot_interval_ != 0) return;
@@ -287,7 +295,8 @@ void DeviceSession::blend_after_switch() noexcept {
 
 void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns,
                                       std::int64_t lateness_ns) noexcept {
-  if (const int p = passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0) safety_.guard().set_passivity_control(p == 1);
+  if (const int p = passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0)
+    safety_.guard().set_passivity_control(p == 1);
   ReturnCode read = ReturnCode::error;
   try {
     read = chain_.device->read(cycle, state_);
@@ -305,11 +314,13 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
   }
   if (fault() == DeviceFault::none && !stopped_ && safety_.overruns_exceeded(consecutive_overruns))
     raise_fault(DeviceFault::loop_overrun, cycle);
-  if (fault() == DeviceFault::none && !stopped_ && safety_.stalled(lateness_ns)) raise_fault(DeviceFault::loop_stall, cycle);
+  if (fault() == DeviceFault::none && !stopped_ && safety_.stalled(lateness_ns))
+    raise_fault(DeviceFault::loop_stall, cycle);
   if (fault() == DeviceFault::none && !stopped_ && safe_stop_requested_.load(std::memory_order_acquire)) {
     stopped_ = true;
     leave_chain();
-    safety_.enter_safe_mode(last_written_, estimator_.has_model() ? &state_.joints.position : nullptr, true);  // stopping: no hold
+    safety_.enter_safe_mode(last_written_, estimator_.has_model() ? &state_.joints.position : nullptr,
+                            true);  // stopping: no hold
     status_.at_rest.store(false, std::memory_order_release);
   }
   // The measurement: a running device faults on a read error, a non-finite value or a saturated sensor; in the
@@ -390,7 +401,8 @@ void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
   // Joint damping (and, with a robot model, gravity compensation holding the posture) while the measurement can
   // be trusted, then zero torque.
   const JointVector* gravity = estimator_.gravity_torque();
-  const bool valid = measurement_valid_ && estimator_.state().velocity.allFinite() && (gravity == nullptr || gravity->allFinite());
+  const bool valid =
+      measurement_valid_ && estimator_.state().velocity.allFinite() && (gravity == nullptr || gravity->allFinite());
   safety_.safe_torque(state_.joints.position, estimator_.state().velocity, valid, gravity, command_.torque_nm);
   status_.at_rest.store(safety_.at_rest(), std::memory_order_release);
   try {
@@ -425,7 +437,8 @@ RuntimeReply DeviceSession::request_recovery() {
   const DeviceFault f = fault();
   if (f == DeviceFault::none) return {false, "device '" + name_ + "' is not in its safe mode"};
   if (f == DeviceFault::configure)
-    return {false, "device '" + name_ + "' never configured (" + chain_.configure_error + "); fix the session and restart"};
+    return {false,
+            "device '" + name_ + "' never configured (" + chain_.configure_error + "); fix the session and restart"};
   recovery_for_epoch_.store(stop_epoch_.load(std::memory_order_acquire) + 1, std::memory_order_release);
   return {true, "device '" + name_ + "' recovers once its safe mode has settled (unless it is stopped again first)"};
 }
@@ -449,7 +462,8 @@ void DeviceSession::leave_chain() noexcept {
   // The running scheme leaves the loop (service() deactivates it); a recovery activates it again.
   if (!chain_active_) return;
   const auto active = static_cast<std::size_t>(active_.load(std::memory_order_relaxed));
-  if (scheme_state_[active].load(std::memory_order_relaxed) == kActive) scheme_state_[active].store(kLeaving, std::memory_order_release);
+  if (scheme_state_[active].load(std::memory_order_relaxed) == kActive)
+    scheme_state_[active].store(kLeaving, std::memory_order_release);
   chain_active_ = false;
 }
 

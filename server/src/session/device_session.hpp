@@ -13,26 +13,25 @@
 // running; the rejection is counted). The old scheme's plugins are deactivated off the loop by service().
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include <memory>
-
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
-#include "hapticd/realtime/latest_value.hpp"
 #include "hapticd/plugin.hpp"
+#include "hapticd/realtime/latest_value.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "recorder/spsc_ring.hpp"
 #include "safety/device_fault.hpp"
 #include "safety/fault_history.hpp"
 #include "safety/safety_supervisor.hpp"
 #include "session/chain_state_estimator.hpp"
-#include "session/engine_input_port.hpp"
 #include "session/device_snapshot.hpp"
 #include "session/device_status.hpp"
+#include "session/engine_input_port.hpp"
 
 namespace hapticd::server {
 
@@ -58,7 +57,6 @@ struct DeviceChain {
   std::string configure_error;
 };
 
-
 class DeviceSession {
  public:
   // The device must be configured (its description is read here); the other plugins configured too.
@@ -74,7 +72,8 @@ class DeviceSession {
   // same instant.
   // (a) Read the device; the watchdogs (E-stop, overruns, a stall: lateness_ns is how late the loop woke, the
   //     server's stop); check the measurement; estimate the chain state (model terms, the one joint velocity).
-  void read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns = 0, std::int64_t lateness_ns = 0) noexcept;
+  void read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns = 0,
+                         std::int64_t lateness_ns = 0) noexcept;
   // (c) The chain - virtual model, inverse kinematics, controller - unless the device is in its safe mode.
   void run_chain(const CycleTime& cycle) noexcept;
   // (d) Limit and write the torque (or the safe mode's torque; torque_scale in [0, 1] ramps the output down at
@@ -95,8 +94,12 @@ class DeviceSession {
   [[nodiscard]] const DeviceChain& chain() const noexcept { return chain_; }
   // Readable from any thread.
   [[nodiscard]] DeviceFault fault() const noexcept { return status_.fault.load(std::memory_order_acquire); }
-  [[nodiscard]] std::uint64_t fault_cycle() const noexcept { return status_.fault_cycle.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t saturated_cycles() const noexcept { return status_.saturated_cycles.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t fault_cycle() const noexcept {
+    return status_.fault_cycle.load(std::memory_order_relaxed);
+  }
+  [[nodiscard]] std::uint64_t saturated_cycles() const noexcept {
+    return status_.saturated_cycles.load(std::memory_order_relaxed);
+  }
   // Loop thread only (or after the loop has stopped).
   [[nodiscard]] const DeviceState& state() const noexcept { return state_; }
   [[nodiscard]] const JointCommand& command() const noexcept { return command_; }
@@ -109,7 +112,9 @@ class DeviceSession {
   // Any thread: the scheme running now, and how many switches were made or refused (activation failed).
   [[nodiscard]] const std::string& active_scheme() const noexcept;
   [[nodiscard]] std::uint64_t scheme_switches() const noexcept { return switches_.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t refused_switches() const noexcept { return refused_switches_.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t refused_switches() const noexcept {
+    return refused_switches_.load(std::memory_order_relaxed);
+  }
   // Any thread (the DDS interface): the rendering engine's newest input; the loop picks it up at the next cycle
   // and stamps it with that cycle's time.
   void publish_engine_input(const EngineInput& input) { engine_.publish(input); }
@@ -137,7 +142,9 @@ class DeviceSession {
   // Any thread (the monitor): the next fault or recovery from the device's log, oldest first; false if none.
   // One reader. The loop counts what did not fit (lost_safety_events).
   bool take_safety_event(SafetyEvent& out) noexcept { return status_.safety_events.try_pop(out); }
-  [[nodiscard]] std::uint64_t lost_safety_events() const noexcept { return status_.lost_safety_events.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t lost_safety_events() const noexcept {
+    return status_.lost_safety_events.load(std::memory_order_relaxed);
+  }
   // Any thread: the safe mode has reached zero torque (or there is no fault).
   [[nodiscard]] bool at_rest() const noexcept { return status_.at_rest.load(std::memory_order_acquire); }
   // Any thread: the newest fault report (the fault and the cycles before it); false if none since the last take.
@@ -146,8 +153,12 @@ class DeviceSession {
   [[nodiscard]] std::uint64_t faults_raised() const noexcept { return status_.faults.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t recoveries() const noexcept { return status_.recoveries.load(std::memory_order_relaxed); }
   // Any thread: counters and gauges of the safety supervisor.
-  [[nodiscard]] std::uint64_t limited_cycles() const noexcept { return status_.limited_cycles.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t render_limited_cycles() const noexcept { return status_.render_limited_cycles.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t limited_cycles() const noexcept {
+    return status_.limited_cycles.load(std::memory_order_relaxed);
+  }
+  [[nodiscard]] std::uint64_t render_limited_cycles() const noexcept {
+    return status_.render_limited_cycles.load(std::memory_order_relaxed);
+  }
   [[nodiscard]] double dissipated_j() const noexcept { return status_.dissipated_j.load(std::memory_order_relaxed); }
   [[nodiscard]] double thermal_load() const noexcept { return status_.thermal_load.load(std::memory_order_relaxed); }
   // Loop thread only (tests): the supervisor.
@@ -225,13 +236,12 @@ class DeviceSession {
   SafetySupervisor safety_;
   FaultReport report_;
   std::atomic<bool> safe_stop_requested_{false};
-  bool stopped_ = false;  // loop thread: the safe stop has begun
+  bool stopped_ = false;                    // loop thread: the safe stop has begun
   std::atomic<int> passivity_request_{-1};  // -1: none, else 0/1
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;
   bool measurement_valid_ = false;
   JointVector last_written_;  // the last torque the device accepted
-
 };
 
 }  // namespace hapticd::server

@@ -9,32 +9,31 @@
 
 namespace hapticd::server {
 
-
 struct DeviceSnapshot {
   std::uint64_t cycle = 0;
-  std::int64_t time_ns = 0;          // the cycle's time on the loop clock
+  std::int64_t time_ns = 0;  // the cycle's time on the loop clock
   Pose handle_pose;
   Twist handle_twist;
-  Wrench operator_wrench;            // world, at the handle
-  Wrench environment_wrench;         // what the virtual model renders (walls, engine)
-  Pose target_pose;                  // the chain's desired pose
+  Wrench operator_wrench;                  // world, at the handle
+  Wrench environment_wrench;               // what the virtual model renders (walls, engine)
+  Pose target_pose;                        // the chain's desired pose
   JointVector position, velocity, torque;  // torque: commanded
   DeviceFault fault{};
-  std::uint64_t faults = 0;          // faults raised so far (a stop while already safe counts too)
+  std::uint64_t faults = 0;  // faults raised so far (a stop while already safe counts too)
   bool estop = false;
-  bool stopping = false;             // shutdown ramp running
+  bool stopping = false;  // shutdown ramp running
   bool saturated = false;
-  bool switching = false;            // a scheme switch ramp is running
-  int scheme = 0;                    // index into the device's schemes
-  double engine_weight = 0.0;        // 1: fresh engine input applied; between 0 and 1: fading
-  bool engine_stale = false;         // the engine missed its deadline
-  std::uint64_t engine_sequence = 0; // the engine input the loop applied this cycle
-  bool safe_damping = false;         // in safe mode, damping phase (false once at zero torque)
-  bool limit_engaged = false;        // velocity damping or a workspace wall acted
-  bool render_limited = false;       // the rendered wrench was limited
+  bool switching = false;             // a scheme switch ramp is running
+  int scheme = 0;                     // index into the device's schemes
+  double engine_weight = 0.0;         // 1: fresh engine input applied; between 0 and 1: fading
+  bool engine_stale = false;          // the engine missed its deadline
+  std::uint64_t engine_sequence = 0;  // the engine input the loop applied this cycle
+  bool safe_damping = false;          // in safe mode, damping phase (false once at zero torque)
+  bool limit_engaged = false;         // velocity damping or a workspace wall acted
+  bool render_limited = false;        // the rendered wrench was limited
   bool thermal_derating = false;
-  double thermal_load = 0.0;         // largest joint thermal load (1: continuous torque for ever)
-  double dissipated_j = 0.0;         // energy the passivity controller has dissipated since the chain activated
+  double thermal_load = 0.0;  // largest joint thermal load (1: continuous torque for ever)
+  double dissipated_j = 0.0;  // energy the passivity controller has dissipated since the chain activated
   bool passivity_control = false;
 };
 

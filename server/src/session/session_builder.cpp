@@ -1,9 +1,9 @@
 #include "session/session_builder.hpp"
 
+#include <algorithm>
+
 #include "config/config_error.hpp"
 #include "config/yaml_reader.hpp"
-
-#include <algorithm>
 
 namespace hapticd::server {
 namespace {
@@ -47,12 +47,14 @@ PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, co
   try {
     instance->configure(parameters, context);
   } catch (const ParameterError& e) {
-    throw ConfigError(file, line_from_origin(parameters.origin(e.key()), pc.line), parameters_path + "." + e.key(), e.what());
+    throw ConfigError(file, line_from_origin(parameters.origin(e.key()), pc.line), parameters_path + "." + e.key(),
+                      e.what());
   } catch (const std::exception& e) {
     throw PluginConfigureError{ConfigError(file, pc.line, pc.key_path,
                                            "plugin '" + pc.plugin + "' failed to configure: " + std::string(e.what()))};
   } catch (...) {
-    throw PluginConfigureError{ConfigError(file, pc.line, pc.key_path, "plugin '" + pc.plugin + "' failed to configure")};
+    throw PluginConfigureError{
+        ConfigError(file, pc.line, pc.key_path, "plugin '" + pc.plugin + "' failed to configure")};
   }
   return instance;
 }
@@ -89,14 +91,16 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
     const DeviceDescription& description = chain.device->description();
     context.device = &description;
     const auto build_scheme = [&](const std::string& name, const std::optional<PluginConfig>& virtual_model,
-                                  const std::optional<PluginConfig>& inverse_kinematics, const PluginConfig& controller) {
+                                  const std::optional<PluginConfig>& inverse_kinematics,
+                                  const PluginConfig& controller) {
       SchemeChain scheme;
       scheme.name = name;
       if (virtual_model)
-        scheme.virtual_model = load_and_configure<VirtualModel>(PluginKind::virtual_model, *virtual_model, config, loader, context);
+        scheme.virtual_model =
+            load_and_configure<VirtualModel>(PluginKind::virtual_model, *virtual_model, config, loader, context);
       if (inverse_kinematics)
-        scheme.inverse_kinematics =
-            load_and_configure<InverseKinematics>(PluginKind::inverse_kinematics, *inverse_kinematics, config, loader, context);
+        scheme.inverse_kinematics = load_and_configure<InverseKinematics>(PluginKind::inverse_kinematics,
+                                                                          *inverse_kinematics, config, loader, context);
       scheme.controller = load_and_configure<Controller>(PluginKind::controller, controller, config, loader, context);
       chain.schemes.push_back(std::move(scheme));
     };
@@ -125,7 +129,8 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
     }
   }
   if (report == nullptr) return sessions;
-  if (sessions.empty() || std::none_of(sessions.begin(), sessions.end(), [](const auto& d) { return d->fault() == DeviceFault::none; })) {
+  if (sessions.empty() ||
+      std::none_of(sessions.begin(), sessions.end(), [](const auto& d) { return d->fault() == DeviceFault::none; })) {
     if (!report->empty()) throw report->front().error;  // nothing could run: fail the start
   }
   return sessions;

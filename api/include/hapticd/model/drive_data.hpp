@@ -8,20 +8,20 @@
 namespace hapticd::model {
 
 struct HAPTICD_API DriveData {
-  std::string gear;                     // type designation, informative
-  double gear_ratio = 1.0;              // motor turns per joint turn
-  double gear_peak_torque = 0.0;        // repeated peak torque of the gear [N m, output]
-  double gear_average_torque = 0.0;     // limit for average torque of the gear [N m, output]
-  double stiffness_min = 0.0;           // torsional stiffness at low load [N m/rad]
-  double stiffness_max = 0.0;           // torsional stiffness at rated load [N m/rad]
-  double max_input_speed_rpm = 0.0;     // gear input (motor) speed limit
-  double wave_generator_inertia = 0.0;  // [kg m^2, motor side]
-  std::string motor;                    // type designation, informative
-  double motor_stall_torque = 0.0;      // [N m, motor side]
-  double motor_continuous_torque = 0.0; // [N m, motor side]
-  double rotor_inertia = 0.0;           // [kg m^2, motor side]
-  int encoder_counts_per_motor_rev = 0; // after quadrature
-  bool present = false;                 // false: a joint without drive data (ideal actuator)
+  std::string gear;                      // type designation, informative
+  double gear_ratio = 1.0;               // motor turns per joint turn
+  double gear_peak_torque = 0.0;         // repeated peak torque of the gear [N m, output]
+  double gear_average_torque = 0.0;      // limit for average torque of the gear [N m, output]
+  double stiffness_min = 0.0;            // torsional stiffness at low load [N m/rad]
+  double stiffness_max = 0.0;            // torsional stiffness at rated load [N m/rad]
+  double max_input_speed_rpm = 0.0;      // gear input (motor) speed limit
+  double wave_generator_inertia = 0.0;   // [kg m^2, motor side]
+  std::string motor;                     // type designation, informative
+  double motor_stall_torque = 0.0;       // [N m, motor side]
+  double motor_continuous_torque = 0.0;  // [N m, motor side]
+  double rotor_inertia = 0.0;            // [kg m^2, motor side]
+  int encoder_counts_per_motor_rev = 0;  // after quadrature
+  bool present = false;                  // false: a joint without drive data (ideal actuator)
 
   // Derived joint-output quantities ([U06] device data).
   [[nodiscard]] double peak_joint_torque() const noexcept {

@@ -15,10 +15,10 @@
 namespace hapticd::model {
 
 struct HAPTICD_API FrictionModel {
-  std::array<double, 5> p{};        // p0 (Coulomb) .. p4 [N m, N m s/rad, ...]
-  std::array<double, 3> load{};     // a0, a1, a2
-  double velocity_max = 5.0;        // [rad/s]
-  double breakaway_nm = 0.0;        // measured break-away torque at rest (information; 0: unknown)
+  std::array<double, 5> p{};     // p0 (Coulomb) .. p4 [N m, N m s/rad, ...]
+  std::array<double, 3> load{};  // a0, a1, a2
+  double velocity_max = 5.0;     // [rad/s]
+  double breakaway_nm = 0.0;     // measured break-away torque at rest (information; 0: unknown)
 
   // Sliding-friction magnitude (>= 0) at |velocity| and load torque.
   [[nodiscard]] double magnitude(double velocity, double load_torque) const noexcept;
@@ -28,8 +28,8 @@ struct HAPTICD_API FrictionModel {
 
 // One averaged friction sample for a fit.
 struct FrictionSample {
-  double speed;    // |qd| [rad/s], > 0
-  double torque;   // friction magnitude [N m]
+  double speed;   // |qd| [rad/s], > 0
+  double torque;  // friction magnitude [N m]
   double weight = 1.0;
 };
 
@@ -43,6 +43,7 @@ struct FrictionSample {
 
 // Least-squares fit of a0..a2: each sample holds the |load torque| in `speed` and the friction above the
 // load-free curve in `torque`.
-[[nodiscard]] HAPTICD_API std::optional<std::array<double, 3>> fit_load_friction(std::span<const FrictionSample> samples);
+[[nodiscard]] HAPTICD_API std::optional<std::array<double, 3>> fit_load_friction(
+    std::span<const FrictionSample> samples);
 
 }  // namespace hapticd::model

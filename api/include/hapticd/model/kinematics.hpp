@@ -17,17 +17,17 @@ HAPTICD_API void forward_velocity(const RobotModel& model, ModelData& data, cons
 
 // World pose of a frame. Requires forward_kinematics.
 [[nodiscard]] HAPTICD_API Eigen::Isometry3d frame_pose(const RobotModel& model, const ModelData& data,
-                                                        int frame_id) noexcept;
+                                                       int frame_id) noexcept;
 // Geometric Jacobian of a frame (6 x n). Requires forward_kinematics.
 HAPTICD_API void frame_jacobian(const RobotModel& model, const ModelData& data, int frame_id,
                                 TaskJacobian& jacobian) noexcept;
 // dJ/dt qd of a frame: the frame origin's classical linear and the angular acceleration for qdd = 0.
 // Requires forward_velocity.
 [[nodiscard]] HAPTICD_API Vector6d frame_jacobian_dot_times_qd(const RobotModel& model, const ModelData& data,
-                                                                int frame_id) noexcept;
+                                                               int frame_id) noexcept;
 // World-frame twist [linear; angular] of a frame. Requires forward_velocity.
 [[nodiscard]] HAPTICD_API Vector6d frame_velocity(const RobotModel& model, const ModelData& data,
-                                                   int frame_id) noexcept;
+                                                  int frame_id) noexcept;
 
 // Pose difference a - b as [position difference; rotation vector of a b^T] (world axes): the error a
 // Newton step on the Jacobian corrects.

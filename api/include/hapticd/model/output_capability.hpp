@@ -21,13 +21,13 @@ namespace hapticd::model {
 enum class CapabilitySubspace { kTranslation, kRotation };
 
 struct CapabilityOptions {
-  TaskRows task = TaskRows::kFull;         // rows the device controls (kTranslation for ViSHaRD3)
+  TaskRows task = TaskRows::kFull;  // rows the device controls (kTranslation for ViSHaRD3)
   CapabilitySubspace subspace = CapabilitySubspace::kTranslation;
-  bool include_gravity = true;             // the torque spent on holding the arm is not available
+  bool include_gravity = true;  // the torque spent on holding the arm is not available
 };
 
 struct WorstDirection {
-  double value = 0.0;                      // [N, m/s, m/s^2] or [N m, rad/s, rad/s^2]
+  double value = 0.0;                                    // [N, m/s, m/s^2] or [N m, rad/s, rad/s^2]
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // a worst direction (world axes, either sign)
   int limiting_joint = -1;
 };
@@ -53,7 +53,7 @@ struct PoseCapability {
 // rotations about the world axes, Rz(yaw) Ry(pitch) Rx(roll), applied to the nominal handle orientation.
 struct WorkspaceGrid {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();   // full edge lengths [m]
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // full edge lengths [m]
   int points_per_axis = 5;
   Eigen::Matrix3d nominal_orientation = Eigen::Matrix3d::Identity();
   std::vector<Eigen::Vector3d> orientation_offsets{Eigen::Vector3d::Zero()};  // rpy [rad]
@@ -64,7 +64,7 @@ struct WorkspaceGrid {
 
 struct GridCapability {
   int poses = 0;
-  int reached = 0;                 // poses the position solver reached
+  int reached = 0;                               // poses the position solver reached
   WorstDirection force, velocity, acceleration;  // minima over the reached poses
   Eigen::Vector3d force_worst_position, velocity_worst_position, acceleration_worst_position;
   double mean_force = 0.0, mean_velocity = 0.0, mean_acceleration = 0.0;
@@ -74,8 +74,7 @@ struct GridCapability {
 // Worst case over the grid. q_seed is the solver's start for the first pose; each pose starts from the
 // nearest solved neighbour. Not real-time (an off-line analysis).
 [[nodiscard]] HAPTICD_API GridCapability grid_output_capability(const RobotModel& model, int frame_id,
-                                                                const WorkspaceGrid& grid,
-                                                                const JointVector& q_seed,
+                                                                const WorkspaceGrid& grid, const JointVector& q_seed,
                                                                 const CapabilityOptions& options);
 
 }  // namespace hapticd::model

@@ -53,10 +53,10 @@ class HAPTICD_API GeneralizedInverse {
   InverseKind kind_ = InverseKind::kPseudoinverse;
   int dof_ = 0;
   double damping_ = 0.0, tolerance_ = 1e-9;
-  JointVector weights_;           // diagonal W (kWeighted, kDamped)
-  JointVector inverse_sqrt_;      // diag(1 / sqrt(w))
+  JointVector weights_;       // diagonal W (kWeighted, kDamped)
+  JointVector inverse_sqrt_;  // diag(1 / sqrt(w))
   const Eigen::LLT<JointMatrix>* mass_llt_ = nullptr;
-  TaskJacobian scaled_;           // A = J L^-T
+  TaskJacobian scaled_;  // A = J L^-T
   InverseJacobian inverse_;
   JointMatrix projector_;
   TaskVector singular_values_;

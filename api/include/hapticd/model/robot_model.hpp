@@ -25,14 +25,14 @@ struct Body {
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();  // joint frame in the parent body's frame
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();              // unit joint axis in the joint frame
   double mass = 0.0;
-  Eigen::Vector3d com = Eigen::Vector3d::Zero();                 // centre of mass in the body (joint) frame
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();             // about the centre of mass, body frame
-  double position_min = -1e9;                                    // [rad or m]; +-1e9: unlimited
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();      // centre of mass in the body (joint) frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the centre of mass, body frame
+  double position_min = -1e9;                         // [rad or m]; +-1e9: unlimited
   double position_max = 1e9;
-  double velocity_limit = 0.0;                                   // URDF <limit velocity>, 0 if absent
-  double effort_limit = 0.0;                                     // URDF <limit effort>, 0 if absent
+  double velocity_limit = 0.0;  // URDF <limit velocity>, 0 if absent
+  double effort_limit = 0.0;    // URDF <limit effort>, 0 if absent
   DriveData drive;
-  double reflected_inertia = 0.0;                                // drive inertia on the joint axis
+  double reflected_inertia = 0.0;  // drive inertia on the joint axis
 };
 
 // A named frame rigidly attached to a body (body -1: the fixed base).

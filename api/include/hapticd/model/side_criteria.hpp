@@ -19,14 +19,14 @@
 namespace hapticd::model {
 
 struct SideCriteriaSettings {
-  int frame = -1;           // the handle frame (Jacobian criteria)
-  int task_rows = 6;        // 3: translation rows only
+  int frame = -1;                        // the handle frame (Jacobian criteria)
+  int task_rows = 6;                     // 3: translation rows only
   double characteristic_length_m = 0.3;  // scales angular rows against linear ones (condition number)
   double manipulability = 0.0;
   double condition_number = 0.0;
   double smallest_singular_value = 0.0;
   double wrist = 0.0;
-  int wrist_joint = 8;      // 0-based (ViSHaRD10's joint 9)
+  int wrist_joint = 8;  // 0-based (ViSHaRD10's joint 9)
   double wrist_target_rad = 1.5707963267948966;
   double joint_limits = 0.0;
   double keep_out = 0.0;

@@ -76,8 +76,7 @@ struct SpatialInertia {
 
   // Momentum I v.
   [[nodiscard]] Force operator*(const Motion& v) const noexcept {
-    return {rotational * v.angular + first_moment.cross(v.linear),
-            mass * v.linear - first_moment.cross(v.angular)};
+    return {rotational * v.angular + first_moment.cross(v.linear), mass * v.linear - first_moment.cross(v.angular)};
   }
 };
 

@@ -15,7 +15,8 @@ class LatestValue {
   void publish(const T& value) {
     slots_[back_] = value;
     // Swap the back slot with the middle one and mark the middle as fresh.
-    const std::uint8_t previous = middle_.exchange(static_cast<std::uint8_t>(back_ | kFresh), std::memory_order_acq_rel);
+    const std::uint8_t previous =
+        middle_.exchange(static_cast<std::uint8_t>(back_ | kFresh), std::memory_order_acq_rel);
     back_ = previous & kIndex;
   }
   // Reader side (one thread, real-time safe): true and `out` filled when a value was published since the
@@ -32,9 +33,9 @@ class LatestValue {
   static constexpr std::uint8_t kFresh = 0x4;
   static constexpr std::uint8_t kIndex = 0x3;
   std::array<T, 3> slots_{};
-  std::uint8_t back_ = 0;               // writer's
-  std::uint8_t front_ = 1;              // reader's
-  std::atomic<std::uint8_t> middle_{2}; // shared: index plus the fresh flag
+  std::uint8_t back_ = 0;                // writer's
+  std::uint8_t front_ = 1;               // reader's
+  std::atomic<std::uint8_t> middle_{2};  // shared: index plus the fresh flag
 };
 
 }  // namespace hapticd::realtime

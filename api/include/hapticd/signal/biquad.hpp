@@ -6,8 +6,8 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <complex>
-#include <string>
 #include <stdexcept>
+#include <string>
 
 namespace hapticd::signal {
 

@@ -41,7 +41,8 @@ struct ContentCheck {
   bool ok = false;
   RejectReason reason = RejectReason::other;
 };
-[[nodiscard]] ContentCheck check_command_content(const hapticd_msg_EngineCommand& command, const CommandBounds& bounds) noexcept;
+[[nodiscard]] ContentCheck check_command_content(const hapticd_msg_EngineCommand& command,
+                                                 const CommandBounds& bounds) noexcept;
 
 // The loop's view of a command that passed check_command_content (quaternions normalised).
 [[nodiscard]] EngineInput to_engine_input(const hapticd_msg_EngineCommand& command) noexcept;

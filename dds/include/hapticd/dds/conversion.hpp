@@ -1,9 +1,8 @@
 #pragma once
 // Between the wire types (hapticd_msg.h) and the SDK's value types; bounded names and texts.
+#include <Eigen/Core>
 #include <cstdint>
 #include <string_view>
-
-#include <Eigen/Core>
 
 #include "hapticd/spatial.hpp"
 #include "hapticd_msg.h"

@@ -12,8 +12,9 @@ namespace hapticd::dds {
 template <class T>
 Entity make_topic(const Participant& participant, const CommandTiming& timing) {
   const Qos qos = topic_qos(TopicOf<T>::kind, timing);
-  return Entity(check(dds_create_topic(participant.get(), TopicOf<T>::descriptor(), TopicOf<T>::name, qos.get(), nullptr),
-                      "cannot create a DDS topic"));
+  return Entity(
+      check(dds_create_topic(participant.get(), TopicOf<T>::descriptor(), TopicOf<T>::name, qos.get(), nullptr),
+            "cannot create a DDS topic"));
 }
 
 template <class T>
@@ -22,7 +23,8 @@ class Writer {
   explicit Writer(const Participant& participant, const CommandTiming& timing = {})
       : topic_(make_topic<T>(participant, timing)) {
     const Qos qos = topic_qos(TopicOf<T>::kind, timing);
-    writer_ = Entity(check(dds_create_writer(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS writer"));
+    writer_ = Entity(
+        check(dds_create_writer(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS writer"));
   }
   bool write(const T& sample) const noexcept { return dds_write(writer_.get(), &sample) == DDS_RETCODE_OK; }
   // Writes, then unregisters the sample's instance: a writer of one-off messages (replies to ever new client
@@ -39,7 +41,8 @@ class Writer {
   // Number of matched readers.
   [[nodiscard]] int matched() const noexcept {
     dds_publication_matched_status_t s{};
-    return dds_get_publication_matched_status(writer_.get(), &s) == DDS_RETCODE_OK ? static_cast<int>(s.current_count) : 0;
+    return dds_get_publication_matched_status(writer_.get(), &s) == DDS_RETCODE_OK ? static_cast<int>(s.current_count)
+                                                                                   : 0;
   }
 
  private:
@@ -54,12 +57,14 @@ class Reader {
 
   // filter: samples it refuses are dropped before the reader stores them (no instance is created for them); it
   // runs on Cyclone's receive threads. The reader has a topic entity of its own, so the filter is the reader's.
-  explicit Reader(const Participant& participant, const CommandTiming& timing = {}, const dds_topic_filter* filter = nullptr)
+  explicit Reader(const Participant& participant, const CommandTiming& timing = {},
+                  const dds_topic_filter* filter = nullptr)
       : topic_(make_topic<T>(participant, timing)) {
     for (std::size_t i = 0; i < kBatch; ++i) pointers_[i] = &samples_[i];
     const Qos qos = topic_qos(TopicOf<T>::kind, timing);
     if (filter != nullptr) check(dds_set_topic_filter_extended(topic_.get(), filter), "cannot set a DDS topic filter");
-    reader_ = Entity(check(dds_create_reader(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS reader"));
+    reader_ = Entity(
+        check(dds_create_reader(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS reader"));
   }
   // Callbacks on Cyclone's receive thread from now on (Cyclone copies the listener). Set it once the owner
   // is fully built: a callback may run at once.
@@ -85,7 +90,8 @@ class Reader {
   [[nodiscard]] dds_entity_t get() const noexcept { return reader_.get(); }
   [[nodiscard]] int matched() const noexcept {
     dds_subscription_matched_status_t s{};
-    return dds_get_subscription_matched_status(reader_.get(), &s) == DDS_RETCODE_OK ? static_cast<int>(s.current_count) : 0;
+    return dds_get_subscription_matched_status(reader_.get(), &s) == DDS_RETCODE_OK ? static_cast<int>(s.current_count)
+                                                                                    : 0;
   }
 
  private:

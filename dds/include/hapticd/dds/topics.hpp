@@ -11,12 +11,12 @@ enum class TopicKind { description, state, command, request, reply, event, telem
 
 template <class T>
 struct TopicOf;
-#define HAPTICD_DDS_TOPIC(TYPE, KIND, NAME)                                              \
-  template <>                                                                            \
-  struct TopicOf<TYPE> {                                                                 \
-    static constexpr TopicKind kind = TopicKind::KIND;                                   \
-    static constexpr const char* name = NAME;                                            \
-    static const dds_topic_descriptor_t* descriptor() noexcept { return &TYPE##_desc; }  \
+#define HAPTICD_DDS_TOPIC(TYPE, KIND, NAME)                                             \
+  template <>                                                                           \
+  struct TopicOf<TYPE> {                                                                \
+    static constexpr TopicKind kind = TopicKind::KIND;                                  \
+    static constexpr const char* name = NAME;                                           \
+    static const dds_topic_descriptor_t* descriptor() noexcept { return &TYPE##_desc; } \
   };
 HAPTICD_DDS_TOPIC(hapticd_msg_DeviceDescription, description, "hapticd_description")
 HAPTICD_DDS_TOPIC(hapticd_msg_DeviceState, state, "hapticd_state")

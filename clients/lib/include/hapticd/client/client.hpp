@@ -23,10 +23,10 @@
 namespace hapticd::client {
 
 struct ClientOptions {
-  std::string client_id;                // unique per client; the owner name a claim records
+  std::string client_id;  // unique per client; the owner name a claim records
   int domain_id = 0;
-  std::filesystem::path cyclone_config; // empty: the built-in loopback-only configuration
-  double command_deadline_s = 0.05;     // offered on the command writer: must not exceed the server's deadline
+  std::filesystem::path cyclone_config;  // empty: the built-in loopback-only configuration
+  double command_deadline_s = 0.05;      // offered on the command writer: must not exceed the server's deadline
 };
 
 struct Reply {
@@ -51,11 +51,13 @@ class Client {
   [[nodiscard]] std::vector<hapticd_msg_DeviceDescription> devices() const;
   // Waits until the named device's description arrived; with started, one that carries the start pose (sent
   // again once the server's loop has run its first cycle).
-  std::optional<hapticd_msg_DeviceDescription> wait_for_device(std::string_view device, Timeout timeout, bool started = false);
+  std::optional<hapticd_msg_DeviceDescription> wait_for_device(std::string_view device, Timeout timeout,
+                                                               bool started = false);
   // The newest state of a device, if any arrived.
   [[nodiscard]] std::optional<hapticd_msg_DeviceState> latest_state(std::string_view device) const;
   // Waits until a state of the device with serial > after arrives.
-  std::optional<hapticd_msg_DeviceState> wait_for_state(std::string_view device, Timeout timeout, std::uint64_t after = 0);
+  std::optional<hapticd_msg_DeviceState> wait_for_state(std::string_view device, Timeout timeout,
+                                                        std::uint64_t after = 0);
 
   // ---- callbacks (set before the data flows; replaced atomically) ----
   void on_state(std::function<void(const hapticd_msg_DeviceState&)> callback);
