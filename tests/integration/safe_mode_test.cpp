@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "session/device_requests.hpp"
 #include "session/device_session.hpp"
 #include "support/test_session.hpp"
 
@@ -53,7 +54,7 @@ SafeModeRun stop_hold_and_recover(const std::string& yaml) {
   for (std::uint64_t k = 0; k < end; ++k) {
     if (k == stop) {
       d.request_emergency_stop();
-      EXPECT_TRUE(d.handle_request("device", "operator.release", {}).accepted);
+      EXPECT_TRUE(apply_request(d, {DeviceRequest::Kind::drive_operator, "release", {}}).accepted);
     }
     if (k == recover) {
       EXPECT_TRUE(d.request_recovery().accepted);

@@ -276,17 +276,17 @@ TEST(Safety, SoftStartRampsTheRenderedForceAgainAfterASchemeSwitch) {
   std::vector<double> force;
   for (std::uint64_t k = 0; k < 2400; ++k) {
     if (k == 1000) {
-      EXPECT_TRUE(d.request_scheme("damped"));
+      EXPECT_TRUE(d.schemes().request("damped"));
     }
     if (k == 1800) {
-      EXPECT_TRUE(d.request_scheme("default"));
+      EXPECT_TRUE(d.schemes().request("default"));
     }
     cycle_with_engine_wrench(d, k, Eigen::Vector3d(0.0, 20.0, 0.0));
     force.push_back(d.task().wrench.force.norm());
     d.service();
   }
-  EXPECT_EQ(d.active_scheme(), "default");
-  EXPECT_EQ(d.scheme_switches(), 2u);
+  EXPECT_EQ(d.schemes().active_name(), "default");
+  EXPECT_EQ(d.schemes().switches(), 2u);
   EXPECT_EQ(d.fault(), DeviceFault::none);
   for (const std::uint64_t at : {std::uint64_t{1000}, std::uint64_t{1800}}) {
     EXPECT_NEAR(force[at - 1], 20.0, 1e-9);  // in full before the switch

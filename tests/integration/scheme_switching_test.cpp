@@ -50,10 +50,10 @@ SwitchSteps run_switches(double ramp_s) {
   constexpr std::uint64_t kToImpedance = 3000, kBack = 5000;  // 1.5 s and 2.5 s
   for (std::uint64_t k = 0; k < 6000; ++k) {
     if (k == kToImpedance) {
-      EXPECT_TRUE(d.request_scheme("impedance"));
+      EXPECT_TRUE(d.schemes().request("impedance"));
     }
     if (k == kBack) {
-      EXPECT_TRUE(d.request_scheme("admittance"));
+      EXPECT_TRUE(d.schemes().request("admittance"));
     }
     d.cycle(cycle_at(k), 1.0);
     d.service();  // the non-loop side: deactivates the scheme that was left
@@ -67,14 +67,14 @@ SwitchSteps run_switches(double ramp_s) {
     }
     previous = t;
     if (k == kToImpedance) {
-      EXPECT_EQ(d.active_scheme(), "impedance");
+      EXPECT_EQ(d.schemes().active_name(), "impedance");
     }
     if (k == kBack) {
-      EXPECT_EQ(d.active_scheme(), "admittance");
+      EXPECT_EQ(d.schemes().active_name(), "admittance");
     }
   }
-  EXPECT_EQ(d.scheme_switches(), 2u);
-  EXPECT_EQ(d.refused_switches(), 0u);
+  EXPECT_EQ(d.schemes().switches(), 2u);
+  EXPECT_EQ(d.schemes().refused(), 0u);
   return steps;
 }
 
@@ -99,9 +99,9 @@ TEST(SchemeSwitching, UnknownSchemeIsRefusedAndTheLoopKeepsRunning) {
   DeviceSession& d = *s.devices[0];
   d.activate();
   d.cycle(cycle_at(0), 1.0);
-  EXPECT_FALSE(d.request_scheme("no_such_scheme"));
+  EXPECT_FALSE(d.schemes().request("no_such_scheme"));
   d.cycle(cycle_at(1), 1.0);
-  EXPECT_EQ(d.active_scheme(), "admittance");
+  EXPECT_EQ(d.schemes().active_name(), "admittance");
 }
 
 TEST(SchemeSwitching, SwitchingIsAllocationFree) {
@@ -111,15 +111,15 @@ TEST(SchemeSwitching, SwitchingIsAllocationFree) {
   d.cycle(cycle_at(0), 1.0);
   std::size_t allocations = 0;
   for (std::uint64_t k = 1; k < 2000; ++k) {
-    if (k == 500) d.request_scheme("impedance");
-    if (k == 1500) d.request_scheme("admittance");
+    if (k == 500) d.schemes().request("impedance");
+    if (k == 1500) d.schemes().request("admittance");
     if (k == 1000) d.service();  // off the counted cycles: deactivation may allocate
     allocations += testing::count_allocations([&] { d.cycle(cycle_at(k), 1.0); });
   }
   if (testing::AllocationGuard::available()) {
     EXPECT_EQ(allocations, 0u);
   }
-  EXPECT_EQ(d.scheme_switches(), 2u);
+  EXPECT_EQ(d.schemes().switches(), 2u);
 }
 
 TEST(SchemeSwitching, DuplicateSchemeNamesAreAConfigError) {

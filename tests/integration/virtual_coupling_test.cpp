@@ -8,6 +8,7 @@
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
+#include "session/device_requests.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -86,11 +87,14 @@ TEST(VirtualCoupling, RunTimeParametersTakeEffectAtTheNextCycle) {
     auto s = test::build_test_session(coupling_session("[8.0, 0.0, 0.0]"));
     DeviceSession& d = *s.devices[0];
     if (mass != nullptr) {
-      EXPECT_TRUE(d.handle_request("virtual_model", "mass_kg", *mass).accepted);
+      EXPECT_TRUE(apply_request(d, {DeviceRequest::Kind::set_parameter, "virtual_model.mass_kg", *mass}).accepted);
     }
-    EXPECT_FALSE(d.handle_request("virtual_model", "mass_kg", {1.0, -1.0, 1.0}).accepted);
-    EXPECT_FALSE(d.handle_request("virtual_model", "no_such_parameter", {1.0}).accepted);
-    EXPECT_FALSE(d.handle_request("controller", "mass_kg", {1.0, 1.0, 1.0}).accepted);
+    EXPECT_FALSE(
+        apply_request(d, {DeviceRequest::Kind::set_parameter, "virtual_model.mass_kg", {1.0, -1.0, 1.0}}).accepted);
+    EXPECT_FALSE(
+        apply_request(d, {DeviceRequest::Kind::set_parameter, "virtual_model.no_such_parameter", {1.0}}).accepted);
+    EXPECT_FALSE(
+        apply_request(d, {DeviceRequest::Kind::set_parameter, "controller.mass_kg", {1.0, 1.0, 1.0}}).accepted);
     d.activate();
     for (std::uint64_t k = 0; k <= 200; ++k) d.cycle(cycle_at(k), 1.0);
     return d.task().twist.linear.x();

@@ -103,36 +103,33 @@ RequestDispatcher::Answer RequestDispatcher::release(DeviceLink& d, const Reques
   return {true, "released"};
 }
 
+RequestDispatcher::Answer RequestDispatcher::forward(DeviceLink& d, DeviceRequest::Kind kind, const Request& r) {
+  const RuntimeReply rr = apply_request(*d.session, DeviceRequest{kind, std::string(r.name), r.values});
+  return {rr.accepted, rr.message};
+}
+
 RequestDispatcher::Answer RequestDispatcher::switch_scheme(DeviceLink& d, const Request& r) {
   if (auto refused = refused_unless_owner(d, r)) return *refused;
-  if (!d.session->request_scheme(r.name)) return {false, "no scheme named '" + std::string(r.name) + "'"};
-  return {true, "switching to " + std::string(r.name)};
+  return forward(d, DeviceRequest::Kind::switch_scheme, r);
 }
 
 RequestDispatcher::Answer RequestDispatcher::set_parameter(DeviceLink& d, const Request& r) {
   if (auto refused = refused_unless_owner(d, r)) return *refused;
-  const auto dot = r.name.find('.');
-  if (dot == std::string_view::npos) return {false, "expected <stage>.<parameter>, e.g. virtual_model.mass_kg"};
-  const RuntimeReply rr =
-      d.session->handle_request(r.name.substr(0, dot), std::string(r.name.substr(dot + 1)), r.values);
-  return {rr.accepted, rr.message};
+  return forward(d, DeviceRequest::Kind::set_parameter, r);
 }
 
 RequestDispatcher::Answer RequestDispatcher::drive_operator(DeviceLink& d, const Request& r) {
   // The simulated operator is the person at the device, not the device: anyone may drive it.
-  const RuntimeReply rr = d.session->handle_request("device", "operator." + std::string(r.name), r.values);
-  return {rr.accepted, rr.message};
+  return forward(d, DeviceRequest::Kind::drive_operator, r);
 }
 
-RequestDispatcher::Answer RequestDispatcher::emergency_stop(DeviceLink& d, const Request&) {
-  d.session->request_emergency_stop();  // anyone may stop a device
-  return {true, "emergency stop"};
+RequestDispatcher::Answer RequestDispatcher::emergency_stop(DeviceLink& d, const Request& r) {
+  return forward(d, DeviceRequest::Kind::emergency_stop, r);  // anyone may stop a device
 }
 
 RequestDispatcher::Answer RequestDispatcher::recover(DeviceLink& d, const Request& r) {
   if (auto refused = refused_unless_owner(d, r)) return *refused;
-  const RuntimeReply rr = d.session->request_recovery();
-  return {rr.accepted, rr.message};
+  return forward(d, DeviceRequest::Kind::recover, r);
 }
 
 RequestDispatcher::Answer RequestDispatcher::describe(DeviceLink& d, const Request&) {

@@ -14,6 +14,7 @@
 #include "bridge/device_link.hpp"
 #include "bridge/event_sender.hpp"
 #include "bridge/state_publisher.hpp"
+#include "session/device_requests.hpp"
 
 namespace hapticd::server {
 
@@ -53,6 +54,8 @@ class RequestDispatcher {
   // refusal names the owner.
   std::optional<Answer> refused_unless_owner(const DeviceLink& d, const Request& r) const;
 
+  // The device's part of a request (session/device_requests), once the bridge has checked the requester.
+  Answer forward(DeviceLink& d, DeviceRequest::Kind kind, const Request& r);
   Answer claim(DeviceLink& d, const Request& r);
   Answer release(DeviceLink& d, const Request& r);
   Answer switch_scheme(DeviceLink& d, const Request& r);

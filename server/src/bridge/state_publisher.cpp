@@ -57,8 +57,8 @@ void StatePublisher::publish_states() {
       std::lock_guard lock(d.mutex);
       owner = d.gate.owner();
     }
-    const StateLabels labels{d.session->name(), s.cycle / snapshot_interval_ + 1, d.session->active_scheme(), owner,
-                             loop_summary()};
+    const StateLabels labels{d.session->name(), s.cycle / snapshot_interval_ + 1, d.session->schemes().active_name(),
+                             owner, loop_summary()};
     p.last = state_message(s, labels);
     d.round_trip.command_applied(s.engine_sequence, s.cycle);
     d.round_trip.state_written(p.last.serial, s.cycle, monotonic_now_ns());
@@ -105,7 +105,7 @@ void StatePublisher::publish_telemetry() {
     }
     t.requests = d.requests.load(std::memory_order_relaxed);
     t.deadline_misses = d.deadline_misses.load(std::memory_order_relaxed);
-    t.scheme_switches = d.session->scheme_switches();
+    t.scheme_switches = d.session->schemes().switches();
     t.saturated_cycles = d.session->saturated_cycles();
     t.limited_cycles = d.session->limited_cycles();
     t.render_limited_cycles = d.session->render_limited_cycles();

@@ -9,50 +9,9 @@
 namespace hapticd::server {
 namespace {
 
-std::string name_text(std::string_view name) { return "'" + std::string(name) + "'"; }
-
 // The scheme's redundancy resolution for its controller (nullptr without an IK or when it offers none).
 RedundancyResolution* redundancy_of(SchemeChain& scheme) noexcept {
   return scheme.inverse_kinematics ? (*scheme.inverse_kinematics)->redundancy() : nullptr;
-}
-
-// A run-time set of a parameter the plugin's schema declares obeys the schema's type, size and bounds, as the
-// session file does; the message says what would be valid. Requests the schema does not name (operator.push,
-// ...) are the plugin's to check.
-std::optional<std::string> check_against_schema(const PluginDescriptor& plugin, std::string_view name,
-                                                const std::vector<double>& values) {
-  const ParameterSchema schema = plugin.parameter_schema();
-  const ParameterSpec* spec = schema.find(name);
-  if (spec == nullptr) return std::nullopt;
-  ParameterValue value;
-  switch (spec->type) {
-    case ParameterType::real:
-      if (values.size() != 1) return name_text(name) + " takes one number";
-      value = values[0];
-      break;
-    case ParameterType::integer:
-      if (values.size() != 1 || values[0] != std::floor(values[0]) || std::abs(values[0]) > 9.0e15)
-        return name_text(name) + " takes one whole number";
-      value = static_cast<std::int64_t>(values[0]);
-      break;
-    case ParameterType::boolean:
-      if (values.size() != 1 || (values[0] != 0.0 && values[0] != 1.0)) return name_text(name) + " takes 0 or 1";
-      value = values[0] == 1.0;
-      break;
-    case ParameterType::real_vector:
-      value = values;
-      break;
-    case ParameterType::string:
-      return name_text(name) + " is a text parameter: it cannot be set at run time";
-  }
-  for (double v : values)
-    if (!std::isfinite(v)) return name_text(name) + ": values must be finite";
-  try {
-    spec->check(value);
-  } catch (const ParameterError& e) {
-    return name_text(name) + ": " + e.what();
-  }
-  return std::nullopt;
 }
 
 }  // namespace
@@ -79,11 +38,10 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
       chain_(std::move(chain)),
       description_(checked(name_, chain_)),
       estimator_(name_, description_, chain_.period_s),
-      engine_(EngineTiming{chain_.engine_deadline_s, chain_.engine_fade_s, chain_.engine_ramp_in_s}) {
+      engine_(EngineTiming{chain_.engine_deadline_s, chain_.engine_fade_s, chain_.engine_ramp_in_s}),
+      schemes_(chain_.schemes),
+      blend_(std::llround(chain_.switch_ramp_s / chain_.period_s)) {
   const int dof = description_.dof();
-  scheme_state_ = std::vector<std::atomic<std::uint8_t>>(chain_.schemes.size());
-  for (auto& st : scheme_state_) st.store(kIdle);
-  switch_offset_.setZero(dof);
   state_.joints.resize(dof);
   if (!chain_.configure_error.empty()) {
     status_.fault.store(DeviceFault::configure);
@@ -94,7 +52,6 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   last_written_.setZero(dof);
   // Everything sized and set up for the loop's period here, before the first cycle: nothing lazily on the loop.
   safety_.configure(chain_.safety, description_, chain_.period_s);
-  switch_ramp_cycles_ = std::max<std::int64_t>(1, std::llround(chain_.switch_ramp_s / chain_.period_s));
 }
 
 void DeviceSession::activate() {
@@ -102,7 +59,7 @@ void DeviceSession::activate() {
   chain_active_ = false;
   estimator_.reset();
   command_.torque_nm.setZero();
-  blend_ = Blend::none;
+  blend_.cancel();
 }
 
 ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
@@ -118,93 +75,61 @@ ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
       ControllerInput{state_, task_, joint_target_, &estimator_.state(), redundancy_of(scheme)}, command_);
 }
 
-bool DeviceSession::request_scheme(std::string_view name) {
-  for (std::size_t i = 0; i < chain_.schemes.size(); ++i) {
-    if (chain_.schemes[i].name == name) {
-      requested_.store(static_cast<int>(i), std::memory_order_release);
-      return true;
-    }
+void DeviceSession::service() { schemes_.service(); }
+
+const PluginDescriptor* DeviceSession::stage_plugin(Stage stage) const noexcept {
+  if (stage == Stage::device) return chain_.device.descriptor;
+  const SchemeChain* scheme = running_scheme();
+  if (scheme == nullptr) return nullptr;
+  switch (stage) {
+    case Stage::virtual_model:
+      return scheme->virtual_model ? scheme->virtual_model->descriptor : nullptr;
+    case Stage::inverse_kinematics:
+      return scheme->inverse_kinematics ? scheme->inverse_kinematics->descriptor : nullptr;
+    case Stage::controller:
+      return scheme->controller.descriptor;
+    case Stage::device:
+      break;
   }
-  return false;
+  return nullptr;
 }
 
-const std::string& DeviceSession::active_scheme() const noexcept {
-  static const std::string none;
-  if (chain_.schemes.empty()) return none;
-  return chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_acquire))].name;
-}
-
-void DeviceSession::service() {
-  for (std::size_t i = 0; i < chain_.schemes.size(); ++i) {
-    if (scheme_state_[i].load(std::memory_order_acquire) != kLeaving) continue;
-    SchemeChain& s = chain_.schemes[i];
-    s.controller->deactivate();
-    if (s.inverse_kinematics) (*s.inverse_kinematics)->deactivate();
-    if (s.virtual_model) (*s.virtual_model)->deactivate();
-    scheme_state_[i].store(kIdle, std::memory_order_release);
+RuntimeReply DeviceSession::plugin_request(Stage stage, std::string_view name, const std::vector<double>& values) {
+  if (stage == Stage::device) return chain_.device->handle_request(name, values);
+  SchemeChain* scheme = running_scheme();
+  if (scheme == nullptr) return {false, "device '" + name_ + "' has no running scheme"};
+  switch (stage) {
+    case Stage::virtual_model:
+      if (scheme->virtual_model) return (*scheme->virtual_model)->handle_request(name, values);
+      break;
+    case Stage::inverse_kinematics:
+      return {false, "inverse kinematics takes no run-time requests"};
+    case Stage::controller:
+      return scheme->controller->handle_request(name, values);
+    case Stage::device:
+      break;
   }
-}
-
-RuntimeReply DeviceSession::handle_request(std::string_view stage, std::string_view name,
-                                           const std::vector<double>& values) {
-  if (stage == "device") {
-    if (auto error = check_against_schema(*chain_.device.descriptor, name, values)) return {false, *error};
-    return chain_.device->handle_request(name, values);
-  }
-  if (stage == "safety") {
-    if (name == "recover") return request_recovery();
-    if (name == "passivity_control") {
-      if (values.size() != 1 || (values[0] != 0.0 && values[0] != 1.0))
-        return {false, "passivity_control takes 0 or 1"};
-      passivity_request_.store(values[0] == 1.0 ? 1 : 0, std::memory_order_release);
-      return {true, values[0] == 1.0 ? "passivity controller on" : "passivity controller off"};
-    }
-    return {false, "unknown safety request '" + std::string(name) + "' (recover, passivity_control)"};
-  }
-  if (chain_.schemes.empty()) return {false, "device '" + name_ + "' has no running scheme"};
-  SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_acquire))];
-  if (stage == "controller") {
-    if (auto error = check_against_schema(*scheme.controller.descriptor, name, values)) return {false, *error};
-    return scheme.controller->handle_request(name, values);
-  }
-  if (stage == "virtual_model") {
-    if (!scheme.virtual_model) return {false, "scheme '" + scheme.name + "' has no virtual model"};
-    if (auto error = check_against_schema(*scheme.virtual_model->descriptor, name, values)) return {false, *error};
-    return (*scheme.virtual_model)->handle_request(name, values);
-  }
-  return {false, "unknown stage '" + std::string(stage) + "' (device, virtual_model, controller or safety)"};
+  return {false, "scheme '" + scheme->name + "' has no such stage"};
 }
 
 void DeviceSession::switch_scheme_if_requested() noexcept {
-  const int wanted = requested_.load(std::memory_order_acquire);
-  const int current = active_.load(std::memory_order_relaxed);
-  if (wanted == current) return;
-  const auto w = static_cast<std::size_t>(wanted);
-  if (scheme_state_[w].load(std::memory_order_acquire) != kIdle) return;  // still leaving: wait for service()
+  SchemeChain* wanted = schemes_.wanted();
+  if (wanted == nullptr) return;
   const JointVector before = command_.torque_nm;
-  if (activate_scheme(chain_.schemes[w]) != ReturnCode::ok) {
-    refused_switches_.fetch_add(1, std::memory_order_relaxed);
-    requested_.store(current, std::memory_order_release);  // keep running the old scheme
-    // Parts of the chain may have activated before one refused: service() deactivates them off the loop.
-    scheme_state_[w].store(kLeaving, std::memory_order_release);
+  if (activate_scheme(*wanted) != ReturnCode::ok) {
+    schemes_.refused_switch();  // the old scheme runs on
     return;
   }
-  scheme_state_[static_cast<std::size_t>(current)].store(kLeaving, std::memory_order_release);
-  scheme_state_[w].store(kActive, std::memory_order_release);
-  active_.store(wanted, std::memory_order_release);
-  switches_.fetch_add(1, std::memory_order_relaxed);
-  // The offset is measured against the new scheme's first command (blend_after_switch).
-  switch_offset_ = before;
-  blend_ = Blend::pending;
+  schemes_.switched();
+  // The difference to what was written fades out against the new scheme's first command.
+  blend_.begin(before);
   safety_.restart_soft_start();
 }
 
 DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
   if (!chain_active_) {  // the first cycle, or the first after a recovery: activate from the measured state
-    const int first = active_.load(std::memory_order_relaxed);
-    if (activate_scheme(chain_.schemes[static_cast<std::size_t>(first)]) != ReturnCode::ok)
-      return DeviceFault::activation;
-    scheme_state_[static_cast<std::size_t>(first)].store(kActive, std::memory_order_release);
+    if (activate_scheme(schemes_.active()) != ReturnCode::ok) return DeviceFault::activation;
+    schemes_.entered();
     chain_active_ = true;
     safety_.restart_soft_start();
   } else {
@@ -213,7 +138,7 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
   // The supervisor's speed and workspace checks on the measured state, before the chain renders anything.
   if (const DeviceFault f = safety_.begin_cycle(estimator_.state()); f != DeviceFault::none) return f;
   engine_.take(cycle);
-  SchemeChain& scheme = chain_.schemes[static_cast<std::size_t>(active_.load(std::memory_order_relaxed))];
+  SchemeChain& scheme = schemes_.active();
   if (scheme.virtual_model) {
     if ((*scheme.virtual_model)
             ->update(cycle, VirtualModelInput{state_, &estimator_.state(), &engine_.input(), &safety_.guard()},
@@ -243,7 +168,7 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
       ReturnCode::ok)
     return DeviceFault::controller;
   if (!command_.torque_nm.allFinite()) return DeviceFault::non_finite_output;
-  blend_after_switch();
+  blend_.apply(command_.torque_nm);
   return DeviceFault::none;
 }
 
@@ -265,8 +190,8 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.estop = s.fault == DeviceFault::emergency_stop;
   s.stopping = torque_scale < 1.0;
   s.saturated = estimator_.state().output_saturated;
-  s.switching = blend_ != Blend::none;
-  s.scheme = active_.load(std::memory_order_relaxed);
+  s.switching = blend_.active();
+  s.scheme = static_cast<int>(schemes_.active_index());
   s.engine_weight = engine_.input().weight;
   s.engine_stale = engine_.stale();
   s.engine_sequence = engine_.input().sequence;
@@ -280,17 +205,6 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.dissipated_j = safety_.guard().dissipated_j();
   s.passivity_control = safety_.guard().passivity_control();
   status_.snapshots.publish(s);
-}
-
-void DeviceSession::blend_after_switch() noexcept {
-  if (blend_ == Blend::none) return;
-  if (blend_ == Blend::pending) {  // the new chain's first command: take the difference to what was written
-    switch_offset_ -= command_.torque_nm;
-    blend_ = Blend::fading;
-    blend_left_ = switch_ramp_cycles_;
-  }
-  command_.torque_nm += switch_offset_ * (static_cast<double>(blend_left_) / static_cast<double>(switch_ramp_cycles_));
-  if (--blend_left_ == 0) blend_ = Blend::none;
 }
 
 void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns,
@@ -420,13 +334,15 @@ void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
   if (wanted == 0 || wanted != stop_epoch_.load(std::memory_order_acquire) + 1) return;
   if (estop_requests_.load(std::memory_order_acquire) != estops_handled_) return;  // a stop not handled yet
   // The scheme that ran must have been deactivated off the loop (service()) before it activates again.
-  const auto active = static_cast<std::size_t>(active_.load(std::memory_order_relaxed));
-  if (scheme_state_[active].load(std::memory_order_acquire) != kIdle) return;
+  if (!schemes_.active_idle()) return;
   if (!recovery_for_epoch_.compare_exchange_strong(wanted, 0, std::memory_order_acq_rel)) return;
   chain_active_ = false;  // the next cycle activates the chain from the measured state, with a soft start
   // Whatever the safe mode holds (gravity, damping) fades out against the chain's first commands: no step.
-  switch_offset_ = last_written_;
-  blend_ = last_written_.isZero(0.0) ? Blend::none : Blend::pending;
+  if (last_written_.isZero(0.0)) {
+    blend_.cancel();
+  } else {
+    blend_.begin(last_written_);
+  }
   engine_.restart();  // engine input ramps in again
   status_.recoveries.fetch_add(1, std::memory_order_relaxed);
   log_safety_event(SafetyEvent::Kind::recovery, fault(), cycle);
@@ -461,9 +377,7 @@ void DeviceSession::record_history(const CycleTime& cycle) noexcept {
 void DeviceSession::leave_chain() noexcept {
   // The running scheme leaves the loop (service() deactivates it); a recovery activates it again.
   if (!chain_active_) return;
-  const auto active = static_cast<std::size_t>(active_.load(std::memory_order_relaxed));
-  if (scheme_state_[active].load(std::memory_order_relaxed) == kActive)
-    scheme_state_[active].store(kLeaving, std::memory_order_release);
+  schemes_.left();
   chain_active_ = false;
 }
 
@@ -502,11 +416,8 @@ void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle) noexc
 }
 
 void DeviceSession::deactivate() {
-  for (auto& st : scheme_state_) {
-    if (st.load(std::memory_order_acquire) == kActive) st.store(kLeaving, std::memory_order_release);
-  }
   chain_active_ = false;
-  service();
+  schemes_.service(true);
   chain_.device->deactivate();
 }
 

@@ -29,33 +29,14 @@
 #include "safety/fault_history.hpp"
 #include "safety/safety_supervisor.hpp"
 #include "session/chain_state_estimator.hpp"
+#include "session/device_chain.hpp"
 #include "session/device_snapshot.hpp"
 #include "session/device_status.hpp"
 #include "session/engine_input_port.hpp"
+#include "session/scheme_switcher.hpp"
+#include "session/torque_blend.hpp"
 
 namespace hapticd::server {
-
-struct SchemeChain {
-  std::string name;
-  std::optional<PluginInstance<VirtualModel>> virtual_model;
-  std::optional<PluginInstance<InverseKinematics>> inverse_kinematics;
-  PluginInstance<Controller> controller;
-};
-
-struct DeviceChain {
-  PluginInstance<Device> device;
-  std::vector<SchemeChain> schemes;  // [0]: the scheme the device starts with
-  double switch_ramp_s = 0.1;
-  // Engine input older than the deadline fades out over the fade time (EngineInput::weight).
-  double engine_deadline_s = 0.05;
-  double engine_fade_s = 0.02;
-  double engine_ramp_in_s = 0.1;  // engine input starting after a silence ramps in over this time
-  SafetySettings safety;
-  double period_s = 0.0005;  // the loop's period (the session's rate): filters and ramps are set up for it
-  // The device's plugins could not all be configured (configure_error says why): the device is held in its
-  // safe state from the first cycle, and may have no scheme.
-  std::string configure_error;
-};
 
 class DeviceSession {
  public:
@@ -107,14 +88,9 @@ class DeviceSession {
   [[nodiscard]] const ChainState& chain_state() const noexcept { return estimator_.state(); }
   [[nodiscard]] double engine_weight() const noexcept { return engine_.input().weight; }
 
-  // Any thread: asks for the scheme `name` from the next cycle on; false if there is no such scheme.
-  bool request_scheme(std::string_view name);
-  // Any thread: the scheme running now, and how many switches were made or refused (activation failed).
-  [[nodiscard]] const std::string& active_scheme() const noexcept;
-  [[nodiscard]] std::uint64_t scheme_switches() const noexcept { return switches_.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t refused_switches() const noexcept {
-    return refused_switches_.load(std::memory_order_relaxed);
-  }
+  // Any thread: the control schemes - request another, the one running, the switches made or refused.
+  [[nodiscard]] SchemeSwitcher& schemes() noexcept { return schemes_; }
+  [[nodiscard]] const SchemeSwitcher& schemes() const noexcept { return schemes_; }
   // Any thread (the DDS interface): the rendering engine's newest input; the loop picks it up at the next cycle
   // and stamps it with that cycle's time.
   void publish_engine_input(const EngineInput& input) { engine_.publish(input); }
@@ -163,10 +139,14 @@ class DeviceSession {
   [[nodiscard]] double thermal_load() const noexcept { return status_.thermal_load.load(std::memory_order_relaxed); }
   // Loop thread only (tests): the supervisor.
   [[nodiscard]] const SafetySupervisor& safety() const noexcept { return safety_; }
-  // Not real-time safe, not the loop thread: a run-time request to one stage of the chain - "device", or
-  // "virtual_model" / "inverse_kinematics" / "controller" of the running scheme (Plugin::handle_request), or
-  // "safety" ("passivity_control" 0/1, "recover").
-  RuntimeReply handle_request(std::string_view stage, std::string_view name, const std::vector<double>& values);
+  // Any thread: the passivity controller on or off from the next cycle (the safety stage's run-time switch).
+  void request_passivity_control(bool on) noexcept { passivity_request_.store(on ? 1 : 0, std::memory_order_release); }
+  // Not real-time safe, not the loop thread (device_requests routes here): a run-time request to the plugin of
+  // one stage - the device, or the running scheme's virtual model, inverse kinematics or controller - and that
+  // plugin's descriptor (nullptr: the running scheme has no such stage, or there is no scheme).
+  enum class Stage : std::uint8_t { device, virtual_model, inverse_kinematics, controller };
+  [[nodiscard]] const PluginDescriptor* stage_plugin(Stage stage) const noexcept;
+  RuntimeReply plugin_request(Stage stage, std::string_view name, const std::vector<double>& values);
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
   // (the executor's monitor does); deactivate() does it too.
   void service();
@@ -179,6 +159,10 @@ class DeviceSession {
   // A fault that puts the device in its safe mode: this cycle takes the safe-mode step in phase (d).
   void raise_fault(DeviceFault fault, const CycleTime& cycle) noexcept;
   void leave_chain() noexcept;
+  [[nodiscard]] SchemeChain* running_scheme() noexcept { return chain_.schemes.empty() ? nullptr : &schemes_.active(); }
+  [[nodiscard]] const SchemeChain* running_scheme() const noexcept {
+    return chain_.schemes.empty() ? nullptr : &chain_.schemes[schemes_.active_index()];
+  }
   // Phase (a)'s estimate; the chain restarts from the measured state when it (re)activates.
   void estimate(const CycleTime& cycle) noexcept;
   // Phase (c)'s work; plugins may throw despite the contract: caught by run_chain.
@@ -191,7 +175,6 @@ class DeviceSession {
   void relatch_emergency_stop(const CycleTime& cycle) noexcept;
   ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
   void switch_scheme_if_requested() noexcept;
-  void blend_after_switch() noexcept;
   void publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept;
 
   std::string name_;
@@ -207,14 +190,7 @@ class DeviceSession {
   JointCommand command_;
   bool chain_active_ = false;
 
-  // Scheme switching. State per scheme: idle (deactivated), active (in the loop), leaving (left the loop,
-  // waiting for service() to deactivate it).
-  enum SchemeState : std::uint8_t { kIdle, kActive, kLeaving };
-  std::vector<std::atomic<std::uint8_t>> scheme_state_;
-  std::atomic<int> active_{0};
-  std::atomic<int> requested_{0};
-  std::atomic<std::uint64_t> switches_{0};
-  std::atomic<std::uint64_t> refused_switches_{0};
+  SchemeSwitcher schemes_;
   DeviceSnapshot snapshot_;
   std::uint64_t snapshot_interval_ = 0;
   // E-stops and recoveries (any thread -> loop). Every stop (an E-stop request, a fault the loop raises)
@@ -224,13 +200,8 @@ class DeviceSession {
   std::atomic<std::uint64_t> estop_requests_{0};
   std::uint64_t estops_handled_ = 0;  // loop thread
   std::atomic<std::uint64_t> recovery_for_epoch_{0};
-  // The blend after a scheme switch or a recovery: the torque difference to what was written before fades out
-  // over switch_ramp_cycles_. pending: the difference is taken against the next command of the chain.
-  enum class Blend : std::uint8_t { none, pending, fading };
-  Blend blend_ = Blend::none;
-  JointVector switch_offset_;
-  std::int64_t switch_ramp_cycles_ = 1;
-  std::int64_t blend_left_ = 0;
+  // After a scheme switch or a recovery: the torque the drives held fades out against the chain's commands.
+  TorqueBlend blend_;
 
   // Safety.
   SafetySupervisor safety_;

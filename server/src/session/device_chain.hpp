@@ -1,0 +1,36 @@
+#pragma once
+// What a device session is built from: the device plugin, its control schemes (each a chain virtual model ->
+// inverse kinematics -> controller), and the device's settings. All configured at start-up (session_builder).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hapticd/plugin.hpp"
+#include "plugins/plugin_loader.hpp"
+#include "safety/safety_settings.hpp"
+
+namespace hapticd::server {
+
+struct SchemeChain {
+  std::string name;
+  std::optional<PluginInstance<VirtualModel>> virtual_model;
+  std::optional<PluginInstance<InverseKinematics>> inverse_kinematics;
+  PluginInstance<Controller> controller;
+};
+
+struct DeviceChain {
+  PluginInstance<Device> device;
+  std::vector<SchemeChain> schemes;  // [0]: the scheme the device starts with
+  double switch_ramp_s = 0.1;
+  // Engine input older than the deadline fades out over the fade time (EngineInput::weight).
+  double engine_deadline_s = 0.05;
+  double engine_fade_s = 0.02;
+  double engine_ramp_in_s = 0.1;  // engine input starting after a silence ramps in over this time
+  SafetySettings safety;
+  double period_s = 0.0005;  // the loop's period (the session's rate): filters and ramps are set up for it
+  // The device's plugins could not all be configured (configure_error says why): the device is held in its
+  // safe state from the first cycle, and may have no scheme.
+  std::string configure_error;
+};
+
+}  // namespace hapticd::server

@@ -1,0 +1,73 @@
+#include "session/scheme_switcher.hpp"
+
+namespace hapticd::server {
+
+SchemeSwitcher::SchemeSwitcher(std::vector<SchemeChain>& schemes)
+    : schemes_(schemes), state_(std::vector<std::atomic<std::uint8_t>>(schemes.size())) {
+  for (auto& s : state_) s.store(kIdle);
+}
+
+bool SchemeSwitcher::request(std::string_view name) {
+  for (std::size_t i = 0; i < schemes_.size(); ++i) {
+    if (schemes_[i].name == name) {
+      requested_.store(static_cast<int>(i), std::memory_order_release);
+      return true;
+    }
+  }
+  return false;
+}
+
+const std::string& SchemeSwitcher::active_name() const noexcept {
+  static const std::string none;
+  return schemes_.empty() ? none : schemes_[active_index()].name;
+}
+
+void SchemeSwitcher::entered() noexcept { state_[active_index()].store(kActive, std::memory_order_release); }
+
+void SchemeSwitcher::left() noexcept {
+  auto& s = state_[active_index()];
+  if (s.load(std::memory_order_relaxed) == kActive) s.store(kLeaving, std::memory_order_release);
+}
+
+bool SchemeSwitcher::active_idle() const noexcept {
+  return state_[active_index()].load(std::memory_order_acquire) == kIdle;
+}
+
+SchemeChain* SchemeSwitcher::wanted() noexcept {
+  const int wanted = requested_.load(std::memory_order_acquire);
+  if (wanted == active_.load(std::memory_order_relaxed)) return nullptr;
+  const auto w = static_cast<std::size_t>(wanted);
+  if (state_[w].load(std::memory_order_acquire) != kIdle) return nullptr;  // still leaving: wait for service()
+  return &schemes_[w];
+}
+
+void SchemeSwitcher::switched() noexcept {
+  const int wanted = requested_.load(std::memory_order_relaxed);
+  state_[active_index()].store(kLeaving, std::memory_order_release);
+  state_[static_cast<std::size_t>(wanted)].store(kActive, std::memory_order_release);
+  active_.store(wanted, std::memory_order_release);
+  switches_.fetch_add(1, std::memory_order_relaxed);
+}
+
+void SchemeSwitcher::refused_switch() noexcept {
+  const int wanted = requested_.load(std::memory_order_relaxed);
+  refused_.fetch_add(1, std::memory_order_relaxed);
+  state_[static_cast<std::size_t>(wanted)].store(kLeaving, std::memory_order_release);
+  // Keep running the old scheme, unless another request came in meanwhile.
+  int expected = wanted;
+  requested_.compare_exchange_strong(expected, active_.load(std::memory_order_relaxed), std::memory_order_acq_rel);
+}
+
+void SchemeSwitcher::service(bool all) {
+  for (std::size_t i = 0; i < schemes_.size(); ++i) {
+    const std::uint8_t s = state_[i].load(std::memory_order_acquire);
+    if (s == kIdle || (s == kActive && !all)) continue;
+    SchemeChain& scheme = schemes_[i];
+    scheme.controller->deactivate();
+    if (scheme.inverse_kinematics) (*scheme.inverse_kinematics)->deactivate();
+    if (scheme.virtual_model) (*scheme.virtual_model)->deactivate();
+    state_[i].store(kIdle, std::memory_order_release);
+  }
+}
+
+}  // namespace hapticd::server
