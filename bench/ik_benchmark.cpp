@@ -17,8 +17,8 @@ namespace {
 using namespace hapticd;
 
 void run(benchmark::State& st, const std::string& session, bool chain_too) {
-  auto rig = bench::make_rig("vishard10", session);
-  server::DeviceSession& d = *rig->sessions[0];
+  server::Session rig = bench::run_shipped_session("vishard10", session);
+  server::DeviceSession& d = bench::first_device(rig);
   const server::SchemeChain& chain = d.chain().schemes[0];
   const ChainState cs = d.chain_state();
   const DeviceState state = d.state();

@@ -22,12 +22,11 @@
 namespace {
 
 using namespace hapticd;
-using bench::make_rig;
 using bench::seconds_per_model_terms;
 
 void scheme(benchmark::State& st, const std::string& device, const std::string& scheme_file) {
-  auto rig = make_rig(device, scheme_file);
-  server::DeviceSession& d = *rig->sessions[0];
+  server::Session session = bench::run_shipped_session(device, scheme_file);
+  server::DeviceSession& d = bench::first_device(session);
   const server::SchemeChain& chain = d.chain().schemes[0];
   const ChainState cs = d.chain_state();
   const DeviceState state = d.state();

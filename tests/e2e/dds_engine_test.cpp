@@ -445,8 +445,8 @@ TEST(DdsEngine, TheLoopSideOfTheBridgeDoesNotAllocate) {
   // The loop publishes a snapshot every cycle and wakes the publisher; engine input arrives lock-free.
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
   auto session = test::build_test_session(session_yaml(66, 1.0, "constant", "[2.0, 0.0, 0.0]", "realtime"));
-  DeviceSession& d = *session.devices[0];
-  DdsBridge bridge(session.config.dds, 2000.0, {&d});
+  DeviceSession& d = *session.impl().devices[0];
+  DdsBridge bridge(session.impl().config.dds, 2000.0, {&d});
   bridge.start();
   d.activate();
   d.cycle(test::cycle_at(0), 1.0);

@@ -94,9 +94,9 @@ class Server {
  public:
   explicit Server(const std::string& yaml) : session_(test::build_test_session(yaml)) {
     std::vector<DeviceSession*> devices;
-    for (auto& d : session_.devices) devices.push_back(d.get());
-    bridge_ = std::make_unique<DdsBridge>(session_.config.dds, session_.config.server.rate_hz, devices);
-    executor_ = std::make_unique<Executor>(session_.executor_settings(), devices, nullptr);
+    for (auto& d : session_.impl().devices) devices.push_back(d.get());
+    bridge_ = std::make_unique<DdsBridge>(session_.impl().config.dds, session_.impl().config.server.rate_hz, devices);
+    executor_ = std::make_unique<Executor>(session_.impl().executor_settings(), devices, nullptr);
     listener_ = std::make_unique<RecordingListener>(bridge_.get(), devices[0]);
     executor_->set_cycle_listener(listener_.get());
     bridge_->set_loop_statistics(&executor_->live());
@@ -118,13 +118,13 @@ class Server {
     bridge_->stop();
   }
   DdsBridge& bridge() { return *bridge_; }
-  DeviceSession& device() { return *session_.devices[0]; }
+  DeviceSession& device() { return *session_.impl().devices[0]; }
   const RecordingListener& recording() const { return *listener_; }
   const ExecutorResult& result() const { return result_; }
   const SessionMonitor& monitor() const { return *monitor_; }
 
  private:
-  test::TestSession session_;
+  server::Session session_;
   std::unique_ptr<DdsBridge> bridge_;
   std::unique_ptr<Executor> executor_;
   std::unique_ptr<RecordingListener> listener_;

@@ -25,6 +25,14 @@ expected="error: $bad:$line: devices[0].controller.parameters.kp: value -400 is 
 out=$(timeout 30 "$hapticd" --config "$bad" --clock lockstep --duration 1 2>&1); rc=$?
 [ "$rc" -eq 2 ] && [[ "$out" == *"$expected"* ]] && pass "--config refuses to start" || fail "--config started on a bad file: rc=$rc $out"
 
+# 2b. --set overrides a key before validation; an error in an overridden value names the override.
+name=$(grep -m1 -- '- name:' "$session" | sed 's/.*name: *//')
+out=$(timeout 30 "$hapticd" --check-config "$session" --set "devices.$name.controller.parameters.kp=-5" 2>&1); rc=$?
+expected="error: override 'devices.$name.controller.parameters.kp=-5': devices[0].controller.parameters.kp: value -5 is below the minimum 0"
+[ "$rc" -eq 2 ] && [ "$out" = "$expected" ] && pass "--set error names the override" || fail "--set gave rc=$rc: '$out' (expected '$expected')"
+out=$(timeout 30 "$hapticd" --check-config "$bad" --set "devices.0.controller.parameters.kp=400" 2>&1) \
+  && pass "--set mends a bad file" || fail "--set did not override: $out"
+
 # 3. Lockstep determinism through the executable: two runs, identical recordings.
 for run in 1 2; do
   timeout 60 "$hapticd" --config "$session" --clock lockstep --duration 2 --record "$work/run$run.csv" \
@@ -49,5 +57,5 @@ last=$(tail -n 1 "$work/term.csv" | awk -F, '{print $8}')
 [ "$last" = "0" ] && pass "SIGTERM: last torque command is 0" || fail "SIGTERM: last torque command is '$last'"
 grep -q "stops through its safe mode" "$work/term.log" && pass "SIGTERM: safe stop logged" || fail "SIGTERM: no safe stop in log"
 
-echo "$(( 9 - failures )) passed, $failures failed"
+echo "$(( 12 - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The SDK as a plugin author gets it: install hapticd to a prefix, build examples/out_of_tree_plugin against
 # the installed package with find_package(hapticd), then have the installed server load the new plugin and run
-# a lockstep session with it. Usage: out_of_tree_plugin_test.sh BUILD_DIR SOURCE_DIR WORK_DIR
+# a lockstep session with it; then build examples/session_api against the same package and step an installed
+# session file in-process with the session API (the installed plugins found beside libhapticd_server.so). Usage: out_of_tree_plugin_test.sh BUILD_DIR SOURCE_DIR WORK_DIR
 set -eu
 build=$1; src=$2; work=$3
 rm -rf "$work"; mkdir -p "$work"
@@ -24,4 +25,20 @@ grep -q '"fault": "none"' "$work/stats.json" || { echo "FAIL: device faulted"; c
 max=$(awk -F, 'NR > 1 && $1 > 1000 { if ($5 > m) m = $5 } END { print m }' "$work/run.csv")
 awk -v m="$max" 'BEGIN { exit !(m > 0.015 && m < 0.03) }' || { echo "FAIL: wall did not hold, max position $max"; exit 1; }
 echo "out-of-tree plugin built against the installed SDK and loaded; wall holds at $max m"
-echo "1 passed, 0 failed"
+
+# The session API from the installed package, no HAPTICD_PLUGIN_PATH: the plugins beside the library.
+unset HAPTICD_PLUGIN_PATH
+cmake -S "$src/examples/session_api" -B "$work/session_api" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" > "$work/session_api_configure.log"
+cmake --build "$work/session_api" > "$work/session_api_build.log"
+session="$prefix/share/hapticd/config/sessions/vishard3/admittance-resolved-acceleration.yaml"
+out=$("$work/session_api/step_session" "$session" 1.5 server.seed=3)
+echo "$out"
+echo "$out" | grep -q "^vishard3: t 1.4995 s, scheme default, fault none" || { echo "FAIL: session API run"; exit 1; }
+echo "$out" | grep -q "^cycles 3000," || { echo "FAIL: cycle count"; exit 1; }
+# A bad override is a located error, and nothing runs.
+if err=$("$work/session_api/step_session" "$session" 1 devices.vishard3.virtual_model.parameters.mass_kg=-1 2>&1); then
+  echo "FAIL: a negative mass was accepted"; exit 1
+fi
+echo "$err" | grep -q "override 'devices.vishard3.virtual_model.parameters.mass_kg=-1'" || { echo "FAIL: $err"; exit 1; }
+echo "2 passed, 0 failed"

@@ -46,8 +46,8 @@ struct Trace {
   std::vector<Eigen::Vector3d> rotation;  // rotation vector of the handle relative to its start orientation
 };
 
-Trace run(test::TestSession& s, int cycles) {
-  DeviceSession& d = *s.devices[0];
+Trace run(server::Session& s, int cycles) {
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   Trace trace;
   for (int k = 0; k < cycles; ++k) {
@@ -267,8 +267,8 @@ INSTANTIATE_TEST_SUITE_P(Walls, VirtualWall, ::testing::Bool(), [](const ::testi
 TEST(AdmittanceDisplay, ChainUpdatesDoNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
   auto s = test::build_test_session(admittance_session("[5, 0, 0]", 4.0, 10.0));
-  EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 1000), 0u);
-  EXPECT_EQ(s.devices[0]->fault(), DeviceFault::none);
+  EXPECT_EQ(test::allocations_over_cycles(*s.impl().devices[0], 1000), 0u);
+  EXPECT_EQ(s.impl().devices[0]->fault(), DeviceFault::none);
 }
 
 }  // namespace

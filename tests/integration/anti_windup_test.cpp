@@ -26,14 +26,14 @@ double runaway(double limit_m, bool saturated) {
       parameters: {task: translation}
 )";
   auto s = test::build_test_session(yaml);
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   d.cycle(cycle_at(0), 1.0);  // a real chain state of the device (model, pose) to start from
   ChainState chain = d.chain_state();
   chain.operator_wrench.force = Eigen::Vector3d(20.0, 0.0, 0.0);
   chain.handle_twist = Twist{};
   chain.output_saturated = saturated;
-  VirtualModel& model = **s.devices[0]->chain().schemes[0].virtual_model;
+  VirtualModel& model = **s.impl().devices[0]->chain().schemes[0].virtual_model;
   const EngineInput engine;
   TaskTarget target;
   EXPECT_EQ(model.activate(VirtualModelInput{d.state(), &chain, &engine, nullptr}), ReturnCode::ok);

@@ -14,7 +14,7 @@ namespace {
 
 using test::cycle_at;
 
-test::TestSession session_with(const std::string& devices) {
+server::Session session_with(const std::string& devices) {
   return test::build_test_session("server: {clock: lockstep}\ndevices:\n" + devices);
 }
 
@@ -22,7 +22,7 @@ TEST(DeviceSession, NonFiniteControllerOutputPutsTheDeviceInItsSafeModeDampingTh
   // Safe mode: the last torque fades out over 20 ms while joint damping acts for safe_damping_s (0.5 s = 1000
   // cycles at 2 kHz), then exactly zero torque.
   auto s = session_with(test::mass_spring_device_yaml("axis", "", ", fault_at_cycle: 100"));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 100; ++k) d.cycle(cycle_at(k), 1.0);
   EXPECT_EQ(d.fault(), DeviceFault::none);
@@ -56,7 +56,7 @@ TEST(DeviceSession, NonFiniteControllerOutputPutsTheDeviceInItsSafeModeDampingTh
 
 TEST(DeviceSession, ReadFailureIsAFault) {
   auto s = session_with(test::mass_spring_device_yaml("axis", ", fail_read_at_cycle: 10"));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 20; ++k) d.cycle(cycle_at(k), 1.0);
   EXPECT_EQ(d.fault(), DeviceFault::device_read);
@@ -67,7 +67,7 @@ TEST(DeviceSession, ReadFailureIsAFault) {
 TEST(DeviceSession, TorqueIsClampedToThePeak) {
   // Force limit 5 N and a stiff PD: the command saturates, and is counted.
   auto s = session_with(test::mass_spring_device_yaml("axis", ", force_limit_n: 5", ", kp: 5000"));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 400; ++k) {
     d.cycle(cycle_at(k), 1.0);
@@ -82,21 +82,23 @@ TEST(DeviceSession, FaultOfOneDeviceLeavesTheOtherUndisturbed) {
   auto alone = session_with(test::mass_spring_device_yaml("b"));
   auto together =
       session_with(test::mass_spring_device_yaml("a", "", ", fault_at_cycle: 50") + test::mass_spring_device_yaml("b"));
-  alone.devices[0]->activate();
-  for (auto& d : together.devices) d->activate();
+  alone.impl().devices[0]->activate();
+  for (auto& d : together.impl().devices) d->activate();
   for (std::uint64_t k = 0; k < 2000; ++k) {
-    alone.devices[0]->cycle(cycle_at(k), 1.0);
-    for (auto& d : together.devices) d->cycle(cycle_at(k), 1.0);
-    ASSERT_EQ(alone.devices[0]->state().joints.position[0], together.devices[1]->state().joints.position[0]) << k;
+    alone.impl().devices[0]->cycle(cycle_at(k), 1.0);
+    for (auto& d : together.impl().devices) d->cycle(cycle_at(k), 1.0);
+    ASSERT_EQ(alone.impl().devices[0]->state().joints.position[0],
+              together.impl().devices[1]->state().joints.position[0])
+        << k;
   }
-  EXPECT_EQ(together.devices[0]->fault(), DeviceFault::non_finite_output);
-  EXPECT_EQ(together.devices[1]->fault(), DeviceFault::none);
+  EXPECT_EQ(together.impl().devices[0]->fault(), DeviceFault::non_finite_output);
+  EXPECT_EQ(together.impl().devices[1]->fault(), DeviceFault::none);
 }
 
 TEST(DeviceSession, CycleOfTheWholeChainDoesNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
   auto s = session_with(test::mass_spring_device_yaml("axis", ", position_noise_m: 1.0e-5"));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   testing::AllocationGuard guard;
   for (std::uint64_t k = 0; k < 5000; ++k) d.cycle(cycle_at(k), k < 4000 ? 1.0 : 0.5);
@@ -113,7 +115,7 @@ const std::string kSimVishard3 =
 
 TEST(DeviceSession, SharesTheModelTermsOfEveryCycleWithTheChain) {
   auto s = session_with(kSimVishard3);
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 400; ++k) d.cycle(cycle_at(k), 1.0);
   ASSERT_EQ(d.fault(), DeviceFault::none);
@@ -134,8 +136,8 @@ TEST(DeviceSession, SharesTheModelTermsOfEveryCycleWithTheChain) {
 TEST(DeviceSession, CycleWithModelTermsDoesNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
   auto s = session_with(kSimVishard3);
-  EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 2000), 0u);
-  EXPECT_EQ(s.devices[0]->fault(), DeviceFault::none);
+  EXPECT_EQ(test::allocations_over_cycles(*s.impl().devices[0], 2000), 0u);
+  EXPECT_EQ(s.impl().devices[0]->fault(), DeviceFault::none);
 }
 
 }  // namespace

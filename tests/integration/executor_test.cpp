@@ -31,18 +31,18 @@ std::string run_recorded(const std::string& yaml, const std::string& record_name
   auto s = test::build_test_session(yaml);
   const auto file = test::write_temp_file(record_name, "");
   Recorder recorder(file, {"a", "b"}, /*wait_when_full=*/true);
-  Executor executor(s.executor_settings(), s.device_pointers(), &recorder);
+  Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), &recorder);
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop);
   recorder.finish();
   EXPECT_EQ(recorder.dropped(), 0u);
-  EXPECT_EQ(recorder.written(), r.statistics.cycles * s.devices.size());
+  EXPECT_EQ(recorder.written(), r.statistics.cycles * s.impl().devices.size());
   return read_file(file);
 }
 
 TEST(Executor, LockstepRunsTheDurationThenTheRamp) {
   auto s = test::build_test_session(lockstep_yaml(0.5, test::mass_spring_device_yaml("a")));
-  Executor executor(s.executor_settings(), s.device_pointers(), nullptr);
+  Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), nullptr);
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop);
   EXPECT_EQ(r.statistics.cycles, 1000u + 200u);  // 0.5 s + 0.1 s ramp at 2 kHz
@@ -53,7 +53,7 @@ TEST(Executor, LockstepRunsTheDurationThenTheRamp) {
   EXPECT_EQ(r.statistics.wakeup_latency.max_ns(), 0);  // a virtual clock wakes exactly on time
   EXPECT_NEAR(r.loop_time_s, 1199 * 0.0005, 1e-12);
   EXPECT_FALSE(r.stop_requested);
-  EXPECT_EQ(s.devices[0]->command().torque_nm[0], 0.0);  // the ramp ends at zero torque
+  EXPECT_EQ(s.impl().devices[0]->command().torque_nm[0], 0.0);  // the ramp ends at zero torque
 }
 
 TEST(Executor, LockstepIsBitIdenticalAcrossRunsAndDependsOnTheSeed) {
@@ -74,7 +74,7 @@ TEST(Executor, StopRequestTakesEveryDeviceThroughItsSafeModeThenEnds) {
       lockstep_yaml(0.0, test::mass_spring_device_yaml("a") + test::mass_spring_device_yaml("b")));
   const auto file = test::write_temp_file("stop.csv", "");
   Recorder recorder(file, {"a", "b"}, true);
-  Executor executor(s.executor_settings(), s.device_pointers(), &recorder);
+  Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), &recorder);
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop, [&] {
     if (executor.live().cycles.load() >= 400) stop.store(true);  // once the devices move
@@ -82,7 +82,7 @@ TEST(Executor, StopRequestTakesEveryDeviceThroughItsSafeModeThenEnds) {
   recorder.finish();
   EXPECT_TRUE(r.stop_requested);
   ASSERT_GE(r.statistics.cycles, 1401u);
-  for (const auto& d : s.devices) {
+  for (const auto& d : s.impl().devices) {
     EXPECT_EQ(d->fault(), DeviceFault::none);  // a requested stop is not a fault
     EXPECT_TRUE(d->at_rest());
     EXPECT_EQ(d->command().torque_nm[0], 0.0);
@@ -115,7 +115,7 @@ TEST(Executor, RealtimeLoopAccountsForEveryPeriod) {
   auto s = test::build_test_session(
       "server: {clock: realtime, rate_hz: 2000, duration_s: 0.1, shutdown_ramp_s: 0.01}\ndevices:\n" +
       test::mass_spring_device_yaml("a"));
-  Executor executor(s.executor_settings(), s.device_pointers(), nullptr);
+  Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), nullptr);
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop);
   // Every period is either run or counted as skipped, however loaded the machine is; the session lasts its

@@ -26,7 +26,7 @@ TEST(FaultLatch, AStopAfterARecoveryRequestCancelsIt) {
   // The attack: client A stops, 0.15 s later A asks for recovery, 0.15 s later client B stops. The device must
   // stay in its safe mode (it recovered 0.48 s later and ran on); both stops are faults.
   auto s = test::build_test_session(vishard3_session());
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 6000; ++k) {
     if (k == 2000) d.request_emergency_stop();  // A
@@ -57,7 +57,7 @@ TEST(FaultLatch, AStopAfterARecoveryRequestCancelsIt) {
 
 TEST(FaultLatch, OnlyARequestAfterTheLastStopRecovers) {
   auto s = test::build_test_session(vishard3_session());
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   std::uint64_t recovered_at = 0;
   for (std::uint64_t k = 0; k < 8000; ++k) {
@@ -92,7 +92,7 @@ TEST(FaultLatch, AStallOfTheLoopIsAFault) {
   // The process was stopped for 2 s (SIGSTOP): the loop wakes 2 s late for a cycle. Before, that was one
   // overrun and no fault. A few periods late (below max_stall_s) is not a stall.
   auto s = test::build_test_session(vishard3_session("max_stall_s: 0.005"));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 3000; ++k) {
     const std::int64_t late_ns = k == 1000 ? 4'000'000 : k == 2000 ? 2'000'000'000 : 0;

@@ -33,7 +33,7 @@ std::string identification_session(const std::string& output, const std::string&
 model::FrictionFile identify(const std::string& yaml, const std::string& output, double seconds) {
   {
     auto s = test::build_test_session(yaml);
-    DeviceSession& d = *s.devices[0];
+    DeviceSession& d = *s.impl().devices[0];
     d.activate();
     for (std::uint64_t k = 0; k < static_cast<std::uint64_t>(2000 * seconds); ++k) {
       d.cycle(cycle_at(k), 1.0);
@@ -87,7 +87,7 @@ TEST(FrictionIdentification, RecoversTheLoadDependencyWhenTheHandleIsBraced) {
 TEST(FrictionIdentification, AShortSessionReportsWhatItNeeds) {
   const std::string output = ::testing::TempDir() + "identified_friction_short.yaml";
   auto s = test::build_test_session(identification_session(output));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 2000; ++k) d.cycle(cycle_at(k), 1.0);
   try {
@@ -102,7 +102,7 @@ TEST(FrictionIdentification, UpdatesWithoutAllocating) {
   const std::string output = ::testing::TempDir() + "identified_friction_alloc.yaml";
   auto s = test::build_test_session(identification_session(output));
   // 10 s: settling, the break-away ramps and the first strokes.
-  EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 20000), 0u);
+  EXPECT_EQ(test::allocations_over_cycles(*s.impl().devices[0], 20000), 0u);
 }
 
 TEST(FrictionIdentification, RejectsAStrokeTooShortForItsSpeeds) {

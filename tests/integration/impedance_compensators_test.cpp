@@ -29,7 +29,7 @@ double breakaway_force(const std::string& controller_parameters) {
       parameters: {task: translation, )" +
                            controller_parameters + "}\n";
   auto s = test::build_test_session(yaml);
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   d.cycle(cycle_at(0), 1.0);
   const Eigen::Vector3d start = d.chain_state().handle_pose.position;
@@ -115,7 +115,7 @@ TEST(AdaptiveFriction, ConvergesWhileTheJointsWarmUpAndNeverOverCompensates) {
 )";
   {
     auto s = test::build_test_session(yaml);
-    DeviceSession& d = *s.devices[0];
+    DeviceSession& d = *s.impl().devices[0];
     d.activate();
     for (std::uint64_t k = 0; k < 240000; ++k) {
       d.cycle(cycle_at(k), 1.0);
@@ -181,8 +181,8 @@ TEST(ImpedanceCompensators, EveryVariantUpdatesWithoutAllocating) {
                              "      parameters: {task: translation, " +
                              v + "}\n";
     auto s = test::build_test_session(yaml);
-    EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 2000), 0u) << v;
-    EXPECT_EQ(s.devices[0]->fault(), DeviceFault::none) << v;
+    EXPECT_EQ(test::allocations_over_cycles(*s.impl().devices[0], 2000), 0u) << v;
+    EXPECT_EQ(s.impl().devices[0]->fault(), DeviceFault::none) << v;
   }
 }
 

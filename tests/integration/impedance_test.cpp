@@ -27,7 +27,7 @@ double rms_operator_force(const std::string& controller, const std::string& devi
                            controller + R"(}
 )";
   auto s = test::build_test_session(yaml);
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   double sum = 0.0;
   int n = 0;

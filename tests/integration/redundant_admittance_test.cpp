@@ -87,8 +87,8 @@ struct Trace {
   double largest_joint_speed = 0.0;
 };
 
-Trace run(test::TestSession& s, int cycles) {
-  DeviceSession& d = *s.devices[0];
+Trace run(server::Session& s, int cycles) {
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   Trace trace;
   Eigen::Quaterniond start = Eigen::Quaterniond::Identity();
@@ -156,7 +156,7 @@ TEST_P(RedundantAdmittance, RendersTheVirtualMassAndInertiaInAllSixDirections) {
 TEST_P(RedundantAdmittance, TheChainDoesNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
   auto s = test::build_test_session(vishard10_session(GetParam(), "[4, 0, 0]", "[0.0, 0.1, 0.0]"));
-  EXPECT_EQ(test::allocations_over_cycles(*s.devices[0], 1000), 0u);
+  EXPECT_EQ(test::allocations_over_cycles(*s.impl().devices[0], 1000), 0u);
 }
 
 TEST(RedundantSelfMotion, NeedsItsNullSpaceDamping) {
@@ -170,7 +170,7 @@ TEST(RedundantSelfMotion, NeedsItsNullSpaceDamping) {
                            damping + "}}";
     const Scheme scheme{"pseudoinverse", ik.c_str(), kSchemes[0].controller, 0.0};
     auto s = test::build_test_session(vishard10_session(scheme, "[4, 0, 0]", "[0.0, 0.0, 0.0]"));
-    DeviceSession& d = *s.devices[0];
+    DeviceSession& d = *s.impl().devices[0];
     d.activate();
     model::GeneralizedInverse pinv;
     pinv.configure(model::InverseKind::kPseudoinverse, 10, JointVector::Ones(10));
@@ -201,7 +201,7 @@ TEST(RedundantSelfMotion, TheWristCriterionMovesTheDeviceNotJustItsTarget) {
       "{plugin: redundancy_ik, parameters: {task: full, inverse: pseudoinverse, wrist: 1.0, null_space_gain: 10}}",
       kSchemes[0].controller, 0.0};
   auto s = test::build_test_session(vishard10_session(scheme, "[0, 0, 0]", "[0.0, 0.0, 0.0]"));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   d.cycle(cycle_at(0), 1.0);
   const double q9_start = d.state().joints.position[8];

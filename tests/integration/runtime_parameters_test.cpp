@@ -16,7 +16,7 @@ std::string session() { return test::sim_vishard3_admittance_session("v3", 3); }
 
 TEST(RuntimeParameters, SetsObeyTheSchemaBounds) {
   auto s = test::build_test_session(session());
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   const RuntimeReply tiny =
       apply_request(d, {DeviceRequest::Kind::set_parameter, "virtual_model.mass_kg", {1e-9, 1e-9, 1e-9}});
   EXPECT_FALSE(tiny.accepted);

@@ -42,7 +42,7 @@ struct SafeModeRun {
 // and runs 0.5 s more.
 SafeModeRun stop_hold_and_recover(const std::string& yaml) {
   auto s = test::build_test_session(yaml);
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.set_snapshot_interval(1);
   d.activate();
   SafeModeRun r;

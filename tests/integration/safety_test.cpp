@@ -57,8 +57,8 @@ Outcome drive(const std::string& first_device, std::uint64_t cycles,
               const std::function<void(DeviceSession&, std::uint64_t)>& each = {}, std::uint32_t overruns_from = 0) {
   auto s = test::build_test_session("server: {clock: lockstep, seed: 7}\ndevices:\n" + first_device +
                                     test::mass_spring_device_yaml("b"));
-  DeviceSession& d = *s.devices[0];
-  DeviceSession& b = *s.devices[1];
+  DeviceSession& d = *s.impl().devices[0];
+  DeviceSession& b = *s.impl().devices[1];
   d.activate();
   b.activate();
   Outcome r;
@@ -202,7 +202,7 @@ TEST(Safety, RenderedForceAndItsRateAreLimited) {
   auto s = test::build_test_session(
       "server: {clock: lockstep, seed: 7}\ndevices:\n" +
       sim_device(kNoPush, "max_force_n: 30, max_force_rate_n_per_s: 2000, soft_start_s: 0", coupling));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   double largest = 0.0, largest_rate = 0.0, previous = 0.0;
   for (std::uint64_t k = 0; k < 400; ++k) {
@@ -240,7 +240,7 @@ TEST(Safety, SoftStartRampsTheRenderedForceAtActivation) {
   const std::string device = sim_device(kNoPush, "max_force_n: 40, max_force_rate_n_per_s: 1.0e6", ", coupling: true") +
                              "    engine_ramp_in_s: 0.0\n";
   auto s = test::build_test_session("server: {clock: lockstep, seed: 7}\ndevices:\n" + device);
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   double previous = 0.0, largest_step = 0.0;
   std::uint64_t full = 0;
@@ -271,7 +271,7 @@ TEST(Safety, SoftStartRampsTheRenderedForceAgainAfterASchemeSwitch) {
         controller: {plugin: resolved_acceleration, parameters: {task: translation}}
 )";
   auto s = test::build_test_session("server: {clock: lockstep, seed: 7}\ndevices:\n" + device);
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   std::vector<double> force;
   for (std::uint64_t k = 0; k < 2400; ++k) {
@@ -457,7 +457,7 @@ TEST(Safety, PassivityControllerDissipatesWhatASampledStiffWallGenerates) {
                                       sim_device("[10.0, 0.0, 0.0]",
                                                  passivity + "max_force_n: 300, max_force_rate_n_per_s: 1.0e6",
                                                  ", coupling: true, damping_n_s_per_m: [5.0, 5.0, 5.0]"));
-    DeviceSession& d = *s.devices[0];
+    DeviceSession& d = *s.impl().devices[0];
     d.activate();
     Eigen::Vector3d held = Eigen::Vector3d::Zero();
     double wall_x = 0.0;
@@ -544,7 +544,7 @@ TEST(Safety, TheSupervisedCycleDoesNotAllocate) {
                      ", 1.0, 1.0], speed_damping_from_m_s: 0.02, "
                      "thermal_time_constant_s: 0.5, passivity_control: true, max_force_n: 5",
                  ", coupling: true"));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   EngineInput e;
   e.has_wrench = true;
   e.wrench.force = Eigen::Vector3d(-20.0, 0.0, 0.0);

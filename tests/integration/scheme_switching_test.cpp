@@ -43,7 +43,7 @@ struct SwitchSteps {
 
 SwitchSteps run_switches(double ramp_s) {
   auto s = test::build_test_session(switching_session(ramp_s));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   JointVector previous;
   SwitchSteps steps;
@@ -96,7 +96,7 @@ TEST(SchemeSwitching, NoTorqueStepWhenSwitchingBetweenAdmittanceAndImpedance) {
 
 TEST(SchemeSwitching, UnknownSchemeIsRefusedAndTheLoopKeepsRunning) {
   auto s = test::build_test_session(switching_session(0.1));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   d.cycle(cycle_at(0), 1.0);
   EXPECT_FALSE(d.schemes().request("no_such_scheme"));
@@ -106,7 +106,7 @@ TEST(SchemeSwitching, UnknownSchemeIsRefusedAndTheLoopKeepsRunning) {
 
 TEST(SchemeSwitching, SwitchingIsAllocationFree) {
   auto s = test::build_test_session(switching_session(0.1));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   d.cycle(cycle_at(0), 1.0);
   std::size_t allocations = 0;

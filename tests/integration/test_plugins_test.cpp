@@ -19,8 +19,8 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
   auto s = test::build_test_session("server: {clock: lockstep}\ndevices:\n" +
                                     test::mass_spring_device_yaml("a", ", position_noise_m: 1.0e-5"));
-  const SchemeChain& c = s.devices[0]->chain().schemes[0];
-  const DeviceChain& dc = s.devices[0]->chain();
+  const SchemeChain& c = s.impl().devices[0]->chain().schemes[0];
+  const DeviceChain& dc = s.impl().devices[0]->chain();
   DeviceState state;
   state.joints.resize(1);
   TaskTarget task;
@@ -64,7 +64,7 @@ TEST(TestPlugins, MassSpringOscillatesAtItsNaturalFrequency) {
       "      parameters: {mass_kg: 1, stiffness_n_per_m: 100, damping_n_s_per_m: 0, initial_position_m: 0.1, substeps: "
       "20}\n"
       "    controller: {plugin: test_pd, parameters: {kp: 0, kd: 0}}\n");
-  Device& device = *s.devices[0]->chain().device;
+  Device& device = *s.impl().devices[0]->chain().device;
   device.activate();
   DeviceState state;
   state.joints.resize(1);
@@ -87,7 +87,7 @@ TEST(TestPlugins, MassSpringOscillatesAtItsNaturalFrequency) {
 
 TEST(TestPlugins, PdChainTracksTheSineSetpoint) {
   auto s = test::build_test_session("server: {clock: lockstep}\ndevices:\n" + test::mass_spring_device_yaml("a"));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   double worst_error = 0.0;
   for (std::uint64_t k = 0; k < 4000; ++k) {

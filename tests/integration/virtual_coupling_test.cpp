@@ -33,7 +33,7 @@ template <class Publish>
 Eigen::Vector3d run(const std::string& push_n, const Eigen::Vector3d& offset, Publish publish,
                     Eigen::Vector3d* start_out = nullptr) {
   auto s = test::build_test_session(coupling_session(push_n));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   d.cycle(cycle_at(0), 1.0);
   const Eigen::Vector3d start = d.chain_state().handle_pose.position;
@@ -85,7 +85,7 @@ TEST(VirtualCoupling, RunTimeParametersTakeEffectAtTheNextCycle) {
   // mass in effect. Bad values are refused.
   const auto moved_after_100ms = [](const std::vector<double>* mass) {
     auto s = test::build_test_session(coupling_session("[8.0, 0.0, 0.0]"));
-    DeviceSession& d = *s.devices[0];
+    DeviceSession& d = *s.impl().devices[0];
     if (mass != nullptr) {
       EXPECT_TRUE(apply_request(d, {DeviceRequest::Kind::set_parameter, "virtual_model.mass_kg", *mass}).accepted);
     }
@@ -110,7 +110,7 @@ TEST(VirtualCoupling, RunTimeParametersTakeEffectAtTheNextCycle) {
 TEST(VirtualCoupling, CoupledUpdatesDoNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
   auto s = test::build_test_session(coupling_session("[4.0, 0.0, 0.0]"));
-  DeviceSession& d = *s.devices[0];
+  DeviceSession& d = *s.impl().devices[0];
   d.activate();
   d.cycle(cycle_at(0), 1.0);
   EngineInput e;

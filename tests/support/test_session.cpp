@@ -1,27 +1,8 @@
 #include "support/test_session.hpp"
 
 #include "hapticd/testing/allocation_guard.hpp"
-#include "session/session_builder.hpp"
-#include "support/temp_file.hpp"
 
 namespace hapticd::test {
-
-std::vector<server::DeviceSession*> TestSession::device_pointers() const {
-  std::vector<server::DeviceSession*> out;
-  for (const auto& d : devices) out.push_back(d.get());
-  return out;
-}
-
-server::ExecutorSettings TestSession::executor_settings() const {
-  server::ExecutorSettings s;
-  s.rate_hz = config.server.rate_hz;
-  s.lockstep = config.server.clock == server::ClockMode::lockstep;
-  s.duration_s = config.server.duration_s;
-  s.shutdown_ramp_s = config.server.shutdown_ramp_s;
-  s.realtime_priority = 0;  // tests never ask for SCHED_FIFO
-  s.lock_memory = false;
-  return s;
-}
 
 std::size_t allocations_over_cycles(server::DeviceSession& device, std::uint64_t cycles, double torque_scale) {
   device.activate();
@@ -91,13 +72,8 @@ std::string sim_wrench_step_device_yaml(const std::string& name, const std::stri
 )";
 }
 
-TestSession build_test_session(const std::string& yaml) {
-  TestSession s;
-  s.config = server::load_session_config(write_temp_file("session.yaml", yaml));
-  s.config.server.plugin_paths.push_back(HAPTICD_TEST_PLUGIN_DIR);
-  s.loader = std::make_unique<server::PluginLoader>(s.config.server.plugin_paths);
-  s.devices = server::build_sessions(s.config, *s.loader);
-  return s;
+server::Session build_test_session(const std::string& yaml) {
+  return server::Session::from_yaml(yaml, {{}, {HAPTICD_TEST_PLUGIN_DIR}}, "session.yaml");
 }
 
 std::string mass_spring_device_yaml(const std::string& name, const std::string& device_parameters,

@@ -4,21 +4,14 @@
 #include <string>
 #include <vector>
 
-#include "config/session_config.hpp"
-#include "executor/executor.hpp"
-#include "plugins/plugin_loader.hpp"
+#include "hapticd/server/session.hpp"
 #include "session/device_session.hpp"
+#include "session/session_impl.hpp"
 
 namespace hapticd::test {
 
-struct TestSession {
-  server::SessionConfig config;
-  std::unique_ptr<server::PluginLoader> loader;
-  std::vector<std::unique_ptr<server::DeviceSession>> devices;
-
-  [[nodiscard]] std::vector<server::DeviceSession*> device_pointers() const;
-  [[nodiscard]] server::ExecutorSettings executor_settings() const;
-};
+// The device sessions of a session built by build_test_session, for tests that drive them one by one.
+inline server::DeviceSession& device_of(server::Session& s, std::size_t i = 0) { return *s.impl().devices.at(i); }
 
 // The k-th cycle of a 2 kHz loop.
 inline constexpr std::int64_t kTestPeriodNs = 500'000;
@@ -30,8 +23,9 @@ inline CycleTime cycle_at(std::uint64_t k) {
 // to warm up there), then counts the allocations of the next `cycles` cycles.
 std::size_t allocations_over_cycles(server::DeviceSession& device, std::uint64_t cycles, double torque_scale = 1.0);
 
-// yaml: a whole session file; the test plugin folder is added to server.plugin_paths.
-TestSession build_test_session(const std::string& yaml);
+// yaml: a whole session file (the public session API, hapticd/server/session.hpp); the test plugins are found
+// first.
+server::Session build_test_session(const std::string& yaml);
 
 // A device entry of the 1-DOF test chain (mass-spring, sine setpoint, axis IK, PD), with extra parameters.
 std::string mass_spring_device_yaml(const std::string& name, const std::string& device_parameters = "",

@@ -31,10 +31,11 @@ struct LoadedSession {
 };
 
 // Config errors are printed once, here, without a log prefix: they are for the user to fix.
-std::optional<LoadedSession> load(const std::string& file, const RunOptions* overrides) {
+std::optional<LoadedSession> load(const std::string& file, const std::vector<std::string>& sets,
+                                  const RunOptions* overrides) {
+  LoadedSession s;
   try {
-    LoadedSession s;
-    s.config = load_session_config(file);
+    s.config = load_session_config(file, sets);
     if (overrides != nullptr) {
       if (overrides->duration_s) s.config.server.duration_s = *overrides->duration_s;
       if (overrides->clock)
@@ -46,7 +47,12 @@ std::optional<LoadedSession> load(const std::string& file, const RunOptions* ove
     }
     s.loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(s.config.server.plugin_paths));
     // Running, a plugin that throws from configure() isolates its device; checking, it is an error.
-    s.sessions = build_sessions(s.config, *s.loader, overrides != nullptr ? &s.configure_failures : nullptr);
+    try {
+      s.sessions = build_sessions(s.config, *s.loader, overrides != nullptr ? &s.configure_failures : nullptr);
+    } catch (const ConfigError& e) {
+      throw_if_overridden(e, s.config.overrides);  // a plugin parameter a --set changed
+      throw;
+    }
     return s;
   } catch (const ConfigError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
@@ -62,8 +68,8 @@ void print_schema(const ParameterSchema& schema) {
 
 }  // namespace
 
-int check_config(const std::string& file) {
-  const auto s = load(file, nullptr);
+int check_config(const std::string& file, const std::vector<std::string>& sets) {
+  const auto s = load(file, sets, nullptr);
   if (!s) return kExitConfigError;
   fmt::print("{}: ok ({} device{}, {} Hz, {} clock)\n", file, s->sessions.size(), s->sessions.size() == 1 ? "" : "s",
              s->config.server.rate_hz, s->config.server.clock == ClockMode::lockstep ? "lockstep" : "realtime");
@@ -82,7 +88,7 @@ int check_config(const std::string& file) {
 }
 
 int run_session(const RunOptions& options) {
-  auto s = load(options.config_file, &options);
+  auto s = load(options.config_file, options.sets, &options);
   if (!s) return kExitConfigError;
   const ServerSettings& server = s->config.server;
   const bool lockstep = server.clock == ClockMode::lockstep;

@@ -6,6 +6,7 @@
 //   start-up); 5 the recording failed (a write, sync or close: cycles were lost) - 3 takes precedence.
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace hapticd::server {
 
@@ -16,6 +17,7 @@ struct RunOptions {
   std::string stats_json;            // write the loop statistics here
   std::string record_csv;            // record every cycle here
   std::optional<int> dds_domain;     // turns the DDS interface on, on this domain (overrides dds.domain_id)
+  std::vector<std::string> sets;     // --set key.path=value: overrides of the session file (config_overrides)
 };
 
 inline constexpr int kExitOk = 0;
@@ -25,7 +27,7 @@ inline constexpr int kExitRuntimeError = 4;
 inline constexpr int kExitRecordingFailed = 5;
 
 int run_session(const RunOptions& options);
-int check_config(const std::string& config_file);
+int check_config(const std::string& config_file, const std::vector<std::string>& sets = {});
 int list_plugins(const std::string& config_file);
 int describe_plugin(const std::string& name, const std::string& config_file);
 int describe_config(const std::string& config_file);

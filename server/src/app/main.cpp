@@ -40,6 +40,9 @@ int run_command(int argc, char** argv) {
                            ->check(CLI::NonNegativeNumber);
   auto* clock_opt = app.add_option("--clock", clock, "realtime or lockstep (overrides server.clock)")
                         ->check(CLI::IsMember({"realtime", "lockstep"}));
+  app.add_option("--set", run.sets,
+                 "override a key of the session file before it is validated, e.g. --set server.seed=7 --set "
+                 "devices.v3.virtual_model.parameters.mass_kg=[2,2,2] (a device entry by its name; the value is YAML)");
   app.add_option("--stats-json", run.stats_json, "write loop statistics (histograms, percentiles) to this JSON file");
   app.add_option("--record", run.record_csv, "record every cycle of every device to this CSV file");
   int dds_domain = 0;
@@ -63,7 +66,7 @@ int run_command(int argc, char** argv) {
   if (describe_server) return describe_config(run.config_file);
   if (!describe_name.empty()) return describe_plugin(describe_name, run.config_file);
   if (list) return list_plugins(run.config_file);
-  if (!check_file.empty()) return check_config(check_file);
+  if (!check_file.empty()) return check_config(check_file, run.sets);
   if (!run.config_file.empty()) return run_session(run);
   std::fputs(app.help().c_str(), stdout);
   return 1;

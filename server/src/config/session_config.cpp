@@ -3,6 +3,7 @@
 #include <set>
 
 #include "config/config_error.hpp"
+#include "config/config_overrides.hpp"
 #include "config/yaml_reader.hpp"
 #include "hapticd/input_file.hpp"
 
@@ -313,20 +314,11 @@ ParameterSchema server_settings_schema() {
 }
 
 namespace {
-SessionConfig read_session_config(const std::filesystem::path& path);
+SessionConfig read_session_config(const std::string& text, const std::filesystem::path& path,
+                                  const std::vector<std::string>& overrides, std::vector<AppliedOverride>& applied);
 }  // namespace
 
-SessionConfig load_session_config(const std::filesystem::path& path) {
-  // Every error names the file: a YAML conversion the readers did not anticipate becomes a located error too.
-  try {
-    return read_session_config(path);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(path.string(), e.mark.is_null() ? 0 : e.mark.line + 1, "", "YAML: " + e.msg);
-  }
-}
-
-namespace {
-SessionConfig read_session_config(const std::filesystem::path& path) {
+SessionConfig load_session_config(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   const std::string file = path.string();
   if (!std::filesystem::exists(path)) throw ConfigError(file, 0, "", "no such file");
   std::string text;
@@ -337,6 +329,28 @@ SessionConfig read_session_config(const std::filesystem::path& path) {
     if (message.rfind(file + ": ", 0) == 0) message.erase(0, file.size() + 2);
     throw ConfigError(file, 0, "", message);
   }
+  return parse_session_config(text, path, overrides);
+}
+
+SessionConfig parse_session_config(const std::string& text, const std::filesystem::path& path,
+                                   const std::vector<std::string>& overrides) {
+  // Every error names the file: a YAML conversion the readers did not anticipate becomes a located error too;
+  // an error in an overridden value names the override.
+  std::vector<AppliedOverride> applied;
+  try {
+    return read_session_config(text, path, overrides, applied);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(path.string(), e.mark.is_null() ? 0 : e.mark.line + 1, "", "YAML: " + e.msg);
+  } catch (const ConfigError& e) {
+    throw_if_overridden(e, applied);
+    throw;
+  }
+}
+
+namespace {
+SessionConfig read_session_config(const std::string& text, const std::filesystem::path& path,
+                                  const std::vector<std::string>& overrides, std::vector<AppliedOverride>& applied) {
+  const std::string file = path.string();
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -344,9 +358,11 @@ SessionConfig read_session_config(const std::filesystem::path& path) {
     throw ConfigError(file, e.mark.is_null() ? 0 : e.mark.line + 1, "", "YAML syntax error: " + e.msg);
   }
   if (!root.IsDefined() || root.IsNull()) throw ConfigError(file, 0, "", "the file is empty");
+  applied = apply_overrides(root, overrides);
 
   SessionConfig config;
   config.file = path;
+  config.overrides = applied;
   MappingReader top(root, "", file, {"server", "dds", "devices"});
   config.server = read_server(top.optional("server"), file, path.parent_path());
   config.dds = read_dds(top.optional("dds"), file, path.parent_path());

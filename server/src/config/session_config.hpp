@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "config/config_overrides.hpp"
 #include "hapticd/parameters.hpp"
 #include "safety/safety_settings.hpp"
 
@@ -100,6 +101,7 @@ struct SessionConfig {
   ServerSettings server;
   DdsSettings dds;
   std::vector<DeviceConfig> devices;
+  std::vector<AppliedOverride> overrides;  // what overrides changed: an error there names the override
 };
 
 // The keys of a device entry (`devices[i]`) and what each is: the reader's allowed keys and
@@ -115,7 +117,11 @@ ParameterSchema server_settings_schema();
 // The schema of the `dds` section.
 ParameterSchema dds_settings_schema();
 
-// Reads and validates a session file. Throws ConfigError naming file, line and key.
-SessionConfig load_session_config(const std::filesystem::path& file);
+// Reads and validates a session file, with overrides ("path=value", config/config_overrides.hpp) applied first.
+// Throws ConfigError naming file, line and key (or the override).
+SessionConfig load_session_config(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+// The same for session-file text; `file` names it in errors and relative paths are taken from its folder.
+SessionConfig parse_session_config(const std::string& text, const std::filesystem::path& file,
+                                   const std::vector<std::string>& overrides = {});
 
 }  // namespace hapticd::server

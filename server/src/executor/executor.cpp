@@ -6,7 +6,6 @@
 #include <thread>
 
 #include "executor/realtime_setup.hpp"
-#include "recorder/recorder.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
@@ -14,7 +13,7 @@ namespace hapticd::server {
 Executor::Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder)
     : settings_(settings),
       sessions_(std::move(sessions)),
-      recorder_(recorder),
+      group_(sessions_, recorder),
       period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))) {}
 
 void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, ExecutorResult& result) noexcept {
@@ -54,20 +53,9 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
         ramping ? std::max(0.0, 1.0 - static_cast<double>(index - ramp_start + 1) / static_cast<double>(ramp_cycles))
                 : 1.0;
 
-    // One cycle in phases, each for every device before the next (docs/architecture.md, "One cycle"):
-    const CycleTime cycle{deadline_ns - start_ns, period_ns_, index};
-    // (a) read and estimate: every device's state of this instant, before any chain runs;
-    for (DeviceSession* s : sessions_) s->read_and_estimate(cycle, consecutive_overruns, wake_ns - deadline_ns);
-    // (b) the group stage, where group-level logic sees the estimated states of all devices of the group (none
-    //     yet: dual-arm sessions bring the first);
-    // (c) the chains: virtual model -> inverse kinematics -> controller;
-    for (DeviceSession* s : sessions_) s->run_chain(cycle);
-    // (d) limit and write, then record.
-    for (std::size_t d = 0; d < sessions_.size(); ++d) {
-      sessions_[d]->limit_and_write(cycle, scale);
-      if (recorder_ != nullptr)
-        recorder_->record(cycle, static_cast<std::uint16_t>(d), sessions_[d]->state(), sessions_[d]->command());
-    }
+    // One cycle in phases, each for every device before the next (docs/architecture.md, "One cycle").
+    group_.run_cycle(CycleTime{deadline_ns - start_ns, period_ns_, index}, scale, consecutive_overruns,
+                     wake_ns - deadline_ns);
 
     const std::int64_t compute_end_ns = monotonic_now_ns();
     if (listener_ != nullptr) listener_->after_cycle(index, clock.is_virtual());
@@ -85,8 +73,7 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
       window_latency_ns = window_compute_ns = 0;
     }
 
-    const bool stopped = stopping && std::all_of(sessions_.begin(), sessions_.end(),
-                                                 [](const DeviceSession* s) { return s->at_rest(); });
+    const bool stopped = stopping && group_.at_rest();
     if ((ramping && index - ramp_start + 1 >= ramp_cycles) || stopped) {
       result.periods = index + 1;
       break;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "executor/cycle_statistics.hpp"
+#include "executor/device_group.hpp"
 #include "executor/loop_clock.hpp"
 
 namespace hapticd::server {
@@ -75,7 +76,7 @@ class Executor {
 
   ExecutorSettings settings_;
   std::vector<DeviceSession*> sessions_;
-  Recorder* recorder_;
+  DeviceGroup group_;
   CycleListener* listener_ = nullptr;
   LiveLoopStatistics live_;
   std::int64_t period_ns_;

@@ -38,6 +38,10 @@ std::vector<fs::path> PluginLoader::search_paths_for(const std::vector<fs::path>
   }
   const fs::path exe_dir = boost::dll::program_location().parent_path().string();
   paths.push_back(exe_dir / ".." / "lib" / "hapticd" / "plugins");
+  // Linked into a shared library (the session API, libhapticd_server.so in <prefix>/lib): the plugins installed
+  // beside it, whichever program loaded it.
+  const fs::path code_dir = boost::dll::this_line_location().parent_path().string();
+  if (code_dir != exe_dir) paths.push_back(code_dir / "hapticd" / "plugins");
   return paths;
 }
 

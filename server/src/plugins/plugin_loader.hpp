@@ -46,7 +46,8 @@ class PluginLoader {
   explicit PluginLoader(std::vector<std::filesystem::path> search_paths);
 
   // Search order: the session's plugin_paths, then HAPTICD_PLUGIN_PATH (colon-separated), then the folder
-  // installed beside the executable (<bin>/../lib/hapticd/plugins).
+  // installed beside the executable (<bin>/../lib/hapticd/plugins), then, for a program that uses the session
+  // API's shared library, the folder installed beside that library (<lib>/hapticd/plugins).
   static std::vector<std::filesystem::path> search_paths_for(const std::vector<std::filesystem::path>& configured);
 
   // Loads one library by file name ("libfoo.so"), short name ("foo" -> libfoo.so) or path. Throws

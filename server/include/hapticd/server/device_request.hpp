@@ -1,0 +1,24 @@
+#pragma once
+// A run-time request to one device: every request the DDS interface offers a client, as a value. The DDS
+// interface and the in-process session (hapticd/server/session.hpp) route them through the same function.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace hapticd::server {
+
+struct DeviceRequest {
+  enum class Kind : std::uint8_t {
+    switch_scheme,   // name: the scheme
+    set_parameter,   // name: "<stage>.<parameter>" - stage device, virtual_model, controller, or safety
+                     // (passivity_control); values: the new value, checked against the plugin's schema
+    drive_operator,  // name: the simulated operator's request (push, release, ...), handled by the device plugin
+    emergency_stop,  // the device goes to its safe state at the next cycle
+    recover,         // leave the safe mode once it has settled
+  };
+  Kind kind = Kind::switch_scheme;
+  std::string name;
+  std::vector<double> values;
+};
+
+}  // namespace hapticd::server

@@ -1,0 +1,38 @@
+#pragma once
+// What a Session (hapticd/server/session.hpp) holds: the configuration, the plugins, the device sessions and
+// the group that runs their cycle. The server's own tests reach the device sessions through it (to drive one
+// device's phases alone, or to run the real executor over them); everything else uses the public API.
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "config/session_config.hpp"
+#include "executor/cycle_statistics.hpp"
+#include "executor/device_group.hpp"
+#include "executor/executor.hpp"
+#include "hapticd/server/session.hpp"
+#include "plugins/plugin_loader.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server {
+
+struct Session::Impl {
+  SessionConfig config;
+  std::unique_ptr<PluginLoader> loader;
+  std::vector<std::unique_ptr<DeviceSession>> devices;
+  std::unique_ptr<DeviceGroup> group;
+  std::int64_t period_ns = 0;
+  std::uint64_t next_cycle = 0;
+  bool activated = false;
+  bool stopped = false;
+  CycleStatistics statistics;
+
+  // Throws std::out_of_range naming the device.
+  [[nodiscard]] DeviceSession& device(std::string_view name) const;
+  [[nodiscard]] std::vector<DeviceSession*> device_pointers() const;
+  // The executor's settings for this session's server section, never asking for SCHED_FIFO or locked memory
+  // (for tests that run the real loop over the devices instead of stepping).
+  [[nodiscard]] ExecutorSettings executor_settings() const;
+};
+
+}  // namespace hapticd::server

@@ -1,0 +1,137 @@
+// The in-process session API (hapticd/server/session.hpp), as a program outside the server sees it: this test
+// links the shared library hapticd::server only, not the server's core. Shipped session files, lockstep, fixed
+// seeds.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "hapticd/server/session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+const std::string kSessions = HAPTICD_SOURCE_DIR "/config/sessions/vishard3/";
+
+Session shipped(const std::string& file, std::vector<std::string> overrides = {}) {
+  SessionOptions options;
+  options.overrides = std::move(overrides);
+  return Session::from_file(kSessions + file, options);
+}
+
+using Kind = DeviceRequest::Kind;
+
+TEST(SessionApi, StepsAShippedSessionRepeatablyAndReportsEachDevice) {
+  Session a = shipped("admittance-resolved-acceleration.yaml", {"server.seed=5"});
+  Session b = shipped("admittance-resolved-acceleration.yaml", {"server.seed=5"});
+  ASSERT_EQ(a.device_names(), std::vector<std::string>{"vishard3"});
+  EXPECT_DOUBLE_EQ(a.period_s(), 0.0005);
+  a.step(1000);
+  const DeviceView before = a.device("vishard3");
+  a.step(200);
+  // The simulated operator's sine push from 0.5 s on (its hand a spring-damper on the handle): about 1.4 N at 0.6 s.
+  EXPECT_GT(a.device("vishard3").operator_wrench.force.norm(), 0.5);
+  a.step(800);
+  b.step(2000);
+  const DeviceView v = a.device("vishard3");
+  EXPECT_EQ(v.cycle, 1999u);
+  EXPECT_DOUBLE_EQ(v.time_s, 1999 * 0.0005);
+  EXPECT_EQ(v.scheme, "default");
+  EXPECT_EQ(v.fault, "");
+  EXPECT_EQ(v.state.joints.position.size(), 3);
+  // The push moved the handle of the admittance display.
+  EXPECT_GT((v.handle_pose.position - before.handle_pose.position).norm(), 1e-3);
+  EXPECT_GT(v.command.torque_nm.norm(), 0.0);
+  // The same seed, the same run, to the bit.
+  const DeviceView w = b.device("vishard3");
+  EXPECT_EQ(v.state.joints.position, w.state.joints.position);
+  EXPECT_EQ(v.command.torque_nm, w.command.torque_nm);
+  EXPECT_EQ(a.statistics().cycles, 2000u);
+  EXPECT_GT(a.statistics().compute_p50_us, 0.0);
+}
+
+TEST(SessionApi, RequestsAsTheDdsInterfaceOffersThem) {
+  Session s = shipped("scheme-switching.yaml");
+  s.step(400);
+  EXPECT_FALSE(s.request("vishard3", {Kind::switch_scheme, "no_such_scheme", {}}).accepted);
+  const RuntimeReply bad = s.request("vishard3", {Kind::set_parameter, "virtual_model.mass_kg", {-1.0, 1.0, 1.0}});
+  EXPECT_FALSE(bad.accepted);
+  EXPECT_NE(bad.message.find("mass_kg"), std::string::npos) << bad.message;
+  EXPECT_FALSE(s.request("vishard3", {Kind::set_parameter, "mass_kg", {1.0}}).accepted);  // no stage
+  EXPECT_TRUE(s.request("vishard3", {Kind::set_parameter, "virtual_model.mass_kg", {2.0, 2.0, 2.0}}).accepted);
+  EXPECT_TRUE(s.request("vishard3", {Kind::switch_scheme, "impedance", {}}).accepted);
+  s.step(400);
+  DeviceView v = s.device("vishard3");
+  EXPECT_EQ(v.scheme, "impedance");
+  EXPECT_EQ(v.scheme_switches, 1u);
+  EXPECT_EQ(v.fault, "");
+
+  EXPECT_FALSE(s.request("vishard3", {Kind::recover, "", {}}).accepted);  // nothing to recover from
+  EXPECT_TRUE(s.request("vishard3", {Kind::emergency_stop, "", {}}).accepted);
+  s.step(1);
+  v = s.device("vishard3");
+  EXPECT_EQ(v.fault, "emergency stop");
+  EXPECT_EQ(v.faults, 1u);
+  EXPECT_TRUE(s.request("vishard3", {Kind::recover, "", {}}).accepted);
+  s.step(2000);  // the safe mode settles, then the chain activates again
+  v = s.device("vishard3");
+  EXPECT_EQ(v.fault, "");
+  EXPECT_EQ(v.recoveries, 1u);
+  EXPECT_THROW(s.request("nobody", {Kind::emergency_stop, "", {}}), std::out_of_range);
+}
+
+TEST(SessionApi, EngineInputReachesTheVirtualModelWeightedByItsAge) {
+  Session s = shipped("admittance-virtual-coupling.yaml");
+  s.step(200);
+  EXPECT_EQ(s.device("vishard3").engine_weight, 0.0);  // no engine yet
+  EngineInput input;
+  input.has_wrench = true;
+  input.wrench.force = Eigen::Vector3d(0.0, 0.0, 4.0);
+  for (int k = 0; k < 400; ++k) {  // a fresh input every cycle, as an engine at the loop's rate sends
+    input.sequence = static_cast<std::uint64_t>(k + 1);
+    s.set_engine_input("vishard3", input);
+    s.step(1);
+  }
+  const DeviceView v = s.device("vishard3");
+  EXPECT_DOUBLE_EQ(v.engine_weight, 1.0);  // ramped in (0.1 s) and fresh
+  EXPECT_NEAR(v.task.wrench.force.z(), 4.0, 1e-9);
+  s.step(400);  // silent for 0.2 s: past the deadline and the fade
+  EXPECT_EQ(s.device("vishard3").engine_weight, 0.0);
+}
+
+TEST(SessionApi, StopRampsTheTorqueToZeroAndEndsTheSession) {
+  Session s = shipped("admittance-resolved-acceleration.yaml");
+  s.step(2000);
+  s.stop();
+  const DeviceView v = s.device("vishard3");
+  EXPECT_EQ(v.command.torque_nm.norm(), 0.0);
+  EXPECT_EQ(v.cycle, 2000u + 400u - 1u);  // shutdown_ramp_s 0.2 s
+  EXPECT_THROW(s.step(), std::logic_error);
+}
+
+TEST(SessionApi, ErrorsNameTheFileLineAndKeyOrTheOverride) {
+  try {
+    (void)Session::from_yaml("server: {rate_hz: 2000}\ndevices:\n  - name: a\n    devize: {}\n", {}, "mine.yaml");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("mine.yaml:4"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("devize"), std::string::npos) << e.what();
+  }
+  try {
+    (void)shipped("admittance-resolved-acceleration.yaml",
+                  {"devices.vishard3.virtual_model.parameters.mass_kg=[1, 2]"});
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("override 'devices.vishard3.virtual_model.parameters.mass_kg=[1, 2]'"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW((void)shipped("admittance-resolved-acceleration.yaml", {"devices.nobody.controller=1"}),
+               std::runtime_error);
+  EXPECT_THROW((void)shipped("admittance-resolved-acceleration.yaml", {"no equals sign"}), std::runtime_error);
+  Session s = shipped("admittance-resolved-acceleration.yaml");
+  EXPECT_THROW((void)s.device("nobody"), std::out_of_range);
+}
+
+}  // namespace
+}  // namespace hapticd::server
