@@ -10,6 +10,7 @@
 #include <string>
 
 #include "hapticd/engine_input.hpp"
+#include "hapticd/testing/pass_through_render_port.hpp"
 #include "session_rig.hpp"
 
 namespace {
@@ -23,6 +24,7 @@ void run(benchmark::State& st, const std::string& session, bool chain_too) {
   const ChainState cs = d.chain_state();
   const DeviceState state = d.state();
   const EngineInput engine;
+  testing::PassThroughRenderPort render;
   TaskTarget task = d.task();
   JointTarget joints;
   joints.resize(10);
@@ -33,9 +35,9 @@ void run(benchmark::State& st, const std::string& session, bool chain_too) {
   const auto one = [&] {
     const CycleTime t{static_cast<std::int64_t>(k) * 500'000, 500'000, k};
     ++k;
-    if (chain_too) (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, &cs, &engine, nullptr}, task);
-    (void)(*chain.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &cs}, joints);
-    if (chain_too) (void)chain.controller->update(t, ControllerInput{state, task, joints, &cs, redundancy}, command);
+    if (chain_too) (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, cs, engine, render}, task);
+    (void)(*chain.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, cs}, joints);
+    if (chain_too) (void)chain.controller->update(t, ControllerInput{state, task, joints, cs, redundancy}, command);
     benchmark::DoNotOptimize(joints.position.data());
     benchmark::DoNotOptimize(command.torque_nm.data());
   };

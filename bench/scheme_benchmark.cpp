@@ -15,6 +15,7 @@
 #include "hapticd/engine_input.hpp"
 #include "hapticd/model/dynamics.hpp"
 #include "hapticd/model/model_data.hpp"
+#include "hapticd/testing/pass_through_render_port.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "session/session_builder.hpp"
 #include "session_rig.hpp"
@@ -31,6 +32,7 @@ void scheme(benchmark::State& st, const std::string& device, const std::string& 
   const ChainState cs = d.chain_state();
   const DeviceState state = d.state();
   const EngineInput engine;
+  testing::PassThroughRenderPort render;
   TaskTarget task;
   JointTarget joints;
   joints.resize(d.description().dof());
@@ -41,10 +43,10 @@ void scheme(benchmark::State& st, const std::string& device, const std::string& 
     const CycleTime t{static_cast<std::int64_t>(k) * 500'000, 500'000, k};
     ++k;
     if (chain.virtual_model)
-      (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, &cs, &engine, nullptr}, task);
+      (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, cs, engine, render}, task);
     if (chain.inverse_kinematics)
-      (void)(*chain.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &cs}, joints);
-    (void)chain.controller->update(t, ControllerInput{state, task, joints, &cs, nullptr}, command);
+      (void)(*chain.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, cs}, joints);
+    (void)chain.controller->update(t, ControllerInput{state, task, joints, cs, nullptr}, command);
     benchmark::DoNotOptimize(command.torque_nm.data());
   };
   for (auto _ : st) one_cycle();

@@ -31,7 +31,7 @@ inline double seconds_per_model_terms(const ChainState& chain, const DeviceState
   const auto start = std::chrono::steady_clock::now();
   constexpr int kRuns = 20000;
   for (int i = 0; i < kRuns; ++i) {
-    model::compute_cycle_terms(*chain.model, data, state.joints.position, chain.velocity, chain.handle_frame);
+    model::compute_cycle_terms(*chain.model, data, state.joints.position, state.joints.velocity, chain.handle_frame);
     benchmark::DoNotOptimize(data.mass_matrix.data());
   }
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kRuns;

@@ -62,6 +62,7 @@ void MassSpringDevice::configure(const Parameters& p, const PluginContext& conte
   description_.joints.push_back(
       JointDescription{"x", -1.0, 1.0, p.real("velocity_limit_m_s"), force_limit_n_, continuous});
   description_.reports_joint_velocity = true;
+  description_.simulated = true;
 }
 
 void MassSpringDevice::activate() {

@@ -6,6 +6,7 @@
 
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
+#include "hapticd/testing/pass_through_render_port.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -35,11 +36,11 @@ double runaway(double limit_m, bool saturated) {
   chain.output_saturated = saturated;
   VirtualModel& model = **s.impl().devices[0]->chain().schemes[0].virtual_model;
   const EngineInput engine;
+  testing::PassThroughRenderPort render;
   TaskTarget target;
-  EXPECT_EQ(model.activate(VirtualModelInput{d.state(), &chain, &engine, nullptr}), ReturnCode::ok);
+  EXPECT_EQ(model.activate(VirtualModelInput{d.state(), chain, engine, render}), ReturnCode::ok);
   for (std::uint64_t k = 1; k <= 2000; ++k) {
-    EXPECT_EQ(model.update(cycle_at(k), VirtualModelInput{d.state(), &chain, &engine, nullptr}, target),
-              ReturnCode::ok);
+    EXPECT_EQ(model.update(cycle_at(k), VirtualModelInput{d.state(), chain, engine, render}, target), ReturnCode::ok);
   }
   EXPECT_LE(target.twist.linear.x(), 1.0);
   return (target.pose.position - chain.handle_pose.position).norm();

@@ -31,7 +31,7 @@ TEST(DeviceSession, NonFiniteControllerOutputPutsTheDeviceInItsSafeModeDampingTh
   for (std::uint64_t k = 100; k < 1300; ++k) {
     d.cycle(cycle_at(k), 1.0);
     const double tau = d.command().torque_nm[0];
-    const double v = d.chain_state().velocity[0];
+    const double v = d.state().joints.velocity[0];
     if (k < 1100) {
       // After the 20 ms fade of the last torque (40 cycles): damping, against the motion, proportional to it.
       if (k >= 140) {
@@ -130,7 +130,7 @@ TEST(DeviceSession, SharesTheModelTermsOfEveryCycleWithTheChain) {
   EXPECT_NEAR(c.operator_wrench.force.x(), 10.0, 0.3);
   EXPECT_NEAR(c.operator_wrench.force.y(), 0.0, 0.3);
   EXPECT_TRUE(c.has_operator_wrench);
-  EXPECT_EQ(c.velocity.size(), 3);
+  EXPECT_EQ(d.state().joints.velocity.size(), 3);
 }
 
 TEST(DeviceSession, CycleWithModelTermsDoesNotAllocate) {

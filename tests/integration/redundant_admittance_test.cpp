@@ -104,7 +104,7 @@ Trace run(server::Session& s, int cycles) {
     const Eigen::AngleAxisd tr(d.task().pose.orientation * start.conjugate());
     trace.target_rotation.push_back(tr.angle() * tr.axis());
     trace.target_x.push_back(d.task().pose.position);
-    trace.largest_joint_speed = std::max(trace.largest_joint_speed, d.chain_state().velocity.cwiseAbs().maxCoeff());
+    trace.largest_joint_speed = std::max(trace.largest_joint_speed, d.state().joints.velocity.cwiseAbs().maxCoeff());
   }
   return trace;
 }
@@ -178,7 +178,7 @@ TEST(RedundantSelfMotion, NeedsItsNullSpaceDamping) {
     for (std::uint64_t k = 0; k < 2000 && d.fault() == DeviceFault::none; ++k) {
       d.cycle(cycle_at(k), 1.0);
       pinv.compute(d.chain_state().data->frame_jacobian);
-      largest = std::max(largest, (pinv.null_space_projector() * d.chain_state().velocity).norm());
+      largest = std::max(largest, (pinv.null_space_projector() * d.state().joints.velocity).norm());
     }
     return std::make_pair(largest, d.fault());
   };

@@ -8,6 +8,7 @@
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
+#include "hapticd/testing/pass_through_render_port.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -30,24 +31,24 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   command.torque_nm.setZero(1);
   ChainState chain;  // the test device has no robot model
   const EngineInput engine;
-  chain.velocity.setZero(1);
+  testing::PassThroughRenderPort render;
   dc.device->activate();
-  ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, &chain, &engine, nullptr}), ReturnCode::ok);
-  ASSERT_EQ((*c.inverse_kinematics)->activate(InverseKinematicsInput{state, task, &chain}), ReturnCode::ok);
-  ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints, &chain, nullptr}, command), ReturnCode::ok);
+  ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, chain, engine, render}), ReturnCode::ok);
+  ASSERT_EQ((*c.inverse_kinematics)->activate(InverseKinematicsInput{state, task, chain}), ReturnCode::ok);
+  ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints, chain, nullptr}, command), ReturnCode::ok);
 
   std::size_t device = 0, model = 0, ik = 0, controller = 0;
   for (std::uint64_t k = 0; k < 2000; ++k) {
     const CycleTime t = cycle_at(k);
     device += testing::count_allocations([&] { (void)dc.device->read(t, state); });
     model += testing::count_allocations([&] {
-      (void)(*c.virtual_model)->update(t, VirtualModelInput{state, &chain, &engine, nullptr}, task);
+      (void)(*c.virtual_model)->update(t, VirtualModelInput{state, chain, engine, render}, task);
     });
     ik += testing::count_allocations([&] {
-      (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, &chain}, joints);
+      (void)(*c.inverse_kinematics)->update(t, InverseKinematicsInput{state, task, chain}, joints);
     });
     controller += testing::count_allocations([&] {
-      (void)c.controller->update(t, ControllerInput{state, task, joints, &chain, nullptr}, command);
+      (void)c.controller->update(t, ControllerInput{state, task, joints, chain, nullptr}, command);
     });
     device += testing::count_allocations([&] { (void)dc.device->write(t, command); });
   }

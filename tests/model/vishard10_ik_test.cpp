@@ -49,6 +49,7 @@ class Vishard10Ik : public ::testing::Test {
     auto ik = std::make_unique<ik::Vishard10Ik>();
     PluginContext context;
     context.device = &description_;
+    context.robot_model = robot_.get();
     ik->configure(parameters(ik::Vishard10Ik::parameter_schema(), given), context);
     return ik;
   }

@@ -6,6 +6,7 @@
 
 #include "bridge/messages.hpp"
 #include "hapticd/dds/conversion.hpp"
+#include "support/test_session.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -138,6 +139,16 @@ TEST(BridgeMessages, AFaultReportKeepsItsCyclesUpToTheMessagesCapacity) {
   EXPECT_EQ(m->records[49].cycle, 899u);
   EXPECT_DOUBLE_EQ(m->records[10].position[2], 0.1);
   EXPECT_DOUBLE_EQ(m->records[20].handle_velocity[2], -0.02);
+}
+
+TEST(BridgeMessages, TheDescriptionSaysWhatTheDeviceDescribes) {
+  Session s = test::build_test_session("server: {clock: lockstep}\ndevices:\n" + test::mass_spring_device_yaml("axis"));
+  const hapticd_msg_DeviceDescription m = description_message(test::device_of(s), 2000.0, std::nullopt);
+  EXPECT_STREQ(m.device, "axis");
+  EXPECT_STREQ(m.device_plugin, "test_mass_spring");
+  EXPECT_TRUE(m.simulated);  // from DeviceDescription::simulated, not from the plugin's name
+  EXPECT_EQ(m.dof, 1);
+  EXPECT_DOUBLE_EQ(m.rate_hz, 2000.0);
 }
 
 }  // namespace

@@ -5,10 +5,14 @@ namespace hapticd {
 // Version of the binary plugin contract (interfaces, value types, descriptor layout). A plugin built against
 // another version is refused by the loader before any of its code is called. Bump on every change to a type
 // in api/include/hapticd that a plugin compiles against.
-inline constexpr int kApiVersion = 7;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
+inline constexpr int kApiVersion = 8;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
                                        // 4: EngineInput in VirtualModelInput; 5: EngineInput weight,
                                        //    local model and motion; 6: RenderGuard in
                                        //    VirtualModelInput, update() may throw;
                                        // 7: RedundancyResolution (IK -> controller)
+                                       // 8: inputs by reference; one joint velocity (DeviceState's, the
+                                       //    estimate; ChainState::velocity gone); RenderPort with the model's
+                                       //    answers in TaskTarget; the parsed robot model in PluginContext;
+                                       //    DeviceDescription::simulated
 
 }  // namespace hapticd

@@ -10,14 +10,17 @@
 
 namespace hapticd {
 
-class RenderGuard;
+class RenderPort;
 class RedundancyResolution;
 
 // One sample read from a device.
 struct DeviceState {
   std::int64_t timestamp_ns = 0;  // device time of the sample (simulated devices: the cycle time)
-  JointState joints;              // measured positions; velocities if the device reports them; effort = joint torque
-  Wrench sensor_wrench;           // force/torque sensor reading in the sensor frame, if the device has one
+  // Positions as measured; effort = joint torque. The velocity: what the device reports (reports_joint_velocity),
+  // and in the chain's inputs always the server's one joint-velocity estimate - the device's own, or its positions
+  // differentiated and filtered (docs/architecture.md) - the velocity every plugin, recording and client sees.
+  JointState joints;
+  Wrench sensor_wrench;  // force/torque sensor reading in the sensor frame, if the device has one
   // Proper acceleration (an accelerometer's reading: acceleration minus gravity) and angular acceleration of
   // the sensor in its frame [m/s^2, rad/s^2], if the sensor measures them (reports_sensor_acceleration).
   Twist sensor_acceleration;
@@ -35,6 +38,11 @@ struct TaskTarget {
   Wrench wrench;
   bool has_motion = false;
   bool has_wrench = false;
+  // What the virtual model did with the safety layer's render port this cycle (its answer to the server, which
+  // clears both before update()): the wrench went through RenderPort::limit (else the server limits it), and
+  // the environment force includes RenderPort::safety_force (else the supervisor applies it as J^T F torque).
+  bool wrench_limited = false;
+  bool includes_safety_force = false;
 };
 
 // Desired joint motion from the inverse kinematics.
@@ -60,31 +68,31 @@ struct JointCommand {
 struct ChainState;   // chain_state.hpp
 struct EngineInput;  // engine_input.hpp
 
-// Each input carries the device sample and the server's per-cycle model terms (chain: never null while a
-// chain runs; chain->model is null when the device has no robot model).
+// Each input carries the device sample (with the one joint-velocity estimate) and the server's per-cycle model
+// terms (chain.model is null when the device has no robot model).
 struct VirtualModelInput {
   const DeviceState& device;
-  const ChainState* chain;
-  // The rendering engine's newest input for this device (never null while a chain runs; has_proxy and
-  // has_wrench say whether anything has arrived).
-  const EngineInput* engine;
-  // The safety layer's passivity controller and rendered-wrench limits (safety/render_guard.hpp; never null
-  // while a chain runs). A model that renders an engine passes the engine's wrench through engine_port() and
-  // its environment wrench through limit().
-  RenderGuard* guard;
+  const ChainState& chain;
+  // The rendering engine's newest input for this device (has_proxy, has_wrench and has_motion say whether
+  // anything has arrived; weight how fresh it is).
+  const EngineInput& engine;
+  // The safety layer's hold on what the model renders (render_port.hpp): a model that renders an engine passes
+  // the engine's wrench through engine_port() and its environment wrench through limit(), and says so in its
+  // TaskTarget.
+  RenderPort& render;
 };
 
 struct InverseKinematicsInput {
   const DeviceState& device;
   const TaskTarget& task;
-  const ChainState* chain;
+  const ChainState& chain;
 };
 
 struct ControllerInput {
   const DeviceState& device;
   const TaskTarget& task;
   const JointTarget& joints;
-  const ChainState* chain;
+  const ChainState& chain;
   // The chain's inverse kinematics' redundancy resolution at the measured state (redundancy_resolution.hpp),
   // nullptr when it offers none: task-space controllers then use the minimum-norm solution.
   RedundancyResolution* redundancy;

@@ -14,11 +14,11 @@ struct ModelData;
 struct ChainState {
   // Null when the device names no robot model (the plugins then work from DeviceState alone).
   const model::RobotModel* model = nullptr;
-  // compute_cycle_terms at (q, velocity) for the handle frame: frame_pose, frame_jacobian (6 x n, rows
+  // compute_cycle_terms at (q, qd) - the input's DeviceState positions and its one velocity estimate - for the
+  // handle frame: frame_pose, frame_jacobian (6 x n, rows
   // [linear; angular]), frame_jacobian_dot_qd, mass_matrix (+ mass_llt), coriolis_torque, gravity_torque.
   const model::ModelData* data = nullptr;
   int handle_frame = -1;
-  JointVector velocity;              // reported by the device, or differentiated from its positions (filtered)
   Pose handle_pose;                  // world
   Twist handle_twist;                // world, at the handle point
   Wrench operator_wrench;            // world, at the handle point: the wrench the operator applies TO the handle

@@ -10,6 +10,9 @@
 namespace hapticd {
 
 // Turns the targets of the chain into joint torques.
+// Real-time methods (activate, update) must not throw, allocate, lock or log. The interface does not declare them
+// noexcept on purpose: a plugin that throws anyway is contained to its own device (fault plugin_exception, its
+// safe mode) instead of terminating the server with every device it drives (docs/plugin-guide.md).
 class HAPTICD_API Controller {
  public:
   virtual ~Controller();
@@ -18,7 +21,7 @@ class HAPTICD_API Controller {
   virtual void configure(const Parameters& parameters, const PluginContext& context) = 0;
   // Real-time safe. Start at a cycle boundary from the current state and the last torque command that reached
   // the drives (bumpless transfer: the first update() should not jump away from it).
-  virtual ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept = 0;
+  virtual ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) = 0;
   // Real-time safe.
   virtual ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) = 0;
   // Not real-time safe. Called after the controller has left the loop.

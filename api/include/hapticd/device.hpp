@@ -12,6 +12,8 @@ namespace hapticd {
 
 // A force-feedback device (hardware driver or simulation). Lifecycle:
 // configure -> description -> activate -> { read, write }* -> deactivate.
+// read() and write() are real-time: no allocation, lock or logging, and no exception - one that escapes anyway
+// is contained to this device (fault device_read / device_write, its safe mode).
 class HAPTICD_API Device {
  public:
   virtual ~Device();

@@ -26,6 +26,8 @@ struct DeviceDescription {
   bool reports_wrench = false;
   bool reports_joint_torque = false;
   bool reports_sensor_acceleration = false;
+  // A simulation, not hardware: the server says so to clients and evaluations (no guess from the plugin's name).
+  bool simulated = false;
 
   [[nodiscard]] int dof() const noexcept { return static_cast<int>(joints.size()); }
 };

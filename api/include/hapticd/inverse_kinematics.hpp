@@ -10,6 +10,9 @@
 namespace hapticd {
 
 // Maps the task-space target to joint space (and resolves redundancy for n > m devices).
+// Real-time methods (activate, update) must not throw, allocate, lock or log. The interface does not declare them
+// noexcept on purpose: a plugin that throws anyway is contained to its own device (fault plugin_exception, its
+// safe mode) instead of terminating the server with every device it drives (docs/plugin-guide.md).
 class HAPTICD_API InverseKinematics {
  public:
   virtual ~InverseKinematics();
@@ -17,7 +20,7 @@ class HAPTICD_API InverseKinematics {
   // Not real-time safe. Validate parameters (ParameterError names the key) and allocate everything.
   virtual void configure(const Parameters& parameters, const PluginContext& context) = 0;
   // Real-time safe. Start at a cycle boundary from the current joint state.
-  virtual ReturnCode activate(const InverseKinematicsInput& current) noexcept = 0;
+  virtual ReturnCode activate(const InverseKinematicsInput& current) = 0;
   // Real-time safe.
   virtual ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) = 0;
   // Not real-time safe. Called after the plugin has left the loop.

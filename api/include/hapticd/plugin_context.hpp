@@ -6,14 +6,20 @@
 #include "hapticd/device_description.hpp"
 
 namespace hapticd {
+namespace model {
+class RobotModel;
+}  // namespace model
 
 // What the server tells a plugin at configure() time besides its parameters.
 struct PluginContext {
   std::string device_name;                    // the device this plugin serves, as named in the session file
   const DeviceDescription* device = nullptr;  // the configured device (null when configuring the device itself)
-  double rate_hz = 2000.0;                    // control rate of the loop the plugin will run in
-  std::uint64_t seed = 0;                     // seed for any randomness (deterministic per session and device)
-  std::filesystem::path config_directory;     // folder of the session file: relative paths resolve against it
+  // The device's robot model (DeviceDescription::robot_model_file), parsed once by the server for the whole
+  // chain; null without one (or when configuring the device itself). It outlives the plugin.
+  const model::RobotModel* robot_model = nullptr;
+  double rate_hz = 2000.0;                 // control rate of the loop the plugin will run in
+  std::uint64_t seed = 0;                  // seed for any randomness (deterministic per session and device)
+  std::filesystem::path config_directory;  // folder of the session file: relative paths resolve against it
 };
 
 }  // namespace hapticd

@@ -11,6 +11,9 @@ namespace hapticd {
 
 // The virtual environment a device renders: admittance type (operator and environment wrench in, desired
 // motion out) or impedance type (measured motion in, desired wrench out).
+// Real-time methods (activate, update) must not throw, allocate, lock or log. The interface does not declare them
+// noexcept on purpose: a plugin that throws anyway is contained to its own device (fault plugin_exception, its
+// safe mode) instead of terminating the server with every device it drives (docs/plugin-guide.md).
 class HAPTICD_API VirtualModel {
  public:
   virtual ~VirtualModel();
@@ -19,7 +22,7 @@ class HAPTICD_API VirtualModel {
   virtual void configure(const Parameters& parameters, const PluginContext& context) = 0;
   // Real-time safe. Start at a cycle boundary from the current state (for instance: the desired pose starts
   // at the measured pose), so the hand-over does not make the torque jump.
-  virtual ReturnCode activate(const VirtualModelInput& current) noexcept = 0;
+  virtual ReturnCode activate(const VirtualModelInput& current) = 0;
   // Real-time safe.
   virtual ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) = 0;
   // Not real-time safe. Called after the model has left the loop.

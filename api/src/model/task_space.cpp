@@ -69,7 +69,8 @@ int task_rows(const std::string& choice, int dof) {
 }
 
 JointVector operator_wrench_torques(const ChainState& chain, int rows) noexcept {
-  if (!chain.has_operator_wrench) return JointVector::Zero(chain.velocity.size());
+  if (!chain.has_operator_wrench)
+    return JointVector::Zero(chain.model != nullptr ? chain.data->frame_jacobian.cols() : 0);
   Vector6d wrench;
   wrench << chain.operator_wrench.force, chain.operator_wrench.torque;
   return jacobian_transpose_times(chain.data->frame_jacobian, rows, wrench);

@@ -127,12 +127,12 @@ void FrictionIdentification::configure(const Parameters& p, const PluginContext&
 }
 
 ReturnCode FrictionIdentification::activate(const ControllerInput& current, const JointCommand& last_command) noexcept {
-  if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
+  if (current.chain.model == nullptr) return ReturnCode::error;
   q_ref_ = current.device.joints.position;
   qd_ref_.setZero(dof_);
   qdd_ref_.setZero(dof_);
   previous_command_ =
-      last_command.torque_nm.size() == dof_ ? last_command.torque_nm : current.chain->data->gravity_torque;
+      last_command.torque_nm.size() == dof_ ? last_command.torque_nm : current.chain.data->gravity_torque;
   estimator_.reset(current.device.joints.position);
   for (auto& n : normal_) n.setZero();
   for (auto& r : rhs_) r.setZero();
@@ -187,7 +187,7 @@ void FrictionIdentification::advance_stroke(const JointVector& q) noexcept {
 
 ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const ControllerInput& in,
                                           JointCommand& command) noexcept {
-  const ChainState& c = *in.chain;
+  const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
   const JointVector& q = in.device.joints.position;
   const JointVector operator_torques =
@@ -274,7 +274,7 @@ ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const Cont
   }
 
   // Computed-torque hold / tracking of every joint.
-  qdd_c_ = qdd_ref_ + kd_ * (qd_ref_ - c.velocity) + kp_ * (q_ref_ - q);
+  qdd_c_ = qdd_ref_ + kd_ * (qd_ref_ - in.device.joints.velocity) + kp_ * (q_ref_ - q);
   command.torque_nm.noalias() = d.mass_matrix * qdd_c_;
   command.torque_nm += d.coriolis_torque + d.gravity_torque;
   if (ramping) command.torque_nm[joint_] = d.gravity_torque[joint_] + d.coriolis_torque[joint_] + ramp;

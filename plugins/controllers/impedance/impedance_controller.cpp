@@ -243,7 +243,7 @@ void ImpedanceController::configure_friction(const Parameters& p, const PluginCo
 }
 
 ImpedanceController::Vector6 ImpedanceController::force_error(const ControllerInput& in) const noexcept {
-  const ChainState& c = *in.chain;
+  const ChainState& c = in.chain;
   Vector6 desired = Vector6::Zero();
   if (in.task.has_wrench) desired << in.task.wrench.force, in.task.wrench.torque;
   Vector6 error = desired;
@@ -256,14 +256,15 @@ ImpedanceController::Vector6 ImpedanceController::force_error(const ControllerIn
 }
 
 ReturnCode ImpedanceController::activate(const ControllerInput& current, const JointCommand& last_command) noexcept {
-  if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
+  if (current.chain.model == nullptr) return ReturnCode::error;
   error_rate_.reset(force_error(current));
   // The notches start in the steady state of the present gravity torque: no transient at activation.
-  const JointVector start = gravity_compensation_ ? current.chain->data->gravity_torque
-                                                  : JointVector(JointVector::Zero(current.chain->velocity.size()));
+  const JointVector start = gravity_compensation_
+                                ? current.chain.data->gravity_torque
+                                : JointVector(JointVector::Zero(current.device.joints.velocity.size()));
   for (int i = 0; i < notch_count_; ++i) notches_[static_cast<std::size_t>(i)].reset(start);
   stiction_.reset();
-  if (disturbance_observer_) observer_.reset(current.chain->velocity);
+  if (disturbance_observer_) observer_.reset(current.device.joints.velocity);
   previous_command_ = last_command.torque_nm.size() == dof_ ? last_command.torque_nm : start;
   if (adaptive_) {
     estimator_.reset(current.device.joints.position);
@@ -275,7 +276,7 @@ ReturnCode ImpedanceController::activate(const ControllerInput& current, const J
 
 void ImpedanceController::adapt(const CycleTime& cycle, const ControllerInput& in,
                                 const JointVector& operator_torques) noexcept {
-  estimator_.sample(in.device.joints.position, previous_command_, operator_torques, *in.chain->data, friction_);
+  estimator_.sample(in.device.joints.position, previous_command_, operator_torques, *in.chain.data, friction_);
   if (retuner_->take(retuned_)) retuned_pending_ = true;
   if (++adapt_cycles_ < adapt_period_cycles_) return;
   adapt_cycles_ = 0;
@@ -294,7 +295,7 @@ void ImpedanceController::adapt(const CycleTime& cycle, const ControllerInput& i
 
 ReturnCode ImpedanceController::update(const CycleTime& cycle, const ControllerInput& in,
                                        JointCommand& command) noexcept {
-  const ChainState& c = *in.chain;
+  const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
   Vector6 desired = Vector6::Zero();
   if (in.task.has_wrench) desired << in.task.wrench.force, in.task.wrench.torque;
@@ -308,18 +309,20 @@ ReturnCode ImpedanceController::update(const CycleTime& cycle, const ControllerI
   if (adaptive_) adapt(cycle, in, operator_torques);
   if (friction_compensation_ || stiction_compensation_) {
     for (int i = 0; i < dof_; ++i) {
-      sliding_[i] =
-          friction_compensation_ ? friction_.torque(i, c.velocity[i], d.gravity_torque[i] - operator_torques[i]) : 0.0;
+      sliding_[i] = friction_compensation_
+                        ? friction_.torque(i, in.device.joints.velocity[i], d.gravity_torque[i] - operator_torques[i])
+                        : 0.0;
     }
     if (stiction_compensation_) {
       projected_error_.noalias() = d.frame_jacobian.topRows(rows_).transpose() * error.head(rows_);
-      stiction_.update(c.velocity, sliding_, projected_error_, friction_torque_);
+      stiction_.update(in.device.joints.velocity, sliding_, projected_error_, friction_torque_);
       command.torque_nm += friction_torque_;
     } else {
       command.torque_nm += sliding_;
     }
   }
-  if (disturbance_observer_) command.torque_nm += observer_.update(d, c.velocity, previous_command_, operator_torques);
+  if (disturbance_observer_)
+    command.torque_nm += observer_.update(d, in.device.joints.velocity, previous_command_, operator_torques);
   if (joint_torque_gain_ > 0.0) {
     command.torque_nm += joint_torque_gain_ * (command.torque_nm - in.device.joints.effort);
   }

@@ -47,9 +47,9 @@ void JacobianControl::configure(const Parameters& p, const PluginContext& contex
 }
 
 ReturnCode JacobianControl::activate(const ControllerInput& current, const JointCommand&) noexcept {
-  if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
+  if (current.chain.model == nullptr) return ReturnCode::error;
   if (!inertia_from_model_) return ReturnCode::ok;
-  const model::ModelData& d = *current.chain->data;
+  const model::ModelData& d = *current.chain.data;
   if (kind_ == Kind::kInverse) {
     joint_inertia_ = d.mass_matrix.diagonal();
     return ReturnCode::ok;
@@ -63,7 +63,7 @@ ReturnCode JacobianControl::activate(const ControllerInput& current, const Joint
 
 ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerInput& in,
                                    JointCommand& command) noexcept {
-  const ChainState& c = *in.chain;
+  const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
   if (!in.task.has_motion) return ReturnCode::error;
   const int rows = law_.rows();
@@ -71,7 +71,7 @@ ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerI
   if (kind_ == Kind::kInverse) {
     const model::Vector6d xdd = law_.acceleration(in.task, c) - d.frame_jacobian_dot_qd;
     const model::TaskVector task(xdd.head(rows));
-    const JointVector qdd = in.redundancy != nullptr ? in.redundancy->task_acceleration(c, task)
+    const JointVector qdd = in.redundancy != nullptr ? in.redundancy->task_acceleration(in.device, c, task)
                                                      : model::minimum_norm_solution(j, task, damping_);
     command.torque_nm = joint_inertia_.cwiseProduct(qdd);
   } else {
@@ -79,7 +79,7 @@ ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerI
     const model::TaskVector force = task_mass_.cwiseProduct(xdd.head(rows));
     command.torque_nm.noalias() = j.transpose() * force;
     // Redundant chains: the self-motion is left to the dynamically consistent null-space torque.
-    if (in.redundancy != nullptr) command.torque_nm += in.redundancy->null_space_torque(c, rows);
+    if (in.redundancy != nullptr) command.torque_nm += in.redundancy->null_space_torque(in.device, c, rows);
   }
   command.torque_nm += d.gravity_torque;
   law_.add_wrench_compensation(c, command.torque_nm);

@@ -36,23 +36,23 @@ void JointSpaceControl::configure(const Parameters& p, const PluginContext& cont
 }
 
 ReturnCode JointSpaceControl::activate(const ControllerInput& current, const JointCommand&) noexcept {
-  return current.chain != nullptr && current.chain->model != nullptr ? ReturnCode::ok : ReturnCode::error;
+  return current.chain.model != nullptr ? ReturnCode::ok : ReturnCode::error;
 }
 
 ReturnCode JointSpaceControl::update(const CycleTime& /*cycle*/, const ControllerInput& in,
                                      JointCommand& command) noexcept {
-  const ChainState& c = *in.chain;
+  const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
   if (!in.joints.valid) return ReturnCode::error;  // needs an inverse-kinematics plugin in the chain
   const JointVector& q = in.device.joints.position;
   if (kind_ == Kind::kComputedTorque) {
-    JointVector qdd = kp_ * (in.joints.position - q) + kd_ * (in.joints.velocity - c.velocity);
+    JointVector qdd = kp_ * (in.joints.position - q) + kd_ * (in.joints.velocity - in.device.joints.velocity);
     if (acceleration_feedforward_) qdd += in.joints.acceleration;
     command.torque_nm.noalias() = d.mass_matrix * qdd;
     command.torque_nm += d.coriolis_torque + d.gravity_torque;
   } else {
-    command.torque_nm =
-        joint_kp_ * (in.joints.position - q) + joint_kd_ * (in.joints.velocity - c.velocity) + d.gravity_torque;
+    command.torque_nm = joint_kp_ * (in.joints.position - q) +
+                        joint_kd_ * (in.joints.velocity - in.device.joints.velocity) + d.gravity_torque;
   }
   if (wrench_compensation_) command.torque_nm -= model::operator_wrench_torques(c, rows_);
   return ReturnCode::ok;

@@ -14,12 +14,12 @@ ParameterSchema ResolvedAcceleration::parameter_schema() {
 void ResolvedAcceleration::configure(const Parameters& p, const PluginContext& context) { law_.configure(p, context); }
 
 ReturnCode ResolvedAcceleration::activate(const ControllerInput& current, const JointCommand&) noexcept {
-  return current.chain != nullptr && current.chain->model != nullptr ? ReturnCode::ok : ReturnCode::error;
+  return current.chain.model != nullptr ? ReturnCode::ok : ReturnCode::error;
 }
 
 ReturnCode ResolvedAcceleration::update(const CycleTime& /*cycle*/, const ControllerInput& in,
                                         JointCommand& command) noexcept {
-  const ChainState& c = *in.chain;
+  const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
   if (!in.task.has_motion) return ReturnCode::error;
   const int rows = law_.rows();
@@ -28,7 +28,7 @@ ReturnCode ResolvedAcceleration::update(const CycleTime& /*cycle*/, const Contro
   // criteria and self-motion damping) if its IK offers one, else the minimum-norm solution.
   const model::TaskVector task(xdd.head(rows));
   const JointVector qdd = in.redundancy != nullptr
-                              ? in.redundancy->task_acceleration(c, task)
+                              ? in.redundancy->task_acceleration(in.device, c, task)
                               : model::minimum_norm_solution(d.frame_jacobian.topRows(rows), task, damping_);
   command.torque_nm.noalias() = d.mass_matrix * qdd;
   command.torque_nm += d.coriolis_torque + d.gravity_torque;

@@ -204,6 +204,7 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   description_.handle_frame = p.string("handle_frame");
   description_.sensor_frame = p.string("sensor_frame");
   description_.robot_model_file = urdf.string();
+  description_.simulated = true;
   description_.reports_wrench = sensor_present_;
   joint_torque_sensors_ = p.boolean("joint_torque_sensors");
   joint_torque_resolution_ = p.real("joint_torque_resolution_nm");

@@ -19,10 +19,10 @@ ParameterSchema NewtonIk::parameter_schema() {
 }
 
 void NewtonIk::configure(const Parameters& p, const PluginContext& context) {
-  if (context.device == nullptr || context.device->robot_model_file.empty()) {
+  if (context.device == nullptr || context.robot_model == nullptr) {
     throw ParameterError("task", "the Newton inverse kinematics needs a device with a robot model");
   }
-  model_ = std::make_unique<model::RobotModel>(model::load_robot_model(context.device->robot_model_file));
+  model_ = context.robot_model;
   data_ = std::make_unique<model::ModelData>(*model_);
   handle_ = model_->require_frame(context.device->handle_frame.empty() ? "handle" : context.device->handle_frame);
   rows_ = model::task_rows(p.string("task"), model_->dof());
@@ -34,7 +34,7 @@ void NewtonIk::configure(const Parameters& p, const PluginContext& context) {
 
 ReturnCode NewtonIk::activate(const InverseKinematicsInput& current) noexcept {
   q_ = current.device.joints.position;
-  qd_ = current.chain != nullptr ? current.chain->velocity : JointVector(JointVector::Zero(q_.size()));
+  qd_ = current.device.joints.velocity;
   acceleration_.reset(qd_);
   return ReturnCode::ok;
 }

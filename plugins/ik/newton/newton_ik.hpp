@@ -22,7 +22,7 @@ class NewtonIk final : public InverseKinematics {
   void deactivate() override {}
 
  private:
-  std::unique_ptr<model::RobotModel> model_;
+  const model::RobotModel* model_ = nullptr;  // the server's, shared by the chain (PluginContext)
   std::unique_ptr<model::ModelData> data_;
   int handle_ = -1;
   int rows_ = 3;

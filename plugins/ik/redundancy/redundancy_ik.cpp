@@ -91,9 +91,9 @@ ParameterSchema RedundancyIk::parameter_schema() {
 }
 
 void RedundancyIk::configure(const Parameters& p, const PluginContext& context) {
-  if (context.device == nullptr || context.device->robot_model_file.empty())
+  if (context.device == nullptr || context.robot_model == nullptr)
     throw ParameterError("task", "redundancy_ik needs a device with a robot model");
-  model_ = std::make_unique<model::RobotModel>(model::load_robot_model(context.device->robot_model_file));
+  model_ = context.robot_model;
   data_ = std::make_unique<model::ModelData>(*model_);
   const int n = model_->dof();
   handle_ = model_->require_frame(context.device->handle_frame.empty() ? "handle" : context.device->handle_frame);
@@ -158,7 +158,7 @@ void RedundancyIk::configure(const Parameters& p, const PluginContext& context) 
 
 ReturnCode RedundancyIk::activate(const InverseKinematicsInput& current) noexcept {
   q_ = current.device.joints.position;
-  qd_ = current.chain != nullptr ? current.chain->velocity : JointVector(JointVector::Zero(q_.size()));
+  qd_ = current.device.joints.velocity;
   acceleration_.reset(qd_);
   gradient_.setZero(q_.size());
   return q_.size() == model_->dof() ? ReturnCode::ok : ReturnCode::error;
@@ -206,20 +206,22 @@ ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsI
   return q_.allFinite() ? ReturnCode::ok : ReturnCode::error;
 }
 
-JointVector RedundancyIk::task_acceleration(const ChainState& chain, const model::TaskVector& xdd_minus_bias) noexcept {
+JointVector RedundancyIk::task_acceleration(const DeviceState& device, const ChainState& chain,
+                                            const model::TaskVector& xdd_minus_bias) noexcept {
   const model::ModelData& d = *chain.data;
   measured_.compute(d.frame_jacobian.topRows(xdd_minus_bias.size()), &d.mass_llt);
   const JointVector qd0 = -null_gain_ * measured_.weight_inverse_times(gradient_);
-  return model::resolve_acceleration(measured_, xdd_minus_bias, JointVector(null_damping_ * (qd0 - chain.velocity)));
+  return model::resolve_acceleration(measured_, xdd_minus_bias,
+                                     JointVector(null_damping_ * (qd0 - device.joints.velocity)));
 }
 
-JointVector RedundancyIk::null_space_torque(const ChainState& chain, int rows) noexcept {
+JointVector RedundancyIk::null_space_torque(const DeviceState& device, const ChainState& chain, int rows) noexcept {
   const model::ModelData& d = *chain.data;
   const model::TaskJacobian j = d.frame_jacobian.topRows(rows);
   dynamic_.compute(j, &d.mass_llt);
   // tau0 = M d (qd0 - qd) with qd0 = -k M^-1 grad H: d (-k grad H - M qd).
   JointVector tau0 = -null_gain_ * gradient_;
-  tau0.noalias() -= d.mass_matrix * chain.velocity;
+  tau0.noalias() -= d.mass_matrix * device.joints.velocity;
   tau0 *= null_damping_;
   return model::null_space_torque(dynamic_, j, tau0);
 }

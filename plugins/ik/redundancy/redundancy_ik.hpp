@@ -29,8 +29,9 @@ class RedundancyIk final : public InverseKinematics, public RedundancyResolution
   void deactivate() override {}
   RedundancyResolution* redundancy() noexcept override { return this; }
 
-  JointVector task_acceleration(const ChainState& chain, const model::TaskVector& xdd_minus_bias) noexcept override;
-  JointVector null_space_torque(const ChainState& chain, int rows) noexcept override;
+  JointVector task_acceleration(const DeviceState& device, const ChainState& chain,
+                                const model::TaskVector& xdd_minus_bias) noexcept override;
+  JointVector null_space_torque(const DeviceState& device, const ChainState& chain, int rows) noexcept override;
 
   // For tests and benchmarks.
   [[nodiscard]] const model::GeneralizedInverse& inverse() const noexcept { return inverse_; }
@@ -39,7 +40,7 @@ class RedundancyIk final : public InverseKinematics, public RedundancyResolution
  private:
   enum class Level { kVelocity, kAcceleration };
 
-  std::unique_ptr<model::RobotModel> model_;
+  const model::RobotModel* model_ = nullptr;  // the server's, shared by the chain (PluginContext)
   std::unique_ptr<model::ModelData> data_;
   int handle_ = -1;
   int rows_ = 3;

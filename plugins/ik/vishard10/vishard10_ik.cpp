@@ -113,9 +113,9 @@ ParameterSchema Vishard10Ik::parameter_schema() {
 }
 
 void Vishard10Ik::configure(const Parameters& p, const PluginContext& context) {
-  if (context.device == nullptr || context.device->robot_model_file.empty())
+  if (context.device == nullptr || context.robot_model == nullptr)
     throw ParameterError("scara", "vishard10_ik needs a device with a robot model");
-  model_ = std::make_unique<model::RobotModel>(model::load_robot_model(context.device->robot_model_file));
+  model_ = context.robot_model;
   handle_ = model_->require_frame(context.device->handle_frame.empty() ? "handle" : context.device->handle_frame);
   try {
     geometry_ = vishard10::Geometry::from(*model_, handle_);

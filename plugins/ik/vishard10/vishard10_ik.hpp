@@ -39,7 +39,7 @@ class Vishard10Ik final : public InverseKinematics {
   void solve_scara(const Eigen::Vector2d& target, const Eigen::Vector2d& velocity, double dt) noexcept;
   void solve_wrist(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& angular_velocity, double dt) noexcept;
 
-  std::unique_ptr<model::RobotModel> model_;
+  const model::RobotModel* model_ = nullptr;  // the server's, shared by the chain (PluginContext)
   std::unique_ptr<model::ModelData> data_;
   int handle_ = -1;
   vishard10::Geometry geometry_;

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "hapticd/chain_state.hpp"
-#include "hapticd/safety/render_guard.hpp"
+#include "hapticd/render_port.hpp"
 
 namespace hapticd::models {
 namespace {
@@ -269,25 +269,25 @@ RuntimeReply VirtualAdmittance::handle_request(std::string_view name, const std:
 }
 
 ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcept {
-  if (current.chain == nullptr || current.chain->model == nullptr) return ReturnCode::error;
+  if (current.chain.model == nullptr) return ReturnCode::error;
   // Start where the handle is, moving as it moves: no jump in the desired motion.
-  position_ = current.chain->handle_pose.position;
+  position_ = current.chain.handle_pose.position;
   workspace_centre_ = position_;
   for (int i = 0; i < wall_count_; ++i) {
     const auto k = static_cast<std::size_t>(i);
     walls_[k].point =
         walls_relative_ ? Eigen::Vector3d(configured_wall_points_[k] + position_) : configured_wall_points_[k];
   }
-  velocity_ = clamp_norm(current.chain->handle_twist.linear, max_velocity_);
-  orientation_ = current.chain->handle_pose.orientation.normalized();
-  body_angular_velocity_ = rotation_ ? Eigen::Vector3d(orientation_.conjugate() * current.chain->handle_twist.angular)
+  velocity_ = clamp_norm(current.chain.handle_twist.linear, max_velocity_);
+  orientation_ = current.chain.handle_pose.orientation.normalized();
+  body_angular_velocity_ = rotation_ ? Eigen::Vector3d(orientation_.conjugate() * current.chain.handle_twist.angular)
                                      : Eigen::Vector3d::Zero();
   return ReturnCode::ok;
 }
 
 ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelInput& input,
                                      TaskTarget& target) noexcept {
-  const ChainState& c = *input.chain;
+  const ChainState& c = input.chain;
   const double dt = period_s_;
   if (tunable_inbox_.take(tunable_incoming_)) {  // run-time parameters, at a cycle boundary
     mass_ = tunable_incoming_.mass;
@@ -297,7 +297,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
     wall_stiffness_ = tunable_incoming_.wall_k;
   }
   const Eigen::Vector3d world_angular = orientation_ * body_angular_velocity_;
-  const EngineInput& e = *input.engine;
+  const EngineInput& e = input.engine;
   // The port where the engine acts: the handle (motion-based) or the virtual body.
   Eigen::Matrix<double, 6, 1> port_twist;
   if (motion_based_) {
@@ -310,17 +310,17 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
                                                            c.handle_twist.linear, c.handle_twist.angular)
                                            : engine_wrench(e, position_, orientation_, velocity_, world_angular);
   // The safety layer: passivity controller on the engine port, then the rendered-wrench limits.
-  if (input.guard != nullptr) engine = input.guard->engine_port(engine, port_twist);
+  engine = input.render.engine_port(engine, port_twist);
   Eigen::Matrix<double, 6, 1> rendered;
   rendered << engine.head<3>() + (motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
                                                 : wall_force(position_, velocity_)),
       rotation_ ? Eigen::Vector3d(engine.tail<3>()) : Eigen::Vector3d::Zero();
-  if (input.guard != nullptr) {
-    rendered = input.guard->limit(rendered);
-    // The safety supervisor's walls and speed damping act on the virtual body too (after the limits: they are
-    // not the environment's), so the inner loop follows them instead of fighting them.
-    rendered.head<3>() += input.guard->take_safety_force();
-  }
+  rendered = input.render.limit(rendered);
+  target.wrench_limited = true;
+  // The safety supervisor's walls and speed damping act on the virtual body too (after the limits: they are not
+  // the environment's), so the inner loop follows them instead of fighting them.
+  rendered.head<3>() += input.render.safety_force();
+  target.includes_safety_force = true;
   const Eigen::Vector3d environment = rendered.head<3>();
   const Eigen::Vector3d force = c.operator_wrench.force + environment;
   const Eigen::Vector3d acceleration = (force - damping_.cwiseProduct(velocity_)).cwiseQuotient(mass_);

@@ -59,7 +59,7 @@ hapticd_msg_DeviceDescription description_message(const DeviceSession& s, double
   dds::set_text(m.device, s.name());
   m.version = hapticd_msg_VERSION;
   dds::set_text(m.device_plugin, s.chain().device.descriptor->name);
-  m.simulated = std::string_view(s.chain().device.descriptor->name).substr(0, 3) == "sim";
+  m.simulated = desc.simulated;
   m.rate_hz = rate_hz;
   m.dof = desc.dof();
   for (int i = 0; i < desc.dof() && i < hapticd_msg_MAX_JOINTS; ++i) {

@@ -22,10 +22,10 @@ void MotionLimits::add_handle_force(const ChainState& chain, const Eigen::Vector
   torque.noalias() += chain.data->frame_jacobian.topRows<3>().transpose() * force;
 }
 
-DeviceFault MotionLimits::check(const ChainState& chain, Eigen::Vector3d& handle_force) noexcept {
+DeviceFault MotionLimits::check(const JointVector& qd, const ChainState& chain,
+                                Eigen::Vector3d& handle_force) noexcept {
   engaged_ = false;
   handle_force.setZero();
-  const JointVector& qd = chain.velocity;
   for (int i = 0; i < qd.size(); ++i) {
     const double speed = std::abs(qd[i]);
     if (speed > fault_at_[i]) return DeviceFault::joint_velocity;
@@ -64,9 +64,8 @@ DeviceFault MotionLimits::check(const ChainState& chain, Eigen::Vector3d& handle
   return DeviceFault::none;
 }
 
-void MotionLimits::apply(const ChainState& chain, const Eigen::Vector3d& handle_force, bool force_taken,
-                         JointVector& torque) noexcept {
-  const JointVector& qd = chain.velocity;
+void MotionLimits::apply(const JointVector& qd, const ChainState& chain, const Eigen::Vector3d& handle_force,
+                         bool force_taken, JointVector& torque) noexcept {
   for (int i = 0; i < qd.size(); ++i) {
     const double speed = std::abs(qd[i]);
     if (speed > damping_from_[i])

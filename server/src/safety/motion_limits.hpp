@@ -21,10 +21,11 @@ class MotionLimits {
   void configure(const SafetySettings& settings, const JointVector& velocity_max);
   // Before the chain: checks the joint and handle speeds and the wall depth (the fault a limit raises, or none)
   // and computes the force on the handle of the speed damping and the walls (zero without a robot model).
-  DeviceFault check(const ChainState& chain, Eigen::Vector3d& handle_force) noexcept;
+  // qd: the joint-velocity estimate.
+  DeviceFault check(const JointVector& qd, const ChainState& chain, Eigen::Vector3d& handle_force) noexcept;
   // After the controller: adds the joint damping, and the handle force as J^T F unless `force_taken` (an
   // admittance model took it into its dynamics).
-  void apply(const ChainState& chain, const Eigen::Vector3d& handle_force, bool force_taken,
+  void apply(const JointVector& qd, const ChainState& chain, const Eigen::Vector3d& handle_force, bool force_taken,
              JointVector& torque) noexcept;
   // A damping or wall force acted this cycle.
   [[nodiscard]] bool engaged() const noexcept { return engaged_; }

@@ -47,17 +47,17 @@ void SafetySupervisor::restart_soft_start(const RenderGuard::Vector6& from) noex
   guard_.set_scale(0.0);  // already for this cycle
 }
 
-DeviceFault SafetySupervisor::begin_cycle(const ChainState& chain) noexcept {
-  guard_.begin_cycle();
+DeviceFault SafetySupervisor::begin_cycle(const JointVector& qd, const ChainState& chain) noexcept {
   if (soft_start_done_ < soft_start_cycles_) ++soft_start_done_;
   guard_.set_scale(static_cast<double>(soft_start_done_) / static_cast<double>(soft_start_cycles_));
-  const DeviceFault f = motion_.check(chain, handle_force_);
-  guard_.set_safety_force(handle_force_);
+  const DeviceFault f = motion_.check(qd, chain, handle_force_);
+  guard_.begin_cycle(handle_force_);
   return f;
 }
 
-void SafetySupervisor::limit(const ChainState& chain, JointVector& torque, bool& saturated) noexcept {
-  motion_.apply(chain, handle_force_, guard_.safety_force_taken(), torque);
+void SafetySupervisor::limit(const JointVector& qd, const ChainState& chain, bool safety_force_rendered,
+                             JointVector& torque, bool& saturated) noexcept {
+  motion_.apply(qd, chain, handle_force_, safety_force_rendered, torque);
   const JointVector& lim = thermal_.limit();
   saturated = false;
   for (int i = 0; i < torque.size(); ++i) {

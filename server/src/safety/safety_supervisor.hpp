@@ -11,10 +11,10 @@
 #include "hapticd/chain_state.hpp"
 #include "hapticd/device_description.hpp"
 #include "hapticd/joint_vector.hpp"
-#include "hapticd/safety/render_guard.hpp"
 #include "safety/device_fault.hpp"
 #include "safety/fault_history.hpp"
 #include "safety/motion_limits.hpp"
+#include "safety/render_guard.hpp"
 #include "safety/safety_settings.hpp"
 #include "safety/thermal_limiter.hpp"
 
@@ -33,10 +33,13 @@ class SafetySupervisor {
   void restart_soft_start(const RenderGuard::Vector6& from = RenderGuard::Vector6::Zero()) noexcept;
   // Start of a running cycle, before the chain: soft-start scale; speed and workspace checks (the fault they
   // raise, or none) and the handle force of the walls and speed damping, offered to the model (RenderGuard).
-  DeviceFault begin_cycle(const ChainState& chain) noexcept;
-  // After the controller: joint velocity damping, the handle force unless the model took it, then the thermal
-  // and peak torque limits; `saturated` tells whether the torque limit clamped.
-  void limit(const ChainState& chain, JointVector& torque, bool& saturated) noexcept;
+  // qd: the joint-velocity estimate.
+  DeviceFault begin_cycle(const JointVector& qd, const ChainState& chain) noexcept;
+  // After the controller: joint velocity damping, the handle force unless the model rendered it
+  // (TaskTarget::includes_safety_force), then the thermal and peak torque limits; `saturated` tells whether the
+  // torque limit clamped.
+  void limit(const JointVector& qd, const ChainState& chain, bool safety_force_rendered, JointVector& torque,
+             bool& saturated) noexcept;
   // The torque that was written: heats the thermal model.
   void written(const JointVector& torque) noexcept { thermal_.update(torque); }
   [[nodiscard]] bool overruns_exceeded(std::uint32_t consecutive) const noexcept {

@@ -10,18 +10,11 @@
 
 namespace hapticd::server {
 
-ChainStateEstimator::ChainStateEstimator(const std::string& device, const DeviceDescription& description,
-                                         double period_s)
-    : measures_velocity_(description.reports_joint_velocity) {
-  const int dof = description.dof();
-  state_.velocity.setZero(dof);
+ChainStateEstimator::ChainStateEstimator(const DeviceDescription& description,
+                                         std::shared_ptr<const model::RobotModel> robot, double period_s)
+    : measures_velocity_(description.reports_joint_velocity), robot_(std::move(robot)) {
   differentiator_.configure(period_s, kVelocityFilterHz);
-  if (description.robot_model_file.empty()) return;
-  robot_ = std::make_unique<model::RobotModel>(model::load_robot_model(description.robot_model_file));
-  if (robot_->dof() != dof) {
-    throw std::invalid_argument("device '" + device + "': its robot model " + description.robot_model_file + " has " +
-                                std::to_string(robot_->dof()) + " joints, the device " + std::to_string(dof));
-  }
+  if (robot_ == nullptr) return;
   model_data_ = std::make_unique<model::ModelData>(*robot_);
   state_.model = robot_.get();
   state_.data = model_data_.get();
@@ -30,27 +23,28 @@ ChainStateEstimator::ChainStateEstimator(const std::string& device, const Device
     sensor_frame_ = robot_->require_frame(description.sensor_frame);
 }
 
-void ChainStateEstimator::estimate(const DeviceState& measured, std::int64_t time_ns, std::int64_t period_ns,
+void ChainStateEstimator::estimate(DeviceState& measured, std::int64_t time_ns, std::int64_t period_ns,
                                    bool restart) noexcept {
   ChainState& c = state_;
+  JointVector& qd = measured.joints.velocity;  // a device that measures velocity: its measurement stays
   if (measures_velocity_) {
-    c.velocity = measured.joints.velocity;
+    // nothing to estimate
   } else if (restart || !ready_) {
     differentiator_.reset(measured.joints.position);
-    c.velocity.setZero();
+    qd.setZero(measured.joints.position.size());
   } else {
     // After skipped periods (an overloaded real-time loop) the difference spans the time that really passed.
     const std::int64_t elapsed_ns = std::max<std::int64_t>(period_ns, time_ns - differentiated_ns_);
-    c.velocity = differentiator_.update(measured.joints.position, static_cast<double>(elapsed_ns) * 1e-9);
+    qd = differentiator_.update(measured.joints.position, static_cast<double>(elapsed_ns) * 1e-9);
   }
   differentiated_ns_ = time_ns;
   ready_ = true;
   if (robot_ == nullptr) return;
-  model::compute_cycle_terms(*robot_, *model_data_, measured.joints.position, c.velocity, c.handle_frame);
+  model::compute_cycle_terms(*robot_, *model_data_, measured.joints.position, qd, c.handle_frame);
   const model::ModelData& d = *model_data_;
   c.handle_pose.position = d.frame_pose.translation();
   c.handle_pose.orientation = Eigen::Quaterniond(d.frame_pose.linear());
-  const model::Vector6d twist = d.frame_jacobian * c.velocity;
+  const model::Vector6d twist = d.frame_jacobian * qd;
   c.handle_twist.linear = twist.head<3>();
   c.handle_twist.angular = twist.tail<3>();
   if (sensor_frame_ >= 0) {

@@ -1,6 +1,7 @@
 #pragma once
 // Phase (a)'s estimate for one device (docs/architecture.md, "One cycle"): from the measured state, the chain
-// state every plugin of the chain reads - the one joint-velocity estimate (the device's own measurement, or
+// state every plugin of the chain reads - the one joint-velocity estimate (written into the DeviceState the
+// chain sees) (the device's own measurement, or
 // filtered encoder differences over the time that really passed) and, when the device names a robot model, the
 // model terms of the cycle (forward kinematics, Jacobian, mass matrix, Coriolis and gravity terms), the handle's
 // pose and twist, and the operator's wrench from the force/torque sensor moved to the handle.
@@ -17,15 +18,17 @@ namespace hapticd::server {
 
 class ChainStateEstimator {
  public:
-  // Loads the robot model the description names (if any) and checks it against the device; throws
-  // std::invalid_argument naming the device when they disagree.
-  ChainStateEstimator(const std::string& device, const DeviceDescription& description, double period_s);
+  // robot: the device's parsed robot model (DeviceChain::robot_model, checked against the device), or null.
+  ChainStateEstimator(const DeviceDescription& description, std::shared_ptr<const model::RobotModel> robot,
+                      double period_s);
   ChainStateEstimator(const ChainStateEstimator&) = delete;
   ChainStateEstimator& operator=(const ChainStateEstimator&) = delete;
 
-  // Real-time safe. restart: the velocity estimate starts from this sample (zero, unless the device measures
-  // velocity) - when the chain (re)activates from the measured state.
-  void estimate(const DeviceState& state, std::int64_t time_ns, std::int64_t period_ns, bool restart) noexcept;
+  // Real-time safe. Writes the one joint-velocity estimate into state.joints.velocity (the device's own when it
+  // reports velocity, else filtered position differences) and computes the chain state from it. restart: the
+  // velocity estimate starts from this sample (zero, unless the device measures velocity) - when the chain
+  // (re)activates from the measured state.
+  void estimate(DeviceState& state, std::int64_t time_ns, std::int64_t period_ns, bool restart) noexcept;
   // The next estimate restarts the velocity estimate (the device was activated again).
   void reset() noexcept { ready_ = false; }
 
@@ -42,7 +45,7 @@ class ChainStateEstimator {
 
  private:
   bool measures_velocity_;
-  std::unique_ptr<model::RobotModel> robot_;
+  std::shared_ptr<const model::RobotModel> robot_;
   std::unique_ptr<model::ModelData> model_data_;
   int sensor_frame_ = -1;
   signal::Differentiator<JointVector> differentiator_;

@@ -1,10 +1,12 @@
 #pragma once
 // What a device session is built from: the device plugin, its control schemes (each a chain virtual model ->
 // inverse kinematics -> controller), and the device's settings. All configured at start-up (session_builder).
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "hapticd/model/robot_model.hpp"
 #include "hapticd/plugin.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "safety/safety_settings.hpp"
@@ -19,6 +21,9 @@ struct SchemeChain {
 };
 
 struct DeviceChain {
+  // The device's robot model, parsed once (DeviceDescription::robot_model_file; null without one): the chain
+  // state's estimator and every plugin of the chain (PluginContext::robot_model) use it. First: destroyed last.
+  std::shared_ptr<const model::RobotModel> robot_model;
   PluginInstance<Device> device;
   std::vector<SchemeChain> schemes;  // [0]: the scheme the device starts with
   double switch_ramp_s = 0.1;

@@ -37,7 +37,7 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
     : name_(std::move(name)),
       chain_(std::move(chain)),
       description_(checked(name_, chain_)),
-      estimator_(name_, description_, chain_.period_s),
+      estimator_(description_, chain_.robot_model, chain_.period_s),
       engine_(EngineTiming{chain_.engine_deadline_s, chain_.engine_fade_s, chain_.engine_ramp_in_s}),
       schemes_(chain_.schemes),
       blend_(std::llround(chain_.switch_ramp_s / chain_.period_s)) {
@@ -63,16 +63,21 @@ void DeviceSession::activate() {
 }
 
 ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
-  if (scheme.virtual_model && (*scheme.virtual_model)
-                                      ->activate(VirtualModelInput{state_, &estimator_.state(), &engine_.input(),
-                                                                   &safety_.guard()}) != ReturnCode::ok)
+  // Real-time methods must not throw; one that does anyway is refused like one that reports an error.
+  try {
+    if (scheme.virtual_model && (*scheme.virtual_model)
+                                        ->activate(VirtualModelInput{state_, estimator_.state(), engine_.input(),
+                                                                     safety_.guard()}) != ReturnCode::ok)
+      return ReturnCode::error;
+    if (scheme.inverse_kinematics &&
+        (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, estimator_.state()}) !=
+            ReturnCode::ok)
+      return ReturnCode::error;
+    return scheme.controller->activate(
+        ControllerInput{state_, task_, joint_target_, estimator_.state(), redundancy_of(scheme)}, command_);
+  } catch (...) {
     return ReturnCode::error;
-  if (scheme.inverse_kinematics &&
-      (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, &estimator_.state()}) !=
-          ReturnCode::ok)
-    return ReturnCode::error;
-  return scheme.controller->activate(
-      ControllerInput{state_, task_, joint_target_, &estimator_.state(), redundancy_of(scheme)}, command_);
+  }
 }
 
 void DeviceSession::service() { schemes_.service(); }
@@ -136,16 +141,19 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
     switch_scheme_if_requested();
   }
   // The supervisor's speed and workspace checks on the measured state, before the chain renders anything.
-  if (const DeviceFault f = safety_.begin_cycle(estimator_.state()); f != DeviceFault::none) return f;
+  if (const DeviceFault f = safety_.begin_cycle(state_.joints.velocity, estimator_.state()); f != DeviceFault::none)
+    return f;
   engine_.take(cycle);
   SchemeChain& scheme = schemes_.active();
   if (scheme.virtual_model) {
+    task_.wrench_limited = false;  // the model's answers about the render port, this cycle's
+    task_.includes_safety_force = false;
     if ((*scheme.virtual_model)
-            ->update(cycle, VirtualModelInput{state_, &estimator_.state(), &engine_.input(), &safety_.guard()},
-                     task_) != ReturnCode::ok)
+            ->update(cycle, VirtualModelInput{state_, estimator_.state(), engine_.input(), safety_.guard()}, task_) !=
+        ReturnCode::ok)
       return DeviceFault::virtual_model;
     if (!is_finite(task_)) return DeviceFault::non_finite_output;
-    if (task_.has_wrench && !safety_.guard().limit_applied()) {
+    if (task_.has_wrench && !task_.wrench_limited) {
       // A model that does not apply the rendered-wrench limits itself: the server applies them here.
       RenderGuard::Vector6 w;
       w << task_.wrench.force, task_.wrench.torque;
@@ -158,13 +166,12 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
   }
   if (scheme.inverse_kinematics) {
     if ((*scheme.inverse_kinematics)
-            ->update(cycle, InverseKinematicsInput{state_, task_, &estimator_.state()}, joint_target_) !=
-        ReturnCode::ok)
+            ->update(cycle, InverseKinematicsInput{state_, task_, estimator_.state()}, joint_target_) != ReturnCode::ok)
       return DeviceFault::inverse_kinematics;
     if (!is_finite(joint_target_)) return DeviceFault::non_finite_output;
   }
   if (scheme.controller->update(
-          cycle, ControllerInput{state_, task_, joint_target_, &estimator_.state(), redundancy_of(scheme)}, command_) !=
+          cycle, ControllerInput{state_, task_, joint_target_, estimator_.state(), redundancy_of(scheme)}, command_) !=
       ReturnCode::ok)
     return DeviceFault::controller;
   if (!command_.torque_nm.allFinite()) return DeviceFault::non_finite_output;
@@ -183,7 +190,7 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.environment_wrench = task_.wrench;
   s.target_pose = task_.pose;
   s.position = state_.joints.position;
-  s.velocity = estimator_.state().velocity;
+  s.velocity = state_.joints.velocity;
   s.torque = command_.torque_nm;
   s.fault = fault();
   s.faults = status_.faults.load(std::memory_order_relaxed);
@@ -277,7 +284,8 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
     safe_mode_step(cycle);
   } else {
     bool saturated = false;
-    safety_.limit(estimator_.state(), command_.torque_nm, saturated);
+    safety_.limit(state_.joints.velocity, estimator_.state(), task_.includes_safety_force, command_.torque_nm,
+                  saturated);
     estimator_.state().output_saturated = saturated;
     if (saturated) status_.saturated_cycles.fetch_add(1, std::memory_order_relaxed);
     const std::uint32_t flags = safety_.flags();
@@ -316,8 +324,8 @@ void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
   // be trusted, then zero torque.
   const JointVector* gravity = estimator_.gravity_torque();
   const bool valid =
-      measurement_valid_ && estimator_.state().velocity.allFinite() && (gravity == nullptr || gravity->allFinite());
-  safety_.safe_torque(state_.joints.position, estimator_.state().velocity, valid, gravity, command_.torque_nm);
+      measurement_valid_ && state_.joints.velocity.allFinite() && (gravity == nullptr || gravity->allFinite());
+  safety_.safe_torque(state_.joints.position, state_.joints.velocity, valid, gravity, command_.torque_nm);
   status_.at_rest.store(safety_.at_rest(), std::memory_order_release);
   try {
     (void)chain_.device->write(cycle, command_);
@@ -364,7 +372,7 @@ void DeviceSession::record_history(const CycleTime& cycle) noexcept {
   r.cycle = cycle.index;
   r.time_ns = cycle.time_ns;
   r.position = state_.joints.position;
-  r.velocity = estimator_.state().velocity;
+  r.velocity = state_.joints.velocity;
   r.torque = command_.torque_nm;
   r.handle_position = estimator_.state().handle_pose.position;
   r.handle_velocity = estimator_.state().handle_twist.linear;

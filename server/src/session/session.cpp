@@ -122,7 +122,7 @@ DeviceView Session::device(std::string_view name) const {
   v.time_s = static_cast<double>(v.cycle) * period_s();
   v.state = d.state();
   const ChainState& chain = d.chain_state();
-  v.velocity = chain.velocity;
+  v.velocity = d.state().joints.velocity;
   v.handle_pose = chain.handle_pose;
   v.handle_twist = chain.handle_twist;
   v.operator_wrench = chain.operator_wrench;

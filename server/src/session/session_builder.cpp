@@ -4,6 +4,7 @@
 
 #include "config/config_error.hpp"
 #include "config/yaml_reader.hpp"
+#include "hapticd/model/urdf_loader.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -59,6 +60,24 @@ PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, co
   return instance;
 }
 
+// The device's robot model, parsed once for the estimator and the whole chain; checked against the device.
+std::shared_ptr<const model::RobotModel> robot_model_of(const DeviceConfig& dc, const DeviceDescription& description,
+                                                        const std::string& file) {
+  if (description.robot_model_file.empty()) return nullptr;
+  std::shared_ptr<const model::RobotModel> robot;
+  try {
+    robot = std::make_shared<const model::RobotModel>(model::load_robot_model(description.robot_model_file));
+  } catch (const std::exception& e) {
+    throw ConfigError(file, dc.device.line, dc.device.key_path,
+                      "device '" + dc.name + "': its robot model: " + e.what());
+  }
+  if (robot->dof() != description.dof())
+    throw ConfigError(file, dc.device.line, dc.device.key_path,
+                      "device '" + dc.name + "': its robot model " + description.robot_model_file + " has " +
+                          std::to_string(robot->dof()) + " joints, the device " + std::to_string(description.dof()));
+  return robot;
+}
+
 }  // namespace
 
 std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) noexcept {
@@ -90,6 +109,8 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
     }
     const DeviceDescription& description = chain.device->description();
     context.device = &description;
+    chain.robot_model = robot_model_of(dc, description, config.file.string());
+    context.robot_model = chain.robot_model.get();
     const auto build_scheme = [&](const std::string& name, const std::optional<PluginConfig>& virtual_model,
                                   const std::optional<PluginConfig>& inverse_kinematics,
                                   const PluginConfig& controller) {
