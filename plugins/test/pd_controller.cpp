@@ -23,6 +23,7 @@ ParameterSchema PdController::parameter_schema() {
       .minimum(-1)
       .default_value(-1);
   s.boolean("throw_in_configure", "fault injection: configure() throws a plugin failure").default_value(false);
+  s.boolean("throw_in_activate", "fault injection: activate() throws (against the contract)").default_value(false);
   return s;
 }
 
@@ -32,6 +33,7 @@ void PdController::configure(const Parameters& p, const PluginContext& context) 
   setpoint_ = p.real("setpoint");
   fault_at_cycle_ = p.integer("fault_at_cycle");
   throw_at_cycle_ = p.integer("throw_at_cycle");
+  throw_in_activate_ = p.boolean("throw_in_activate");
   if (p.boolean("throw_in_configure")) throw std::runtime_error("injected configure failure");
   hold_at_activation_ = p.boolean("hold_at_activation");
   dof_ = context.device != nullptr ? context.device->dof() : 0;
@@ -43,7 +45,8 @@ void PdController::configure(const Parameters& p, const PluginContext& context) 
   velocity_.setZero(dof_);
 }
 
-ReturnCode PdController::activate(const ControllerInput& current, const JointCommand&) noexcept {
+ReturnCode PdController::activate(const ControllerInput& current, const JointCommand&) {
+  if (throw_in_activate_) throw std::runtime_error("injected exception in activate()");
   if (hold_at_activation_) hold_ = current.device.joints.position;
   differentiator_.reset(current.device.joints.position);
   velocity_.setZero();

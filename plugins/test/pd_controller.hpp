@@ -15,7 +15,7 @@ class PdController final : public Controller {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept override;
+  ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) override;
   // Not noexcept: throw_at_cycle tests that the server survives a plugin breaking the contract.
   ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) override;
   void deactivate() override {}
@@ -26,6 +26,7 @@ class PdController final : public Controller {
   double setpoint_ = 0.0;
   std::int64_t fault_at_cycle_ = -1;
   std::int64_t throw_at_cycle_ = -1;
+  bool throw_in_activate_ = false;
   int dof_ = 0;
   bool hold_at_activation_ = false;
   bool differentiate_ = false;

@@ -410,6 +410,15 @@ TEST(Safety, AnExceptionFromUpdateStopsOnlyItsDevice) {
   EXPECT_EQ(r.fault_cycle, 700u);
 }
 
+TEST(Safety, AnExceptionFromActivateStopsOnlyItsDevice) {
+  // Against the contract, and not terminating the server: the chain never runs, the device is held safe.
+  const Outcome r = drive(test::mass_spring_device_yaml("v3", "", ", throw_in_activate: true"), 500);
+  EXPECT_EQ(r.fault, DeviceFault::activation);
+  EXPECT_EQ(r.fault_cycle, 0u);
+  EXPECT_EQ(r.final_fault, DeviceFault::activation);  // the bystander ran on unfaulted (drive checks it)
+  EXPECT_GT(std::abs(r.bystander.back() - r.bystander.front()), 0.0);
+}
+
 TEST(Safety, NonFiniteOutputStopsOnlyItsDevice) {
   const Outcome reference = drive(sim_device(kNoPush, ""), 2000);
   const Outcome r = drive(test::mass_spring_device_yaml("v3", "", ", fault_at_cycle: 700"), 2000);
