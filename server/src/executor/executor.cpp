@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "executor/realtime_setup.hpp"
+#include "hapticd/demand.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
@@ -14,7 +15,9 @@ Executor::Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessio
     : settings_(settings),
       sessions_(std::move(sessions)),
       group_(sessions_, recorder),
-      period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))) {}
+      period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))) {
+  HAPTICD_DEMAND(period_ns_ > 0);  // the rate is validated with the session file (server.rate_hz)
+}
 
 void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, ExecutorResult& result) noexcept {
   CycleStatistics& stats = result.statistics;

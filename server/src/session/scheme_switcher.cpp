@@ -1,5 +1,7 @@
 #include "session/scheme_switcher.hpp"
 
+#include "hapticd/demand.hpp"
+
 namespace hapticd::server {
 
 SchemeSwitcher::SchemeSwitcher(std::vector<SchemeChain>& schemes)
@@ -43,6 +45,7 @@ SchemeChain* SchemeSwitcher::wanted() noexcept {
 
 void SchemeSwitcher::switched() noexcept {
   const int wanted = requested_.load(std::memory_order_relaxed);
+  HAPTICD_DEMAND(wanted != active_.load(std::memory_order_relaxed));  // only after wanted() offered a scheme
   state_[active_index()].store(kLeaving, std::memory_order_release);
   state_[static_cast<std::size_t>(wanted)].store(kActive, std::memory_order_release);
   active_.store(wanted, std::memory_order_release);
@@ -51,6 +54,7 @@ void SchemeSwitcher::switched() noexcept {
 
 void SchemeSwitcher::refused_switch() noexcept {
   const int wanted = requested_.load(std::memory_order_relaxed);
+  HAPTICD_DEMAND(wanted != active_.load(std::memory_order_relaxed));
   refused_.fetch_add(1, std::memory_order_relaxed);
   state_[static_cast<std::size_t>(wanted)].store(kLeaving, std::memory_order_release);
   // Keep running the old scheme, unless another request came in meanwhile.

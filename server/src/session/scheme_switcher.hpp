@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hapticd/demand.hpp"
 #include "session/device_chain.hpp"
 
 namespace hapticd::server {
@@ -30,7 +31,10 @@ class SchemeSwitcher {
   [[nodiscard]] std::uint64_t refused() const noexcept { return refused_.load(std::memory_order_relaxed); }
 
   // Loop thread. The scheme that runs (or is to be activated when the chain starts or recovers).
-  [[nodiscard]] SchemeChain& active() noexcept { return schemes_[active_index()]; }
+  [[nodiscard]] SchemeChain& active() noexcept {
+    HAPTICD_DEMAND(!schemes_.empty());  // a device without schemes never runs its chain
+    return schemes_[active_index()];
+  }
   // The chain activated active(): it is in the loop.
   void entered() noexcept;
   // The chain left the loop (a fault, a stop): active() waits for service() before it can be activated again.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "hapticd/demand.hpp"
 #include "hapticd/joint_vector.hpp"
 
 namespace hapticd::server {
@@ -24,6 +25,7 @@ class TorqueBlend {
   void apply(JointVector& command) noexcept {
     if (phase_ == Phase::none) return;
     if (phase_ == Phase::pending) {
+      HAPTICD_DEMAND(offset_.size() == command.size());  // the same device's joints
       offset_ -= command;
       phase_ = Phase::fading;
       left_ = ramp_cycles_;
