@@ -17,7 +17,7 @@ KDL::Chain kdl_chain(const model::RobotModel& model, int frame_id) {
     chain.addSegment(KDL::Segment(b.joint_name + "_placement", KDL::Joint(KDL::Joint::Fixed), to_kdl(b.placement)));
     const KDL::Vector axis(b.axis.x(), b.axis.y(), b.axis.z());
     const KDL::Joint joint(b.joint_name, KDL::Vector::Zero(), axis,
-                           b.type == model::JointType::kRevolute ? KDL::Joint::RotAxis : KDL::Joint::TransAxis);
+                           b.type == model::JointType::revolute ? KDL::Joint::RotAxis : KDL::Joint::TransAxis);
     const Eigen::Matrix3d& i = b.inertia;
     const KDL::RigidBodyInertia inertia(b.mass, KDL::Vector(b.com.x(), b.com.y(), b.com.z()),
                                         KDL::RotationalInertia(i(0, 0), i(1, 1), i(2, 2), i(0, 1), i(0, 2), i(1, 2)));

@@ -12,7 +12,7 @@ DevicePreset device_preset(const std::string& name) {
   p.name = name;
   if (name == "vishard3") {
     // Translational device (passive gimbal): workspace 0.6 x 0.25 x 0.4 m in front of joint 1.
-    p.task = model::TaskRows::kTranslation;
+    p.task = model::TaskRows::translation;
     p.seed = {-0.3, 1.6, 0.0};
     p.workspace_center = {0.0, 0.40, 0.0};
     p.workspace_size = {0.6, 0.25, 0.4};

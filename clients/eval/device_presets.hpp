@@ -15,7 +15,7 @@ namespace hapticd::eval {
 
 struct DevicePreset {
   std::string name;
-  model::TaskRows task = model::TaskRows::kFull;
+  model::TaskRows task = model::TaskRows::full;
   std::vector<double> seed;  // nominal configuration, the position solver's start
   Eigen::Vector3d workspace_center = Eigen::Vector3d::Zero();
   Eigen::Vector3d workspace_size = Eigen::Vector3d::Zero();

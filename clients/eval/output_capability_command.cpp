@@ -76,10 +76,10 @@ int run(const Options& o) {
   grid.orientation_offsets.clear();
   model::CapabilityOptions options;
   options.task = o.task.empty()            ? preset.task
-                 : o.task == "translation" ? model::TaskRows::kTranslation
-                                           : model::TaskRows::kFull;
+                 : o.task == "translation" ? model::TaskRows::translation
+                                           : model::TaskRows::full;
   // Orientation targets only where the device's task includes the orientation.
-  const bool orientation_targets = !grid.free_orientation && options.task == model::TaskRows::kFull;
+  const bool orientation_targets = !grid.free_orientation && options.task == model::TaskRows::full;
   const Eigen::Vector3d used_range = orientation_targets ? range : Eigen::Vector3d::Zero();
   for (double roll : angles(used_range.x(), o.orientation_steps)) {
     for (double pitch : angles(used_range.y(), o.orientation_steps > 1 ? 3 : 1)) {
@@ -90,15 +90,15 @@ int run(const Options& o) {
 
   options.include_gravity = !o.no_gravity;
   std::vector<std::pair<std::string, model::GridCapability>> results;
-  options.subspace = model::CapabilitySubspace::kTranslation;
+  options.subspace = model::CapabilitySubspace::translation;
   results.emplace_back("translation", model::grid_output_capability(robot, frame, grid, seed, options));
-  if (options.task == model::TaskRows::kFull) {
-    options.subspace = model::CapabilitySubspace::kRotation;
+  if (options.task == model::TaskRows::full) {
+    options.subspace = model::CapabilitySubspace::rotation;
     results.emplace_back("rotation", model::grid_output_capability(robot, frame, grid, seed, options));
   }
 
   fmt::print("output capability of {} ({}), frame '{}', {} task, gravity {}\n", robot.name(), urdf.string(), o.frame,
-             options.task == model::TaskRows::kFull ? "6-D" : "translational",
+             options.task == model::TaskRows::full ? "6-D" : "translational",
              options.include_gravity ? "included" : "ignored");
   fmt::print("grid: centre {} m, size {} m, {}^3 positions x {}\n", vec_json(grid.center), vec_json(grid.size),
              grid.points_per_axis,
@@ -118,7 +118,7 @@ int run(const Options& o) {
   if (!o.json.empty()) {
     auto out = fmt::output_file(o.json);
     out.print(R"({{"device": "{}", "urdf": "{}", "frame": "{}", "task": "{}", "include_gravity": {},)", robot.name(),
-              urdf.string(), o.frame, options.task == model::TaskRows::kFull ? "full" : "translation",
+              urdf.string(), o.frame, options.task == model::TaskRows::full ? "full" : "translation",
               options.include_gravity);
     out.print(R"( "grid": {{"center": {}, "size": {}, "points_per_axis": {}, "orientations": {}}})",
               vec_json(grid.center), vec_json(grid.size), grid.points_per_axis, grid.orientation_offsets.size());

@@ -173,7 +173,7 @@ TEST(RedundantSelfMotion, NeedsItsNullSpaceDamping) {
     DeviceSession& d = *s.impl().devices[0];
     d.activate();
     model::GeneralizedInverse pinv;
-    pinv.configure(model::InverseKind::kPseudoinverse, 10, JointVector::Ones(10));
+    pinv.configure(model::InverseKind::pseudoinverse, 10, JointVector::Ones(10));
     double largest = 0.0;  // of the self-motion speed |(I - J^+ J) qd|
     for (std::uint64_t k = 0; k < 2000 && d.fault() == DeviceFault::none; ++k) {
       d.cycle(cycle_at(k), 1.0);

@@ -45,7 +45,7 @@ TEST_P(ModelAllocation, LoopAlgorithmsDoNotAllocate) {
     model::coriolis_matrix(robot, data, c);
     model::inverse_dynamics(robot, data, qdd, tau);
     model::forward_dynamics(robot, data, tau, qdd_out);
-    model::select_rows(j, model::TaskRows::kTranslation, translation);
+    model::select_rows(j, model::TaskRows::translation, translation);
     sink += model::operational_space_inertia(data, translation, lambda) ? 1.0 : 0.0;
     sink += model::manipulability(translation);
     sink += model::condition_number(translation);

@@ -299,7 +299,7 @@ TEST(VishardModels, Vishard6HandleOrientationHasRankThree) {
     model::forward_kinematics(robot, data, test::random_joint_vector(rng, 6, kPi));
     TaskJacobian j, rotation;
     model::frame_jacobian(robot, data, handle, j);
-    model::select_rows(j, model::TaskRows::kRotation, rotation);
+    model::select_rows(j, model::TaskRows::rotation, rotation);
     const Eigen::JacobiSVD<TaskJacobian> svd(rotation);
     ASSERT_GT(svd.singularValues()[2], 1e-3) << "state " << k;
   }
@@ -320,7 +320,7 @@ TEST(VishardModels, Vishard3ApparentMassSpansThePublishedRange) {
     model::joint_space_inertia(robot, data);
     TaskJacobian j, t;
     model::frame_jacobian(robot, data, handle, j);
-    model::select_rows(j, model::TaskRows::kTranslation, t);
+    model::select_rows(j, model::TaskRows::translation, t);
     model::TaskMatrix lambda;
     ASSERT_TRUE(model::operational_space_inertia(data, t, lambda));
     const Eigen::SelfAdjointEigenSolver<model::TaskMatrix> eig(lambda);

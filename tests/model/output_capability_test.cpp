@@ -51,7 +51,7 @@ TEST_P(OutputCapability, ClosedFormIsTheMinimumOverDirections) {
     model::select_rows(full, c.task, j);
     model::joint_space_inertia(robot, data);
     model::gravity_torques(robot, data);
-    const int col = (c.task == model::TaskRows::kFull && c.subspace == model::CapabilitySubspace::kRotation) ? 3 : 0;
+    const int col = (c.task == model::TaskRows::full && c.subspace == model::CapabilitySubspace::rotation) ? 3 : 0;
     const Eigen::MatrixXd jd = j;
     const Eigen::MatrixXd force_map = jd.transpose().middleCols(col, 3);
     const Eigen::MatrixXd pinv = jd.completeOrthogonalDecomposition().pseudoInverse();
@@ -83,13 +83,13 @@ TEST_P(OutputCapability, ClosedFormIsTheMinimumOverDirections) {
 
 INSTANTIATE_TEST_SUITE_P(
     Devices, OutputCapability,
-    ::testing::Values(Case{"vishard3", model::TaskRows::kTranslation, model::CapabilitySubspace::kTranslation},
-                      Case{"vishard6", model::TaskRows::kFull, model::CapabilitySubspace::kTranslation},
-                      Case{"vishard6", model::TaskRows::kFull, model::CapabilitySubspace::kRotation},
-                      Case{"vishard10", model::TaskRows::kFull, model::CapabilitySubspace::kRotation}),
+    ::testing::Values(Case{"vishard3", model::TaskRows::translation, model::CapabilitySubspace::translation},
+                      Case{"vishard6", model::TaskRows::full, model::CapabilitySubspace::translation},
+                      Case{"vishard6", model::TaskRows::full, model::CapabilitySubspace::rotation},
+                      Case{"vishard10", model::TaskRows::full, model::CapabilitySubspace::rotation}),
     [](const ::testing::TestParamInfo<Case>& param_info) {
       return std::string(param_info.param.device) +
-             (param_info.param.subspace == model::CapabilitySubspace::kRotation ? "_rotation" : "_translation");
+             (param_info.param.subspace == model::CapabilitySubspace::rotation ? "_rotation" : "_translation");
     });
 
 TEST(OutputCapabilityGrid, Vishard3MeetsItsPublishedFigures) {
@@ -102,7 +102,7 @@ TEST(OutputCapabilityGrid, Vishard3MeetsItsPublishedFigures) {
   seed << -0.3, 1.6, 0.0;
   const model::GridCapability r =
       model::grid_output_capability(robot, robot.require_frame("handle"), grid, seed,
-                                    {model::TaskRows::kTranslation, model::CapabilitySubspace::kTranslation, true});
+                                    {model::TaskRows::translation, model::CapabilitySubspace::translation, true});
   EXPECT_EQ(r.reached, r.poses);
   // Published: 86 N, 1.0 m/s, 14.7 m/s^2. The model's worst case over the box lies within 15 % of each.
   EXPECT_NEAR(r.force.value, 86.0, 0.15 * 86.0);

@@ -22,8 +22,8 @@ using model::InverseKind;
 using model::TaskJacobian;
 using model::TaskVector;
 
-constexpr InverseKind kKinds[] = {InverseKind::kPseudoinverse, InverseKind::kWeighted, InverseKind::kDamped,
-                                  InverseKind::kInertiaWeighted};
+constexpr InverseKind kKinds[] = {InverseKind::pseudoinverse, InverseKind::weighted, InverseKind::damped,
+                                  InverseKind::inertia_weighted};
 
 class Redundancy : public ::testing::Test {
  protected:
@@ -76,7 +76,7 @@ TEST_F(Redundancy, ExactInversesSolveJqdEqualsXd) {
     const double s = svd.singularValues()[5];
     const TaskVector xd = TaskVector::Random(6);
     for (InverseKind kind : kKinds) {
-      if (kind == InverseKind::kDamped) {
+      if (kind == InverseKind::damped) {
         GeneralizedInverse g;
         g.configure(kind, 10, JointVector::Ones(10), kLambda);
         g.compute(jacobian_);
@@ -102,10 +102,10 @@ TEST_F(Redundancy, WeightedInversesMinimiseTheirWeightedNorm) {
   for (int k = 0; k < 20; ++k) {
     at(random_q());
     const TaskVector xd = TaskVector::Random(6);
-    for (InverseKind kind : {InverseKind::kPseudoinverse, InverseKind::kWeighted, InverseKind::kInertiaWeighted}) {
+    for (InverseKind kind : {InverseKind::pseudoinverse, InverseKind::weighted, InverseKind::inertia_weighted}) {
       const GeneralizedInverse g = inverse(kind);
-      const JointMatrix w = kind == InverseKind::kInertiaWeighted ? data_->mass_matrix
-                            : kind == InverseKind::kWeighted      ? JointMatrix(weights_.asDiagonal())
+      const JointMatrix w = kind == InverseKind::inertia_weighted ? data_->mass_matrix
+                            : kind == InverseKind::weighted       ? JointMatrix(weights_.asDiagonal())
                                                                   : JointMatrix(JointMatrix::Identity(10, 10));
       const JointVector best = g.solve(xd);
       const double cost = best.dot(w * best);
@@ -125,7 +125,7 @@ TEST_F(Redundancy, NullSpaceMotionLeavesTheHandleStill) {
   for (int k = 0; k < 50; ++k) {
     at(random_q());
     for (InverseKind kind : kKinds) {
-      if (kind == InverseKind::kDamped) continue;  // its N is not an exact projector
+      if (kind == InverseKind::damped) continue;  // its N is not an exact projector
       worst = std::max(worst, (jacobian_ * inverse(kind).null_space_projector()).norm());
     }
   }
@@ -137,7 +137,7 @@ TEST_F(Redundancy, NullSpaceMotionLeavesTheHandleStill) {
   double travelled = 0.0;
   for (int step = 0; step < 5000; ++step) {
     at(q);
-    const JointVector qd = inverse(InverseKind::kPseudoinverse).null_space_projector() * direction;
+    const JointVector qd = inverse(InverseKind::pseudoinverse).null_space_projector() * direction;
     q += 1e-4 * qd / std::max(qd.norm(), 1e-12);
     travelled += 1e-4;
   }
@@ -157,8 +157,8 @@ TEST_F(Redundancy, TheInertiaWeightedInverseMakesNoNullSpaceAccelerationFromAHan
     const TaskVector f = TaskVector::Random(6) * 10.0;
     const JointVector qdd = data_->mass_llt.solve(JointVector(jacobian_.transpose() * f));
     consistent =
-        std::max(consistent, (inverse(InverseKind::kInertiaWeighted).null_space_projector() * qdd).norm() / qdd.norm());
-    plain = std::max(plain, (inverse(InverseKind::kPseudoinverse).null_space_projector() * qdd).norm() / qdd.norm());
+        std::max(consistent, (inverse(InverseKind::inertia_weighted).null_space_projector() * qdd).norm() / qdd.norm());
+    plain = std::max(plain, (inverse(InverseKind::pseudoinverse).null_space_projector() * qdd).norm() / qdd.norm());
   }
   std::printf("null-space share of the acceleration from a handle wrench: %.2e inertia-weighted, %.2f pseudoinverse\n",
               consistent, plain);
@@ -172,7 +172,7 @@ TEST_F(Redundancy, NullSpaceTorquesMakeNoTaskAcceleration) {
   for (int k = 0; k < 50; ++k) {
     at(random_q());
     const JointVector tau0 = JointVector::Random(10) * 20.0;
-    const JointVector tau = model::null_space_torque(inverse(InverseKind::kInertiaWeighted), jacobian_, tau0);
+    const JointVector tau = model::null_space_torque(inverse(InverseKind::inertia_weighted), jacobian_, tau0);
     worst = std::max(worst, (jacobian_ * data_->mass_llt.solve(tau)).norm() / tau0.norm());
   }
   EXPECT_LT(worst, 1e-10);
@@ -188,7 +188,7 @@ TEST_F(Redundancy, AccelerationLevelResolutionReproducesTheTaskAcceleration) {
     const model::Vector6d bias = model::frame_jacobian_dot_times_qd(*robot_, *data_, handle_);
     const TaskVector xdd = TaskVector::Random(6);
     const JointVector qdd0 = JointVector::Random(10);  // any null-space acceleration
-    for (InverseKind kind : {InverseKind::kPseudoinverse, InverseKind::kWeighted, InverseKind::kInertiaWeighted}) {
+    for (InverseKind kind : {InverseKind::pseudoinverse, InverseKind::weighted, InverseKind::inertia_weighted}) {
       const JointVector qdd = model::resolve_acceleration(inverse(kind), TaskVector(xdd - bias), qdd0);
       EXPECT_LT((jacobian_ * qdd + bias - xdd).norm(), 1e-9);
     }
@@ -206,8 +206,8 @@ TEST_F(Redundancy, TheDampedInverseBoundsJointRatesNearASingularity) {
   const TaskJacobian near = svd.matrixU() * sigma.asDiagonal() * svd.matrixV().transpose();
   const TaskVector xd = 0.1 * svd.matrixU().col(5);  // 0.1 (m/s, rad/s) along the lost direction
   GeneralizedInverse plain, damped;
-  plain.configure(InverseKind::kPseudoinverse, 10, JointVector::Ones(10));
-  damped.configure(InverseKind::kDamped, 10, JointVector::Ones(10), 0.05);
+  plain.configure(InverseKind::pseudoinverse, 10, JointVector::Ones(10));
+  damped.configure(InverseKind::damped, 10, JointVector::Ones(10), 0.05);
   plain.compute(near);
   damped.compute(near);
   const double plain_rate = plain.solve(xd).norm(), damped_rate = damped.solve(xd).norm();

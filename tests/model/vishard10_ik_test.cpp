@@ -132,7 +132,7 @@ TEST_F(Vishard10Ik, InverseFunctionsAreCyclicThePseudoinverseIsNot) {
   JointVector q = start;
   // The pseudoinverse integrates from the same posture.
   model::GeneralizedInverse pinv;
-  pinv.configure(model::InverseKind::kPseudoinverse, 10, JointVector::Ones(10));
+  pinv.configure(model::InverseKind::pseudoinverse, 10, JointVector::Ones(10));
   model::TaskJacobian j;
   double function_gap = 0.0;
   for (int lap = 0; lap < 3; ++lap) {

@@ -155,7 +155,7 @@ TEST(SimDevice, AttachmentSwitchesAtRunTimeWithoutAJump) {
   SimRig rig(kVishard3 + "attachment: operator\noperator_motion: sine\noperator_motion_m: [0.03, 0, 0]\n");
   for (int k = 0; k < 1000; ++k) rig.cycle();
   sim::AttachmentSettings source;
-  source.kind = sim::AttachmentKind::kPositionSource;
+  source.kind = sim::AttachmentKind::position_source;
   std::thread other([&] { rig.device.request_attachment(source); });  // from another thread, as DDS will
   other.join();
   const sim::Vector6d before = rig.device.ground_truth().handle_wrench;

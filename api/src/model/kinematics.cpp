@@ -16,7 +16,7 @@ void forward_kinematics(const RobotModel& model, ModelData& data, const JointVec
     Eigen::Vector3d p = parent_position + parent_rotation * b.placement.translation();
     const Eigen::Vector3d axis = r * b.axis;
     Motion& s = data.motion_subspace[i];
-    if (b.type == JointType::kRevolute) {
+    if (b.type == JointType::revolute) {
       r = r * Eigen::AngleAxisd(q[i], b.axis).toRotationMatrix();
       s.angular = axis;
       s.linear = p.cross(axis);

@@ -31,8 +31,8 @@ WorstDirection inscribed_radius(const JointBy3& rows, const JointVector& offset,
 }
 
 int subspace_column(const CapabilityOptions& o) {
-  if (o.task == TaskRows::kTranslation || o.task == TaskRows::kRotation) return 0;
-  return o.subspace == CapabilitySubspace::kTranslation ? 0 : 3;
+  if (o.task == TaskRows::translation || o.task == TaskRows::rotation) return 0;
+  return o.subspace == CapabilitySubspace::translation ? 0 : 3;
 }
 
 }  // namespace
@@ -89,7 +89,7 @@ GridCapability grid_output_capability(const RobotModel& model, int frame_id, con
   GridCapability result;
   result.force.value = result.velocity.value = result.acceleration.value = std::numeric_limits<double>::infinity();
   PositionSolverOptions solver;
-  solver.rows = grid.free_orientation ? TaskRows::kTranslation : options.task;
+  solver.rows = grid.free_orientation ? TaskRows::translation : options.task;
   const int k = grid.points_per_axis;
   for (const Eigen::Vector3d& rpy : grid.orientation_offsets) {
     const Eigen::Matrix3d orientation =

@@ -9,11 +9,11 @@ namespace {
 
 TaskVector select(const Vector6d& e, TaskRows rows) {
   switch (rows) {
-    case TaskRows::kTranslation:
+    case TaskRows::translation:
       return e.head<3>();
-    case TaskRows::kRotation:
+    case TaskRows::rotation:
       return e.tail<3>();
-    case TaskRows::kFull:
+    case TaskRows::full:
       break;
   }
   return e;

@@ -7,13 +7,13 @@ namespace hapticd::model {
 
 const char* to_string(InverseKind kind) noexcept {
   switch (kind) {
-    case InverseKind::kPseudoinverse:
+    case InverseKind::pseudoinverse:
       return "pseudoinverse";
-    case InverseKind::kWeighted:
+    case InverseKind::weighted:
       return "weighted";
-    case InverseKind::kDamped:
+    case InverseKind::damped:
       return "damped";
-    case InverseKind::kInertiaWeighted:
+    case InverseKind::inertia_weighted:
       return "inertia_weighted";
   }
   return "?";
@@ -26,7 +26,7 @@ void GeneralizedInverse::configure(InverseKind kind, int dof, const JointVector&
   damping_ = damping;
   tolerance_ = tolerance;
   weights_ = weights.size() == dof ? weights : JointVector(JointVector::Ones(dof));
-  if (kind == InverseKind::kPseudoinverse) weights_.setOnes(dof);
+  if (kind == InverseKind::pseudoinverse) weights_.setOnes(dof);
   inverse_sqrt_ = weights_.cwiseSqrt().cwiseInverse();
   inverse_.setZero(dof, 6);
   projector_.setIdentity(dof, dof);
@@ -37,7 +37,7 @@ void GeneralizedInverse::configure(InverseKind kind, int dof, const JointVector&
 void GeneralizedInverse::compute(const TaskJacobian& jacobian, const Eigen::LLT<JointMatrix>* mass_llt) noexcept {
   const auto m = jacobian.rows();
   const auto n = jacobian.cols();
-  mass_llt_ = kind_ == InverseKind::kInertiaWeighted ? mass_llt : nullptr;
+  mass_llt_ = kind_ == InverseKind::inertia_weighted ? mass_llt : nullptr;
   // A = J L^-T: for a diagonal W, the columns scaled by 1/sqrt(w); for W = M = L L^T, (L^-1 J^T)^T.
   if (mass_llt_ != nullptr) {
     InverseJacobian t = jacobian.transpose();
@@ -54,7 +54,7 @@ void GeneralizedInverse::compute(const TaskJacobian& jacobian, const Eigen::LLT<
   rank_ = 0;
   TaskVector f = TaskVector::Zero(m);
   for (Eigen::Index i = 0; i < s.size(); ++i) {
-    if (kind_ == InverseKind::kDamped) {
+    if (kind_ == InverseKind::damped) {
       f[i] = s[i] / (s[i] * s[i] + damping_ * damping_);
       if (s[i] > tolerance_ * largest) ++rank_;
     } else if (s[i] > tolerance_ * largest && s[i] > 0.0) {

@@ -9,13 +9,13 @@ namespace hapticd::model {
 
 void select_rows(const TaskJacobian& full, TaskRows rows, TaskJacobian& task) noexcept {
   switch (rows) {
-    case TaskRows::kFull:
+    case TaskRows::full:
       task = full;
       break;
-    case TaskRows::kTranslation:
+    case TaskRows::translation:
       task = full.topRows(3);
       break;
-    case TaskRows::kRotation:
+    case TaskRows::rotation:
       task = full.bottomRows(3);
       break;
   }

@@ -92,7 +92,7 @@ class ChainBuilder {
       Body b;
       b.joint_name = joint.name;
       b.link_name = child->name;
-      b.type = joint.type == urdf::Joint::PRISMATIC ? JointType::kPrismatic : JointType::kRevolute;
+      b.type = joint.type == urdf::Joint::PRISMATIC ? JointType::prismatic : JointType::revolute;
       b.placement = joint_in_body;
       b.axis = Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z);
       if (b.axis.norm() < 1e-9) fail("joint '" + joint.name + "': zero axis");

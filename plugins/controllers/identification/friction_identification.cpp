@@ -148,19 +148,19 @@ void FrictionIdentification::next_joint(const JointVector& q) noexcept {
   ++joint_index_;
   phase_time_ = 0.0;
   if (joint_index_ >= static_cast<int>(joints_.size())) {
-    phase_ = Phase::kDone;
+    phase_ = Phase::done;
     return;
   }
   joint_ = joints_[static_cast<std::size_t>(joint_index_)];
   centre_ = q[joint_];
   q_ref_[joint_] = centre_;
   repeat_ = 0;
-  phase_ = Phase::kSettle;
+  phase_ = Phase::settle;
 }
 
 void FrictionIdentification::start_move(double target, double speed) noexcept {
   trapezoid_ = TrapezoidMove{q_ref_[joint_], target - q_ref_[joint_], speed, acceleration_};
-  phase_ = Phase::kStroke;
+  phase_ = Phase::stroke;
   phase_time_ = 0.0;
 }
 
@@ -198,14 +198,14 @@ ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const Cont
   double ramp = 0.0;
   bool ramping = false;
   switch (phase_) {
-    case Phase::kSettle:
+    case Phase::settle:
       if (phase_time_ >= settle_s_) {
-        phase_ = Phase::kBreakaway;
+        phase_ = Phase::breakaway;
         phase_time_ = 0.0;
         breakaway_start_ = q[joint_];
       }
       break;
-    case Phase::kBreakaway: {
+    case Phase::breakaway: {
       const double sign = repeat_ % 2 == 0 ? 1.0 : -1.0;
       ramp = sign * breakaway_rate_ * phase_time_;
       ramping = true;
@@ -217,16 +217,16 @@ ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const Cont
           ++breakaway_count_[static_cast<std::size_t>(joint_)];
         }
         q_ref_[joint_] = q[joint_];
-        phase_ = Phase::kBreakawayHold;
+        phase_ = Phase::breakaway_hold;
         phase_time_ = 0.0;
       }
       break;
     }
-    case Phase::kBreakawayHold:
+    case Phase::breakaway_hold:
       if (phase_time_ >= hold_s_) {
         ++repeat_;
         if (repeat_ < breakaway_repeats_) {
-          phase_ = Phase::kBreakaway;
+          phase_ = Phase::breakaway;
           phase_time_ = 0.0;
           breakaway_start_ = q[joint_];
         } else {
@@ -235,7 +235,7 @@ ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const Cont
         }
       }
       break;
-    case Phase::kStroke: {
+    case Phase::stroke: {
       double qj = 0.0, vj = 0.0, aj = 0.0;
       trapezoid_.at(phase_time_, qj, vj, aj);
       q_ref_[joint_] = qj;
@@ -261,15 +261,15 @@ ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const Cont
       if (phase_time_ >= trapezoid_.duration()) {
         qd_ref_[joint_] = 0.0;
         qdd_ref_[joint_] = 0.0;
-        phase_ = Phase::kPause;
+        phase_ = Phase::pause;
         phase_time_ = 0.0;
       }
       break;
     }
-    case Phase::kPause:
+    case Phase::pause:
       if (phase_time_ >= pause_s_) advance_stroke(q);
       break;
-    case Phase::kDone:
+    case Phase::done:
       break;
   }
 
@@ -290,7 +290,7 @@ ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const Cont
 }
 
 void FrictionIdentification::deactivate() {
-  const bool complete = phase_ == Phase::kDone;
+  const bool complete = phase_ == Phase::done;
   const int finished = joint_index_;
   model::FrictionFile file;
   file.device = device_name_;

@@ -38,7 +38,7 @@ class FrictionIdentification final : public Controller {
   [[nodiscard]] double duration() const noexcept { return duration_s_; }
 
  private:
-  enum class Phase { kSettle, kBreakaway, kBreakawayHold, kStroke, kPause, kDone };
+  enum class Phase { settle, breakaway, breakaway_hold, stroke, pause, done };
   static constexpr int kFeatures = 7;
   using Features = Eigen::Matrix<double, kFeatures, 1>;
   using Normal = Eigen::Matrix<double, kFeatures, kFeatures>;
@@ -68,7 +68,7 @@ class FrictionIdentification final : public Controller {
   int dof_ = 0;
 
   // State.
-  Phase phase_ = Phase::kSettle;
+  Phase phase_ = Phase::settle;
   int joint_index_ = -1;  // into joints_
   int joint_ = 0;         // the joint under identification
   double phase_time_ = 0.0;

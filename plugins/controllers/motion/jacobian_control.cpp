@@ -24,7 +24,7 @@ void JacobianControl::configure(const Parameters& p, const PluginContext& contex
   const int n = context.device->dof();
   const auto& mj = p.real_vector("joint_inertia");
   const auto& mx = p.real_vector("task_mass");
-  const bool inverse = kind_ == Kind::kInverse;
+  const bool inverse = kind_ == Kind::inverse;
   const auto& given = inverse ? mj : mx;
   const int expected = inverse ? n : law_.rows();
   if (!given.empty() && static_cast<int>(given.size()) != expected) {
@@ -50,7 +50,7 @@ ReturnCode JacobianControl::activate(const ControllerInput& current, const Joint
   if (current.chain.model == nullptr) return ReturnCode::error;
   if (!inertia_from_model_) return ReturnCode::ok;
   const model::ModelData& d = *current.chain.data;
-  if (kind_ == Kind::kInverse) {
+  if (kind_ == Kind::inverse) {
     joint_inertia_ = d.mass_matrix.diagonal();
     return ReturnCode::ok;
   }
@@ -68,7 +68,7 @@ ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerI
   if (!in.task.has_motion) return ReturnCode::error;
   const int rows = law_.rows();
   const model::TaskJacobian j = d.frame_jacobian.topRows(rows);
-  if (kind_ == Kind::kInverse) {
+  if (kind_ == Kind::inverse) {
     const model::Vector6d xdd = law_.acceleration(in.task, c) - d.frame_jacobian_dot_qd;
     const model::TaskVector task(xdd.head(rows));
     const JointVector qdd = in.redundancy != nullptr ? in.redundancy->task_acceleration(in.device, c, task)

@@ -13,7 +13,7 @@ namespace hapticd::controllers {
 
 class JacobianControl : public Controller {
  public:
-  enum class Kind { kInverse, kTransposed };
+  enum class Kind { inverse, transposed };
   explicit JacobianControl(Kind kind) : kind_(kind) {}
 
   static ParameterSchema parameter_schema();
@@ -34,12 +34,12 @@ class JacobianControl : public Controller {
 
 class InverseJacobianControl final : public JacobianControl {
  public:
-  InverseJacobianControl() : JacobianControl(Kind::kInverse) {}
+  InverseJacobianControl() : JacobianControl(Kind::inverse) {}
 };
 
 class TransposedJacobianControl final : public JacobianControl {
  public:
-  TransposedJacobianControl() : JacobianControl(Kind::kTransposed) {}
+  TransposedJacobianControl() : JacobianControl(Kind::transposed) {}
 };
 
 }  // namespace hapticd::controllers

@@ -45,7 +45,7 @@ ReturnCode JointSpaceControl::update(const CycleTime& /*cycle*/, const Controlle
   const model::ModelData& d = *c.data;
   if (!in.joints.valid) return ReturnCode::error;  // needs an inverse-kinematics plugin in the chain
   const JointVector& q = in.device.joints.position;
-  if (kind_ == Kind::kComputedTorque) {
+  if (kind_ == Kind::computed_torque) {
     JointVector qdd = kp_ * (in.joints.position - q) + kd_ * (in.joints.velocity - in.device.joints.velocity);
     if (acceleration_feedforward_) qdd += in.joints.acceleration;
     command.torque_nm.noalias() = d.mass_matrix * qdd;

@@ -10,7 +10,7 @@ namespace hapticd::controllers {
 
 class JointSpaceControl : public Controller {
  public:
-  enum class Kind { kComputedTorque, kJointPd };
+  enum class Kind { computed_torque, joint_pd };
   explicit JointSpaceControl(Kind kind) : kind_(kind) {}
 
   static ParameterSchema parameter_schema();
@@ -31,12 +31,12 @@ class JointSpaceControl : public Controller {
 
 class ComputedTorqueControl final : public JointSpaceControl {
  public:
-  ComputedTorqueControl() : JointSpaceControl(Kind::kComputedTorque) {}
+  ComputedTorqueControl() : JointSpaceControl(Kind::computed_torque) {}
 };
 
 class JointPdControl final : public JointSpaceControl {
  public:
-  JointPdControl() : JointSpaceControl(Kind::kJointPd) {}
+  JointPdControl() : JointSpaceControl(Kind::joint_pd) {}
 };
 
 }  // namespace hapticd::controllers

@@ -20,9 +20,9 @@ Vector6d HandleAttachment::step(double t, double dt, const Eigen::Isometry3d& ha
   const Eigen::AngleAxisd rotation(handle.linear() * anchor_rotation_.transpose());
   const Eigen::Vector3d rotation_error = rotation.axis() * rotation.angle();
   switch (settings_.kind) {
-    case AttachmentKind::kNone:
+    case AttachmentKind::none:
       break;
-    case AttachmentKind::kOperator: {
+    case AttachmentKind::operator_hand: {
       const AttachmentSettings& s = settings_;
       const Eigen::Vector3d grasp_force =
           grasp_stiffness() * (hand_position_ - p) + grasp_damping() * (hand_velocity_ - v);
@@ -37,14 +37,14 @@ Vector6d HandleAttachment::step(double t, double dt, const Eigen::Isometry3d& ha
       wrench.tail<3>() = -(0.5 + 5.0 * s.grasp) * rotation_error - (0.02 + 0.2 * s.grasp) * w;
       break;
     }
-    case AttachmentKind::kPositionSource: {
+    case AttachmentKind::position_source: {
       const AttachmentSettings& s = settings_;
       const Eigen::Vector3d target = anchor_position_ + s.path.at(local_t);
       wrench.head<3>() = s.source_stiffness * (target - p) + s.source_damping * (s.path.rate_at(local_t) - v);
       wrench.tail<3>() = -s.source_rotational_stiffness * rotation_error - s.source_rotational_damping * w;
       break;
     }
-    case AttachmentKind::kWrench:
+    case AttachmentKind::wrench:
       wrench.head<3>() = settings_.wrench_force.at(local_t);
       wrench.tail<3>() = settings_.wrench_torque.at(local_t);
       break;

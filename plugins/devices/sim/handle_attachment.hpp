@@ -12,10 +12,10 @@ namespace hapticd::sim {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-enum class AttachmentKind { kNone, kOperator, kPositionSource, kWrench };
+enum class AttachmentKind { none, operator_hand, position_source, wrench };
 
 struct AttachmentSettings {
-  AttachmentKind kind = AttachmentKind::kNone;
+  AttachmentKind kind = AttachmentKind::none;
   // Operator.
   double grasp = 0.5;  // 0 loose .. 1 firm
   double hand_mass_kg = 1.0;

@@ -10,8 +10,8 @@
 namespace hapticd::sim {
 
 struct Profile {
-  enum class Kind { kConstant, kStep, kRamp, kSine, kRampTo };
-  Kind kind = Kind::kConstant;
+  enum class Kind { constant, step, ramp, sine, ramp_to };
+  Kind kind = Kind::constant;
   Eigen::Vector3d value = Eigen::Vector3d::Zero();  // constant / step value, ramp rate per second, sine amplitude
   double start_s = 0.0;
   double frequency_hz = 1.0;
@@ -20,18 +20,18 @@ struct Profile {
 
   [[nodiscard]] Eigen::Vector3d at(double t) const noexcept {
     switch (kind) {
-      case Kind::kConstant:
+      case Kind::constant:
         return value;
-      case Kind::kStep:
+      case Kind::step:
         return t >= start_s ? value : Eigen::Vector3d::Zero();
-      case Kind::kRamp:
+      case Kind::ramp:
         return t >= start_s ? Eigen::Vector3d(value * (t - start_s)) : Eigen::Vector3d::Zero();
-      case Kind::kRampTo: {
+      case Kind::ramp_to: {
         const double a =
             duration_s > 0.0 ? std::clamp((t - start_s) / duration_s, 0.0, 1.0) : (t >= start_s ? 1.0 : 0.0);
         return from + a * (value - from);
       }
-      case Kind::kSine:
+      case Kind::sine:
         return t >= start_s ? Eigen::Vector3d(value * std::sin(2.0 * M_PI * frequency_hz * (t - start_s)))
                             : Eigen::Vector3d::Zero();
     }
@@ -39,9 +39,9 @@ struct Profile {
   }
   [[nodiscard]] Eigen::Vector3d rate_at(double t) const noexcept {
     switch (kind) {
-      case Kind::kRamp:
+      case Kind::ramp:
         return t >= start_s ? value : Eigen::Vector3d::Zero();
-      case Kind::kSine:
+      case Kind::sine:
         return t >= start_s ? Eigen::Vector3d(value * 2.0 * M_PI * frequency_hz *
                                               std::cos(2.0 * M_PI * frequency_hz * (t - start_s)))
                             : Eigen::Vector3d::Zero();

@@ -35,10 +35,10 @@ Profile read_profile(const Parameters& p, const std::string& prefix, const std::
 }
 
 AttachmentKind parse_attachment(const std::string& name) {
-  if (name == "operator") return AttachmentKind::kOperator;
-  if (name == "position_source") return AttachmentKind::kPositionSource;
-  if (name == "wrench") return AttachmentKind::kWrench;
-  return AttachmentKind::kNone;
+  if (name == "operator") return AttachmentKind::operator_hand;
+  if (name == "position_source") return AttachmentKind::position_source;
+  if (name == "wrench") return AttachmentKind::wrench;
+  return AttachmentKind::none;
 }
 
 }  // namespace
@@ -299,7 +299,7 @@ RuntimeReply SimDevice::handle_request(std::string_view name, const std::vector<
   const double now = static_cast<double>(simulated_now_ns_.load(std::memory_order_relaxed)) * 1e-9;
   AttachmentSettings a = requested_;
   if (name == "operator.release") {
-    a.kind = AttachmentKind::kNone;
+    a.kind = AttachmentKind::none;
   } else if (name == "operator.push") {
     if (values.size() != 3 && values.size() != 4) return {false, "operator.push takes fx fy fz [ramp_s]"};
     const double ramp = values.size() == 4 ? values[3] : 0.5;
@@ -308,9 +308,9 @@ RuntimeReply SimDevice::handle_request(std::string_view name, const std::vector<
       return {false, "operator.push: |force| up to 200 N, ramp 0..60 s"};
     // Profiles run on the attachment's own clock, which restarts when the new settings take hold.
     const Eigen::Vector3d from =
-        a.kind == AttachmentKind::kOperator ? a.force.at(now - requested_at_s_) : Eigen::Vector3d::Zero();
-    a.kind = AttachmentKind::kOperator;
-    a.force.kind = Profile::Kind::kRampTo;
+        a.kind == AttachmentKind::operator_hand ? a.force.at(now - requested_at_s_) : Eigen::Vector3d::Zero();
+    a.kind = AttachmentKind::operator_hand;
+    a.force.kind = Profile::Kind::ramp_to;
     a.force.from = from;
     a.force.value = f;
     a.force.start_s = 0.0;

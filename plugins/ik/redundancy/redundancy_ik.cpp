@@ -10,10 +10,10 @@ namespace hapticd::ik {
 namespace {
 
 model::InverseKind inverse_kind(const std::string& name) {
-  if (name == "weighted") return model::InverseKind::kWeighted;
-  if (name == "damped") return model::InverseKind::kDamped;
-  if (name == "inertia_weighted") return model::InverseKind::kInertiaWeighted;
-  return model::InverseKind::kPseudoinverse;
+  if (name == "weighted") return model::InverseKind::weighted;
+  if (name == "damped") return model::InverseKind::damped;
+  if (name == "inertia_weighted") return model::InverseKind::inertia_weighted;
+  return model::InverseKind::pseudoinverse;
 }
 
 }  // namespace
@@ -98,9 +98,9 @@ void RedundancyIk::configure(const Parameters& p, const PluginContext& context) 
   const int n = model_->dof();
   handle_ = model_->require_frame(context.device->handle_frame.empty() ? "handle" : context.device->handle_frame);
   rows_ = model::task_rows(p.string("task"), n);
-  level_ = p.string("level") == "acceleration" ? Level::kAcceleration : Level::kVelocity;
+  level_ = p.string("level") == "acceleration" ? Level::acceleration : Level::velocity;
   const double w = p.real("tracking_bandwidth_rad_s");
-  kp_ = level_ == Level::kVelocity ? w : w * w;
+  kp_ = level_ == Level::velocity ? w : w * w;
   kd_ = 2.0 * w;
   null_gain_ = p.real("null_space_gain");
   null_damping_ = p.real("null_space_damping");
@@ -121,7 +121,7 @@ void RedundancyIk::configure(const Parameters& p, const PluginContext& context) 
   const double damping = p.real("damping");
   inverse_.configure(kind, n, wv, damping);
   measured_.configure(kind, n, wv, damping);
-  dynamic_.configure(model::InverseKind::kInertiaWeighted, n, wv);
+  dynamic_.configure(model::InverseKind::inertia_weighted, n, wv);
 
   model::SideCriteriaSettings c;
   c.frame = handle_;
@@ -174,7 +174,7 @@ ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsI
   model::forward_velocity(*model_, *data_, q_, qd_);
   model::frame_jacobian(*model_, *data_, handle_, jacobian_);
   const model::TaskJacobian j = jacobian_.topRows(rows_);
-  if (inverse_.kind() == model::InverseKind::kInertiaWeighted) model::joint_space_inertia(*model_, *data_);
+  if (inverse_.kind() == model::InverseKind::inertia_weighted) model::joint_space_inertia(*model_, *data_);
   inverse_.compute(j, &data_->mass_llt);
   const model::Vector6d error = model::pose_difference(desired, model::frame_pose(*model_, *data_, handle_));
   model::Vector6d xd;
@@ -184,7 +184,7 @@ ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsI
   // it (a target that drifted from them in the null space serves no controller of this chain).
   criterion_ = criteria_.empty() ? 0.0 : criteria_.evaluate(in.device.joints.position, gradient_);
   const JointVector qd0 = -null_gain_ * inverse_.weight_inverse_times(gradient_);
-  if (level_ == Level::kVelocity) {
+  if (level_ == Level::velocity) {
     qd_ = model::resolve_velocity(inverse_, model::TaskVector((xd + kp_ * error).head(rows_)), qd0);
     q_ += qd_ * dt;
     target.acceleration = acceleration_.update(qd_);

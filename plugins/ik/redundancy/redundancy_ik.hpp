@@ -38,13 +38,13 @@ class RedundancyIk final : public InverseKinematics, public RedundancyResolution
   [[nodiscard]] double criterion() const noexcept { return criterion_; }
 
  private:
-  enum class Level { kVelocity, kAcceleration };
+  enum class Level { velocity, acceleration };
 
   const model::RobotModel* model_ = nullptr;  // the server's, shared by the chain (PluginContext)
   std::unique_ptr<model::ModelData> data_;
   int handle_ = -1;
   int rows_ = 3;
-  Level level_ = Level::kVelocity;
+  Level level_ = Level::velocity;
   double kp_ = 0.0, kd_ = 0.0;          // pose-error feedback of the integrated target
   double null_gain_ = 0.0;              // k
   double null_damping_ = 0.0;           // d [1/s]

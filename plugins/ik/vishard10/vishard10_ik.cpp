@@ -124,10 +124,10 @@ void Vishard10Ik::configure(const Parameters& p, const PluginContext& context) {
   }
   data_ = std::make_unique<model::ModelData>(*model_);
   const std::string& scara = p.string("scara");
-  scara_ = scara == "lookup_table"    ? Scara::kLookupTable
-           : scara == "pseudoinverse" ? Scara::kPseudoinverse
-                                      : Scara::kInverseFunction;
-  if (scara_ == Scara::kLookupTable) {
+  scara_ = scara == "lookup_table"    ? Scara::lookup_table
+           : scara == "pseudoinverse" ? Scara::pseudoinverse
+                                      : Scara::inverse_function;
+  if (scara_ == Scara::lookup_table) {
     const std::string& file = p.string("scara_table");
     if (file.empty()) throw ParameterError("scara_table", "scara: lookup_table needs a table file (hapticd-scara-lut)");
     std::filesystem::path path(file);
@@ -148,7 +148,7 @@ void Vishard10Ik::configure(const Parameters& p, const PluginContext& context) {
   const auto& w = p.real_vector("wrist_weights");
   wrist_weights_.resize(4);
   for (int i = 0; i < 4; ++i) wrist_weights_[i] = w[static_cast<std::size_t>(i)];
-  wrist_inverse_.configure(model::InverseKind::kWeighted, 4, wrist_weights_);
+  wrist_inverse_.configure(model::InverseKind::weighted, 4, wrist_weights_);
   wrist_criterion_ = p.real("wrist_criterion");
   wall_zeta_ = p.real("wall_zeta_rad");
   wall_gain_ = p.real("wall_gain");
@@ -162,12 +162,12 @@ void Vishard10Ik::configure(const Parameters& p, const PluginContext& context) {
 }
 
 void Vishard10Ik::solve_scara(const Eigen::Vector2d& target, const Eigen::Vector2d& velocity, double dt) noexcept {
-  if (scara_ == Scara::kInverseFunction) {
+  if (scara_ == Scara::inverse_function) {
     if (!vishard10::scara_inverse_function(geometry_, target, scara_yaw_, branch12_, branch34_, scara_q_, scara_limit_))
       ++clamped_;
     return;
   }
-  if (scara_ == Scara::kLookupTable) {
+  if (scara_ == Scara::lookup_table) {
     if (!table_.solve(geometry_, target - geometry_.base, scara_q_)) ++clamped_;
     return;
   }
@@ -235,7 +235,7 @@ const JointVector& Vishard10Ik::solve(const Pose& pose, const Twist& twist, doub
     q_[9] = rot_q_[3];
   };
   assemble();
-  if (scara_ != Scara::kPseudoinverse) {
+  if (scara_ != Scara::pseudoinverse) {
     // l6 and l7 differ by 0.1 mm: the pair leaves the handle that far off joint 5's axis, sideways. One shift of
     // the SCARA target removes it (the offset depends on q6 and q5' only, not on joints 1-4).
     model::forward_kinematics(*model_, *data_, q_);

@@ -43,8 +43,8 @@ class Vishard10Ik final : public InverseKinematics {
   std::unique_ptr<model::ModelData> data_;
   int handle_ = -1;
   vishard10::Geometry geometry_;
-  enum class Scara { kInverseFunction, kLookupTable, kPseudoinverse };
-  Scara scara_ = Scara::kInverseFunction;
+  enum class Scara { inverse_function, lookup_table, pseudoinverse };
+  Scara scara_ = Scara::inverse_function;
   bool wrist_function_ = true;
   vishard10::ScaraTable table_;
   double scara_yaw_ = 0.0, scara_limit_ = 0.999;

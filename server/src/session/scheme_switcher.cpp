@@ -5,8 +5,8 @@
 namespace hapticd::server {
 
 SchemeSwitcher::SchemeSwitcher(std::vector<SchemeChain>& schemes)
-    : schemes_(schemes), state_(std::vector<std::atomic<std::uint8_t>>(schemes.size())) {
-  for (auto& s : state_) s.store(kIdle);
+    : schemes_(schemes), state_(std::vector<std::atomic<State>>(schemes.size())) {
+  for (auto& s : state_) s.store(State::idle);
 }
 
 bool SchemeSwitcher::request(std::string_view name) {
@@ -24,30 +24,30 @@ const std::string& SchemeSwitcher::active_name() const noexcept {
   return schemes_.empty() ? none : schemes_[active_index()].name;
 }
 
-void SchemeSwitcher::entered() noexcept { state_[active_index()].store(kActive, std::memory_order_release); }
+void SchemeSwitcher::entered() noexcept { state_[active_index()].store(State::active, std::memory_order_release); }
 
 void SchemeSwitcher::left() noexcept {
   auto& s = state_[active_index()];
-  if (s.load(std::memory_order_relaxed) == kActive) s.store(kLeaving, std::memory_order_release);
+  if (s.load(std::memory_order_relaxed) == State::active) s.store(State::leaving, std::memory_order_release);
 }
 
 bool SchemeSwitcher::active_idle() const noexcept {
-  return state_[active_index()].load(std::memory_order_acquire) == kIdle;
+  return state_[active_index()].load(std::memory_order_acquire) == State::idle;
 }
 
 SchemeChain* SchemeSwitcher::wanted() noexcept {
   const int wanted = requested_.load(std::memory_order_acquire);
   if (wanted == active_.load(std::memory_order_relaxed)) return nullptr;
   const auto w = static_cast<std::size_t>(wanted);
-  if (state_[w].load(std::memory_order_acquire) != kIdle) return nullptr;  // still leaving: wait for service()
+  if (state_[w].load(std::memory_order_acquire) != State::idle) return nullptr;  // still leaving: wait for service()
   return &schemes_[w];
 }
 
 void SchemeSwitcher::switched() noexcept {
   const int wanted = requested_.load(std::memory_order_relaxed);
   HAPTICD_DEMAND(wanted != active_.load(std::memory_order_relaxed));  // only after wanted() offered a scheme
-  state_[active_index()].store(kLeaving, std::memory_order_release);
-  state_[static_cast<std::size_t>(wanted)].store(kActive, std::memory_order_release);
+  state_[active_index()].store(State::leaving, std::memory_order_release);
+  state_[static_cast<std::size_t>(wanted)].store(State::active, std::memory_order_release);
   active_.store(wanted, std::memory_order_release);
   switches_.fetch_add(1, std::memory_order_relaxed);
 }
@@ -56,7 +56,7 @@ void SchemeSwitcher::refused_switch() noexcept {
   const int wanted = requested_.load(std::memory_order_relaxed);
   HAPTICD_DEMAND(wanted != active_.load(std::memory_order_relaxed));
   refused_.fetch_add(1, std::memory_order_relaxed);
-  state_[static_cast<std::size_t>(wanted)].store(kLeaving, std::memory_order_release);
+  state_[static_cast<std::size_t>(wanted)].store(State::leaving, std::memory_order_release);
   // Keep running the old scheme, unless another request came in meanwhile.
   int expected = wanted;
   requested_.compare_exchange_strong(expected, active_.load(std::memory_order_relaxed), std::memory_order_acq_rel);
@@ -64,13 +64,13 @@ void SchemeSwitcher::refused_switch() noexcept {
 
 void SchemeSwitcher::service(bool all) {
   for (std::size_t i = 0; i < schemes_.size(); ++i) {
-    const std::uint8_t s = state_[i].load(std::memory_order_acquire);
-    if (s == kIdle || (s == kActive && !all)) continue;
+    const State s = state_[i].load(std::memory_order_acquire);
+    if (s == State::idle || (s == State::active && !all)) continue;
     SchemeChain& scheme = schemes_[i];
     scheme.controller->deactivate();
     if (scheme.inverse_kinematics) (*scheme.inverse_kinematics)->deactivate();
     if (scheme.virtual_model) (*scheme.virtual_model)->deactivate();
-    state_[i].store(kIdle, std::memory_order_release);
+    state_[i].store(State::idle, std::memory_order_release);
   }
 }
 

@@ -53,9 +53,9 @@ class SchemeSwitcher {
   void service(bool all = false);
 
  private:
-  enum State : std::uint8_t { kIdle, kActive, kLeaving };
+  enum class State : std::uint8_t { idle, active, leaving };
   std::vector<SchemeChain>& schemes_;
-  std::vector<std::atomic<std::uint8_t>> state_;
+  std::vector<std::atomic<State>> state_;
   std::atomic<int> active_{0};
   std::atomic<int> requested_{0};
   std::atomic<std::uint64_t> switches_{0};

@@ -18,11 +18,11 @@ namespace hapticd::model {
 // Which handle quantity is evaluated: forces, velocities and accelerations (translation), or torques,
 // angular velocities and angular accelerations (rotation). The other subspace is held at zero (pure force
 // with zero torque, translation without rotation, and vice versa).
-enum class CapabilitySubspace { kTranslation, kRotation };
+enum class CapabilitySubspace { translation, rotation };
 
 struct CapabilityOptions {
-  TaskRows task = TaskRows::kFull;  // rows the device controls (kTranslation for ViSHaRD3)
-  CapabilitySubspace subspace = CapabilitySubspace::kTranslation;
+  TaskRows task = TaskRows::full;  // rows the device controls (kTranslation for ViSHaRD3)
+  CapabilitySubspace subspace = CapabilitySubspace::translation;
   bool include_gravity = true;  // the torque spent on holding the arm is not available
 };
 

@@ -11,7 +11,7 @@
 namespace hapticd::model {
 
 struct PositionSolverOptions {
-  TaskRows rows = TaskRows::kFull;  // kTranslation: position only (orientation free)
+  TaskRows rows = TaskRows::full;  // kTranslation: position only (orientation free)
   int max_iterations = 200;
   double tolerance = 1e-10;  // on the position [m] and orientation [rad] error norm
   double damping = 1e-6;     // Levenberg-Marquardt damping of J J^T

@@ -19,10 +19,10 @@ namespace hapticd::model {
 using InverseJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxJoints, 6>;
 
 enum class InverseKind {
-  kPseudoinverse,    // W = I (SVD)
-  kWeighted,         // W = diag(weights)
-  kDamped,           // singularity-robust: W = diag(weights), damped singular values
-  kInertiaWeighted,  // W = M: the dynamically consistent inverse
+  pseudoinverse,     // W = I (SVD)
+  weighted,          // W = diag(weights)
+  damped,            // singularity-robust: W = diag(weights), damped singular values
+  inertia_weighted,  // W = M: the dynamically consistent inverse
 };
 
 [[nodiscard]] HAPTICD_API const char* to_string(InverseKind kind) noexcept;
@@ -50,7 +50,7 @@ class HAPTICD_API GeneralizedInverse {
   [[nodiscard]] JointVector weight_inverse_times(const JointVector& v) const noexcept;
 
  private:
-  InverseKind kind_ = InverseKind::kPseudoinverse;
+  InverseKind kind_ = InverseKind::pseudoinverse;
   int dof_ = 0;
   double damping_ = 0.0, tolerance_ = 1e-9;
   JointVector weights_;       // diagonal W (kWeighted, kDamped)

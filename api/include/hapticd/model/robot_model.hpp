@@ -15,13 +15,13 @@
 
 namespace hapticd::model {
 
-enum class JointType { kRevolute, kPrismatic };
+enum class JointType { revolute, prismatic };
 
 // One movable joint and the rigid body it moves (the URDF child link with every link fixed to it merged in).
 struct Body {
   std::string joint_name;
   std::string link_name;
-  JointType type = JointType::kRevolute;
+  JointType type = JointType::revolute;
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();  // joint frame in the parent body's frame
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();              // unit joint axis in the joint frame
   double mass = 0.0;

@@ -11,7 +11,7 @@
 namespace hapticd::model {
 
 // Which rows of a [linear; angular] frame Jacobian a task uses.
-enum class TaskRows { kFull, kTranslation, kRotation };
+enum class TaskRows { full, translation, rotation };
 
 // The selected rows of a 6 x n Jacobian.
 HAPTICD_API void select_rows(const TaskJacobian& full, TaskRows rows, TaskJacobian& task) noexcept;
