@@ -21,6 +21,7 @@ RuntimeReply refuse(std::string_view name) {
 }  // namespace
 
 RuntimeReply Device::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
+bool Device::simulated_truth(SimulatedTruth&) const { return false; }
 RuntimeReply Controller::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 RuntimeReply VirtualModel::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 

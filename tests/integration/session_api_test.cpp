@@ -30,7 +30,11 @@ TEST(SessionApi, StepsAShippedSessionRepeatablyAndReportsEachDevice) {
   const DeviceView before = a.device("vishard3");
   a.step(200);
   // The simulated operator's sine push from 0.5 s on (its hand a spring-damper on the handle): about 1.4 N at 0.6 s.
-  EXPECT_GT(a.device("vishard3").operator_wrench.force.norm(), 0.5);
+  const DeviceView pushed = a.device("vishard3");
+  EXPECT_GT(pushed.operator_wrench.force.norm(), 0.5);
+  // What the force sensor measured, against what the simulated hand really applied.
+  ASSERT_TRUE(pushed.truth.has_value());
+  EXPECT_LT((pushed.truth->handle_wrench.force - pushed.operator_wrench.force).norm(), 0.2);
   a.step(800);
   b.step(2000);
   const DeviceView v = a.device("vishard3");
@@ -46,6 +50,12 @@ TEST(SessionApi, StepsAShippedSessionRepeatablyAndReportsEachDevice) {
   const DeviceView w = b.device("vishard3");
   EXPECT_EQ(v.state.joints.position, w.state.joints.position);
   EXPECT_EQ(v.command.torque_nm, w.command.torque_nm);
+  // The simulation's truth beside the estimate: the encoders' positions within a few resolution steps of the
+  // links', the handle the model computes from them within a millimetre of the true one.
+  ASSERT_TRUE(v.truth.has_value());
+  EXPECT_NEAR(v.truth->time_s, v.time_s, 1e-9);  // the physics advanced to the cycle's time
+  EXPECT_LT((v.truth->link_position - v.state.joints.position).cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_LT((v.truth->handle_pose.position - v.handle_pose.position).norm(), 1e-3);
   EXPECT_EQ(a.statistics().cycles, 2000u);
   EXPECT_GT(a.statistics().compute_p50_us, 0.0);
 }

@@ -13,6 +13,7 @@ inline constexpr int kApiVersion = 8;  // 2: DeviceState::sensor_acceleration; 3
                                        // 8: inputs by reference; one joint velocity (DeviceState's, the
                                        //    estimate; ChainState::velocity gone); RenderPort with the model's
                                        //    answers in TaskTarget; the parsed robot model in PluginContext;
-                                       //    DeviceDescription::simulated
+                                       //    DeviceDescription::simulated, Device::simulated_truth
+                                       //    (8 is unreleased until Core v2 closes: it may still grow)
 
 }  // namespace hapticd

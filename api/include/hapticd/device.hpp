@@ -7,6 +7,7 @@
 #include "hapticd/plugin_context.hpp"
 #include "hapticd/return_code.hpp"
 #include "hapticd/runtime_request.hpp"
+#include "hapticd/simulated_truth.hpp"
 
 namespace hapticd {
 
@@ -35,6 +36,9 @@ class HAPTICD_API Device {
   // Not real-time safe, any server thread (runtime_request.hpp): a run-time request such as setting a
   // parameter; `name` is the parameter or command, `values` its numbers. The default refuses.
   virtual RuntimeReply handle_request(std::string_view name, const std::vector<double>& values);
+  // Not real-time safe; the loop thread, or after the loop (tests, evaluations): a simulated device's true state
+  // after the last read(). False for hardware (the default).
+  virtual bool simulated_truth(SimulatedTruth& out) const;
 };
 
 }  // namespace hapticd

@@ -403,4 +403,22 @@ void SimDevice::deactivate() {
   for (Drive& d : drives_) d.reset();
 }
 
+bool SimDevice::simulated_truth(SimulatedTruth& out) const {
+  const GroundTruth& t = truth_;
+  out.time_s = t.time_s;
+  out.link_position = t.link_position;
+  out.link_velocity = t.link_velocity;
+  out.motor_position = t.motor_position;
+  out.motor_velocity = t.motor_velocity;
+  out.friction_torque = t.friction_torque;
+  out.motor_torque = t.motor_torque;
+  out.handle_pose.position = t.handle_pose.translation();
+  out.handle_pose.orientation = Eigen::Quaterniond(t.handle_pose.linear());
+  out.handle_twist.linear = t.handle_twist.head<3>();
+  out.handle_twist.angular = t.handle_twist.tail<3>();
+  out.handle_wrench.force = t.handle_wrench.head<3>();
+  out.handle_wrench.torque = t.handle_wrench.tail<3>();
+  return true;
+}
+
 }  // namespace hapticd::sim

@@ -49,6 +49,7 @@ class SimDevice final : public Device {
   // Any thread: replaces what is attached to the handle from the next substep on.
   void request_attachment(const AttachmentSettings& settings) { attachment_requests_.publish(settings); }
   [[nodiscard]] const GroundTruth& ground_truth() const noexcept { return truth_; }
+  bool simulated_truth(SimulatedTruth& out) const override;
   [[nodiscard]] const FlexibleChain& chain() const noexcept { return *chain_; }
   [[nodiscard]] double substep_s() const noexcept { return substep_s_; }
 

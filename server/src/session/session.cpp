@@ -141,6 +141,7 @@ DeviceView Session::device(std::string_view name) const {
   v.render_limited_cycles = d.render_limited_cycles();
   v.thermal_load = d.thermal_load();
   v.dissipated_j = d.dissipated_j();
+  if (SimulatedTruth truth; d.chain().device->simulated_truth(truth)) v.truth = truth;
   return v;
 }
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "hapticd/export.hpp"
 #include "hapticd/runtime_request.hpp"
 #include "hapticd/server/device_request.hpp"
+#include "hapticd/simulated_truth.hpp"
 #include "hapticd/spatial.hpp"
 
 namespace hapticd::server {
@@ -55,6 +57,8 @@ struct DeviceView {
   std::uint64_t saturated_cycles = 0, limited_cycles = 0, render_limited_cycles = 0;
   double thermal_load = 0.0;
   double dissipated_j = 0.0;
+  // A simulated device's true state after the last step (DeviceDescription::simulated); empty for hardware.
+  std::optional<SimulatedTruth> truth;
 };
 
 struct SessionStatistics {
