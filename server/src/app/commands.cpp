@@ -47,12 +47,7 @@ std::optional<LoadedSession> load(const std::string& file, const std::vector<std
     }
     s.loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(s.config.server.plugin_paths));
     // Running, a plugin that throws from configure() isolates its device; checking, it is an error.
-    try {
-      s.sessions = build_sessions(s.config, *s.loader, overrides != nullptr ? &s.configure_failures : nullptr);
-    } catch (const ConfigError& e) {
-      throw_if_overridden(e, s.config.overrides);  // a plugin parameter a --set changed
-      throw;
-    }
+    s.sessions = build_sessions(s.config, *s.loader, overrides != nullptr ? &s.configure_failures : nullptr);
     return s;
   } catch (const ConfigError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

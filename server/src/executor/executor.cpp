@@ -13,8 +13,7 @@ namespace hapticd::server {
 
 Executor::Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder)
     : settings_(settings),
-      sessions_(std::move(sessions)),
-      group_(sessions_, recorder),
+      group_(std::move(sessions), recorder),
       period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))) {
   HAPTICD_DEMAND(period_ns_ > 0);  // the rate is validated with the session file (server.rate_hz)
 }
@@ -45,7 +44,7 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
     if (!ramping && !stopping && stop_requested.load(std::memory_order_relaxed)) {
       stopping = true;
       result.stop_requested = true;
-      for (DeviceSession* s : sessions_) s->request_safe_stop();
+      for (DeviceSession* s : group_.devices()) s->request_safe_stop();
     }
     if (!ramping && !stopping && run_cycles > 0 && index >= run_cycles) {
       ramping = true;
@@ -98,6 +97,7 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
 
 ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std::function<void()>& monitor) {
   ExecutorResult result;
+  const std::vector<DeviceSession*>& devices = group_.devices();
   if (!settings_.lockstep && settings_.lock_memory)
     if (std::string w = lock_process_memory(); !w.empty()) result.warnings.push_back(std::move(w));
 
@@ -127,10 +127,10 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
       auto warnings = make_thread_realtime(thread, settings_.realtime_priority, settings_.cpu);
       result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
     }
-    for (; activated < sessions_.size(); ++activated) sessions_[activated]->activate();
+    for (; activated < devices.size(); ++activated) devices[activated]->activate();
   } catch (...) {
     // A device that could not be powered: the ones that were go off again, the loop never runs.
-    for (std::size_t k = 0; k < activated; ++k) sessions_[k]->deactivate();
+    for (std::size_t k = 0; k < activated; ++k) devices[k]->deactivate();
     cancelled.store(true, std::memory_order_release);
     go.store(true, std::memory_order_release);
     thread.join();
@@ -147,7 +147,7 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
   if (monitor) monitor();
   result.wall_time_s = static_cast<double>(monotonic_now_ns() - wall_start_ns) * 1e-9;
 
-  for (DeviceSession* s : sessions_) s->deactivate();
+  for (DeviceSession* s : devices) s->deactivate();
   return result;
 }
 

@@ -75,8 +75,7 @@ class Executor {
   void loop(LoopClock& clock, const std::atomic<bool>& stop_requested, ExecutorResult& result) noexcept;
 
   ExecutorSettings settings_;
-  std::vector<DeviceSession*> sessions_;
-  DeviceGroup group_;
+  DeviceGroup group_;  // the devices, and their cycle
   CycleListener* listener_ = nullptr;
   LiveLoopStatistics live_;
   std::int64_t period_ns_;

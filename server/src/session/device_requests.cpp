@@ -55,7 +55,6 @@ std::optional<std::string> check_against_schema(const PluginDescriptor& plugin, 
 std::optional<Stage> stage_named(std::string_view stage) {
   if (stage == "device") return Stage::device;
   if (stage == "virtual_model") return Stage::virtual_model;
-  if (stage == "inverse_kinematics") return Stage::inverse_kinematics;
   if (stage == "controller") return Stage::controller;
   return std::nullopt;
 }
@@ -89,8 +88,7 @@ RuntimeReply set_parameter(DeviceSession& device, std::string_view target, const
   if (stage_text == "safety") return set_safety(device, name, values);
   const std::optional<Stage> stage = stage_named(stage_text);
   if (!stage)
-    return {false, "unknown stage " + in_quotes(stage_text) +
-                       " (device, virtual_model, inverse_kinematics, controller or safety)"};
+    return {false, "unknown stage " + in_quotes(stage_text) + " (device, virtual_model, controller or safety)"};
   return plugin_request(device, *stage, stage_text, name, values);
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "hapticd/demand.hpp"
 #include "session/finite.hpp"
 
 namespace hapticd::server {
@@ -86,35 +87,16 @@ const PluginDescriptor* DeviceSession::stage_plugin(Stage stage) const noexcept 
   if (stage == Stage::device) return chain_.device.descriptor;
   const SchemeChain* scheme = running_scheme();
   if (scheme == nullptr) return nullptr;
-  switch (stage) {
-    case Stage::virtual_model:
-      return scheme->virtual_model ? scheme->virtual_model->descriptor : nullptr;
-    case Stage::inverse_kinematics:
-      return scheme->inverse_kinematics ? scheme->inverse_kinematics->descriptor : nullptr;
-    case Stage::controller:
-      return scheme->controller.descriptor;
-    case Stage::device:
-      break;
-  }
-  return nullptr;
+  if (stage == Stage::controller) return scheme->controller.descriptor;
+  return scheme->virtual_model ? scheme->virtual_model->descriptor : nullptr;
 }
 
 RuntimeReply DeviceSession::plugin_request(Stage stage, std::string_view name, const std::vector<double>& values) {
+  HAPTICD_DEMAND(stage_plugin(stage) != nullptr);  // the caller checked that the stage has a plugin
   if (stage == Stage::device) return chain_.device->handle_request(name, values);
-  SchemeChain* scheme = running_scheme();
-  if (scheme == nullptr) return {false, "device '" + name_ + "' has no running scheme"};
-  switch (stage) {
-    case Stage::virtual_model:
-      if (scheme->virtual_model) return (*scheme->virtual_model)->handle_request(name, values);
-      break;
-    case Stage::inverse_kinematics:
-      return {false, "inverse kinematics takes no run-time requests"};
-    case Stage::controller:
-      return scheme->controller->handle_request(name, values);
-    case Stage::device:
-      break;
-  }
-  return {false, "scheme '" + scheme->name + "' has no such stage"};
+  SchemeChain& scheme = *running_scheme();
+  if (stage == Stage::controller) return scheme.controller->handle_request(name, values);
+  return (*scheme.virtual_model)->handle_request(name, values);
 }
 
 void DeviceSession::switch_scheme_if_requested() noexcept {

@@ -141,10 +141,11 @@ class DeviceSession {
   [[nodiscard]] const SafetySupervisor& safety() const noexcept { return safety_; }
   // Any thread: the passivity controller on or off from the next cycle (the safety stage's run-time switch).
   void request_passivity_control(bool on) noexcept { passivity_request_.store(on ? 1 : 0, std::memory_order_release); }
-  // Not real-time safe, not the loop thread (device_requests routes here): a run-time request to the plugin of
-  // one stage - the device, or the running scheme's virtual model, inverse kinematics or controller - and that
-  // plugin's descriptor (nullptr: the running scheme has no such stage, or there is no scheme).
-  enum class Stage : std::uint8_t { device, virtual_model, inverse_kinematics, controller };
+  // Not real-time safe, not the loop thread (device_requests routes here): the plugin of one stage that takes
+  // run-time requests - the device, or the running scheme's virtual model or controller (inverse kinematics
+  // takes none) - its descriptor (nullptr: the running scheme has no such stage, or there is no scheme), and a
+  // request to it (only to a stage that has a plugin).
+  enum class Stage : std::uint8_t { device, virtual_model, controller };
   [[nodiscard]] const PluginDescriptor* stage_plugin(Stage stage) const noexcept;
   RuntimeReply plugin_request(Stage stage, std::string_view name, const std::vector<double>& values);
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then

@@ -17,12 +17,7 @@ std::unique_ptr<Session::Impl> build(SessionConfig config, const SessionOptions&
   auto& paths = impl->config.server.plugin_paths;
   paths.insert(paths.begin(), options.plugin_paths.begin(), options.plugin_paths.end());
   impl->loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(paths));
-  try {
-    impl->devices = build_sessions(impl->config, *impl->loader);
-  } catch (const ConfigError& e) {
-    throw_if_overridden(e, impl->config.overrides);  // a plugin parameter an override set
-    throw;
-  }
+  impl->devices = build_sessions(impl->config, *impl->loader);
   impl->group = std::make_unique<DeviceGroup>(impl->device_pointers(), nullptr);
   impl->period_ns = static_cast<std::int64_t>(std::llround(1e9 / impl->config.server.rate_hz));
   return impl;
@@ -122,7 +117,6 @@ DeviceView Session::device(std::string_view name) const {
   v.time_s = static_cast<double>(v.cycle) * period_s();
   v.state = d.state();
   const ChainState& chain = d.chain_state();
-  v.velocity = d.state().joints.velocity;
   v.handle_pose = chain.handle_pose;
   v.handle_twist = chain.handle_twist;
   v.operator_wrench = chain.operator_wrench;

@@ -87,8 +87,10 @@ std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) 
   return z ^ (z >> 31);
 }
 
-std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader,
-                                                           std::vector<ConfigureFailure>* report) {
+namespace {
+
+std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& config, PluginLoader& loader,
+                                                      std::vector<ConfigureFailure>* report) {
   std::vector<std::unique_ptr<DeviceSession>> sessions;
   for (std::size_t i = 0; i < config.devices.size(); ++i) {
     const DeviceConfig& dc = config.devices[i];
@@ -155,6 +157,18 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
     if (!report->empty()) throw report->front().error;  // nothing could run: fail the start
   }
   return sessions;
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader,
+                                                           std::vector<ConfigureFailure>* report) {
+  try {
+    return build_all(config, loader, report);
+  } catch (const ConfigError& e) {
+    throw_if_overridden(e, config.overrides);  // a plugin parameter an override set: the error names it
+    throw;
+  }
 }
 
 }  // namespace hapticd::server

@@ -18,7 +18,8 @@ struct ConfigureFailure {
   bool powered;  // false: the device plugin itself failed, the device is left out; true: held in its safe state
 };
 
-// Without `report` every failure throws. With it, a plugin that throws from configure() isolates its device:
+// An error in a value an override set names the override (SessionConfig::overrides). Without `report` every
+// failure throws. With it, a plugin that throws from configure() isolates its device:
 // the failure is added to `report`, the device is held in its safe state (or left out when its device plugin
 // failed) and the others are built; the start fails only if no device can run.
 std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader,

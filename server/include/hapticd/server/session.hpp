@@ -42,8 +42,7 @@ struct DeviceView {
   std::string name;
   std::uint64_t cycle = 0;  // the last cycle run (0 before the first step)
   double time_s = 0.0;      // its time on the session's clock
-  DeviceState state;        // the device's sample as read (joint velocity as the device reports it)
-  JointVector velocity;     // the server's one joint-velocity estimate (the chain's)
+  DeviceState state;        // the device's sample; its joint velocity is the server's one estimate (the chain's)
   Pose handle_pose;         // forward kinematics of the measured joints (world)
   Twist handle_twist;
   Wrench operator_wrench;  // the operator's wrench on the handle (world, at the handle point)
