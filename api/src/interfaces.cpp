@@ -18,8 +18,14 @@ namespace {
 RuntimeReply refuse(std::string_view name) {
   return {false, "'" + std::string(name) + "' is not a run-time request this plugin accepts"};
 }
+void refuse_tuning() {
+  throw ParameterError("", "the plugin declares tunable parameters but does not implement tune()");
+}
 }  // namespace
 
+void Device::tune(const Parameters&) { refuse_tuning(); }
+void Controller::tune(const Parameters&) { refuse_tuning(); }
+void VirtualModel::tune(const Parameters&) { refuse_tuning(); }
 RuntimeReply Device::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 bool Device::simulated_truth(SimulatedTruth&) const { return false; }
 RuntimeReply Controller::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 namespace hapticd {
 namespace {
@@ -110,6 +111,7 @@ std::string ParameterSpec::constraints_text() const {
     for (const auto& c : choices) out << ' ' << c;
   }
   out << (default_value ? ", default " + format_value(*default_value) : std::string(", required"));
+  if (tunable) out << ", tunable at run time";
   return out.str();
 }
 
@@ -138,6 +140,12 @@ ParameterBuilder& ParameterBuilder::size(std::size_t elements) {
 }
 ParameterBuilder& ParameterBuilder::choices(std::vector<std::string> allowed) {
   spec().choices = std::move(allowed);
+  return *this;
+}
+ParameterBuilder& ParameterBuilder::tunable() {
+  if (spec().type == ParameterType::string)
+    throw std::logic_error("parameter '" + spec().name + "': a text parameter cannot be tunable");
+  spec().tunable = true;
   return *this;
 }
 ParameterBuilder& ParameterBuilder::default_value(ParameterValue value) {
@@ -185,6 +193,13 @@ std::vector<std::string> ParameterSchema::names() const {
   return out;
 }
 
+std::vector<std::string> ParameterSchema::tunable_names() const {
+  std::vector<std::string> out;
+  for (const auto& s : specs_)
+    if (s.tunable) out.push_back(s.name);
+  return out;
+}
+
 void Parameters::set(std::string name, ParameterValue value, std::string origin) {
   values_[std::move(name)] = Entry{std::move(value), std::move(origin)};
 }
@@ -212,6 +227,7 @@ const std::string& Parameters::string(std::string_view n) const {
 const std::vector<double>& Parameters::real_vector(std::string_view n) const {
   return typed<std::vector<double>>(entry(n).value, n, "list of reals");
 }
+const ParameterValue& Parameters::value(std::string_view n) const { return entry(n).value; }
 std::string Parameters::origin(std::string_view n) const { return has(n) ? entry(n).origin : std::string(); }
 
 }  // namespace hapticd

@@ -115,6 +115,9 @@ int main(int argc, char** argv) {
   set->add_option("device", device)->required();
   set->add_option("parameter", parameter, "e.g. virtual_model.mass_kg")->required();
   set->add_option("values", values)->required();
+  auto* get = app.add_subcommand("get", "read a parameter's value in effect: <stage>.<name>");
+  get->add_option("device", device)->required();
+  get->add_option("parameter", parameter, "e.g. controller.force_gain")->required();
   auto* record = app.add_subcommand("record", "record a device's state to CSV");
   record->add_option("device", device)->required();
   record->add_option("file", file)->required();
@@ -170,6 +173,12 @@ int main(int argc, char** argv) {
   if (*release) return report(client.release(device, wait));
   if (*switch_cmd) return report(client.switch_scheme(device, scheme, wait));
   if (*set) return report(client.set_parameter(device, parameter, values, wait));
+  if (*get) {
+    const Reply r = client.get_parameter(device, parameter, wait);
+    if (!r.answered || !r.accepted) return report(r);
+    fmt::print("{}\n", r.message);  // "name = value"
+    return 0;
+  }
   if (*estop) return report(client.emergency_stop(device, wait));
   if (*recover) return report(client.recover(device, wait));
   if (*op) return report(client.operator_command(device, what, values, wait));

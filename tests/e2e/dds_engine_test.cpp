@@ -97,6 +97,10 @@ TEST(DdsEngine, ASecondEngineCannotTakeAClaimedDevice) {
   // The owner may tune its device at run time.
   const client::Reply tuned = first.client.set_parameter("v3", "virtual_model.coupling_stiffness_n_per_m", {3000.0});
   EXPECT_TRUE(tuned.accepted) << tuned.message;
+  // Anyone may read the value in effect; it arrives as numbers in the reply.
+  const client::Reply read = second.get_parameter("v3", "virtual_model.coupling_stiffness_n_per_m");
+  EXPECT_TRUE(read.accepted) << read.message;
+  EXPECT_EQ(read.values, std::vector<double>{3000.0});
   // Observing is allowed.
   EXPECT_TRUE(second.wait_for_state("v3", std::chrono::seconds(5)).has_value());
   server.stop();

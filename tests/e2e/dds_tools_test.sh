@@ -26,6 +26,9 @@ grep -q "answered 500 states" c.txt || fail "the C engine did not answer"
 # Requests: a scheme that does not exist is refused; a parameter is set; the operator is driven.
 if ctl scheme vishard3 no-such-scheme; then fail "an unknown scheme was accepted"; fi
 ctl set vishard3 virtual_model.damping_n_s_per_m 20 20 20 || fail "set parameter refused"
+ctl get vishard3 virtual_model.damping_n_s_per_m | tee get.txt
+grep -q "^damping_n_s_per_m = \[20, 20, 20\]" get.txt || fail "get does not show the value set"
+if ctl set vishard3 virtual_model.coupling 0; then fail "a parameter that is not tunable was set"; fi
 ctl operator vishard3 push 3 0 0 0.2 || fail "operator push refused"
 
 # Record, and watch while an engine dies: the watcher sees the engine's deadline missed.

@@ -46,6 +46,10 @@ struct ParameterSpec {
   bool minimum_exclusive = false;
   std::optional<std::size_t> size;   // vectors: exact number of elements
   std::vector<std::string> choices;  // strings: the allowed values (empty: any)
+  // May be set while the plugin runs (a set_parameter request): the server checks the value against this spec,
+  // keeps the values in effect (answering get requests) and hands them to the plugin's tune(). Text parameters
+  // are never tunable.
+  bool tunable = false;
 
   [[nodiscard]] bool required() const noexcept { return !default_value.has_value(); }
   // Throws ParameterError if the value breaks a bound, size or choice; the message says what would be valid.
@@ -67,6 +71,8 @@ class HAPTICD_API ParameterBuilder {
   ParameterBuilder& maximum(double value);
   ParameterBuilder& size(std::size_t elements);
   ParameterBuilder& choices(std::vector<std::string> allowed);
+  // Settable at run time (ParameterSpec::tunable); the plugin implements tune().
+  ParameterBuilder& tunable();
 
  private:
   ParameterSpec& spec();
@@ -85,6 +91,7 @@ class HAPTICD_API ParameterSchema {
   [[nodiscard]] const std::vector<ParameterSpec>& specs() const noexcept { return specs_; }
   [[nodiscard]] const ParameterSpec* find(std::string_view name) const noexcept;
   [[nodiscard]] std::vector<std::string> names() const;
+  [[nodiscard]] std::vector<std::string> tunable_names() const;
 
  private:
   friend class ParameterBuilder;
@@ -104,6 +111,7 @@ class HAPTICD_API Parameters {
   [[nodiscard]] double real(std::string_view name) const;
   [[nodiscard]] const std::string& string(std::string_view name) const;
   [[nodiscard]] const std::vector<double>& real_vector(std::string_view name) const;
+  [[nodiscard]] const ParameterValue& value(std::string_view name) const;
   // Where the value came from ("file.yaml:12"), or empty for a default.
   [[nodiscard]] std::string origin(std::string_view name) const;
 

@@ -27,8 +27,13 @@ class HAPTICD_API VirtualModel {
   virtual ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) = 0;
   // Not real-time safe. Called after the model has left the loop.
   virtual void deactivate() = 0;
-  // Not real-time safe, any server thread (runtime_request.hpp): a run-time request such as setting a
-  // parameter; `name` is the parameter or command, `values` its numbers. The default refuses.
+  // Not real-time safe, any server thread (runtime_request.hpp): a tunable parameter was set. `parameters` holds
+  // the value in effect of every parameter, the new one checked against the schema. Read the tunable ones as
+  // configure() does and hand them to the loop; throw ParameterError to refuse (the old values stay). The
+  // default refuses: a plugin that declares tunable parameters overrides it.
+  virtual void tune(const Parameters& parameters);
+  // Not real-time safe, any server thread (runtime_request.hpp): a command of the plugin's own (a name the
+  // schema does not declare); `values` its numbers. The default refuses.
   virtual RuntimeReply handle_request(std::string_view name, const std::vector<double>& values);
 };
 

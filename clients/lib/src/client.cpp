@@ -1,5 +1,6 @@
 #include "hapticd/client/client.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <cstring>
@@ -79,7 +80,11 @@ struct Client::Impl {
         if (dds::text_of(r.client) != options.client_id) return;
         {
           std::lock_guard lock(mutex);
-          replies[r.request_id] = Reply{true, r.accepted, std::string(dds::text_of(r.message))};
+          Reply answer{true, r.accepted, std::string(dds::text_of(r.message)), {}};
+          const auto count =
+              static_cast<std::size_t>(std::clamp<std::int32_t>(r.value_count, 0, hapticd_msg_MAX_VALUES));
+          answer.values.assign(r.values, r.values + count);
+          replies[r.request_id] = std::move(answer);
         }
         changed.notify_all();
       });
@@ -261,10 +266,10 @@ Reply Client::request(std::string_view device, hapticd_msg_RequestKind kind, std
       std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout);
   while (impl_->request.matched() == 0 && std::chrono::steady_clock::now() < until)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  if (!impl_->request.write(r)) return Reply{false, false, "cannot write the request"};
+  if (!impl_->request.write(r)) return Reply{false, false, "cannot write the request", {}};
   std::unique_lock lock(impl_->mutex);
   if (!impl_->changed.wait_until(lock, until, [&] { return impl_->replies.count(r.request_id) > 0; }))
-    return Reply{false, false, "no reply within the timeout"};
+    return Reply{false, false, "no reply within the timeout", {}};
   Reply reply = impl_->replies[r.request_id];
   impl_->replies.erase(r.request_id);
   return reply;
@@ -284,6 +289,9 @@ Reply Client::switch_scheme(std::string_view device, std::string_view scheme, Ti
 Reply Client::set_parameter(std::string_view device, std::string_view parameter, const std::vector<double>& values,
                             Timeout timeout) {
   return request(device, hapticd_msg_REQUEST_SET_PARAMETER, parameter, values, timeout);
+}
+Reply Client::get_parameter(std::string_view device, std::string_view parameter, Timeout timeout) {
+  return request(device, hapticd_msg_REQUEST_GET_PARAMETER, parameter, {}, timeout);
 }
 Reply Client::emergency_stop(std::string_view device, Timeout timeout) {
   return request(device, hapticd_msg_REQUEST_ESTOP, {}, {}, timeout);

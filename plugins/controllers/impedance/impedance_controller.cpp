@@ -17,12 +17,14 @@ ParameterSchema ImpedanceController::parameter_schema() {
   s.real("force_gain", "proportional force feedback Kp (0: open-loop impedance control)")
       .minimum(0.0)
       .maximum(50.0)
-      .default_value(0.0);
+      .default_value(0.0)
+      .tunable();
   s.real("force_derivative_gain", "derivative force feedback Kd")
       .unit("s")
       .minimum(0.0)
       .maximum(1.0)
-      .default_value(0.0);
+      .default_value(0.0)
+      .tunable();
   s.real("derivative_filter_hz", "low-pass of the force-error derivative")
       .unit("Hz")
       .greater_than(0.0)
@@ -88,7 +90,8 @@ ParameterSchema ImpedanceController::parameter_schema() {
   s.real("joint_torque_gain", "inner joint-torque loop gain Kt (needs joint torque sensors); 0: off")
       .minimum(0.0)
       .maximum(20.0)
-      .default_value(0.0);
+      .default_value(0.0)
+      .tunable();
   // Adaptive sliding friction.
   s.boolean("adaptive_friction", "re-tune the sliding-friction model on line (batch least squares)")
       .default_value(false);
@@ -132,11 +135,9 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
   }
   dof_ = context.device->dof();
   rows_ = model::task_rows(p.string("task"), dof_);
-  kp_ = p.real("force_gain");
-  kd_ = p.real("force_derivative_gain");
-  if ((kp_ > 0.0 || kd_ > 0.0) && !context.device->reports_wrench) {
-    throw ParameterError("force_gain", "force feedback needs a device with a force/torque sensor");
-  }
+  reports_wrench_ = context.device->reports_wrench;
+  reports_joint_torque_ = context.device->reports_joint_torque;
+  apply(gains_of(p));
   gravity_compensation_ = p.boolean("gravity_compensation");
   error_rate_.configure(1.0 / context.rate_hz, p.real("derivative_filter_hz"));
   configure_friction(p, context);
@@ -149,10 +150,6 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
     } catch (const std::invalid_argument& e) {
       throw ParameterError("observer_cutoff_hz", e.what());
     }
-  }
-  joint_torque_gain_ = p.real("joint_torque_gain");
-  if (joint_torque_gain_ > 0.0 && !context.device->reports_joint_torque) {
-    throw ParameterError("joint_torque_gain", "joint-torque feedback needs a device that reports joint torques");
   }
 
   notch_count_ = 0;
@@ -172,6 +169,23 @@ void ImpedanceController::configure(const Parameters& p, const PluginContext& co
   projected_error_.setZero(dof_);
   previous_command_.setZero(dof_);
 }
+
+ImpedanceController::Gains ImpedanceController::gains_of(const Parameters& p) const {
+  const Gains g{p.real("force_gain"), p.real("force_derivative_gain"), p.real("joint_torque_gain")};
+  if ((g.kp > 0.0 || g.kd > 0.0) && !reports_wrench_)
+    throw ParameterError("force_gain", "force feedback needs a device with a force/torque sensor");
+  if (g.kt > 0.0 && !reports_joint_torque_)
+    throw ParameterError("joint_torque_gain", "joint-torque feedback needs a device that reports joint torques");
+  return g;
+}
+
+void ImpedanceController::apply(const Gains& gains) noexcept {
+  kp_ = gains.kp;
+  kd_ = gains.kd;
+  joint_torque_gain_ = gains.kt;
+}
+
+void ImpedanceController::tune(const Parameters& parameters) { gains_inbox_.publish(gains_of(parameters)); }
 
 void ImpedanceController::configure_friction(const Parameters& p, const PluginContext& context) {
   friction_compensation_ = p.boolean("friction_compensation");
@@ -295,6 +309,7 @@ void ImpedanceController::adapt(const CycleTime& cycle, const ControllerInput& i
 
 ReturnCode ImpedanceController::update(const CycleTime& cycle, const ControllerInput& in,
                                        JointCommand& command) noexcept {
+  if (gains_inbox_.take(gains_incoming_)) apply(gains_incoming_);  // run-time gains, at a cycle boundary
   const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
   Vector6 desired = Vector6::Zero();

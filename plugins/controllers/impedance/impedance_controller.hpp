@@ -18,6 +18,7 @@
 #include "friction_estimator.hpp"
 #include "friction_retuner.hpp"
 #include "hapticd/controller.hpp"
+#include "hapticd/realtime/latest_value.hpp"
 #include "hapticd/signal/biquad.hpp"
 #include "hapticd/signal/differentiator.hpp"
 #include "stiction_compensator.hpp"
@@ -32,8 +33,16 @@ class ImpedanceController final : public Controller {
   ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept override;
   ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept override;
   void deactivate() override {}
+  // The tunable gains (force_gain, force_derivative_gain, joint_torque_gain), taken at the next cycle.
+  void tune(const Parameters& parameters) override;
 
  private:
+  struct Gains {
+    double kp = 0.0, kd = 0.0, kt = 0.0;
+  };
+  // The gains, checked against what the device measures; throws ParameterError.
+  [[nodiscard]] Gains gains_of(const Parameters& p) const;
+  void apply(const Gains& gains) noexcept;
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   [[nodiscard]] Vector6 force_error(const ControllerInput& input) const noexcept;
   void configure_friction(const Parameters& p, const PluginContext& context);
@@ -55,6 +64,9 @@ class ImpedanceController final : public Controller {
   bool disturbance_observer_ = false;
   DisturbanceObserver observer_;
   double joint_torque_gain_ = 0.0;
+  bool reports_wrench_ = false, reports_joint_torque_ = false;
+  realtime::LatestValue<Gains> gains_inbox_;
+  Gains gains_incoming_;
 
   bool adaptive_ = false;
   std::uint64_t adapt_period_cycles_ = 80000;

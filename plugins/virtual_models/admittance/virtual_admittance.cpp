@@ -27,48 +27,55 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
       .size(3)
       .minimum(0.1)
       .maximum(1000.0)
-      .default_value(std::vector<double>{5.0, 5.0, 5.0});
+      .default_value(std::vector<double>{5.0, 5.0, 5.0})
+      .tunable();
   s.real_vector("damping_n_s_per_m", "virtual damping along the world axes")
       .size(3)
       .minimum(0.0)
-      .default_value(std::vector<double>{10.0, 10.0, 10.0});
+      .default_value(std::vector<double>{10.0, 10.0, 10.0})
+      .tunable();
   s.boolean("rotation", "render rotations too (devices with actuated handle orientation)").default_value(true);
   s.real_vector("inertia_kg_m2", "virtual principal inertia about the handle axes")
       .unit("kg m^2")
       .size(3)
       .minimum(0.001)
       .maximum(100.0)
-      .default_value(std::vector<double>{0.02, 0.02, 0.02});
+      .default_value(std::vector<double>{0.02, 0.02, 0.02})
+      .tunable();
   s.real_vector("rotational_damping_n_m_s", "virtual rotational damping about the handle axes")
       .size(3)
       .minimum(0.0)
-      .default_value(std::vector<double>{0.1, 0.1, 0.1});
+      .default_value(std::vector<double>{0.1, 0.1, 0.1})
+      .tunable();
   s.real_vector("walls",
                 "virtual walls, 6 numbers each: a point on the wall and the normal pointing to the free "
                 "side (world, m); at most 8")
       .default_value(std::vector<double>{});
   s.boolean("walls_relative", "wall points are offsets from the handle's position at activation").default_value(false);
-  s.real("wall_stiffness_n_per_m", "stiffness of the walls").unit("N/m").minimum(0.0).default_value(5000.0);
+  s.real("wall_stiffness_n_per_m", "stiffness of the walls").unit("N/m").minimum(0.0).default_value(5000.0).tunable();
   s.real("wall_damping_n_s_per_m", "damping of the walls while penetrated")
       .unit("N s/m")
       .minimum(0.0)
-      .default_value(50.0);
+      .default_value(50.0)
+      .tunable();
   s.boolean("motion_based", "walls act on the measured handle motion (motion-based impedance control)")
       .default_value(false);
   s.boolean("coupling",
             "take the rendering engine's input: virtual coupling to its proxy pose, its wrench (and "
             "local model), or its desired motion")
       .default_value(false);
-  s.real("coupling_stiffness_n_per_m", "coupling spring").unit("N/m").minimum(0.0).default_value(2000.0);
-  s.real("coupling_damping_n_s_per_m", "coupling damper").unit("N s/m").minimum(0.0).default_value(20.0);
+  s.real("coupling_stiffness_n_per_m", "coupling spring").unit("N/m").minimum(0.0).default_value(2000.0).tunable();
+  s.real("coupling_damping_n_s_per_m", "coupling damper").unit("N s/m").minimum(0.0).default_value(20.0).tunable();
   s.real("coupling_rotational_stiffness_n_m_per_rad", "rotational coupling spring")
       .unit("N m/rad")
       .minimum(0.0)
-      .default_value(20.0);
+      .default_value(20.0)
+      .tunable();
   s.real("coupling_rotational_damping_n_m_s", "rotational coupling damper")
       .unit("N m s/rad")
       .minimum(0.0)
-      .default_value(0.2);
+      .default_value(0.2)
+      .tunable();
   s.real("workspace_radius_m",
          "workspace spring: beyond this distance from the start position a spring pulls "
          "the body back; 0: off")
@@ -78,7 +85,8 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
   s.real("workspace_stiffness_n_per_m", "stiffness of the workspace spring")
       .unit("N/m")
       .minimum(0.0)
-      .default_value(1000.0);
+      .default_value(1000.0)
+      .tunable();
   s.real("max_tracking_error_m",
          "anti-windup: while the drives saturate, the virtual body stays this close to the "
          "handle; 0: off")
@@ -102,10 +110,7 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
     throw ParameterError("mass_kg",
                          "the virtual admittance needs a device with a robot model and a force/torque sensor");
   }
-  mass_ = vector3(p.real_vector("mass_kg"));
-  damping_ = vector3(p.real_vector("damping_n_s_per_m"));
-  inertia_ = vector3(p.real_vector("inertia_kg_m2"));
-  rotational_damping_ = vector3(p.real_vector("rotational_damping_n_m_s"));
+  apply(tunable_of(p));
   rotation_ = p.boolean("rotation");
   max_velocity_ = p.real("max_velocity_m_s");
   max_angular_velocity_ = p.real("max_angular_velocity_rad_s");
@@ -122,21 +127,44 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
     if (normal.norm() < 1e-9) throw ParameterError("walls", "wall " + std::to_string(i + 1) + " has a zero normal");
     walls_[static_cast<std::size_t>(i)] = Wall{Eigen::Vector3d(w[o], w[o + 1], w[o + 2]), normal.normalized()};
   }
-  wall_stiffness_ = p.real("wall_stiffness_n_per_m");
-  wall_damping_ = p.real("wall_damping_n_s_per_m");
   motion_based_ = p.boolean("motion_based");
   walls_relative_ = p.boolean("walls_relative");
   for (int i = 0; i < wall_count_; ++i)
     configured_wall_points_[static_cast<std::size_t>(i)] = walls_[static_cast<std::size_t>(i)].point;
   workspace_radius_ = p.real("workspace_radius_m");
-  workspace_stiffness_ = p.real("workspace_stiffness_n_per_m");
   max_tracking_error_ = p.real("max_tracking_error_m");
   max_tracking_angle_ = p.real("max_tracking_angle_rad");
   coupling_ = p.boolean("coupling");
-  coupling_k_ = p.real("coupling_stiffness_n_per_m");
-  coupling_b_ = p.real("coupling_damping_n_s_per_m");
-  coupling_kr_ = p.real("coupling_rotational_stiffness_n_m_per_rad");
-  coupling_br_ = p.real("coupling_rotational_damping_n_m_s");
+}
+
+VirtualAdmittance::Tunable VirtualAdmittance::tunable_of(const Parameters& p) {
+  Tunable t;
+  t.mass = vector3(p.real_vector("mass_kg"));
+  t.damping = vector3(p.real_vector("damping_n_s_per_m"));
+  t.inertia = vector3(p.real_vector("inertia_kg_m2"));
+  t.rotational_damping = vector3(p.real_vector("rotational_damping_n_m_s"));
+  t.wall_k = p.real("wall_stiffness_n_per_m");
+  t.wall_b = p.real("wall_damping_n_s_per_m");
+  t.coupling_k = p.real("coupling_stiffness_n_per_m");
+  t.coupling_b = p.real("coupling_damping_n_s_per_m");
+  t.coupling_kr = p.real("coupling_rotational_stiffness_n_m_per_rad");
+  t.coupling_br = p.real("coupling_rotational_damping_n_m_s");
+  t.workspace_k = p.real("workspace_stiffness_n_per_m");
+  return t;
+}
+
+void VirtualAdmittance::apply(const Tunable& t) noexcept {
+  mass_ = t.mass;
+  damping_ = t.damping;
+  inertia_ = t.inertia;
+  rotational_damping_ = t.rotational_damping;
+  wall_stiffness_ = t.wall_k;
+  wall_damping_ = t.wall_b;
+  coupling_k_ = t.coupling_k;
+  coupling_b_ = t.coupling_b;
+  coupling_kr_ = t.coupling_kr;
+  coupling_br_ = t.coupling_br;
+  workspace_stiffness_ = t.workspace_k;
 }
 
 Eigen::Matrix<double, 6, 1> VirtualAdmittance::engine_wrench(const EngineInput& e, const Eigen::Vector3d& position,
@@ -236,37 +264,7 @@ bool VirtualAdmittance::limit_tracking_error(const ChainState& c) noexcept {
   return limited;
 }
 
-RuntimeReply VirtualAdmittance::handle_request(std::string_view name, const std::vector<double>& values) {
-  if (!requested_valid_) {
-    requested_ = tunable();  // configured values (configure() ran before any request can come)
-    requested_valid_ = true;
-  }
-  Tunable t = requested_;
-  const auto all_finite_positive = [&](bool zero_ok) {
-    for (double v : values)
-      if (!std::isfinite(v) || v < 0.0 || (!zero_ok && v == 0.0)) return false;
-    return true;
-  };
-  if (name == "mass_kg" || name == "damping_n_s_per_m") {
-    const bool mass = name == "mass_kg";
-    if (values.size() != 3 || !all_finite_positive(!mass))
-      return {false, std::string(name) + " takes 3 values, " + (mass ? "> 0" : ">= 0")};
-    (mass ? t.mass : t.damping) = Eigen::Vector3d(values[0], values[1], values[2]);
-  } else if (name == "coupling_stiffness_n_per_m" || name == "coupling_damping_n_s_per_m" ||
-             name == "wall_stiffness_n_per_m") {
-    if (values.size() != 1 || !all_finite_positive(true)) return {false, std::string(name) + " takes one value >= 0"};
-    (name == "coupling_stiffness_n_per_m"   ? t.coupling_k
-     : name == "coupling_damping_n_s_per_m" ? t.coupling_b
-                                            : t.wall_k) = values[0];
-  } else {
-    return {false,
-            "admittance run-time parameters: mass_kg, damping_n_s_per_m, coupling_stiffness_n_per_m, "
-            "coupling_damping_n_s_per_m, wall_stiffness_n_per_m"};
-  }
-  requested_ = t;
-  tunable_inbox_.publish(t);
-  return {true, std::string(name) + " set"};
-}
+void VirtualAdmittance::tune(const Parameters& parameters) { tunable_inbox_.publish(tunable_of(parameters)); }
 
 ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcept {
   if (current.chain.model == nullptr) return ReturnCode::error;
@@ -289,13 +287,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
                                      TaskTarget& target) noexcept {
   const ChainState& c = input.chain;
   const double dt = period_s_;
-  if (tunable_inbox_.take(tunable_incoming_)) {  // run-time parameters, at a cycle boundary
-    mass_ = tunable_incoming_.mass;
-    damping_ = tunable_incoming_.damping;
-    coupling_k_ = tunable_incoming_.coupling_k;
-    coupling_b_ = tunable_incoming_.coupling_b;
-    wall_stiffness_ = tunable_incoming_.wall_k;
-  }
+  if (tunable_inbox_.take(tunable_incoming_)) apply(tunable_incoming_);  // run-time parameters, at a cycle boundary
   const Eigen::Vector3d world_angular = orientation_ * body_angular_velocity_;
   const EngineInput& e = input.engine;
   // The port where the engine acts: the handle (motion-based) or the virtual body.

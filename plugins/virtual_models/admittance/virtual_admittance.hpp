@@ -37,9 +37,8 @@ class VirtualAdmittance final : public VirtualModel {
   ReturnCode activate(const VirtualModelInput& current) noexcept override;
   ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept override;
   void deactivate() override {}
-  // Run-time parameters (taken at the next cycle): mass_kg, damping_n_s_per_m (3 values each),
-  // coupling_stiffness_n_per_m, coupling_damping_n_s_per_m, wall_stiffness_n_per_m (1 value each).
-  RuntimeReply handle_request(std::string_view name, const std::vector<double>& values) override;
+  // The tunable parameters (masses, dampings, wall, coupling and workspace stiffness), taken at the next cycle.
+  void tune(const Parameters& parameters) override;
 
  private:
   struct Wall {
@@ -55,13 +54,14 @@ class VirtualAdmittance final : public VirtualModel {
                                             const Eigen::Quaterniond& orientation, const Eigen::Vector3d& velocity,
                                             const Eigen::Vector3d& angular_velocity) const noexcept;
 
+  // The parameters tune() may change.
   struct Tunable {
-    Eigen::Vector3d mass, damping;
-    double coupling_k, coupling_b, wall_k;
+    Eigen::Vector3d mass, damping, inertia, rotational_damping;
+    double wall_k = 0.0, wall_b = 0.0, coupling_k = 0.0, coupling_b = 0.0, coupling_kr = 0.0, coupling_br = 0.0,
+           workspace_k = 0.0;
   };
-  Tunable tunable() const noexcept { return {mass_, damping_, coupling_k_, coupling_b_, wall_stiffness_}; }
-  Tunable requested_{};  // request thread's copy of what it last asked for
-  bool requested_valid_ = false;
+  static Tunable tunable_of(const Parameters& parameters);
+  void apply(const Tunable& tunable) noexcept;
   realtime::LatestValue<Tunable> tunable_inbox_;
   Tunable tunable_incoming_{};
 

@@ -43,6 +43,9 @@ void RequestDispatcher::handle_requests() {
     reply.request_id = m.request_id;
     reply.accepted = answer.accepted;
     dds::set_text(reply.message, answer.message);
+    const std::size_t count = std::min<std::size_t>(answer.values.size(), hapticd_msg_MAX_VALUES);
+    reply.value_count = static_cast<std::int32_t>(count);
+    std::copy_n(answer.values.begin(), count, reply.values);
     (void)dds_.reply.write_once(reply);  // no state kept per client id
   });
 }
@@ -57,6 +60,8 @@ RequestDispatcher::Answer RequestDispatcher::dispatch(DeviceLink& d, const Reque
       return switch_scheme(d, r);
     case hapticd_msg_REQUEST_SET_PARAMETER:
       return set_parameter(d, r);
+    case hapticd_msg_REQUEST_GET_PARAMETER:
+      return get_parameter(d, r);
     case hapticd_msg_REQUEST_OPERATOR:
       return drive_operator(d, r);
     case hapticd_msg_REQUEST_ESTOP:
@@ -104,8 +109,8 @@ RequestDispatcher::Answer RequestDispatcher::release(DeviceLink& d, const Reques
 }
 
 RequestDispatcher::Answer RequestDispatcher::forward(DeviceLink& d, DeviceRequest::Kind kind, const Request& r) {
-  const RuntimeReply rr = apply_request(*d.session, DeviceRequest{kind, std::string(r.name), r.values});
-  return {rr.accepted, rr.message};
+  RuntimeReply rr = apply_request(*d.session, DeviceRequest{kind, std::string(r.name), r.values});
+  return {rr.accepted, std::move(rr.message), std::move(rr.values)};
 }
 
 RequestDispatcher::Answer RequestDispatcher::switch_scheme(DeviceLink& d, const Request& r) {
@@ -116,6 +121,10 @@ RequestDispatcher::Answer RequestDispatcher::switch_scheme(DeviceLink& d, const 
 RequestDispatcher::Answer RequestDispatcher::set_parameter(DeviceLink& d, const Request& r) {
   if (auto refused = refused_unless_owner(d, r)) return *refused;
   return forward(d, DeviceRequest::Kind::set_parameter, r);
+}
+
+RequestDispatcher::Answer RequestDispatcher::get_parameter(DeviceLink& d, const Request& r) {
+  return forward(d, DeviceRequest::Kind::get_parameter, r);  // reading changes nothing: anyone may
 }
 
 RequestDispatcher::Answer RequestDispatcher::drive_operator(DeviceLink& d, const Request& r) {

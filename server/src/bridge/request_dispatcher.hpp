@@ -46,8 +46,12 @@ class RequestDispatcher {
     std::vector<double> values;
   };
   struct Answer {
+    Answer() = default;
+    Answer(bool accepted_, std::string message_, std::vector<double> values_ = {})
+        : accepted(accepted_), message(std::move(message_)), values(std::move(values_)) {}
     bool accepted = false;
     std::string message;
+    std::vector<double> values;  // a get request's value
   };
   Answer dispatch(DeviceLink& d, const Request& r);
   // Whether the requester may drive the device (free, or claimed by the requester's participant); else the
@@ -60,6 +64,7 @@ class RequestDispatcher {
   Answer release(DeviceLink& d, const Request& r);
   Answer switch_scheme(DeviceLink& d, const Request& r);
   Answer set_parameter(DeviceLink& d, const Request& r);
+  Answer get_parameter(DeviceLink& d, const Request& r);
   Answer drive_operator(DeviceLink& d, const Request& r);
   Answer emergency_stop(DeviceLink& d, const Request& r);
   Answer recover(DeviceLink& d, const Request& r);

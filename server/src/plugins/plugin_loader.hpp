@@ -36,6 +36,8 @@ struct PluginInstance {
   std::shared_ptr<const LoadedLibrary> library;  // declared first: destroyed after the object
   const PluginDescriptor* descriptor = nullptr;
   std::unique_ptr<T> object;
+  // The values in effect of every parameter: the configured ones, then each accepted run-time set (tune()).
+  Parameters parameters;
 
   T* operator->() const noexcept { return object.get(); }
   T& operator*() const noexcept { return *object; }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 #include <string_view>
+#include <variant>
 
 #include "session/device_session.hpp"
 
@@ -13,43 +14,54 @@ using Stage = DeviceSession::Stage;
 
 std::string in_quotes(std::string_view name) { return "'" + std::string(name) + "'"; }
 
-// A run-time set of a parameter the plugin's schema declares obeys the schema's type, size and bounds, as the
-// session file does; the message says what would be valid. Requests the schema does not name (operator.push,
-// ...) are the plugin's to check.
-std::optional<std::string> check_against_schema(const PluginDescriptor& plugin, std::string_view name,
-                                                const std::vector<double>& values) {
-  const ParameterSchema schema = plugin.parameter_schema();
-  const ParameterSpec* spec = schema.find(name);
-  if (spec == nullptr) return std::nullopt;
+std::string listed(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+// A run-time value for a parameter of the schema, checked as the session file's would be (type, size, bounds);
+// the message says what would be valid.
+std::variant<ParameterValue, std::string> checked_value(const ParameterSpec& spec, const std::vector<double>& values) {
+  const std::string name = in_quotes(spec.name);
+  for (double v : values)
+    if (!std::isfinite(v)) return name + ": values must be finite";
   ParameterValue value;
-  switch (spec->type) {
+  switch (spec.type) {
     case ParameterType::real:
-      if (values.size() != 1) return in_quotes(name) + " takes one number";
+      if (values.size() != 1) return name + " takes one number";
       value = values[0];
       break;
     case ParameterType::integer:
       if (values.size() != 1 || values[0] != std::floor(values[0]) || std::abs(values[0]) > 9.0e15)
-        return in_quotes(name) + " takes one whole number";
+        return name + " takes one whole number";
       value = static_cast<std::int64_t>(values[0]);
       break;
     case ParameterType::boolean:
-      if (values.size() != 1 || (values[0] != 0.0 && values[0] != 1.0)) return in_quotes(name) + " takes 0 or 1";
+      if (values.size() != 1 || (values[0] != 0.0 && values[0] != 1.0)) return name + " takes 0 or 1";
       value = values[0] == 1.0;
       break;
     case ParameterType::real_vector:
       value = values;
       break;
     case ParameterType::string:
-      return in_quotes(name) + " is a text parameter: it cannot be set at run time";
+      return name + " is a text parameter: it cannot be set at run time";
   }
-  for (double v : values)
-    if (!std::isfinite(v)) return in_quotes(name) + ": values must be finite";
   try {
-    spec->check(value);
+    spec.check(value);
   } catch (const ParameterError& e) {
-    return in_quotes(name) + ": " + e.what();
+    return name + ": " + e.what();
   }
-  return std::nullopt;
+  return value;
+}
+
+// A value as the numbers a reply carries (a boolean as 0 or 1; text carries none: it is in the message).
+std::vector<double> numbers_of(const ParameterValue& value) {
+  if (const auto* b = std::get_if<bool>(&value)) return {*b ? 1.0 : 0.0};
+  if (const auto* i = std::get_if<std::int64_t>(&value)) return {static_cast<double>(*i)};
+  if (const auto* r = std::get_if<double>(&value)) return {*r};
+  if (const auto* v = std::get_if<std::vector<double>>(&value)) return *v;
+  return {};
 }
 
 std::optional<Stage> stage_named(std::string_view stage) {
@@ -57,6 +69,30 @@ std::optional<Stage> stage_named(std::string_view stage) {
   if (stage == "virtual_model") return Stage::virtual_model;
   if (stage == "controller") return Stage::controller;
   return std::nullopt;
+}
+
+// The stage's plugin, or why there is none.
+std::variant<const PluginDescriptor*, RuntimeReply> plugin_of(const DeviceSession& device, Stage stage,
+                                                              std::string_view stage_text) {
+  if (const PluginDescriptor* plugin = device.stage_plugin(stage)) return plugin;
+  if (device.chain().schemes.empty())
+    return RuntimeReply{false, "device '" + device.name() + "' has no running scheme"};
+  return RuntimeReply{false, "scheme '" + device.schemes().active_name() + "' has no " + std::string(stage_text)};
+}
+
+// "<stage>.<parameter>" split; the stage "safety" is the server's own.
+struct Target {
+  std::string_view stage;
+  std::string_view name;
+};
+std::variant<Target, RuntimeReply> target_of(std::string_view target) {
+  const auto dot = target.find('.');
+  if (dot == std::string_view::npos)
+    return RuntimeReply{false, "expected <stage>.<parameter>, e.g. virtual_model.mass_kg"};
+  return Target{target.substr(0, dot), target.substr(dot + 1)};
+}
+RuntimeReply unknown_stage(std::string_view stage) {
+  return {false, "unknown stage " + in_quotes(stage) + " (device, virtual_model, controller or safety)"};
 }
 
 RuntimeReply set_safety(DeviceSession& device, std::string_view name, const std::vector<double>& values) {
@@ -69,27 +105,62 @@ RuntimeReply set_safety(DeviceSession& device, std::string_view name, const std:
   return {false, "unknown safety parameter " + in_quotes(name) + " (passivity_control)"};
 }
 
-RuntimeReply plugin_request(DeviceSession& device, Stage stage, std::string_view stage_text, std::string_view name,
+RuntimeReply plugin_command(DeviceSession& device, Stage stage, std::string_view stage_text, std::string_view name,
                             const std::vector<double>& values) {
-  const PluginDescriptor* plugin = device.stage_plugin(stage);
-  if (plugin == nullptr) {
-    if (device.chain().schemes.empty()) return {false, "device '" + device.name() + "' has no running scheme"};
-    return {false, "scheme '" + device.schemes().active_name() + "' has no " + std::string(stage_text)};
-  }
-  if (auto error = check_against_schema(*plugin, name, values)) return {false, *error};
+  const auto plugin = plugin_of(device, stage, stage_text);
+  if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
   return device.plugin_request(stage, name, values);
 }
 
-RuntimeReply set_parameter(DeviceSession& device, std::string_view target, const std::vector<double>& values) {
-  const auto dot = target.find('.');
-  if (dot == std::string_view::npos) return {false, "expected <stage>.<parameter>, e.g. virtual_model.mass_kg"};
-  const std::string_view stage_text = target.substr(0, dot);
-  const std::string_view name = target.substr(dot + 1);
+// A parameter the schema declares is set generically (tunable ones only); other names are the plugin's own
+// commands (handle_request).
+RuntimeReply set_parameter(DeviceSession& device, std::string_view target_text, const std::vector<double>& values) {
+  const auto target = target_of(target_text);
+  if (const auto* refused = std::get_if<RuntimeReply>(&target)) return *refused;
+  const auto [stage_text, name] = std::get<Target>(target);
   if (stage_text == "safety") return set_safety(device, name, values);
   const std::optional<Stage> stage = stage_named(stage_text);
-  if (!stage)
-    return {false, "unknown stage " + in_quotes(stage_text) + " (device, virtual_model, controller or safety)"};
-  return plugin_request(device, *stage, stage_text, name, values);
+  if (!stage) return unknown_stage(stage_text);
+  const auto plugin = plugin_of(device, *stage, stage_text);
+  if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
+  const PluginDescriptor& descriptor = *std::get<const PluginDescriptor*>(plugin);
+  const ParameterSchema schema = descriptor.parameter_schema();
+  const ParameterSpec* spec = schema.find(name);
+  if (spec == nullptr) return device.plugin_request(*stage, name, values);
+  if (!spec->tunable) {
+    const std::vector<std::string> tunable = schema.tunable_names();
+    return {false, in_quotes(name) + " of plugin '" + descriptor.name + "' is not tunable at run time (" +
+                       (tunable.empty() ? std::string("it has no tunable parameters") : "tunable: " + listed(tunable)) +
+                       ")"};
+  }
+  auto value = checked_value(*spec, values);
+  if (const auto* error = std::get_if<std::string>(&value)) return {false, *error};
+  return device.tune(*stage, spec->name, std::move(std::get<ParameterValue>(value)));
+}
+
+// Any parameter the schema declares, tunable or not: the value in effect.
+RuntimeReply get_parameter(DeviceSession& device, std::string_view target_text) {
+  const auto target = target_of(target_text);
+  if (const auto* refused = std::get_if<RuntimeReply>(&target)) return *refused;
+  const auto [stage_text, name] = std::get<Target>(target);
+  if (stage_text == "safety") {
+    if (name != "passivity_control")
+      return {false, "unknown safety parameter " + in_quotes(name) + " (passivity_control)"};
+    const bool on = device.passivity_control();
+    return {true, "passivity_control = " + std::string(on ? "true" : "false"), {on ? 1.0 : 0.0}};
+  }
+  const std::optional<Stage> stage = stage_named(stage_text);
+  if (!stage) return unknown_stage(stage_text);
+  const auto plugin = plugin_of(device, *stage, stage_text);
+  if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
+  const PluginDescriptor& descriptor = *std::get<const PluginDescriptor*>(plugin);
+  const ParameterSchema schema = descriptor.parameter_schema();
+  if (schema.find(name) == nullptr)
+    return {false, "plugin '" + std::string(descriptor.name) + "' has no parameter " + in_quotes(name) + " (" +
+                       listed(schema.names()) + ")"};
+  const Parameters parameters = device.stage_parameters(*stage);
+  const ParameterValue& value = parameters.value(name);
+  return {true, std::string(name) + " = " + format_value(value), numbers_of(value)};
 }
 
 }  // namespace
@@ -101,8 +172,10 @@ RuntimeReply apply_request(DeviceSession& device, const DeviceRequest& request) 
       return {true, "switching to " + request.name};
     case DeviceRequest::Kind::set_parameter:
       return set_parameter(device, request.name, request.values);
+    case DeviceRequest::Kind::get_parameter:
+      return get_parameter(device, request.name);
     case DeviceRequest::Kind::drive_operator:
-      return plugin_request(device, Stage::device, "device", "operator." + request.name, request.values);
+      return plugin_command(device, Stage::device, "device", "operator." + request.name, request.values);
     case DeviceRequest::Kind::emergency_stop:
       device.request_emergency_stop();
       return {true, "emergency stop"};

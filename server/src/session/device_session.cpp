@@ -53,6 +53,7 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   last_written_.setZero(dof);
   // Everything sized and set up for the loop's period here, before the first cycle: nothing lazily on the loop.
   safety_.configure(chain_.safety, description_, chain_.period_s);
+  status_.passivity_control.store(safety_.guard().passivity_control(), std::memory_order_release);
 }
 
 void DeviceSession::activate() {
@@ -91,12 +92,40 @@ const PluginDescriptor* DeviceSession::stage_plugin(Stage stage) const noexcept 
   return scheme->virtual_model ? scheme->virtual_model->descriptor : nullptr;
 }
 
-RuntimeReply DeviceSession::plugin_request(Stage stage, std::string_view name, const std::vector<double>& values) {
+template <class F>
+decltype(auto) DeviceSession::with_stage_plugin(Stage stage, F&& f) {
   HAPTICD_DEMAND(stage_plugin(stage) != nullptr);  // the caller checked that the stage has a plugin
-  if (stage == Stage::device) return chain_.device->handle_request(name, values);
+  if (stage == Stage::device) return f(chain_.device);
   SchemeChain& scheme = *running_scheme();
-  if (stage == Stage::controller) return scheme.controller->handle_request(name, values);
-  return (*scheme.virtual_model)->handle_request(name, values);
+  if (stage == Stage::controller) return f(scheme.controller);
+  return f(*scheme.virtual_model);
+}
+
+RuntimeReply DeviceSession::plugin_request(Stage stage, std::string_view name, const std::vector<double>& values) {
+  std::lock_guard lock(plugin_requests_);
+  return with_stage_plugin(stage, [&](auto& plugin) { return plugin->handle_request(name, values); });
+}
+
+Parameters DeviceSession::stage_parameters(Stage stage) {
+  std::lock_guard lock(plugin_requests_);
+  return with_stage_plugin(stage, [](auto& plugin) { return plugin.parameters; });
+}
+
+RuntimeReply DeviceSession::tune(Stage stage, const std::string& name, ParameterValue value) {
+  std::lock_guard lock(plugin_requests_);
+  return with_stage_plugin(stage, [&](auto& plugin) -> RuntimeReply {
+    Parameters next = plugin.parameters;
+    next.set(name, std::move(value), "run-time request");
+    try {
+      plugin->tune(next);
+    } catch (const std::exception& e) {
+      return {false, "'" + name + "' refused by plugin '" + plugin.descriptor->name + "': " + e.what()};
+    } catch (...) {
+      return {false, "'" + name + "' refused by plugin '" + plugin.descriptor->name + "'"};
+    }
+    plugin.parameters = std::move(next);
+    return {true, name + " = " + format_value(plugin.parameters.value(name))};
+  });
 }
 
 void DeviceSession::switch_scheme_if_requested() noexcept {
@@ -198,8 +227,10 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
 
 void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns,
                                       std::int64_t lateness_ns) noexcept {
-  if (const int p = passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0)
+  if (const int p = passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0) {
     safety_.guard().set_passivity_control(p == 1);
+    status_.passivity_control.store(p == 1, std::memory_order_release);
+  }
   ReturnCode read = ReturnCode::error;
   try {
     read = chain_.device->read(cycle, state_);

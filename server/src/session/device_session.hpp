@@ -14,6 +14,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -141,13 +142,21 @@ class DeviceSession {
   [[nodiscard]] const SafetySupervisor& safety() const noexcept { return safety_; }
   // Any thread: the passivity controller on or off from the next cycle (the safety stage's run-time switch).
   void request_passivity_control(bool on) noexcept { passivity_request_.store(on ? 1 : 0, std::memory_order_release); }
+  // Any thread: the passivity controller is on (as of the last cycle).
+  [[nodiscard]] bool passivity_control() const noexcept {
+    return status_.passivity_control.load(std::memory_order_acquire);
+  }
   // Not real-time safe, not the loop thread (device_requests routes here): the plugin of one stage that takes
   // run-time requests - the device, or the running scheme's virtual model or controller (inverse kinematics
-  // takes none) - its descriptor (nullptr: the running scheme has no such stage, or there is no scheme), and a
-  // request to it (only to a stage that has a plugin).
+  // takes none) - its descriptor (nullptr: the running scheme has no such stage, or there is no scheme), a
+  // command of the plugin's own, the values of its parameters in effect, and a run-time set of a tunable
+  // parameter already checked against the schema (the plugin's tune() may still refuse it). Only to a stage
+  // that has a plugin; requests to one device's plugins are handled one at a time.
   enum class Stage : std::uint8_t { device, virtual_model, controller };
   [[nodiscard]] const PluginDescriptor* stage_plugin(Stage stage) const noexcept;
   RuntimeReply plugin_request(Stage stage, std::string_view name, const std::vector<double>& values);
+  [[nodiscard]] Parameters stage_parameters(Stage stage);
+  RuntimeReply tune(Stage stage, const std::string& name, ParameterValue value);
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
   // (the executor's monitor does); deactivate() does it too.
   void service();
@@ -164,6 +173,9 @@ class DeviceSession {
   [[nodiscard]] const SchemeChain* running_scheme() const noexcept {
     return chain_.schemes.empty() ? nullptr : &chain_.schemes[schemes_.active_index()];
   }
+  // f(PluginInstance<T>&) on the stage's plugin (which must exist).
+  template <class F>
+  decltype(auto) with_stage_plugin(Stage stage, F&& f);
   // Phase (a)'s estimate; the chain restarts from the measured state when it (re)activates.
   void estimate(const CycleTime& cycle) noexcept;
   // Phase (c)'s work; plugins may throw despite the contract: caught by run_chain.
@@ -210,6 +222,7 @@ class DeviceSession {
   std::atomic<bool> safe_stop_requested_{false};
   bool stopped_ = false;                    // loop thread: the safe stop has begun
   std::atomic<int> passivity_request_{-1};  // -1: none, else 0/1
+  std::mutex plugin_requests_;              // one request to this device's plugins at a time (never the loop)
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;
   bool measurement_valid_ = false;

@@ -33,7 +33,8 @@ struct DeviceStatus {
   std::atomic<std::uint64_t> render_limited_cycles{0};
   std::atomic<double> dissipated_j{0.0};
   std::atomic<double> thermal_load{0.0};
-  std::atomic<bool> at_rest{true};  // the safe mode has reached zero torque (or there is no fault)
+  std::atomic<bool> at_rest{true};             // the safe mode has reached zero torque (or there is no fault)
+  std::atomic<bool> passivity_control{false};  // the safety stage's passivity controller is on
   realtime::LatestValue<DeviceSnapshot> snapshots;
   realtime::LatestValue<FaultReport> reports;
   SpscRing<SafetyEvent> safety_events{256};

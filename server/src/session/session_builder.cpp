@@ -57,6 +57,7 @@ PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, co
     throw PluginConfigureError{
         ConfigError(file, pc.line, pc.key_path, "plugin '" + pc.plugin + "' failed to configure")};
   }
+  instance.parameters = parameters;
   return instance;
 }
 

@@ -33,6 +33,7 @@ struct Reply {
   bool answered = false;  // false: no reply within the timeout
   bool accepted = false;
   std::string message;
+  std::vector<double> values;  // get_parameter: the value in effect (a boolean as 0 or 1)
 };
 
 using Timeout = std::chrono::duration<double>;
@@ -78,6 +79,9 @@ class Client {
   // parameter: "<stage>.<name>", e.g. "virtual_model.mass_kg".
   Reply set_parameter(std::string_view device, std::string_view parameter, const std::vector<double>& values,
                       Timeout timeout = std::chrono::seconds(2));
+  // Any parameter of the stage's plugin (tunable or not) or safety.passivity_control: Reply::values holds it,
+  // the message says "name = value" (text parameters only there).
+  Reply get_parameter(std::string_view device, std::string_view parameter, Timeout timeout = std::chrono::seconds(2));
   Reply emergency_stop(std::string_view device, Timeout timeout = std::chrono::seconds(2));
   // Leave the safe mode (accepted when the device is in it; it recovers once at zero torque).
   Reply recover(std::string_view device, Timeout timeout = std::chrono::seconds(2));
