@@ -28,6 +28,8 @@ void Controller::tune(const Parameters&) { refuse_tuning(); }
 void VirtualModel::tune(const Parameters&) { refuse_tuning(); }
 RuntimeReply Device::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 bool Device::simulated_truth(SimulatedTruth&) const { return false; }
+Outcome Device::home() { return Outcome::success(); }
+Outcome Device::reset_fault() { return Outcome::success(); }
 RuntimeReply Controller::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 RuntimeReply VirtualModel::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 

@@ -20,9 +20,14 @@ ParameterSchema MassSpringDevice::parameter_schema() {
       .unit("m")
       .minimum(0.0)
       .default_value(0.0);
-  s.integer("fail_read_at_cycle", "fault injection: read() fails from this cycle on; -1 never")
+  s.integer("fail_read_at_cycle",
+            "fault injection: read() fails from this cycle on (a latched drive fault: until reset_fault()); -1 never")
       .minimum(-1)
       .default_value(-1);
+  s.boolean("refuse_fault_reset", "fault injection: reset_fault() fails").default_value(false);
+  s.boolean("fail_enable", "fault injection: enable() fails").default_value(false);
+  s.boolean("homing", "the device needs homing (capabilities.homing); read() fails until home()").default_value(false);
+  s.boolean("fail_homing", "fault injection: home() fails").default_value(false);
   s.integer("fail_write_at_cycle", "fault injection: write() fails from this cycle on; -1 never")
       .minimum(-1)
       .default_value(-1);
@@ -45,6 +50,9 @@ void MassSpringDevice::configure(const Parameters& p, const PluginContext& conte
   position_noise_m_ = p.real("position_noise_m");
   fail_read_at_cycle_ = p.integer("fail_read_at_cycle");
   fail_write_at_cycle_ = p.integer("fail_write_at_cycle");
+  refuse_fault_reset_ = p.boolean("refuse_fault_reset");
+  fail_enable_ = p.boolean("fail_enable");
+  fail_homing_ = p.boolean("fail_homing");
   period_s_ = 1.0 / context.rate_hz;
   // Semi-implicit Euler is stable for w dt < 2; keep a wide margin so the test device is also accurate.
   const double natural_hz = std::sqrt(stiffness_n_per_m_ / mass_kg_) / (2.0 * std::numbers::pi);
@@ -63,13 +71,19 @@ void MassSpringDevice::configure(const Parameters& p, const PluginContext& conte
       JointDescription{"x", -1.0, 1.0, p.real("velocity_limit_m_s"), force_limit_n_, continuous});
   description_.reports_joint_velocity = true;
   description_.simulated = true;
+  description_.capabilities.homing = p.boolean("homing");
 }
 
-void MassSpringDevice::activate() {
+Outcome MassSpringDevice::enable() {
+  if (fail_enable_) return Outcome::failure("injected enable failure (fail_enable)");
+  read_fault_latched_ = false;
+  homed_ = !description_.capabilities.homing;
+  resets_ = 0;
   position_m_ = initial_position_m_;
   velocity_m_s_ = 0.0;
   force_n_ = 0.0;
   simulated_ns_ = 0;
+  return Outcome::success();
 }
 
 void MassSpringDevice::step(double dt) noexcept {
@@ -79,9 +93,11 @@ void MassSpringDevice::step(double dt) noexcept {
   position_m_ += velocity_m_s_ * dt;
 }
 
-ReturnCode MassSpringDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
-  if (fail_read_at_cycle_ >= 0 && cycle.index >= static_cast<std::uint64_t>(fail_read_at_cycle_))
-    return ReturnCode::error;
+Outcome MassSpringDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
+  if (!homed_) return Outcome::failure("not homed");
+  if (fail_read_at_cycle_ >= 0 && cycle.index == static_cast<std::uint64_t>(fail_read_at_cycle_))
+    read_fault_latched_ = true;
+  if (read_fault_latched_) return Outcome::failure("injected read failure (fail_read_at_cycle)");
   // Advance to the cycle's time in fixed substeps; a gap of more than 10 periods (a stalled real-time loop)
   // is not integrated, which bounds the time read() takes.
   const std::int64_t substep_ns = std::max<std::int64_t>(1, cycle.period_ns / substeps_);
@@ -102,20 +118,33 @@ ReturnCode MassSpringDevice::read(const CycleTime& cycle, DeviceState& state) no
   state.joints.position[0] = measured;
   state.joints.velocity[0] = velocity_m_s_;
   state.joints.effort[0] = force_n_;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
-ReturnCode MassSpringDevice::write(const CycleTime& cycle, const JointCommand& command) noexcept {
+Outcome MassSpringDevice::write(const CycleTime& cycle, const JointCommand& command) noexcept {
   if (fail_write_at_cycle_ >= 0 && cycle.index >= static_cast<std::uint64_t>(fail_write_at_cycle_)) {
     force_n_ = 0.0;  // a failed write: the drive holds nothing
-    return ReturnCode::error;
+    return Outcome::failure("injected write failure (fail_write_at_cycle)");
   }
   const double f = command.torque_nm[0];
-  if (!std::isfinite(f)) return ReturnCode::error;
+  if (!std::isfinite(f)) return Outcome::failure("non-finite force command");
   force_n_ = std::clamp(f, -force_limit_n_, force_limit_n_);
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
-void MassSpringDevice::deactivate() { force_n_ = 0.0; }
+void MassSpringDevice::disable() { force_n_ = 0.0; }
+
+Outcome MassSpringDevice::home() {
+  if (fail_homing_) return Outcome::failure("injected homing failure (fail_homing)");
+  homed_ = true;
+  return Outcome::success();
+}
+
+Outcome MassSpringDevice::reset_fault() noexcept {
+  if (refuse_fault_reset_) return Outcome::failure("injected fault-reset failure (refuse_fault_reset)");
+  ++resets_;
+  read_fault_latched_ = false;
+  return Outcome::success();
+}
 
 }  // namespace hapticd::test_plugins

@@ -15,10 +15,13 @@ class MassSpringDevice final : public Device {
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
   [[nodiscard]] const DeviceDescription& description() const override { return description_; }
-  void activate() override;
-  ReturnCode read(const CycleTime& cycle, DeviceState& state) noexcept override;
-  ReturnCode write(const CycleTime& cycle, const JointCommand& command) noexcept override;
-  void deactivate() override;
+  Outcome enable() override;
+  Outcome read(const CycleTime& cycle, DeviceState& state) noexcept override;
+  Outcome write(const CycleTime& cycle, const JointCommand& command) noexcept override;
+  void disable() override;
+  Outcome home() override;
+  Outcome reset_fault() noexcept override;
+  [[nodiscard]] int fault_resets() const noexcept { return resets_; }
 
  private:
   void step(double dt) noexcept;
@@ -34,6 +37,9 @@ class MassSpringDevice final : public Device {
   std::int64_t substeps_ = 1;
   std::int64_t fail_read_at_cycle_ = -1;
   std::int64_t fail_write_at_cycle_ = -1;
+  bool refuse_fault_reset_ = false, fail_enable_ = false, fail_homing_ = false;
+  bool read_fault_latched_ = false, homed_ = true;
+  int resets_ = 0;
   double period_s_ = 0.0005;
 
   double position_m_ = 0.0;

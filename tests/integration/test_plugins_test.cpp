@@ -32,7 +32,7 @@ TEST(TestPlugins, EveryUpdateIsAllocationFree) {
   ChainState chain;  // the test device has no robot model
   const EngineInput engine;
   testing::PassThroughRenderPort render;
-  dc.device->activate();
+  ASSERT_TRUE(dc.device->enable().ok());
   ASSERT_EQ((*c.virtual_model)->activate(VirtualModelInput{state, chain, engine, render}), ReturnCode::ok);
   ASSERT_EQ((*c.inverse_kinematics)->activate(InverseKinematicsInput{state, task, chain}), ReturnCode::ok);
   ASSERT_EQ(c.controller->activate(ControllerInput{state, task, joints, chain, nullptr}, command), ReturnCode::ok);
@@ -66,14 +66,14 @@ TEST(TestPlugins, MassSpringOscillatesAtItsNaturalFrequency) {
       "20}\n"
       "    controller: {plugin: test_pd, parameters: {kp: 0, kd: 0}}\n");
   Device& device = *s.impl().devices[0]->chain().device;
-  device.activate();
+  ASSERT_TRUE(device.enable().ok());
   DeviceState state;
   state.joints.resize(1);
   double previous = 0.1;
   double amplitude = 0.0;
   std::vector<double> crossings;
   for (std::uint64_t k = 1; k <= 20000; ++k) {  // 10 s
-    ASSERT_EQ(device.read(cycle_at(k), state), ReturnCode::ok);
+    ASSERT_TRUE(device.read(cycle_at(k), state).ok());
     const double x = state.joints.position[0];
     amplitude = std::max(amplitude, std::abs(x));
     if ((previous > 0) != (x > 0)) crossings.push_back(cycle_at(k).time_s());

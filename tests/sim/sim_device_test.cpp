@@ -166,14 +166,44 @@ TEST(SimDevice, AttachmentSwitchesAtRunTimeWithoutAJump) {
   EXPECT_LT(after.head<3>().norm(), 500.0 * speed + 1.0) << before.transpose() << " -> " << after.transpose();
 }
 
-TEST(SimDevice, SpeedMonitorFaultsTheDevice) {
+TEST(SimDevice, SpeedMonitorFaultsTheDeviceUntilAFaultResetAtRest) {
   SimRig rig(kVishard3 + "attachment: wrench\nwrench_force: constant\nwrench_force_n: [0, 0, -300]\n");
-  ReturnCode r = ReturnCode::ok;
+  Outcome r;
   int cycles = 0;
-  for (; cycles < 4000 && r == ReturnCode::ok; ++cycles) r = rig.cycle();
-  EXPECT_EQ(r, ReturnCode::error);
+  for (; cycles < 4000 && r.ok(); ++cycles) r = rig.cycle();
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(std::string(r.reason).find("speed monitor"), std::string::npos) << r.reason;
   EXPECT_GE(rig.device.ground_truth().overspeed_joint, 0);
-  EXPECT_EQ(rig.cycle(), ReturnCode::error) << "the fault is latched";
+  EXPECT_FALSE(rig.cycle().ok()) << "the fault is latched";
+  EXPECT_FALSE(rig.device.reset_fault().ok()) << "still over the limit: the latch stays";
+  // The push ends; joint damping slows the arm below its speed limits.
+  rig.device.request_attachment(sim::AttachmentSettings{});
+  for (int k = 0; k < 2000; ++k) {
+    rig.command.torque_nm = -20.0 * rig.device.ground_truth().motor_velocity;
+    (void)rig.cycle();
+  }
+  const Outcome reset = rig.device.reset_fault();
+  EXPECT_TRUE(reset.ok()) << reset.reason;
+  EXPECT_TRUE(rig.cycle().ok());
+}
+
+TEST(SimDevice, LifecycleStepsAnswerWithReasons) {
+  SimRig rig(kVishard3 + "homing: true\nbrakes: true\n");
+  EXPECT_TRUE(rig.device.description().capabilities.homing);
+  EXPECT_TRUE(rig.device.description().capabilities.brakes);
+  // Not homed: the positions are relative to where the device was enabled, and read() says so.
+  const Outcome before = rig.cycle();
+  EXPECT_FALSE(before.ok());
+  EXPECT_NE(std::string(before.reason).find("not homed"), std::string::npos) << before.reason;
+  EXPECT_NEAR(rig.state.joints.position[1], 0.0, 1e-3);
+  ASSERT_TRUE(rig.device.home().ok());
+  ASSERT_TRUE(rig.cycle().ok());
+  EXPECT_NEAR(rig.state.joints.position[1], 1.6, 1e-3);  // absolute: the initial position
+  rig.device.disable();
+  const Outcome off = rig.cycle();
+  EXPECT_FALSE(off.ok());
+  EXPECT_STREQ(off.reason, "drives not enabled");
+  EXPECT_FALSE(rig.device.home().ok());
 }
 
 TEST(SimDevice, SameSeedSameReadingsOtherSeedOtherReadings) {

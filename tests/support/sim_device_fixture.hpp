@@ -24,15 +24,15 @@ struct SimRig {
     period_ns = static_cast<std::int64_t>(1e9 / rate_hz);
     state.joints.resize(device.description().dof());
     command.torque_nm.setZero(device.description().dof());
-    device.activate();
+    (void)device.enable();
   }
   // One control cycle: read at the cycle's time, then write the current command.
-  ReturnCode cycle() {
+  Outcome cycle() {
     CycleTime t;
     t.index = index;
     t.time_ns = static_cast<std::int64_t>(index) * period_ns;
     t.period_ns = period_ns;
-    const ReturnCode r = device.read(t, state);
+    const Outcome r = device.read(t, state);
     (void)device.write(t, command);
     ++index;
     return r;

@@ -12,9 +12,10 @@
 namespace hapticd {
 
 // A force-feedback device (hardware driver or simulation). Lifecycle:
-// configure -> description -> activate -> { read, write }* -> deactivate.
-// read() and write() are real-time: no allocation, lock or logging, and no exception - one that escapes anyway
-// is contained to this device (fault device_read / device_write, its safe mode).
+//   configure -> description -> enable -> [home] -> { read, write, [reset_fault] }* -> disable
+// read(), write() and reset_fault() are real-time: no allocation, lock or logging, and no exception - one that
+// escapes anyway is contained to this device (fault device_read / device_write, its safe mode). Every step
+// after configure() answers with an Outcome: an error carries its reason, which the device's fault shows.
 class HAPTICD_API Device {
  public:
   virtual ~Device();
@@ -24,15 +25,25 @@ class HAPTICD_API Device {
   virtual void configure(const Parameters& parameters, const PluginContext& context) = 0;
   // Not real-time safe. Valid after configure().
   [[nodiscard]] virtual const DeviceDescription& description() const = 0;
-  // Not real-time safe. Power the drives with zero torque; the first read() follows at cycle 0.
-  virtual void activate() = 0;
+  // Not real-time safe. Power the drives with zero torque and release the brakes (capabilities.brakes). An
+  // error leaves the device off: it is held in its safe state with the reason, the session's other devices run.
+  virtual Outcome enable() = 0;
+  // Not real-time safe; called after enable() and before the first read() when capabilities.homing says the
+  // device needs it: find the encoders' reference (an index pulse, an end stop) or calibrate, so that read()
+  // reports absolute positions. May move the device slowly and take a while. The default does nothing.
+  virtual Outcome home();
   // Real-time safe. Fill the newest sample for the cycle at cycle.time_ns. A simulated device advances its
   // physics to that time under the last written command (zero-order hold).
-  virtual ReturnCode read(const CycleTime& cycle, DeviceState& state) = 0;
+  virtual Outcome read(const CycleTime& cycle, DeviceState& state) = 0;
   // Real-time safe. Command joint torques, held until the next write().
-  virtual ReturnCode write(const CycleTime& cycle, const JointCommand& command) = 0;
-  // Not real-time safe. Zero torque, drives off. Called after the loop has stopped using the device.
-  virtual void deactivate() = 0;
+  virtual Outcome write(const CycleTime& cycle, const JointCommand& command) = 0;
+  // Real-time safe; the loop, when a recovery from the safe mode is carried out (the device at rest, zero
+  // torque written): clear a latched fault of the drives (a CiA 402 fault reset, a speed monitor's latch) so the
+  // chain can run again. An error keeps the device in its safe mode with the reason. The default does nothing.
+  virtual Outcome reset_fault();
+  // Not real-time safe. Zero torque, brakes engaged, drives off. Called after the loop has stopped using the
+  // device (also after an enable() that failed).
+  virtual void disable() = 0;
   // Not real-time safe, any server thread (runtime_request.hpp): a tunable parameter was set. `parameters` holds
   // the value in effect of every parameter, the new one checked against the schema. Read the tunable ones as
   // configure() does and hand them to the loop; throw ParameterError to refuse (the old values stay). The

@@ -14,6 +14,12 @@ struct JointDescription {
   double torque_continuous_nm = 0.0;  // thermally sustainable torque
 };
 
+// What the device offers beyond reading and writing (its lifecycle, docs/plugin-guide.md).
+struct DeviceCapabilities {
+  bool brakes = false;  // holding brakes: released by enable(), engaged by disable()
+  bool homing = false;  // needs home() after enable() before its positions are absolute
+};
+
 // What a device plugin tells the server about itself after configure(). Not used in the loop (strings and
 // vectors): the server copies what the loop needs into fixed-size storage.
 struct DeviceDescription {
@@ -28,6 +34,7 @@ struct DeviceDescription {
   bool reports_sensor_acceleration = false;
   // A simulation, not hardware: the server says so to clients and evaluations (no guess from the plugin's name).
   bool simulated = false;
+  DeviceCapabilities capabilities;
 
   [[nodiscard]] int dof() const noexcept { return static_cast<int>(joints.size()); }
 };

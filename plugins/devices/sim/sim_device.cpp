@@ -70,7 +70,16 @@ ParameterSchema SimDevice::parameter_schema() {
   s.boolean("thermal_limit", "limit to the continuous torque while the winding is hot").default_value(true);
   s.real("thermal_time_constant_s", "winding time constant").unit("s").greater_than(0.0).default_value(30.0);
   s.real("current_offset_nm", "amplifier current offset, as a joint torque").unit("N m").default_value(0.0);
-  s.boolean("speed_monitor", "a joint above its speed limit faults the device (latched)").default_value(true);
+  s.boolean("speed_monitor", "a joint above its speed limit faults the device (latched until a fault reset)")
+      .default_value(true);
+  s.boolean("homing",
+            "incremental encoders: until homing finds their index, positions are relative to where the device "
+            "was enabled and read() reports the device not homed (the server homes it at start)")
+      .default_value(false);
+  s.boolean("brakes",
+            "holding brakes: engaged while the drives are off (before enable, after disable: the simulation "
+            "holds still), released by enable")
+      .default_value(false);
   s.boolean("joint_torque_sensors",
             "each joint measures its output torque (the gear spring's); effort is the "
             "drive torque otherwise")
@@ -201,6 +210,8 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   }
   speed_limits_ = robot.speed_limits();
   speed_monitor_ = p.boolean("speed_monitor");
+  description_.capabilities.homing = p.boolean("homing");
+  description_.capabilities.brakes = p.boolean("brakes");
   description_.handle_frame = p.string("handle_frame");
   description_.sensor_frame = p.string("sensor_frame");
   description_.robot_model_file = urdf.string();
@@ -245,7 +256,9 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   truth_.motor_torque = JointVector::Zero(n);
 }
 
-void SimDevice::activate() {
+Outcome SimDevice::enable() {
+  enabled_ = true;
+  homed_ = !description_.capabilities.homing;
   chain_->reset(initial_position_);
   for (Drive& d : drives_) d.reset();
   sensor_.reset();
@@ -260,6 +273,8 @@ void SimDevice::activate() {
   truth_.sensor_wrench.setZero();
   truth_.link_position = chain_->link_position();
   truth_.motor_position = chain_->motor_position();
+  encoder_offset_ = homed_ ? JointVector::Zero(chain_->dof()) : JointVector(chain_->motor_position());
+  return Outcome::success();
 }
 
 void SimDevice::substep() noexcept {
@@ -328,7 +343,26 @@ RuntimeReply SimDevice::handle_request(std::string_view name, const std::vector<
   return {true, std::string(name) + " accepted"};
 }
 
-ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
+Outcome SimDevice::home() {
+  if (!enabled_) return Outcome::failure("drives not enabled");
+  // The index pulses are found at once: the simulation knows where they are.
+  homed_ = true;
+  encoder_offset_.setZero();
+  return Outcome::success();
+}
+
+Outcome SimDevice::reset_fault() noexcept {
+  if (!enabled_) return Outcome::failure("drives not enabled");
+  if (truth_.overspeed_joint < 0) return Outcome::success();
+  for (int i = 0; i < chain_->dof(); ++i)
+    if (std::abs(chain_->link_velocity()[i]) > speed_limits_[i])
+      return Outcome::failure("a joint is still over its speed limit: the speed monitor cannot be reset");
+  truth_.overspeed_joint = -1;
+  return Outcome::success();
+}
+
+Outcome SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
+  if (!enabled_) return Outcome::failure("drives not enabled");
   if (attachment_requests_.take(pending_)) attachment_.select(pending_);
   simulated_now_ns_.store(cycle.time_ns, std::memory_order_relaxed);
   // Advance to the cycle's time; a gap of more than 10 periods (a stalled loop) is skipped, which bounds
@@ -345,7 +379,7 @@ ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept 
   const int n = chain_->dof();
   state.timestamp_ns = cycle.time_ns;
   for (int i = 0; i < n; ++i) {
-    state.joints.position[i] = quantise_encoder(chain_->motor_position()[i], counts_per_rev_[i]);
+    state.joints.position[i] = quantise_encoder(chain_->motor_position()[i] - encoder_offset_[i], counts_per_rev_[i]);
     state.joints.velocity[i] = 0.0;  // not measured: controllers differentiate, as on the hardware
     state.joints.effort[i] = joint_torque_sensors_ ? std::round(chain_->spring_torque()[i] / joint_torque_resolution_) *
                                                          joint_torque_resolution_
@@ -366,7 +400,10 @@ ReturnCode SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept 
   truth_.spring_torque = chain_->spring_torque();
   truth_.friction_torque = chain_->friction_torque();
   truth_.time_s = static_cast<double>(simulated_ns_) * 1e-9;
-  return truth_.overspeed_joint >= 0 ? ReturnCode::error : ReturnCode::ok;
+  if (truth_.overspeed_joint >= 0)
+    return Outcome::failure("a drive's speed monitor tripped: a joint went over its speed limit (latched)");
+  if (!homed_) return Outcome::failure("not homed: positions are relative until homing finds the encoders' index");
+  return Outcome::success();
 }
 
 void SimDevice::read_accelerations(DeviceState& state) noexcept {
@@ -392,13 +429,15 @@ void SimDevice::read_accelerations(DeviceState& state) noexcept {
   }
 }
 
-ReturnCode SimDevice::write(const CycleTime& /*cycle*/, const JointCommand& command) noexcept {
-  if (command.torque_nm.size() != command_.size()) return ReturnCode::error;
+Outcome SimDevice::write(const CycleTime& /*cycle*/, const JointCommand& command) noexcept {
+  if (!enabled_) return Outcome::failure("drives not enabled");
+  if (command.torque_nm.size() != command_.size()) return Outcome::failure("a command for another number of joints");
   command_ = command.torque_nm;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
-void SimDevice::deactivate() {
+void SimDevice::disable() {
+  enabled_ = false;
   command_.setZero();
   for (Drive& d : drives_) d.reset();
 }

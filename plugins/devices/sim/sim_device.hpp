@@ -37,10 +37,15 @@ class SimDevice final : public Device {
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
   [[nodiscard]] const DeviceDescription& description() const override { return description_; }
-  void activate() override;
-  ReturnCode read(const CycleTime& cycle, DeviceState& state) noexcept override;
-  ReturnCode write(const CycleTime& cycle, const JointCommand& command) noexcept override;
-  void deactivate() override;
+  // Starts the simulation at its initial position (the brakes, if any, released).
+  Outcome enable() override;
+  // With `homing`: the encoders' reference found; positions are absolute from now on.
+  Outcome home() override;
+  Outcome read(const CycleTime& cycle, DeviceState& state) noexcept override;
+  Outcome write(const CycleTime& cycle, const JointCommand& command) noexcept override;
+  // Clears the speed monitor's latch once every joint is below its limit again.
+  Outcome reset_fault() noexcept override;
+  void disable() override;
   // "operator.push" {fx, fy, fz[, ramp_s = 0.5]}: the simulated operator takes the handle (if it was not
   // holding it) and ramps its voluntary force to that value; "operator.release": lets go of the handle;
   // "operator.grasp" {0..1}: loose .. firm.
@@ -75,6 +80,9 @@ class SimDevice final : public Device {
   std::int64_t substep_ns_ = 50000;
   std::int64_t simulated_ns_ = 0;
   bool speed_monitor_ = true;
+  bool enabled_ = false;
+  bool homed_ = false;
+  JointVector encoder_offset_;  // before homing: the motor positions at enable
   bool sensor_present_ = true;
   bool passive_gimbal_ = false;
   bool accelerations_ = false;

@@ -25,7 +25,9 @@ void log_fault_report(const DeviceSession& d, const FaultReport& r) {
   spdlog::error(
       "device '{}' fault {} at cycle {}: {}; safe mode (damping, then zero torque). Last {} cycles: "
       "largest handle speed {:.3f} m/s, joint speed {:.3f}, torque {:.2f}, operator force {:.1f} N",
-      d.name(), fault_code(r.fault), r.cycle, to_string(r.fault), r.count, speed, joint_speed, torque, force);
+      d.name(), fault_code(r.fault), r.cycle,
+      std::string(to_string(r.fault)) + (r.reason[0] != '\0' ? ": " + std::string(r.reason.data()) : std::string()),
+      r.count, speed, joint_speed, torque, force);
 }
 
 }  // namespace
@@ -64,8 +66,8 @@ void SessionMonitor::poll() {
     }
     const DeviceFault f = d.fault();
     if (f == reported_[i]) continue;
-    if (f == DeviceFault::configure) {
-      spdlog::error("device '{}' is in its safe state: {}", d.name(), to_string(f));
+    if (f == DeviceFault::configure || f == DeviceFault::device_enable || f == DeviceFault::device_homing) {
+      spdlog::error("device '{}' is in its safe state: {}", d.name(), d.fault_text());
     }
     reported_[i] = f;
   }

@@ -10,6 +10,22 @@ namespace {
 
 const char* kind_name(SafetyEvent::Kind k) { return k == SafetyEvent::Kind::fault ? "fault" : "recovery"; }
 
+// Text in a JSON string: quotes, backslashes and control characters escaped.
+std::string json_text(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 std::string events_json(const SessionReport& r, std::size_t device) {
   if (r.monitor == nullptr) return "[]";
   std::string out = "[";
@@ -62,8 +78,8 @@ std::string report_json(const SessionReport& r) {
     out += fmt::format(
         "{}\n    {{\"name\": \"{}\", \"fault\": \"{}\", \"fault_cycle\": {}, \"faults\": {}, \"recoveries\": {}, "
         "\"saturated_cycles\": {}, \"safety_events\": {}}}",
-        i ? "," : "", d.name(), to_string(d.fault()), d.fault_cycle(), d.faults_raised(), d.recoveries(),
-        d.saturated_cycles(), events_json(r, i));
+        i ? "," : "", d.name(), d.fault() == DeviceFault::none ? "none" : json_text(d.fault_text()), d.fault_cycle(),
+        d.faults_raised(), d.recoveries(), d.saturated_cycles(), events_json(r, i));
   }
   out += "\n  ]\n}\n";
   return out;

@@ -93,7 +93,9 @@ void fill_fault_report(hapticd_msg_FaultReport& m, std::string_view device, int 
   dds::set_text(m.device, device);
   m.serial = report.serial;
   dds::set_text(m.fault, fault_code(report.fault));
-  dds::set_text(m.message, to_string(report.fault));
+  std::string message(to_string(report.fault));
+  if (report.reason[0] != '\0') message += ": " + std::string(report.reason.data());
+  dds::set_text(m.message, message);
   m.cycle = report.cycle;
   m.loop_time_ns = report.time_ns;
   m.dof = dof;
@@ -119,7 +121,7 @@ void fill_fault_report(hapticd_msg_FaultReport& m, std::string_view device, int 
 }
 
 PublishedView view_of(const DeviceSnapshot& s) noexcept {
-  return PublishedView{mode_of(s), s.fault, s.faults, s.scheme, s.engine_stale};
+  return PublishedView{mode_of(s), s.fault, s.faults, s.scheme, s.engine_stale, s.fault_reason};
 }
 
 std::vector<EventText> events_between(const PublishedView& before, const PublishedView& now,
@@ -140,6 +142,7 @@ std::vector<EventText> events_between(const PublishedView& before, const Publish
       events.push_back({now.fault == DeviceFault::emergency_stop ? hapticd_msg_EVENT_ESTOP : hapticd_msg_EVENT_FAULT,
                         std::string(fault_code(now.fault)),
                         std::string(to_string(now.fault)) +
+                            (now.fault_reason != nullptr ? " (" + std::string(now.fault_reason) + ")" : std::string()) +
                             ": the device is in its safe mode (damping, then zero torque); "
                             "its history is on the fault report topic"});
     }

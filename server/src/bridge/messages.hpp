@@ -46,6 +46,7 @@ struct PublishedView {
   std::uint64_t faults = 0;
   int scheme = 0;
   bool stale = false;
+  const char* fault_reason = nullptr;  // the device's reason (static text), nullptr if none
 };
 [[nodiscard]] PublishedView view_of(const DeviceSnapshot& s) noexcept;
 

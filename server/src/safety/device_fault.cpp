@@ -18,6 +18,10 @@ std::string_view fault_code(DeviceFault fault) noexcept {
       return "activation_failed";
     case DeviceFault::configure:
       return "configure_failed";
+    case DeviceFault::device_enable:
+      return "device_enable_failed";
+    case DeviceFault::device_homing:
+      return "device_homing_failed";
     case DeviceFault::virtual_model:
       return "virtual_model_error";
     case DeviceFault::inverse_kinematics:
@@ -60,6 +64,10 @@ std::string_view to_string(DeviceFault fault) noexcept {
       return "a plugin failed to activate";
     case DeviceFault::configure:
       return "a plugin failed to configure";
+    case DeviceFault::device_enable:
+      return "the device could not be enabled";
+    case DeviceFault::device_homing:
+      return "the device's homing failed";
     case DeviceFault::virtual_model:
       return "virtual model update failed";
     case DeviceFault::inverse_kinematics:

@@ -14,6 +14,8 @@ enum class DeviceFault : std::uint8_t {
   sensor_saturation,       // the force/torque sensor reached its range
   activation,              // a plugin refused to activate
   configure,               // a plugin failed to configure: the device never ran
+  device_enable,           // the device's enable() failed: it never ran
+  device_homing,           // the device's home() failed: its positions are not absolute, it never ran
   virtual_model,           // the virtual model's update() returned an error
   inverse_kinematics,
   controller,

@@ -33,7 +33,8 @@ struct FaultReport {
   std::uint64_t serial = 0;  // one per fault of this device
   std::uint64_t cycle = 0;
   std::int64_t time_ns = 0;
-  std::uint32_t count = 0;  // valid records, oldest first; the last is the cycle before the fault
+  std::uint32_t count = 0;        // valid records, oldest first; the last is the cycle before the fault
+  std::array<char, 96> reason{};  // the device's reason (Outcome::reason), cut to fit; empty if none
   std::array<HistoryRecord, kMaxHistoryCycles> records;
 };
 

@@ -57,7 +57,22 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
 }
 
 void DeviceSession::activate() {
-  chain_.device->activate();
+  // The device's lifecycle up to its first read: enable (drives on, brakes released), then homing if it needs
+  // it. A step that fails holds the device in its safe state with the reason; the other devices run.
+  const auto step = [](auto&& call) {
+    try {
+      return call();
+    } catch (...) {
+      return Outcome::failure("threw an exception");
+    }
+  };
+  Outcome enabled = step([&] { return chain_.device->enable(); });
+  if (!enabled.ok()) {
+    hold_before_start(DeviceFault::device_enable, enabled.reason);
+  } else if (description_.capabilities.homing) {
+    const Outcome homed = step([&] { return chain_.device->home(); });
+    if (!homed.ok()) hold_before_start(DeviceFault::device_homing, homed.reason);
+  }
   chain_active_ = false;
   estimator_.reset();
   command_.torque_nm.setZero();
@@ -83,6 +98,14 @@ ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
 }
 
 void DeviceSession::service() { schemes_.service(); }
+
+std::string DeviceSession::fault_text() const {
+  const DeviceFault f = fault();
+  if (f == DeviceFault::none) return {};
+  std::string text(to_string(f));
+  if (const char* reason = fault_reason()) text += std::string(": ") + reason;
+  return text;
+}
 
 const PluginDescriptor* DeviceSession::stage_plugin(Stage stage) const noexcept {
   if (stage == Stage::device) return chain_.device.descriptor;
@@ -204,6 +227,7 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.velocity = state_.joints.velocity;
   s.torque = command_.torque_nm;
   s.fault = fault();
+  s.fault_reason = status_.fault_reason.load(std::memory_order_relaxed);
   s.faults = status_.faults.load(std::memory_order_relaxed);
   s.estop = s.fault == DeviceFault::emergency_stop;
   s.stopping = torque_scale < 1.0;
@@ -231,11 +255,10 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
     safety_.guard().set_passivity_control(p == 1);
     status_.passivity_control.store(p == 1, std::memory_order_release);
   }
-  ReturnCode read = ReturnCode::error;
+  Outcome read = Outcome::failure("read() threw an exception");
   try {
     read = chain_.device->read(cycle, state_);
   } catch (...) {
-    read = ReturnCode::error;
   }
   // The watchdogs and requests that stop the device.
   if (const std::uint64_t estops = estop_requests_.load(std::memory_order_acquire); estops != estops_handled_) {
@@ -259,10 +282,10 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
   }
   // The measurement: a running device faults on a read error, a non-finite value or a saturated sensor; in the
   // safe mode it is estimated as long as its positions can be trusted (an arm that sags is seen).
-  measurement_valid_ = read == ReturnCode::ok && state_.joints.position.allFinite();
+  measurement_valid_ = read.ok() && state_.joints.position.allFinite();
   if (fault() == DeviceFault::none && !stopped_) {
-    if (read != ReturnCode::ok) {
-      raise_fault(DeviceFault::device_read, cycle);
+    if (!read.ok()) {
+      raise_fault(DeviceFault::device_read, cycle, read.reason);
     } else if (!is_finite(state_)) {
       measurement_valid_ = false;
       raise_fault(DeviceFault::non_finite_measurement, cycle);
@@ -310,20 +333,19 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
     } else {
       command_.torque_nm.setZero();  // exactly +0, not -0 from a negative torque times zero
     }
-    ReturnCode written = ReturnCode::error;
+    Outcome written = Outcome::failure("write() threw an exception");
     try {
       written = chain_.device->write(cycle, command_);
     } catch (...) {
-      written = ReturnCode::error;
     }
-    if (written == ReturnCode::ok) {
+    if (written.ok()) {
       last_written_ = command_.torque_nm;
       safety_.written(command_.torque_nm);
       status_.dissipated_j.store(safety_.guard().dissipated_j(), std::memory_order_relaxed);
       status_.thermal_load.store(safety_.thermal().max_load(), std::memory_order_relaxed);
     } else {
       last_written_.setZero();  // unknown what the drive holds: do not fade from it
-      raise_fault(DeviceFault::device_write, cycle);
+      raise_fault(DeviceFault::device_write, cycle, written.reason);
       safe_path_ = true;
       safe_mode_step(cycle);
     }
@@ -357,6 +379,19 @@ void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
   // The scheme that ran must have been deactivated off the loop (service()) before it activates again.
   if (!schemes_.active_idle()) return;
   if (!recovery_for_epoch_.compare_exchange_strong(wanted, 0, std::memory_order_acq_rel)) return;
+  // The drives' latched fault is cleared first; if it cannot be, the device stays safe and says why (the
+  // request is used up: a new one tries again).
+  Outcome reset = Outcome::failure("reset_fault() threw an exception");
+  try {
+    reset = chain_.device->reset_fault();
+  } catch (...) {
+  }
+  if (!reset.ok()) {
+    status_.fault_reason.store(reset.reason, std::memory_order_relaxed);
+    status_.refused_recoveries.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  status_.fault_reason.store(nullptr, std::memory_order_relaxed);
   chain_active_ = false;  // the next cycle activates the chain from the measured state, with a soft start
   // Whatever the safe mode holds (gravity, damping) fades out against the chain's first commands: no step.
   if (last_written_.isZero(0.0)) {
@@ -376,6 +411,8 @@ RuntimeReply DeviceSession::request_recovery() {
   if (f == DeviceFault::configure)
     return {false,
             "device '" + name_ + "' never configured (" + chain_.configure_error + "); fix the session and restart"};
+  if (f == DeviceFault::device_enable || f == DeviceFault::device_homing)
+    return {false, "device '" + name_ + "' never ran: " + fault_text() + "; fix the device and restart"};
   recovery_for_epoch_.store(stop_epoch_.load(std::memory_order_acquire) + 1, std::memory_order_release);
   return {true, "device '" + name_ + "' recovers once its safe mode has settled (unless it is stopped again first)"};
 }
@@ -407,9 +444,14 @@ void DeviceSession::log_safety_event(SafetyEvent::Kind kind, DeviceFault fault, 
     status_.lost_safety_events.fetch_add(1, std::memory_order_relaxed);
 }
 
-void DeviceSession::publish_fault(DeviceFault fault, const CycleTime& cycle) noexcept {
+void DeviceSession::publish_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept {
   // The report: the cycles before this one, as recorded (this cycle never wrote its chain's command).
   report_.fault = fault;
+  report_.reason.fill('\0');
+  if (reason != nullptr) {
+    for (std::size_t i = 0; i + 1 < report_.reason.size() && reason[i] != '\0'; ++i) report_.reason[i] = reason[i];
+  }
+  status_.fault_reason.store(reason != nullptr && reason[0] != '\0' ? reason : nullptr, std::memory_order_relaxed);
   report_.serial = status_.faults.load(std::memory_order_relaxed) + 1;
   report_.cycle = cycle.index;
   report_.time_ns = cycle.time_ns;
@@ -427,8 +469,15 @@ void DeviceSession::relatch_emergency_stop(const CycleTime& cycle) noexcept {
   publish_fault(DeviceFault::emergency_stop, cycle);
 }
 
-void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle) noexcept {
-  publish_fault(fault, cycle);
+void DeviceSession::hold_before_start(DeviceFault fault, const char* reason) noexcept {
+  if (status_.fault.load(std::memory_order_relaxed) != DeviceFault::none) return;  // a configure error came first
+  status_.fault_reason.store(reason, std::memory_order_relaxed);
+  status_.faults.store(1, std::memory_order_relaxed);
+  status_.fault.store(fault, std::memory_order_release);
+}
+
+void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept {
+  publish_fault(fault, cycle, reason);
   leave_chain();
   // The last torque that reached the drives fades out, unless the measurement cannot be trusted (then the
   // damping cannot run either, and the safe mode is zero torque at once).
@@ -439,7 +488,10 @@ void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle) noexc
 void DeviceSession::deactivate() {
   chain_active_ = false;
   schemes_.service(true);
-  chain_.device->deactivate();
+  try {
+    chain_.device->disable();
+  } catch (...) {  // the drives are off as far as the server can tell; the caller reports the session's end
+  }
 }
 
 }  // namespace hapticd::server

@@ -46,7 +46,8 @@ class DeviceSession {
   DeviceSession(const DeviceSession&) = delete;
   DeviceSession& operator=(const DeviceSession&) = delete;
 
-  // Not real-time safe. Powers the device; the chain activates in the first cycle from the first sample.
+  // Not real-time safe. Enables the device (and homes it if it needs it); the chain activates in the first cycle
+  // from the first sample. A device that cannot be enabled or homed is held in its safe state with the reason.
   void activate();
 
   // Real-time safe: one cycle in phases (docs/architecture.md, "One cycle"). The executor runs each phase for
@@ -68,7 +69,7 @@ class DeviceSession {
     run_chain(cycle);
     limit_and_write(cycle, torque_scale);
   }
-  // Not real-time safe. Zero torque, chain and device off.
+  // Not real-time safe. Zero torque, chain off, device disabled (brakes engaged).
   void deactivate();
 
   [[nodiscard]] const std::string& name() const noexcept { return name_; }
@@ -76,6 +77,15 @@ class DeviceSession {
   [[nodiscard]] const DeviceChain& chain() const noexcept { return chain_; }
   // Readable from any thread.
   [[nodiscard]] DeviceFault fault() const noexcept { return status_.fault.load(std::memory_order_acquire); }
+  // Any thread: the device's reason for the fault (or for a refused fault reset), nullptr if it gave none.
+  [[nodiscard]] const char* fault_reason() const noexcept {
+    return status_.fault_reason.load(std::memory_order_relaxed);
+  }
+  // Any thread: the fault as a sentence with the device's reason ("device read failed: joint 2 ..."); "" if none.
+  [[nodiscard]] std::string fault_text() const;
+  [[nodiscard]] std::uint64_t refused_recoveries() const noexcept {
+    return status_.refused_recoveries.load(std::memory_order_relaxed);
+  }
   [[nodiscard]] std::uint64_t fault_cycle() const noexcept {
     return status_.fault_cycle.load(std::memory_order_relaxed);
   }
@@ -165,9 +175,11 @@ class DeviceSession {
   // The device's description, checked (joints, peak torques, a scheme, the period); throws std::invalid_argument.
   static const DeviceDescription& checked(const std::string& name, const DeviceChain& chain);
   // A fault: report, log, counters, the stop epoch (voids pending recoveries).
-  void publish_fault(DeviceFault fault, const CycleTime& cycle) noexcept;
+  void publish_fault(DeviceFault fault, const CycleTime& cycle, const char* reason = nullptr) noexcept;
   // A fault that puts the device in its safe mode: this cycle takes the safe-mode step in phase (d).
-  void raise_fault(DeviceFault fault, const CycleTime& cycle) noexcept;
+  void raise_fault(DeviceFault fault, const CycleTime& cycle, const char* reason = nullptr) noexcept;
+  // Before the first cycle (enable or homing failed): the device never runs; its loop keeps it in the safe state.
+  void hold_before_start(DeviceFault fault, const char* reason) noexcept;
   void leave_chain() noexcept;
   [[nodiscard]] SchemeChain* running_scheme() noexcept { return chain_.schemes.empty() ? nullptr : &schemes_.active(); }
   [[nodiscard]] const SchemeChain* running_scheme() const noexcept {

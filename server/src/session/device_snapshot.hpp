@@ -19,7 +19,8 @@ struct DeviceSnapshot {
   Pose target_pose;                        // the chain's desired pose
   JointVector position, velocity, torque;  // torque: commanded
   DeviceFault fault{};
-  std::uint64_t faults = 0;  // faults raised so far (a stop while already safe counts too)
+  const char* fault_reason = nullptr;  // the device's reason (static text of the plugin), nullptr if none
+  std::uint64_t faults = 0;            // faults raised so far (a stop while already safe counts too)
   bool estop = false;
   bool stopping = false;  // shutdown ramp running
   bool saturated = false;

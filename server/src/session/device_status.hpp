@@ -25,9 +25,13 @@ struct SafetyEvent {
 
 struct DeviceStatus {
   std::atomic<DeviceFault> fault{DeviceFault::none};
+  // The device's reason for the fault (Outcome::reason: static text of the plugin, which outlives the session's
+  // threads), nullptr if none.
+  std::atomic<const char*> fault_reason{nullptr};
   std::atomic<std::uint64_t> fault_cycle{0};
   std::atomic<std::uint64_t> faults{0};  // raised so far (a stop while already safe counts too)
   std::atomic<std::uint64_t> recoveries{0};
+  std::atomic<std::uint64_t> refused_recoveries{0};  // the device could not reset its fault
   std::atomic<std::uint64_t> saturated_cycles{0};
   std::atomic<std::uint64_t> limited_cycles{0};
   std::atomic<std::uint64_t> render_limited_cycles{0};

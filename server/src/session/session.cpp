@@ -123,7 +123,7 @@ DeviceView Session::device(std::string_view name) const {
   v.task = d.task();
   v.command = d.command();
   v.scheme = d.schemes().active_name();
-  if (d.fault() != DeviceFault::none) v.fault = std::string(to_string(d.fault()));
+  v.fault = d.fault_text();
   v.at_rest = d.at_rest();
   v.engine_weight = d.engine_weight();
   v.faults = d.faults_raised();
