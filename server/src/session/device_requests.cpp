@@ -112,6 +112,21 @@ RuntimeReply plugin_command(DeviceSession& device, Stage stage, std::string_view
   return device.plugin_request(stage, name, values);
 }
 
+// A parameter of one of the plugin stages ("<stage>.<parameter>", the stage not "safety"), or why there is none.
+struct PluginParameter {
+  Stage stage;
+  std::string_view name;
+  const PluginDescriptor& plugin;
+};
+std::variant<PluginParameter, RuntimeReply> plugin_parameter(const DeviceSession& device, std::string_view stage_text,
+                                                             std::string_view name) {
+  const std::optional<Stage> stage = stage_named(stage_text);
+  if (!stage) return unknown_stage(stage_text);
+  const auto plugin = plugin_of(device, *stage, stage_text);
+  if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
+  return PluginParameter{*stage, name, *std::get<const PluginDescriptor*>(plugin)};
+}
+
 // A parameter the schema declares is set generically (tunable ones only); other names are the plugin's own
 // commands (handle_request).
 RuntimeReply set_parameter(DeviceSession& device, std::string_view target_text, const std::vector<double>& values) {
@@ -119,23 +134,21 @@ RuntimeReply set_parameter(DeviceSession& device, std::string_view target_text, 
   if (const auto* refused = std::get_if<RuntimeReply>(&target)) return *refused;
   const auto [stage_text, name] = std::get<Target>(target);
   if (stage_text == "safety") return set_safety(device, name, values);
-  const std::optional<Stage> stage = stage_named(stage_text);
-  if (!stage) return unknown_stage(stage_text);
-  const auto plugin = plugin_of(device, *stage, stage_text);
-  if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
-  const PluginDescriptor& descriptor = *std::get<const PluginDescriptor*>(plugin);
-  const ParameterSchema schema = descriptor.parameter_schema();
+  const auto found = plugin_parameter(device, stage_text, name);
+  if (const auto* refused = std::get_if<RuntimeReply>(&found)) return *refused;
+  const PluginParameter& p = std::get<PluginParameter>(found);
+  const ParameterSchema schema = p.plugin.parameter_schema();
   const ParameterSpec* spec = schema.find(name);
-  if (spec == nullptr) return device.plugin_request(*stage, name, values);
+  if (spec == nullptr) return device.plugin_request(p.stage, name, values);
   if (!spec->tunable) {
     const std::vector<std::string> tunable = schema.tunable_names();
-    return {false, in_quotes(name) + " of plugin '" + descriptor.name + "' is not tunable at run time (" +
+    return {false, in_quotes(name) + " of plugin '" + p.plugin.name + "' is not tunable at run time (" +
                        (tunable.empty() ? std::string("it has no tunable parameters") : "tunable: " + listed(tunable)) +
                        ")"};
   }
   auto value = checked_value(*spec, values);
   if (const auto* error = std::get_if<std::string>(&value)) return {false, *error};
-  return device.tune(*stage, spec->name, std::move(std::get<ParameterValue>(value)));
+  return device.tune(p.stage, spec->name, std::move(std::get<ParameterValue>(value)));
 }
 
 // Any parameter the schema declares, tunable or not: the value in effect.
@@ -149,16 +162,14 @@ RuntimeReply get_parameter(DeviceSession& device, std::string_view target_text) 
     const bool on = device.passivity_control();
     return {true, "passivity_control = " + std::string(on ? "true" : "false"), {on ? 1.0 : 0.0}};
   }
-  const std::optional<Stage> stage = stage_named(stage_text);
-  if (!stage) return unknown_stage(stage_text);
-  const auto plugin = plugin_of(device, *stage, stage_text);
-  if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
-  const PluginDescriptor& descriptor = *std::get<const PluginDescriptor*>(plugin);
-  const ParameterSchema schema = descriptor.parameter_schema();
+  const auto found = plugin_parameter(device, stage_text, name);
+  if (const auto* refused = std::get_if<RuntimeReply>(&found)) return *refused;
+  const PluginParameter& p = std::get<PluginParameter>(found);
+  const ParameterSchema schema = p.plugin.parameter_schema();
   if (schema.find(name) == nullptr)
-    return {false, "plugin '" + std::string(descriptor.name) + "' has no parameter " + in_quotes(name) + " (" +
+    return {false, "plugin '" + std::string(p.plugin.name) + "' has no parameter " + in_quotes(name) + " (" +
                        listed(schema.names()) + ")"};
-  const Parameters parameters = device.stage_parameters(*stage);
+  const Parameters parameters = device.stage_parameters(p.stage);
   const ParameterValue& value = parameters.value(name);
   return {true, std::string(name) + " = " + format_value(value), numbers_of(value)};
 }
