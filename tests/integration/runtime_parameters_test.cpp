@@ -68,8 +68,11 @@ TEST(RuntimeParameters, OnlyTunableParametersAreSetAndEveryOneCanBeRead) {
   EXPECT_EQ(get(s, "virtual_model.mass_kg").values, (std::vector<double>{4.0, 5.0, 6.0}));  // unchanged
   const RuntimeReply unknown = get(s, "virtual_model.massa");
   EXPECT_FALSE(unknown.accepted);
-  EXPECT_NE(unknown.message.find("mass_kg"), std::string::npos) << unknown.message;  // lists the parameters
-  EXPECT_TRUE(get(s, "controller.bandwidth_rad_s").accepted);
+  EXPECT_NE(unknown.message.find("mass_kg"), std::string::npos) << unknown.message;   // lists the parameters
+  EXPECT_EQ(get(s, "controller.bandwidth_rad_s").values, std::vector<double>{60.0});  // the motion law's default
+  ASSERT_TRUE(set(s, "controller.bandwidth_rad_s", {80.0}).accepted);
+  EXPECT_EQ(get(s, "controller.bandwidth_rad_s").values, std::vector<double>{80.0});
+  EXPECT_FALSE(set(s, "controller.bandwidth_rad_s", {0.0}).accepted);  // > 0
   EXPECT_FALSE(get(s, "planner.x").accepted);
   EXPECT_FALSE(get(s, "mass_kg").accepted);
   EXPECT_EQ(get(s, "safety.passivity_control").values, std::vector<double>{0.0});

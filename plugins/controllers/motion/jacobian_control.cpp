@@ -63,6 +63,7 @@ ReturnCode JacobianControl::activate(const ControllerInput& current, const Joint
 
 ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerInput& in,
                                    JointCommand& command) noexcept {
+  law_.take_tuned();  // run-time gains, at a cycle boundary
   const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
   if (!in.task.has_motion) return ReturnCode::error;

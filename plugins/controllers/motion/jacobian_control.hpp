@@ -22,6 +22,8 @@ class JacobianControl : public Controller {
   ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept override;
   ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept override;
   void deactivate() override {}
+  // The motion law's bandwidths and damping ratio, applied at the next cycle.
+  void tune(const Parameters& parameters) override { law_.tune(parameters); }
 
  private:
   Kind kind_;

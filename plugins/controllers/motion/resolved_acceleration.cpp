@@ -19,6 +19,7 @@ ReturnCode ResolvedAcceleration::activate(const ControllerInput& current, const 
 
 ReturnCode ResolvedAcceleration::update(const CycleTime& /*cycle*/, const ControllerInput& in,
                                         JointCommand& command) noexcept {
+  law_.take_tuned();  // run-time gains, at a cycle boundary
   const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
   if (!in.task.has_motion) return ReturnCode::error;

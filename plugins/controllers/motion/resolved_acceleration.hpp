@@ -17,6 +17,8 @@ class ResolvedAcceleration final : public Controller {
   ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept override;
   ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept override;
   void deactivate() override {}
+  // The motion law's bandwidths and damping ratio, applied at the next cycle.
+  void tune(const Parameters& parameters) override { law_.tune(parameters); }
 
  private:
   TaskMotionLaw law_;

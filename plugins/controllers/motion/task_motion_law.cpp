@@ -10,13 +10,15 @@ void TaskMotionLaw::declare(ParameterSchema& s) {
       .unit("rad/s")
       .greater_than(0.0)
       .maximum(1000.0)
-      .default_value(60.0);
+      .default_value(60.0)
+      .tunable();
   s.real("rotational_bandwidth_rad_s", "rotational loop bandwidth")
       .unit("rad/s")
       .greater_than(0.0)
       .maximum(1000.0)
-      .default_value(40.0);
-  s.real("damping_ratio", "zeta of both loops").greater_than(0.0).maximum(5.0).default_value(1.0);
+      .default_value(40.0)
+      .tunable();
+  s.real("damping_ratio", "zeta of both loops").greater_than(0.0).maximum(5.0).default_value(1.0).tunable();
   s.boolean("acceleration_feedforward", "add the desired acceleration").default_value(true);
   s.boolean("wrench_compensation", "cancel the measured operator wrench (positive feedback, + J^T F)")
       .default_value(true);
@@ -27,13 +29,27 @@ void TaskMotionLaw::configure(const Parameters& p, const PluginContext& context)
     throw ParameterError("task", "admittance control needs a device with a robot model");
   }
   rows_ = model::task_rows(p.string("task"), context.device->dof());
-  const double w = p.real("bandwidth_rad_s"), wr = p.real("rotational_bandwidth_rad_s"), z = p.real("damping_ratio");
-  kp_ = w * w;
-  kd_ = 2.0 * z * w;
-  kp_rot_ = wr * wr;
-  kd_rot_ = 2.0 * z * wr;
+  apply(gains_of(p));
   acceleration_feedforward_ = p.boolean("acceleration_feedforward");
   wrench_compensation_ = p.boolean("wrench_compensation");
+}
+
+TaskMotionLaw::Gains TaskMotionLaw::gains_of(const Parameters& p) {
+  const double w = p.real("bandwidth_rad_s"), wr = p.real("rotational_bandwidth_rad_s"), z = p.real("damping_ratio");
+  return {w * w, 2.0 * z * w, wr * wr, 2.0 * z * wr};
+}
+
+void TaskMotionLaw::apply(const Gains& g) noexcept {
+  kp_ = g.kp;
+  kd_ = g.kd;
+  kp_rot_ = g.kp_rot;
+  kd_rot_ = g.kd_rot;
+}
+
+void TaskMotionLaw::tune(const Parameters& p) { inbox_.publish(gains_of(p)); }
+
+void TaskMotionLaw::take_tuned() noexcept {
+  if (inbox_.take(incoming_)) apply(incoming_);
 }
 
 model::Vector6d TaskMotionLaw::acceleration(const TaskTarget& t, const ChainState& c) const noexcept {

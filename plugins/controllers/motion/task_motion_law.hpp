@@ -7,6 +7,7 @@
 #include "hapticd/model/model_data.hpp"
 #include "hapticd/parameters.hpp"
 #include "hapticd/plugin_context.hpp"
+#include "hapticd/realtime/latest_value.hpp"
 
 namespace hapticd::controllers {
 
@@ -16,6 +17,10 @@ class TaskMotionLaw {
   // wrench_compensation.
   static void declare(ParameterSchema& schema);
   void configure(const Parameters& p, const PluginContext& context);
+  // Not real-time, a server thread: the tunable gains (the bandwidths and the damping ratio) for the loop, which
+  // take_tuned() applies at the start of a cycle.
+  void tune(const Parameters& p);
+  void take_tuned() noexcept;
 
   // xdd_c for the target and the measured state (rows() entries used).
   [[nodiscard]] model::Vector6d acceleration(const TaskTarget& target, const ChainState& state) const noexcept;
@@ -25,6 +30,14 @@ class TaskMotionLaw {
   [[nodiscard]] int rows() const noexcept { return rows_; }
 
  private:
+  struct Gains {
+    double kp = 0.0, kd = 0.0, kp_rot = 0.0, kd_rot = 0.0;
+  };
+  static Gains gains_of(const Parameters& p);
+  void apply(const Gains& gains) noexcept;
+
+  realtime::LatestValue<Gains> inbox_;
+  Gains incoming_;
   int rows_ = 3;
   double kp_ = 0.0, kd_ = 0.0, kp_rot_ = 0.0, kd_rot_ = 0.0;
   bool acceleration_feedforward_ = true;
