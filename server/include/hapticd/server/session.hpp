@@ -49,8 +49,10 @@ struct DeviceView {
   TaskTarget task;         // what the virtual model rendered this cycle (pose, twist, wrench)
   JointCommand command;    // the torque written (after the safety supervisor)
   std::string scheme;      // the running control scheme
-  std::string fault;       // "" while running, else the fault that holds it in its safe mode ("emergency stop")
-  bool at_rest = true;     // the safe mode has reached zero torque (true without a fault)
+  // "" while running, else the fault that holds it in its safe mode with the device's reason when it gave one
+  // ("emergency stop", "device read failed: a drive's speed monitor tripped: ...").
+  std::string fault;
+  bool at_rest = true;  // the safe mode has reached zero torque (true without a fault)
   double engine_weight = 0.0;
   std::uint64_t faults = 0, recoveries = 0, scheme_switches = 0, refused_switches = 0;
   std::uint64_t saturated_cycles = 0, limited_cycles = 0, render_limited_cycles = 0;
