@@ -46,6 +46,38 @@ class ModelProperties : public ::testing::TestWithParam<const char*> {
   std::mt19937_64 rng_{42};
 };
 
+// A device mounted elsewhere in the world (turned, tilted and hung upside down): its poses are the mounted
+// ones, its Jacobian turns with the base, and gravity acts as the base sees it.
+TEST_P(ModelProperties, AMountedModelComputesInTheWorldFrame) {
+  const Eigen::Isometry3d base = Eigen::Translation3d(0.4, -0.3, 1.2) *
+                                 Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX()) *
+                                 Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ());
+  const RobotModel mounted = robot_->with_base(base);
+  // The same arm at the origin, with gravity as the mounted base feels it.
+  const RobotModel reference = robot_->with_gravity(base.linear().transpose() * robot_->gravity());
+  ModelData m(mounted), r(reference);
+  double largest_gravity = 0.0;
+  for (int k = 0; k < 20; ++k) {
+    const JointVector q = test::random_joint_vector(rng_, n(), kPi);
+    model::forward_kinematics(mounted, m, q);
+    model::forward_kinematics(reference, r, q);
+    const Eigen::Isometry3d expected = base * model::frame_pose(reference, r, handle_);
+    EXPECT_LT((model::frame_pose(mounted, m, handle_).matrix() - expected.matrix()).cwiseAbs().maxCoeff(), 1e-12);
+    TaskJacobian jm, jr;
+    model::frame_jacobian(mounted, m, handle_, jm);
+    model::frame_jacobian(reference, r, handle_, jr);
+    TaskJacobian turned(6, n());
+    turned.topRows<3>().noalias() = base.linear() * jr.topRows<3>();
+    turned.bottomRows<3>().noalias() = base.linear() * jr.bottomRows<3>();
+    EXPECT_LT((jm - turned).cwiseAbs().maxCoeff(), 1e-12);
+    model::gravity_torques(mounted, m);
+    model::gravity_torques(reference, r);
+    EXPECT_LT((m.gravity_torque - r.gravity_torque).cwiseAbs().maxCoeff(), 1e-9);
+    largest_gravity = std::max(largest_gravity, r.gravity_torque.cwiseAbs().maxCoeff());
+  }
+  EXPECT_GT(largest_gravity, 0.1);  // gravity does act on the arm
+}
+
 TEST_P(ModelProperties, JacobianMatchesFiniteDifferences) {
   const double h = 1e-6;
   for (int k = 0; k < kStates; ++k) {

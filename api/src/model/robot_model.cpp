@@ -47,6 +47,15 @@ RobotModel RobotModel::with_gravity(const Eigen::Vector3d& gravity) const {
   return copy;
 }
 
+RobotModel RobotModel::with_base(const Eigen::Isometry3d& base) const {
+  // A serial chain: the first body and the frames fixed to the base hang from the root.
+  RobotModel copy = *this;
+  if (!copy.bodies_.empty()) copy.bodies_.front().placement = base * copy.bodies_.front().placement;
+  for (Frame& f : copy.frames_)
+    if (f.body < 0) f.placement = base * f.placement;
+  return copy;
+}
+
 JointVector RobotModel::peak_torques() const {
   JointVector v(dof());
   for (int i = 0; i < dof(); ++i) {

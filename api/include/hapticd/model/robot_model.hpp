@@ -62,6 +62,10 @@ class HAPTICD_API RobotModel {
   [[nodiscard]] const Eigen::Vector3d& gravity() const noexcept { return gravity_; }
   // A copy with another gravity vector (for example zero, for free-motion tests).
   [[nodiscard]] RobotModel with_gravity(const Eigen::Vector3d& gravity) const;
+  // A copy mounted at `base` (the URDF root's pose in the world frame): every pose, Jacobian and wrench the
+  // model computes is then in the world frame, and gravity (a world vector) acts on the mounted device as it
+  // would on the real one (a device hung upside down feels it reversed in its joints).
+  [[nodiscard]] RobotModel with_base(const Eigen::Isometry3d& base) const;
   // Joint-output peak torque per joint: the drive's, else the URDF effort limit, else 0.
   [[nodiscard]] JointVector peak_torques() const;
   // Joint speed limit per joint: the drive's, else the URDF velocity limit, else 0.
