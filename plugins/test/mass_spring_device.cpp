@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 
 namespace hapticd::test_plugins {
@@ -26,6 +27,7 @@ ParameterSchema MassSpringDevice::parameter_schema() {
       .default_value(-1);
   s.boolean("refuse_fault_reset", "fault injection: reset_fault() fails").default_value(false);
   s.boolean("fail_enable", "fault injection: enable() fails").default_value(false);
+  s.boolean("throw_in_disable", "fault injection: disable() throws").default_value(false);
   s.boolean("homing", "the device needs homing (capabilities.homing); read() fails until home()").default_value(false);
   s.boolean("fail_homing", "fault injection: home() fails").default_value(false);
   s.integer("fail_write_at_cycle", "fault injection: write() fails from this cycle on; -1 never")
@@ -52,6 +54,7 @@ void MassSpringDevice::configure(const Parameters& p, const PluginContext& conte
   fail_write_at_cycle_ = p.integer("fail_write_at_cycle");
   refuse_fault_reset_ = p.boolean("refuse_fault_reset");
   fail_enable_ = p.boolean("fail_enable");
+  throw_in_disable_ = p.boolean("throw_in_disable");
   fail_homing_ = p.boolean("fail_homing");
   period_s_ = 1.0 / context.rate_hz;
   // Semi-implicit Euler is stable for w dt < 2; keep a wide margin so the test device is also accurate.
@@ -78,7 +81,6 @@ Outcome MassSpringDevice::enable() {
   if (fail_enable_) return Outcome::failure("injected enable failure (fail_enable)");
   read_fault_latched_ = false;
   homed_ = !description_.capabilities.homing;
-  resets_ = 0;
   position_m_ = initial_position_m_;
   velocity_m_s_ = 0.0;
   force_n_ = 0.0;
@@ -132,7 +134,10 @@ Outcome MassSpringDevice::write(const CycleTime& cycle, const JointCommand& comm
   return Outcome::success();
 }
 
-void MassSpringDevice::disable() { force_n_ = 0.0; }
+void MassSpringDevice::disable() {
+  force_n_ = 0.0;
+  if (throw_in_disable_) throw std::runtime_error("injected disable failure (throw_in_disable)");
+}
 
 Outcome MassSpringDevice::home() {
   if (fail_homing_) return Outcome::failure("injected homing failure (fail_homing)");
@@ -142,7 +147,6 @@ Outcome MassSpringDevice::home() {
 
 Outcome MassSpringDevice::reset_fault() noexcept {
   if (refuse_fault_reset_) return Outcome::failure("injected fault-reset failure (refuse_fault_reset)");
-  ++resets_;
   read_fault_latched_ = false;
   return Outcome::success();
 }

@@ -21,7 +21,6 @@ class MassSpringDevice final : public Device {
   void disable() override;
   Outcome home() override;
   Outcome reset_fault() noexcept override;
-  [[nodiscard]] int fault_resets() const noexcept { return resets_; }
 
  private:
   void step(double dt) noexcept;
@@ -37,9 +36,8 @@ class MassSpringDevice final : public Device {
   std::int64_t substeps_ = 1;
   std::int64_t fail_read_at_cycle_ = -1;
   std::int64_t fail_write_at_cycle_ = -1;
-  bool refuse_fault_reset_ = false, fail_enable_ = false, fail_homing_ = false;
+  bool refuse_fault_reset_ = false, fail_enable_ = false, fail_homing_ = false, throw_in_disable_ = false;
   bool read_fault_latched_ = false, homed_ = true;
-  int resets_ = 0;
   double period_s_ = 0.0005;
 
   double position_m_ = 0.0;

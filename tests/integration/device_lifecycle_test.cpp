@@ -73,6 +73,18 @@ TEST(DeviceLifecycle, ARefusedFaultResetKeepsTheDeviceSafeAndSaysWhy) {
   EXPECT_EQ(s.device("b").fault, "");
 }
 
+TEST(DeviceLifecycle, AFailedDisableIsReportedAfterEveryDeviceIsDisabled) {
+  Session s = two_devices(", throw_in_disable: true");
+  s.step(10);
+  try {
+    s.stop();
+    ADD_FAILURE() << "stop() did not report the failed disable";
+  } catch (const std::runtime_error& e) {
+    EXPECT_TRUE(contains(e.what(), "a: disable() threw: injected disable failure")) << e.what();
+  }
+  EXPECT_EQ(s.impl().devices[1]->disable_error(), "");  // the other device was disabled too
+}
+
 TEST(DeviceLifecycle, TheSimulatedDeviceIsHomedAndDescribesItsCapabilities) {
   Session s = test::build_test_session(test::sim_vishard3_admittance_session("v3", 3));
   s.step(10);

@@ -121,21 +121,20 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
     }
     done.store(true, std::memory_order_release);
   });
-  std::size_t activated = 0;
   try {
     if (!settings_.lockstep) {
       auto warnings = make_thread_realtime(thread, settings_.realtime_priority, settings_.cpu);
       result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
     }
-    for (; activated < devices.size(); ++activated) devices[activated]->activate();
   } catch (...) {
-    // A device that could not be powered: the ones that were go off again, the loop never runs.
-    for (std::size_t k = 0; k < activated; ++k) devices[k]->deactivate();
+    // The loop never runs and no device was powered.
     cancelled.store(true, std::memory_order_release);
     go.store(true, std::memory_order_release);
     thread.join();
     throw;
   }
+  // A device that cannot be enabled or homed is held in its safe state by its session; the others run.
+  for (DeviceSession* d : devices) d->activate();
   wall_start_ns = monotonic_now_ns();
   go.store(true, std::memory_order_release);
 
@@ -147,7 +146,11 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
   if (monitor) monitor();
   result.wall_time_s = static_cast<double>(monotonic_now_ns() - wall_start_ns) * 1e-9;
 
-  for (DeviceSession* s : devices) s->deactivate();
+  for (DeviceSession* s : devices) {
+    s->deactivate();
+    if (!s->disable_error().empty())
+      result.warnings.push_back("device '" + s->name() + "': " + s->disable_error() + " (its drives may still be on)");
+  }
   return result;
 }
 

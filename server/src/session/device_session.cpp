@@ -15,6 +15,11 @@ RedundancyResolution* redundancy_of(SchemeChain& scheme) noexcept {
   return scheme.inverse_kinematics ? (*scheme.inverse_kinematics)->redundancy() : nullptr;
 }
 
+// A device's reason as the status keeps it: nullptr when it gave none.
+const char* reason_or_null(const char* reason) noexcept {
+  return reason != nullptr && reason[0] != '\0' ? reason : nullptr;
+}
+
 }  // namespace
 
 const DeviceDescription& DeviceSession::checked(const std::string& name, const DeviceChain& chain) {
@@ -56,7 +61,7 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
   status_.passivity_control.store(safety_.guard().passivity_control(), std::memory_order_release);
 }
 
-void DeviceSession::activate() {
+void DeviceSession::activate() noexcept {
   // The device's lifecycle up to its first read: enable (drives on, brakes released), then homing if it needs
   // it. A step that fails holds the device in its safe state with the reason; the other devices run.
   const auto step = [](auto&& call) {
@@ -387,7 +392,7 @@ void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
   } catch (...) {
   }
   if (!reset.ok()) {
-    status_.fault_reason.store(reset.reason, std::memory_order_relaxed);
+    status_.fault_reason.store(reason_or_null(reset.reason), std::memory_order_relaxed);
     status_.refused_recoveries.fetch_add(1, std::memory_order_relaxed);
     return;
   }
@@ -451,7 +456,7 @@ void DeviceSession::publish_fault(DeviceFault fault, const CycleTime& cycle, con
   if (reason != nullptr) {
     for (std::size_t i = 0; i + 1 < report_.reason.size() && reason[i] != '\0'; ++i) report_.reason[i] = reason[i];
   }
-  status_.fault_reason.store(reason != nullptr && reason[0] != '\0' ? reason : nullptr, std::memory_order_relaxed);
+  status_.fault_reason.store(reason_or_null(reason), std::memory_order_relaxed);
   report_.serial = status_.faults.load(std::memory_order_relaxed) + 1;
   report_.cycle = cycle.index;
   report_.time_ns = cycle.time_ns;
@@ -471,7 +476,7 @@ void DeviceSession::relatch_emergency_stop(const CycleTime& cycle) noexcept {
 
 void DeviceSession::hold_before_start(DeviceFault fault, const char* reason) noexcept {
   if (status_.fault.load(std::memory_order_relaxed) != DeviceFault::none) return;  // a configure error came first
-  status_.fault_reason.store(reason, std::memory_order_relaxed);
+  status_.fault_reason.store(reason_or_null(reason), std::memory_order_relaxed);
   status_.faults.store(1, std::memory_order_relaxed);
   status_.fault.store(fault, std::memory_order_release);
 }
@@ -488,9 +493,13 @@ void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle, const
 void DeviceSession::deactivate() {
   chain_active_ = false;
   schemes_.service(true);
+  disable_error_.clear();
   try {
     chain_.device->disable();
-  } catch (...) {  // the drives are off as far as the server can tell; the caller reports the session's end
+  } catch (const std::exception& e) {
+    disable_error_ = std::string("disable() threw: ") + e.what();
+  } catch (...) {
+    disable_error_ = "disable() threw an exception";
   }
 }
 

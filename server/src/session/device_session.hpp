@@ -48,7 +48,7 @@ class DeviceSession {
 
   // Not real-time safe. Enables the device (and homes it if it needs it); the chain activates in the first cycle
   // from the first sample. A device that cannot be enabled or homed is held in its safe state with the reason.
-  void activate();
+  void activate() noexcept;
 
   // Real-time safe: one cycle in phases (docs/architecture.md, "One cycle"). The executor runs each phase for
   // every device of a group before the next phase, so the chains of a group see their devices' states of the
@@ -69,8 +69,11 @@ class DeviceSession {
     run_chain(cycle);
     limit_and_write(cycle, torque_scale);
   }
-  // Not real-time safe. Zero torque, chain off, device disabled (brakes engaged).
+  // Not real-time safe. Zero torque, chain off, device disabled (brakes engaged). A disable() that throws is
+  // caught, so the caller goes on to disable the other devices, and kept in disable_error().
   void deactivate();
+  // Why the last deactivate() could not disable the device cleanly; empty if it could.
+  [[nodiscard]] const std::string& disable_error() const noexcept { return disable_error_; }
 
   [[nodiscard]] const std::string& name() const noexcept { return name_; }
   [[nodiscard]] const DeviceDescription& description() const noexcept { return description_; }
@@ -234,7 +237,8 @@ class DeviceSession {
   std::atomic<bool> safe_stop_requested_{false};
   bool stopped_ = false;                    // loop thread: the safe stop has begun
   std::atomic<int> passivity_request_{-1};  // -1: none, else 0/1
-  std::mutex plugin_requests_;              // one request to this device's plugins at a time (never the loop)
+  std::string disable_error_;
+  std::mutex plugin_requests_;  // one request to this device's plugins at a time (never the loop)
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;
   bool measurement_valid_ = false;

@@ -71,7 +71,7 @@ Session::~Session() {
   if (!impl_) return;
   try {
     stop();
-  } catch (...) {  // a plugin that throws from deactivate(): the devices are off as far as the server can tell
+  } catch (...) {  // a device whose disable() threw: every device was still disabled; a destructor cannot report
   }
 }
 
@@ -88,14 +88,8 @@ void Session::step(std::uint64_t cycles) {
   Impl& s = *impl_;
   if (s.stopped) throw std::logic_error("the session has stopped");
   if (!s.activated) {
-    std::size_t activated = 0;
-    try {
-      for (; activated < s.devices.size(); ++activated) s.devices[activated]->activate();
-    } catch (...) {
-      for (std::size_t k = 0; k < activated; ++k) s.devices[k]->deactivate();
-      s.stopped = true;
-      throw;
-    }
+    // A device that cannot be enabled or homed is held in its safe state; the others run.
+    for (const auto& d : s.devices) d->activate();
     s.activated = true;
   }
   for (std::uint64_t k = 0; k < cycles; ++k) {
@@ -173,7 +167,12 @@ void Session::stop() {
     const double scale = std::max(0.0, 1.0 - static_cast<double>(k) / static_cast<double>(ramp));
     s.group->run_cycle(CycleTime{static_cast<std::int64_t>(index) * s.period_ns, s.period_ns, index}, scale, 0, 0);
   }
-  for (const auto& d : s.devices) d->deactivate();
+  std::string failed;
+  for (const auto& d : s.devices) {
+    d->deactivate();  // every device, whatever another one's disable() did
+    if (!d->disable_error().empty()) failed += (failed.empty() ? "" : "; ") + d->name() + ": " + d->disable_error();
+  }
+  if (!failed.empty()) throw std::runtime_error("devices not disabled cleanly: " + failed);
 }
 
 }  // namespace hapticd::server

@@ -100,6 +100,7 @@ class HAPTICD_API Session {
   [[nodiscard]] SessionStatistics statistics() const;
   // Ends the session as a run of its duration ends: the torques ramp to zero over server.shutdown_ramp_s (the
   // chains run on meanwhile), then the chains and devices are deactivated. Nothing can be stepped afterwards.
+  // Throws std::runtime_error naming each device whose disable() failed - after every device was disabled.
   void stop();
 
   struct Impl;  // the server's own tests reach the device sessions through it (session/session_impl.hpp)
