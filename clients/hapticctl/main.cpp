@@ -154,9 +154,13 @@ int main(int argc, char** argv) {
     for (const auto& d : devices) {
       std::string schemes;
       for (int k = 0; k < d.scheme_count; ++k) schemes += (k ? ", " : "") + std::string(name_of(d.schemes[k]));
-      fmt::print("{:<16} {} joints, {} ({}), {} Hz, schemes: {}; engine deadline {} ms\n", name_of(d.device), d.dof,
-                 name_of(d.device_plugin), d.simulated ? "simulated" : "hardware", d.rate_hz, schemes,
-                 1e3 * d.command_deadline_s);
+      const auto& base = d.base_pose;
+      fmt::print(
+          "{:<16} {} joints, {} ({}), {} Hz, schemes: {}; engine deadline {} ms; base at [{}, {}, {}] m, "
+          "orientation [{}, {}, {}, {}]\n",
+          name_of(d.device), d.dof, name_of(d.device_plugin), d.simulated ? "simulated" : "hardware", d.rate_hz,
+          schemes, 1e3 * d.command_deadline_s, base.position[0], base.position[1], base.position[2],
+          base.orientation[0], base.orientation[1], base.orientation[2], base.orientation[3]);
     }
     return 0;
   }

@@ -18,6 +18,11 @@ bool all_finite(const hapticd_msg_Pose& p) noexcept { return all_finite(p.positi
 
 double norm3(const double* v) noexcept { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
+double distance_from(const double* v, const std::array<double, 3>& origin) noexcept {
+  const double d[3] = {v[0] - origin[0], v[1] - origin[1], v[2] - origin[2]};
+  return norm3(d);
+}
+
 bool unit_quaternion(const hapticd_msg_Pose& p) noexcept {
   const double* q = p.orientation;
   const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
@@ -79,7 +84,8 @@ ContentCheck check_command_content(const hapticd_msg_EngineCommand& c, const Com
       if (!within(c.wrench, b.max_force_n, b.max_torque_nm)) return reject(RejectReason::out_of_bounds);
       if (local_model != 0) {
         if (!unit_quaternion(c.anchor)) return reject(RejectReason::malformed);
-        if (norm3(c.anchor.position) > b.max_distance_m) return reject(RejectReason::out_of_bounds);
+        if (distance_from(c.anchor.position, b.base_position) > b.max_distance_m)
+          return reject(RejectReason::out_of_bounds);
         if (!non_negative_within(c.stiffness, b.max_stiffness_n_per_m, b.max_rotational_stiffness_n_m_per_rad) ||
             !non_negative_within(c.damping, b.max_damping_n_s_per_m, b.max_rotational_damping_n_m_s))
           return reject(RejectReason::out_of_bounds);
@@ -88,7 +94,8 @@ ContentCheck check_command_content(const hapticd_msg_EngineCommand& c, const Com
     case hapticd_msg_COMMAND_COUPLING:
     case hapticd_msg_COMMAND_MOTION:
       if (!unit_quaternion(c.pose)) return reject(RejectReason::malformed);
-      if (norm3(c.pose.position) > b.max_distance_m) return reject(RejectReason::out_of_bounds);
+      if (distance_from(c.pose.position, b.base_position) > b.max_distance_m)
+        return reject(RejectReason::out_of_bounds);
       if (!within(c.twist, b.max_speed_m_s, b.max_angular_speed_rad_s)) return reject(RejectReason::out_of_bounds);
       break;
     default:

@@ -1,5 +1,5 @@
 #pragma once
-// The end-to-end rig over DDS: a server (session, bridge, executor and monitor in this process, its own DDS
+// The end-to-end rig over DDS: a server (a session served as `hapticd` serves it, in this process, its own DDS
 // participant) and the scene engine of examples/engines on the client library (a participant of its own), on a
 // test domain of their own with the loopback-only configuration. Lockstep runs wait for the engine's answer to
 // every state (dds.lockstep_sync), so they are repeatable; a recording listener on the loop thread captures what
@@ -15,8 +15,7 @@
 #include <vector>
 
 #include "../../examples/engines/scene.hpp"
-#include "app/session_monitor.hpp"
-#include "bridge/dds_bridge.hpp"
+#include "app/served_session.hpp"
 #include "hapticd/client/client.hpp"
 #include "support/test_session.hpp"
 
@@ -90,45 +89,39 @@ inline std::string session_yaml(int domain, double duration_s, const std::string
          safety + (clock == "realtime" ? std::string(safety.empty() ? "" : ", ") + kRealtimeWatchdogs : "") + "}\n";
 }
 
+// The session served as `hapticd` serves it (app/served_session), never asking for real-time scheduling, with a
+// recording listener ahead of the DDS interface's.
 class Server {
  public:
   explicit Server(const std::string& yaml) : session_(test::build_test_session(yaml)) {
-    std::vector<DeviceSession*> devices;
-    for (auto& d : session_.impl().devices) devices.push_back(d.get());
-    bridge_ = std::make_unique<DdsBridge>(session_.impl().config.dds, session_.impl().config.server.rate_hz, devices);
-    executor_ = std::make_unique<Executor>(session_.impl().executor_settings(), devices, nullptr);
-    listener_ = std::make_unique<RecordingListener>(bridge_.get(), devices[0]);
-    executor_->set_cycle_listener(listener_.get());
-    bridge_->set_loop_statistics(&executor_->live());
-    monitor_ = std::make_unique<SessionMonitor>(devices, bridge_.get());
-    bridge_->start();
+    served_ = std::make_unique<ServedSession>(session_.impl().config, session_.impl().device_pointers(),
+                                              ServeOptions{{}, /*realtime_setup=*/false, nullptr});
+    listener_ = std::make_unique<RecordingListener>(served_->cycle_listener(), &device());
+    served_->set_cycle_listener(listener_.get());
   }
   ~Server() {
     stop();  // a failed check must not wait for the session's end
     join();
   }
   void start() {
-    thread_ = std::thread([this] { result_ = executor_->run(stop_, [this] { monitor_->poll(); }); });
+    thread_ = std::thread([this] { result_ = served_->run(stop_); });
   }
   // Ends the session now (the device stops through its safe mode); the real-time tests stop when their checks
   // are done.
   void stop() { stop_.store(true); }
   void join() {
     if (thread_.joinable()) thread_.join();
-    bridge_->stop();
   }
-  DdsBridge& bridge() { return *bridge_; }
+  DdsBridge& bridge() { return *served_->bridge(); }
   DeviceSession& device() { return *session_.impl().devices[0]; }
   const RecordingListener& recording() const { return *listener_; }
   const ExecutorResult& result() const { return result_; }
-  const SessionMonitor& monitor() const { return *monitor_; }
+  const SessionMonitor& monitor() const { return served_->monitor(); }
 
  private:
   server::Session session_;
-  std::unique_ptr<DdsBridge> bridge_;
-  std::unique_ptr<Executor> executor_;
+  std::unique_ptr<ServedSession> served_;
   std::unique_ptr<RecordingListener> listener_;
-  std::unique_ptr<SessionMonitor> monitor_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
   ExecutorResult result_;

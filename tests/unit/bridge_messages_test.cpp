@@ -142,8 +142,15 @@ TEST(BridgeMessages, AFaultReportKeepsItsCyclesUpToTheMessagesCapacity) {
 }
 
 TEST(BridgeMessages, TheDescriptionSaysWhatTheDeviceDescribes) {
-  Session s = test::build_test_session("server: {clock: lockstep}\ndevices:\n" + test::mass_spring_device_yaml("axis"));
+  Session s = test::build_test_session("server: {clock: lockstep}\ndevices:\n" + test::mass_spring_device_yaml("axis") +
+                                       "    base_pose: {xyz: [0.5, -0.25, 0.125], rpy: [0, 0, 3.141592653589793]}\n");
   const hapticd_msg_DeviceDescription m = description_message(test::device_of(s), 2000.0, std::nullopt);
+  EXPECT_STREQ(m.base_frame, "world");
+  EXPECT_DOUBLE_EQ(m.base_pose.position[0], 0.5);
+  EXPECT_DOUBLE_EQ(m.base_pose.position[1], -0.25);
+  EXPECT_DOUBLE_EQ(m.base_pose.position[2], 0.125);
+  EXPECT_NEAR(std::abs(m.base_pose.orientation[3]), 1.0, 1e-12);  // half a turn about z: [0, 0, 0, +-1]
+  EXPECT_DOUBLE_EQ(m.workspace_min[0], m.workspace_max[0]);       // no safety box
   EXPECT_STREQ(m.device, "axis");
   EXPECT_STREQ(m.device_plugin, "test_mass_spring");
   EXPECT_TRUE(m.simulated);  // from DeviceDescription::simulated, not from the plugin's name

@@ -127,6 +127,23 @@ TEST(CommandValidation, EachKindIsCheckedForItsOwnFields) {
   EXPECT_EQ(dds::check_command_content(c, b).reason, RejectReason::malformed);
 }
 
+TEST(CommandValidation, PoseDistancesAreTakenFromTheDevicesBase) {
+  dds::CommandBounds b;  // 2 m
+  b.base_position = {3.0, 0.0, 0.0};
+  auto c = command("a", 1);
+  c.pose.position[0] = 4.5;  // 1.5 m from the base, 4.5 m from the world's origin
+  EXPECT_TRUE(dds::check_command_content(c, b).ok);
+  c.pose.position[0] = 0.5;  // 2.5 m from the base
+  EXPECT_EQ(dds::check_command_content(c, b).reason, RejectReason::out_of_bounds);
+  c = command("a", 1);
+  c.kind = hapticd_msg_COMMAND_WRENCH;
+  c.local_model = true;
+  c.anchor.position[0] = 0.5;
+  EXPECT_EQ(dds::check_command_content(c, b).reason, RejectReason::out_of_bounds);
+  c.anchor.position[0] = 4.0;
+  EXPECT_TRUE(dds::check_command_content(c, b).ok);
+}
+
 TEST(CommandValidation, RandomisedSamplesNeverPassWithBadContent) {
   // Bounded randomised fuzz (fixed seed): random bytes, and valid commands with random fields broken.
   std::mt19937_64 rng(20261123);

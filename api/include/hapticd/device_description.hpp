@@ -2,6 +2,8 @@
 #include <string>
 #include <vector>
 
+#include "hapticd/spatial.hpp"
+
 namespace hapticd {
 
 // Limits and identity of one joint, at the joint output (after the gear).
@@ -35,6 +37,10 @@ struct DeviceDescription {
   // A simulation, not hardware: the server says so to clients and evaluations (no guess from the plugin's name).
   bool simulated = false;
   DeviceCapabilities capabilities;
+  // Where the device stands: its base (the robot model's root) in the session's world frame. Set by the server
+  // from the session file (`base_pose`), not by the plugin. Every pose, twist and wrench the server computes,
+  // publishes and records is in the world frame.
+  Pose base_pose;
 
   [[nodiscard]] int dof() const noexcept { return static_cast<int>(joints.size()); }
 };

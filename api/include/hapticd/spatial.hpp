@@ -11,6 +11,17 @@ struct Pose {
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
 };
 
+// The same pose as a rigid transform, and back.
+[[nodiscard]] inline Eigen::Isometry3d to_isometry(const Pose& pose) {
+  Eigen::Isometry3d x = Eigen::Isometry3d::Identity();
+  x.linear() = pose.orientation.normalized().toRotationMatrix();
+  x.translation() = pose.position;
+  return x;
+}
+[[nodiscard]] inline Pose to_pose(const Eigen::Isometry3d& x) {
+  return Pose{x.translation(), Eigen::Quaterniond(x.linear())};
+}
+
 // Linear [m/s] and angular [rad/s] velocity; also used for accelerations [m/s^2, rad/s^2].
 struct Twist {
   Eigen::Vector3d linear = Eigen::Vector3d::Zero();

@@ -134,9 +134,11 @@ ParameterSchema SimDevice::parameter_schema() {
 void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   std::filesystem::path urdf = p.string("urdf");
   if (urdf.is_relative()) urdf = context.config_directory / urdf;
+  // Placed where the session puts the device: its physics (gravity, the operator's and the source's forces) in the
+  // world frame, as the server's model of it.
   model::RobotModel robot = [&] {
     try {
-      return model::load_robot_model(urdf);
+      return model::load_robot_model(urdf).with_base(to_isometry(context.base_pose));
     } catch (const model::ModelError& e) {
       throw ParameterError("urdf", e.what());
     }

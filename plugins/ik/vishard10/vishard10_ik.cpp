@@ -115,7 +115,8 @@ ParameterSchema Vishard10Ik::parameter_schema() {
 void Vishard10Ik::configure(const Parameters& p, const PluginContext& context) {
   if (context.device == nullptr || context.robot_model == nullptr)
     throw ParameterError("scara", "vishard10_ik needs a device with a robot model");
-  model_ = context.robot_model;
+  world_to_base_ = to_isometry(context.base_pose).inverse();
+  model_ = std::make_unique<const model::RobotModel>(context.robot_model->with_base(world_to_base_));
   handle_ = model_->require_frame(context.device->handle_frame.empty() ? "handle" : context.device->handle_frame);
   try {
     geometry_ = vishard10::Geometry::from(*model_, handle_);
@@ -281,7 +282,12 @@ ReturnCode Vishard10Ik::activate(const InverseKinematicsInput& current) noexcept
 ReturnCode Vishard10Ik::update(const CycleTime& cycle, const InverseKinematicsInput& in, JointTarget& target) noexcept {
   if (!in.task.has_motion) return ReturnCode::error;
   const double dt = static_cast<double>(cycle.period_ns) * 1e-9;
-  const JointVector& q = solve(in.task.pose, in.task.twist, dt);
+  const Eigen::Matrix3d to_base = world_to_base_.linear();
+  Pose pose;
+  pose.position = world_to_base_ * in.task.pose.position;
+  pose.orientation = Eigen::Quaterniond(to_base) * in.task.pose.orientation;
+  const Twist twist{to_base * in.task.twist.linear, to_base * in.task.twist.angular};
+  const JointVector& q = solve(pose, twist, dt);
   qd_ = (q - previous_) / dt;
   previous_ = q;
   target.position = q;

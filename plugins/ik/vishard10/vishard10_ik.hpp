@@ -27,8 +27,8 @@ class Vishard10Ik final : public InverseKinematics {
   ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) noexcept override;
   void deactivate() override {}
 
-  // For tests: the joint vector of a handle pose (inverse functions only; pseudoinverse parts integrate).
-  // dt: the step the integrated parts take.
+  // For tests: the joint vector of a handle pose in the device's base frame (inverse functions only; pseudoinverse
+  // parts integrate). dt: the step the integrated parts take.
   const JointVector& solve(const Pose& pose, const Twist& twist, double dt) noexcept;
   // Starts the integrated parts (pseudoinverses) and the unwrapping from a posture (activate() does this with
   // the measured one).
@@ -39,8 +39,11 @@ class Vishard10Ik final : public InverseKinematics {
   void solve_scara(const Eigen::Vector2d& target, const Eigen::Vector2d& velocity, double dt) noexcept;
   void solve_wrist(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& angular_velocity, double dt) noexcept;
 
-  const model::RobotModel* model_ = nullptr;  // the server's, shared by the chain (PluginContext)
+  // The partitioned solution works in the device's base frame: the server's model (world frame, PluginContext)
+  // taken back to the base, and the base pose that maps the world-frame targets there.
+  std::unique_ptr<const model::RobotModel> model_;
   std::unique_ptr<model::ModelData> data_;
+  Eigen::Isometry3d world_to_base_ = Eigen::Isometry3d::Identity();
   int handle_ = -1;
   vishard10::Geometry geometry_;
   enum class Scara { inverse_function, lookup_table, pseudoinverse };

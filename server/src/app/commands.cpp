@@ -7,6 +7,7 @@
 #include <memory>
 #include <thread>
 
+#include "app/served_session.hpp"
 #include "app/session_monitor.hpp"
 #include "app/session_report.hpp"
 #include "app/signals.hpp"
@@ -97,59 +98,27 @@ int run_session(const RunOptions& options) {
     return kExitRuntimeError;
   }
 
-  std::unique_ptr<Recorder> recorder;
-  if (!options.record_csv.empty()) {
-    std::vector<std::string> names;
-    for (const auto& d : s->sessions) names.push_back(d->name());
-    try {
-      recorder = std::make_unique<Recorder>(options.record_csv, names, lockstep);
-    } catch (const std::exception& e) {
-      spdlog::error("{}", e.what());
-      return kExitRuntimeError;
-    }
-  }
-
   std::vector<DeviceSession*> sessions;
   for (const auto& d : s->sessions) sessions.push_back(d.get());
-  ExecutorSettings settings;
-  settings.rate_hz = server.rate_hz;
-  settings.lockstep = lockstep;
-  settings.duration_s = server.duration_s;
-  settings.shutdown_ramp_s = server.shutdown_ramp_s;
-  settings.realtime_priority = server.realtime_priority;
-  settings.lock_memory = server.lock_memory;
-  settings.cpu = server.cpu;
-  // With the DDS interface, where its threads run (docs/dds-interface.md, "CPUs").
-  std::vector<int> dds_cpus;
-  if (s->config.dds.enabled) {
-    const int n = static_cast<int>(std::thread::hardware_concurrency());
-    if (s->config.dds.cpu >= 0) {
-      dds_cpus = {s->config.dds.cpu};
-    } else if (s->config.dds.cpu == -2 && !lockstep && n >= 2) {
-      if (settings.cpu < 0) settings.cpu = n - 1;
-      for (int c = 0; c < n; ++c)
-        if (c != settings.cpu) dds_cpus.push_back(c);
-    }
+  const std::atomic<bool>& stop = install_stop_signal_handlers();
+  std::unique_ptr<ServedSession> served;
+  try {  // before any device is powered
+    served = std::make_unique<ServedSession>(s->config, sessions,
+                                             ServeOptions{options.record_csv, /*realtime_setup=*/true, &stop});
+  } catch (const std::exception& e) {
+    spdlog::error("{}; no device was powered", e.what());
+    return kExitRuntimeError;
   }
-  Executor executor(settings, sessions, recorder.get());
-
-  std::unique_ptr<DdsBridge> bridge;
-  if (s->config.dds.enabled) {
-    try {  // before any device is powered (Executor::run)
-      bridge = std::make_unique<DdsBridge>(s->config.dds, server.rate_hz, sessions, dds_cpus);
-      bridge->set_loop_statistics(&executor.live());
-      executor.set_cycle_listener(bridge.get());
-      bridge->start();
-    } catch (const std::exception& e) {
-      spdlog::error("DDS interface: {}; no device was powered", e.what());
-      return kExitRuntimeError;
-    }
+  DdsBridge* bridge = served->bridge();
+  const Recorder* recorder = served->recorder();
+  if (bridge != nullptr) {
     std::string cpus;
-    for (int c : dds_cpus) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
+    for (int c : served->dds_cpus()) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
     spdlog::info(
         "DDS interface on domain {} ({}){}", s->config.dds.domain_id,
         s->config.dds.cyclone_config.empty() ? std::string("loopback only") : s->config.dds.cyclone_config.string(),
-        cpus.empty() ? std::string() : fmt::format(", DDS threads on CPU {}, the loop on CPU {}", cpus, settings.cpu));
+        cpus.empty() ? std::string()
+                     : fmt::format(", DDS threads on CPU {}, the loop on CPU {}", cpus, served->loop_cpu()));
   }
 
   for (const ConfigureFailure& f : s->configure_failures)
@@ -157,16 +126,13 @@ int run_session(const RunOptions& options) {
                   f.powered ? "is held in its safe state (zero torque)" : "is left out (its drives stay unpowered)",
                   f.error.what());
 
-  const std::atomic<bool>& stop = install_stop_signal_handlers();
   spdlog::info("session {}: {} device(s) at {} Hz, {} clock{}", options.config_file, sessions.size(), server.rate_hz,
                lockstep ? "lockstep" : "realtime",
                server.duration_s > 0 ? fmt::format(", {} s", server.duration_s) : std::string(", until stopped"));
 
-  SessionMonitor monitor(sessions, bridge.get(), &stop, recorder.get());
-
   ExecutorResult result;
   try {
-    result = executor.run(stop, [&] { monitor.poll(); });
+    result = served->run(stop);
   } catch (const std::bad_alloc&) {
     spdlog::error("session failed: out of memory (no device was left powered)");
     return kExitRuntimeError;
@@ -175,12 +141,7 @@ int run_session(const RunOptions& options) {
     return kExitRuntimeError;
   }
   for (const auto& w : result.warnings) spdlog::warn("{}", w);
-  if (recorder) {
-    recorder->finish();
-    monitor.poll();  // a failure at the end (the last chunk, the sync, the close) is announced too
-  }
-  if (bridge) {
-    bridge->stop();
+  if (bridge != nullptr) {
     for (std::size_t i = 0; i < sessions.size(); ++i) {
       spdlog::info("{}: engine commands accepted {}, rejected {}, deadline misses {}", sessions[i]->name(),
                    bridge->commands_accepted(i), bridge->commands_rejected(i), bridge->deadline_misses(i));
@@ -208,7 +169,7 @@ int run_session(const RunOptions& options) {
   report.config = &s->config;
   report.result = &result;
   report.sessions = &s->sessions;
-  report.monitor = &monitor;
+  report.monitor = &served->monitor();
   report.records_written = recorder ? recorder->written() : 0;
   report.records_dropped = recorder ? recorder->dropped() : 0;
   report.records_lost = recorder ? recorder->lost() : 0;
@@ -308,6 +269,9 @@ int describe_config(const std::string& config_file) {
                  d.alternatives.empty() ? "" : fmt::format(" and {} more", d.alternatives.size()));
       fmt::print("    switch_ramp_s {}, engine_deadline_s {}, engine_fade_s {}, engine_ramp_in_s {}\n", d.switch_ramp_s,
                  d.engine_deadline_s, d.engine_fade_s, d.engine_ramp_in_s);
+      const Eigen::Vector3d rpy = d.base_pose.orientation.toRotationMatrix().eulerAngles(2, 1, 0).reverse();
+      fmt::print("    base_pose xyz [{}, {}, {}] m, rpy [{:.4f}, {:.4f}, {:.4f}] rad\n", d.base_pose.position.x(),
+                 d.base_pose.position.y(), d.base_pose.position.z(), rpy.x(), rpy.y(), rpy.z());
     }
     fmt::print("\n");
   }
@@ -321,6 +285,8 @@ int describe_config(const std::string& config_file) {
   print_schema(dds_settings_schema());
   fmt::print("\na device entry (devices: [...]):\n");
   for (const EntryKey& k : device_entry_keys()) fmt::print("  {:<24} {}\n", k.key, k.text);
+  fmt::print("\nbase_pose of a device entry (docs/configuration.md):\n");
+  print_schema(base_pose_schema());
   fmt::print("\nsafety section of a device entry (docs/safety.md):\n");
   print_schema(safety_settings_schema());
   return kExitOk;

@@ -4,15 +4,22 @@
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
+namespace {
+
+// The dds section's bounds; distances are taken from the device's base.
+dds::CommandBounds bounds_of(const DdsSettings& settings, const Pose& base) {
+  dds::CommandBounds b{settings.max_force_n,           settings.max_torque_nm,
+                       settings.max_stiffness_n_per_m, settings.max_rotational_stiffness_n_m_per_rad,
+                       settings.max_damping_n_s_per_m, settings.max_rotational_damping_n_m_s,
+                       settings.max_distance_m,        {base.position.x(), base.position.y(), base.position.z()},
+                       settings.max_speed_m_s,         settings.max_angular_speed_rad_s};
+  return b;
+}
+
+}  // namespace
 
 DeviceLink::DeviceLink(std::size_t i, DeviceSession* s, const DdsSettings& settings)
-    : index(i),
-      session(s),
-      gate(dds::CommandBounds{settings.max_force_n, settings.max_torque_nm, settings.max_stiffness_n_per_m,
-                              settings.max_rotational_stiffness_n_m_per_rad, settings.max_damping_n_s_per_m,
-                              settings.max_rotational_damping_n_m_s, settings.max_distance_m, settings.max_speed_m_s,
-                              settings.max_angular_speed_rad_s},
-           settings.max_sample_age_s) {}
+    : index(i), session(s), gate(bounds_of(settings, s->description().base_pose), settings.max_sample_age_s) {}
 
 DeviceLinks::DeviceLinks(const std::vector<DeviceSession*>& sessions, const DdsSettings& settings) {
   for (DeviceSession* s : sessions) links_.push_back(std::make_unique<DeviceLink>(links_.size(), s, settings));

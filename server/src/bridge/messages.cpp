@@ -72,8 +72,14 @@ hapticd_msg_DeviceDescription description_message(const DeviceSession& s, double
     m.torque_continuous[i] = j.torque_continuous_nm;
   }
   dds::set_text(m.base_frame, "world");
+  dds::to_msg(desc.base_pose, m.base_pose);
   dds::set_text(m.handle_frame, desc.handle_frame);
   if (start_pose) dds::to_msg(*start_pose, m.start_pose);
+  const SafetySettings& safety = s.chain().safety;
+  for (int k = 0; k < 3; ++k) {
+    m.workspace_min[k] = safety.workspace_min_m[static_cast<std::size_t>(k)];
+    m.workspace_max[k] = safety.workspace_max_m[static_cast<std::size_t>(k)];
+  }
   const auto& schemes = s.chain().schemes;
   m.scheme_count = static_cast<std::int32_t>(std::min<std::size_t>(schemes.size(), hapticd_msg_MAX_SCHEMES));
   for (std::int32_t k = 0; k < m.scheme_count; ++k) {

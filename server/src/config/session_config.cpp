@@ -162,6 +162,20 @@ SafetySettings read_safety(const YAML::Node& node, const std::string& file, cons
   }
 }
 
+Pose read_base_pose(const YAML::Node& node, const std::string& file, const std::string& key_path) {
+  if (node.IsDefined() && !node.IsNull() && !node.IsMap())
+    throw ConfigError(file, line_of(node), key_path, "expected a mapping {xyz: [x, y, z], rpy: [roll, pitch, yaw]}");
+  const Parameters p = read_parameters(node, base_pose_schema(), file, key_path, line_of(node), {});
+  const auto& xyz = p.real_vector("xyz");
+  const auto& rpy = p.real_vector("rpy");
+  Pose pose;
+  pose.position = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+  pose.orientation = Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
+                     Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+                     Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX());
+  return pose;
+}
+
 }  // namespace
 
 const std::vector<EntryKey>& device_entry_keys() {
@@ -180,9 +194,27 @@ const std::vector<EntryKey>& device_entry_keys() {
       {"engine_deadline_s", "engine input older than this fades out, s (0.001 .. 10, default 0.05)"},
       {"engine_fade_s", "... over this time, s (0 .. 10, default 0.02)"},
       {"engine_ramp_in_s", "engine input starting after a silence ramps in over this time, s (0 .. 10, default 0.1)"},
+      {"base_pose",
+       "where the device stands in the session's world frame: {xyz: [x, y, z] in m, rpy: [roll, pitch, yaw] in "
+       "rad about the fixed axes, as a URDF origin}; default the origin"},
       {"safety", "the device's safety section (below)"},
   };
   return keys;
+}
+
+// `base_pose: {xyz: [x, y, z], rpy: [roll, pitch, yaw]}`, as a URDF <origin>: metres, and radians about the
+// fixed x, y, z axes (R = Rz(yaw) Ry(pitch) Rx(roll)).
+ParameterSchema base_pose_schema() {
+  ParameterSchema s;
+  s.real_vector("xyz", "position of the device's base in the world frame")
+      .unit("m")
+      .size(3)
+      .default_value(std::vector<double>{0.0, 0.0, 0.0});
+  s.real_vector("rpy", "orientation of the base: roll, pitch, yaw about the world's fixed x, y, z axes")
+      .unit("rad")
+      .size(3)
+      .default_value(std::vector<double>{0.0, 0.0, 0.0});
+  return s;
 }
 
 ParameterSchema dds_settings_schema() {
@@ -397,6 +429,7 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
     if (const YAML::Node n = reader.optional("engine_ramp_in_s"); n.IsDefined())
       device.engine_ramp_in_s = read_scalar_real(n, reader.path_of("engine_ramp_in_s"), file, 0.0, 10.0);
     device.safety = read_safety(reader.optional("safety"), file, reader.path_of("safety"));
+    device.base_pose = read_base_pose(reader.optional("base_pose"), file, reader.path_of("base_pose"));
     config.devices.push_back(std::move(device));
   }
   return config;

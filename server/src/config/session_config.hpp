@@ -11,6 +11,7 @@
 
 #include "config/config_overrides.hpp"
 #include "hapticd/parameters.hpp"
+#include "hapticd/spatial.hpp"
 #include "safety/safety_settings.hpp"
 
 namespace hapticd::server {
@@ -94,6 +95,7 @@ struct DeviceConfig {
   double engine_fade_s = 0.02;      // ... over this time
   double engine_ramp_in_s = 0.1;    // engine input starting after a silence ramps in over this time
   SafetySettings safety;            // the `safety` section (docs/safety.md)
+  Pose base_pose;                   // the device's base in the session's world frame (`base_pose`)
 };
 
 struct SessionConfig {
@@ -116,6 +118,8 @@ const std::vector<EntryKey>& device_entry_keys();
 ParameterSchema server_settings_schema();
 // The schema of the `dds` section.
 ParameterSchema dds_settings_schema();
+// The `base_pose` of a device entry.
+ParameterSchema base_pose_schema();
 
 // Reads and validates a session file, with overrides ("path=value", config/config_overrides.hpp) applied first.
 // Throws ConfigError naming file, line and key (or the override).

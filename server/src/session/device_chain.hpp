@@ -25,6 +25,8 @@ struct DeviceChain {
   // state's estimator and every plugin of the chain (PluginContext::robot_model) use it. First: destroyed last.
   std::shared_ptr<const model::RobotModel> robot_model;
   PluginInstance<Device> device;
+  // The device plugin's description, completed by the server (its base pose from the session file).
+  DeviceDescription description;
   std::vector<SchemeChain> schemes;  // [0]: the scheme the device starts with
   double switch_ramp_s = 0.1;
   // Engine input older than the deadline fades out over the fade time (EngineInput::weight).

@@ -23,7 +23,7 @@ const char* reason_or_null(const char* reason) noexcept {
 }  // namespace
 
 const DeviceDescription& DeviceSession::checked(const std::string& name, const DeviceChain& chain) {
-  const DeviceDescription& description = chain.device->description();
+  const DeviceDescription& description = chain.description;
   const int dof = description.dof();
   if (dof < 1 || dof > kMaxJoints)
     throw std::invalid_argument("device '" + name + "' reports " + std::to_string(dof) + " joints; supported: 1.." +

@@ -103,6 +103,8 @@ void Session::step(std::uint64_t cycles) {
   for (const auto& d : s.devices) d->service();
 }
 
+DeviceDescription Session::description(std::string_view name) const { return impl_->device(name).description(); }
+
 DeviceView Session::device(std::string_view name) const {
   const DeviceSession& d = impl_->device(name);
   DeviceView v;

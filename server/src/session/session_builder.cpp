@@ -61,13 +61,15 @@ PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, co
   return instance;
 }
 
-// The device's robot model, parsed once for the estimator and the whole chain; checked against the device.
+// The device's robot model, parsed once for the estimator and the whole chain, mounted at the device's base pose
+// (its poses, Jacobians and gravity in the world frame); checked against the device.
 std::shared_ptr<const model::RobotModel> robot_model_of(const DeviceConfig& dc, const DeviceDescription& description,
                                                         const std::string& file) {
   if (description.robot_model_file.empty()) return nullptr;
   std::shared_ptr<const model::RobotModel> robot;
   try {
-    robot = std::make_shared<const model::RobotModel>(model::load_robot_model(description.robot_model_file));
+    robot = std::make_shared<const model::RobotModel>(
+        model::load_robot_model(description.robot_model_file).with_base(to_isometry(description.base_pose)));
   } catch (const std::exception& e) {
     throw ConfigError(file, dc.device.line, dc.device.key_path,
                       "device '" + dc.name + "': its robot model: " + e.what());
@@ -100,6 +102,7 @@ std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& confi
     context.rate_hz = config.server.rate_hz;
     context.seed = device_seed(config.server.seed, i);
     context.config_directory = config.file.parent_path();
+    context.base_pose = dc.base_pose;
 
     DeviceChain chain;
     try {
@@ -110,9 +113,10 @@ std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& confi
       report->push_back({dc.name, e.error, false});
       continue;
     }
-    const DeviceDescription& description = chain.device->description();
-    context.device = &description;
-    chain.robot_model = robot_model_of(dc, description, config.file.string());
+    chain.description = chain.device->description();
+    chain.description.base_pose = dc.base_pose;
+    context.device = &chain.description;
+    chain.robot_model = robot_model_of(dc, chain.description, config.file.string());
     context.robot_model = chain.robot_model.get();
     const auto build_scheme = [&](const std::string& name, const std::optional<PluginConfig>& virtual_model,
                                   const std::optional<PluginConfig>& inverse_kinematics,

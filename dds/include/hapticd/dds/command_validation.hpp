@@ -2,6 +2,7 @@
 // Checks of an engine command's content before the server may use it: well-formed, finite, within bounds.
 // (Ownership, order and freshness need the server's state: server/src/bridge/command_gate.) Pure functions,
 // fuzzed by tests/unit/command_validation_fuzz_test.
+#include <array>
 #include <cstdint>
 #include <string_view>
 
@@ -31,7 +32,8 @@ struct CommandBounds {
   double max_rotational_stiffness_n_m_per_rad = 200.0;
   double max_damping_n_s_per_m = 500.0;
   double max_rotational_damping_n_m_s = 5.0;
-  double max_distance_m = 2.0;
+  double max_distance_m = 2.0;                         // from the device's base ...
+  std::array<double, 3> base_position{0.0, 0.0, 0.0};  // ... which stands here in the world frame
   double max_speed_m_s = 5.0;
   double max_angular_speed_rad_s = 20.0;
 };

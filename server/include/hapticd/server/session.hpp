@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "hapticd/chain_signals.hpp"
+#include "hapticd/device_description.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/export.hpp"
 #include "hapticd/runtime_request.hpp"
@@ -92,6 +93,8 @@ class HAPTICD_API Session {
   void step(std::uint64_t cycles = 1);
   // Throws std::out_of_range for a device the session does not have.
   [[nodiscard]] DeviceView device(std::string_view name) const;
+  // What the device plugin said about itself, with the base pose the session file gives it (world frame).
+  [[nodiscard]] DeviceDescription description(std::string_view name) const;
   // The rendering engine's input for the device, picked up by the next cycle (as one that came over DDS).
   void set_engine_input(std::string_view device, const EngineInput& input);
   // A run-time request, as a client of the DDS interface would send it (ownership aside: an in-process caller

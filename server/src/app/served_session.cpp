@@ -1,0 +1,83 @@
+#include "app/served_session.hpp"
+
+#include <thread>
+
+namespace hapticd::server {
+namespace {
+
+ExecutorSettings executor_settings(const ServerSettings& server, bool realtime_setup) {
+  ExecutorSettings s;
+  s.rate_hz = server.rate_hz;
+  s.lockstep = server.clock == ClockMode::lockstep;
+  s.duration_s = server.duration_s;
+  s.shutdown_ramp_s = server.shutdown_ramp_s;
+  s.realtime_priority = realtime_setup ? server.realtime_priority : 0;
+  s.lock_memory = realtime_setup && server.lock_memory;
+  s.cpu = realtime_setup ? server.cpu : -1;
+  return s;
+}
+
+// Where the DDS threads run (docs/dds-interface.md, "CPUs"); may pin the loop too (auto: the last CPU).
+std::vector<int> dds_cpus_for(const DdsSettings& dds, bool realtime_setup, ExecutorSettings& settings) {
+  std::vector<int> cpus;
+  if (!dds.enabled || !realtime_setup) return cpus;
+  const int n = static_cast<int>(std::thread::hardware_concurrency());
+  if (dds.cpu >= 0) {
+    cpus = {dds.cpu};
+  } else if (dds.cpu == -2 && !settings.lockstep && n >= 2) {
+    if (settings.cpu < 0) settings.cpu = n - 1;
+    for (int c = 0; c < n; ++c)
+      if (c != settings.cpu) cpus.push_back(c);
+  }
+  return cpus;
+}
+
+}  // namespace
+
+ServedSession::ServedSession(const SessionConfig& config, std::vector<DeviceSession*> devices,
+                             const ServeOptions& options)
+    : devices_(std::move(devices)), settings_(executor_settings(config.server, options.realtime_setup)) {
+  dds_cpus_ = dds_cpus_for(config.dds, options.realtime_setup, settings_);
+  if (!options.record_csv.empty()) {
+    std::vector<std::string> names;
+    for (const DeviceSession* d : devices_) names.push_back(d->name());
+    recorder_ = std::make_unique<Recorder>(options.record_csv, names, settings_.lockstep);
+  }
+  executor_ = std::make_unique<Executor>(settings_, devices_, recorder_.get());
+  if (config.dds.enabled) {
+    try {
+      bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices_, dds_cpus_);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("DDS interface: ") + e.what());
+    }
+    bridge_->set_loop_statistics(&executor_->live());
+    set_cycle_listener(bridge_.get());
+    bridge_->start();
+  }
+  monitor_ = std::make_unique<SessionMonitor>(devices_, bridge_.get(), options.stop, recorder_.get());
+}
+
+ServedSession::~ServedSession() {
+  if (bridge_) bridge_->stop();
+}
+
+void ServedSession::set_cycle_listener(CycleListener* listener) {
+  listener_ = listener;
+  executor_->set_cycle_listener(listener);
+}
+
+ExecutorResult ServedSession::run(const std::atomic<bool>& stop) {
+  struct Finish {  // however the loop ends
+    ServedSession& s;
+    ~Finish() {
+      if (s.recorder_) {
+        s.recorder_->finish();
+        s.monitor_->poll();  // a failure at the end (the last chunk, the sync, the close) is announced too
+      }
+      if (s.bridge_) s.bridge_->stop();
+    }
+  } finish{*this};
+  return executor_->run(stop, [this] { monitor_->poll(); });
+}
+
+}  // namespace hapticd::server

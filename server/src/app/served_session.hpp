@@ -1,0 +1,68 @@
+#pragma once
+// A session served: its devices on the executor's loop, with the DDS interface (when the session file has a dds
+// section), the monitor and, when asked, a recording. The one place these are assembled: `hapticd` runs a session
+// file through it, and so do the end-to-end tests over DDS.
+//
+// Construction sets everything up before any device is powered (a recording that cannot be opened or a DDS
+// interface that cannot start throws std::runtime_error, and nothing moved); run() powers the devices, runs the
+// loop until its duration ends or `stop` is set, and leaves every device disabled.
+#include <atomic>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "app/session_monitor.hpp"
+#include "bridge/dds_bridge.hpp"
+#include "config/session_config.hpp"
+#include "executor/executor.hpp"
+#include "recorder/recorder.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server {
+
+struct ServeOptions {
+  std::filesystem::path record_csv;  // empty: no recording
+  // false: no SCHED_FIFO, locked memory or CPU pinning for the loop and the DDS threads, whatever the session
+  // file says (tests on a shared machine).
+  bool realtime_setup = true;
+  // Set by whoever ends the session (a signal handler, a test); the monitor logs the request once.
+  const std::atomic<bool>* stop = nullptr;
+};
+
+class ServedSession {
+ public:
+  ServedSession(const SessionConfig& config, std::vector<DeviceSession*> devices, const ServeOptions& options);
+  ~ServedSession();  // stops the DDS interface
+  ServedSession(const ServedSession&) = delete;
+  ServedSession& operator=(const ServedSession&) = delete;
+
+  // Runs the loop (Executor::run, the monitor polling beside it); then the recording is finished and the DDS
+  // interface stopped. Throws what the executor throws (every device is disabled by then).
+  ExecutorResult run(const std::atomic<bool>& stop);
+
+  // The listener the loop calls after every cycle: the DDS interface's, or none. A listener put in its place
+  // must hand each call on to the one it replaces.
+  [[nodiscard]] CycleListener* cycle_listener() const noexcept { return listener_; }
+  void set_cycle_listener(CycleListener* listener);
+
+  [[nodiscard]] DdsBridge* bridge() const noexcept { return bridge_.get(); }  // null without a dds section
+  [[nodiscard]] const SessionMonitor& monitor() const noexcept { return *monitor_; }
+  [[nodiscard]] const Recorder* recorder() const noexcept { return recorder_.get(); }  // null: not recording
+  [[nodiscard]] const Executor& executor() const noexcept { return *executor_; }
+  [[nodiscard]] const std::vector<DeviceSession*>& devices() const noexcept { return devices_; }
+  // Where the threads run: the loop's CPU (-1 not pinned) and the DDS threads' CPUs (empty: not pinned).
+  [[nodiscard]] int loop_cpu() const noexcept { return settings_.cpu; }
+  [[nodiscard]] const std::vector<int>& dds_cpus() const noexcept { return dds_cpus_; }
+
+ private:
+  std::vector<DeviceSession*> devices_;
+  ExecutorSettings settings_;
+  std::vector<int> dds_cpus_;
+  std::unique_ptr<Recorder> recorder_;
+  std::unique_ptr<Executor> executor_;
+  std::unique_ptr<DdsBridge> bridge_;
+  std::unique_ptr<SessionMonitor> monitor_;
+  CycleListener* listener_ = nullptr;
+};
+
+}  // namespace hapticd::server
