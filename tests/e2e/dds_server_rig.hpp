@@ -95,6 +95,7 @@ class Server {
  public:
   explicit Server(const std::string& yaml) : session_(test::build_test_session(yaml)) {
     served_ = std::make_unique<ServedSession>(session_.impl().config, session_.impl().device_pointers(),
+                                              session_.impl().stage_pointers(),
                                               ServeOptions{{}, /*realtime_setup=*/false, nullptr});
     listener_ = std::make_unique<RecordingListener>(served_->cycle_listener(), &device());
     served_->set_cycle_listener(listener_.get());

@@ -53,6 +53,28 @@ RobotModel RobotModel::with_base(const Eigen::Isometry3d& base) const {
   if (!copy.bodies_.empty()) copy.bodies_.front().placement = base * copy.bodies_.front().placement;
   for (Frame& f : copy.frames_)
     if (f.body < 0) f.placement = base * f.placement;
+  for (Capsule& c : copy.capsules_) {
+    if (c.body >= 0) continue;
+    c.a = base * c.a;
+    c.b = base * c.b;
+  }
+  return copy;
+}
+
+RobotModel RobotModel::with_collision(std::vector<Capsule> capsules) const {
+  if (capsules.size() > static_cast<std::size_t>(PlacedCapsules::kMax))
+    throw std::invalid_argument("robot model '" + name_ + "': " + std::to_string(capsules.size()) +
+                                " collision capsules; at most " + std::to_string(PlacedCapsules::kMax));
+  for (const Capsule& c : capsules) {
+    if (c.body < -1 || c.body >= dof())
+      throw std::invalid_argument("robot model '" + name_ + "': a collision capsule of link '" + c.link + "' on body " +
+                                  std::to_string(c.body) + ", which the model does not have");
+    if (!(c.radius >= 0.0) || !c.a.allFinite() || !c.b.allFinite())
+      throw std::invalid_argument("robot model '" + name_ + "': the collision capsule of link '" + c.link +
+                                  "' needs finite ends and a radius of at least 0");
+  }
+  RobotModel copy = *this;
+  copy.capsules_ = std::move(capsules);
   return copy;
 }
 

@@ -62,6 +62,9 @@ class ChainBuilder {
 
   void walk(const urdf::Link& link, int body, const Eigen::Isometry3d& link_in_body) {
     frames_.push_back({link.name, body, link_in_body});
+    for (const auto& collision : link.collision_array)
+      if (collision && collision->geometry)
+        add_capsule(link.name, body, link_in_body * to_isometry(collision->origin), *collision->geometry);
     for (const auto& joint_ptr : link.child_joints) {
       const urdf::Joint& joint = *joint_ptr;
       const urdf::LinkConstSharedPtr child = find_link(joint.child_link_name);
@@ -114,7 +117,46 @@ class ChainBuilder {
     }
   }
 
+  // A <collision> shape as the capsule that covers it, along its local z (a cylinder), its longest side (a box),
+  // or of zero length (a sphere). Meshes are refused: give the link capsules in the session file instead.
+  void add_capsule(const std::string& link, int body, const Eigen::Isometry3d& at, const urdf::Geometry& geometry) {
+    Capsule c;
+    c.link = link;
+    c.body = body;
+    Eigen::Vector3d half = Eigen::Vector3d::Zero();
+    switch (geometry.type) {
+      case urdf::Geometry::SPHERE:
+        c.radius = static_cast<const urdf::Sphere&>(geometry).radius;
+        break;
+      case urdf::Geometry::CYLINDER: {
+        const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
+        c.radius = cylinder.radius;
+        half = Eigen::Vector3d(0.0, 0.0, cylinder.length / 2);
+        break;
+      }
+      case urdf::Geometry::BOX: {
+        const auto& box = static_cast<const urdf::Box&>(geometry);
+        Eigen::Vector3d size(box.dim.x, box.dim.y, box.dim.z);
+        Eigen::Index longest = 0;
+        size.maxCoeff(&longest);
+        half[longest] = size[longest] / 2;
+        size[longest] = 0.0;
+        c.radius = size.norm() / 2;  // the box's cross-section's half diagonal
+        break;
+      }
+      default:
+        fail("link '" + link + "': a <collision> mesh is not supported (cylinders, spheres and boxes are; or give " +
+             "the link's capsules in the session file)");
+    }
+    c.a = at * (-half);
+    c.b = at * half;
+    if (!(c.radius >= 0.0) || !c.a.allFinite() || !c.b.allFinite())
+      fail("link '" + link + "': a <collision> shape with a negative or non-finite size");
+    capsules_.push_back(std::move(c));
+  }
+
   void set_model(const urdf::ModelInterface* m) { model_ = m; }
+  std::vector<Capsule>& capsules() { return capsules_; }
   std::vector<Body>& bodies() { return bodies_; }
   std::vector<Frame>& frames() { return frames_; }
 
@@ -131,6 +173,7 @@ class ChainBuilder {
   const urdf::ModelInterface* model_ = nullptr;
   std::vector<Body> bodies_;
   std::vector<Frame> frames_;
+  std::vector<Capsule> capsules_;
   std::set<int> has_child_;
 };
 
@@ -267,8 +310,14 @@ RobotModel parse_robot_model(const std::string& urdf_text, const std::string& so
   builder.walk(*urdf_model->getRoot(), -1, Eigen::Isometry3d::Identity());
   if (builder.bodies().empty()) throw ModelError(source_name + ": no movable joint");
   read_drives(doc, source_name, builder.bodies());
-  return RobotModel(urdf_model->getName(), source_name, std::move(builder.bodies()), std::move(builder.frames()),
-                    Eigen::Vector3d(0.0, 0.0, -9.81));
+  RobotModel model(urdf_model->getName(), source_name, std::move(builder.bodies()), std::move(builder.frames()),
+                   Eigen::Vector3d(0.0, 0.0, -9.81));
+  if (builder.capsules().empty()) return model;
+  try {
+    return model.with_collision(std::move(builder.capsules()));
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(source_name + ": " + e.what());
+  }
 }
 
 RobotModel load_robot_model(const std::filesystem::path& urdf_file) {

@@ -28,6 +28,7 @@ struct LoadedSession {
   SessionConfig config;
   std::unique_ptr<PluginLoader> loader;
   std::vector<std::unique_ptr<DeviceSession>> sessions;
+  std::vector<std::unique_ptr<GroupStage>> stages;
   std::vector<ConfigureFailure> configure_failures;  // devices isolated at start-up (run only)
 };
 
@@ -49,6 +50,7 @@ std::optional<LoadedSession> load(const std::string& file, const std::vector<std
     s.loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(s.config.server.plugin_paths));
     // Running, a plugin that throws from configure() isolates its device; checking, it is an error.
     s.sessions = build_sessions(s.config, *s.loader, overrides != nullptr ? &s.configure_failures : nullptr);
+    s.stages = build_group_stages(s.config, s.sessions);
     return s;
   } catch (const ConfigError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
@@ -80,6 +82,11 @@ int check_config(const std::string& file, const std::vector<std::string>& sets) 
                  sc.controller.descriptor->name, sc.name, k == 0 ? ", at start" : "");
     }
   }
+  for (const auto& g : s->stages) {
+    std::string names;
+    for (const DeviceSession* d : g->devices()) names += (names.empty() ? "" : ", ") + d->name();
+    fmt::print("  group {}: {}; {} pair(s) with collision capsules\n", g->name(), names, g->guards().size());
+  }
   return kExitOk;
 }
 
@@ -103,7 +110,9 @@ int run_session(const RunOptions& options) {
   const std::atomic<bool>& stop = install_stop_signal_handlers();
   std::unique_ptr<ServedSession> served;
   try {  // before any device is powered
-    served = std::make_unique<ServedSession>(s->config, sessions,
+    std::vector<GroupStage*> stages;
+    for (const auto& g : s->stages) stages.push_back(g.get());
+    served = std::make_unique<ServedSession>(s->config, sessions, std::move(stages),
                                              ServeOptions{options.record_csv, /*realtime_setup=*/true, &stop});
   } catch (const std::exception& e) {
     spdlog::error("{}; no device was powered", e.what());
@@ -285,6 +294,12 @@ int describe_config(const std::string& config_file) {
   print_schema(dds_settings_schema());
   fmt::print("\na device entry (devices: [...]):\n");
   for (const EntryKey& k : device_entry_keys()) fmt::print("  {:<24} {}\n", k.key, k.text);
+  fmt::print("\ngroups (optional, top level; docs/multi-device.md): a list of\n");
+  fmt::print("  {:<24} {}\n", "name", "the group's name (1-31 letters, digits, '_', '-')");
+  fmt::print("  {:<24} {}\n", "devices", "its devices by name (each in one group at most)");
+  fmt::print("  {:<24} {}\n", "min_distance_m",
+             "hard minimum clearance between any two of its devices' collision capsules: below it both enter "
+             "their safe mode (0 .. 1, default 0: measured, never tripped)");
   fmt::print("\nbase_pose of a device entry (docs/configuration.md):\n");
   print_schema(base_pose_schema());
   fmt::print("\nsafety section of a device entry (docs/safety.md):\n");

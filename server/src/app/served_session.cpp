@@ -35,7 +35,7 @@ std::vector<int> dds_cpus_for(const DdsSettings& dds, bool realtime_setup, Execu
 }  // namespace
 
 ServedSession::ServedSession(const SessionConfig& config, std::vector<DeviceSession*> devices,
-                             const ServeOptions& options)
+                             std::vector<GroupStage*> stages, const ServeOptions& options)
     : devices_(std::move(devices)), settings_(executor_settings(config.server, options.realtime_setup)) {
   dds_cpus_ = dds_cpus_for(config.dds, options.realtime_setup, settings_);
   if (!options.record_csv.empty()) {
@@ -43,7 +43,7 @@ ServedSession::ServedSession(const SessionConfig& config, std::vector<DeviceSess
     for (const DeviceSession* d : devices_) names.push_back(d->name());
     recorder_ = std::make_unique<Recorder>(options.record_csv, names, settings_.lockstep);
   }
-  executor_ = std::make_unique<Executor>(settings_, devices_, recorder_.get());
+  executor_ = std::make_unique<Executor>(settings_, devices_, recorder_.get(), std::move(stages));
   if (config.dds.enabled) {
     try {
       bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices_, dds_cpus_);

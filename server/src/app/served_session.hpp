@@ -31,7 +31,9 @@ struct ServeOptions {
 
 class ServedSession {
  public:
-  ServedSession(const SessionConfig& config, std::vector<DeviceSession*> devices, const ServeOptions& options);
+  // stages: the device groups' stages (session_builder's build_group_stages); they outlive this.
+  ServedSession(const SessionConfig& config, std::vector<DeviceSession*> devices, std::vector<GroupStage*> stages,
+                const ServeOptions& options);
   ~ServedSession();  // stops the DDS interface
   ServedSession(const ServedSession&) = delete;
   ServedSession& operator=(const ServedSession&) = delete;

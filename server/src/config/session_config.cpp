@@ -1,5 +1,6 @@
 #include "config/session_config.hpp"
 
+#include <algorithm>
 #include <set>
 
 #include "config/config_error.hpp"
@@ -176,6 +177,77 @@ Pose read_base_pose(const YAML::Node& node, const std::string& file, const std::
   return pose;
 }
 
+Eigen::Vector3d vector3(const std::vector<double>& v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+
+ParameterSchema capsule_schema() {
+  ParameterSchema s;
+  s.string("link", "the URDF link the capsule moves with");
+  s.real_vector("from", "one end of the capsule's segment, in the link's frame").unit("m").size(3);
+  s.real_vector("to", "the other end").unit("m").size(3);
+  s.real("radius_m", "the capsule's radius").unit("m").minimum(0.0);
+  return s;
+}
+
+CollisionConfig read_collision(const YAML::Node& node, const std::string& file, const std::string& key_path) {
+  CollisionConfig c;
+  if (!node.IsDefined() || node.IsNull()) return c;
+  MappingReader reader(node, key_path, file, {"capsules", "skeleton_radius_m"});
+  if (const YAML::Node r = reader.optional("skeleton_radius_m"); r.IsDefined())
+    c.skeleton_radius_m = read_scalar_real(r, reader.path_of("skeleton_radius_m"), file, 0.0, 1.0);
+  const YAML::Node list = reader.optional("capsules");
+  if (!list.IsDefined() || list.IsNull()) return c;
+  if (!list.IsSequence())
+    throw ConfigError(file, line_of(list), reader.path_of("capsules"),
+                      "expected a list of {link, from: [x, y, z], to: [x, y, z], radius_m}");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string path = reader.path_of("capsules") + "[" + std::to_string(k) + "]";
+    const Parameters p = read_parameters(list[k], capsule_schema(), file, path, line_of(list[k]), {});
+    c.capsules.push_back(CapsuleConfig{p.string("link"), vector3(p.real_vector("from")), vector3(p.real_vector("to")),
+                                       p.real("radius_m"), path, line_of(list[k])});
+  }
+  return c;
+}
+
+std::vector<GroupConfig> read_groups(const YAML::Node& node, const std::string& file,
+                                     const std::vector<DeviceConfig>& devices) {
+  std::vector<GroupConfig> groups;
+  if (!node.IsDefined() || node.IsNull()) return groups;
+  if (!node.IsSequence())
+    throw ConfigError(file, line_of(node), "groups", "expected a list of {name, devices: [...], min_distance_m}");
+  std::set<std::string> names, grouped;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string path = "groups[" + std::to_string(i) + "]";
+    MappingReader r(node[i], path, file, {"name", "devices", "min_distance_m"});
+    GroupConfig g;
+    g.key_path = path;
+    g.line = line_of(node[i]);
+    g.name = r.required_string("name");
+    if (!valid_device_name(g.name))
+      throw ConfigError(file, line_of(node[i]["name"]), r.path_of("name"),
+                        "group name '" + g.name + "' must be 1-31 characters of letters, digits, '_' and '-'");
+    if (!names.insert(g.name).second)
+      throw ConfigError(file, line_of(node[i]["name"]), r.path_of("name"), "group name '" + g.name + "' is used twice");
+    const YAML::Node list = r.required("devices");
+    if (!list.IsSequence() || list.size() == 0)
+      throw ConfigError(file, line_of(list), r.path_of("devices"), "expected a non-empty list of device names");
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const std::string where = r.path_of("devices") + "[" + std::to_string(k) + "]";
+      if (!list[k].IsScalar()) throw ConfigError(file, line_of(list[k]), where, "expected a device name");
+      const std::string name = list[k].Scalar();
+      const bool known =
+          std::any_of(devices.begin(), devices.end(), [&](const DeviceConfig& d) { return d.name == name; });
+      if (!known) throw ConfigError(file, line_of(list[k]), where, "no device '" + name + "' in this session");
+      if (!grouped.insert(name).second)
+        throw ConfigError(file, line_of(list[k]), where, "device '" + name + "' is in a group already");
+      g.devices.push_back(name);
+    }
+    if (const YAML::Node m = r.optional("min_distance_m"); m.IsDefined())
+      g.min_distance_m = read_scalar_real(m, r.path_of("min_distance_m"), file, 0.0, 1.0);
+    groups.push_back(std::move(g));
+  }
+  return groups;
+}
+
 }  // namespace
 
 const std::vector<EntryKey>& device_entry_keys() {
@@ -197,6 +269,10 @@ const std::vector<EntryKey>& device_entry_keys() {
       {"base_pose",
        "where the device stands in the session's world frame: {xyz: [x, y, z] in m, rpy: [roll, pitch, yaw] in "
        "rad about the fixed axes, as a URDF origin}; default the origin"},
+      {"collision",
+       "the device's collision geometry: {capsules: [{link, from: [x, y, z], to: [x, y, z], radius_m}] in the "
+       "link's frame (replacing the URDF's <collision> elements), skeleton_radius_m: radius of the capsules along "
+       "the joints when neither gives any (0 .. 1, default 0.03)}"},
       {"safety", "the device's safety section (below)"},
   };
   return keys;
@@ -395,7 +471,7 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
   SessionConfig config;
   config.file = path;
   config.overrides = applied;
-  MappingReader top(root, "", file, {"server", "dds", "devices"});
+  MappingReader top(root, "", file, {"server", "dds", "devices", "groups"});
   config.server = read_server(top.optional("server"), file, path.parent_path());
   config.dds = read_dds(top.optional("dds"), file, path.parent_path());
 
@@ -430,8 +506,10 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
       device.engine_ramp_in_s = read_scalar_real(n, reader.path_of("engine_ramp_in_s"), file, 0.0, 10.0);
     device.safety = read_safety(reader.optional("safety"), file, reader.path_of("safety"));
     device.base_pose = read_base_pose(reader.optional("base_pose"), file, reader.path_of("base_pose"));
+    device.collision = read_collision(reader.optional("collision"), file, reader.path_of("collision"));
     config.devices.push_back(std::move(device));
   }
+  config.groups = read_groups(top.optional("groups"), file, config.devices);
   return config;
 }
 

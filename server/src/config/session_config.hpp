@@ -79,6 +79,32 @@ struct SchemeConfig {
   PluginConfig controller;
 };
 
+// A collision capsule given in the session file: around the segment from-to in the link's frame.
+struct CapsuleConfig {
+  std::string link;
+  Eigen::Vector3d from = Eigen::Vector3d::Zero();
+  Eigen::Vector3d to = Eigen::Vector3d::Zero();
+  double radius_m = 0.0;
+  std::string key_path;  // "devices[0].collision.capsules[1]"
+  int line = 0;
+};
+
+// A device's collision geometry (`collision`): the capsules given here replace the URDF's <collision> elements;
+// without either, capsules along the kinematic skeleton of this radius cover the links.
+struct CollisionConfig {
+  std::vector<CapsuleConfig> capsules;
+  double skeleton_radius_m = 0.03;
+};
+
+// A device group (`groups`): its devices share one loop instant and its group stage (docs/multi-device.md).
+struct GroupConfig {
+  std::string name;
+  std::vector<std::string> devices;
+  double min_distance_m = 0.0;  // the hard minimum between any two of its devices' capsules; 0: no check
+  std::string key_path;         // "groups[0]"
+  int line = 0;
+};
+
 struct DeviceConfig {
   std::string name;
   PluginConfig device;
@@ -96,6 +122,7 @@ struct DeviceConfig {
   double engine_ramp_in_s = 0.1;    // engine input starting after a silence ramps in over this time
   SafetySettings safety;            // the `safety` section (docs/safety.md)
   Pose base_pose;                   // the device's base in the session's world frame (`base_pose`)
+  CollisionConfig collision;        // the `collision` section
 };
 
 struct SessionConfig {
@@ -103,6 +130,7 @@ struct SessionConfig {
   ServerSettings server;
   DdsSettings dds;
   std::vector<DeviceConfig> devices;
+  std::vector<GroupConfig> groups;
   std::vector<AppliedOverride> overrides;  // what overrides changed: an error there names the override
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "group/group_stage.hpp"
 #include "recorder/recorder.hpp"
 #include "session/device_session.hpp"
 
@@ -11,8 +12,9 @@ void DeviceGroup::run_cycle(const CycleTime& cycle, double torque_scale, std::ui
                             std::int64_t lateness_ns) noexcept {
   // (a) read and estimate: every device's state of this instant, before any chain runs;
   for (DeviceSession* s : devices_) s->read_and_estimate(cycle, consecutive_overruns, lateness_ns);
-  // (b) the group stage, where group-level logic sees the estimated states of all devices of the group (none
-  //     yet: dual-arm sessions bring the first);
+  // (b) the group stages, where group-level logic sees the estimated states of all devices of its group (the
+  //     collision guards between a group's devices);
+  for (GroupStage* g : stages_) g->run(cycle);
   // (c) the chains: virtual model -> inverse kinematics -> controller;
   for (DeviceSession* s : devices_) s->run_chain(cycle);
   // (d) limit and write, then record.

@@ -10,12 +10,14 @@
 namespace hapticd::server {
 
 class DeviceSession;
+class GroupStage;
 class Recorder;
 
 class DeviceGroup {
  public:
-  DeviceGroup(std::vector<DeviceSession*> devices, Recorder* recorder) noexcept
-      : devices_(std::move(devices)), recorder_(recorder) {}
+  // stages: the group stages of the device groups among these devices (phase (b)); they outlive this.
+  DeviceGroup(std::vector<DeviceSession*> devices, Recorder* recorder, std::vector<GroupStage*> stages = {}) noexcept
+      : devices_(std::move(devices)), recorder_(recorder), stages_(std::move(stages)) {}
 
   // One cycle: (a) read and estimate, (b) the group stage, (c) the chains, (d) limit, write and record.
   // torque_scale ramps the output down at a planned end; consecutive_overruns and lateness_ns feed the
@@ -30,6 +32,7 @@ class DeviceGroup {
  private:
   std::vector<DeviceSession*> devices_;
   Recorder* recorder_;
+  std::vector<GroupStage*> stages_;
 };
 
 }  // namespace hapticd::server

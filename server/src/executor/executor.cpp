@@ -11,9 +11,10 @@
 
 namespace hapticd::server {
 
-Executor::Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder)
+Executor::Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder,
+                   std::vector<GroupStage*> stages)
     : settings_(settings),
-      group_(std::move(sessions), recorder),
+      group_(std::move(sessions), recorder, std::move(stages)),
       period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))) {
   HAPTICD_DEMAND(period_ns_ > 0);  // the rate is validated with the session file (server.rate_hz)
 }

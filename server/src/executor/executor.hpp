@@ -59,7 +59,9 @@ struct LiveLoopStatistics {
 
 class Executor {
  public:
-  Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder);
+  // stages: the group stages of the device groups among the sessions (phase (b) of each cycle).
+  Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder,
+           std::vector<GroupStage*> stages = {});
 
   // Activates the sessions, runs the loop until the duration has passed or stop_requested turns true, ramps
   // down and deactivates. While the loop runs, the calling thread calls `monitor` every 20 ms (for logging:

@@ -44,6 +44,8 @@ std::string_view fault_code(DeviceFault fault) noexcept {
       return "loop_stall";
     case DeviceFault::emergency_stop:
       return "emergency_stop";
+    case DeviceFault::collision:
+      return "collision_distance_violation";
   }
   return "unknown";
 }
@@ -90,6 +92,8 @@ std::string_view to_string(DeviceFault fault) noexcept {
       return "the loop stalled (woke far too late for a cycle)";
     case DeviceFault::emergency_stop:
       return "emergency stop";
+    case DeviceFault::collision:
+      return "two devices of a group came closer than their minimum distance";
   }
   return "unknown";
 }

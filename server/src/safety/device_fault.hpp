@@ -27,6 +27,7 @@ enum class DeviceFault : std::uint8_t {
   loop_overrun,        // too many consecutive loop overruns
   loop_stall,          // the loop woke far too late (the process was stopped, the machine stalled)
   emergency_stop,      // requested (DDS, hapticctl, signal)
+  collision,           // two devices of a group came closer than the group's hard minimum distance
 };
 
 // The stable code ("joint_velocity_violation"); at most 31 characters.

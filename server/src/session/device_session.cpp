@@ -490,6 +490,11 @@ void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle, const
   status_.at_rest.store(safety_.at_rest(), std::memory_order_release);
 }
 
+void DeviceSession::raise_group_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept {
+  if (status_.fault.load(std::memory_order_relaxed) != DeviceFault::none) return;
+  raise_fault(fault, cycle, reason);
+}
+
 void DeviceSession::deactivate() {
   chain_active_ = false;
   schemes_.service(true);

@@ -121,6 +121,9 @@ class DeviceSession {
     stop_epoch_.fetch_add(1, std::memory_order_acq_rel);  // first: a recovery asked before this stop is void
     estop_requests_.fetch_add(1, std::memory_order_acq_rel);
   }
+  // The loop thread, in the group stage (phase (b)): a fault the device's group found (two arms closer than the
+  // group's hard minimum). The device enters its safe mode this cycle; ignored when it is there already.
+  void raise_group_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept;
   // Any thread: the server is stopping (SIGINT/SIGTERM): the device goes through its safe mode - damping,
   // then zero torque - without a fault. at_rest() tells when it is done.
   void request_safe_stop() noexcept { safe_stop_requested_.store(true, std::memory_order_release); }

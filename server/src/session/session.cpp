@@ -18,7 +18,8 @@ std::unique_ptr<Session::Impl> build(SessionConfig config, const SessionOptions&
   paths.insert(paths.begin(), options.plugin_paths.begin(), options.plugin_paths.end());
   impl->loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(paths));
   impl->devices = build_sessions(impl->config, *impl->loader);
-  impl->group = std::make_unique<DeviceGroup>(impl->device_pointers(), nullptr);
+  impl->stages = build_group_stages(impl->config, impl->devices);
+  impl->group = std::make_unique<DeviceGroup>(impl->device_pointers(), nullptr, impl->stage_pointers());
   impl->period_ns = static_cast<std::int64_t>(std::llround(1e9 / impl->config.server.rate_hz));
   return impl;
 }
@@ -36,6 +37,12 @@ DeviceSession& Session::Impl::device(std::string_view name) const {
 std::vector<DeviceSession*> Session::Impl::device_pointers() const {
   std::vector<DeviceSession*> out;
   for (const auto& d : devices) out.push_back(d.get());
+  return out;
+}
+
+std::vector<GroupStage*> Session::Impl::stage_pointers() const {
+  std::vector<GroupStage*> out;
+  for (const auto& g : stages) out.push_back(g.get());
   return out;
 }
 

@@ -61,6 +61,29 @@ PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, co
   return instance;
 }
 
+// The model with the collision geometry the session file gives (in its link frames), else the URDF's, else
+// capsules along the skeleton. Before the model is mounted: the capsules are in the URDF root's frame.
+model::RobotModel with_collision_of(const DeviceConfig& dc, const model::RobotModel& robot, const std::string& file) {
+  if (dc.collision.capsules.empty()) {
+    if (!robot.collision().empty() || dc.collision.skeleton_radius_m <= 0.0) return robot;
+    return robot.with_collision(model::skeleton_capsules(robot, dc.collision.skeleton_radius_m));
+  }
+  std::vector<model::Capsule> capsules;
+  for (const CapsuleConfig& c : dc.collision.capsules) {
+    const int frame = robot.frame_id(c.link);
+    if (frame < 0)
+      throw ConfigError(file, c.line, c.key_path + ".link",
+                        "device '" + dc.name + "': no link '" + c.link + "' in its robot model");
+    const model::Frame& f = robot.frame(frame);
+    capsules.push_back(model::Capsule{c.link, f.body, f.placement * c.from, f.placement * c.to, c.radius_m});
+  }
+  try {
+    return robot.with_collision(std::move(capsules));
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(file, dc.collision.capsules.front().line, dc.collision.capsules.front().key_path, e.what());
+  }
+}
+
 // The device's robot model, parsed once for the estimator and the whole chain, mounted at the device's base pose
 // (its poses, Jacobians and gravity in the world frame); checked against the device.
 std::shared_ptr<const model::RobotModel> robot_model_of(const DeviceConfig& dc, const DeviceDescription& description,
@@ -68,8 +91,11 @@ std::shared_ptr<const model::RobotModel> robot_model_of(const DeviceConfig& dc, 
   if (description.robot_model_file.empty()) return nullptr;
   std::shared_ptr<const model::RobotModel> robot;
   try {
+    const model::RobotModel own = model::load_robot_model(description.robot_model_file);
     robot = std::make_shared<const model::RobotModel>(
-        model::load_robot_model(description.robot_model_file).with_base(to_isometry(description.base_pose)));
+        with_collision_of(dc, own, file).with_base(to_isometry(description.base_pose)));
+  } catch (const ConfigError&) {
+    throw;
   } catch (const std::exception& e) {
     throw ConfigError(file, dc.device.line, dc.device.key_path,
                       "device '" + dc.name + "': its robot model: " + e.what());
@@ -174,6 +200,25 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
     throw_if_overridden(e, config.overrides);  // a plugin parameter an override set: the error names it
     throw;
   }
+}
+
+std::vector<std::unique_ptr<GroupStage>> build_group_stages(
+    const SessionConfig& config, const std::vector<std::unique_ptr<DeviceSession>>& devices) {
+  std::vector<std::unique_ptr<GroupStage>> stages;
+  for (const GroupConfig& g : config.groups) {
+    std::vector<DeviceSession*> members;
+    for (const std::string& name : g.devices)
+      for (const auto& d : devices)
+        if (d->name() == name) members.push_back(d.get());
+    if (g.min_distance_m > 0.0)
+      for (const DeviceSession* d : members)
+        if (d->chain().robot_model == nullptr)
+          throw ConfigError(config.file.string(), g.line, g.key_path + ".min_distance_m",
+                            "group '" + g.name + "' checks distances, but device '" + d->name() +
+                                "' has no robot model (no collision geometry)");
+    stages.push_back(std::make_unique<GroupStage>(g.name, std::move(members), g.min_distance_m));
+  }
+  return stages;
 }
 
 }  // namespace hapticd::server

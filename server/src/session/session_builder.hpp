@@ -6,6 +6,7 @@
 
 #include "config/config_error.hpp"
 #include "config/session_config.hpp"
+#include "group/group_stage.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "session/device_session.hpp"
 
@@ -24,6 +25,11 @@ struct ConfigureFailure {
 // failed) and the others are built; the start fails only if no device can run.
 std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader,
                                                            std::vector<ConfigureFailure>* report = nullptr);
+
+// The stages of the session's device groups (`groups`), over the built devices (a device left out at start-up
+// is left out of its group). A group that checks distances needs robot models: a ConfigError otherwise.
+std::vector<std::unique_ptr<GroupStage>> build_group_stages(const SessionConfig& config,
+                                                            const std::vector<std::unique_ptr<DeviceSession>>& devices);
 
 // Per-device seed derived from the session seed (splitmix64), so devices get independent random streams.
 std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) noexcept;

@@ -10,6 +10,7 @@
 #include "executor/cycle_statistics.hpp"
 #include "executor/device_group.hpp"
 #include "executor/executor.hpp"
+#include "group/group_stage.hpp"
 #include "hapticd/server/session.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "session/device_session.hpp"
@@ -20,6 +21,7 @@ struct Session::Impl {
   SessionConfig config;
   std::unique_ptr<PluginLoader> loader;
   std::vector<std::unique_ptr<DeviceSession>> devices;
+  std::vector<std::unique_ptr<GroupStage>> stages;  // the device groups' stages (`groups`)
   std::unique_ptr<DeviceGroup> group;
   std::int64_t period_ns = 0;
   std::uint64_t next_cycle = 0;
@@ -30,6 +32,7 @@ struct Session::Impl {
   // Throws std::out_of_range naming the device.
   [[nodiscard]] DeviceSession& device(std::string_view name) const;
   [[nodiscard]] std::vector<DeviceSession*> device_pointers() const;
+  [[nodiscard]] std::vector<GroupStage*> stage_pointers() const;
   // The executor's settings for this session's server section, never asking for SCHED_FIFO or locked memory
   // (for tests that run the real loop over the devices instead of stepping).
   [[nodiscard]] ExecutorSettings executor_settings() const;

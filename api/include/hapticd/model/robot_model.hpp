@@ -11,6 +11,7 @@
 
 #include "hapticd/export.hpp"
 #include "hapticd/joint_vector.hpp"
+#include "hapticd/model/collision.hpp"
 #include "hapticd/model/drive_data.hpp"
 
 namespace hapticd::model {
@@ -66,6 +67,11 @@ class HAPTICD_API RobotModel {
   // model computes is then in the world frame, and gravity (a world vector) acts on the mounted device as it
   // would on the real one (a device hung upside down feels it reversed in its joints).
   [[nodiscard]] RobotModel with_base(const Eigen::Isometry3d& base) const;
+  // The collision geometry (hapticd/model/collision.hpp): the URDF's <collision> elements as capsules.
+  [[nodiscard]] const std::vector<Capsule>& collision() const noexcept { return capsules_; }
+  // A copy with other collision geometry (at most PlacedCapsules::kMax capsules; throws std::invalid_argument
+  // for more, a body the model does not have or a negative radius).
+  [[nodiscard]] RobotModel with_collision(std::vector<Capsule> capsules) const;
   // Joint-output peak torque per joint: the drive's, else the URDF effort limit, else 0.
   [[nodiscard]] JointVector peak_torques() const;
   // Joint speed limit per joint: the drive's, else the URDF velocity limit, else 0.
@@ -79,6 +85,7 @@ class HAPTICD_API RobotModel {
   std::vector<Body> bodies_;
   std::vector<Frame> frames_;
   Eigen::Vector3d gravity_;
+  std::vector<Capsule> capsules_;
 };
 
 }  // namespace hapticd::model
