@@ -81,14 +81,8 @@ TEST(BasePose, AMountedDeviceMovesAsTheSameDeviceAtTheOriginSeenFromItsBase) {
 // Upside down, gravity pulls the other way through the device: the gravity compensation of the controller (the
 // server's mounted model) must match the physics (the simulation's mounted model) for the handle to stay.
 std::string vishard3_session(const std::string& base_pose) {
-  std::string yaml = test::sim_vishard3_session_head("v3", 3) + R"(        attachment: none
-    virtual_model:
-      plugin: admittance
-      parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [40.0, 40.0, 40.0], rotation: false}
-    controller:
-      plugin: resolved_acceleration
-      parameters: {task: translation}
-)";
+  const std::string yaml =
+      test::sim_vishard3_session_head("v3", 3) + "        attachment: none\n" + test::vishard3_admittance_chain_yaml();
   return base_pose.empty() ? yaml : mounted(yaml, "v3", base_pose);
 }
 

@@ -19,14 +19,7 @@ namespace {
 // A simulated ViSHaRD3 at `base` in admittance display (3 kg, 40 N s/m), pushed from 0.1 s on by `force`.
 std::string vishard3(const std::string& name, const std::string& base, const std::string& force) {
   return test::sim_vishard3_device_yaml(name, "step", force) + "        wrench_force_start_s: 0.1\n" +
-         "    base_pose: " + base + R"(
-    virtual_model:
-      plugin: admittance
-      parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [40.0, 40.0, 40.0], rotation: false}
-    controller:
-      plugin: resolved_acceleration
-      parameters: {task: translation}
-)";
+         "    base_pose: " + base + "\n" + test::vishard3_admittance_chain_yaml();
 }
 
 // Two ViSHaRD3 facing each other 0.9 m apart along x (the right one turned half a turn), their handles pushed

@@ -29,16 +29,19 @@ std::string sim_vishard3_session_head(const std::string& name, std::uint64_t see
   return "server: {clock: lockstep, seed: " + std::to_string(seed) + "}\ndevices:\n" + sim_vishard3_entry(name);
 }
 
-std::string sim_vishard3_admittance_session(const std::string& name, std::uint64_t seed, const std::string& safety) {
-  return sim_vishard3_session_head(name, seed) + R"(        attachment: operator
-    virtual_model:
+std::string vishard3_admittance_chain_yaml() {
+  return R"(    virtual_model:
       plugin: admittance
       parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [40.0, 40.0, 40.0], rotation: false}
     controller:
       plugin: resolved_acceleration
       parameters: {task: translation}
-    safety: {)" +
-         safety + "}\n";
+)";
+}
+
+std::string sim_vishard3_admittance_session(const std::string& name, std::uint64_t seed, const std::string& safety) {
+  return sim_vishard3_session_head(name, seed) + "        attachment: operator\n" + vishard3_admittance_chain_yaml() +
+         "    safety: {" + safety + "}\n";
 }
 
 std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,

@@ -43,6 +43,10 @@ std::string sim_vishard3_session_head(const std::string& name, std::uint64_t see
 std::string sim_wrench_step_device_yaml(const std::string& name, const std::string& model, const std::string& initial,
                                         const std::string& force_n, const std::string& torque_nm);
 
+// The rest of a ViSHaRD3 device entry after its device block: admittance display (3 kg, 40 N s/m, translation)
+// with resolved acceleration control.
+std::string vishard3_admittance_chain_yaml();
+
 // A lockstep session: the simulated ViSHaRD3 `name` held by the simulated operator, in admittance display (3 kg,
 // 40 N s/m, translation) with resolved acceleration control, and a `safety` section with these entries.
 std::string sim_vishard3_admittance_session(const std::string& name, std::uint64_t seed,
