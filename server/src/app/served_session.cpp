@@ -34,19 +34,19 @@ std::vector<int> dds_cpus_for(const DdsSettings& dds, bool realtime_setup, Execu
 
 }  // namespace
 
-ServedSession::ServedSession(const SessionConfig& config, std::vector<DeviceSession*> devices,
+ServedSession::ServedSession(const SessionConfig& config, const std::vector<DeviceSession*>& devices,
                              std::vector<GroupStage*> stages, const ServeOptions& options)
-    : devices_(std::move(devices)), settings_(executor_settings(config.server, options.realtime_setup)) {
+    : settings_(executor_settings(config.server, options.realtime_setup)) {
   dds_cpus_ = dds_cpus_for(config.dds, options.realtime_setup, settings_);
   if (!options.record_csv.empty()) {
     std::vector<std::string> names;
-    for (const DeviceSession* d : devices_) names.push_back(d->name());
+    for (const DeviceSession* d : devices) names.push_back(d->name());
     recorder_ = std::make_unique<Recorder>(options.record_csv, names, settings_.lockstep);
   }
-  executor_ = std::make_unique<Executor>(settings_, devices_, recorder_.get(), std::move(stages));
+  executor_ = std::make_unique<Executor>(settings_, devices, recorder_.get(), std::move(stages));
   if (config.dds.enabled) {
     try {
-      bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices_, dds_cpus_);
+      bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices, dds_cpus_);
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("DDS interface: ") + e.what());
     }
@@ -54,7 +54,7 @@ ServedSession::ServedSession(const SessionConfig& config, std::vector<DeviceSess
     set_cycle_listener(bridge_.get());
     bridge_->start();
   }
-  monitor_ = std::make_unique<SessionMonitor>(devices_, bridge_.get(), options.stop, recorder_.get());
+  monitor_ = std::make_unique<SessionMonitor>(devices, bridge_.get(), options.stop, recorder_.get());
 }
 
 ServedSession::~ServedSession() {

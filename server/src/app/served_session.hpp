@@ -32,8 +32,8 @@ struct ServeOptions {
 class ServedSession {
  public:
   // stages: the device groups' stages (session_builder's build_group_stages); they outlive this.
-  ServedSession(const SessionConfig& config, std::vector<DeviceSession*> devices, std::vector<GroupStage*> stages,
-                const ServeOptions& options);
+  ServedSession(const SessionConfig& config, const std::vector<DeviceSession*>& devices,
+                std::vector<GroupStage*> stages, const ServeOptions& options);
   ~ServedSession();  // stops the DDS interface
   ServedSession(const ServedSession&) = delete;
   ServedSession& operator=(const ServedSession&) = delete;
@@ -50,14 +50,11 @@ class ServedSession {
   [[nodiscard]] DdsBridge* bridge() const noexcept { return bridge_.get(); }  // null without a dds section
   [[nodiscard]] const SessionMonitor& monitor() const noexcept { return *monitor_; }
   [[nodiscard]] const Recorder* recorder() const noexcept { return recorder_.get(); }  // null: not recording
-  [[nodiscard]] const Executor& executor() const noexcept { return *executor_; }
-  [[nodiscard]] const std::vector<DeviceSession*>& devices() const noexcept { return devices_; }
   // Where the threads run: the loop's CPU (-1 not pinned) and the DDS threads' CPUs (empty: not pinned).
   [[nodiscard]] int loop_cpu() const noexcept { return settings_.cpu; }
   [[nodiscard]] const std::vector<int>& dds_cpus() const noexcept { return dds_cpus_; }
 
  private:
-  std::vector<DeviceSession*> devices_;
   ExecutorSettings settings_;
   std::vector<int> dds_cpus_;
   std::unique_ptr<Recorder> recorder_;

@@ -14,16 +14,11 @@ CollisionGuard::CollisionGuard(DeviceSession& first, DeviceSession& second, doub
   HAPTICD_DEMAND(first.chain().robot_model != nullptr && second.chain().robot_model != nullptr);
   const auto& a = first.chain().robot_model->collision();
   const auto& b = second.chain().robot_model->collision();
-  first_count_ = static_cast<int>(a.size());
   second_count_ = static_cast<int>(b.size());
   texts_.reserve(a.size() * b.size());
   for (const auto& ca : a)
     for (const auto& cb : b)
       texts_.push_back("too close: " + first.name() + " " + ca.link + " / " + second.name() + " " + cb.link);
-}
-
-const std::string& CollisionGuard::pair_text(int capsule_first, int capsule_second) const {
-  return texts_.at(static_cast<std::size_t>(capsule_first * second_count_ + capsule_second));
 }
 
 void CollisionGuard::run(const CycleTime& cycle) noexcept {

@@ -24,21 +24,21 @@ class CollisionGuard {
 
   [[nodiscard]] const DeviceSession& first() const noexcept { return first_; }
   [[nodiscard]] const DeviceSession& second() const noexcept { return second_; }
-  // The latest clearance (m between the capsules' surfaces) and where (loop thread: exact; others: the latest).
+  // The latest clearance: where, for the loop thread (and a lockstep caller between steps); how far (m between
+  // the capsules' surfaces) for any thread.
   [[nodiscard]] const model::Clearance& clearance() const noexcept { return clearance_; }
   [[nodiscard]] double latest_distance() const noexcept { return distance_.load(std::memory_order_relaxed); }
   // The smallest clearance seen so far, and the cycles the hard minimum tripped both devices.
   [[nodiscard]] double smallest_distance() const noexcept { return smallest_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t trips() const noexcept { return trips_.load(std::memory_order_relaxed); }
-  // "left link3 / right link2": the links of a capsule pair.
-  [[nodiscard]] const std::string& pair_text(int capsule_first, int capsule_second) const;
 
  private:
   DeviceSession& first_;
   DeviceSession& second_;
   double min_distance_;
-  int first_count_, second_count_;
-  std::vector<std::string> texts_;  // per capsule pair, made up front (the fault's reason points into it)
+  int second_count_;
+  // Per capsule pair ("too close: left link3 / right link2"), made up front: the fault's reason points into it.
+  std::vector<std::string> texts_;
   model::PlacedCapsules first_placed_, second_placed_;
   model::Clearance clearance_;
   std::atomic<double> distance_{1e9};

@@ -70,7 +70,8 @@ class HAPTICD_API RobotModel {
   // The collision geometry (hapticd/model/collision.hpp): the URDF's <collision> elements as capsules.
   [[nodiscard]] const std::vector<Capsule>& collision() const noexcept { return capsules_; }
   // A copy with other collision geometry (at most PlacedCapsules::kMax capsules; throws std::invalid_argument
-  // for more, a body the model does not have or a negative radius).
+  // for more, a body the model does not have or a negative radius). Capsules on the base (body -1) are in the
+  // model's root frame: give them before with_base, which carries them along.
   [[nodiscard]] RobotModel with_collision(std::vector<Capsule> capsules) const;
   // Joint-output peak torque per joint: the drive's, else the URDF effort limit, else 0.
   [[nodiscard]] JointVector peak_torques() const;
