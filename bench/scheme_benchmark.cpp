@@ -1,6 +1,7 @@
 // Compute time per cycle of each control scheme on the simulated ViSHaRD3 and ViSHaRD6: one iteration runs the
 // scheme's chain (virtual model -> inverse kinematics -> controller) on a realistic state, taken after 1 s of
-// the shipped session (config/sessions/<device>/<scheme>.yaml) in lockstep. Side by side, the reference: the
+// the shipped session (config/sessions/<device>/<scheme>.yaml) in lockstep, with the server's render guard (as the
+// loop configures it without passivity control) as the model's render port. Side by side, the reference: the
 // server's shared per-cycle model terms (compute_cycle_terms) for the same device; the counter
 // ratio_to_model_terms is the scheme's time over the reference's (machine-independent to first order).
 #include <benchmark/benchmark.h>
@@ -15,8 +16,8 @@
 #include "hapticd/engine_input.hpp"
 #include "hapticd/model/dynamics.hpp"
 #include "hapticd/model/model_data.hpp"
-#include "hapticd/testing/pass_through_render_port.hpp"
 #include "plugins/plugin_loader.hpp"
+#include "safety/render_guard.hpp"
 #include "session/session_builder.hpp"
 #include "session_rig.hpp"
 
@@ -32,7 +33,8 @@ void scheme(benchmark::State& st, const std::string& device, const std::string& 
   const ChainState cs = d.chain_state();
   const DeviceState state = d.state();
   const EngineInput engine;
-  testing::PassThroughRenderPort render;
+  server::RenderGuard render;  // as the server's: configured for the period, default limits, passivity control off
+  render.configure(5e-4, server::RenderLimits{}, false, 0.0, 0.0);
   TaskTarget task;
   JointTarget joints;
   joints.resize(d.description().dof());
@@ -42,6 +44,7 @@ void scheme(benchmark::State& st, const std::string& device, const std::string& 
   const auto one_cycle = [&] {
     const CycleTime t{static_cast<std::int64_t>(k) * 500'000, 500'000, k};
     ++k;
+    render.begin_cycle(Eigen::Vector3d::Zero());
     if (chain.virtual_model)
       (void)(*chain.virtual_model)->update(t, VirtualModelInput{state, cs, engine, render}, task);
     if (chain.inverse_kinematics)
