@@ -141,6 +141,58 @@ TEST(Collision, TheSkeletonCoversEveryLinkFromJointToJoint) {
   }
 }
 
+TEST(Collision, TheClearanceGradientIsTheClearancesDerivative) {
+  // Two ViSHaRD10s (every joint moves its links) side by side; the clearance between them against central
+  // differences of the clearance itself, joint by joint, for both arms (each with its own point and normal).
+  const model::RobotModel base = test::load_device_model("vishard10");
+  const model::RobotModel m = base.with_collision(model::skeleton_capsules(base, 0.03));
+  const model::RobotModel first = m.with_base(Eigen::Isometry3d(Eigen::Translation3d(0, 0.25, 0)));
+  const model::RobotModel second = m.with_base(Eigen::Isometry3d(Eigen::Translation3d(0, -0.25, 0)));
+  model::ModelData da(first), db(second);
+  std::mt19937_64 rng(11);
+  int checked = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const JointVector qa = test::random_joint_vector(rng, m.dof(), 1.5);
+    const JointVector qb = test::random_joint_vector(rng, m.dof(), 1.5);
+    const auto clearance = [&](const JointVector& a, const JointVector& b) {
+      model::PlacedCapsules pa, pb;
+      model::forward_kinematics(first, da, a);
+      model::forward_kinematics(second, db, b);
+      model::place_capsules(first, da, pa);
+      model::place_capsules(second, db, pb);
+      return model::nearest(pa, pb);
+    };
+    const model::Clearance c = clearance(qa, qb);
+    if (c.distance < 0.0) continue;  // overlapping: the nearest pair is not where the gradient applies
+    JointVector ga, gb;
+    model::forward_kinematics(first, da, qa);
+    model::clearance_gradient(first, da, first.collision()[static_cast<std::size_t>(c.capsule_first)].body,
+                              c.point_first, c.normal, ga);
+    model::forward_kinematics(second, db, qb);
+    model::clearance_gradient(second, db, second.collision()[static_cast<std::size_t>(c.capsule_second)].body,
+                              c.point_second, -c.normal, gb);
+    ASSERT_EQ(ga.size(), m.dof());
+    constexpr double h = 1e-6;
+    for (int j = 0; j < m.dof(); ++j) {
+      JointVector up = qa, down = qa;
+      up[j] += h;
+      down[j] -= h;
+      const model::Clearance cu = clearance(up, qb), cd = clearance(down, qb);
+      if (cu.capsule_first != c.capsule_first || cd.capsule_first != c.capsule_first) continue;  // a switch
+      EXPECT_NEAR(ga[j], (cu.distance - cd.distance) / (2 * h), 1e-5) << "first arm, joint " << j + 1;
+      up = qb;
+      down = qb;
+      up[j] += h;
+      down[j] -= h;
+      const model::Clearance su = clearance(qa, up), sd = clearance(qa, down);
+      if (su.capsule_second != c.capsule_second || sd.capsule_second != c.capsule_second) continue;
+      EXPECT_NEAR(gb[j], (su.distance - sd.distance) / (2 * h), 1e-5) << "second arm, joint " << j + 1;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 200);
+}
+
 TEST(Collision, ModelsRefuseBadCapsules) {
   const model::RobotModel m = model::parse_robot_model(kTwoLinks, "two.urdf");
   EXPECT_THROW((void)m.with_collision({model::Capsule{"x", 3, Vector3d::Zero(), Vector3d::Zero(), 0.1}}),

@@ -41,22 +41,28 @@ SegmentPair closest_points(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
   return out;
 }
 
+Clearance capsule_clearance(const PlacedCapsules& first, int i, const PlacedCapsules& second, int j) noexcept {
+  const auto ii = static_cast<std::size_t>(i), jj = static_cast<std::size_t>(j);
+  const SegmentPair s = closest_points(first.a[ii], first.b[ii], second.a[jj], second.b[jj]);
+  Clearance c;
+  c.distance = s.distance - first.radius[ii] - second.radius[jj];
+  c.capsule_first = i;
+  c.capsule_second = j;
+  // The surface points along the line between the segments' closest points (any direction when they meet).
+  const Eigen::Vector3d along =
+      s.distance > 1e-12 ? Eigen::Vector3d((s.on_q - s.on_p) / s.distance) : Eigen::Vector3d::UnitX();
+  c.point_first = s.on_p + first.radius[ii] * along;
+  c.point_second = s.on_q - second.radius[jj] * along;
+  c.normal = -along;
+  return c;
+}
+
 Clearance nearest(const PlacedCapsules& first, const PlacedCapsules& second) noexcept {
   Clearance best;
   for (int i = 0; i < first.count; ++i) {
     for (int j = 0; j < second.count; ++j) {
-      const auto ii = static_cast<std::size_t>(i), jj = static_cast<std::size_t>(j);
-      const SegmentPair s = closest_points(first.a[ii], first.b[ii], second.a[jj], second.b[jj]);
-      const double d = s.distance - first.radius[ii] - second.radius[jj];
-      if (d >= best.distance) continue;
-      best.distance = d;
-      best.capsule_first = i;
-      best.capsule_second = j;
-      // The surface points along the line between the segments' closest points (any direction when they meet).
-      const Eigen::Vector3d along =
-          s.distance > 1e-12 ? Eigen::Vector3d((s.on_q - s.on_p) / s.distance) : Eigen::Vector3d::UnitX();
-      best.point_first = s.on_p + first.radius[ii] * along;
-      best.point_second = s.on_q - second.radius[jj] * along;
+      const Clearance c = capsule_clearance(first, i, second, j);
+      if (c.distance < best.distance) best = c;
     }
   }
   return best;
@@ -84,6 +90,15 @@ std::vector<Capsule> skeleton_capsules(const RobotModel& model, double radius) {
       out.push_back(Capsule{model.body(i).link_name, i, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), radius});
   }
   return out;
+}
+
+void clearance_gradient(const RobotModel& model, const ModelData& data, int body, const Eigen::Vector3d& point,
+                        const Eigen::Vector3d& normal, JointVector& gradient) noexcept {
+  gradient.setZero(model.dof());
+  for (int j = 0; j <= body; ++j) {  // the joints between the base and the body move the point
+    const Motion& s = data.motion_subspace[static_cast<std::size_t>(j)];
+    gradient[j] = normal.dot(s.linear + s.angular.cross(point));  // v_O + w x p along the normal
+  }
 }
 
 void place_capsules(const RobotModel& model, const ModelData& data, PlacedCapsules& out) noexcept {

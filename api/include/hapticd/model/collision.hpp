@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hapticd/export.hpp"
+#include "hapticd/joint_vector.hpp"
 
 namespace hapticd::model {
 
@@ -48,13 +49,26 @@ struct Clearance {
   int capsule_first = -1, capsule_second = -1;
   Eigen::Vector3d point_first = Eigen::Vector3d::Zero();   // on the first set's capsule surface, world
   Eigen::Vector3d point_second = Eigen::Vector3d::Zero();  // on the second set's
+  // Unit, from the second capsule's axis to the first's: the way the first moves to gain clearance (x when the
+  // axes meet).
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
 };
 [[nodiscard]] HAPTICD_API Clearance nearest(const PlacedCapsules& first, const PlacedCapsules& second) noexcept;
+// The same for capsule i of the first set and capsule j of the second.
+[[nodiscard]] HAPTICD_API Clearance capsule_clearance(const PlacedCapsules& first, int i, const PlacedCapsules& second,
+                                                      int j) noexcept;
 
 // Capsules along the kinematic skeleton, for a model whose URDF has no <collision> elements: per body one from
 // its joint to the next joint and one to each frame fixed to it (sensor, handle); on the base one from the root
 // to the first joint. A rough cover of links whose shapes are unknown; `radius` their thickness.
 [[nodiscard]] HAPTICD_API std::vector<Capsule> skeleton_capsules(const RobotModel& model, double radius);
+
+// How a clearance changes with one model's joints: d distance / d q = normal^T J(point), J the linear Jacobian of
+// `point` (world) moving with `body` (-1, the fixed base: zero), `normal` the way that point gains clearance. At
+// the posture `data` was computed for (forward_kinematics or compute_cycle_terms). Real-time safe.
+HAPTICD_API void clearance_gradient(const RobotModel& model, const ModelData& data, int body,
+                                    const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
+                                    JointVector& gradient) noexcept;
 
 // The model's capsules at the posture `data` was computed for (world frame: the model's, mounted or not).
 HAPTICD_API void place_capsules(const RobotModel& model, const ModelData& data, PlacedCapsules& out) noexcept;
