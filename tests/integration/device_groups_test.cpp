@@ -3,6 +3,8 @@
 // the pair and the links, and devices outside the group run on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "hapticd/model/collision.hpp"
@@ -23,14 +25,15 @@ std::string vishard3(const std::string& name, const std::string& base, const std
 }
 
 // Two ViSHaRD3 facing each other 0.9 m apart along x (the right one turned half a turn), their handles pushed
-// towards each other by `force_n` each; a third device on its own beside them.
-std::string facing_pair(const std::string& force_n, double min_distance_m) {
+// towards each other by `force_n` each; a third device on its own beside them. `group_extra`: more keys of the
+// group (indented 4).
+std::string facing_pair(const std::string& force_n, double min_distance_m, const std::string& group_extra = "") {
   return "server: {clock: lockstep, seed: 5}\ndevices:\n" +
          vishard3("left", "{xyz: [0, 0, 0]}", "[" + force_n + ", 0, 0]") +
          vishard3("right", "{xyz: [0.9, 0, 0], rpy: [0, 0, 3.141592653589793]}", "[-" + force_n + ", 0, 0]") +
          vishard3("alone", "{xyz: [0, 2, 0]}", "[0, 0, 0]") +
          "groups:\n  - name: hands\n    devices: [left, right]\n    min_distance_m: " + std::to_string(min_distance_m) +
-         "\n";
+         "\n" + group_extra;
 }
 
 const CollisionGuard& guard_of(Session& s) { return *s.impl().stages.at(0)->guards().at(0); }
@@ -96,15 +99,46 @@ TEST(DeviceGroups, WithoutAMinimumNothingTrips) {
   EXPECT_TRUE(s.device("right").fault.empty()) << s.device("right").fault;
 }
 
+TEST(DeviceGroups, TheRepulsionKeepsThePairApartAndTheOperatorsFeelIt) {
+  // The push that brings the arms within 0.03 m without repulsion (the test above), now against the repulsion
+  // from 0.1 m: the arms settle where the springs between their links hold the push, the hard minimum never trips,
+  // and each handle renders the force that balances its operator's push - steadily (the torques' low-pass keeps
+  // the jumps of the closest points along nearly parallel links out of it).
+  Session s = test::build_test_session(
+      facing_pair("8", 0.03, "    repulsion: {distance_m: 0.1, stiffness_n_per_m: 1000, damping_n_s_per_m: 20}\n"));
+  const CollisionGuard& guard = guard_of(s);
+  s.step(5000);  // 2.5 s: the arms meet at about 2 s
+  double sum = 0.0, squares = 0.0, speed = 0.0;
+  constexpr int kCycles = 1000;
+  for (int k = 0; k < kCycles; ++k) {
+    s.step(1);
+    const double f = s.device("left").task.wrench.force.x();
+    sum += f;
+    squares += f * f;
+    speed = std::max(speed, std::abs(s.device("left").handle_twist.linear.x()));
+  }
+  const double mean = sum / kCycles;
+  EXPECT_EQ(guard.trips(), 0u);
+  EXPECT_TRUE(s.device("left").fault.empty()) << s.device("left").fault;
+  EXPECT_TRUE(s.device("right").fault.empty()) << s.device("right").fault;
+  EXPECT_GT(guard.smallest_distance(), 0.07);
+  EXPECT_LT(guard.latest_distance(), 0.1) << "the push must hold the arms inside the repulsion";
+  EXPECT_GT(guard.latest_repulsion_n(), 8.0);
+  EXPECT_NEAR(mean, -8.0, 0.3) << "the left handle renders what holds its operator's push along x";
+  EXPECT_LT(std::sqrt(squares / kCycles - mean * mean), 0.6) << "the rendered force must be steady";
+  EXPECT_LT(speed, 0.02) << "the handles must have stopped approaching";
+}
+
 TEST(DeviceGroups, TheGroupStageDoesNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
-  Session s = test::build_test_session(facing_pair("8", 0.03));
+  Session s = test::build_test_session(facing_pair("8", 0.03, "    repulsion: {distance_m: 0.9}\n"));
   s.step(10);  // powered, the chains active
   DeviceGroup& group = *s.impl().group;
   testing::AllocationGuard guard;
   for (std::uint64_t k = 10; k < 1010; ++k) group.run_cycle(test::cycle_at(k), 1.0, 0, 0);
   EXPECT_EQ(guard.allocations(), 0u);
-  EXPECT_LT(guard_of(s).latest_distance(), 1.0);  // the guards ran
+  EXPECT_LT(guard_of(s).latest_distance(), 1.0);     // the guards ran
+  EXPECT_GT(guard_of(s).latest_repulsion_n(), 0.0);  // and repelled
 }
 
 TEST(DeviceGroups, AreCheckedInTheSessionFile) {
@@ -126,6 +160,13 @@ TEST(DeviceGroups, AreCheckedInTheSessionFile) {
             std::string::npos);
   EXPECT_NE(error_of("groups:\n  - {name: g, devices: [a, b], min_distance_m: -1}\n").find("min_distance_m"),
             std::string::npos);
+  EXPECT_NE(error_of("groups:\n  - {name: g, devices: [a, b], repulsion: {distance_m: 0.1, stifness_n_per_m: 5}}\n")
+                .find("groups[0].repulsion"),
+            std::string::npos);
+  const std::string inside = error_of(
+      "groups:\n  - name: g\n    devices: [a, b]\n    min_distance_m: 0.05\n    repulsion: {distance_m: 0.04}\n");
+  EXPECT_NE(inside.find("session.yaml:43: groups[0].repulsion.distance_m"), std::string::npos) << inside;
+  EXPECT_NE(inside.find("farther out than the hard minimum"), std::string::npos) << inside;
 }
 
 }  // namespace

@@ -11,6 +11,17 @@ class RobotModel;
 struct ModelData;
 }  // namespace model
 
+// The nearest other device of the device's group this cycle, found in the group stage (docs/multi-device.md): a
+// redundant arm's inverse kinematics may move away from it in its null space. Without a neighbour (no group, or a
+// device without a robot model): distance 1e9 and an empty gradient.
+struct NeighbourClearance {
+  double distance_m = 1e9;                            // between the nearest capsules' surfaces; < 0: overlap
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();    // the closest point on this device, world
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // unit, world: the way that point gains clearance
+  JointVector gradient;                               // d distance_m / d q at the measured joints (n)
+  [[nodiscard]] bool present() const noexcept { return gradient.size() > 0; }
+};
+
 struct ChainState {
   // Null when the device names no robot model (the plugins then work from DeviceState alone).
   const model::RobotModel* model = nullptr;
@@ -24,6 +35,7 @@ struct ChainState {
   Wrench operator_wrench;            // world, at the handle point: the wrench the operator applies TO the handle
   bool has_operator_wrench = false;  // the device has a force/torque sensor
   bool output_saturated = false;     // the previous cycle's torque command was clamped at a drive's peak torque
+  NeighbourClearance neighbour;      // the group stage's, this cycle
 };
 
 }  // namespace hapticd

@@ -83,6 +83,16 @@ ParameterSchema RedundancyIk::parameter_schema() {
       .unit("m")
       .greater_than(0.0)
       .default_value(0.1);
+  s.real("clearance",
+         "weight of the clearance criterion ((margin - d) / margin)^2, d the distance to the nearest other device "
+         "of the group (docs/multi-device.md): the arm moves away from it in the null space")
+      .minimum(0.0)
+      .default_value(0.0);
+  s.real("clearance_margin_m", "the clearance criterion rises from zero this close to another device")
+      .unit("m")
+      .greater_than(0.0)
+      .maximum(2.0)
+      .default_value(0.15);
   s.real("acceleration_filter_hz", "velocity level: low-pass of the differentiated joint-velocity target")
       .unit("Hz")
       .greater_than(0.0)
@@ -148,6 +158,8 @@ void RedundancyIk::configure(const Parameters& p, const PluginContext& context) 
   c.keep_out_radius_m = p.real("keep_out_radius_m");
   c.keep_out_margin_m = p.real("keep_out_margin_m");
   criteria_.configure(*model_, c);
+  clearance_weight_ = p.real("clearance");
+  clearance_margin_ = p.real("clearance_margin_m");
 
   acceleration_.configure(1.0 / context.rate_hz, p.real("acceleration_filter_hz"));
   q_.setZero(n);
@@ -182,7 +194,13 @@ ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsI
   // The side criterion once per cycle, at the measured joints: the resolution the controller asks for at the
   // measured state needs it there, and the integrated target tracks the measured joints closely enough to share
   // it (a target that drifted from them in the null space serves no controller of this chain).
-  criterion_ = criteria_.empty() ? 0.0 : criteria_.evaluate(in.device.joints.position, gradient_);
+  criterion_ = 0.0;
+  if (criteria_.empty()) {
+    gradient_.setZero(model_->dof());
+  } else {
+    criterion_ = criteria_.evaluate(in.device.joints.position, gradient_);
+  }
+  criterion_ += add_clearance_term(in.chain.neighbour);
   const JointVector qd0 = -null_gain_ * inverse_.weight_inverse_times(gradient_);
   if (level_ == Level::velocity) {
     qd_ = model::resolve_velocity(inverse_, model::TaskVector((xd + kp_ * error).head(rows_)), qd0);
@@ -204,6 +222,16 @@ ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsI
   target.velocity = qd_;
   target.valid = true;
   return q_.allFinite() ? ReturnCode::ok : ReturnCode::error;
+}
+
+double RedundancyIk::add_clearance_term(const NeighbourClearance& neighbour) noexcept {
+  // H = w ((m - d) / m)^2 below the margin, grad H = -2 w (m - d) / m^2 grad d (the group stage's gradient).
+  if (clearance_weight_ == 0.0 || !neighbour.present() || neighbour.gradient.size() != gradient_.size()) return 0.0;
+  const double depth = clearance_margin_ - neighbour.distance_m;
+  if (!(depth > 0.0)) return 0.0;
+  const double m2 = clearance_margin_ * clearance_margin_;
+  gradient_.noalias() -= (2.0 * clearance_weight_ * depth / m2) * neighbour.gradient;
+  return clearance_weight_ * depth * depth / m2;
 }
 
 JointVector RedundancyIk::task_acceleration(const DeviceState& device, const ChainState& chain,

@@ -7,8 +7,9 @@
 //   velocity level      qd_d = J^W# (xd_d + kp e) + N qd0,              qd0 = -k W^-1 grad H
 //   acceleration level  qdd_d = J^W# (xdd_d + kd (xd_d - J qd_d) + kp e - Jd qd_d) + N d (qd0 - qd_d)
 // with e the pose error between the task target and FK(q_d), q_d integrated each cycle, and grad H taken at the
-// measured joints (once per cycle). Task-space controllers get the same resolution at the measured state
-// through redundancy() (acceleration and torque level).
+// measured joints (once per cycle). H includes the clearance to the nearest other device of the group (the group
+// stage's distance and its gradient, ChainState::neighbour) when weighted. Task-space controllers get the same
+// resolution at the measured state through redundancy() (acceleration and torque level).
 #include <memory>
 
 #include "hapticd/inverse_kinematics.hpp"
@@ -40,6 +41,9 @@ class RedundancyIk final : public InverseKinematics, public RedundancyResolution
  private:
   enum class Level { velocity, acceleration };
 
+  // Adds the clearance criterion's gradient to gradient_; returns its value.
+  double add_clearance_term(const NeighbourClearance& neighbour) noexcept;
+
   const model::RobotModel* model_ = nullptr;  // the server's, shared by the chain (PluginContext)
   std::unique_ptr<model::ModelData> data_;
   int handle_ = -1;
@@ -54,6 +58,7 @@ class RedundancyIk final : public InverseKinematics, public RedundancyResolution
   model::SideCriteria criteria_;
   JointVector q_, qd_, gradient_;
   double criterion_ = 0.0;
+  double clearance_weight_ = 0.0, clearance_margin_ = 0.15;
   signal::Differentiator<JointVector> acceleration_;
   model::TaskJacobian jacobian_;
 };

@@ -178,6 +178,7 @@ int run_session(const RunOptions& options) {
   report.config = &s->config;
   report.result = &result;
   report.sessions = &s->sessions;
+  report.stages = &s->stages;
   report.monitor = &served->monitor();
   report.records_written = recorder ? recorder->written() : 0;
   report.records_dropped = recorder ? recorder->dropped() : 0;
@@ -300,6 +301,8 @@ int describe_config(const std::string& config_file) {
   fmt::print("  {:<24} {}\n", "min_distance_m",
              "hard minimum clearance between any two of its devices' collision capsules: below it both enter "
              "their safe mode (0 .. 1, default 0: measured, never tripped)");
+  fmt::print("  {:<24} {}\n", "repulsion", "a spring-damper between the arms' nearest points, felt on the handles:");
+  print_schema(repulsion_schema());
   fmt::print("\nbase_pose of a device entry (docs/configuration.md):\n");
   print_schema(base_pose_schema());
   fmt::print("\nsafety section of a device entry (docs/safety.md):\n");

@@ -115,6 +115,15 @@ std::vector<std::string> report_lines(const SessionReport& r) {
     if (const std::uint64_t more = r.monitor->safety_events_not_kept(i) + d.lost_safety_events(); more > 0)
       lines.push_back(fmt::format("  ... and {} more faults and recoveries not kept", more));
   }
+  if (r.stages == nullptr) return lines;
+  for (const auto& stage : *r.stages) {
+    for (const auto& g : stage->guards()) {
+      if (g->smallest_distance() >= 1e9) continue;  // never measured
+      lines.push_back(fmt::format("group '{}': {} / {} closest {:.3f} m, repulsion up to {:.1f} N, {} trip{}",
+                                  stage->name(), g->first().name(), g->second().name(), g->smallest_distance(),
+                                  g->largest_repulsion_n(), g->trips(), g->trips() == 1 ? "" : "s"));
+    }
+  }
   return lines;
 }
 

@@ -8,6 +8,7 @@
 #include "bridge/round_trip_probe.hpp"
 #include "config/session_config.hpp"
 #include "executor/executor.hpp"
+#include "group/group_stage.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
@@ -18,6 +19,7 @@ struct SessionReport {
   const SessionConfig* config = nullptr;
   const ExecutorResult* result = nullptr;
   const std::vector<std::unique_ptr<DeviceSession>>* sessions = nullptr;
+  const std::vector<std::unique_ptr<GroupStage>>* stages = nullptr;  // the groups (nullptr: none reported)
   // Every fault and recovery of each device (nullptr: only the final state is reported).
   const SessionMonitor* monitor = nullptr;
   std::uint64_t records_written = 0;

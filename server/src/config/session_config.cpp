@@ -217,7 +217,7 @@ std::vector<GroupConfig> read_groups(const YAML::Node& node, const std::string& 
   std::set<std::string> names, grouped;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string path = "groups[" + std::to_string(i) + "]";
-    MappingReader r(node[i], path, file, {"name", "devices", "min_distance_m"});
+    MappingReader r(node[i], path, file, {"name", "devices", "min_distance_m", "repulsion"});
     GroupConfig g;
     g.key_path = path;
     g.line = line_of(node[i]);
@@ -243,6 +243,16 @@ std::vector<GroupConfig> read_groups(const YAML::Node& node, const std::string& 
     }
     if (const YAML::Node m = r.optional("min_distance_m"); m.IsDefined())
       g.min_distance_m = read_scalar_real(m, r.path_of("min_distance_m"), file, 0.0, 1.0);
+    if (const YAML::Node rep = r.optional("repulsion"); rep.IsDefined() && !rep.IsNull()) {
+      if (!rep.IsMap()) throw ConfigError(file, line_of(rep), r.path_of("repulsion"), "expected a mapping");
+      const Parameters p = read_parameters(rep, repulsion_schema(), file, r.path_of("repulsion"), line_of(rep), {});
+      g.repulsion = RepulsionSettings{p.real("distance_m"), p.real("stiffness_n_per_m"), p.real("damping_n_s_per_m"),
+                                      p.real("max_force_n")};
+      if (g.repulsion.distance_m > 0.0 && g.repulsion.distance_m <= g.min_distance_m)
+        throw ConfigError(file, line_of(rep["distance_m"]), r.path_of("repulsion") + ".distance_m",
+                          "the repulsion must start farther out than the hard minimum (min_distance_m " +
+                              format_value(g.min_distance_m) + ")");
+    }
     groups.push_back(std::move(g));
   }
   return groups;
@@ -290,6 +300,39 @@ ParameterSchema base_pose_schema() {
       .unit("rad")
       .size(3)
       .default_value(std::vector<double>{0.0, 0.0, 0.0});
+  return s;
+}
+
+ParameterSchema repulsion_schema() {
+  ParameterSchema s;
+  const RepulsionSettings d;
+  s.real("distance_m", "clearance below which the arms are pushed apart (0: no repulsion)")
+      .unit("m")
+      .minimum(0.0)
+      .maximum(1.0)
+      .default_value(d.distance_m);
+  s.real("stiffness_n_per_m", "spring of the repulsion, on the nearest points")
+      .unit("N/m")
+      .minimum(0.0)
+      .maximum(1e5)
+      .default_value(d.stiffness_n_per_m);
+  s.real("damping_n_s_per_m", "damping of the approach speed, on the nearest points")
+      .unit("N s/m")
+      .minimum(0.0)
+      .maximum(1e3)
+      .default_value(d.damping_n_s_per_m);
+  s.real("max_force_n", "the largest repulsive force on each handle")
+      .unit("N")
+      .minimum(0.0)
+      .maximum(200.0)
+      .default_value(d.max_force_n);
+  s.real("filter_hz",
+         "low-pass of the repulsion's joint torques, first order (0: none): smooths the jump of the closest "
+         "points along two nearly parallel links")
+      .unit("Hz")
+      .minimum(0.0)
+      .maximum(1000.0)
+      .default_value(d.filter_hz);
   return s;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "config/config_overrides.hpp"
+#include "group/repulsion.hpp"
 #include "hapticd/parameters.hpp"
 #include "hapticd/spatial.hpp"
 #include "safety/safety_settings.hpp"
@@ -101,7 +102,8 @@ struct GroupConfig {
   std::string name;
   std::vector<std::string> devices;
   double min_distance_m = 0.0;  // the hard minimum between any two of its devices' capsules; 0: no check
-  std::string key_path;         // "groups[0]"
+  RepulsionSettings repulsion;
+  std::string key_path;  // "groups[0]"
   int line = 0;
 };
 
@@ -148,6 +150,8 @@ ParameterSchema server_settings_schema();
 ParameterSchema dds_settings_schema();
 // The `base_pose` of a device entry.
 ParameterSchema base_pose_schema();
+// The schema of a group's `repulsion` mapping.
+ParameterSchema repulsion_schema();
 
 // Reads and validates a session file, with overrides ("path=value", config/config_overrides.hpp) applied first.
 // Throws ConfigError naming file, line and key (or the override).

@@ -1,7 +1,8 @@
 #pragma once
 // One device group's stage: phase (b) of the cycle, after every device of the loop was read and estimated and
 // before any chain runs (docs/architecture.md, "One cycle"). Here group-level logic sees the states of all the
-// group's devices of the same instant: today the collision guards between each pair of its devices.
+// group's devices of the same instant: today the collision guards between each pair of its devices (clearance,
+// repulsion, hard minimum).
 // Real-time safe after construction.
 #include <memory>
 #include <string>
@@ -16,9 +17,10 @@ class DeviceSession;
 
 class GroupStage {
  public:
-  // A guard for every pair of devices with robot models: it measures their clearance, and trips both below
-  // min_distance_m (0: never).
-  GroupStage(std::string name, std::vector<DeviceSession*> devices, double min_distance_m);
+  // A guard for every pair of devices with robot models: it measures their clearance, repels them (when
+  // repulsion.distance_m > 0), and trips both below min_distance_m (0: never).
+  GroupStage(std::string name, std::vector<DeviceSession*> devices, double min_distance_m,
+             const RepulsionSettings& repulsion);
 
   void run(const CycleTime& cycle) noexcept;
 

@@ -47,10 +47,12 @@ void SafetySupervisor::restart_soft_start(const RenderGuard::Vector6& from) noex
   guard_.set_scale(0.0);  // already for this cycle
 }
 
-DeviceFault SafetySupervisor::begin_cycle(const JointVector& qd, const ChainState& chain) noexcept {
+DeviceFault SafetySupervisor::begin_cycle(const JointVector& qd, const ChainState& chain,
+                                          const Eigen::Vector3d& group_force) noexcept {
   if (soft_start_done_ < soft_start_cycles_) ++soft_start_done_;
   guard_.set_scale(static_cast<double>(soft_start_done_) / static_cast<double>(soft_start_cycles_));
   const DeviceFault f = motion_.check(qd, chain, handle_force_);
+  handle_force_ += group_force;  // rendered (or applied as J^T F) with the supervisor's own
   guard_.begin_cycle(handle_force_);
   return f;
 }

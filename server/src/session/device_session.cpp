@@ -180,7 +180,8 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
     switch_scheme_if_requested();
   }
   // The supervisor's speed and workspace checks on the measured state, before the chain renders anything.
-  if (const DeviceFault f = safety_.begin_cycle(state_.joints.velocity, estimator_.state()); f != DeviceFault::none)
+  if (const DeviceFault f = safety_.begin_cycle(state_.joints.velocity, estimator_.state(), group_force_);
+      f != DeviceFault::none)
     return f;
   engine_.take(cycle);
   SchemeChain& scheme = schemes_.active();
@@ -300,6 +301,8 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
   }
   safe_path_ = fault() != DeviceFault::none || stopped_;
   if (measurement_valid_) estimate(cycle);
+  estimator_.state().neighbour = NeighbourClearance{};  // the group stage, next, finds this cycle's
+  group_force_.setZero();
 }
 
 void DeviceSession::estimate(const CycleTime& cycle) noexcept {
@@ -488,6 +491,11 @@ void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle, const
   // damping cannot run either, and the safe mode is zero torque at once).
   safety_.enter_safe_mode(last_written_, estimator_.has_model() ? &state_.joints.position : nullptr);
   status_.at_rest.store(safety_.at_rest(), std::memory_order_release);
+}
+
+void DeviceSession::offer_neighbour(const NeighbourClearance& neighbour) noexcept {
+  NeighbourClearance& nearest = estimator_.state().neighbour;
+  if (!nearest.present() || neighbour.distance_m < nearest.distance_m) nearest = neighbour;
 }
 
 void DeviceSession::raise_group_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept {

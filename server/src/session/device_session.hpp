@@ -124,6 +124,12 @@ class DeviceSession {
   // The loop thread, in the group stage (phase (b)): a fault the device's group found (two arms closer than the
   // group's hard minimum). The device enters its safe mode this cycle; ignored when it is there already.
   void raise_group_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept;
+  // The loop thread, in the group stage: another device of the group near this one. The nearest of the cycle
+  // reaches the chain (ChainState::neighbour).
+  void offer_neighbour(const NeighbourClearance& neighbour) noexcept;
+  // The loop thread, in the group stage: a force on the handle (world, N) from the group this cycle (the arms'
+  // repulsion), rendered with the safety supervisor's own.
+  void add_group_force(const Eigen::Vector3d& force) noexcept { group_force_ += force; }
   // Any thread: the server is stopping (SIGINT/SIGTERM): the device goes through its safe mode - damping,
   // then zero torque - without a fault. at_rest() tells when it is done.
   void request_safe_stop() noexcept { safe_stop_requested_.store(true, std::memory_order_release); }
@@ -219,6 +225,7 @@ class DeviceSession {
   TaskTarget task_;
   JointTarget joint_target_;
   JointCommand command_;
+  Eigen::Vector3d group_force_ = Eigen::Vector3d::Zero();  // phase (b) -> (c): the group's force of this cycle
   bool chain_active_ = false;
 
   SchemeSwitcher schemes_;

@@ -210,13 +210,14 @@ std::vector<std::unique_ptr<GroupStage>> build_group_stages(
     for (const std::string& name : g.devices)
       for (const auto& d : devices)
         if (d->name() == name) members.push_back(d.get());
-    if (g.min_distance_m > 0.0)
+    if (g.min_distance_m > 0.0 || g.repulsion.distance_m > 0.0)
       for (const DeviceSession* d : members)
         if (d->chain().robot_model == nullptr)
-          throw ConfigError(config.file.string(), g.line, g.key_path + ".min_distance_m",
+          throw ConfigError(config.file.string(), g.line,
+                            g.key_path + (g.min_distance_m > 0.0 ? ".min_distance_m" : ".repulsion"),
                             "group '" + g.name + "' checks distances, but device '" + d->name() +
                                 "' has no robot model (no collision geometry)");
-    stages.push_back(std::make_unique<GroupStage>(g.name, std::move(members), g.min_distance_m));
+    stages.push_back(std::make_unique<GroupStage>(g.name, std::move(members), g.min_distance_m, g.repulsion));
   }
   return stages;
 }
