@@ -23,7 +23,8 @@ void group_stage(benchmark::State& st, const std::string& session_file, double r
   auto& devices = session.impl().devices;
   server::RepulsionSettings repulsion;
   repulsion.distance_m = repulsion_distance_m;
-  server::GroupStage stage("bench", {devices.at(0).get(), devices.at(1).get()}, 0.0, repulsion);
+  server::GroupStage stage("bench", {devices.at(0).get(), devices.at(1).get()}, 0.0, repulsion,
+                           1.0 / session.impl().config.server.rate_hz);
   std::uint64_t k = 2000;
   const auto one_cycle = [&] {
     stage.run(CycleTime{static_cast<std::int64_t>(k) * 500'000, 500'000, k});

@@ -1,24 +1,24 @@
 #include "group/collision_guard.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "hapticd/demand.hpp"
 #include "hapticd/model/robot_model.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
 
 CollisionGuard::CollisionGuard(DeviceSession& first, DeviceSession& second, double min_distance_m,
-                               const RepulsionSettings& repulsion)
+                               const RepulsionSettings& repulsion, double period_s)
     : first_(first), second_(second), min_distance_(min_distance_m), repulsion_(repulsion) {
   HAPTICD_DEMAND(first.chain().robot_model != nullptr && second.chain().robot_model != nullptr);
   const auto& a = first.chain().robot_model->collision();
   const auto& b = second.chain().robot_model->collision();
   second_count_ = static_cast<int>(b.size());
+  first_filter_.configure(period_s, repulsion.filter_hz);
+  second_filter_.configure(period_s, repulsion.filter_hz);
+  first_filter_.reset(JointVector::Zero(first.chain().robot_model->dof()));
+  second_filter_.reset(JointVector::Zero(second.chain().robot_model->dof()));
   texts_.reserve(a.size() * b.size());
   for (const auto& ca : a)
     for (const auto& cb : b)
@@ -63,24 +63,14 @@ void CollisionGuard::run(const CycleTime& cycle) noexcept {
   second_.offer_neighbour(second_near_);
   // The point forces act on the joints as the summed torques (low-passed); each handle feels their equivalent.
   if (repulsion_.distance_m > 0.0) {
-    const double alpha =
-        repulsion_.filter_hz > 0.0
-            ? 1.0 - std::exp(-2.0 * kPi * repulsion_.filter_hz * 1e-9 * static_cast<double>(cycle.period_ns))
-            : 1.0;
-    smooth(first_filtered_, first_torque_, alpha);
-    smooth(second_filtered_, second_torque_, alpha);
-    if (!first_filtered_.isZero())
-      first_.add_group_force(equivalent_handle_force(a, first_filtered_, repulsion_.max_force_n));
-    if (!second_filtered_.isZero())
-      second_.add_group_force(equivalent_handle_force(b, second_filtered_, repulsion_.max_force_n));
+    const JointVector& first_torque = first_filter_.update(first_torque_);
+    const JointVector& second_torque = second_filter_.update(second_torque_);
+    if (!first_torque.isZero(1e-9))
+      first_.add_group_force(equivalent_handle_force(a, first_torque, repulsion_.max_force_n));
+    if (!second_torque.isZero(1e-9))
+      second_.add_group_force(equivalent_handle_force(b, second_torque, repulsion_.max_force_n));
   }
   if (min_distance_ > 0.0 && clearance_.distance < min_distance_) trip(cycle);
-}
-
-void CollisionGuard::smooth(JointVector& filtered, const JointVector& torque, double alpha) noexcept {
-  if (filtered.size() != torque.size()) filtered.setZero(torque.size());
-  filtered += alpha * (torque - filtered);
-  if (filtered.cwiseAbs().maxCoeff() < 1e-9) filtered.setZero();  // settled: nothing left to render
 }
 
 void CollisionGuard::gradients(const ChainState& a, const ChainState& b, const model::Clearance& c, JointVector& first,

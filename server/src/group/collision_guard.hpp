@@ -17,6 +17,7 @@
 #include "hapticd/chain_state.hpp"
 #include "hapticd/cycle_time.hpp"
 #include "hapticd/model/collision.hpp"
+#include "hapticd/signal/differentiator.hpp"
 
 namespace hapticd::server {
 
@@ -24,9 +25,10 @@ class DeviceSession;
 
 class CollisionGuard {
  public:
-  // Both devices need a robot model with collision geometry (checked by the session builder).
-  CollisionGuard(DeviceSession& first, DeviceSession& second, double min_distance_m,
-                 const RepulsionSettings& repulsion);
+  // Both devices need a robot model with collision geometry (checked by the session builder). period_s: the
+  // loop's (the repulsion's low-pass).
+  CollisionGuard(DeviceSession& first, DeviceSession& second, double min_distance_m, const RepulsionSettings& repulsion,
+                 double period_s);
 
   // Phase (b), after both devices were read and estimated.
   void run(const CycleTime& cycle) noexcept;
@@ -52,7 +54,6 @@ class CollisionGuard {
   // How the pair's clearance changes with each device's joints.
   void gradients(const ChainState& a, const ChainState& b, const model::Clearance& c, JointVector& first,
                  JointVector& second) const noexcept;
-  static void smooth(JointVector& filtered, const JointVector& torque, double alpha) noexcept;
   // Adds the pair's repulsion to both devices' joint torques; returns the force at its points (N).
   double repel(const ChainState& a, const ChainState& b, const model::Clearance& c) noexcept;
 
@@ -65,10 +66,10 @@ class CollisionGuard {
   std::vector<std::string> texts_;
   model::PlacedCapsules first_placed_, second_placed_;
   model::Clearance clearance_;
-  NeighbourClearance first_near_, second_near_;   // what each device learns (gradients: d clearance / d q)
-  JointVector pair_first_, pair_second_;          // one pair's gradients (repulsion)
-  JointVector first_torque_, second_torque_;      // the repulsion's joint torques, summed over the pairs
-  JointVector first_filtered_, second_filtered_;  // ... low-passed
+  NeighbourClearance first_near_, second_near_;                // what each device learns (gradients: d clearance / d q)
+  JointVector pair_first_, pair_second_;                       // one pair's gradients (repulsion)
+  JointVector first_torque_, second_torque_;                   // the repulsion's joint torques, summed over the pairs
+  signal::LowPass<JointVector> first_filter_, second_filter_;  // ... low-passed (RepulsionSettings::filter_hz)
   std::atomic<double> distance_{1e9};
   std::atomic<double> repulsion_n_{0.0};
   std::atomic<double> smallest_{1e9};

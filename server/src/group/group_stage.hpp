@@ -18,9 +18,9 @@ class DeviceSession;
 class GroupStage {
  public:
   // A guard for every pair of devices with robot models: it measures their clearance, repels them (when
-  // repulsion.distance_m > 0), and trips both below min_distance_m (0: never).
+  // repulsion.distance_m > 0), and trips both below min_distance_m (0: never). period_s: the loop's.
   GroupStage(std::string name, std::vector<DeviceSession*> devices, double min_distance_m,
-             const RepulsionSettings& repulsion);
+             const RepulsionSettings& repulsion, double period_s);
 
   void run(const CycleTime& cycle) noexcept;
 

@@ -34,8 +34,7 @@ class SafetySupervisor {
   // Start of a running cycle, before the chain: soft-start scale; speed and workspace checks (the fault they
   // raise, or none) and the handle force of the walls and speed damping, with the group's force (the arms'
   // repulsion), offered to the model (RenderGuard). qd: the joint-velocity estimate.
-  DeviceFault begin_cycle(const JointVector& qd, const ChainState& chain,
-                          const Eigen::Vector3d& group_force = Eigen::Vector3d::Zero()) noexcept;
+  DeviceFault begin_cycle(const JointVector& qd, const ChainState& chain, const Eigen::Vector3d& group_force) noexcept;
   // After the controller: joint velocity damping, the handle force unless the model rendered it
   // (TaskTarget::includes_safety_force), then the thermal and peak torque limits; `saturated` tells whether the
   // torque limit clamped.

@@ -217,7 +217,8 @@ std::vector<std::unique_ptr<GroupStage>> build_group_stages(
                             g.key_path + (g.min_distance_m > 0.0 ? ".min_distance_m" : ".repulsion"),
                             "group '" + g.name + "' checks distances, but device '" + d->name() +
                                 "' has no robot model (no collision geometry)");
-    stages.push_back(std::make_unique<GroupStage>(g.name, std::move(members), g.min_distance_m, g.repulsion));
+    stages.push_back(std::make_unique<GroupStage>(g.name, std::move(members), g.min_distance_m, g.repulsion,
+                                                  1.0 / config.server.rate_hz));
   }
   return stages;
 }

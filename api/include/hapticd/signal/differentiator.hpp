@@ -33,6 +33,25 @@ class Differentiator {
   Vector previous_, velocity_;
 };
 
+// First-order low-pass at cutoff_hz (<= 0: none, the output is the input). Real-time safe after reset().
+template <typename Vector>
+class LowPass {
+ public:
+  void configure(double period, double cutoff_hz) noexcept {
+    alpha_ = cutoff_hz > 0.0 ? 1.0 - std::exp(-2.0 * M_PI * cutoff_hz * period) : 1.0;
+  }
+  void reset(const Vector& value) noexcept { value_ = value; }
+  const Vector& update(const Vector& input) noexcept {
+    value_ += alpha_ * (input - value_);
+    return value_;
+  }
+  [[nodiscard]] const Vector& value() const noexcept { return value_; }
+
+ private:
+  double alpha_ = 1.0;
+  Vector value_;
+};
+
 // Rate limiter: the output follows the input with at most max_rate per second in each element.
 template <typename Vector>
 class RateLimiter {
