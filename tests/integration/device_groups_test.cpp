@@ -133,9 +133,9 @@ TEST(DeviceGroups, TheGroupStageDoesNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
   Session s = test::build_test_session(facing_pair("8", 0.03, "    repulsion: {distance_m: 0.9}\n"));
   s.step(10);  // powered, the chains active
-  DeviceGroup& group = *s.impl().group;
+  LoopCycle& cycle = *s.impl().cycle;
   testing::AllocationGuard guard;
-  for (std::uint64_t k = 10; k < 1010; ++k) group.run_cycle(test::cycle_at(k), 1.0, 0, 0);
+  for (std::uint64_t k = 10; k < 1010; ++k) cycle.run_cycle(test::cycle_at(k), 1.0, 0, 0);
   EXPECT_EQ(guard.allocations(), 0u);
   EXPECT_LT(guard_of(s).latest_distance(), 1.0);     // the guards ran
   EXPECT_GT(guard_of(s).latest_repulsion_n(), 0.0);  // and repelled

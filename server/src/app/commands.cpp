@@ -58,10 +58,14 @@ std::optional<LoadedSession> load(const std::string& file, const std::vector<std
   return std::nullopt;
 }
 
-void print_schema(const ParameterSchema& schema) {
-  if (schema.specs().empty()) fmt::print("  (no parameters)\n");
+// indent: the keys' indent (a nested mapping's keys stand further in than their parent's).
+void print_schema(const ParameterSchema& schema, int indent = 2) {
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  const int width = 26 - indent;
+  if (schema.specs().empty()) fmt::print("{}(no parameters)\n", pad);
   for (const auto& spec : schema.specs())
-    fmt::print("  {:<24} {}\n  {:<24}   {}\n", spec.name, spec.description, "", spec.constraints_text());
+    fmt::print("{}{:<{}} {}\n{}{:<{}}   {}\n", pad, spec.name, width, spec.description, pad, "", width,
+               spec.constraints_text());
 }
 
 }  // namespace
@@ -302,7 +306,11 @@ int describe_config(const std::string& config_file) {
              "hard minimum clearance between any two of its devices' collision capsules: below it both enter "
              "their safe mode (0 .. 1, default 0: measured, never tripped)");
   fmt::print("  {:<24} {}\n", "repulsion", "a spring-damper between the arms' nearest points, felt on the handles:");
-  print_schema(repulsion_schema());
+  print_schema(repulsion_schema(), 4);
+  fmt::print("  {:<24} {}\n", "loop",
+             "present: the group runs on a loop thread of its own (real time; in lockstep all loops run on one "
+             "thread), else on the session's loop:");
+  print_schema(group_loop_schema(), 4);
   fmt::print("\nbase_pose of a device entry (docs/configuration.md):\n");
   print_schema(base_pose_schema());
   fmt::print("\nsafety section of a device entry (docs/safety.md):\n");

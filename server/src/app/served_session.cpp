@@ -1,6 +1,9 @@
 #include "app/served_session.hpp"
 
+#include <algorithm>
 #include <thread>
+
+#include "group/group_stage.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -17,17 +20,38 @@ ExecutorSettings executor_settings(const ServerSettings& server, bool realtime_s
   return s;
 }
 
-// Where the DDS threads run (docs/dds-interface.md, "CPUs"); may pin the loop too (auto: the last CPU).
-std::vector<int> dds_cpus_for(const DdsSettings& dds, bool realtime_setup, ExecutorSettings& settings) {
+// The groups that run on a loop of their own (`groups[i].loop`), with their devices as built.
+std::vector<SeparateLoop> separate_loops(const SessionConfig& config, const std::vector<GroupStage*>& stages,
+                                         bool realtime_setup) {
+  std::vector<SeparateLoop> loops;
+  for (const GroupConfig& g : config.groups) {
+    if (!g.own_loop) continue;
+    for (const GroupStage* stage : stages)
+      if (stage->name() == g.name)
+        loops.push_back(SeparateLoop{g.name, stage->devices(), realtime_setup ? g.loop_cpu : -1});
+  }
+  return loops;
+}
+
+// Where the DDS threads run (docs/dds-interface.md, "CPUs"); may pin the session's loop too (auto: the last CPU
+// no group's loop is pinned to). Auto keeps the DDS threads off every loop's CPU; when the loops take every CPU
+// the DDS threads are not pinned.
+std::vector<int> dds_cpus_for(const DdsSettings& dds, bool realtime_setup, ExecutorSettings& settings,
+                              const std::vector<SeparateLoop>& separate) {
   std::vector<int> cpus;
   if (!dds.enabled || !realtime_setup) return cpus;
   const int n = static_cast<int>(std::thread::hardware_concurrency());
   if (dds.cpu >= 0) {
     cpus = {dds.cpu};
   } else if (dds.cpu == -2 && !settings.lockstep && n >= 2) {
-    if (settings.cpu < 0) settings.cpu = n - 1;
+    const auto taken = [&](int c) {
+      return c == settings.cpu ||
+             std::any_of(separate.begin(), separate.end(), [c](const SeparateLoop& l) { return l.cpu == c; });
+    };
+    for (int c = n - 1; c >= 0 && settings.cpu < 0; --c)
+      if (!taken(c)) settings.cpu = c;
     for (int c = 0; c < n; ++c)
-      if (c != settings.cpu) cpus.push_back(c);
+      if (!taken(c)) cpus.push_back(c);
   }
   return cpus;
 }
@@ -37,20 +61,22 @@ std::vector<int> dds_cpus_for(const DdsSettings& dds, bool realtime_setup, Execu
 ServedSession::ServedSession(const SessionConfig& config, const std::vector<DeviceSession*>& devices,
                              std::vector<GroupStage*> stages, const ServeOptions& options)
     : settings_(executor_settings(config.server, options.realtime_setup)) {
-  dds_cpus_ = dds_cpus_for(config.dds, options.realtime_setup, settings_);
+  const std::vector<SeparateLoop> separate = separate_loops(config, stages, options.realtime_setup);
+  dds_cpus_ = dds_cpus_for(config.dds, options.realtime_setup, settings_, separate);
   if (!options.record_csv.empty()) {
     std::vector<std::string> names;
     for (const DeviceSession* d : devices) names.push_back(d->name());
-    recorder_ = std::make_unique<Recorder>(options.record_csv, names, settings_.lockstep);
+    recorder_ = std::make_unique<Recorder>(options.record_csv, names, settings_.lockstep,
+                                           settings_.lockstep ? 1 : 1 + separate.size());
   }
-  executor_ = std::make_unique<Executor>(settings_, devices, recorder_.get(), std::move(stages));
+  executor_ = std::make_unique<Executor>(settings_, devices, recorder_.get(), std::move(stages), separate);
   if (config.dds.enabled) {
     try {
       bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices, dds_cpus_);
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("DDS interface: ") + e.what());
     }
-    bridge_->set_loop_statistics(&executor_->live());
+    for (std::size_t d = 0; d < devices.size(); ++d) bridge_->set_loop_statistics(d, &executor_->live_of(devices[d]));
     set_cycle_listener(bridge_.get());
     bridge_->start();
   }

@@ -37,6 +37,12 @@ std::string events_json(const SessionReport& r, std::size_t device) {
   return out + "]";
 }
 
+std::vector<std::string> quoted(const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  for (const std::string& n : names) out.push_back("\"" + json_text(n) + "\"");
+  return out;
+}
+
 }  // namespace
 
 bool any_device_faulted(const SessionReport& r) {
@@ -58,6 +64,17 @@ std::string report_json(const SessionReport& r) {
                      r.result->loop_time_s, r.result->wall_time_s, r.result->stop_requested);
   out += "  \"wakeup_latency_us\": " + histogram_json(s.wakeup_latency) + ",\n";
   out += "  \"compute_time_us\": " + histogram_json(s.compute_time) + ",\n";
+  out += "  \"loops\": [";
+  for (std::size_t k = 0; k < r.result->loops.size(); ++k) {
+    const LoopResult& l = r.result->loops[k];
+    out += fmt::format(
+        "{}\n    {{\"name\": \"{}\", \"cpu\": {}, \"devices\": [{}], \"cycles\": {}, \"overruns\": {}, "
+        "\"skipped_cycles\": {}, \"wakeup_latency_us\": {}, \"compute_time_us\": {}}}",
+        k ? "," : "", json_text(l.name), l.cpu, fmt::join(quoted(l.devices), ", "), l.statistics.cycles,
+        l.statistics.overruns, l.statistics.skipped_cycles, histogram_json(l.statistics.wakeup_latency),
+        histogram_json(l.statistics.compute_time));
+  }
+  out += "\n  ],\n";
   out += fmt::format("  \"recorder\": {{\"records\": {}, \"dropped\": {}, \"lost\": {}, \"failed\": {}}},\n",
                      r.records_written, r.records_dropped, r.records_lost, r.recording_failed);
   if (r.has_round_trip) {
@@ -88,11 +105,27 @@ std::string report_json(const SessionReport& r) {
 std::vector<std::string> report_lines(const SessionReport& r) {
   const CycleStatistics& s = r.result->statistics;
   std::vector<std::string> lines;
-  lines.push_back(fmt::format("{} cycles in {:.3f} s loop time ({:.3f} s wall), {} overruns, {} skipped", s.cycles,
-                              r.result->loop_time_s, r.result->wall_time_s, s.overruns, s.skipped_cycles));
+  const std::string loops =
+      r.result->loops.size() > 1 ? fmt::format(" over {} loops", r.result->loops.size()) : std::string();
+  lines.push_back(fmt::format("{} cycles{} in {:.3f} s loop time ({:.3f} s wall), {} overruns, {} skipped", s.cycles,
+                              loops, r.result->loop_time_s, r.result->wall_time_s, s.overruns, s.skipped_cycles));
   if (r.config->server.clock == ClockMode::realtime)
     lines.push_back("wake-up latency: " + histogram_summary(s.wakeup_latency));
   lines.push_back("compute time:    " + histogram_summary(s.compute_time));
+  if (r.result->loops.size() > 1) {
+    for (const LoopResult& l : r.result->loops) {
+      const double share = l.statistics.cycles ? 100.0 * static_cast<double>(l.statistics.overruns) /
+                                                     static_cast<double>(l.statistics.cycles)
+                                               : 0.0;
+      lines.push_back(fmt::format("loop '{}' ({}; {}): {} cycles, {} overruns ({:.2f} %), {} skipped", l.name,
+                                  l.cpu >= 0 ? fmt::format("CPU {}", l.cpu) : std::string("not pinned"),
+                                  fmt::join(l.devices, ", "), l.statistics.cycles, l.statistics.overruns, share,
+                                  l.statistics.skipped_cycles));
+      if (r.config->server.clock == ClockMode::realtime)
+        lines.push_back("  wake-up latency: " + histogram_summary(l.statistics.wakeup_latency));
+      lines.push_back("  compute time:    " + histogram_summary(l.statistics.compute_time));
+    }
+  }
   for (std::size_t i = 0; i < r.sessions->size(); ++i) {
     const DeviceSession& d = *(*r.sessions)[i];
     const std::string saturated =

@@ -44,8 +44,10 @@ class DdsBridge final : public CycleListener {
   DdsBridge(const DdsBridge&) = delete;
   DdsBridge& operator=(const DdsBridge&) = delete;
 
-  // Before start(): where the loop's live statistics are (the executor's).
-  void set_loop_statistics(const LiveLoopStatistics* live) noexcept { publisher_->set_loop_statistics(live); }
+  // Before start(): where the live statistics of the loop that drives `device` are (the executor's).
+  void set_loop_statistics(std::size_t device, const LiveLoopStatistics* live) noexcept {
+    publisher_->set_loop_statistics(device, live);
+  }
   void start();  // the publisher and receiver threads
   void stop();   // joins them; publishes the final states and telemetry first
 

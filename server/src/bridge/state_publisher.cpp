@@ -13,19 +13,21 @@ StatePublisher::StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSende
       events_(events),
       rate_hz_(rate_hz),
       snapshot_interval_(snapshot_interval),
+      live_(links.size(), nullptr),
       published_(links.size()) {
   for (std::size_t i = 0; i < links.size(); ++i)
     for (const SchemeChain& s : links[i].session->chain().schemes) published_[i].scheme_names.push_back(s.name);
 }
 
-hapticd_msg_LoopSummary StatePublisher::loop_summary() const noexcept {
+hapticd_msg_LoopSummary StatePublisher::loop_summary(std::size_t device) const noexcept {
   hapticd_msg_LoopSummary loop{};
   loop.rate_hz = rate_hz_;
-  if (live_ == nullptr) return loop;
-  loop.cycles = live_->cycles.load(std::memory_order_relaxed);
-  loop.overruns = live_->overruns.load(std::memory_order_relaxed);
-  loop.latency_max_us = static_cast<double>(live_->window_latency_max_ns.load(std::memory_order_relaxed)) * 1e-3;
-  loop.compute_max_us = static_cast<double>(live_->window_compute_max_ns.load(std::memory_order_relaxed)) * 1e-3;
+  const LiveLoopStatistics* live = live_[device];
+  if (live == nullptr) return loop;
+  loop.cycles = live->cycles.load(std::memory_order_relaxed);
+  loop.overruns = live->overruns.load(std::memory_order_relaxed);
+  loop.latency_max_us = static_cast<double>(live->window_latency_max_ns.load(std::memory_order_relaxed)) * 1e-3;
+  loop.compute_max_us = static_cast<double>(live->window_compute_max_ns.load(std::memory_order_relaxed)) * 1e-3;
   return loop;
 }
 
@@ -58,7 +60,7 @@ void StatePublisher::publish_states() {
       owner = d.gate.owner();
     }
     const StateLabels labels{d.session->name(), s.cycle / snapshot_interval_ + 1, d.session->schemes().active_name(),
-                             owner, loop_summary()};
+                             owner, loop_summary(i)};
     p.last = state_message(s, labels);
     d.round_trip.command_applied(s.engine_sequence, s.cycle);
     d.round_trip.state_written(p.last.serial, s.cycle, monotonic_now_ns());
@@ -90,18 +92,18 @@ void StatePublisher::publish_fault_report(std::size_t device, const FaultReport&
 }
 
 void StatePublisher::publish_telemetry() {
-  for (const auto& link : links_) {
-    const DeviceLink& d = *link;
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    const DeviceLink& d = links_[i];
     hapticd_msg_Telemetry t{};
     dds::set_text(t.device, d.session->name());
     t.wall_time_ns = dds::wall_clock_ns();
-    t.loop = loop_summary();
+    t.loop = loop_summary(i);
     t.states_published = d.states.load(std::memory_order_relaxed);
     {
       std::lock_guard lock(d.mutex);
       t.commands_received = d.gate.received();
       t.commands_accepted = d.gate.accepted();
-      for (int i = 0; i < dds::kRejectReasons; ++i) t.rejected[i] = d.gate.rejected()[static_cast<std::size_t>(i)];
+      for (int r = 0; r < dds::kRejectReasons; ++r) t.rejected[r] = d.gate.rejected()[static_cast<std::size_t>(r)];
     }
     t.requests = d.requests.load(std::memory_order_relaxed);
     t.deadline_misses = d.deadline_misses.load(std::memory_order_relaxed);

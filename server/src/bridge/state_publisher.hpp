@@ -21,8 +21,8 @@ class StatePublisher {
   StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, double rate_hz,
                  std::uint64_t snapshot_interval);
 
-  // Before the threads start: where the loop's live statistics are (the executor's).
-  void set_loop_statistics(const LiveLoopStatistics* live) noexcept { live_ = live; }
+  // Before the threads start: where the live statistics of the loop that drives `device` are (the executor's).
+  void set_loop_statistics(std::size_t device, const LiveLoopStatistics* live) noexcept { live_[device] = live; }
 
   // Publisher thread (and once more at the end): the new snapshot of every device as a state, and its events.
   // A device with nothing new has its last state repeated now and then, for readers that matched after it.
@@ -43,14 +43,14 @@ class StatePublisher {
     std::optional<Pose> start_pose;
     std::vector<std::string> scheme_names;
   };
-  [[nodiscard]] hapticd_msg_LoopSummary loop_summary() const noexcept;
+  [[nodiscard]] hapticd_msg_LoopSummary loop_summary(std::size_t device) const noexcept;
 
   DdsEndpoints& dds_;
   DeviceLinks& links_;
   EventSender& events_;
   double rate_hz_;
   std::uint64_t snapshot_interval_;
-  const LiveLoopStatistics* live_ = nullptr;
+  std::vector<const LiveLoopStatistics*> live_;  // per device: its loop's
   std::vector<Published> published_;
   std::mutex description_mutex_;
 };

@@ -217,7 +217,7 @@ std::vector<GroupConfig> read_groups(const YAML::Node& node, const std::string& 
   std::set<std::string> names, grouped;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string path = "groups[" + std::to_string(i) + "]";
-    MappingReader r(node[i], path, file, {"name", "devices", "min_distance_m", "repulsion"});
+    MappingReader r(node[i], path, file, {"name", "devices", "min_distance_m", "repulsion", "loop"});
     GroupConfig g;
     g.key_path = path;
     g.line = line_of(node[i]);
@@ -247,11 +247,20 @@ std::vector<GroupConfig> read_groups(const YAML::Node& node, const std::string& 
       if (!rep.IsMap()) throw ConfigError(file, line_of(rep), r.path_of("repulsion"), "expected a mapping");
       const Parameters p = read_parameters(rep, repulsion_schema(), file, r.path_of("repulsion"), line_of(rep), {});
       g.repulsion = RepulsionSettings{p.real("distance_m"), p.real("stiffness_n_per_m"), p.real("damping_n_s_per_m"),
-                                      p.real("max_force_n")};
+                                      p.real("max_force_n"), p.real("filter_hz")};
       if (g.repulsion.distance_m > 0.0 && g.repulsion.distance_m <= g.min_distance_m)
         throw ConfigError(file, line_of(rep["distance_m"]), r.path_of("repulsion") + ".distance_m",
                           "the repulsion must start farther out than the hard minimum (min_distance_m " +
                               format_value(g.min_distance_m) + ")");
+    }
+    if (const YAML::Node loop = r.optional("loop"); loop.IsDefined()) {
+      if (!loop.IsNull() && !loop.IsMap())
+        throw ConfigError(file, line_of(loop), r.path_of("loop"),
+                          "expected a mapping ({cpu: N}, or {} for no pinning)");
+      const Parameters p = read_parameters(loop.IsNull() ? YAML::Node(YAML::NodeType::Map) : loop, group_loop_schema(),
+                                           file, r.path_of("loop"), line_of(loop), {});
+      g.own_loop = true;
+      g.loop_cpu = static_cast<int>(p.integer("cpu"));
     }
     groups.push_back(std::move(g));
   }
@@ -333,6 +342,15 @@ ParameterSchema repulsion_schema() {
       .minimum(0.0)
       .maximum(1000.0)
       .default_value(d.filter_hz);
+  return s;
+}
+
+ParameterSchema group_loop_schema() {
+  ParameterSchema s;
+  s.integer("cpu", "pin the group's loop thread to this CPU; -1 does not pin")
+      .minimum(-1)
+      .maximum(1023)
+      .default_value(std::int64_t{-1});
   return s;
 }
 

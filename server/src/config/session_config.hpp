@@ -103,6 +103,10 @@ struct GroupConfig {
   std::vector<std::string> devices;
   double min_distance_m = 0.0;  // the hard minimum between any two of its devices' capsules; 0: no check
   RepulsionSettings repulsion;
+  // `loop`: the group runs on a loop thread of its own (in real time; lockstep runs every loop on one thread),
+  // pinned to loop_cpu (-1: not pinned). Without it the group runs on the session's loop.
+  bool own_loop = false;
+  int loop_cpu = -1;
   std::string key_path;  // "groups[0]"
   int line = 0;
 };
@@ -152,6 +156,8 @@ ParameterSchema dds_settings_schema();
 ParameterSchema base_pose_schema();
 // The schema of a group's `repulsion` mapping.
 ParameterSchema repulsion_schema();
+// The schema of a group's `loop` mapping.
+ParameterSchema group_loop_schema();
 
 // Reads and validates a session file, with overrides ("path=value", config/config_overrides.hpp) applied first.
 // Throws ConfigError naming file, line and key (or the override).

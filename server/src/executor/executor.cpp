@@ -6,21 +6,61 @@
 #include <thread>
 
 #include "executor/realtime_setup.hpp"
+#include "group/group_stage.hpp"
 #include "hapticd/demand.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
 
 Executor::Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder,
-                   std::vector<GroupStage*> stages)
+                   std::vector<GroupStage*> stages, const std::vector<SeparateLoop>& separate)
     : settings_(settings),
-      group_(std::move(sessions), recorder, std::move(stages)),
+      sessions_(std::move(sessions)),
       period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))) {
-  HAPTICD_DEMAND(period_ns_ > 0);  // the rate is validated with the session file (server.rate_hz)
+  HAPTICD_DEMAND(period_ns_ > 0);        // the rate is validated with the session file (server.rate_hz)
+  std::vector<const SeparateLoop*> own;  // lockstep runs every loop on one thread
+  if (!settings_.lockstep)
+    for (const SeparateLoop& l : separate)
+      if (!l.devices.empty()) own.push_back(&l);
+  const auto loop_of = [&](const DeviceSession* d) -> std::size_t {  // 0: the session's, k + 1: own[k]
+    for (std::size_t k = 0; k < own.size(); ++k)
+      if (std::find(own[k]->devices.begin(), own[k]->devices.end(), d) != own[k]->devices.end()) return k + 1;
+    return 0;
+  };
+  struct Share {
+    std::vector<DeviceSession*> devices;
+    std::vector<std::uint16_t> record_ids;
+    std::vector<GroupStage*> stages;
+  };
+  std::vector<Share> shares(own.size() + 1);
+  for (std::size_t i = 0; i < sessions_.size(); ++i) {
+    Share& share = shares[loop_of(sessions_[i])];
+    share.devices.push_back(sessions_[i]);
+    share.record_ids.push_back(static_cast<std::uint16_t>(i));
+  }
+  for (GroupStage* g : stages) shares[g->devices().empty() ? 0 : loop_of(g->devices().front())].stages.push_back(g);
+  for (std::size_t k = 0; k < shares.size(); ++k) {
+    if (k == 0 && shares[0].devices.empty() && !own.empty()) continue;  // every device is in a loop of its own
+    const std::size_t producer = loops_.size();
+    loops_.push_back(std::make_unique<Loop>(
+        k == 0 ? std::string("session") : own[k - 1]->name, k == 0 ? settings_.cpu : own[k - 1]->cpu,
+        LoopCycle(shares[k].devices, recorder, shares[k].stages, shares[k].record_ids, producer)));
+  }
 }
 
-void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, ExecutorResult& result) noexcept {
+const LiveLoopStatistics& Executor::live_of(const DeviceSession* device) const noexcept {
+  for (const auto& l : loops_) {
+    const auto& d = l->cycle.devices();
+    if (std::find(d.begin(), d.end(), device) != d.end()) return l->live;
+  }
+  return loops_.front()->live;
+}
+
+void Executor::loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_requested,
+                    LoopResult& result) noexcept {
   CycleStatistics& stats = result.statistics;
+  LoopCycle& group = loop.cycle;
+  LiveLoopStatistics& live = loop.live;
   const std::uint64_t run_cycles =
       settings_.duration_s > 0.0 ? static_cast<std::uint64_t>(std::llround(settings_.duration_s * settings_.rate_hz))
                                  : 0;
@@ -45,7 +85,7 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
     if (!ramping && !stopping && stop_requested.load(std::memory_order_relaxed)) {
       stopping = true;
       result.stop_requested = true;
-      for (DeviceSession* s : group_.devices()) s->request_safe_stop();
+      for (DeviceSession* s : group.devices()) s->request_safe_stop();
     }
     if (!ramping && !stopping && run_cycles > 0 && index >= run_cycles) {
       ramping = true;
@@ -57,8 +97,8 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
                 : 1.0;
 
     // One cycle in phases, each for every device before the next (docs/architecture.md, "One cycle").
-    group_.run_cycle(CycleTime{deadline_ns - start_ns, period_ns_, index}, scale, consecutive_overruns,
-                     wake_ns - deadline_ns);
+    group.run_cycle(CycleTime{deadline_ns - start_ns, period_ns_, index}, scale, consecutive_overruns,
+                    wake_ns - deadline_ns);
 
     const std::int64_t compute_end_ns = monotonic_now_ns();
     if (listener_ != nullptr) listener_->after_cycle(index, clock.is_virtual());
@@ -68,15 +108,15 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
     stats.record(wake_ns - deadline_ns, compute_end_ns - compute_start_ns, overrun);
     window_latency_ns = std::max(window_latency_ns, wake_ns - deadline_ns);
     window_compute_ns = std::max(window_compute_ns, compute_end_ns - compute_start_ns);
-    live_.cycles.store(stats.cycles, std::memory_order_relaxed);
-    live_.overruns.store(stats.overruns, std::memory_order_relaxed);
+    live.cycles.store(stats.cycles, std::memory_order_relaxed);
+    live.overruns.store(stats.overruns, std::memory_order_relaxed);
     if ((index + 1) % window_cycles == 0) {
-      live_.window_latency_max_ns.store(window_latency_ns, std::memory_order_relaxed);
-      live_.window_compute_max_ns.store(window_compute_ns, std::memory_order_relaxed);
+      live.window_latency_max_ns.store(window_latency_ns, std::memory_order_relaxed);
+      live.window_compute_max_ns.store(window_compute_ns, std::memory_order_relaxed);
       window_latency_ns = window_compute_ns = 0;
     }
 
-    const bool stopped = stopping && group_.at_rest();
+    const bool stopped = stopping && group.at_rest();
     if ((ramping && index - ramp_start + 1 >= ramp_cycles) || stopped) {
       result.periods = index + 1;
       break;
@@ -98,56 +138,83 @@ void Executor::loop(LoopClock& clock, const std::atomic<bool>& stop_requested, E
 
 ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std::function<void()>& monitor) {
   ExecutorResult result;
-  const std::vector<DeviceSession*>& devices = group_.devices();
   if (!settings_.lockstep && settings_.lock_memory)
     if (std::string w = lock_process_memory(); !w.empty()) result.warnings.push_back(std::move(w));
+  result.loops.resize(loops_.size());
+  for (std::size_t k = 0; k < loops_.size(); ++k) {
+    result.loops[k].name = loops_[k]->name;
+    result.loops[k].cpu = settings_.lockstep ? -1 : loops_[k]->cpu;
+    for (const DeviceSession* d : loops_[k]->cycle.devices()) result.loops[k].devices.push_back(d->name());
+  }
 
-  // The loop thread exists before any device is powered: a thread that cannot be created (no memory) ends the
+  // The loop threads exist before any device is powered: a thread that cannot be created (no memory) ends the
   // start with an error while every drive is still off.
   std::atomic<bool> go{false};
   std::atomic<bool> cancelled{false};
-  std::atomic<bool> done{false};
+  std::atomic<std::size_t> running{loops_.size()};
   std::int64_t wall_start_ns = 0;
-  std::thread thread([&] {
-    while (!go.load(std::memory_order_acquire)) std::this_thread::yield();
-    if (cancelled.load(std::memory_order_acquire)) return;
-    if (!settings_.lockstep) minimise_timer_slack();
-    if (!settings_.lockstep && settings_.lock_memory) prefault_stack();
-    if (settings_.lockstep) {
-      VirtualClock clock;
-      loop(clock, stop_requested, result);
-    } else {
-      MonotonicClock clock;
-      loop(clock, stop_requested, result);
-    }
-    done.store(true, std::memory_order_release);
-  });
+  std::vector<std::thread> threads;
+  const auto join_all = [&] {
+    for (std::thread& t : threads)
+      if (t.joinable()) t.join();
+  };
   try {
-    if (!settings_.lockstep) {
-      auto warnings = make_thread_realtime(thread, settings_.realtime_priority, settings_.cpu);
-      result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
+    for (std::size_t k = 0; k < loops_.size(); ++k) {
+      threads.emplace_back([&, k] {
+        // Asleep until then (a futex, not a spin: SCHED_FIFO loop threads spinning on every CPU would starve the
+        // thread that powers the devices, and the kernel's real-time throttling would then stall the loops).
+        go.wait(false, std::memory_order_acquire);
+        if (cancelled.load(std::memory_order_acquire)) return;
+        if (!settings_.lockstep) minimise_timer_slack();
+        if (!settings_.lockstep && settings_.lock_memory) prefault_stack();
+        if (settings_.lockstep) {
+          VirtualClock clock;
+          loop(*loops_[k], clock, stop_requested, result.loops[k]);
+        } else {
+          MonotonicClock clock;
+          loop(*loops_[k], clock, stop_requested, result.loops[k]);
+        }
+        running.fetch_sub(1, std::memory_order_release);
+      });
+      if (settings_.lockstep) continue;
+      for (std::string& w : make_thread_realtime(threads.back(), settings_.realtime_priority, loops_[k]->cpu))
+        result.warnings.push_back(loops_.size() > 1 ? "loop '" + loops_[k]->name + "': " + w : std::move(w));
     }
   } catch (...) {
-    // The loop never runs and no device was powered.
+    // No loop runs and no device was powered.
     cancelled.store(true, std::memory_order_release);
     go.store(true, std::memory_order_release);
-    thread.join();
+    go.notify_all();
+    join_all();
     throw;
   }
   // A device that cannot be enabled or homed is held in its safe state by its session; the others run.
-  for (DeviceSession* d : devices) d->activate();
+  for (DeviceSession* d : sessions_) d->activate();
   wall_start_ns = monotonic_now_ns();
   go.store(true, std::memory_order_release);
+  go.notify_all();
 
-  while (!done.load(std::memory_order_acquire)) {
+  while (running.load(std::memory_order_acquire) > 0) {
     if (monitor) monitor();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  thread.join();
+  join_all();
   if (monitor) monitor();
   result.wall_time_s = static_cast<double>(monotonic_now_ns() - wall_start_ns) * 1e-9;
 
-  for (DeviceSession* s : devices) {
+  for (const LoopResult& l : result.loops) {
+    CycleStatistics& all = result.statistics;
+    all.wakeup_latency.merge(l.statistics.wakeup_latency);
+    all.compute_time.merge(l.statistics.compute_time);
+    all.cycles += l.statistics.cycles;
+    all.overruns += l.statistics.overruns;
+    all.skipped_cycles += l.statistics.skipped_cycles;
+    all.max_consecutive_overruns = std::max(all.max_consecutive_overruns, l.statistics.max_consecutive_overruns);
+    result.periods = std::max(result.periods, l.periods);
+    result.loop_time_s = std::max(result.loop_time_s, l.loop_time_s);
+    result.stop_requested = result.stop_requested || l.stop_requested;
+  }
+  for (DeviceSession* s : sessions_) {
     s->deactivate();
     if (!s->disable_error().empty())
       result.warnings.push_back("device '" + s->name() + "': " + s->disable_error() + " (its drives may still be on)");

@@ -1,20 +1,24 @@
 #pragma once
-// The fixed-rate loop. It runs on a thread of its own (SCHED_FIFO and locked memory when permitted), sleeps
-// to absolute deadlines on its clock, runs every device session of the group each cycle (all devices see the
-// same instant), hands records to the recorder, and keeps timing statistics. When the duration is reached it
-// ramps every device's torque linearly to zero over the shutdown ramp, then stops; when a stop is requested
-// (SIGINT/SIGTERM) every device takes an emergency stop - its safe mode, damping then zero torque - and the loop
-// stops once all of them are at zero torque. Each cycle tells the devices the current run of consecutive
-// overruns (their watchdog).
+// The fixed-rate loops. Each runs on a thread of its own (SCHED_FIFO and locked memory when permitted), sleeps
+// to absolute deadlines on its clock, runs its devices each cycle in phases (all devices of a loop see the same
+// instant), hands records to the recorder, and keeps timing statistics. The session's loop drives every device
+// not in a group with a loop of its own (`groups[i].loop`); each such group runs on a loop thread of its own,
+// pinned to its CPU, at the same rate and on the same schedule. In lockstep every loop runs on one thread (the
+// virtual clock has no CPUs to spread over, and one thread keeps runs repeatable). When the duration is reached
+// each loop ramps its devices' torques linearly to zero over the shutdown ramp, then stops; when a stop is
+// requested (SIGINT/SIGTERM) every device takes an emergency stop - its safe mode, damping then zero torque - and
+// a loop stops once all its devices are at zero torque. Each cycle tells the devices the current run of
+// consecutive overruns of their loop (their watchdog).
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "executor/cycle_statistics.hpp"
-#include "executor/device_group.hpp"
 #include "executor/loop_clock.hpp"
+#include "executor/loop_cycle.hpp"
 
 namespace hapticd::server {
 
@@ -39,12 +43,31 @@ struct ExecutorSettings {
   int cpu = -1;
 };
 
-struct ExecutorResult {
+// A group whose devices run on a loop thread of their own (`groups[i].loop`).
+struct SeparateLoop {
+  std::string name;  // the group's
+  std::vector<DeviceSession*> devices;
+  int cpu = -1;  // -1: not pinned
+};
+
+// One loop's figures.
+struct LoopResult {
+  std::string name;  // "session", or the group's
+  int cpu = -1;
+  std::vector<std::string> devices;
   CycleStatistics statistics;
+  std::uint64_t periods = 0;
+  double loop_time_s = 0.0;
+  bool stop_requested = false;
+};
+
+struct ExecutorResult {
+  CycleStatistics statistics;  // every loop's cycles together
+  std::vector<LoopResult> loops;
   std::vector<std::string> warnings;  // real-time set-up that was not permitted
   bool stop_requested = false;        // ended by request rather than by duration
-  std::uint64_t periods = 0;          // periods elapsed on the loop clock: cycles run + skipped
-  double loop_time_s = 0.0;           // time on the loop clock (virtual in lockstep)
+  std::uint64_t periods = 0;          // periods elapsed on the loop clock: cycles run + skipped (the longest loop)
+  double loop_time_s = 0.0;           // time on the loop clock (virtual in lockstep; the longest loop)
   double wall_time_s = 0.0;
 };
 
@@ -59,9 +82,11 @@ struct LiveLoopStatistics {
 
 class Executor {
  public:
-  // stages: the group stages of the device groups among the sessions (phase (b) of each cycle).
+  // sessions: every device, in the session's order (their numbers in the recording); stages: the device groups'
+  // stages (phase (b) of each cycle), each run by the loop that holds its devices; separate: the groups with a
+  // loop of their own (ignored in lockstep). The recorder, if any, has a ring for every loop.
   Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder,
-           std::vector<GroupStage*> stages = {});
+           std::vector<GroupStage*> stages = {}, const std::vector<SeparateLoop>& separate = {});
 
   // Activates the sessions, runs the loop until the duration has passed or stop_requested turns true, ramps
   // down and deactivates. While the loop runs, the calling thread calls `monitor` every 20 ms (for logging:
@@ -69,17 +94,28 @@ class Executor {
   ExecutorResult run(const std::atomic<bool>& stop_requested, const std::function<void()>& monitor = {});
 
   [[nodiscard]] std::int64_t period_ns() const noexcept { return period_ns_; }
-  // Before run().
+  // Before run(). With several loops it is called by each loop's thread (concurrently in real time).
   void set_cycle_listener(CycleListener* listener) noexcept { listener_ = listener; }
-  [[nodiscard]] const LiveLoopStatistics& live() const noexcept { return live_; }
+  // The live figures of the first loop, and of the loop that drives `device`.
+  [[nodiscard]] const LiveLoopStatistics& live() const noexcept { return loops_.front()->live; }
+  [[nodiscard]] const LiveLoopStatistics& live_of(const DeviceSession* device) const noexcept;
+  [[nodiscard]] std::size_t loop_count() const noexcept { return loops_.size(); }
 
  private:
-  void loop(LoopClock& clock, const std::atomic<bool>& stop_requested, ExecutorResult& result) noexcept;
+  struct Loop {
+    Loop(std::string loop_name, int loop_cpu, LoopCycle loop_cycle)
+        : name(std::move(loop_name)), cpu(loop_cpu), cycle(std::move(loop_cycle)) {}
+    std::string name;
+    int cpu;
+    LoopCycle cycle;  // the devices, and their cycle
+    LiveLoopStatistics live;
+  };
+  void loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_requested, LoopResult& result) noexcept;
 
   ExecutorSettings settings_;
-  DeviceGroup group_;  // the devices, and their cycle
+  std::vector<DeviceSession*> sessions_;
+  std::vector<std::unique_ptr<Loop>> loops_;  // the session's first (when it has devices), then the groups'
   CycleListener* listener_ = nullptr;
-  LiveLoopStatistics live_;
   std::int64_t period_ns_;
 };
 

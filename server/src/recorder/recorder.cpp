@@ -18,8 +18,11 @@ constexpr std::int64_t kSyncBytes = 4 * 1024 * 1024;  // synced to the disk this
 
 }  // namespace
 
-Recorder::Recorder(const std::filesystem::path& file, std::vector<std::string> device_names, bool wait_when_full)
-    : device_names_(std::move(device_names)), wait_when_full_(wait_when_full), ring_(1 << 14), file_(file) {
+Recorder::Recorder(const std::filesystem::path& file, std::vector<std::string> device_names, bool wait_when_full,
+                   std::size_t producers)
+    : device_names_(std::move(device_names)), wait_when_full_(wait_when_full), file_(file) {
+  for (std::size_t k = 0; k < std::max<std::size_t>(1, producers); ++k)
+    rings_.push_back(std::make_unique<SpscRing<CycleRecord>>(1 << 14));
   fd_ = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0)
     throw std::runtime_error("cannot open the recording file " + file.string() + ": " + std::strerror(errno));
@@ -38,7 +41,7 @@ Recorder::Recorder(const std::filesystem::path& file, std::vector<std::string> d
 
 Recorder::~Recorder() { finish(); }
 
-void Recorder::record(const CycleTime& cycle, std::uint16_t device, const DeviceState& state,
+void Recorder::record(std::size_t producer, const CycleTime& cycle, std::uint16_t device, const DeviceState& state,
                       const JointCommand& command) noexcept {
   CycleRecord r;
   r.cycle = cycle.index;
@@ -55,7 +58,8 @@ void Recorder::record(const CycleTime& cycle, std::uint16_t device, const Device
     r.sensor_wrench[a] = state.sensor_wrench.force[a];
     r.sensor_wrench[3 + a] = state.sensor_wrench.torque[a];
   }
-  while (!ring_.try_push(r)) {
+  SpscRing<CycleRecord>& ring = *rings_[producer];
+  while (!ring.try_push(r)) {
     if (!wait_when_full_) {
       dropped_.fetch_add(1, std::memory_order_relaxed);
       return;
@@ -139,15 +143,18 @@ void Recorder::write_loop() {
   CycleRecord r;
   for (;;) {
     bool any = false;
-    while (ring_.try_pop(r)) {
-      format_record(r);
-      any = true;
-      if (chunk_.size() >= kChunkBytes) (void)flush_chunk();
+    for (const auto& ring : rings_) {
+      while (ring->try_pop(r)) {
+        format_record(r);
+        any = true;
+        if (chunk_.size() >= kChunkBytes) (void)flush_chunk();
+      }
     }
     if (!chunk_.empty()) (void)flush_chunk();
     if (!any) {
       if (stop_.load(std::memory_order_acquire)) {
-        while (ring_.try_pop(r)) format_record(r);
+        for (const auto& ring : rings_)
+          while (ring->try_pop(r)) format_record(r);
         (void)flush_chunk();
         return;
       }

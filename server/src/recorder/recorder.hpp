@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -37,15 +38,20 @@ struct CycleRecord {
 
 class Recorder {
  public:
-  // Opens the file (throws std::runtime_error if it cannot) and starts the writer thread.
-  Recorder(const std::filesystem::path& file, std::vector<std::string> device_names, bool wait_when_full);
+  // Opens the file (throws std::runtime_error if it cannot) and starts the writer thread. producers: the loop
+  // threads that record, each into a ring of its own (with several, rows of different loops interleave in
+  // chunks: sort by cycle).
+  Recorder(const std::filesystem::path& file, std::vector<std::string> device_names, bool wait_when_full,
+           std::size_t producers = 1);
   ~Recorder();
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
 
-  // Real-time safe (in real-time mode; in lockstep it may wait for the writer).
-  void record(const CycleTime& cycle, std::uint16_t device, const DeviceState& state,
+  // Real-time safe (in real-time mode; in lockstep it may wait for the writer). Only `producer`'s loop thread
+  // records into its ring (0 .. producers - 1).
+  void record(std::size_t producer, const CycleTime& cycle, std::uint16_t device, const DeviceState& state,
               const JointCommand& command) noexcept;
+  [[nodiscard]] std::size_t producers() const noexcept { return rings_.size(); }
   // Not real-time safe. Writes what is queued, stops the writer and closes the file.
   void finish();
 
@@ -67,7 +73,7 @@ class Recorder {
 
   std::vector<std::string> device_names_;
   bool wait_when_full_;
-  SpscRing<CycleRecord> ring_;
+  std::vector<std::unique_ptr<SpscRing<CycleRecord>>> rings_;  // one per producer
   std::filesystem::path file_;
   int fd_ = -1;
   std::string chunk_;  // formatted whole records not yet written (writer thread)

@@ -19,7 +19,7 @@ std::unique_ptr<Session::Impl> build(SessionConfig config, const SessionOptions&
   impl->loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(paths));
   impl->devices = build_sessions(impl->config, *impl->loader);
   impl->stages = build_group_stages(impl->config, impl->devices);
-  impl->group = std::make_unique<DeviceGroup>(impl->device_pointers(), nullptr, impl->stage_pointers());
+  impl->cycle = std::make_unique<LoopCycle>(impl->device_pointers(), nullptr, impl->stage_pointers());
   impl->period_ns = static_cast<std::int64_t>(std::llround(1e9 / impl->config.server.rate_hz));
   return impl;
 }
@@ -102,7 +102,7 @@ void Session::step(std::uint64_t cycles) {
   for (std::uint64_t k = 0; k < cycles; ++k) {
     const std::uint64_t index = s.next_cycle++;
     const std::int64_t start_ns = monotonic_now_ns();
-    s.group->run_cycle(CycleTime{static_cast<std::int64_t>(index) * s.period_ns, s.period_ns, index}, 1.0, 0, 0);
+    s.cycle->run_cycle(CycleTime{static_cast<std::int64_t>(index) * s.period_ns, s.period_ns, index}, 1.0, 0, 0);
     s.statistics.record(0, monotonic_now_ns() - start_ns, false);
     if (k % 64 == 63)
       for (const auto& d : s.devices) d->service();  // as the server's monitor does every 20 ms
@@ -174,7 +174,7 @@ void Session::stop() {
   for (std::uint64_t k = 1; k <= ramp; ++k) {
     const std::uint64_t index = s.next_cycle++;
     const double scale = std::max(0.0, 1.0 - static_cast<double>(k) / static_cast<double>(ramp));
-    s.group->run_cycle(CycleTime{static_cast<std::int64_t>(index) * s.period_ns, s.period_ns, index}, scale, 0, 0);
+    s.cycle->run_cycle(CycleTime{static_cast<std::int64_t>(index) * s.period_ns, s.period_ns, index}, scale, 0, 0);
   }
   std::string failed;
   for (const auto& d : s.devices) {

@@ -1,6 +1,6 @@
 #pragma once
 // What a Session (hapticd/server/session.hpp) holds: the configuration, the plugins, the device sessions and
-// the group that runs their cycle. The server's own tests reach the device sessions through it (to drive one
+// the loop cycle that runs them. The server's own tests reach the device sessions through it (to drive one
 // device's phases alone, or to run the real executor over them); everything else uses the public API.
 #include <memory>
 #include <string_view>
@@ -8,8 +8,8 @@
 
 #include "config/session_config.hpp"
 #include "executor/cycle_statistics.hpp"
-#include "executor/device_group.hpp"
 #include "executor/executor.hpp"
+#include "executor/loop_cycle.hpp"
 #include "group/group_stage.hpp"
 #include "hapticd/server/session.hpp"
 #include "plugins/plugin_loader.hpp"
@@ -22,7 +22,7 @@ struct Session::Impl {
   std::unique_ptr<PluginLoader> loader;
   std::vector<std::unique_ptr<DeviceSession>> devices;
   std::vector<std::unique_ptr<GroupStage>> stages;  // the device groups' stages (`groups`)
-  std::unique_ptr<DeviceGroup> group;
+  std::unique_ptr<LoopCycle> cycle;                 // every device on one thread: lockstep
   std::int64_t period_ns = 0;
   std::uint64_t next_cycle = 0;
   bool activated = false;
