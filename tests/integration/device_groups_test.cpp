@@ -169,5 +169,18 @@ TEST(DeviceGroups, AreCheckedInTheSessionFile) {
   EXPECT_NE(inside.find("farther out than the hard minimum"), std::string::npos) << inside;
 }
 
+TEST(DeviceGroups, EveryRepulsionSettingOfTheFileIsTaken) {
+  Session s = test::build_test_session(facing_pair(
+      "8", 0.03,
+      "    repulsion: {distance_m: 0.2, stiffness_n_per_m: 800, damping_n_s_per_m: 12, max_force_n: 9, "
+      "filter_hz: 5}\n"));
+  const RepulsionSettings& r = s.impl().config.groups.at(0).repulsion;
+  EXPECT_EQ(r.distance_m, 0.2);
+  EXPECT_EQ(r.stiffness_n_per_m, 800.0);
+  EXPECT_EQ(r.damping_n_s_per_m, 12.0);
+  EXPECT_EQ(r.max_force_n, 9.0);
+  EXPECT_EQ(r.filter_hz, 5.0);  // was read and then dropped
+}
+
 }  // namespace
 }  // namespace hapticd::server
