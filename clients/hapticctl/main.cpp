@@ -96,18 +96,33 @@ int main(int argc, char** argv) {
   std::vector<double> values;
   double duration = 0.0, rate = 10.0;
 
+  std::string group;
+  bool all = false;
   auto* list = app.add_subcommand("list", "list the devices the servers on this domain describe");
+  auto* groups = app.add_subcommand("groups", "list the device groups the servers on this domain describe");
   auto* watch = app.add_subcommand("watch", "print a device's state live, and its events");
   watch->add_option("device", device, "device name")->required();
   watch->add_option("--rate", rate, "lines per second")->check(CLI::Range(0.1, 1000.0));
   watch->add_option("--duration", duration, "stop after this many seconds");
   double hold = 0.0;
-  auto* claim = app.add_subcommand("claim", "claim a device (as --id); a claim ends with the process that made it");
-  claim->add_option("device", device)->required();
+  // A device, or with --group every device of a group (claim: all or none), or with --all every device; exactly
+  // one of them (checked after parsing).
+  std::vector<CLI::App*> targeted;
+  const auto target = [&](CLI::App* command, bool with_all) {
+    auto* d = command->add_option("device", device, "device name");
+    auto* g = command->add_option("--group", group, "every device of this group");
+    d->excludes(g);
+    if (with_all)
+      command->add_flag("--all", all, "every device of every server on the domain")->excludes(d)->excludes(g);
+    targeted.push_back(command);
+  };
+  auto* claim = app.add_subcommand(
+      "claim", "claim a device or a group's devices, all or none (as --id); a claim ends with the process");
+  target(claim, false);
   claim->add_option("--hold", hold, "keep the claim this many seconds (until Ctrl-C with -1), then release it")
       ->check(CLI::Range(-1.0, 1e6));
   auto* release = app.add_subcommand("release", "release a device this process claimed (useful with --hold only)");
-  release->add_option("device", device)->required();
+  target(release, false);
   auto* switch_cmd = app.add_subcommand("scheme", "switch a device's control scheme");
   switch_cmd->add_option("device", device)->required();
   switch_cmd->add_option("scheme", scheme)->required();
@@ -122,17 +137,24 @@ int main(int argc, char** argv) {
   record->add_option("device", device)->required();
   record->add_option("file", file)->required();
   record->add_option("--duration", duration, "seconds (default: until Ctrl-C)");
-  auto* estop =
-      app.add_subcommand("estop", "emergency stop: the device goes to its safe mode (damping, then zero torque)");
-  estop->add_option("device", device)->required();
-  auto* recover = app.add_subcommand("recover", "leave the safe mode after a fault or an E-stop");
-  recover->add_option("device", device)->required();
+  auto* estop = app.add_subcommand(
+      "estop", "emergency stop: the device (--group: each of the group's, --all: every one) goes to its safe mode");
+  target(estop, true);
+  auto* recover = app.add_subcommand(
+      "recover", "leave the safe mode after a fault or an E-stop (--group / --all: every device or none)");
+  target(recover, true);
   auto* op =
       app.add_subcommand("operator", "drive a simulated device's operator: push FX FY FZ [RAMP_S] | release | grasp G");
   op->add_option("device", device)->required();
   op->add_option("command", what)->required()->check(CLI::IsMember({"push", "release", "grasp"}));
   op->add_option("values", values);
   CLI11_PARSE(app, argc, argv);
+  for (CLI::App* command : targeted)
+    if (command->parsed() && device.empty() && group.empty() && !all) {
+      fmt::print(stderr, "{}: name a device, or --group GROUP{}\n", command->get_name(),
+                 command->get_option_no_throw("--all") != nullptr ? ", or --all" : "");
+      return 106;  // CLI11's code for a missing argument
+    }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
@@ -163,6 +185,41 @@ int main(int argc, char** argv) {
           base.orientation[0], base.orientation[1], base.orientation[2], base.orientation[3]);
     }
     return 0;
+  }
+  if (*groups) {
+    const auto give_up = std::chrono::steady_clock::now() + wait;
+    while (client.groups().empty() && std::chrono::steady_clock::now() < give_up)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    const auto described = client.groups();
+    if (described.empty()) {
+      fmt::print("no device groups on domain {}\n", domain);
+      return 1;
+    }
+    for (const auto& g : described) {
+      std::string members;
+      for (int k = 0; k < g.device_count; ++k) members += (k ? ", " : "") + std::string(name_of(g.devices[k]));
+      fmt::print("{:<16} devices: {}; hard minimum {} m, repulsion from {} m; {}\n", name_of(g.group), members,
+                 g.min_distance_m, g.repulsion_distance_m, g.own_loop ? "a loop of its own" : "the session's loop");
+    }
+    return 0;
+  }
+  if (all) {  // every server answers; the reply shown is the first
+    if (*estop) return report(client.emergency_stop_group("*", wait));
+    return report(client.recover_group("*", wait));
+  }
+  if (!group.empty()) {
+    if (!client.wait_for_group(group, wait)) {
+      fmt::print(stderr, "no device group '{}' on domain {}\n", group, domain);
+      return 2;
+    }
+    if (*estop) return report(client.emergency_stop_group(group, wait));
+    if (*recover) return report(client.recover_group(group, wait));
+    if (*release) return report(client.release_group(group, wait));
+    const int code = report(client.claim_group(group, wait));
+    if (code != 0 || hold == 0.0) return code;
+    run_for(hold < 0.0 ? 0.0 : hold);
+    return report(client.release_group(group, wait));
   }
   if (!client.wait_for_device(device, wait)) {
     fmt::print(stderr, "no device '{}' on domain {}\n", device, domain);

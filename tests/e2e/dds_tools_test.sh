@@ -71,4 +71,35 @@ grep -q "device 'vishard3': 1 fault, 1 recovery; running at the end" server.log 
 grep -q "FAULT emergency_stop at cycle" server.log || fail "the final report does not list the stop"
 grep -q "recovered from emergency_stop at cycle" server.log || fail "the final report does not list the recovery"
 [ "$code" -eq 3 ] || fail "server exit code $code, expected 3 (a device faulted during the session)"
+
+# Device groups: a dual-arm session's group is listed; a group claim holds both arms, a second claimant gets
+# none; a group E-stop stops both; a group recovery by another client is refused while the group is claimed;
+# `estop --all` stops every device.
+sed -e "s|\.\./\.\./urdf/|$src/config/urdf/|" \
+    -e 's|^  - name: \(left\|right\)$|  - name: \1\n    safety: {max_consecutive_overruns: 60, max_stall_s: 0.1}|' \
+    "$src/config/sessions/dual-arm/vishard3-pair.yaml" > pair.yaml  # session_copy, for the devices only
+timeout 60 "$bin/hapticd" --config pair.yaml --dds-domain "$domain" --duration 20 > server.log 2>&1 &
+server=$!
+trap 'kill -9 $server 2>/dev/null || true; kill -9 ${holder:-} 2>/dev/null || true' EXIT
+ctl groups | tee groups.txt
+grep -q "^table .*devices: left, right; hard minimum 0.03 m, repulsion from 0.1 m" groups.txt ||
+  fail "hapticctl groups does not show the pair's group"
+timeout 20 "$bin/hapticctl" --domain "$domain" --id holder claim --group table --hold 6 > holder.txt &
+holder=$!
+sleep 1.5
+grep -q "accepted: claimed left, right" holder.txt || fail "the group claim did not take both arms"
+if ctl claim --group table; then fail "a second group claim was accepted"; fi
+ctl claim right | tee single.txt || true
+grep -q "refused: claimed by 'holder'" single.txt || fail "a single arm of a claimed group could be claimed"
+ctl estop --group table | tee stop.txt || fail "group e-stop refused"
+grep -q "accepted: stopped left, right" stop.txt || fail "the group e-stop did not name both arms"
+if ctl recover --group table > recover.txt; then fail "another client recovered the claimed group"; fi
+grep -q "none recovered" recover.txt || fail "the refused group recovery does not say so"
+ctl estop --all | tee all.txt || fail "estop --all refused"
+grep -q "accepted: stopped left, right" all.txt || fail "estop --all did not stop every device"
+kill -9 "$holder" 2>/dev/null || true
+kill -INT "$server"
+wait "$server" || true
+trap - EXIT
+grep -q "device 'left' fault emergency_stop" server.log || fail "the server log does not show the group e-stop"
 echo "dds tools: ok"

@@ -25,11 +25,14 @@ struct Client::Impl {
         telemetry(participant),
         fault_report(participant),
         reply(participant),
+        group_description(participant),
+        group_state(participant),
         command(participant, timing),
         request(participant),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {
-    for (dds_entity_t r : {description.get(), event.get(), telemetry.get(), fault_report.get(), reply.get()}) {
+    for (dds_entity_t r :
+         {description.get(), event.get(), telemetry.get(), fault_report.get(), reply.get(), group_description.get()}) {
       dds::check(dds_set_status_mask(r, DDS_DATA_AVAILABLE_STATUS), "status mask");
       dds::check(dds_waitset_attach(waitset.get(), r, r), "waitset");
     }
@@ -40,6 +43,10 @@ struct Client::Impl {
     const dds::Listener listener(dds_create_listener(this));
     dds_lset_data_available(listener.get(), [](dds_entity_t, void* arg) { static_cast<Impl*>(arg)->take_states(); });
     state.set_listener(listener.get());
+    const dds::Listener group_listener(dds_create_listener(this));
+    dds_lset_data_available(group_listener.get(),
+                            [](dds_entity_t, void* arg) { static_cast<Impl*>(arg)->take_group_states(); });
+    group_state.set_listener(group_listener.get());
   }
   ~Impl() {
     stopping.store(true);
@@ -48,8 +55,22 @@ struct Client::Impl {
     // No more state callbacks (Cyclone waits for a running one; a local writer's thread may be in it), then
     // synchronise with the last one through our own locks, which ThreadSanitizer sees (Cyclone's it does not).
     (void)dds_set_listener(state.get(), nullptr);
+    (void)dds_set_listener(group_state.get(), nullptr);
     std::lock_guard take(state_take_mutex);
     std::lock_guard lock(mutex);
+  }
+
+  void take_group_states() {
+    std::lock_guard one_at_a_time(state_take_mutex);
+    group_state.take([&](const hapticd_msg_GroupState& g, const dds_sample_info_t&) {
+      {
+        std::lock_guard lock(mutex);
+        store_group_state(g);
+      }
+      if (waiters.load(std::memory_order_acquire) > 0) changed.notify_all();
+      std::lock_guard lock(callback_mutex);
+      if (group_state_callback) group_state_callback(g);
+    });
   }
 
   void take_states() {
@@ -73,6 +94,13 @@ struct Client::Impl {
         {
           std::lock_guard lock(mutex);
           descriptions[std::string(dds::text_of(d.device))] = d;
+        }
+        changed.notify_all();
+      });
+      group_description.take([&](const hapticd_msg_GroupDescription& g, const dds_sample_info_t&) {
+        {
+          std::lock_guard lock(mutex);
+          group_descriptions[std::string(dds::text_of(g.group))] = g;
         }
         changed.notify_all();
       });
@@ -139,6 +167,22 @@ struct Client::Impl {
       if (dds::text_of(known.device) == device) return &known;
     return nullptr;
   }
+  std::map<std::string, hapticd_msg_GroupDescription> group_descriptions;
+  // The newest state per group (each about 7 kB; allocated once per group).
+  std::vector<std::unique_ptr<hapticd_msg_GroupState>> group_states;
+  void store_group_state(const hapticd_msg_GroupState& g) {
+    for (auto& known : group_states)
+      if (std::strncmp(known->group, g.group, sizeof g.group) == 0) {
+        *known = g;
+        return;
+      }
+    group_states.push_back(std::make_unique<hapticd_msg_GroupState>(g));
+  }
+  const hapticd_msg_GroupState* find_group_state(std::string_view group) const {
+    for (const auto& known : group_states)
+      if (dds::text_of(known->group) == group) return known.get();
+    return nullptr;
+  }
   std::map<std::uint64_t, Reply> replies;
   // Request ids start at a random point: replies are matched by (client id, request id), and two clients that
   // declare the same id must not take each other's replies.
@@ -150,6 +194,7 @@ struct Client::Impl {
   std::function<void(const hapticd_msg_Event&)> event_callback;
   std::function<void(const hapticd_msg_Telemetry&)> telemetry_callback;
   std::function<void(const hapticd_msg_FaultReport&)> fault_report_callback;
+  std::function<void(const hapticd_msg_GroupState&)> group_state_callback;
   std::map<std::string, std::unique_ptr<hapticd_msg_FaultReport>>
       fault_reports;  // the newest per device (~100 kB each)
   std::mutex state_take_mutex;
@@ -161,6 +206,8 @@ struct Client::Impl {
   dds::Reader<hapticd_msg_Telemetry> telemetry;
   dds::Reader<hapticd_msg_FaultReport> fault_report;
   dds::Reader<hapticd_msg_ControlReply> reply;
+  dds::Reader<hapticd_msg_GroupDescription> group_description;
+  dds::Reader<hapticd_msg_GroupState> group_state;
   dds::Writer<hapticd_msg_EngineCommand> command;
   dds::Writer<hapticd_msg_ControlRequest> request;
   dds::Entity waitset, wake;
@@ -217,6 +264,47 @@ std::optional<hapticd_msg_DeviceState> Client::wait_for_state(std::string_view d
   impl_->waiters.fetch_sub(1);
   if (!got) return std::nullopt;
   return *impl_->find_state(key);
+}
+
+std::vector<hapticd_msg_GroupDescription> Client::groups() const {
+  std::lock_guard lock(impl_->mutex);
+  std::vector<hapticd_msg_GroupDescription> v;
+  for (const auto& [name, g] : impl_->group_descriptions) v.push_back(g);
+  return v;
+}
+
+std::optional<hapticd_msg_GroupDescription> Client::wait_for_group(std::string_view group, Timeout timeout) {
+  std::unique_lock lock(impl_->mutex);
+  const std::string key(group);
+  if (!impl_->changed.wait_for(lock, timeout, [&] { return impl_->group_descriptions.count(key) > 0; }))
+    return std::nullopt;
+  return impl_->group_descriptions[key];
+}
+
+std::unique_ptr<hapticd_msg_GroupState> Client::latest_group_state(std::string_view group) const {
+  std::lock_guard lock(impl_->mutex);
+  const hapticd_msg_GroupState* g = impl_->find_group_state(group);
+  if (g == nullptr) return nullptr;
+  return std::make_unique<hapticd_msg_GroupState>(*g);
+}
+
+std::unique_ptr<hapticd_msg_GroupState> Client::wait_for_group_state(std::string_view group, Timeout timeout,
+                                                                     std::uint64_t after) {
+  std::unique_lock lock(impl_->mutex);
+  const std::string key(group);
+  impl_->waiters.fetch_add(1);
+  const bool got = impl_->changed.wait_for(lock, timeout, [&] {
+    const hapticd_msg_GroupState* g = impl_->find_group_state(key);
+    return g != nullptr && g->serial > after;
+  });
+  impl_->waiters.fetch_sub(1);
+  if (!got) return nullptr;
+  return std::make_unique<hapticd_msg_GroupState>(*impl_->find_group_state(key));
+}
+
+void Client::on_group_state(std::function<void(const hapticd_msg_GroupState&)> callback) {
+  std::lock_guard lock(impl_->callback_mutex);
+  impl_->group_state_callback = std::move(callback);
 }
 
 void Client::on_state(std::function<void(const hapticd_msg_DeviceState&)> callback) {
@@ -302,6 +390,21 @@ Reply Client::recover(std::string_view device, Timeout timeout) {
 Reply Client::operator_command(std::string_view device, std::string_view command, const std::vector<double>& values,
                                Timeout timeout) {
   return request(device, hapticd_msg_REQUEST_OPERATOR, command, values, timeout);
+}
+
+Reply Client::claim_group(std::string_view group, Timeout timeout) {
+  Reply r = request(group, hapticd_msg_REQUEST_GROUP_CLAIM, {}, {}, timeout);
+  if (r.accepted) reset_serial();
+  return r;
+}
+Reply Client::release_group(std::string_view group, Timeout timeout) {
+  return request(group, hapticd_msg_REQUEST_GROUP_RELEASE, {}, {}, timeout);
+}
+Reply Client::emergency_stop_group(std::string_view group, Timeout timeout) {
+  return request(group, hapticd_msg_REQUEST_GROUP_ESTOP, {}, {}, timeout);
+}
+Reply Client::recover_group(std::string_view group, Timeout timeout) {
+  return request(group, hapticd_msg_REQUEST_GROUP_RECOVER, {}, {}, timeout);
 }
 
 bool Client::send(std::string_view device, hapticd_msg_EngineCommand& command) {

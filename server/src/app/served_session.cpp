@@ -69,10 +69,10 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
     recorder_ = std::make_unique<Recorder>(options.record_csv, names, settings_.lockstep,
                                            settings_.lockstep ? 1 : 1 + separate.size());
   }
-  executor_ = std::make_unique<Executor>(settings_, devices, recorder_.get(), std::move(stages), separate);
+  executor_ = std::make_unique<Executor>(settings_, devices, recorder_.get(), stages, separate);
   if (config.dds.enabled) {
     try {
-      bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices, dds_cpus_);
+      bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices, stages, dds_cpus_);
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("DDS interface: ") + e.what());
     }

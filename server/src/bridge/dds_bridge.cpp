@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "bridge/cyclone_log.hpp"
+#include "group/group_stage.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
@@ -38,14 +39,15 @@ std::uint64_t snapshot_interval_of(const DdsSettings& settings, double rate_hz) 
 void DdsBridge::pin_this_thread() const { (void)set_cpus(cpus_); }
 
 DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions,
-                     std::vector<int> dds_cpus)
-    : settings_(settings), cpus_(std::move(dds_cpus)), links_(sessions, settings) {
+                     std::vector<GroupStage*> stages, std::vector<int> dds_cpus)
+    : settings_(settings), cpus_(std::move(dds_cpus)), links_(sessions, stages, settings) {
   const std::uint64_t interval = snapshot_interval_of(settings, rate_hz);
   double deadline = 1.0;
   for (DeviceSession* s : sessions) {
     deadline = std::min(deadline, s->chain().engine_deadline_s);
     s->set_snapshot_interval(interval);
   }
+  for (GroupStage* g : stages) g->set_snapshot_interval(interval);
   cyclone_log::route_to_logger(settings.log_lines_per_s, 20.0);  // before Cyclone has anything to say
   // Cyclone's threads (receive, timed events, ...) start with the participant and inherit this thread's CPUs.
   const std::optional<cpu_set_t> previous = set_cpus(cpus_);
@@ -63,6 +65,7 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
   lockstep_ = std::make_unique<LockstepSync>(
       settings_, links_, interval, [](void* self) { static_cast<DdsBridge*>(self)->wake_publisher(); }, this);
   for (std::size_t i = 0; i < links_.size(); ++i) publisher_->publish_description(i);
+  for (const GroupLink& g : links_.groups()) publisher_->publish_group_description(g);
   intake_->listen();  // last: commands may arrive at once
 }
 

@@ -38,8 +38,9 @@ class DdsBridge final : public CycleListener {
   // dds_cpus: the CPUs the bridge's and Cyclone's threads run on (empty: no pinning). Cross-CPU wake-ups
   // dominate the round trip on small machines; keeping the DDS path off the loop's CPU and on one set of CPUs
   // makes it several times shorter (docs/dds-interface.md).
+  // stages: the session's device groups (their descriptions, group states and group requests).
   DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions,
-            std::vector<int> dds_cpus = {});
+            std::vector<GroupStage*> stages = {}, std::vector<int> dds_cpus = {});
   ~DdsBridge() override;
   DdsBridge(const DdsBridge&) = delete;
   DdsBridge& operator=(const DdsBridge&) = delete;

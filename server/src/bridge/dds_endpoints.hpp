@@ -18,6 +18,8 @@ struct DdsEndpoints {
         telemetry(participant),
         fault_report(participant),
         reply(participant),
+        group_description(participant),
+        group_state(participant),
         command(participant, timing, &command_filter),
         request(participant, {}, &request_filter),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
@@ -31,6 +33,8 @@ struct DdsEndpoints {
   dds::Writer<hapticd_msg_Telemetry> telemetry;
   dds::Writer<hapticd_msg_FaultReport> fault_report;
   dds::Writer<hapticd_msg_ControlReply> reply;
+  dds::Writer<hapticd_msg_GroupDescription> group_description;
+  dds::Writer<hapticd_msg_GroupState> group_state;
   dds::Reader<hapticd_msg_EngineCommand> command;
   dds::Reader<hapticd_msg_ControlRequest> request;
   dds::Entity waitset;  // the receiver: requests and the wake-up

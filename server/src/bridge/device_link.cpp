@@ -1,5 +1,6 @@
 #include "bridge/device_link.hpp"
 
+#include "group/group_stage.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "session/device_session.hpp"
 
@@ -21,8 +22,22 @@ dds::CommandBounds bounds_of(const DdsSettings& settings, const Pose& base) {
 DeviceLink::DeviceLink(std::size_t i, DeviceSession* s, const DdsSettings& settings)
     : index(i), session(s), gate(bounds_of(settings, s->description().base_pose), settings.max_sample_age_s) {}
 
-DeviceLinks::DeviceLinks(const std::vector<DeviceSession*>& sessions, const DdsSettings& settings) {
+DeviceLinks::DeviceLinks(const std::vector<DeviceSession*>& sessions, const std::vector<GroupStage*>& stages,
+                         const DdsSettings& settings) {
   for (DeviceSession* s : sessions) links_.push_back(std::make_unique<DeviceLink>(links_.size(), s, settings));
+  for (GroupStage* g : stages) {
+    GroupLink group{g->name(), g, {}, 0};
+    for (const DeviceSession* member : g->devices())
+      for (const auto& l : links_)
+        if (l->session == member) group.members.push_back(l->index);
+    groups_.push_back(std::move(group));
+  }
+}
+
+GroupLink* DeviceLinks::find_group(std::string_view group) noexcept {
+  for (GroupLink& g : groups_)
+    if (g.name == group) return &g;
+  return nullptr;
 }
 
 DeviceLink* DeviceLinks::find(std::string_view device) noexcept {
@@ -48,7 +63,9 @@ bool DeviceLinks::command_for_us(const void* sample, void* self) {
 
 bool DeviceLinks::request_for_us(const void* sample, void* self) {
   auto* links = static_cast<DeviceLinks*>(self);
-  if (links->find(dds::text_of(static_cast<const hapticd_msg_ControlRequest*>(sample)->device)) != nullptr) return true;
+  const std::string_view target = dds::text_of(static_cast<const hapticd_msg_ControlRequest*>(sample)->device);
+  // A device, a group ("*" for group requests: every device of every server) of this server.
+  if (links->find(target) != nullptr || links->find_group(target) != nullptr || target == "*") return true;
   links->unknown_requests_.fetch_add(1, std::memory_order_relaxed);
   return false;
 }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -20,6 +21,15 @@
 namespace hapticd::server {
 
 class DeviceSession;
+class GroupStage;
+
+// A device group as the bridge sees it: its stage (the group snapshots) and its devices' places in DeviceLinks.
+struct GroupLink {
+  std::string name;
+  GroupStage* stage;
+  std::vector<std::size_t> members;  // indices into DeviceLinks, in the group's order
+  std::uint64_t serial = 0;          // group states published (publisher thread)
+};
 
 struct DeviceLink {
   DeviceLink(std::size_t index, DeviceSession* s, const DdsSettings& settings);
@@ -48,13 +58,19 @@ struct DeviceLink {
 
 class DeviceLinks {
  public:
-  DeviceLinks(const std::vector<DeviceSession*>& sessions, const DdsSettings& settings);
+  // stages: the session's device groups (their devices are among the sessions).
+  DeviceLinks(const std::vector<DeviceSession*>& sessions, const std::vector<GroupStage*>& stages,
+              const DdsSettings& settings);
 
   [[nodiscard]] std::size_t size() const noexcept { return links_.size(); }
   DeviceLink& operator[](std::size_t i) noexcept { return *links_[i]; }
   const DeviceLink& operator[](std::size_t i) const noexcept { return *links_[i]; }
   // The device named so, nullptr if the server does not drive it.
   [[nodiscard]] DeviceLink* find(std::string_view device) noexcept;
+  // The device groups, and the one named so (nullptr: none).
+  [[nodiscard]] std::vector<GroupLink>& groups() noexcept { return groups_; }
+  [[nodiscard]] const std::vector<GroupLink>& groups() const noexcept { return groups_; }
+  [[nodiscard]] GroupLink* find_group(std::string_view group) noexcept;
   auto begin() noexcept { return links_.begin(); }
   auto end() noexcept { return links_.end(); }
   auto begin() const noexcept { return links_.begin(); }
@@ -66,7 +82,7 @@ class DeviceLinks {
   [[nodiscard]] dds_topic_filter request_filter() noexcept;
   // Engine commands naming a device this server does not have (malformed; never applied).
   [[nodiscard]] std::uint64_t unknown_device_commands() const noexcept { return unknown_commands_.load(); }
-  // Requests naming a device this server does not have (left unanswered: another server may have it).
+  // Requests naming a device or group this server does not have (left unanswered: another server may have it).
   [[nodiscard]] std::uint64_t unknown_device_requests() const noexcept { return unknown_requests_.load(); }
 
  private:
@@ -74,6 +90,7 @@ class DeviceLinks {
   static bool request_for_us(const void* sample, void* self);
 
   std::vector<std::unique_ptr<DeviceLink>> links_;
+  std::vector<GroupLink> groups_;
   std::atomic<std::uint64_t> unknown_commands_{0};
   std::atomic<std::uint64_t> unknown_requests_{0};
 };

@@ -10,13 +10,16 @@ void LockstepSync::after_cycle(std::uint64_t index, const std::atomic<bool>& sto
   using Clock = std::chrono::steady_clock;
   if (!settings_.lockstep_sync || index % snapshot_interval_ != 0) return;
   if (index == 0 && settings_.lockstep_start_wait_s > 0.0) {
-    // Before the virtual clock runs away: wait for an engine to claim a device and answer its first state.
+    // Before the virtual clock runs away: wait for the engines to claim the devices and answer their first
+    // states - on every device (each engine's first answer is to cycle 0: a run with several engines repeats),
+    // or on any.
     const auto give_up = Clock::now() + std::chrono::duration<double>(settings_.lockstep_start_wait_s);
-    const auto any_synced = [&] {
-      return std::any_of(links_.begin(), links_.end(),
-                         [](const auto& d) { return d->synced.load(std::memory_order_acquire); });
+    const auto synced = [](const auto& d) { return d->synced.load(std::memory_order_acquire); };
+    const auto ready = [&] {
+      return settings_.lockstep_start_every ? std::all_of(links_.begin(), links_.end(), synced)
+                                            : std::any_of(links_.begin(), links_.end(), synced);
     };
-    while (!any_synced() && Clock::now() < give_up && !stopping.load(std::memory_order_acquire)) {
+    while (!ready() && Clock::now() < give_up && !stopping.load(std::memory_order_acquire)) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
       nudge_(nudge_arg_);
     }

@@ -4,6 +4,7 @@
 
 #include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
+#include "hapticd/demand.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
@@ -16,11 +17,30 @@ RequestDispatcher::RequestDispatcher(DdsEndpoints& dds, DeviceLinks& links, Even
       publisher_(publisher),
       claim_grace_ns_(static_cast<std::int64_t>(claim_grace_s * 1e9)) {}
 
+namespace {
+
+bool is_group_request(hapticd_msg_RequestKind kind) noexcept {
+  return kind == hapticd_msg_REQUEST_GROUP_CLAIM || kind == hapticd_msg_REQUEST_GROUP_RELEASE ||
+         kind == hapticd_msg_REQUEST_GROUP_ESTOP || kind == hapticd_msg_REQUEST_GROUP_RECOVER;
+}
+
+}  // namespace
+
 void RequestDispatcher::handle_requests() {
   dds_.request.take([&](const hapticd_msg_ControlRequest& m, const dds_sample_info_t& info) {
-    DeviceLink* d = links_.find(dds::text_of(m.device));
-    if (d == nullptr) return;  // (the reader's filter keeps other devices' requests out: another server's)
-    d->requests.fetch_add(1, std::memory_order_relaxed);
+    // A device, a group or "*" (every device) of this server: the reader's filter keeps the rest out.
+    const std::string target(dds::text_of(m.device));
+    DeviceLink* d = links_.find(target);
+    GroupLink* g = links_.find_group(target);
+    const bool every = target == "*";
+    if (d == nullptr && g == nullptr && !every) return;
+    std::vector<DeviceLink*> members;  // a group request's devices
+    if (g != nullptr)
+      for (std::size_t i : g->members) members.push_back(&links_[i]);
+    if (every)
+      for (auto& link : links_) members.push_back(link.get());
+    if (d != nullptr) d->requests.fetch_add(1, std::memory_order_relaxed);
+    for (DeviceLink* member : members) member->requests.fetch_add(1, std::memory_order_relaxed);
     const std::optional<PeerId> requester = dds_.peers.participant_of(dds_.request.get(), info.publication_handle);
     Answer answer;
     if (dds::text_of(m.client).empty() || !dds::terminated(m.client) || !dds::terminated(m.name)) {
@@ -35,10 +55,15 @@ void RequestDispatcher::handle_requests() {
           dds::text_of(m.client),
           dds::text_of(m.name),
           std::vector<double>(m.values, m.values + std::clamp<std::int32_t>(m.value_count, 0, hapticd_msg_MAX_VALUES))};
-      answer = dispatch(*d, r);
+      if (is_group_request(m.kind)) {
+        answer = d != nullptr ? Answer{false, "'" + target + "' is a device: group requests name a group"}
+                              : dispatch_group(members, every, r);
+      } else {
+        answer = d != nullptr ? dispatch(*d, r) : Answer{false, "'" + target + "' is not a device: name one"};
+      }
     }
     hapticd_msg_ControlReply reply{};
-    dds::set_text(reply.device, d->session->name());
+    dds::set_text(reply.device, target);
     dds::set_text(reply.client, dds::text_of(m.client));
     reply.request_id = m.request_id;
     reply.accepted = answer.accepted;
@@ -48,6 +73,86 @@ void RequestDispatcher::handle_requests() {
     std::copy_n(answer.values.begin(), count, reply.values);
     (void)dds_.reply.write_once(reply);  // no state kept per client id
   });
+}
+
+RequestDispatcher::Answer RequestDispatcher::dispatch_group(const std::vector<DeviceLink*>& members, bool every,
+                                                            const Request& r) {
+  switch (r.message.kind) {
+    case hapticd_msg_REQUEST_GROUP_CLAIM:
+      if (every) return {false, "claim a group by its name (\"*\" is for E-stop and recovery)"};
+      return group_claim(members, r);
+    case hapticd_msg_REQUEST_GROUP_RELEASE:
+      if (every) return {false, "release a group by its name (\"*\" is for E-stop and recovery)"};
+      return group_release(members, r);
+    case hapticd_msg_REQUEST_GROUP_ESTOP:
+      return group_stop(members, r);
+    case hapticd_msg_REQUEST_GROUP_RECOVER:
+      return group_recover(members, r);
+    default:
+      return {false, "not a group request"};
+  }
+}
+
+namespace {
+
+std::string names_of(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
+RequestDispatcher::Answer RequestDispatcher::group_claim(const std::vector<DeviceLink*>& members, const Request& r) {
+  // All or none. Every request is answered on this one thread, one at a time, and only requests and the claim
+  // check (also this thread) change ownership: nothing can claim a device between the check and the claims.
+  std::vector<std::string> taken, claimed;
+  for (const DeviceLink* d : members) {
+    std::lock_guard lock(d->mutex);
+    if (!d->gate.owner().empty() && !d->gate.owned_by(r.requester))
+      taken.push_back(d->session->name() + " by '" + d->gate.owner() + "'");
+  }
+  if (!taken.empty()) return {false, "none claimed: " + names_of(taken) + " claimed already"};
+  for (DeviceLink* d : members) {
+    const Answer a = claim(*d, r);
+    HAPTICD_DEMAND(a.accepted);  // free or the requester's, checked above on this thread
+    claimed.push_back(d->session->name());
+  }
+  return {true, "claimed " + names_of(claimed)};
+}
+
+RequestDispatcher::Answer RequestDispatcher::group_release(const std::vector<DeviceLink*>& members, const Request& r) {
+  std::vector<std::string> released;
+  for (DeviceLink* d : members)
+    if (release(*d, r).accepted) released.push_back(d->session->name());
+  if (released.empty()) return {false, "not the owner of any of its devices"};
+  return {true, "released " + names_of(released)};
+}
+
+RequestDispatcher::Answer RequestDispatcher::group_stop(const std::vector<DeviceLink*>& members, const Request& r) {
+  std::vector<std::string> stopped;  // anyone may stop a device
+  for (DeviceLink* d : members)
+    if (emergency_stop(*d, r).accepted) stopped.push_back(d->session->name());
+  if (stopped.size() != members.size()) return {false, "stopped only " + names_of(stopped)};
+  return {true, "stopped " + names_of(stopped)};
+}
+
+RequestDispatcher::Answer RequestDispatcher::group_recover(const std::vector<DeviceLink*>& members, const Request& r) {
+  // All or none: every device must be free or the requester's and in its safe mode.
+  std::vector<std::string> refusals, recovered;
+  for (const DeviceLink* d : members) {
+    if (auto refused = refused_unless_owner(*d, r))
+      refusals.push_back(d->session->name() + " " + refused->message);
+    else if (d->session->fault() == DeviceFault::none)
+      refusals.push_back(d->session->name() + " is not in its safe mode");
+  }
+  if (!refusals.empty()) return {false, "none recovered: " + names_of(refusals)};
+  for (DeviceLink* d : members) {
+    const Answer a = recover(*d, r);
+    if (!a.accepted) return {false, "recovered " + names_of(recovered) + "; " + d->session->name() + ": " + a.message};
+    recovered.push_back(d->session->name());
+  }
+  return {true, "recovering " + names_of(recovered)};
 }
 
 RequestDispatcher::Answer RequestDispatcher::dispatch(DeviceLink& d, const Request& r) {
@@ -70,8 +175,9 @@ RequestDispatcher::Answer RequestDispatcher::dispatch(DeviceLink& d, const Reque
       return recover(d, r);
     case hapticd_msg_REQUEST_DESCRIBE:
       return describe(d, r);
+    default:
+      return {false, "unknown request kind"};
   }
-  return {false, "unknown request kind"};
 }
 
 std::optional<RequestDispatcher::Answer> RequestDispatcher::refused_unless_owner(const DeviceLink& d,

@@ -1,6 +1,7 @@
 #pragma once
 // The bridge's requests, on its receiver thread: each request is answered by the handler of its kind (claim,
-// release, switch scheme, set parameter, operator, E-stop, recover, describe). The requester is the participant
+// release, switch scheme, set parameter, operator, E-stop, recover, describe; for a device group: claim all or
+// none, release, E-stop, recover all or none). The requester is the participant
 // of the request's writer, whatever client id the request declares; owner-only requests (release, switch, set,
 // recover) are accepted only from the claimant's participant, or on a free device. The same thread ends claims
 // whose claimant's participant is gone, and counts the engines' missed deadlines.
@@ -54,6 +55,12 @@ class RequestDispatcher {
     std::vector<double> values;  // a get request's value
   };
   Answer dispatch(DeviceLink& d, const Request& r);
+  // A group request to the group's devices (every: "*", all the server's devices).
+  Answer dispatch_group(const std::vector<DeviceLink*>& members, bool every, const Request& r);
+  Answer group_claim(const std::vector<DeviceLink*>& members, const Request& r);
+  Answer group_release(const std::vector<DeviceLink*>& members, const Request& r);
+  Answer group_stop(const std::vector<DeviceLink*>& members, const Request& r);
+  Answer group_recover(const std::vector<DeviceLink*>& members, const Request& r);
   // Whether the requester may drive the device (free, or claimed by the requester's participant); else the
   // refusal names the owner.
   std::optional<Answer> refused_unless_owner(const DeviceLink& d, const Request& r) const;

@@ -1,5 +1,7 @@
 #include "bridge/state_publisher.hpp"
 
+#include <algorithm>
+
 #include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "session/device_session.hpp"
@@ -14,7 +16,9 @@ StatePublisher::StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSende
       rate_hz_(rate_hz),
       snapshot_interval_(snapshot_interval),
       live_(links.size(), nullptr),
-      published_(links.size()) {
+      published_(links.size()),
+      group_snapshot_(std::make_unique<GroupSnapshot>()),
+      group_message_(std::make_unique<hapticd_msg_GroupState>()) {
   for (std::size_t i = 0; i < links.size(); ++i)
     for (const SchemeChain& s : links[i].session->chain().schemes) published_[i].scheme_names.push_back(s.name);
 }
@@ -59,9 +63,7 @@ void StatePublisher::publish_states() {
       std::lock_guard lock(d.mutex);
       owner = d.gate.owner();
     }
-    const StateLabels labels{d.session->name(), s.cycle / snapshot_interval_ + 1, d.session->schemes().active_name(),
-                             owner, loop_summary(i)};
-    p.last = state_message(s, labels);
+    p.last = state_message(s, labels_of(i, s, owner));
     d.round_trip.command_applied(s.engine_sequence, s.cycle);
     d.round_trip.state_written(p.last.serial, s.cycle, monotonic_now_ns());
     (void)dds_.state.write(p.last);
@@ -73,6 +75,51 @@ void StatePublisher::publish_states() {
     for (const EventText& e : events_between(p.view, now, p.scheme_names)) events_.send(d, e.kind, e.code, e.message);
     p.view = now;
   }
+  publish_group_states();
+}
+
+StateLabels StatePublisher::labels_of(std::size_t device, const DeviceSnapshot& s, const std::string& owner) const {
+  const DeviceSession& session = *links_[device].session;
+  return StateLabels{session.name(), s.cycle / snapshot_interval_ + 1, session.schemes().active_name(), owner,
+                     loop_summary(device)};
+}
+
+void StatePublisher::publish_group_states() {
+  GroupSnapshot& g = *group_snapshot_;
+  hapticd_msg_GroupState& m = *group_message_;
+  for (GroupLink& group : links_.groups()) {
+    if (!group.stage->take_snapshot(g)) continue;
+    m = hapticd_msg_GroupState{};
+    dds::set_text(m.group, group.name);
+    m.serial = ++group.serial;
+    m.cycle = g.cycle;
+    m.loop_time_ns = g.time_ns;
+    m.clearance_m = g.clearance_m;
+    m.device_count = static_cast<std::int32_t>(std::min(g.count, group.members.size()));
+    for (std::size_t k = 0; k < static_cast<std::size_t>(m.device_count); ++k) {
+      DeviceLink& d = links_[group.members[k]];
+      std::string owner;
+      {
+        std::lock_guard lock(d.mutex);
+        owner = d.gate.owner();
+      }
+      m.states[k] = state_message(g.devices[k], labels_of(d.index, g.devices[k], owner));
+    }
+    (void)dds_.group_state.write(m);
+  }
+}
+
+void StatePublisher::publish_group_description(const GroupLink& group) {
+  hapticd_msg_GroupDescription m{};
+  dds::set_text(m.group, group.name);
+  m.version = hapticd_msg_VERSION;
+  m.device_count = static_cast<std::int32_t>(group.members.size());
+  for (std::size_t k = 0; k < group.members.size(); ++k)
+    dds::set_text(m.devices[k], links_[group.members[k]].session->name());
+  m.min_distance_m = group.stage->min_distance_m();
+  m.repulsion_distance_m = group.stage->repulsion_distance_m();
+  m.own_loop = group.stage->own_loop();
+  (void)dds_.group_description.write(m);
 }
 
 void StatePublisher::publish_description(std::size_t device) {

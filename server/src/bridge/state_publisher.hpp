@@ -13,6 +13,7 @@
 #include "bridge/event_sender.hpp"
 #include "bridge/messages.hpp"
 #include "executor/executor.hpp"
+#include "group/group_stage.hpp"
 
 namespace hapticd::server {
 
@@ -29,6 +30,8 @@ class StatePublisher {
   void publish_states();
   // Any thread: a device's description (with its start pose once the loop has run).
   void publish_description(std::size_t device);
+  // Any thread: a group's description.
+  void publish_group_description(const GroupLink& group);
   // Any thread: a fault report.
   void publish_fault_report(std::size_t device, const FaultReport& report);
   // Receiver thread: every device's telemetry.
@@ -44,6 +47,10 @@ class StatePublisher {
     std::vector<std::string> scheme_names;
   };
   [[nodiscard]] hapticd_msg_LoopSummary loop_summary(std::size_t device) const noexcept;
+  // What a device's state says besides its snapshot (owner: the claim's client id).
+  [[nodiscard]] StateLabels labels_of(std::size_t device, const DeviceSnapshot& s, const std::string& owner) const;
+  // Publisher thread: each group's newest snapshot as one group state.
+  void publish_group_states();
 
   DdsEndpoints& dds_;
   DeviceLinks& links_;
@@ -52,6 +59,8 @@ class StatePublisher {
   std::uint64_t snapshot_interval_;
   std::vector<const LiveLoopStatistics*> live_;  // per device: its loop's
   std::vector<Published> published_;
+  std::unique_ptr<GroupSnapshot> group_snapshot_;          // publisher thread (8 device snapshots)
+  std::unique_ptr<hapticd_msg_GroupState> group_message_;  // ... and the message (about 7 kB)
   std::mutex description_mutex_;
 };
 

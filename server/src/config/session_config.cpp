@@ -142,6 +142,7 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
   d.lockstep_sync = p.boolean("lockstep_sync");
   d.lockstep_wait_s = p.real("lockstep_wait_s");
   d.lockstep_start_wait_s = p.real("lockstep_start_wait_s");
+  d.lockstep_start_every = p.string("lockstep_start_for") == "every";
   d.cpu = static_cast<int>(p.integer("cpu"));
   d.max_peers = static_cast<int>(p.integer("max_peers"));
   d.claim_grace_s = p.real("claim_grace_s");
@@ -227,9 +228,15 @@ std::vector<GroupConfig> read_groups(const YAML::Node& node, const std::string& 
                         "group name '" + g.name + "' must be 1-31 characters of letters, digits, '_' and '-'");
     if (!names.insert(g.name).second)
       throw ConfigError(file, line_of(node[i]["name"]), r.path_of("name"), "group name '" + g.name + "' is used twice");
+    if (std::any_of(devices.begin(), devices.end(), [&](const DeviceConfig& d) { return d.name == g.name; }))
+      throw ConfigError(file, line_of(node[i]["name"]), r.path_of("name"),
+                        "group name '" + g.name + "' is a device's name (requests name either)");
     const YAML::Node list = r.required("devices");
     if (!list.IsSequence() || list.size() == 0)
       throw ConfigError(file, line_of(list), r.path_of("devices"), "expected a non-empty list of device names");
+    if (list.size() > 8)
+      throw ConfigError(file, line_of(list), r.path_of("devices"),
+                        "a group holds at most 8 devices (it has " + std::to_string(list.size()) + ")");
     for (std::size_t k = 0; k < list.size(); ++k) {
       const std::string where = r.path_of("devices") + "[" + std::to_string(k) + "]";
       if (!list[k].IsScalar()) throw ConfigError(file, line_of(list[k]), where, "expected a device name");
@@ -420,12 +427,17 @@ ParameterSchema dds_settings_schema() {
       .greater_than(0.0)
       .default_value(d.lockstep_wait_s);
   s.real("lockstep_start_wait_s",
-         "with the lockstep clock, the first cycle waits up to this long (wall time) for an "
-         "engine to claim a device and answer its state; 0: no wait")
+         "with the lockstep clock, the first cycle waits up to this long (wall time) for "
+         "engines to claim the devices and answer their states (lockstep_start_for); 0: no wait")
       .unit("s")
       .minimum(0.0)
       .maximum(600.0)
       .default_value(d.lockstep_start_wait_s);
+  s.string("lockstep_start_for",
+           "every: the first cycle waits for an engine on every device (runs with several engines are "
+           "repeatable); any: for the first engine")
+      .choices({"every", "any"})
+      .default_value(std::string("every"));
   s.integer("cpu",
             "CPU of the DDS threads: -2 auto (real-time clock, 2 or more CPUs: the loop on the last CPU "
             "unless server.cpu is set, the DDS threads on the others), -1 no pinning")

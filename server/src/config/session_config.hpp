@@ -51,6 +51,8 @@ struct DdsSettings {
   bool lockstep_sync = true;           // lockstep clock: each cycle waits for the owning engine's answer
   double lockstep_wait_s = 0.5;        // ... at most this long (wall time), then stops waiting for that engine
   double lockstep_start_wait_s = 0.0;  // lockstep: the first cycle waits this long (wall) for an engine to answer
+  // ... for an engine on every device (a two-engine run starts with both answering: repeatable), or on any.
+  bool lockstep_start_every = true;
   // CPU of the DDS threads (the bridge's and Cyclone's): -2 auto (real-time clock on 2+ CPUs: the loop gets
   // the last CPU unless server.cpu says otherwise, the DDS threads the others), -1 no pinning, else that CPU.
   int cpu = -2;

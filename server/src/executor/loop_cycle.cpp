@@ -31,12 +31,14 @@ void LoopCycle::run_cycle(const CycleTime& cycle, double torque_scale, std::uint
   for (GroupStage* g : stages_) g->run(cycle);
   // (c) the chains: virtual model -> inverse kinematics -> controller;
   for (DeviceSession* s : devices_) s->run_chain(cycle);
-  // (d) limit and write, then record.
+  // (d) limit and write, then record;
   for (std::size_t d = 0; d < devices_.size(); ++d) {
     devices_[d]->limit_and_write(cycle, torque_scale);
     if (recorder_ != nullptr)
       recorder_->record(producer_, cycle, record_ids_[d], devices_[d]->state(), devices_[d]->command());
   }
+  // then each group's snapshot: its devices' states of this cycle, together (the DDS group state).
+  for (GroupStage* g : stages_) g->publish_snapshot(cycle);
 }
 
 bool LoopCycle::at_rest() const noexcept {

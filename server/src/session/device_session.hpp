@@ -113,6 +113,8 @@ class DeviceSession {
   bool take_snapshot(DeviceSnapshot& out) noexcept { return status_.snapshots.take(out); }
   // Before activate(): the loop publishes a snapshot every `cycles` cycles (0: never, the default).
   void set_snapshot_interval(std::uint64_t cycles) noexcept { snapshot_interval_ = cycles; }
+  // Loop thread: the snapshot built at the newest published cycle (a group's stage gathers its devices').
+  [[nodiscard]] const DeviceSnapshot& published_snapshot() const noexcept { return snapshot_; }
   // Any thread: emergency stop. The loop puts the device in its safe state at the next cycle (fault
   // emergency_stop); the session keeps running for the other devices. A stop latches: it cancels every
   // recovery requested before it, and a stop while the device is already safe is a fault of its own (report,

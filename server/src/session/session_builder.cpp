@@ -218,7 +218,7 @@ std::vector<std::unique_ptr<GroupStage>> build_group_stages(
                             "group '" + g.name + "' checks distances, but device '" + d->name() +
                                 "' has no robot model (no collision geometry)");
     stages.push_back(std::make_unique<GroupStage>(g.name, std::move(members), g.min_distance_m, g.repulsion,
-                                                  1.0 / config.server.rate_hz));
+                                                  1.0 / config.server.rate_hz, g.own_loop));
   }
   return stages;
 }

@@ -26,6 +26,8 @@ HAPTICD_DDS_TOPIC(hapticd_msg_ControlReply, reply, "hapticd_reply")
 HAPTICD_DDS_TOPIC(hapticd_msg_Event, event, "hapticd_event")
 HAPTICD_DDS_TOPIC(hapticd_msg_Telemetry, telemetry, "hapticd_telemetry")
 HAPTICD_DDS_TOPIC(hapticd_msg_FaultReport, fault_report, "hapticd_fault_report")
+HAPTICD_DDS_TOPIC(hapticd_msg_GroupDescription, description, "hapticd_group_description")
+HAPTICD_DDS_TOPIC(hapticd_msg_GroupState, state, "hapticd_group_state")
 #undef HAPTICD_DDS_TOPIC
 
 struct QosDeleter {

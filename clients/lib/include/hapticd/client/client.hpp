@@ -60,8 +60,20 @@ class Client {
   std::optional<hapticd_msg_DeviceState> wait_for_state(std::string_view device, Timeout timeout,
                                                         std::uint64_t after = 0);
 
+  // ---- device groups (docs/multi-device.md) ----
+  // The group descriptions received so far, and waiting for one.
+  [[nodiscard]] std::vector<hapticd_msg_GroupDescription> groups() const;
+  std::optional<hapticd_msg_GroupDescription> wait_for_group(std::string_view group, Timeout timeout);
+  // The newest group state (every device's state from one cycle; about 7 kB, hence on the heap), nullptr if none.
+  [[nodiscard]] std::unique_ptr<hapticd_msg_GroupState> latest_group_state(std::string_view group) const;
+  // Waits until a group state with serial > after arrives.
+  std::unique_ptr<hapticd_msg_GroupState> wait_for_group_state(std::string_view group, Timeout timeout,
+                                                               std::uint64_t after = 0);
+
   // ---- callbacks (set before the data flows; replaced atomically) ----
   void on_state(std::function<void(const hapticd_msg_DeviceState&)> callback);
+  // Group states, on Cyclone's receive thread like on_state (an engine of a group answers from here).
+  void on_group_state(std::function<void(const hapticd_msg_GroupState&)> callback);
   void on_event(std::function<void(const hapticd_msg_Event&)> callback);
   void on_telemetry(std::function<void(const hapticd_msg_Telemetry&)> callback);
   // A device's fault and the cycles before it (a late joiner gets the newest one per device). Reports that
@@ -85,6 +97,13 @@ class Client {
   Reply emergency_stop(std::string_view device, Timeout timeout = std::chrono::seconds(2));
   // Leave the safe mode (accepted when the device is in it; it recovers once at zero torque).
   Reply recover(std::string_view device, Timeout timeout = std::chrono::seconds(2));
+  // Group requests: claim every device of the group or none; release those the client owns; E-stop every
+  // device; recover every device (each in its safe mode, free or the client's) or none. Group "*": E-stop or
+  // recover every device of every server on the domain.
+  Reply claim_group(std::string_view group, Timeout timeout = std::chrono::seconds(2));
+  Reply release_group(std::string_view group, Timeout timeout = std::chrono::seconds(2));
+  Reply emergency_stop_group(std::string_view group, Timeout timeout = std::chrono::seconds(2));
+  Reply recover_group(std::string_view group, Timeout timeout = std::chrono::seconds(2));
   // Simulated devices: "push" {fx, fy, fz[, ramp_s]} or "release".
   Reply operator_command(std::string_view device, std::string_view command, const std::vector<double>& values = {},
                          Timeout timeout = std::chrono::seconds(2));
