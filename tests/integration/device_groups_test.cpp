@@ -129,14 +129,23 @@ TEST(DeviceGroups, TheRepulsionKeepsThePairApartAndTheOperatorsFeelIt) {
   EXPECT_LT(speed, 0.02) << "the handles must have stopped approaching";
 }
 
-TEST(DeviceGroups, TheGroupStageDoesNotAllocate) {
+TEST(DeviceGroups, TheGroupStageAndItsSnapshotDoNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
   Session s = test::build_test_session(facing_pair("8", 0.03, "    repulsion: {distance_m: 0.9}\n"));
   s.step(10);  // powered, the chains active
   LoopCycle& cycle = *s.impl().cycle;
+  s.impl().stages.at(0)->set_snapshot_interval(1);  // and its snapshot of the devices' (the DDS group state)
+  for (const auto& d : s.impl().devices) d->set_snapshot_interval(1);
   testing::AllocationGuard guard;
   for (std::uint64_t k = 10; k < 1010; ++k) cycle.run_cycle(test::cycle_at(k), 1.0, 0, 0);
   EXPECT_EQ(guard.allocations(), 0u);
+  auto snapshot = std::make_unique<GroupSnapshot>();
+  ASSERT_TRUE(s.impl().stages.at(0)->take_snapshot(*snapshot));
+  EXPECT_EQ(snapshot->cycle, 1009u);
+  ASSERT_EQ(snapshot->count, 2u);
+  EXPECT_EQ(snapshot->devices[0].cycle, 1009u);
+  EXPECT_EQ(snapshot->devices[1].cycle, 1009u);
+  EXPECT_GT(snapshot->clearance_m, 0.0);
   EXPECT_LT(guard_of(s).latest_distance(), 1.0);     // the guards ran
   EXPECT_GT(guard_of(s).latest_repulsion_n(), 0.0);  // and repelled
 }
@@ -170,10 +179,10 @@ TEST(DeviceGroups, AreCheckedInTheSessionFile) {
 }
 
 TEST(DeviceGroups, EveryRepulsionSettingOfTheFileIsTaken) {
-  Session s = test::build_test_session(facing_pair(
-      "8", 0.03,
-      "    repulsion: {distance_m: 0.2, stiffness_n_per_m: 800, damping_n_s_per_m: 12, max_force_n: 9, "
-      "filter_hz: 5}\n"));
+  Session s = test::build_test_session(
+      facing_pair("8", 0.03,
+                  "    repulsion: {distance_m: 0.2, stiffness_n_per_m: 800, damping_n_s_per_m: 12, max_force_n: 9, "
+                  "filter_hz: 5}\n"));
   const RepulsionSettings& r = s.impl().config.groups.at(0).repulsion;
   EXPECT_EQ(r.distance_m, 0.2);
   EXPECT_EQ(r.stiffness_n_per_m, 800.0);
