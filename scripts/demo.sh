@@ -2,7 +2,10 @@
 # Quick start, command 1: install dependencies, build, and run the demo: the server with the simulated
 # ViSHaRD3 in admittance display, the example rendering engine (a wall, a cube, a sphere) coupled over DDS on
 # the loopback interface, and the simulated operator pushing into the objects (driven with hapticctl).
-# Prints what happens; writes the engine's view, the server's recording and a plot to build/demo/.
+# Then a dual-arm part: two simulated ViSHaRD3 facing each other in one device group, their operators moving the
+# hands towards each other; the group's repulsion keeps the arms apart (felt on the handles), and a group E-stop
+# stops both at once. Prints what happens; writes the engine's view, the server's recording and a plot to
+# build/demo/.
 # Usage: scripts/demo.sh [DOMAIN_ID]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -40,4 +43,18 @@ wait "$server"
 trap - EXIT
 grep -E "round trip|engine commands|commands applied|cycles in|device " "$out/server.log" | sed 's/^\[[^]]*\] \[[a-z]*\] /server: /'
 /usr/bin/python3 scripts/plot_engine_run.py "$out/engine.csv" "$out/demo.png"
-echo "== engine view: $out/engine.csv, server recording: $out/recording.csv, server log: $out/server.log, plot: $out/demo.png"
+
+echo "== dual arm: hapticd --config config/sessions/dual-arm/vishard3-pair.yaml (6 s, real time)"
+"$bin/hapticd" --config config/sessions/dual-arm/vishard3-pair.yaml --dds-domain "$domain" \
+  > "$out/dual-arm.log" 2>&1 &
+server=$!
+trap 'kill $server 2>/dev/null || true' EXIT
+ctl groups
+echo "== the operators move their hands 15 cm towards each other (0.2 Hz); the arms meet in the repulsion"
+sleep 4.5
+echo "== group E-stop: both arms of the group 'table' at once"
+ctl estop --group table
+wait "$server" || true  # exit code 3: the devices were stopped
+trap - EXIT
+grep -E "group 'table'|device '(left|right)'" "$out/dual-arm.log" | sed 's/^\[[^]]*\] \[[a-z]*\] /server: /'
+echo "== engine view: $out/engine.csv, server recording: $out/recording.csv, server log: $out/server.log, plot: $out/demo.png, dual-arm log: $out/dual-arm.log"

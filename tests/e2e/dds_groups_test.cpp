@@ -27,15 +27,7 @@ using namespace std::chrono_literals;
 std::string arm(const std::string& name, double x_m, const std::string& force_n) {
   return test::sim_vishard3_device_yaml(name, "step", force_n) + R"(        wrench_force_start_s: 0.1
     base_pose: {xyz: [)" +
-         std::to_string(x_m) + R"(, 0, 0]}
-    virtual_model:
-      plugin: admittance
-      parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [30.0, 30.0, 30.0], rotation: false,
-                   coupling: true, coupling_stiffness_n_per_m: 3000, coupling_damping_n_s_per_m: 40}
-    controller:
-      plugin: resolved_acceleration
-      parameters: {task: translation}
-    safety: {safe_hold_s: 0.2, )" +
+         std::to_string(x_m) + ", 0, 0]}\n" + coupling_chain_yaml() + "    safety: {safe_hold_s: 0.2, " +
          kRealtimeWatchdogs + "}\n";
 }
 

@@ -68,6 +68,19 @@ constexpr bool kSanitized = false;
 inline const std::string kRealtimeWatchdogs =
     kSanitized ? "max_consecutive_overruns: 0, max_stall_s: 0" : "max_consecutive_overruns: 60, max_stall_s: 0.1";
 
+// The chain of the rig's ViSHaRD3: admittance display (3 kg, 30 N s/m) with the virtual coupling (3000 N/m,
+// 40 N s/m) for an engine's proxy, resolved acceleration control.
+inline std::string coupling_chain_yaml() {
+  return R"(    virtual_model:
+      plugin: admittance
+      parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [30.0, 30.0, 30.0], rotation: false,
+                   coupling: true, coupling_stiffness_n_per_m: 3000, coupling_damping_n_s_per_m: 40}
+    controller:
+      plugin: resolved_acceleration
+      parameters: {task: translation}
+)";
+}
+
 // A session (lockstep unless told otherwise) with the DDS interface on `domain`: the simulated ViSHaRD3 in admittance
 // display with the virtual coupling, pushed by a scripted force.
 inline std::string session_yaml(int domain, double duration_s, const std::string& force_profile,
@@ -77,16 +90,8 @@ inline std::string session_yaml(int domain, double duration_s, const std::string
          ", seed: 11, realtime_priority: 0, lock_memory: false, duration_s: " + std::to_string(duration_s) + "}\n" +
          "dds: {domain_id: " + std::to_string(domain) + ", lockstep_start_wait_s: 20, lockstep_wait_s: 2}\n" +
          "devices:\n" + test::sim_vishard3_device_yaml("v3", force_profile, force_n) +
-         R"(        wrench_force_start_s: 0.3
-    virtual_model:
-      plugin: admittance
-      parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [30.0, 30.0, 30.0], rotation: false,
-                   coupling: true, coupling_stiffness_n_per_m: 3000, coupling_damping_n_s_per_m: 40}
-    controller:
-      plugin: resolved_acceleration
-      parameters: {task: translation}
-    safety: {)" +
-         safety + (clock == "realtime" ? std::string(safety.empty() ? "" : ", ") + kRealtimeWatchdogs : "") + "}\n";
+         "        wrench_force_start_s: 0.3\n" + coupling_chain_yaml() + "    safety: {" + safety +
+         (clock == "realtime" ? std::string(safety.empty() ? "" : ", ") + kRealtimeWatchdogs : "") + "}\n";
 }
 
 // The session served as `hapticd` serves it (app/served_session), never asking for real-time scheduling, with a

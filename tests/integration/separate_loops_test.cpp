@@ -16,8 +16,7 @@ namespace hapticd::server {
 namespace {
 
 std::string four_devices(const std::string& clock, const std::string& loops) {
-  return "server: {clock: " + clock +
-         ", rate_hz: 2000, duration_s: 0.2, shutdown_ramp_s: 0.02, seed: 3}\ndevices:\n" +
+  return "server: {clock: " + clock + ", rate_hz: 2000, duration_s: 0.2, shutdown_ramp_s: 0.02, seed: 3}\ndevices:\n" +
          test::mass_spring_device_yaml("a", ", position_noise_m: 1.0e-4") +
          test::mass_spring_device_yaml("b", ", position_noise_m: 1.0e-4") +
          test::mass_spring_device_yaml("c", ", position_noise_m: 1.0e-4") +
