@@ -2,6 +2,7 @@
 // SDK library, shared by the server and every plugin.
 #include "hapticd/controller.hpp"
 #include "hapticd/device.hpp"
+#include "hapticd/group_model.hpp"
 #include "hapticd/inverse_kinematics.hpp"
 #include "hapticd/plugin.hpp"
 #include "hapticd/virtual_model.hpp"
@@ -13,6 +14,7 @@ Controller::~Controller() = default;
 InverseKinematics::~InverseKinematics() = default;
 RedundancyResolution::~RedundancyResolution() = default;
 VirtualModel::~VirtualModel() = default;
+GroupModel::~GroupModel() = default;
 
 namespace {
 RuntimeReply refuse(std::string_view name) {
@@ -32,6 +34,7 @@ Outcome Device::home() { return Outcome::success(); }
 Outcome Device::reset_fault() { return Outcome::success(); }
 RuntimeReply Controller::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 RuntimeReply VirtualModel::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
+RuntimeReply GroupModel::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 
 std::string_view to_string(PluginKind kind) noexcept {
   switch (kind) {
@@ -43,6 +46,8 @@ std::string_view to_string(PluginKind kind) noexcept {
       return "inverse_kinematics";
     case PluginKind::virtual_model:
       return "virtual_model";
+    case PluginKind::group_model:
+      return "group_model";
   }
   return "unknown";
 }

@@ -143,10 +143,11 @@ int main(int argc, char** argv) {
   auto* recover = app.add_subcommand(
       "recover", "leave the safe mode after a fault or an E-stop (--group / --all: every device or none)");
   target(recover, true);
-  auto* op =
-      app.add_subcommand("operator", "drive a simulated device's operator: push FX FY FZ [RAMP_S] | release | grasp G");
+  auto* op = app.add_subcommand(
+      "operator",
+      "drive a simulated device's operator: push FX FY FZ [RAMP_S] | move DX DY DZ [DURATION_S] | release | grasp G");
   op->add_option("device", device)->required();
-  op->add_option("command", what)->required()->check(CLI::IsMember({"push", "release", "grasp"}));
+  op->add_option("command", what)->required()->check(CLI::IsMember({"push", "move", "release", "grasp"}));
   op->add_option("values", values);
   CLI11_PARSE(app, argc, argv);
   for (CLI::App* command : targeted)

@@ -5,7 +5,7 @@ namespace hapticd {
 // Version of the binary plugin contract (interfaces, value types, descriptor layout). A plugin built against
 // another version is refused by the loader before any of its code is called. Bump on every change to a type
 // in api/include/hapticd that a plugin compiles against.
-inline constexpr int kApiVersion = 8;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
+inline constexpr int kApiVersion = 9;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
                                        // 4: EngineInput in VirtualModelInput; 5: EngineInput weight,
                                        //    local model and motion; 6: RenderGuard in
                                        //    VirtualModelInput, update() may throw;
@@ -15,5 +15,7 @@ inline constexpr int kApiVersion = 8;  // 2: DeviceState::sensor_acceleration; 3
                                        //    answers in TaskTarget; the parsed robot model in PluginContext;
                                        //    DeviceDescription::simulated, Device::simulated_truth
                                        //    (8 is unreleased until Core v2 closes: it may still grow)
+                                       // 9: GroupModel (a fifth plugin kind: the group stage's model),
+                                       //    ChainState::neighbour (the nearest arm of the group)
 
 }  // namespace hapticd

@@ -14,13 +14,14 @@
 #include "hapticd/controller.hpp"
 #include "hapticd/device.hpp"
 #include "hapticd/export.hpp"
+#include "hapticd/group_model.hpp"
 #include "hapticd/inverse_kinematics.hpp"
 #include "hapticd/parameters.hpp"
 #include "hapticd/virtual_model.hpp"
 
 namespace hapticd {
 
-enum class PluginKind : std::uint8_t { device, controller, inverse_kinematics, virtual_model };
+enum class PluginKind : std::uint8_t { device, controller, inverse_kinematics, virtual_model, group_model };
 
 [[nodiscard]] HAPTICD_API std::string_view to_string(PluginKind kind) noexcept;
 
@@ -35,6 +36,7 @@ struct PluginDescriptor {
   std::unique_ptr<Controller> (*create_controller)();
   std::unique_ptr<InverseKinematics> (*create_inverse_kinematics)();
   std::unique_ptr<VirtualModel> (*create_virtual_model)();
+  std::unique_ptr<GroupModel> (*create_group_model)();
 };
 
 struct PluginCatalog {
@@ -42,7 +44,7 @@ struct PluginCatalog {
   std::size_t count;
 };
 
-// Descriptor of plugin class T, which derives from one of the four interfaces and has a static
+// Descriptor of plugin class T, which derives from one of the five interfaces and has a static
 // `ParameterSchema parameter_schema()`.
 template <class T>
 PluginDescriptor describe_plugin(const char* name, const char* version, const char* summary) {
@@ -60,10 +62,13 @@ PluginDescriptor describe_plugin(const char* name, const char* version, const ch
   } else if constexpr (std::is_base_of_v<InverseKinematics, T>) {
     d.kind = PluginKind::inverse_kinematics;
     d.create_inverse_kinematics = []() -> std::unique_ptr<InverseKinematics> { return std::make_unique<T>(); };
+  } else if constexpr (std::is_base_of_v<GroupModel, T>) {
+    d.kind = PluginKind::group_model;
+    d.create_group_model = []() -> std::unique_ptr<GroupModel> { return std::make_unique<T>(); };
   } else {
     static_assert(std::is_base_of_v<VirtualModel, T>,
                   "a plugin derives from Device, Controller, "
-                  "InverseKinematics or VirtualModel");
+                  "InverseKinematics, VirtualModel or GroupModel");
     d.kind = PluginKind::virtual_model;
     d.create_virtual_model = []() -> std::unique_ptr<VirtualModel> { return std::make_unique<T>(); };
   }

@@ -19,6 +19,8 @@ struct AttachmentSettings {
   // Operator.
   double grasp = 0.5;  // 0 loose .. 1 firm
   double hand_mass_kg = 1.0;
+  // Selected again with the same kind: keep the anchor, the hand's state and the profiles' clock (a move).
+  bool keep_anchor = false;
   double arm_stiffness = 300.0;  // [N/m] towards the target motion
   double arm_damping = 25.0;     // [N s/m]
   Profile motion;                // target offset from the grasp position [m]
@@ -36,10 +38,12 @@ struct AttachmentSettings {
 
 class HandleAttachment {
  public:
-  // Replaces the settings; the attachment re-anchors at the next step at the handle's pose then.
+  // Replaces the settings; the attachment re-anchors at the next step at the handle's pose then, unless the
+  // settings keep the anchor (the same operator's hand, a new motion on the same clock).
   void select(const AttachmentSettings& settings) noexcept {
+    const bool keep = settings.keep_anchor && settings.kind == settings_.kind;
     settings_ = settings;
-    anchored_ = false;
+    if (!keep) anchored_ = false;
   }
   [[nodiscard]] const AttachmentSettings& settings() const noexcept { return settings_; }
 

@@ -39,6 +39,10 @@ struct Profile {
   }
   [[nodiscard]] Eigen::Vector3d rate_at(double t) const noexcept {
     switch (kind) {
+      case Kind::ramp_to:
+        return duration_s > 0.0 && t >= start_s && t < start_s + duration_s
+                   ? Eigen::Vector3d((value - from) / duration_s)
+                   : Eigen::Vector3d::Zero();
       case Kind::ramp:
         return t >= start_s ? value : Eigen::Vector3d::Zero();
       case Kind::sine:

@@ -315,6 +315,7 @@ void SimDevice::substep() noexcept {
 RuntimeReply SimDevice::handle_request(std::string_view name, const std::vector<double>& values) {
   const double now = static_cast<double>(simulated_now_ns_.load(std::memory_order_relaxed)) * 1e-9;
   AttachmentSettings a = requested_;
+  a.keep_anchor = false;  // every request but a move re-anchors the hand at the handle
   if (name == "operator.release") {
     a.kind = AttachmentKind::none;
   } else if (name == "operator.push") {
@@ -332,12 +333,34 @@ RuntimeReply SimDevice::handle_request(std::string_view name, const std::vector<
     a.force.value = f;
     a.force.start_s = 0.0;
     a.force.duration_s = ramp;
+    if (a.motion.kind == Profile::Kind::ramp_to) a.motion = Profile{};  // after a move: the hand stays put
+  } else if (name == "operator.move") {
+    if (values.size() != 3 && values.size() != 4) return {false, "operator.move takes dx dy dz [duration_s]"};
+    const double duration = values.size() == 4 ? values[3] : 1.0;
+    const Eigen::Vector3d d(values[0], values[1], values[2]);
+    if (!d.allFinite() || d.norm() > 1.0 || !(duration >= 0.0 && duration <= 60.0))
+      return {false, "operator.move: up to 1 m, duration 0..60 s"};
+    if (a.kind != AttachmentKind::operator_hand) return {false, "operator.move: no operator holds the handle"};
+    // The hand's target moves by d from where it aims now, over the duration, and holds there. The anchor, the
+    // hand and the profiles' clock stay: the voluntary force goes on as it was.
+    const double local = now - requested_at_s_;
+    const Eigen::Vector3d from = a.motion.at(local);
+    a.motion = Profile{};
+    a.motion.kind = Profile::Kind::ramp_to;
+    a.motion.from = from;
+    a.motion.value = from + d;
+    a.motion.start_s = local;
+    a.motion.duration_s = duration;
+    a.keep_anchor = true;
+    requested_ = a;
+    request_attachment(a);
+    return {true, "operator.move accepted"};
   } else if (name == "operator.grasp") {
     if (values.size() != 1 || !(values[0] >= 0.0 && values[0] <= 1.0))
       return {false, "operator.grasp takes one value in 0..1"};
     a.grasp = values[0];
   } else {
-    return {false, "the simulated device accepts operator.push, operator.release and operator.grasp"};
+    return {false, "the simulated device accepts operator.push, operator.move, operator.release and operator.grasp"};
   }
   requested_ = a;
   requested_at_s_ = now;

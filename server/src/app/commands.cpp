@@ -50,7 +50,7 @@ std::optional<LoadedSession> load(const std::string& file, const std::vector<std
     s.loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(s.config.server.plugin_paths));
     // Running, a plugin that throws from configure() isolates its device; checking, it is an error.
     s.sessions = build_sessions(s.config, *s.loader, overrides != nullptr ? &s.configure_failures : nullptr);
-    s.stages = build_group_stages(s.config, s.sessions);
+    s.stages = build_group_stages(s.config, s.sessions, *s.loader);
     return s;
   } catch (const ConfigError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -218,7 +218,7 @@ std::vector<GroupConfig> read_groups(const YAML::Node& node, const std::string& 
   std::set<std::string> names, grouped;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string path = "groups[" + std::to_string(i) + "]";
-    MappingReader r(node[i], path, file, {"name", "devices", "min_distance_m", "repulsion", "loop"});
+    MappingReader r(node[i], path, file, {"name", "devices", "min_distance_m", "repulsion", "loop", "model"});
     GroupConfig g;
     g.key_path = path;
     g.line = line_of(node[i]);
@@ -269,6 +269,8 @@ std::vector<GroupConfig> read_groups(const YAML::Node& node, const std::string& 
       g.own_loop = true;
       g.loop_cpu = static_cast<int>(p.integer("cpu"));
     }
+    if (const YAML::Node model = r.optional("model"); model.IsDefined() && !model.IsNull())
+      g.model = read_plugin(model, r.path_of("model"), file);
     groups.push_back(std::move(g));
   }
   return groups;

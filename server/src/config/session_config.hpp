@@ -109,7 +109,8 @@ struct GroupConfig {
   // pinned to loop_cpu (-1: not pinned). Without it the group runs on the session's loop.
   bool own_loop = false;
   int loop_cpu = -1;
-  std::string key_path;  // "groups[0]"
+  std::optional<PluginConfig> model;  // `model`: the group's model (bimanual coupling: shared_object)
+  std::string key_path;               // "groups[0]"
   int line = 0;
 };
 

@@ -214,6 +214,8 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
     result.loop_time_s = std::max(result.loop_time_s, l.loop_time_s);
     result.stop_requested = result.stop_requested || l.stop_requested;
   }
+  for (const auto& l : loops_)
+    for (GroupStage* g : l->cycle.stages()) g->deactivate();
   for (DeviceSession* s : sessions_) {
     s->deactivate();
     if (!s->disable_error().empty())

@@ -23,6 +23,51 @@ GroupStage::GroupStage(std::string name, std::vector<DeviceSession*> devices, do
 
 void GroupStage::run(const CycleTime& cycle) noexcept {
   for (const auto& guard : guards_) guard->run(cycle);
+  if (model_.object) run_model(cycle);
+}
+
+void GroupStage::set_model(PluginInstance<GroupModel> model) {
+  model_name_ = model.object ? model.descriptor->name : "";
+  model_ = std::move(model);
+}
+
+void GroupStage::run_model(const CycleTime& cycle) noexcept {
+  const std::size_t n = devices_.size();
+  bool all_running = true;
+  for (std::size_t k = 0; k < n; ++k) {
+    const ChainState& c = devices_[k]->chain_state();
+    hands_[k] = GroupHand{c.handle_pose, c.handle_twist, c.operator_wrench, devices_[k]->fault() == DeviceFault::none};
+    all_running = all_running && hands_[k].running;
+  }
+  if (!model_active_ && !all_running) return;  // it starts (again) once every hand is there
+  const std::span<const GroupHand> hands(hands_.data(), n);
+  const std::span<Eigen::Vector3d> forces(model_forces_.data(), n);
+  ReturnCode rc = ReturnCode::error;
+  try {
+    if (!model_active_) {
+      if (model_->activate(hands) != ReturnCode::ok) return fail_model(cycle, "the group's model refused to activate");
+      model_active_ = true;
+    }
+    rc = model_->update(cycle, hands, forces);
+  } catch (...) {
+    return fail_model(cycle, "the group's model threw an exception");
+  }
+  if (rc != ReturnCode::ok) return fail_model(cycle, "the group's model failed");
+  for (std::size_t k = 0; k < n; ++k)
+    if (!model_forces_[k].allFinite()) return fail_model(cycle, "the group's model answered a non-finite force");
+  for (std::size_t k = 0; k < n; ++k)
+    if (hands_[k].running) devices_[k]->add_group_force(model_forces_[k]);
+}
+
+void GroupStage::fail_model(const CycleTime& cycle, const char* reason) noexcept {
+  model_active_ = false;
+  for (DeviceSession* d : devices_)
+    if (d->fault() == DeviceFault::none) d->raise_group_fault(DeviceFault::group_model, cycle, reason);
+}
+
+void GroupStage::deactivate() {
+  if (model_.object) model_->deactivate();
+  model_active_ = false;
 }
 
 void GroupStage::publish_snapshot(const CycleTime& cycle) noexcept {

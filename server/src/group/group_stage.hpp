@@ -12,7 +12,9 @@
 
 #include "group/collision_guard.hpp"
 #include "hapticd/cycle_time.hpp"
+#include "hapticd/group_model.hpp"
 #include "hapticd/realtime/latest_value.hpp"
+#include "plugins/plugin_loader.hpp"
 #include "session/device_snapshot.hpp"
 
 namespace hapticd::server {
@@ -40,6 +42,15 @@ class GroupStage {
              const RepulsionSettings& repulsion, double period_s, bool own_loop = false);
 
   void run(const CycleTime& cycle) noexcept;
+  // Before the loop runs: the group's model (`groups[i].model`, bimanual coupling). It activates at the first
+  // cycle all the group's devices run (again after a failure, once all are recovered); each cycle it answers a
+  // force per handle, added to the device's group force. A model that fails, throws or answers a non-finite
+  // force stops every device of the group (fault group_model).
+  void set_model(PluginInstance<GroupModel> model);
+  [[nodiscard]] GroupModel* model() noexcept { return model_.object.get(); }
+  [[nodiscard]] const std::string& model_name() const noexcept { return model_name_; }
+  // After the loop has ended.
+  void deactivate();
   // After phase (d), at the cycles the devices publish snapshots: the group's snapshot of them.
   void publish_snapshot(const CycleTime& cycle) noexcept;
   // Before the loop runs: the devices' snapshot interval (0: never, the default).
@@ -58,6 +69,13 @@ class GroupStage {
   std::string name_;
   std::vector<DeviceSession*> devices_;
   std::vector<std::unique_ptr<CollisionGuard>> guards_;
+  void run_model(const CycleTime& cycle) noexcept;
+  void fail_model(const CycleTime& cycle, const char* reason) noexcept;
+  PluginInstance<GroupModel> model_;
+  std::string model_name_;
+  bool model_active_ = false;
+  std::array<GroupHand, kMaxGroupDevices> hands_{};
+  std::array<Eigen::Vector3d, kMaxGroupDevices> model_forces_{};
   double min_distance_m_;
   double repulsion_distance_m_;
   bool own_loop_;

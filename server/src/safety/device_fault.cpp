@@ -46,6 +46,8 @@ std::string_view fault_code(DeviceFault fault) noexcept {
       return "emergency_stop";
     case DeviceFault::collision:
       return "collision_distance_violation";
+    case DeviceFault::group_model:
+      return "group_model_failure";
   }
   return "unknown";
 }
@@ -94,6 +96,8 @@ std::string_view to_string(DeviceFault fault) noexcept {
       return "emergency stop";
     case DeviceFault::collision:
       return "two devices of a group came closer than their minimum distance";
+    case DeviceFault::group_model:
+      return "the group's model failed (an error, an exception or a non-finite force)";
   }
   return "unknown";
 }

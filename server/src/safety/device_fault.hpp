@@ -28,6 +28,7 @@ enum class DeviceFault : std::uint8_t {
   loop_stall,          // the loop woke far too late (the process was stopped, the machine stalled)
   emergency_stop,      // requested (DDS, hapticctl, signal)
   collision,           // two devices of a group came closer than the group's hard minimum distance
+  group_model,         // the group's model (bimanual coupling) failed, threw or produced a non-finite force
 };
 
 // The stable code ("joint_velocity_violation"); at most 31 characters.

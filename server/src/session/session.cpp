@@ -18,7 +18,7 @@ std::unique_ptr<Session::Impl> build(SessionConfig config, const SessionOptions&
   paths.insert(paths.begin(), options.plugin_paths.begin(), options.plugin_paths.end());
   impl->loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(paths));
   impl->devices = build_sessions(impl->config, *impl->loader);
-  impl->stages = build_group_stages(impl->config, impl->devices);
+  impl->stages = build_group_stages(impl->config, impl->devices, *impl->loader);
   impl->cycle = std::make_unique<LoopCycle>(impl->device_pointers(), nullptr, impl->stage_pointers());
   impl->period_ns = static_cast<std::int64_t>(std::llround(1e9 / impl->config.server.rate_hz));
   return impl;
@@ -176,6 +176,7 @@ void Session::stop() {
     const double scale = std::max(0.0, 1.0 - static_cast<double>(k) / static_cast<double>(ramp));
     s.cycle->run_cycle(CycleTime{static_cast<std::int64_t>(index) * s.period_ns, s.period_ns, index}, scale, 0, 0);
   }
+  for (const auto& g : s.stages) g->deactivate();
   std::string failed;
   for (const auto& d : s.devices) {
     d->deactivate();  // every device, whatever another one's disable() did

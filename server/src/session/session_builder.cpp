@@ -25,9 +25,9 @@ int line_from_origin(const std::string& origin, int fallback) {
   }
 }
 
-template <class T>
+template <class T, class Context>
 PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, const SessionConfig& config,
-                                     PluginLoader& loader, const PluginContext& context) {
+                                     PluginLoader& loader, const Context& context) {
   const std::string file = config.file.string();
   PluginHandle handle;
   try {
@@ -202,8 +202,9 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
   }
 }
 
-std::vector<std::unique_ptr<GroupStage>> build_group_stages(
-    const SessionConfig& config, const std::vector<std::unique_ptr<DeviceSession>>& devices) {
+std::vector<std::unique_ptr<GroupStage>> build_group_stages(const SessionConfig& config,
+                                                            const std::vector<std::unique_ptr<DeviceSession>>& devices,
+                                                            PluginLoader& loader) {
   std::vector<std::unique_ptr<GroupStage>> stages;
   for (const GroupConfig& g : config.groups) {
     std::vector<DeviceSession*> members;
@@ -217,8 +218,21 @@ std::vector<std::unique_ptr<GroupStage>> build_group_stages(
                             g.key_path + (g.min_distance_m > 0.0 ? ".min_distance_m" : ".repulsion"),
                             "group '" + g.name + "' checks distances, but device '" + d->name() +
                                 "' has no robot model (no collision geometry)");
-    stages.push_back(std::make_unique<GroupStage>(g.name, std::move(members), g.min_distance_m, g.repulsion,
-                                                  1.0 / config.server.rate_hz, g.own_loop));
+    GroupModelContext context;
+    context.group_name = g.name;
+    for (const DeviceSession* d : members) context.devices.push_back(d->name());
+    context.rate_hz = config.server.rate_hz;
+    context.config_directory = config.file.parent_path();
+    auto stage = std::make_unique<GroupStage>(g.name, std::move(members), g.min_distance_m, g.repulsion,
+                                              1.0 / config.server.rate_hz, g.own_loop);
+    if (g.model) {
+      try {
+        stage->set_model(load_and_configure<GroupModel>(PluginKind::group_model, *g.model, config, loader, context));
+      } catch (const PluginConfigureError& e) {
+        throw e.error;  // a group's model that cannot configure is the session's error (it holds several devices)
+      }
+    }
+    stages.push_back(std::move(stage));
   }
   return stages;
 }

@@ -27,9 +27,11 @@ std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& 
                                                            std::vector<ConfigureFailure>* report = nullptr);
 
 // The stages of the session's device groups (`groups`), over the built devices (a device left out at start-up
-// is left out of its group). A group that checks distances needs robot models: a ConfigError otherwise.
+// is left out of its group), with their models (`model`) loaded and configured. A group that checks distances
+// needs robot models: a ConfigError otherwise; so is a model that cannot be loaded or configured.
 std::vector<std::unique_ptr<GroupStage>> build_group_stages(const SessionConfig& config,
-                                                            const std::vector<std::unique_ptr<DeviceSession>>& devices);
+                                                            const std::vector<std::unique_ptr<DeviceSession>>& devices,
+                                                            PluginLoader& loader);
 
 // Per-device seed derived from the session seed (splitmix64), so devices get independent random streams.
 std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) noexcept;
