@@ -3,8 +3,9 @@
 #   asan (AddressSanitizer + UndefinedBehaviorSanitizer): the safety supervisor with fault injection, the
 #     fuzzed session loader and the fuzzed DDS command validation, the device session;
 #   tsan (ThreadSanitizer): the DDS end-to-end tests (the bridge's threads, Cyclone's receive thread and its
-#     liveliness callbacks, the loop's lock-free hand-offs; the ownership tests with their claimant processes), the bridge's round-trip probe and the scheme switching (loop and monitor
-#     threads);
+#     liveliness callbacks, the loop's lock-free hand-offs; the ownership tests with their claimant processes;
+#     the device groups' snapshots, requests and group commands), groups on loop threads of their own (with the
+#     recorder's rings), the bridge's round-trip probe and the scheme switching (loop and monitor threads);
 #   fuzz (libFuzzer with ASan + UBSan, Debian's clang-14): the DDS engine-command validation and the session
 #     loader, each for a fixed number of inputs from a fixed seed (FUZZ_RUNS scales them; findings are written to
 #     build/fuzz/findings and fail the run).
@@ -33,8 +34,9 @@ for preset in "${presets[@]}"; do
   case "$preset" in
     asan) targets=(safety_test config_fuzz_test command_gate_test device_session_test)
           tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession)\.' ;;
-    tsan) targets=(dds_engine_test dds_ownership_test hapticctl hapticd-scene-engine scheme_switching_test round_trip_probe_test)
-          tests='^(DdsEngine|DdsOwnership|SchemeSwitching|RoundTripProbe)\.' ;;
+    tsan) targets=(dds_engine_test dds_ownership_test dds_groups_test separate_loops_test hapticctl hapticd-scene-engine
+                   scheme_switching_test round_trip_probe_test)
+          tests='^(DdsEngine|DdsOwnership|DdsGroups|SeparateLoops|SchemeSwitching|RoundTripProbe)\.' ;;
     fuzz) fuzz ; continue ;;
     *) echo "unknown preset '$preset' (asan, tsan, fuzz)" >&2; exit 2 ;;
   esac

@@ -22,19 +22,7 @@ constexpr double kCoupling = 2000.0;  // N/m, each hand's spring to its grasp po
 
 // A ViSHaRD3 with a simulated operator holding its handle, in admittance display.
 std::string hand(const std::string& name, const std::string& base) {
-  return "  - name: " + name + R"(
-    base_pose: )" +
-         base +
-         R"(
-    device:
-      plugin: sim
-      parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
-        initial_position: [-0.3, 1.6, 0.0]
-        passive_gimbal: true
-        sensor_accelerations: true
-        attachment: operator
-)" + test::vishard3_admittance_chain_yaml();
+  return test::sim_vishard3_held_yaml(name, base) + test::vishard3_admittance_chain_yaml();
 }
 
 // The pair of config/sessions/dual-arm/vishard3-pair.yaml holding a 1 kg box (0.32 x 0.15 x 0.1 m) whose

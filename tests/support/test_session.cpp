@@ -44,6 +44,11 @@ std::string sim_vishard3_admittance_session(const std::string& name, std::uint64
          "    safety: {" + safety + "}\n";
 }
 
+std::string sim_vishard3_held_yaml(const std::string& name, const std::string& base) {
+  return sim_vishard3_entry(name) +
+         "        sensor_accelerations: true\n        attachment: operator\n    base_pose: " + base + "\n";
+}
+
 std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,
                                      const std::string& force_n) {
   return sim_vishard3_entry(name) + R"(        attachment: wrench

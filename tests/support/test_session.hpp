@@ -55,4 +55,8 @@ std::string sim_vishard3_admittance_session(const std::string& name, std::uint64
 std::string sim_vishard3_device_yaml(const std::string& name, const std::string& force_profile,
                                      const std::string& force_n);
 
+// A simulated ViSHaRD3 device entry at `base` (a base_pose mapping) whose handle a simulated operator holds,
+// without its chain (append the virtual model and controller).
+std::string sim_vishard3_held_yaml(const std::string& name, const std::string& base);
+
 }  // namespace hapticd::test

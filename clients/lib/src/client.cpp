@@ -28,6 +28,7 @@ struct Client::Impl {
         group_description(participant),
         group_state(participant),
         command(participant, timing),
+        group_command(participant, timing),
         request(participant),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {
@@ -209,6 +210,7 @@ struct Client::Impl {
   dds::Reader<hapticd_msg_GroupDescription> group_description;
   dds::Reader<hapticd_msg_GroupState> group_state;
   dds::Writer<hapticd_msg_EngineCommand> command;
+  dds::Writer<hapticd_msg_GroupCommand> group_command;
   dds::Writer<hapticd_msg_ControlRequest> request;
   dds::Entity waitset, wake;
   std::thread thread;
@@ -414,6 +416,19 @@ bool Client::send(std::string_view device, hapticd_msg_EngineCommand& command) {
   return impl_->command.write(command);
 }
 
+bool Client::send_group(std::string_view group, std::span<hapticd_msg_EngineCommand> commands) {
+  if (commands.size() > static_cast<std::size_t>(hapticd_msg_MAX_GROUP_DEVICES)) return false;
+  auto g = std::make_unique<hapticd_msg_GroupCommand>();  // about 5 kB
+  dds::set_text(g->group, group);
+  g->command_count = static_cast<std::int32_t>(commands.size());
+  for (std::size_t k = 0; k < commands.size(); ++k) {
+    dds::set_text(commands[k].engine, impl_->options.client_id);
+    commands[k].serial = impl_->serial.fetch_add(1) + 1;
+    g->commands[k] = commands[k];
+  }
+  return impl_->group_command.write(*g);
+}
+
 namespace {
 hapticd_msg_EngineCommand pose_command(hapticd_msg_CommandKind kind, const Pose& pose, const Twist& twist,
                                        std::uint64_t state_serial) {
@@ -426,6 +441,13 @@ hapticd_msg_EngineCommand pose_command(hapticd_msg_CommandKind kind, const Pose&
   return c;
 }
 }  // namespace
+
+hapticd_msg_EngineCommand coupling_command(std::string_view device, const Pose& proxy, const Twist& proxy_twist,
+                                           std::uint64_t state_serial) {
+  hapticd_msg_EngineCommand c = pose_command(hapticd_msg_COMMAND_COUPLING, proxy, proxy_twist, state_serial);
+  dds::set_text(c.device, device);
+  return c;
+}
 
 bool Client::send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist,
                            std::uint64_t state_serial) {

@@ -23,6 +23,12 @@ class CommandIntake {
 
  private:
   void take_commands();
+  // A group's commands (one GroupCommand per cycle from the engine that claimed the group): each part as a
+  // device's command.
+  void take_group_commands();
+  Sender sender_of(dds_entity_t reader, const dds_sample_info_t& info);
+  // The gate's verdict on one device's command; an accepted one goes to the loop.
+  void admit(DeviceLink& d, const hapticd_msg_EngineCommand& c, const Sender& sender, dds_time_t source_timestamp);
   void liveliness_changed(const dds_liveliness_changed_status_t& status);
 
   DdsEndpoints& dds_;

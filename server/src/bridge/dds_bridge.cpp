@@ -52,7 +52,7 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
   // Cyclone's threads (receive, timed events, ...) start with the participant and inherit this thread's CPUs.
   const std::optional<cpu_set_t> previous = set_cpus(cpus_);
   dds_ = std::make_unique<DdsEndpoints>(settings, dds::CommandTiming{deadline, 0.5}, links_.command_filter(),
-                                        links_.request_filter());
+                                        links_.request_filter(), links_.group_command_filter());
   if (previous) (void)pthread_setaffinity_np(pthread_self(), sizeof *previous, &*previous);
   dds::check(dds_set_status_mask(dds_->request.get(), DDS_DATA_AVAILABLE_STATUS),
              "cannot set the request reader's status mask");
@@ -72,6 +72,7 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
 DdsBridge::~DdsBridge() {
   stop();
   (void)dds_set_listener(dds_->command.get(), nullptr);  // no listener callback into the parts below
+  (void)dds_set_listener(dds_->group_command.get(), nullptr);
 }
 
 void DdsBridge::start() {

@@ -10,7 +10,7 @@ namespace hapticd::server {
 
 struct DdsEndpoints {
   DdsEndpoints(const DdsSettings& s, const dds::CommandTiming& timing, const dds_topic_filter& command_filter,
-               const dds_topic_filter& request_filter)
+               const dds_topic_filter& request_filter, const dds_topic_filter& group_command_filter)
       : participant(dds::ParticipantOptions{s.domain_id, s.cyclone_config}),
         description(participant),
         state(participant),
@@ -22,6 +22,7 @@ struct DdsEndpoints {
         group_state(participant),
         command(participant, timing, &command_filter),
         request(participant, {}, &request_filter),
+        group_command(participant, timing, &group_command_filter),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")),
         peers(static_cast<std::size_t>(s.max_peers)) {}
@@ -37,6 +38,7 @@ struct DdsEndpoints {
   dds::Writer<hapticd_msg_GroupState> group_state;
   dds::Reader<hapticd_msg_EngineCommand> command;
   dds::Reader<hapticd_msg_ControlRequest> request;
+  dds::Reader<hapticd_msg_GroupCommand> group_command;
   dds::Entity waitset;  // the receiver: requests and the wake-up
   dds::Entity wake;
   PeerDirectory peers;  // who wrote a command or request: the writer's participant

@@ -54,6 +54,18 @@ dds_topic_filter DeviceLinks::request_filter() noexcept {
   return dds_topic_filter{DDS_TOPIC_FILTER_SAMPLE_ARG, {.sample_arg = &DeviceLinks::request_for_us}, this};
 }
 
+dds_topic_filter DeviceLinks::group_command_filter() noexcept {
+  return dds_topic_filter{DDS_TOPIC_FILTER_SAMPLE_ARG, {.sample_arg = &DeviceLinks::group_command_for_us}, this};
+}
+
+bool DeviceLinks::group_command_for_us(const void* sample, void* self) {
+  auto* links = static_cast<DeviceLinks*>(self);
+  if (links->find_group(dds::text_of(static_cast<const hapticd_msg_GroupCommand*>(sample)->group)) != nullptr)
+    return true;
+  links->unknown_commands_.fetch_add(1, std::memory_order_relaxed);
+  return false;
+}
+
 bool DeviceLinks::command_for_us(const void* sample, void* self) {
   auto* links = static_cast<DeviceLinks*>(self);
   if (links->find(dds::text_of(static_cast<const hapticd_msg_EngineCommand*>(sample)->device)) != nullptr) return true;

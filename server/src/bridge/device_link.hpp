@@ -80,6 +80,9 @@ class DeviceLinks {
   // reader stores them - an attacker inventing device names creates no state - and counted.
   [[nodiscard]] dds_topic_filter command_filter() noexcept;
   [[nodiscard]] dds_topic_filter request_filter() noexcept;
+  [[nodiscard]] dds_topic_filter group_command_filter() noexcept;
+  // A command for a device it does not name, or for a device this server does not have (counted as malformed).
+  void count_unknown_command() noexcept { unknown_commands_.fetch_add(1, std::memory_order_relaxed); }
   // Engine commands naming a device this server does not have (malformed; never applied).
   [[nodiscard]] std::uint64_t unknown_device_commands() const noexcept { return unknown_commands_.load(); }
   // Requests naming a device or group this server does not have (left unanswered: another server may have it).
@@ -88,6 +91,7 @@ class DeviceLinks {
  private:
   static bool command_for_us(const void* sample, void* self);
   static bool request_for_us(const void* sample, void* self);
+  static bool group_command_for_us(const void* sample, void* self);
 
   std::vector<std::unique_ptr<DeviceLink>> links_;
   std::vector<GroupLink> groups_;

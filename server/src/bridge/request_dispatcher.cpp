@@ -269,7 +269,8 @@ void RequestDispatcher::check_claims() {
     const char* why = nullptr;
     if (!PeerDirectory::matched(dds_.request.get(), claim_writer)) {
       why = "left the domain";
-    } else if (now - claimed_ns > claim_grace_ns_ && !dds_.peers.has_live_writer(dds_.command.get(), owner)) {
+    } else if (now - claimed_ns > claim_grace_ns_ && !dds_.peers.has_live_writer(dds_.command.get(), owner) &&
+               !dds_.peers.has_live_writer(dds_.group_command.get(), owner)) {
       why = "has no live command writer (its process died, froze or never had one)";
     }
     if (why == nullptr) continue;

@@ -18,7 +18,9 @@ StatePublisher::StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSende
       live_(links.size(), nullptr),
       published_(links.size()),
       group_snapshot_(std::make_unique<GroupSnapshot>()),
-      group_message_(std::make_unique<hapticd_msg_GroupState>()) {
+      group_written_ns_(links.groups().size(), 0) {
+  for (std::size_t i = 0; i < links.groups().size(); ++i)
+    group_messages_.push_back(std::make_unique<hapticd_msg_GroupState>());
   for (std::size_t i = 0; i < links.size(); ++i)
     for (const SchemeChain& s : links[i].session->chain().schemes) published_[i].scheme_names.push_back(s.name);
 }
@@ -86,9 +88,18 @@ StateLabels StatePublisher::labels_of(std::size_t device, const DeviceSnapshot& 
 
 void StatePublisher::publish_group_states() {
   GroupSnapshot& g = *group_snapshot_;
-  hapticd_msg_GroupState& m = *group_message_;
-  for (GroupLink& group : links_.groups()) {
-    if (!group.stage->take_snapshot(g)) continue;
+  for (std::size_t i = 0; i < links_.groups().size(); ++i) {
+    GroupLink& group = links_.groups()[i];
+    hapticd_msg_GroupState& m = *group_messages_[i];
+    if (!group.stage->take_snapshot(g)) {
+      // Nothing new (the loop waits, e.g. for the engines in lockstep): repeat the last one now and then, for
+      // readers that matched, or set their callback, after it was written.
+      if (group.serial > 0 && monotonic_now_ns() - group_written_ns_[i] > 10'000'000) {
+        (void)dds_.group_state.write(m);
+        group_written_ns_[i] = monotonic_now_ns();
+      }
+      continue;
+    }
     m = hapticd_msg_GroupState{};
     dds::set_text(m.group, group.name);
     m.serial = ++group.serial;
@@ -106,6 +117,7 @@ void StatePublisher::publish_group_states() {
       m.states[k] = state_message(g.devices[k], labels_of(d.index, g.devices[k], owner));
     }
     (void)dds_.group_state.write(m);
+    group_written_ns_[i] = monotonic_now_ns();
   }
 }
 

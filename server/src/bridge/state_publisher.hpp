@@ -59,8 +59,9 @@ class StatePublisher {
   std::uint64_t snapshot_interval_;
   std::vector<const LiveLoopStatistics*> live_;  // per device: its loop's
   std::vector<Published> published_;
-  std::unique_ptr<GroupSnapshot> group_snapshot_;          // publisher thread (8 device snapshots)
-  std::unique_ptr<hapticd_msg_GroupState> group_message_;  // ... and the message (about 7 kB)
+  std::unique_ptr<GroupSnapshot> group_snapshot_;                        // publisher thread (8 device snapshots)
+  std::vector<std::unique_ptr<hapticd_msg_GroupState>> group_messages_;  // per group, the last (about 7 kB)
+  std::vector<std::int64_t> group_written_ns_;                           // ... and when it was written
   std::mutex description_mutex_;
 };
 

@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -114,6 +115,10 @@ class Client {
   bool send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist, std::uint64_t state_serial);
   bool send_wrench(std::string_view device, const Wrench& wrench, std::uint64_t state_serial);
   bool send_motion(std::string_view device, const Pose& pose, const Twist& twist, std::uint64_t state_serial);
+  // One command for a whole group (after claim_group): one per device, in the group's order, each with its
+  // device's name and the device state it answers (coupling_command makes a coupling one). Fills the engine id
+  // and the serials. Writes one GroupCommand; false if it cannot.
+  bool send_group(std::string_view group, std::span<hapticd_msg_EngineCommand> commands);
   // Restart serial numbers (a new claim after a release).
   void reset_serial() noexcept;
 
@@ -121,6 +126,10 @@ class Client {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// A coupling command for one device of a group command (Client::send_group).
+[[nodiscard]] hapticd_msg_EngineCommand coupling_command(std::string_view device, const Pose& proxy,
+                                                         const Twist& proxy_twist, std::uint64_t state_serial);
 
 // Conversions from the wire types.
 [[nodiscard]] std::string_view name_of(const hapticd_msg_Name& name) noexcept;
