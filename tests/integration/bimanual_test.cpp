@@ -132,6 +132,28 @@ TEST(Bimanual, TheGroupModelDoesNotAllocateOnTheLoop) {
   EXPECT_LT(box_of(s).position.z(), z0 - 0.001);  // it ran: the box sagged in the hands under its weight
 }
 
+TEST(Bimanual, AFailingGroupModelStopsItsGroupAndOnlyIt) {
+  for (const std::string failure : {"error", "throw", "nan"}) {
+    Session s = test::build_test_session(
+        "server: {clock: lockstep}\ndevices:\n" + test::mass_spring_device_yaml("a") +
+        test::mass_spring_device_yaml("b") + test::mass_spring_device_yaml("c") +
+        "groups:\n  - name: pair\n    devices: [a, b]\n    model: {plugin: test_faulty_group_model, parameters: "
+        "{fail_at_cycle: 200, failure: " +
+        failure + "}}\n");
+    s.step(200);  // cycles 0..199: the model runs
+    for (const char* d : {"a", "b", "c"}) EXPECT_EQ(s.device(d).fault, "") << failure << " " << d;
+    s.step(1);  // cycle 200 fails
+    for (const char* d : {"a", "b"}) {
+      EXPECT_NE(s.device(d).fault.find("group's model"), std::string::npos)
+          << failure << " " << d << ": " << s.device(d).fault;
+      EXPECT_EQ(s.device(d).faults, 1u) << failure;
+    }
+    s.step(100);
+    EXPECT_EQ(s.device("c").fault, "") << failure;   // outside the group: runs on
+    EXPECT_EQ(s.device("a").faults, 1u) << failure;  // the model is not run again while its hands are stopped
+  }
+}
+
 TEST(Bimanual, AGroupModelIsCheckedInTheSessionFile) {
   const auto error_of = [](const std::string& model) {
     try {

@@ -26,10 +26,7 @@ void GroupStage::run(const CycleTime& cycle) noexcept {
   if (model_.object) run_model(cycle);
 }
 
-void GroupStage::set_model(PluginInstance<GroupModel> model) {
-  model_name_ = model.object ? model.descriptor->name : "";
-  model_ = std::move(model);
-}
+void GroupStage::set_model(PluginInstance<GroupModel> model) { model_ = std::move(model); }
 
 void GroupStage::run_model(const CycleTime& cycle) noexcept {
   const std::size_t n = devices_.size();

@@ -48,7 +48,6 @@ class GroupStage {
   // force stops every device of the group (fault group_model).
   void set_model(PluginInstance<GroupModel> model);
   [[nodiscard]] GroupModel* model() noexcept { return model_.object.get(); }
-  [[nodiscard]] const std::string& model_name() const noexcept { return model_name_; }
   // After the loop has ended.
   void deactivate();
   // After phase (d), at the cycles the devices publish snapshots: the group's snapshot of them.
@@ -72,7 +71,6 @@ class GroupStage {
   void run_model(const CycleTime& cycle) noexcept;
   void fail_model(const CycleTime& cycle, const char* reason) noexcept;
   PluginInstance<GroupModel> model_;
-  std::string model_name_;
   bool model_active_ = false;
   std::array<GroupHand, kMaxGroupDevices> hands_{};
   std::array<Eigen::Vector3d, kMaxGroupDevices> model_forces_{};

@@ -1,0 +1,35 @@
+#include "faulty_group_model.hpp"
+
+#include <stdexcept>
+
+namespace hapticd::test_plugins {
+
+ParameterSchema FaultyGroupModel::parameter_schema() {
+  ParameterSchema s;
+  s.integer("fail_at_cycle", "the first cycle that fails").minimum(0).default_value(std::int64_t{100});
+  s.string("failure", "how it fails").choices({"error", "throw", "nan"}).default_value(std::string("error"));
+  s.real("force_n", "the force along x on every handle before it fails").unit("N").default_value(1.0);
+  return s;
+}
+
+void FaultyGroupModel::configure(const Parameters& p, const GroupModelContext&) {
+  fail_at_ = static_cast<std::uint64_t>(p.integer("fail_at_cycle"));
+  const std::string failure = p.string("failure");
+  failure_ = failure == "throw" ? Failure::exception : failure == "nan" ? Failure::nan : Failure::error;
+  force_n_ = p.real("force_n");
+}
+
+ReturnCode FaultyGroupModel::activate(std::span<const GroupHand>) { return ReturnCode::ok; }
+
+ReturnCode FaultyGroupModel::update(const CycleTime& cycle, std::span<const GroupHand>,
+                                    std::span<Eigen::Vector3d> handle_force) {
+  const bool failing = cycle.index >= fail_at_;
+  if (failing && failure_ == Failure::error) return ReturnCode::error;
+  if (failing && failure_ == Failure::exception) throw std::runtime_error("a faulty group model");
+  for (Eigen::Vector3d& f : handle_force)
+    f = failing ? Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN())
+                : Eigen::Vector3d(force_n_, 0.0, 0.0);
+  return ReturnCode::ok;
+}
+
+}  // namespace hapticd::test_plugins

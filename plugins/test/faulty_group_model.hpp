@@ -1,0 +1,28 @@
+#pragma once
+#include <limits>
+
+#include "hapticd/group_model.hpp"
+
+namespace hapticd::test_plugins {
+
+// A group model that pulls every handle with a constant force and, from cycle `fail_at_cycle` on, fails the way
+// `failure` says (error: update returns an error; throw: update throws; nan: a non-finite force): the group
+// stage's failure path.
+class FaultyGroupModel final : public GroupModel {
+ public:
+  static ParameterSchema parameter_schema();
+
+  void configure(const Parameters& parameters, const GroupModelContext& context) override;
+  ReturnCode activate(std::span<const GroupHand> hands) override;
+  ReturnCode update(const CycleTime& cycle, std::span<const GroupHand> hands,
+                    std::span<Eigen::Vector3d> handle_force) override;
+  void deactivate() override {}
+
+ private:
+  enum class Failure { error, exception, nan };
+  Failure failure_ = Failure::error;
+  std::uint64_t fail_at_ = 0;
+  double force_n_ = 0.0;
+};
+
+}  // namespace hapticd::test_plugins
