@@ -1,15 +1,22 @@
-// hapticd-eval: the evaluation suite (off-line; never talks to a running server).
+// hapticd-eval: the evaluation suite (off-line; never talks to a running server). The experiments run the
+// server's own cycle through the in-process session API in lockstep (docs/evaluation.md).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
 
+#include "backdrivability_command.hpp"
+#include "force_response_command.hpp"
 #include "output_capability_command.hpp"
+#include "report/report.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"hapticd-eval: evaluations of haptic devices and control schemes"};
   app.require_subcommand(1);
   int exit_code = 0;
+  hapticd::eval::set_command_line(argc, argv);
   hapticd::eval::add_output_capability_command(app, exit_code);
+  hapticd::eval::add_backdrivability_command(app, exit_code);
+  hapticd::eval::add_force_response_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -151,6 +151,39 @@ TEST(SimDevice, PositionSourceDragsTheHandleAlongItsPath) {
   EXPECT_GT(rig.device.ground_truth().handle_wrench.x(), 1.0);
 }
 
+TEST(SimDevice, ShuttlePathHasConstantAccelerationAndConstantVelocityPhases) {
+  // 10 cm out and back at 2 m/s^2 and 0.2 m/s: 0.1 s accelerating (1 cm), 0.4 s cruising, 0.1 s braking.
+  SimRig rig(kVishard3 +
+             "attachment: position_source\nsource_path: shuttle\nsource_path_m: [0.1, 0, 0]\n"
+             "source_path_acceleration: 2.0\nsource_path_speed: 0.2\n");
+  rig.cycle();
+  const Eigen::Vector3d start = rig.device.ground_truth().handle_pose.translation();
+  const auto x_at = [&](double t) {
+    while (static_cast<double>(rig.index) * 5e-4 < t) rig.cycle();
+    return rig.device.ground_truth().handle_pose.translation().x() - start.x();
+  };
+  EXPECT_NEAR(x_at(0.1), 0.01, 1e-3);  // end of the constant acceleration: a t^2 / 2
+  EXPECT_NEAR(x_at(0.3), 0.05, 1e-3);  // cruising at 0.2 m/s
+  EXPECT_NEAR(rig.device.ground_truth().handle_twist.x(), 0.2, 0.01);
+  EXPECT_NEAR(x_at(0.6), 0.10, 1e-3);  // the far end
+  EXPECT_NEAR(x_at(1.2), 0.0, 1e-3);   // back at the start
+}
+
+TEST(SimDevice, CommandDelayHoldsTheTorqueBackByTheDeadTime) {
+  // A 1 ms dead time: a torque written at 50 ms reaches the drives at 51 ms (current loop off to see it sharp).
+  SimRig rig(kVishard3 + "command_delay_s: 0.001\ncurrent_loop: false\nfriction: false\n");
+  for (int k = 0; k < 100; ++k) {
+    if (k == 100 - 1) rig.command.torque_nm[0] = 2.0;
+    rig.cycle();
+  }
+  // Written at the read of 49.5 ms (cycle 99); due at 50.5 ms.
+  rig.cycle();  // read at 50 ms: not yet
+  EXPECT_EQ(rig.device.ground_truth().motor_torque[0], 0.0);
+  rig.cycle();  // read at 50.5 ms: the substeps up to 50.5 ms ran with the old torque
+  rig.cycle();  // read at 51 ms: applied
+  EXPECT_NEAR(rig.device.ground_truth().motor_torque[0], 2.0, 1e-12);
+}
+
 TEST(SimDevice, AttachmentSwitchesAtRunTimeWithoutAJump) {
   SimRig rig(kVishard3 + "attachment: operator\noperator_motion: sine\noperator_motion_m: [0.03, 0, 0]\n");
   for (int k = 0; k < 1000; ++k) rig.cycle();

@@ -177,7 +177,8 @@ class ChainBuilder {
   std::set<int> has_child_;
 };
 
-// <hapticd_drive joint="..." .../>: every numeric attribute is required, gear and motor are optional names.
+// <hapticd_drive joint="..." .../>: every numeric attribute of kNumeric is required, those of kOptional may be
+// left out (zero); gear and motor are optional names.
 void read_drives(const TiXmlDocument& doc, const std::string& source, std::vector<Body>& bodies) {
   static const char* const kNumeric[] = {"gear_ratio",
                                          "gear_peak_torque",
@@ -190,6 +191,7 @@ void read_drives(const TiXmlDocument& doc, const std::string& source, std::vecto
                                          "motor_continuous_torque",
                                          "rotor_inertia",
                                          "encoder_counts_per_motor_rev"};
+  static const char* const kOptional[] = {"structural_stiffness"};
   const TiXmlElement* robot = doc.RootElement();
   std::set<std::string> seen;
   for (const TiXmlElement* e = robot->FirstChildElement("hapticd_drive"); e != nullptr;
@@ -209,6 +211,7 @@ void read_drives(const TiXmlDocument& doc, const std::string& source, std::vecto
       if (name == "joint" || name == "gear" || name == "motor") continue;
       bool known = false;
       for (const char* k : kNumeric) known = known || name == k;
+      for (const char* k : kOptional) known = known || name == k;
       if (!known) throw ModelError(where + ": unknown attribute '" + name + "'");
       std::istringstream in(a->Value());
       double v = 0.0;
@@ -231,6 +234,7 @@ void read_drives(const TiXmlDocument& doc, const std::string& source, std::vecto
     d.gear_average_torque = values["gear_average_torque"];
     d.stiffness_min = values["stiffness_min"];
     d.stiffness_max = values["stiffness_max"];
+    d.structural_stiffness = values.count("structural_stiffness") ? values["structural_stiffness"] : 0.0;
     d.max_input_speed_rpm = values["max_input_speed_rpm"];
     d.wave_generator_inertia = values["wave_generator_inertia"];
     d.motor_stall_torque = values["motor_stall_torque"];

@@ -26,10 +26,16 @@ FlexibleChain build_flexible_chain(const model::RobotModel& model, int handle_fr
     JointPhysics j;
     j.motor_inertia = b.reflected_inertia;
     j.gear_ratio = d.gear_ratio;
-    j.spring.k_min = d.stiffness_min;
-    j.spring.k_max = d.stiffness_max;
-    j.spring.rated_deflection = std::max(1e-6, d.gear_average_torque / d.stiffness_max);
-    j.damping = 2.0 * options.damping_ratio * std::sqrt(d.stiffness_min * j.motor_inertia);
+    // A compliant structure in series with the gear: no mass between them, so the two springs act as one whose
+    // stiffness at each load is the series combination k k_s / (k + k_s). The gear's stiffness rises with its
+    // deflection; the combination keeps that shape between the combined end values, reaching the upper one at
+    // the rated torque (a close approximation of the exact series curve, with the right end points).
+    const double ks = options.structural_compliance ? d.structural_stiffness : 0.0;
+    const auto series = [ks](double k) { return ks > 0.0 ? k * ks / (k + ks) : k; };
+    j.spring.k_min = series(d.stiffness_min);
+    j.spring.k_max = series(d.stiffness_max);
+    j.spring.rated_deflection = std::max(1e-6, d.gear_average_torque / j.spring.k_max);
+    j.damping = 2.0 * options.damping_ratio * std::sqrt(j.spring.k_min * j.motor_inertia);
     j.friction = options.friction_template;
     if (!options.friction) {
       j.friction.sliding = j.friction.load_dependent = j.friction.stiction = false;

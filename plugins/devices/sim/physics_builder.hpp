@@ -1,6 +1,7 @@
 #pragma once
 // Builds a FlexibleChain from a robot model with drive data: springs from the stiffness range, reflected
-// motor inertia, structural damping, friction with per-joint variation and ripple (seeded).
+// motor inertia, the structure's series compliance, structural damping, friction with per-joint variation and ripple
+// (seeded).
 #include "flexible_chain.hpp"
 
 namespace hapticd::sim {
@@ -11,6 +12,9 @@ struct PhysicsOptions {
   bool friction = true;                  // master switch of all friction effects
   FrictionParameters friction_template;  // switches and curves shared by the joints
   bool ripple = true;
+  // The structure's compliance in series with each gear (DriveData::structural_stiffness, where the model gives
+  // one): the joint's spring is the series combination (docs/simulated-devices.md).
+  bool structural_compliance = false;
   double ripple_min_nm = 0.12, ripple_max_nm = 0.19;
 };
 

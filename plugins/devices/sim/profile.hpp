@@ -1,5 +1,7 @@
 #pragma once
-// A scripted 3-D signal over time: constant, step at start_s, ramp from start_s, or sine from start_s.
+// A scripted 3-D signal over time: constant, step at start_s, ramp from start_s, sine from start_s, or a shuttle
+// (from start_s: out along `value` and back, again and again, each leg a trapezoidal velocity profile with
+// constant-acceleration and constant-velocity phases: the backdrivability test's path).
 // Used for the operator's target motion and voluntary force, the position source's path and scripted
 // wrenches. Real-time safe.
 #include <Eigen/Core>
@@ -10,13 +12,15 @@
 namespace hapticd::sim {
 
 struct Profile {
-  enum class Kind { constant, step, ramp, sine, ramp_to };
+  enum class Kind { constant, step, ramp, sine, ramp_to, shuttle };
   Kind kind = Kind::constant;
   Eigen::Vector3d value = Eigen::Vector3d::Zero();  // constant / step value, ramp rate per second, sine amplitude
   double start_s = 0.0;
   double frequency_hz = 1.0;
   Eigen::Vector3d from = Eigen::Vector3d::Zero();  // kRampTo: from `from` to `value` over duration_s
   double duration_s = 0.0;
+  double acceleration = 1.0;  // kShuttle: acceleration and cruise speed along the leg [per s^2, per s]
+  double speed = 0.1;
 
   [[nodiscard]] Eigen::Vector3d at(double t) const noexcept {
     switch (kind) {
@@ -34,6 +38,8 @@ struct Profile {
       case Kind::sine:
         return t >= start_s ? Eigen::Vector3d(value * std::sin(2.0 * M_PI * frequency_hz * (t - start_s)))
                             : Eigen::Vector3d::Zero();
+      case Kind::shuttle:
+        return value * shuttle(t)[0];
     }
     return Eigen::Vector3d::Zero();
   }
@@ -45,6 +51,8 @@ struct Profile {
                    : Eigen::Vector3d::Zero();
       case Kind::ramp:
         return t >= start_s ? value : Eigen::Vector3d::Zero();
+      case Kind::shuttle:
+        return value * shuttle(t)[1];
       case Kind::sine:
         return t >= start_s ? Eigen::Vector3d(value * 2.0 * M_PI * frequency_hz *
                                               std::cos(2.0 * M_PI * frequency_hz * (t - start_s)))
@@ -53,8 +61,15 @@ struct Profile {
         return Eigen::Vector3d::Zero();
     }
   }
-  // "constant", "step", "ramp", "sine"; throws std::invalid_argument otherwise.
+  [[nodiscard]] Eigen::Vector3d acceleration_at(double t) const noexcept {
+    return kind == Kind::shuttle ? Eigen::Vector3d(value * shuttle(t)[2]) : Eigen::Vector3d::Zero();
+  }
+  // "constant", "step", "ramp", "sine", "shuttle"; throws std::invalid_argument otherwise.
   static Kind parse(const std::string& name);
+
+ private:
+  // The shuttle's progress along `value` (0 .. 1) and its first and second time derivatives at t.
+  [[nodiscard]] Eigen::Vector3d shuttle(double t) const noexcept;
 };
 
 }  // namespace hapticd::sim

@@ -10,11 +10,13 @@
 namespace hapticd::sim {
 namespace {
 
-const std::vector<std::string> kProfiles{"constant", "step", "ramp", "sine"};
+const std::vector<std::string> kProfiles{"constant", "step", "ramp", "sine", "shuttle"};
 
 void declare_profile(ParameterSchema& s, const std::string& prefix, const std::string& what, const std::string& unit,
                      const std::string& default_kind) {
-  s.string(prefix, what + ": constant, step (at _start_s), ramp (value per second) or sine (amplitude)")
+  s.string(prefix, what +
+                       ": constant, step (at _start_s), ramp (value per second), sine (amplitude) or shuttle (out "
+                       "along the value and back, trapezoidal velocity: _acceleration, _speed)")
       .choices(kProfiles)
       .default_value(default_kind);
   s.real_vector(prefix + "_" + unit, what + " value (x, y, z, world)")
@@ -22,6 +24,12 @@ void declare_profile(ParameterSchema& s, const std::string& prefix, const std::s
       .default_value(std::vector<double>{0, 0, 0});
   s.real(prefix + "_start_s", what + ": start of the step, ramp or sine").unit("s").minimum(0.0).default_value(0.0);
   s.real(prefix + "_frequency_hz", what + ": frequency of the sine").unit("Hz").greater_than(0.0).default_value(0.5);
+  s.real(prefix + "_acceleration", what + ": acceleration of the shuttle's constant-acceleration phases (per s^2)")
+      .greater_than(0.0)
+      .default_value(1.0);
+  s.real(prefix + "_speed", what + ": speed of the shuttle's constant-velocity phases (per s)")
+      .greater_than(0.0)
+      .default_value(0.1);
 }
 
 Profile read_profile(const Parameters& p, const std::string& prefix, const std::string& unit) {
@@ -31,6 +39,8 @@ Profile read_profile(const Parameters& p, const std::string& prefix, const std::
   profile.value = Eigen::Vector3d(v[0], v[1], v[2]);
   profile.start_s = p.real(prefix + "_start_s");
   profile.frequency_hz = p.real(prefix + "_frequency_hz");
+  profile.acceleration = p.real(prefix + "_acceleration");
+  profile.speed = p.real(prefix + "_speed");
   return profile;
 }
 
@@ -67,6 +77,17 @@ ParameterSchema SimDevice::parameter_schema() {
   s.boolean("ripple", "position-dependent torque ripple, 2 cycles per motor revolution").default_value(true);
   s.boolean("current_loop", "first-order current loop (else the torque is applied at once)").default_value(true);
   s.real("current_bandwidth_hz", "current-loop bandwidth").unit("Hz").greater_than(0.0).default_value(2500.0);
+  s.real("command_delay_s",
+         "dead time from write() to the torque reaching the current loop (computation, bus, PWM update); "
+         "rounded to substeps")
+      .unit("s")
+      .minimum(0.0)
+      .maximum(0.004)
+      .default_value(0.0);
+  s.boolean("structural_compliance",
+            "the structure's compliance in series with each gear (the model's structural_stiffness; off until "
+            "the calibration of docs/evaluation.md is complete)")
+      .default_value(false);
   s.boolean("thermal_limit", "limit to the continuous torque while the winding is hot").default_value(true);
   s.real("thermal_time_constant_s", "winding time constant").unit("s").greater_than(0.0).default_value(30.0);
   s.real("current_offset_nm", "amplifier current offset, as a joint torque").unit("N m").default_value(0.0);
@@ -170,6 +191,7 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   physics.friction_template.warm_up_time_constant_s = p.real("warm_up_time_constant_s");
   physics.friction_variation = p.real("friction_variation");
   physics.ripple = p.boolean("ripple");
+  physics.structural_compliance = p.boolean("structural_compliance");
   try {
     chain_ = std::make_unique<FlexibleChain>(build_flexible_chain(robot, handle_frame_, physics, context.seed));
   } catch (const std::invalid_argument& e) {
@@ -256,6 +278,11 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
 
   command_ = JointVector::Zero(n);
   truth_.motor_torque = JointVector::Zero(n);
+  command_delay_ns_ = substep_ns_ * std::llround(p.real("command_delay_s") * 1e9 / static_cast<double>(substep_ns_));
+  if (command_delay_ns_ >= static_cast<std::int64_t>(kMaxDelayed - 1) * period_ns) {
+    throw ParameterError("command_delay_s", "at most " + std::to_string(kMaxDelayed - 2) + " control periods");
+  }
+  for (DelayedCommand& d : delayed_) d.torque = JointVector::Zero(n);
 }
 
 Outcome SimDevice::enable() {
@@ -266,6 +293,7 @@ Outcome SimDevice::enable() {
   sensor_.reset();
   attachment_.select(initial_attachment_);
   command_.setZero();
+  delayed_count_ = 0;
   simulated_ns_ = 0;
   truth_.overspeed_joint = -1;
   chain_->prepare();
@@ -279,8 +307,17 @@ Outcome SimDevice::enable() {
   return Outcome::success();
 }
 
+void SimDevice::apply_due_commands() noexcept {
+  while (delayed_count_ > 0 && delayed_[delayed_head_].due_ns <= simulated_ns_) {
+    command_ = delayed_[delayed_head_].torque;
+    delayed_head_ = (delayed_head_ + 1) % kMaxDelayed;
+    --delayed_count_;
+  }
+}
+
 void SimDevice::substep() noexcept {
   const int n = chain_->dof();
+  apply_due_commands();
   for (int i = 0; i < n; ++i)
     truth_.motor_torque[i] = drives_[static_cast<std::size_t>(i)].step(command_[i], substep_s_);
   chain_->prepare();
@@ -457,13 +494,25 @@ void SimDevice::read_accelerations(DeviceState& state) noexcept {
 Outcome SimDevice::write(const CycleTime& /*cycle*/, const JointCommand& command) noexcept {
   if (!enabled_) return Outcome::failure("drives not enabled");
   if (command.torque_nm.size() != command_.size()) return Outcome::failure("a command for another number of joints");
-  command_ = command.torque_nm;
+  if (command_delay_ns_ == 0) {
+    command_ = command.torque_nm;
+    return Outcome::success();
+  }
+  if (delayed_count_ == kMaxDelayed) {  // cannot happen at one write per cycle (checked in configure)
+    delayed_head_ = (delayed_head_ + 1) % kMaxDelayed;
+    --delayed_count_;
+  }
+  DelayedCommand& d = delayed_[(delayed_head_ + delayed_count_) % kMaxDelayed];
+  d.due_ns = simulated_ns_ + command_delay_ns_;
+  d.torque = command.torque_nm;
+  ++delayed_count_;
   return Outcome::success();
 }
 
 void SimDevice::disable() {
   enabled_ = false;
   command_.setZero();
+  delayed_count_ = 0;
   for (Drive& d : drives_) d.reset();
 }
 

@@ -75,6 +75,16 @@ class SimDevice final : public Device {
   std::atomic<std::int64_t> simulated_now_ns_{0};  // for requests: when "now" is
   GroundTruth truth_;
   JointVector initial_position_, command_, counts_per_rev_, speed_limits_;
+  // The command's dead time (command_delay_s): written commands wait in a ring until they are due.
+  struct DelayedCommand {
+    std::int64_t due_ns = 0;
+    JointVector torque;
+  };
+  static constexpr std::size_t kMaxDelayed = 16;
+  std::array<DelayedCommand, kMaxDelayed> delayed_{};
+  std::size_t delayed_head_ = 0, delayed_count_ = 0;
+  std::int64_t command_delay_ns_ = 0;
+  void apply_due_commands() noexcept;
   int handle_frame_ = -1, sensor_frame_ = -1;
   double substep_s_ = 5e-5;
   std::int64_t substep_ns_ = 50000;

@@ -285,6 +285,11 @@ ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcep
 
 ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelInput& input,
                                      TaskTarget& target) noexcept {
+  return update(cycle, input, target, Eigen::Matrix<double, 6, 1>::Zero());
+}
+
+ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target,
+                                     const Eigen::Matrix<double, 6, 1>& scripted) noexcept {
   const ChainState& c = input.chain;
   const double dt = period_s_;
   if (tunable_inbox_.take(tunable_incoming_)) apply(tunable_incoming_);  // run-time parameters, at a cycle boundary
@@ -304,9 +309,10 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
   // The safety layer: passivity controller on the engine port, then the rendered-wrench limits.
   engine = input.render.engine_port(engine, port_twist);
   Eigen::Matrix<double, 6, 1> rendered;
-  rendered << engine.head<3>() + (motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
-                                                : wall_force(position_, velocity_)),
-      rotation_ ? Eigen::Vector3d(engine.tail<3>()) : Eigen::Vector3d::Zero();
+  rendered << engine.head<3>() + scripted.head<3>() +
+                  (motion_based_ ? wall_force(c.handle_pose.position, c.handle_twist.linear)
+                                 : wall_force(position_, velocity_)),
+      rotation_ ? Eigen::Vector3d(engine.tail<3>() + scripted.tail<3>()) : Eigen::Vector3d::Zero();
   rendered = input.render.limit(rendered);
   target.wrench_limited = true;
   // The safety supervisor's walls and speed damping act on the virtual body too (after the limits: they are not

@@ -8,12 +8,15 @@
 namespace hapticd::model {
 
 struct HAPTICD_API DriveData {
-  std::string gear;                      // type designation, informative
-  double gear_ratio = 1.0;               // motor turns per joint turn
-  double gear_peak_torque = 0.0;         // repeated peak torque of the gear [N m, output]
-  double gear_average_torque = 0.0;      // limit for average torque of the gear [N m, output]
-  double stiffness_min = 0.0;            // torsional stiffness at low load [N m/rad]
-  double stiffness_max = 0.0;            // torsional stiffness at rated load [N m/rad]
+  std::string gear;                  // type designation, informative
+  double gear_ratio = 1.0;           // motor turns per joint turn
+  double gear_peak_torque = 0.0;     // repeated peak torque of the gear [N m, output]
+  double gear_average_torque = 0.0;  // limit for average torque of the gear [N m, output]
+  double stiffness_min = 0.0;        // torsional stiffness at low load [N m/rad]
+  double stiffness_max = 0.0;        // torsional stiffness at rated load [N m/rad]
+  // Compliance of the structure (links, bearings, sensor mount) in series with the gear, as a torsional
+  // stiffness at the joint [N m/rad]; 0: rigid (optional attribute; the simulator's structural_compliance).
+  double structural_stiffness = 0.0;
   double max_input_speed_rpm = 0.0;      // gear input (motor) speed limit
   double wave_generator_inertia = 0.0;   // [kg m^2, motor side]
   std::string motor;                     // type designation, informative

@@ -1,0 +1,27 @@
+#include "eval_options.hpp"
+
+namespace hapticd::eval {
+
+void add_common_options(CLI::App* command, CommonOptions& o) {
+  command->add_option("--device", o.device, "the simulated device")
+      ->check(CLI::IsMember({"vishard3"}))
+      ->capture_default_str();
+  command->add_option("--out", o.out, "folder of the results (JSON, PNG, report.html)")->capture_default_str();
+  command->add_flag("--quick", o.quick, "a short run of the same protocol (fewer points; what CI runs)");
+  command->add_flag("--no-figures", o.no_figures, "write the JSON only (no PNG, no HTML)");
+  command->add_option("--seed", o.seed, "the simulation's seed")->capture_default_str();
+  command
+      ->add_option_function<std::vector<std::string>>(
+          "--sim",
+          [&o](const std::vector<std::string>& values) {
+            for (const std::string& v : values) {
+              const auto eq = v.find('=');
+              if (eq == std::string::npos || eq == 0) throw CLI::ValidationError("--sim", "KEY=VALUE, got '" + v + "'");
+              o.sim_parameters.push_back(v.substr(0, eq) + ": " + v.substr(eq + 1));
+            }
+          },
+          "a simulator parameter for this run, KEY=VALUE (docs/simulated-devices.md); repeatable")
+      ->type_name("KEY=VALUE");
+}
+
+}  // namespace hapticd::eval

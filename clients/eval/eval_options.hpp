@@ -1,0 +1,26 @@
+#pragma once
+// The options every experiment subcommand takes: the device, where the results go, quick (CI-sized) runs.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "report/report.hpp"
+
+namespace hapticd::eval {
+
+struct CommonOptions {
+  std::string device = "vishard3";
+  std::string out = "eval-results";
+  bool quick = false;       // a short run of the same protocol (CI): fewer points, shorter windows
+  bool no_figures = false;  // JSON only
+  std::uint64_t seed = 1;
+  // The simulator's parameters changed for this run ("key: value", the sim plugin's; --sim friction=false).
+  std::vector<std::string> sim_parameters;
+
+  [[nodiscard]] ReportOptions report() const { return {out, !no_figures}; }
+};
+
+void add_common_options(CLI::App* command, CommonOptions& options);
+
+}  // namespace hapticd::eval

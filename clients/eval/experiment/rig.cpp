@@ -1,0 +1,79 @@
+#include "rig.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "device_presets.hpp"
+
+namespace hapticd::eval {
+namespace {
+
+void add_lines(std::string& out, const std::vector<std::string>& lines, const std::string& indent) {
+  for (const std::string& line : lines) out += indent + line + "\n";
+}
+
+}  // namespace
+
+std::string rig_yaml(const RigSpec& spec) {
+  const DevicePreset preset = device_preset(spec.device.name);
+  const bool translational = preset.task == model::TaskRows::translation;
+  const std::vector<double>& q0 = spec.device.initial_position.empty() ? preset.seed : spec.device.initial_position;
+  std::string y = fmt::format(
+      "# hapticd-eval rig: {} on the simulated {}\n"
+      "server: {{rate_hz: 2000, clock: lockstep, seed: {}, shutdown_ramp_s: 0.05}}\n"
+      "devices:\n"
+      "  - name: dut\n"
+      "    device:\n"
+      "      plugin: sim\n"
+      "      parameters:\n"
+      "        urdf: {}\n"
+      "        initial_position: [{:.17g}]\n",
+      spec.scheme.label, spec.device.name, spec.seed, find_device_urdf(spec.device.name).string(), fmt::join(q0, ", "));
+  if (translational) y += "        passive_gimbal: true\n        sensor_accelerations: true\n";
+  add_lines(y, spec.attachment, "        ");
+  add_lines(y, spec.device.sim_parameters, "        ");
+  const bool admittance = spec.scheme.display == Scheme::Display::admittance;
+  if (admittance || !spec.script.empty()) {
+    y += "    virtual_model:\n";
+    y += spec.script.empty() ? "      plugin: admittance\n" : "      plugin: scripted_wrench\n";
+    y += "      parameters:\n";
+    if (admittance) {
+      const double m = spec.scheme.virtual_mass_kg;
+      y += fmt::format("        mass_kg: [{0:.17g}, {0:.17g}, {0:.17g}]\n        damping_n_s_per_m: [0, 0, 0]\n", m);
+      if (translational) y += "        rotation: false\n";
+      if (!spec.script.empty()) y += "        display: admittance\n";
+    } else {
+      y += "        display: impedance\n";
+    }
+    add_lines(y, spec.script, "        ");
+  }
+  y += fmt::format("    controller:\n      plugin: {}\n      parameters: {{{}}}\n", spec.scheme.controller,
+                   spec.scheme.controller_parameters);
+  // The thesis's experiments had no rate limit on the rendered force: a 10 N sine at 60 Hz changes at 3.8 kN/s.
+  y += "    safety: {max_force_rate_n_per_s: 100000}\n";
+  return y;
+}
+
+server::Session make_rig_session(const RigSpec& spec) {
+  return server::Session::from_yaml(rig_yaml(spec), {}, fmt::format("<{} rig>", spec.scheme.id));
+}
+
+std::string run_rig(server::Session& session, std::uint64_t cycles,
+                    const std::function<void(const RigSample&)>& sample) {
+  RigSample s;
+  for (std::uint64_t k = 0; k < cycles; ++k) {
+    session.step(1);
+    const server::DeviceView v = session.device("dut");
+    if (!v.fault.empty()) return v.fault;
+    s.t = v.time_s;
+    s.commanded_force = v.task.wrench.force;
+    s.measured_force = -v.operator_wrench.force;
+    s.position = v.handle_pose.position;
+    s.true_velocity = v.truth ? v.truth->handle_twist.linear : v.handle_twist.linear;
+    s.torque = v.command.torque_nm;
+    sample(s);
+  }
+  return {};
+}
+
+}  // namespace hapticd::eval

@@ -1,0 +1,35 @@
+#pragma once
+// The control schemes the thesis evaluates (../shared/spec/CONTROL-METHODS.md section 4), as plugin chains:
+//   impedance display: open-loop impedance control, PD force feedback (Kp, Kd);
+//   admittance display: a virtual admittance (pure mass) and an inner motion loop - resolved acceleration (RAC),
+//   inverse Jacobian (IJC), transposed Jacobian (TJC) - with position gain kp (bandwidth sqrt(kp), critically
+//   damped) and acceleration feedforward on or off.
+#include <string>
+
+namespace hapticd::eval {
+
+struct Scheme {
+  enum class Display { impedance, admittance };
+  std::string id;     // file-name friendly: "rac-kp10000-ff"
+  std::string label;  // for figures: "RAC, kp 10000, feedforward"
+  Display display = Display::impedance;
+  std::string controller;             // plugin name
+  std::string controller_parameters;  // YAML flow-mapping body: "task: translation, force_gain: 1.5"
+  double virtual_mass_kg = 0.0;       // admittance display
+  double force_gain = 0.0;            // impedance display: Kp
+};
+
+Scheme open_loop_impedance();
+Scheme pd_force_feedback(double kp, double kd);
+// inner: "rac", "ijc" or "tjc".
+Scheme admittance(const std::string& inner, double kp, double virtual_mass_kg, bool feedforward);
+
+}  // namespace hapticd::eval
+
+namespace hapticd::eval {
+
+// A scheme from its command-line spelling: "open-loop"; "pd:KP:KD"; "rac:KP[:ff]", "ijc:KP[:ff]", "tjc:KP[:ff]"
+// (admittance display rendering `virtual_mass_kg`). Throws std::invalid_argument naming the bad part.
+Scheme parse_scheme(const std::string& text, double virtual_mass_kg);
+
+}  // namespace hapticd::eval

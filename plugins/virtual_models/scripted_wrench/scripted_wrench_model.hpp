@@ -1,0 +1,35 @@
+#pragma once
+// The scripted wrench model ("scripted_wrench"): a desired wrench played over time (WrenchScript: constant,
+// sine, chirp, steps) that impedance and admittance display both take, the excitation of the evaluation
+// suite's force experiments (the thesis's dynamic force precision, docs/evaluation.md).
+//   display: impedance   the script is the wrench the device displays (TaskTarget::wrench)
+//   display: admittance  a virtual admittance (every parameter of the `admittance` model) renders the script as
+//                        the environment's wrench on its virtual body: M xdd + D xd = F_operator + F_script
+// In both the script is the wrench the environment applies to the operator; it passes the rendered-wrench
+// limits of the safety layer. The clock starts at the model's first cycle.
+#include "hapticd/virtual_model.hpp"
+#include "virtual_admittance.hpp"
+#include "wrench_script.hpp"
+
+namespace hapticd::models {
+
+class ScriptedWrenchModel final : public VirtualModel {
+ public:
+  static ParameterSchema parameter_schema();
+
+  void configure(const Parameters& parameters, const PluginContext& context) override;
+  ReturnCode activate(const VirtualModelInput& current) noexcept override;
+  ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept override;
+  void deactivate() override {}
+  // Admittance display: the virtual admittance's tunable parameters.
+  void tune(const Parameters& parameters) override;
+
+ private:
+  WrenchScript script_;
+  bool admittance_display_ = false;
+  VirtualAdmittance admittance_;
+  bool started_ = false;
+  std::int64_t start_ns_ = 0;
+};
+
+}  // namespace hapticd::models

@@ -1,0 +1,78 @@
+// The scripted wrench model on the simulated ViSHaRD3 held still by a stiff guide (the force experiments'
+// rig): impedance display renders the script as the task wrench and the device pushes the guide with it;
+// admittance display renders it through the virtual admittance and the device pushes the guide with it too;
+// its update() does not allocate; configuration errors name the parameter.
+#include <gtest/gtest.h>
+
+#include "support/test_session.hpp"
+
+namespace hapticd {
+namespace {
+
+std::string held_session(const std::string& model_parameters, const std::string& controller) {
+  return test::sim_vishard3_session_head("v3", 5) + R"(        attachment: position_source
+    virtual_model:
+      plugin: scripted_wrench
+      parameters: {)" +
+         model_parameters +
+         R"(}
+    controller:
+)" + controller;
+}
+
+const char* const kOpenLoop = "      plugin: impedance\n      parameters: {task: translation, force_gain: 0}\n";
+const char* const kResolvedAcceleration =
+    "      plugin: resolved_acceleration\n      parameters: {task: translation, bandwidth_rad_s: 31.6}\n";
+
+TEST(ScriptedWrench, ImpedanceDisplayRendersTheScriptAndPushesTheGuide) {
+  server::Session s = test::build_test_session(held_session(
+      "display: impedance, signal: steps, force_n: [0, 0, 10], step_levels: [0, 1], step_s: 0.5", kOpenLoop));
+  s.step(800);  // 0.4 s: level 0
+  EXPECT_EQ(s.device("v3").task.wrench.force.norm(), 0.0);
+  s.step(1600);  // 1.2 s: level 1 for 0.7 s
+  const server::DeviceView v = s.device("v3");
+  EXPECT_TRUE(v.fault.empty()) << v.fault;
+  EXPECT_NEAR(v.task.wrench.force.z(), 10.0, 1e-9);
+  // The device's force on the guide (minus the operator wrench) follows in open loop, less what the gears'
+  // friction takes.
+  EXPECT_NEAR(-v.operator_wrench.force.z(), 10.0, 3.0);
+}
+
+TEST(ScriptedWrench, AdmittanceDisplayRendersTheScriptThroughTheVirtualMass) {
+  server::Session s = test::build_test_session(
+      held_session("display: admittance, signal: constant, force_n: [0, 0, 8], start_s: 0.3, mass_kg: [3, 3, 3], "
+                   "damping_n_s_per_m: [30, 30, 30], rotation: false",
+                   kResolvedAcceleration));
+  s.step(4000);  // 2 s
+  const server::DeviceView v = s.device("v3");
+  ASSERT_TRUE(v.fault.empty()) << v.fault;
+  EXPECT_NEAR(v.task.wrench.force.z(), 8.0, 1e-9) << "the script is the environment's wrench";
+  EXPECT_TRUE(v.task.has_motion);
+  // Held still, the virtual body settles where the measured force balances the script: F_h = -F_script.
+  EXPECT_NEAR(-v.operator_wrench.force.z(), 8.0, 0.8);
+}
+
+TEST(ScriptedWrench, UpdateDoesNotAllocate) {
+  server::Session s = test::build_test_session(
+      held_session("display: admittance, signal: chirp, force_n: [0, 0, 5], chirp_end_hz: 30, rotation: false",
+                   kResolvedAcceleration));
+  EXPECT_EQ(test::allocations_over_cycles(*s.impl().devices[0], 2000), 0u);
+}
+
+TEST(ScriptedWrench, ConfigurationErrorsNameTheParameter) {
+  try {
+    test::build_test_session(held_session("signal: steps, force_n: [0, 0, 5], step_levels: []", kOpenLoop));
+    FAIL() << "steps without levels were accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("step_levels"), std::string::npos) << e.what();
+  }
+  try {
+    test::build_test_session(held_session("signal: square", kOpenLoop));
+    FAIL() << "an unknown signal was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("signal"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hapticd
