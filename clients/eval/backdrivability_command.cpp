@@ -141,9 +141,7 @@ int run(const Options& o) {
                kp == 1.5 ? "; thesis: about 2.5" : "");
   }
   result.set("ratios", ratios).set("example_session", example_yaml);
-  const ReportOptions report = o.common.report();
-  fmt::print("results: {}\n", write_result(report, "backdrivability", result).string());
-  render_report(report);
+  publish_result(o.common.report(), "backdrivability", result);
   return 0;  // an unstable scheme is a result of the experiment, not an error
 }
 
@@ -156,11 +154,7 @@ void add_backdrivability_command(CLI::App& app, int& exit_code) {
       "A stiff guide moves the handle along x (constant-acceleration and constant-velocity phases); the force "
       "error of each scheme, and the model's prediction for force feedback");
   add_common_options(cmd, o->common);
-  cmd->add_option("--schemes", o->schemes, "open-loop, pd:KP:KD, rac:KP[:ff], ijc:KP[:ff], tjc:KP[:ff]")
-      ->capture_default_str();
-  cmd->add_option("--virtual-mass", o->virtual_mass_kg, "admittance display: the rendered mass [kg]")
-      ->check(CLI::Range(0.1, 1000.0))
-      ->capture_default_str();
+  add_scheme_options(cmd, o->schemes, o->virtual_mass_kg);
   cmd->add_option("--distance", o->distance_m, "length of the guide's stroke [m]")
       ->check(CLI::Range(0.01, 0.4))
       ->capture_default_str();

@@ -24,4 +24,12 @@ void add_common_options(CLI::App* command, CommonOptions& o) {
       ->type_name("KEY=VALUE");
 }
 
+void add_scheme_options(CLI::App* command, std::vector<std::string>& schemes, double& virtual_mass_kg) {
+  command->add_option("--schemes", schemes, "open-loop, pd:KP:KD, rac:KP[:ff], ijc:KP[:ff], tjc:KP[:ff]")
+      ->capture_default_str();
+  command->add_option("--virtual-mass", virtual_mass_kg, "admittance display: the rendered mass [kg]")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
+}
+
 }  // namespace hapticd::eval

@@ -22,5 +22,7 @@ struct CommonOptions {
 };
 
 void add_common_options(CLI::App* command, CommonOptions& options);
+// The experiments' scheme list (parse_scheme's spellings) and the mass admittance display renders.
+void add_scheme_options(CLI::App* command, std::vector<std::string>& schemes, double& virtual_mass_kg);
 
 }  // namespace hapticd::eval

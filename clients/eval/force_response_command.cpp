@@ -142,9 +142,7 @@ int run(const Options& o) {
     }
   }
   result.set("schemes", scheme_results).set("example_session", example_yaml);
-  const ReportOptions report = o.common.report();
-  fmt::print("results: {}\n", write_result(report, "force-response", result).string());
-  render_report(report);
+  publish_result(o.common.report(), "force-response", result);
   return 0;  // an unstable scheme is a result of the experiment, not an error
 }
 
@@ -157,8 +155,7 @@ void add_force_response_command(CLI::App& app, int& exit_code) {
       "Dynamic force precision: the handle held by a stiff guide, sinusoidal desired force, gain, phase, "
       "distortion and -3 dB bandwidth per scheme");
   add_common_options(cmd, o->common);
-  cmd->add_option("--schemes", o->schemes, "open-loop, pd:KP:KD, rac:KP[:ff], ijc:KP[:ff], tjc:KP[:ff]")
-      ->capture_default_str();
+  add_scheme_options(cmd, o->schemes, o->virtual_mass_kg);
   cmd->add_option("--frequencies", o->frequencies, "number of frequencies (evenly spaced)")
       ->check(CLI::Range(1, 500))
       ->capture_default_str();
@@ -166,9 +163,6 @@ void add_force_response_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--to", o->to_hz, "highest frequency [Hz]")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--amplitude", o->amplitude_n, "desired force amplitude [N]")->capture_default_str();
   cmd->add_option("--open-loop-amplitude", o->open_loop_amplitude_n, "the same for open-loop impedance control [N]")
-      ->capture_default_str();
-  cmd->add_option("--virtual-mass", o->virtual_mass_kg, "admittance display: the rendered mass [kg]")
-      ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();
   cmd->add_option("--axis", o->axis, "direction of the force (world)")
       ->check(CLI::IsMember({"x", "y", "z"}))

@@ -69,6 +69,11 @@ bool render_report(const ReportOptions& options) {
   return true;
 }
 
+void publish_result(const ReportOptions& options, const std::string& experiment, const Json& result) {
+  fmt::print("results: {}\n", write_result(options, experiment, result).string());
+  render_report(options);
+}
+
 std::string command_line() { return g_command_line; }
 
 void set_command_line(int argc, char** argv) {

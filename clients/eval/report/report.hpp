@@ -23,6 +23,9 @@ std::filesystem::path write_result(const ReportOptions& options, const std::stri
 // error) when that is not possible here: no python3 or no matplotlib; the JSON is written either way.
 bool render_report(const ReportOptions& options);
 
+// Writes the result (write_result), says where, and draws the report (render_report).
+void publish_result(const ReportOptions& options, const std::string& experiment, const Json& result);
+
 // The command line this program was started with (for "reproduce with").
 std::string command_line();
 void set_command_line(int argc, char** argv);
