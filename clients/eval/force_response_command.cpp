@@ -115,6 +115,7 @@ int run(const Options& o) {
     const double resonance = points.empty() ? none : resonance_hz(points).value_or(none);
     double peak = 0.0;
     for (double g : gain) peak = std::max(peak, g);
+    const Json thesis = published(scheme);
     Json r = Json::object();
     r.set("id", scheme.id)
         .set("label", scheme.label)
@@ -128,18 +129,15 @@ int run(const Options& o) {
         .set("resonance_hz", resonance)
         .set("peak_gain", peak)
         .set("faults", faults)
-        .set("published", published(scheme));
+        .set("published", thesis);
     scheme_results.push(r);
-    const std::string p = published(scheme).dump();
     const std::string bandwidth_text = !std::isnan(bandwidth)          ? fmt::format("{:.1f} Hz", bandwidth)
                                        : points.size() == freqs.size() ? fmt::format("> {:g} Hz", freqs.back())
                                                                        : std::string("-");
     const std::string resonance_text = !std::isnan(resonance) ? fmt::format("{:.1f} Hz", resonance) : "-";
     fmt::print("{:<36} {:>10} {:>10} {:>10.2f} {:>11.1f}%   {}\n", scheme.label, bandwidth_text, resonance_text, peak,
-               distortion.empty() ? 0.0 : distortion.front(), p == "{}" ? "" : p);
-    if (faults.dump() != "[]") {
-      fmt::print("  {} unstable: {}\n", scheme.id, faults.dump());
-    }
+               distortion.empty() ? 0.0 : distortion.front(), thesis.empty() ? "" : thesis.dump());
+    if (!faults.empty()) fmt::print("  {} unstable: {}\n", scheme.id, faults.dump());
   }
   result.set("schemes", scheme_results).set("example_session", example_yaml);
   publish_result(o.common.report(), "force-response", result);

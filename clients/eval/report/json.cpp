@@ -61,6 +61,12 @@ Json& Json::set(const std::string& key, Json v) {
   return *this;
 }
 
+bool Json::empty() const noexcept {
+  if (const Array* a = std::get_if<Array>(&value_)) return a->empty();
+  if (const Object* o = std::get_if<Object>(&value_)) return o->empty();
+  return std::holds_alternative<std::monostate>(value_);
+}
+
 std::string Json::dump(int indent) const {
   std::string out;
   write(out, indent, 0);

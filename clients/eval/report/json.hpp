@@ -30,6 +30,9 @@ class Json {
   Json& push(Json v);
   Json& set(const std::string& key, Json v);
 
+  // An array or object without elements (null counts as empty too).
+  [[nodiscard]] bool empty() const noexcept;
+
   // indent 0: one line; otherwise that many spaces per level.
   [[nodiscard]] std::string dump(int indent = 0) const;
 

@@ -61,14 +61,11 @@ struct Profile {
         return Eigen::Vector3d::Zero();
     }
   }
-  [[nodiscard]] Eigen::Vector3d acceleration_at(double t) const noexcept {
-    return kind == Kind::shuttle ? Eigen::Vector3d(value * shuttle(t)[2]) : Eigen::Vector3d::Zero();
-  }
   // "constant", "step", "ramp", "sine", "shuttle"; throws std::invalid_argument otherwise.
   static Kind parse(const std::string& name);
 
  private:
-  // The shuttle's progress along `value` (0 .. 1) and its first and second time derivatives at t.
+  // The shuttle's progress along `value` (0 .. 1), its rate and its acceleration at t.
   [[nodiscard]] Eigen::Vector3d shuttle(double t) const noexcept;
 };
 
