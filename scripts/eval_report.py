@@ -101,7 +101,172 @@ def backdrivability(result, out_dir):
     return [png], tables
 
 
-DRAW = {"force-response": force_response, "backdrivability": backdrivability}
+def minimum_inertia(result, out_dir):
+    """Smallest stable virtual mass per scheme and direction, beside the thesis's (worst direction)."""
+    schemes = result["schemes"]
+    directions = ["x", "y", "z"]
+    fig, ax = plt.subplots(figsize=(max(6, 0.6 * len(schemes) + 2), 5))
+    width = 0.2
+    for i, d in enumerate(directions):
+        values = []
+        for s in schemes:
+            found = [r for r in s["directions"] if r["direction"] == d]
+            values.append(found[0]["minimum_kg"] if found and found[0]["minimum_kg"] is not None else float("nan"))
+        ax.bar([k + (i - 1) * width for k in range(len(schemes))], values, width, label=f"ours, {d}")
+    published = [s["published_kg"] if s["published_kg"] is not None else float("nan") for s in schemes]
+    ax.plot(range(len(schemes)), published, "k_", markersize=20, markeredgewidth=2, label="thesis (ViSHaRD3)")
+    ax.set_xticks(range(len(schemes)))
+    ax.set_xticklabels([s["label"] for s in schemes], rotation=45, ha="right", fontsize=8)
+    ax.set_ylabel("smallest stable virtual mass [kg]")
+    ax.legend(fontsize=8)
+    ax.grid(True, axis="y", alpha=0.3)
+    fig.suptitle(f"Minimum virtual inertia, {result['device']}")
+    fig.tight_layout()
+    png = out_dir / "minimum-inertia.png"
+    fig.savefig(png, dpi=100)
+    plt.close(fig)
+    rows = []
+    for s in schemes:
+        cells = {r["direction"]: r for r in s["directions"]}
+        row = [s["label"]]
+        for d in directions:
+            r = cells.get(d)
+            row.append("-" if r is None else (">range" if r["above_range"] else fmt(r["minimum_kg"], "kg")))
+        why = "; ".join(f"{r['direction']}: {r['unstable']['load']} "
+                        f"({r['unstable']['fault'] or fmt(r['unstable']['oscillation_hz'], 'Hz')})"
+                        for r in s["directions"] if r.get("unstable"))
+        row += [fmt(s["worst_kg"], "kg"), fmt(s["published_kg"], "kg"), why or "-"]
+        rows.append(row)
+    c = result["criterion"]
+    criterion = (["stability criterion", "value"],
+                 [["run", f"{c['duration_s']} s per load"], ["window", f"last {c['window_s']} s"],
+                  ["high-pass", f"{c['cutoff_hz']} Hz (2nd-order Butterworth)"],
+                  ["threshold", f"{c['threshold_m_s']} m/s RMS of the handle velocity"],
+                  ["loads", ", ".join(x["label"] for x in result["loads"])]])
+    return [png], [(["scheme", "x", "y", "z", "worst", "thesis", "unstable near the boundary"], rows), criterion]
+
+
+def z_width(result, out_dir):
+    """The region of walls (K over B) per scheme; the mass-damping-stiffness space of admittance display."""
+    fig, ax = plt.subplots(figsize=(7, 5))
+    low, top = result["range_n_per_m"]
+    for s in result["schemes"]:
+        b = [p["wall_damping_n_s_per_m"] for p in s["region"]]
+        # none rendered: drawn on the bottom line; above the range: on the top line
+        k = [top if p["above_range"] else max(p["stiffness_n_per_m"], low / 2) for p in s["region"]]
+        ax.plot(b, k, marker="o", label=s["label"])
+    ax.set_yscale("log")
+    ax.set_xlabel("wall damping B [N s/m]")
+    ax.set_ylabel("largest wall stiffness K [N/m]")
+    ax.axhline(top, color="grey", linestyle=":", linewidth=1)
+    ax.axhline(low / 2, color="grey", linestyle=":", linewidth=1)
+    ax.set_ylim(low / 3, top * 2)
+    ax.legend(fontsize=8)
+    ax.grid(True, alpha=0.3)
+    fig.suptitle(f"Z-width, {result['device']}, walls across {result['direction']} "
+                 "(below a line: rendered; bottom: none; top: range)")
+    fig.tight_layout()
+    png = out_dir / "z-width.png"
+    fig.savefig(png, dpi=100)
+    plt.close(fig)
+    head = ["scheme"] + [f"B = {p['wall_damping_n_s_per_m']:g}" for p in result["schemes"][0]["region"]]
+    rows = []
+    for s in result["schemes"]:
+        rows.append([s["label"]] + [">range" if p["above_range"] else fmt(p["stiffness_n_per_m"], "N/m")
+                                    for p in s["region"]])
+    tables = [(head, rows)]
+    mbk = []
+    for s in result["schemes"]:
+        for p in s.get("mass_damping_stiffness", []):
+            mbk.append([s["label"], fmt(p["virtual_mass_kg"], "kg"), fmt(p["virtual_damping_n_s_per_m"], "N s/m"),
+                        ">range" if p["above_range"] else fmt(p["stiffness_n_per_m"], "N/m"), p["limited_by"] or "-"])
+    if mbk:
+        tables.append((["admittance scheme", "virtual mass", "virtual damping", "largest wall K", "limited by"], mbk))
+    return [png], tables
+
+
+def tracking(result, out_dir):
+    """Tracking error along the path and across it per inner loop."""
+    fig, (ax_path, ax_x, ax_across) = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+    for i, s in enumerate(result["schemes"]):
+        if i == 0:
+            ax_path.plot(s["time_s"], s["path_m"], color="black")
+        ax_x.plot(s["time_s"], s["error_x_mm"], label=s["label"], linewidth=1)
+        ax_across.plot(s["time_s"], s["error_across_mm"], linewidth=1)
+    ax_path.set_ylabel("desired x - start [m]")
+    ax_x.set_ylabel("error along x [mm]")
+    ax_across.set_ylabel("error across (y, z) [mm]")
+    ax_across.set_xlabel("time [s]")
+    ax_x.legend(fontsize=8)
+    for ax in (ax_path, ax_x, ax_across):
+        ax.grid(True, alpha=0.3)
+    p = result["path"]
+    fig.suptitle(f"Tracking, {result['device']}: +-{p['acceleration_m_s2']:g} m/s^2, {p['speed_m_s']:g} m/s, "
+                 f"condition number up to {p['worst_condition']:.1f}")
+    fig.tight_layout()
+    png = out_dir / "tracking.png"
+    fig.savefig(png, dpi=100)
+    plt.close(fig)
+    rows = [[s["label"], fmt(s["rms_error_mm"], "mm"), fmt(s["peak_error_mm"], "mm"), s["fault"] or "-"]
+            for s in result["schemes"]]
+    return [png], [(["inner loop", "RMS error", "peak error", "fault"], rows)]
+
+
+def transparency(result, out_dir):
+    """Maps of the apparent mass and the condition number over the workspace's middle height."""
+    pts = result["points"]
+    zs = sorted({round(p["position_m"][2], 6) for p in pts})
+    mid = zs[len(zs) // 2]
+    layer = [p for p in pts if abs(p["position_m"][2] - mid) < 1e-6]
+    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    for ax, (title, value) in zip(axes, [("apparent mass along x [kg]", lambda p: p["mass_kg"][0]),
+                                         ("apparent mass along y [kg]", lambda p: p["mass_kg"][1]),
+                                         ("condition number", lambda p: p["condition"])]):
+        sc = ax.scatter([p["position_m"][0] for p in layer], [p["position_m"][1] for p in layer],
+                        c=[value(p) for p in layer], s=80, cmap="viridis")
+        fig.colorbar(sc, ax=ax)
+        ax.set_title(title, fontsize=9)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+    fig.suptitle(f"Transparency, {result['device']} open loop, z = {mid:.2f} m")
+    fig.tight_layout()
+    png = out_dir / "transparency.png"
+    fig.savefig(png, dpi=100)
+    plt.close(fig)
+    w = result["worst"]
+    rows = [["apparent mass x / y / z (largest)", " / ".join(fmt(v, "kg") for v in w["mass_kg"])],
+            ["apparent mass x / y / z (smallest)", " / ".join(fmt(v, "kg") for v in w["least_mass_kg"])],
+            [f"friction felt at {result['probe_speed_m_s']:g} m/s, x / y / z (largest)",
+             " / ".join(fmt(v, "N") for v in w["friction_n"])],
+            ["condition number of the mass matrix (largest)", fmt(w["condition"])],
+            ["angle between acceleration and inertial force (largest)", fmt(w["angle_deg"], "deg")]]
+    return [png], [(["index (worst over the grid)", "value"], rows)]
+
+
+def friction(result, out_dir):
+    """Identified sliding friction against the simulator's truth, per joint."""
+    joints = result["joints"]
+    fig, axes = plt.subplots(1, max(1, len(joints)), figsize=(5 * max(1, len(joints)), 4), squeeze=False)
+    for ax, j in zip(axes[0], joints):
+        ax.plot(j["velocity_rad_s"], j["true_torque_nm"], "k.", markersize=4, label="simulator (truth)")
+        ax.plot(j["velocity_rad_s"], j["identified_torque_nm"], "-", label="identified")
+        ax.set_title(j["joint"])
+        ax.set_xlabel("velocity [rad/s]")
+        ax.set_ylabel("friction torque [N m]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle(f"Friction identification, {result['device']}")
+    fig.tight_layout()
+    png = out_dir / "friction.png"
+    fig.savefig(png, dpi=100)
+    plt.close(fig)
+    rows = [[j["joint"], fmt(j["coulomb_nm"], "N m"), fmt(j["breakaway_nm"], "N m"),
+             fmt(j["rms_error_percent"], "%"), fmt(j["worst_error_percent"], "%")] for j in joints]
+    return [png], [(["joint", "Coulomb", "break-away", "RMS error vs truth", "worst"], rows)]
+
+
+DRAW = {"force-response": force_response, "backdrivability": backdrivability, "minimum-inertia": minimum_inertia,
+        "tracking": tracking, "z-width": z_width, "transparency": transparency, "friction": friction}
 
 
 def html_table(table):

@@ -4,10 +4,16 @@
 #include <exception>
 #include <iostream>
 
+#include "all_command.hpp"
 #include "backdrivability_command.hpp"
 #include "force_response_command.hpp"
+#include "friction_command.hpp"
+#include "minimum_inertia_command.hpp"
 #include "output_capability_command.hpp"
 #include "report/report.hpp"
+#include "tracking_command.hpp"
+#include "transparency_command.hpp"
+#include "z_width_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"hapticd-eval: evaluations of haptic devices and control schemes"};
@@ -17,6 +23,12 @@ int main(int argc, char** argv) {
   hapticd::eval::add_output_capability_command(app, exit_code);
   hapticd::eval::add_backdrivability_command(app, exit_code);
   hapticd::eval::add_force_response_command(app, exit_code);
+  hapticd::eval::add_minimum_inertia_command(app, exit_code);
+  hapticd::eval::add_z_width_command(app, exit_code);
+  hapticd::eval::add_tracking_command(app, exit_code);
+  hapticd::eval::add_friction_command(app, exit_code);
+  hapticd::eval::add_transparency_command(app, exit_code);
+  hapticd::eval::add_all_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# hapticd-eval's experiments, short lockstep runs (--quick) of the full protocols: each writes its JSON with
-# the figures the analysis gives; the report (PNG, HTML) where python3 with matplotlib is installed.
+# hapticd-eval's experiments, short lockstep runs (--quick) of the full protocols through `all`: each writes its
+# JSON with the figures the analysis gives; one report (PNG, HTML) where python3 with matplotlib is installed.
 set -euo pipefail
 eval_bin=$1
 work=$2
@@ -9,9 +9,8 @@ rm -rf "$work" && mkdir -p "$work"
 py=/usr/bin/python3
 export HAPTICD_PYTHON=$py
 
-timeout 120 "$eval_bin" force-response --quick --out "$work" > "$work/force-response.txt"
-timeout 120 "$eval_bin" backdrivability --quick --out "$work" > "$work/backdrivability.txt"
-cat "$work/force-response.txt" "$work/backdrivability.txt"
+timeout 200 "$eval_bin" all --quick --out "$work" > "$work/all.txt"
+cat "$work/all.txt"
 
 "$py" - "$work" <<'PY'
 import json, math, pathlib, sys
@@ -38,11 +37,47 @@ assert set(by) == {"open-loop", "pd-kp1.5-kd0.003", "rac-kp500-m5-ff", "ijc-kp50
 assert by["open-loop"]["rms_error_n"] > 1.0, by["open-loop"]
 assert by["rac-kp500-m5-ff"]["rms_error_n"] < by["open-loop"]["rms_error_n"]
 assert len(by["open-loop"]["time_s"]) == len(by["open-loop"]["force_error_n"]) > 50
+
+mi = json.loads((work / "minimum-inertia.json").read_text())
+[scheme] = mi["schemes"]
+[x] = scheme["directions"]
+# The bisection brackets a boundary inside the range, and the unstable end says which load broke it.
+assert not x["below_range"] and not x["above_range"], x
+assert 0.2 < x["minimum_kg"] < 20 and x["largest_unstable_kg"] < x["minimum_kg"], x
+assert x["unstable"]["load"] in {"firm-grasp", "loose-grasp", "voluntary-motion", "wall-collision"}, x
+assert scheme["published_kg"] == 2.5, scheme
+
+tr = json.loads((work / "tracking.json").read_text())
+tby = {s["id"]: s for s in tr["schemes"]}
+assert set(tby) == {"rac-kp10000-ff", "tjc-kp10000"}, tby.keys()
+assert all(not s["fault"] for s in tr["schemes"]), tr["schemes"]
+# Resolved acceleration with feedforward tracks the fast path better than the transposed Jacobian without.
+assert 0 < tby["rac-kp10000-ff"]["rms_error_mm"] < tby["tjc-kp10000"]["rms_error_mm"], tby
+assert tr["path"]["worst_condition"] > 3, tr["path"]
+
+zw = json.loads((work / "z-width.json").read_text())
+zby = {s["id"]: s for s in zw["schemes"]}
+rac = [p["stiffness_n_per_m"] for p in zby["rac-kp10000-m3-ff"]["region"]]
+# Wall damping widens the region of an admittance display (without it not even a soft wall is passive).
+assert rac[1] > rac[0], rac
+assert zby["rac-kp10000-m3-ff"]["mass_damping_stiffness"], zby["rac-kp10000-m3-ff"].keys()
+
+tp = json.loads((work / "transparency.json").read_text())
+assert len(tp["points"]) == 8, len(tp["points"])
+w = tp["worst"]
+assert w["condition"] >= 1 and 0 <= w["angle_deg"] < 90, w
+assert all(m > 0 for m in w["least_mass_kg"]) and all(f > 0 for f in w["friction_n"]), w
+
+fr_id = json.loads((work / "friction.json").read_text())
+[j1] = fr_id["joints"]
+assert j1["joint"] == "joint1" and j1["rms_error_percent"] < 10, j1
+assert len(j1["velocity_rad_s"]) > 20, len(j1["velocity_rad_s"])
 print("experiments ok")
 PY
 
 if "$py" -c "import matplotlib" 2> /dev/null; then
-  for f in report.html force-response.png backdrivability.png; do
+  for f in report.html force-response.png backdrivability.png minimum-inertia.png tracking.png z-width.png \
+    transparency.png friction.png; do
     [ -s "$work/$f" ] || { echo "missing $f"; exit 1; }
   done
   grep -q "data:image/png;base64" "$work/report.html"

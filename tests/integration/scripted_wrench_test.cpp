@@ -1,7 +1,8 @@
 // The scripted wrench model on the simulated ViSHaRD3 held still by a stiff guide (the force experiments'
 // rig): impedance display renders the script as the task wrench and the device pushes the guide with it;
 // admittance display renders it through the virtual admittance and the device pushes the guide with it too;
-// its update() does not allocate; configuration errors name the parameter.
+// in impedance display its walls act on the measured handle; its update() does not allocate; configuration errors
+// name the parameter.
 #include <gtest/gtest.h>
 
 #include "support/test_session.hpp"
@@ -50,6 +51,31 @@ TEST(ScriptedWrench, AdmittanceDisplayRendersTheScriptThroughTheVirtualMass) {
   EXPECT_TRUE(v.task.has_motion);
   // Held still, the virtual body settles where the measured force balances the script: F_h = -F_script.
   EXPECT_NEAR(-v.operator_wrench.force.z(), 8.0, 0.8);
+}
+
+TEST(ScriptedWrench, ImpedanceDisplayRendersItsWallsOnTheMeasuredHandle) {
+  // The guide moves the handle along +x at 5 mm/s from 0.3 s into a wall whose surface lies 1 mm ahead of the
+  // start: at 1 s it is 3.5 mm on, 2.5 mm deep, and the wall's force is K * 2.5 mm along -x.
+  const std::string yaml = test::sim_vishard3_session_head("v3", 5) + R"(        attachment: position_source
+        source_path: ramp
+        source_path_m: [0.005, 0, 0]
+        source_path_start_s: 0.3
+    virtual_model:
+      plugin: scripted_wrench
+      parameters: {display: impedance, signal: constant, walls: [0.001, 0, 0, -1, 0, 0], walls_relative: true,
+                   wall_stiffness_n_per_m: 2000, wall_damping_n_s_per_m: 0}
+    controller:
+)" + kOpenLoop;
+  server::Session s = test::build_test_session(yaml);
+  s.step(500);  // 0.25 s: outside the wall
+  EXPECT_EQ(s.device("v3").task.wrench.force.norm(), 0.0);
+  s.step(1500);  // 1 s
+  const server::DeviceView v = s.device("v3");
+  ASSERT_TRUE(v.fault.empty()) << v.fault;
+  // The handle lags the guide by what the coupling (1e5 N/m) needs to drag the geared arm (about 0.25 mm).
+  EXPECT_NEAR(v.task.wrench.force.x(), -2000.0 * 0.0025, 1.0) << "K times the depth, pushing out";
+  EXPECT_LT(v.task.wrench.force.x(), -3.0);
+  EXPECT_NEAR(v.task.wrench.force.y(), 0.0, 1e-9);
 }
 
 TEST(ScriptedWrench, UpdateDoesNotAllocate) {

@@ -12,6 +12,12 @@ void add_lines(std::string& out, const std::vector<std::string>& lines, const st
   for (const std::string& line : lines) out += indent + line + "\n";
 }
 
+bool has_key(const std::vector<std::string>& lines, const std::string& key) {
+  for (const std::string& line : lines)
+    if (line.rfind(key + ":", 0) == 0) return true;
+  return false;
+}
+
 }  // namespace
 
 std::string rig_yaml(const RigSpec& spec) {
@@ -33,19 +39,26 @@ std::string rig_yaml(const RigSpec& spec) {
   add_lines(y, spec.attachment, "        ");
   add_lines(y, spec.device.sim_parameters, "        ");
   const bool admittance = spec.scheme.display == Scheme::Display::admittance;
-  if (admittance || !spec.script.empty()) {
+  if (!spec.model_plugin.empty()) {
+    y += fmt::format("    virtual_model:\n      plugin: {}\n      parameters:\n", spec.model_plugin);
+    add_lines(y, spec.model, "        ");
+  } else if (admittance || !spec.script.empty() || !spec.model.empty()) {
+    const bool scripted = !spec.script.empty() || !admittance;
     y += "    virtual_model:\n";
-    y += spec.script.empty() ? "      plugin: admittance\n" : "      plugin: scripted_wrench\n";
+    y += scripted ? "      plugin: scripted_wrench\n" : "      plugin: admittance\n";
     y += "      parameters:\n";
     if (admittance) {
       const double m = spec.scheme.virtual_mass_kg;
-      y += fmt::format("        mass_kg: [{0:.17g}, {0:.17g}, {0:.17g}]\n        damping_n_s_per_m: [0, 0, 0]\n", m);
+      if (!has_key(spec.model, "mass_kg")) y += fmt::format("        mass_kg: [{0:.17g}, {0:.17g}, {0:.17g}]\n", m);
+      if (!has_key(spec.model, "damping_n_s_per_m")) y += "        damping_n_s_per_m: [0, 0, 0]\n";
       if (translational) y += "        rotation: false\n";
-      if (!spec.script.empty()) y += "        display: admittance\n";
+      if (scripted) y += "        display: admittance\n";
     } else {
       y += "        display: impedance\n";
     }
+    if (scripted && spec.script.empty()) y += "        signal: constant\n";  // force_n defaults to zero
     add_lines(y, spec.script, "        ");
+    add_lines(y, spec.model, "        ");
   }
   y += fmt::format("    controller:\n      plugin: {}\n      parameters: {{{}}}\n", spec.scheme.controller,
                    spec.scheme.controller_parameters);
@@ -69,7 +82,9 @@ std::string run_rig(server::Session& session, std::uint64_t cycles,
     s.commanded_force = v.task.wrench.force;
     s.measured_force = -v.operator_wrench.force;
     s.position = v.handle_pose.position;
+    s.desired_position = v.task.pose.position;
     s.true_velocity = v.truth ? v.truth->handle_twist.linear : v.handle_twist.linear;
+    s.true_force = v.truth ? v.truth->handle_wrench.force : v.operator_wrench.force;
     s.torque = v.command.torque_nm;
     sample(s);
   }

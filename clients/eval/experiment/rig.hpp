@@ -26,6 +26,12 @@ struct RigSpec {
   // What the scheme renders: the scripted_wrench model's parameters ("key: value" lines; signal, force_n, ...),
   // empty: the scheme's own model (the virtual admittance of an admittance scheme; nothing for impedance).
   std::vector<std::string> script;
+  // More parameters of the virtual model ("walls: [...]", "wall_stiffness_n_per_m: 5000", "mass_kg: [...]"):
+  // a key given here replaces the rig's default (the scheme's mass, zero damping). In impedance display they
+  // make the rig render with the scripted_wrench model (its walls act on the measured handle motion).
+  std::vector<std::string> model;
+  // Another virtual model in place of the scheme's ("trajectory": its parameters are `model`, nothing else).
+  std::string model_plugin;
   // The sim plugin's attachment parameters ("attachment: position_source", "source_path: shuttle", ...).
   std::vector<std::string> attachment;
   std::uint64_t seed = 1;
@@ -39,11 +45,13 @@ server::Session make_rig_session(const RigSpec& spec);
 // One cycle of a run, as the experiments analyse it (world frame, handle point).
 struct RigSample {
   double t = 0.0;
-  Eigen::Vector3d commanded_force = Eigen::Vector3d::Zero();  // what the scheme renders (TaskTarget::wrench)
-  Eigen::Vector3d measured_force = Eigen::Vector3d::Zero();   // the device's force on what holds it: -F_h (sensor)
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();         // the handle (measured joints)
-  Eigen::Vector3d true_velocity = Eigen::Vector3d::Zero();    // the simulation's truth
-  JointVector torque;                                         // written
+  Eigen::Vector3d commanded_force = Eigen::Vector3d::Zero();   // what the scheme renders (TaskTarget::wrench)
+  Eigen::Vector3d measured_force = Eigen::Vector3d::Zero();    // the device's force on what holds it: -F_h (sensor)
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();          // the handle (measured joints)
+  Eigen::Vector3d desired_position = Eigen::Vector3d::Zero();  // the virtual model's target (admittance display)
+  Eigen::Vector3d true_velocity = Eigen::Vector3d::Zero();     // the simulation's truth
+  Eigen::Vector3d true_force = Eigen::Vector3d::Zero();        // the truth: what holds the handle applies to it
+  JointVector torque;                                          // written
 };
 
 // Runs `cycles` cycles and calls `sample` after each with the cycle's sample; stops early (returning the

@@ -9,9 +9,15 @@
 namespace hapticd::eval {
 
 Scheme open_loop_impedance() {
-  return {
-      "open-loop", "open-loop impedance", Scheme::Display::impedance, "impedance", "task: translation, force_gain: 0",
-      0.0};
+  return {"open-loop",
+          "open-loop impedance",
+          Scheme::Display::impedance,
+          "impedance",
+          "task: translation, force_gain: 0",
+          0.0,
+          0.0,
+          "open-loop",
+          "open-loop impedance"};
 }
 
 Scheme pd_force_feedback(double kp, double kd) {
@@ -21,7 +27,9 @@ Scheme pd_force_feedback(double kp, double kd) {
           "impedance",
           fmt::format("task: translation, force_gain: {:.17g}, force_derivative_gain: {:.17g}", kp, kd),
           0.0,
-          kp};
+          kp,
+          fmt::format("pd-kp{:g}-kd{:g}", kp, kd),
+          fmt::format("PD force feedback, Kp {:g}, Kd {:g}", kp, kd)};
 }
 
 Scheme admittance(const std::string& inner, double kp, double virtual_mass_kg, bool feedforward) {
@@ -44,7 +52,9 @@ Scheme admittance(const std::string& inner, double kp, double virtual_mass_kg, b
           fmt::format("task: translation, bandwidth_rad_s: {:.17g}, damping_ratio: 1, acceleration_feedforward: {}",
                       std::sqrt(kp), feedforward),
           virtual_mass_kg,
-          0.0};
+          0.0,
+          fmt::format("{}-kp{:g}{}", inner, kp, feedforward ? "-ff" : ""),
+          fmt::format("{}, kp {:g}{}", upper, kp, feedforward ? ", feedforward" : "")};
 }
 
 }  // namespace hapticd::eval

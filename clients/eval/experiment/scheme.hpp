@@ -11,12 +11,14 @@ namespace hapticd::eval {
 struct Scheme {
   enum class Display { impedance, admittance };
   std::string id;     // file-name friendly: "rac-kp10000-ff"
-  std::string label;  // for figures: "RAC, kp 10000, feedforward"
+  std::string label;  // for figures: "RAC, kp 10000, 3 kg, feedforward"
   Display display = Display::impedance;
   std::string controller;             // plugin name
   std::string controller_parameters;  // YAML flow-mapping body: "task: translation, force_gain: 1.5"
   double virtual_mass_kg = 0.0;       // admittance display
   double force_gain = 0.0;            // impedance display: Kp
+  // The same as id and label without the rendered mass ("rac-kp10000-ff", "RAC, kp 10000, feedforward").
+  std::string loop_id, loop_label;
 };
 
 Scheme open_loop_impedance();

@@ -292,7 +292,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
                                      const Eigen::Matrix<double, 6, 1>& scripted) noexcept {
   const ChainState& c = input.chain;
   const double dt = period_s_;
-  if (tunable_inbox_.take(tunable_incoming_)) apply(tunable_incoming_);  // run-time parameters, at a cycle boundary
+  take_tuning();  // run-time parameters, at a cycle boundary
   const Eigen::Vector3d world_angular = orientation_ * body_angular_velocity_;
   const EngineInput& e = input.engine;
   // The port where the engine acts: the handle (motion-based) or the virtual body.

@@ -44,6 +44,15 @@ class VirtualAdmittance final : public VirtualModel {
   void deactivate() override {}
   // The tunable parameters (masses, dampings, wall, coupling and workspace stiffness), taken at the next cycle.
   void tune(const Parameters& parameters) override;
+  // Takes the parameters tune() handed over (update() does it every cycle; a caller that uses wall_force alone
+  // calls it at its cycle boundary). Real-time safe.
+  void take_tuning() noexcept {
+    if (tunable_inbox_.take(tunable_incoming_)) apply(tunable_incoming_);
+  }
+  // The force of the walls and the workspace spring (world) on a body at `position` moving with `velocity`;
+  // the scripted_wrench model renders them on the measured handle motion in impedance display.
+  [[nodiscard]] Eigen::Vector3d wall_force(const Eigen::Vector3d& position,
+                                           const Eigen::Vector3d& velocity) const noexcept;
 
  private:
   struct Wall {
@@ -52,7 +61,6 @@ class VirtualAdmittance final : public VirtualModel {
   static constexpr int kMaxWalls = 8;
 
   void follow_engine_motion(const EngineInput& engine, std::int64_t now_ns) noexcept;
-  Eigen::Vector3d wall_force(const Eigen::Vector3d& position, const Eigen::Vector3d& velocity) const noexcept;
   // Coupling and engine wrench [force; torque] (world) on a body at (position, orientation) moving with
   // (velocity, angular velocity), scaled by the engine input's weight.
   Eigen::Matrix<double, 6, 1> engine_wrench(const EngineInput& engine, const Eigen::Vector3d& position,

@@ -56,19 +56,14 @@ void ScriptedWrenchModel::configure(const Parameters& p, const PluginContext& co
     throw ParameterError(settings.signal == WrenchScript::Signal::steps ? "step_levels" : "signal", e.what());
   }
   admittance_display_ = p.string("display") == "admittance";
-  if (admittance_display_) admittance_.configure(p, context);
+  admittance_.configure(p, context);  // impedance display: its walls
 }
 
-void ScriptedWrenchModel::tune(const Parameters& parameters) {
-  if (!admittance_display_) {
-    throw ParameterError("display", "the virtual admittance's parameters apply in admittance display only");
-  }
-  admittance_.tune(parameters);
-}
+void ScriptedWrenchModel::tune(const Parameters& parameters) { admittance_.tune(parameters); }
 
 ReturnCode ScriptedWrenchModel::activate(const VirtualModelInput& current) noexcept {
   started_ = false;
-  return admittance_display_ ? admittance_.activate(current) : ReturnCode::ok;
+  return admittance_.activate(current);  // impedance display: places walls_relative at the handle
 }
 
 ReturnCode ScriptedWrenchModel::update(const CycleTime& cycle, const VirtualModelInput& input,
@@ -79,7 +74,11 @@ ReturnCode ScriptedWrenchModel::update(const CycleTime& cycle, const VirtualMode
   }
   const WrenchScript::Vector6 script = script_.at(1e-9 * static_cast<double>(cycle.time_ns - start_ns_));
   if (admittance_display_) return admittance_.update(cycle, input, target, script);
-  const WrenchScript::Vector6 rendered = input.render.limit(script);
+  // Impedance display: the walls act on the measured handle motion (the chain's one velocity estimate).
+  admittance_.take_tuning();
+  WrenchScript::Vector6 environment = script;
+  environment.head<3>() += admittance_.wall_force(input.chain.handle_pose.position, input.chain.handle_twist.linear);
+  const WrenchScript::Vector6 rendered = input.render.limit(environment);
   target.wrench.force = rendered.head<3>();
   target.wrench.torque = rendered.tail<3>();
   target.has_wrench = true;

@@ -2,7 +2,9 @@
 // The scripted wrench model ("scripted_wrench"): a desired wrench played over time (WrenchScript: constant,
 // sine, chirp, steps) that impedance and admittance display both take, the excitation of the evaluation
 // suite's force experiments (the thesis's dynamic force precision, docs/evaluation.md).
-//   display: impedance   the script is the wrench the device displays (TaskTarget::wrench)
+//   display: impedance   the script is the wrench the device displays (TaskTarget::wrench), plus the walls and the
+//                        workspace spring of the admittance parameters on the measured handle motion (the
+//                        evaluation suite's Z-width walls); the other admittance parameters are not used
 //   display: admittance  a virtual admittance (every parameter of the `admittance` model) renders the script as
 //                        the environment's wrench on its virtual body: M xdd + D xd = F_operator + F_script
 // In both the script is the wrench the environment applies to the operator; it passes the rendered-wrench
@@ -21,7 +23,7 @@ class ScriptedWrenchModel final : public VirtualModel {
   ReturnCode activate(const VirtualModelInput& current) noexcept override;
   ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept override;
   void deactivate() override {}
-  // Admittance display: the virtual admittance's tunable parameters.
+  // The virtual admittance's tunable parameters (in impedance display its wall stiffness and damping count).
   void tune(const Parameters& parameters) override;
 
  private:

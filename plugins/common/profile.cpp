@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace hapticd::sim {
+namespace hapticd {
 
 Profile::Kind Profile::parse(const std::string& name) {
   if (name == "constant") return Kind::constant;
@@ -41,4 +41,4 @@ Eigen::Vector3d Profile::shuttle(double t) const noexcept {
   return s;
 }
 
-}  // namespace hapticd::sim
+}  // namespace hapticd

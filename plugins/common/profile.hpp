@@ -2,14 +2,14 @@
 // A scripted 3-D signal over time: constant, step at start_s, ramp from start_s, sine from start_s, or a shuttle
 // (from start_s: out along `value` and back, again and again, each leg a trapezoidal velocity profile with
 // constant-acceleration and constant-velocity phases: the backdrivability test's path).
-// Used for the operator's target motion and voluntary force, the position source's path and scripted
-// wrenches. Real-time safe.
+// Used by the simulated device (the operator's target motion and voluntary force, the position source's path,
+// scripted wrenches) and by the trajectory model (the desired handle path). Real-time safe.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-namespace hapticd::sim {
+namespace hapticd {
 
 struct Profile {
   enum class Kind { constant, step, ramp, sine, ramp_to, shuttle };
@@ -61,6 +61,19 @@ struct Profile {
         return Eigen::Vector3d::Zero();
     }
   }
+  // The second derivative (sine and shuttle; zero for the others, whose steps and kinks have none).
+  [[nodiscard]] Eigen::Vector3d acceleration_at(double t) const noexcept {
+    switch (kind) {
+      case Kind::shuttle:
+        return value * shuttle(t)[2];
+      case Kind::sine: {
+        const double w = 2.0 * M_PI * frequency_hz;
+        return t >= start_s ? Eigen::Vector3d(-value * w * w * std::sin(w * (t - start_s))) : Eigen::Vector3d::Zero();
+      }
+      default:
+        return Eigen::Vector3d::Zero();
+    }
+  }
   // "constant", "step", "ramp", "sine", "shuttle"; throws std::invalid_argument otherwise.
   static Kind parse(const std::string& name);
 
@@ -69,4 +82,4 @@ struct Profile {
   [[nodiscard]] Eigen::Vector3d shuttle(double t) const noexcept;
 };
 
-}  // namespace hapticd::sim
+}  // namespace hapticd

@@ -1,0 +1,121 @@
+#include "stability_trial.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "stability.hpp"
+
+namespace hapticd::eval {
+namespace {
+
+constexpr double kRate = 2000.0;
+
+std::string vector3(const Eigen::Vector3d& v) {
+  return fmt::format("[{:.17g}, {:.17g}, {:.17g}]", v.x(), v.y(), v.z());
+}
+
+std::vector<std::string> wall_lines(const Eigen::Vector3d& direction, const WallSpec& wall, double ahead_m = 0.01) {
+  const Eigen::Vector3d point = ahead_m * direction;  // relative to the handle at activation
+  const Eigen::Vector3d normal = -direction;          // the free side is behind
+  return {fmt::format("walls: [{:.17g}, {:.17g}, {:.17g}, {:.17g}, {:.17g}, {:.17g}]", point.x(), point.y(), point.z(),
+                      normal.x(), normal.y(), normal.z()),
+          "walls_relative: true", fmt::format("wall_stiffness_n_per_m: {:.17g}", wall.stiffness_n_per_m),
+          fmt::format("wall_damping_n_s_per_m: {:.17g}", wall.damping_n_s_per_m)};
+}
+
+}  // namespace
+
+OperatorLoad wall_collision(const Eigen::Vector3d& direction, double grasp, const WallSpec& wall) {
+  return {fmt::format("wall-collision-grasp{:g}", grasp),
+          fmt::format("collision with a {:g} N/m wall, grasp {:g}", wall.stiffness_n_per_m, grasp),
+          {"attachment: operator", fmt::format("operator_grasp: {:g}", grasp), "operator_motion: step",
+           "operator_motion_m: " + vector3(0.06 * direction), "operator_motion_start_s: 0.2"},
+          wall_lines(direction, wall)};
+}
+
+std::vector<OperatorLoad> standard_loads(const Eigen::Vector3d& direction, const WallSpec& wall) {
+  std::vector<OperatorLoad> loads;
+  loads.push_back({"firm-grasp",
+                   "firm grasp, 5 N push",
+                   {"attachment: operator", "operator_grasp: 1", "operator_force: step",
+                    "operator_force_n: " + vector3(5.0 * direction), "operator_force_start_s: 0.2"},
+                   {}});
+  loads.push_back({"loose-grasp",
+                   "loose grasp, 5 N push",
+                   {"attachment: operator", "operator_grasp: 0", "operator_force: step",
+                    "operator_force_n: " + vector3(5.0 * direction), "operator_force_start_s: 0.2"},
+                   {}});
+  loads.push_back({"voluntary-motion",
+                   "voluntary motion, 4 cm at 0.5 Hz",
+                   {"attachment: operator", "operator_grasp: 0.5", "operator_motion: sine",
+                    "operator_motion_m: " + vector3(0.04 * direction), "operator_motion_frequency_hz: 0.5"},
+                   {}});
+  OperatorLoad collision = wall_collision(direction, 0.0, wall);
+  collision.id = "wall-collision";
+  loads.push_back(collision);
+  return loads;
+}
+
+TrialResult run_trial(RigSpec spec, const OperatorLoad& load, const StabilityCriterion& criterion) {
+  spec.attachment.insert(spec.attachment.end(), load.attachment.begin(), load.attachment.end());
+  spec.model.insert(spec.model.end(), load.model.begin(), load.model.end());
+  server::Session session = make_rig_session(spec);
+  const auto cycles = static_cast<std::uint64_t>(std::llround(criterion.duration_s * kRate));
+  std::vector<double> vx, vy, vz;
+  vx.reserve(cycles);
+  vy.reserve(cycles);
+  vz.reserve(cycles);
+  TrialResult r;
+  double work = 0.0, work_at_window = 0.0;
+  const auto window_start = cycles - static_cast<std::uint64_t>(std::llround(criterion.window_s * kRate));
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  r.fault = run_rig(session, cycles, [&](const RigSample& s) {
+    if (vx.empty()) start = s.position;
+    r.largest_excursion_m = std::max(r.largest_excursion_m, (s.position - start).norm());
+    if (vx.size() == window_start) work_at_window = work;
+    vx.push_back(s.true_velocity.x());
+    vy.push_back(s.true_velocity.y());
+    vz.push_back(s.true_velocity.z());
+    work += s.true_force.dot(s.true_velocity) / kRate;
+    r.least_operator_work_j = std::min(r.least_operator_work_j, work);
+  });
+  if (!r.fault.empty() || vx.size() < cycles) return r;
+  r.window_power_w = (work - work_at_window) / criterion.window_s;
+  double sum = 0.0, largest = -1.0;
+  for (const auto* axis : {&vx, &vy, &vz}) {
+    const Oscillation o = oscillation(*axis, kRate, criterion.cutoff_hz, criterion.window_s);
+    sum += o.rms * o.rms;
+    if (o.rms > largest) {
+      largest = o.rms;
+      r.oscillation_hz = o.frequency_hz;
+    }
+  }
+  r.oscillation_m_s = std::sqrt(sum);
+  r.stable = r.oscillation_m_s < criterion.threshold_m_s;
+  return r;
+}
+
+PassivityResult port_energy(RigSpec spec, const Eigen::Vector3d& direction, const WallSpec& wall, double frequency_hz) {
+  spec.attachment.insert(spec.attachment.end(), {"attachment: operator", "operator_grasp: 1", "operator_force: sine",
+                                                 "operator_force_n: " + vector3(10.0 * direction),
+                                                 fmt::format("operator_force_frequency_hz: {:.17g}", frequency_hz)});
+  const std::vector<std::string> walls = wall_lines(direction, wall, 0.0);
+  spec.model.insert(spec.model.end(), walls.begin(), walls.end());
+  server::Session session = make_rig_session(spec);
+  const double period = 1.0 / frequency_hz;
+  const double settle = std::ceil(std::max(0.3, 2.0 * period) / period) * period;
+  const double periods = std::max(4.0, std::ceil(0.5 / period));
+  const auto settle_cycles = static_cast<std::uint64_t>(std::llround(settle * kRate));
+  const auto cycles = settle_cycles + static_cast<std::uint64_t>(std::llround(periods * period * kRate));
+  PassivityResult r;
+  double energy = 0.0;
+  std::uint64_t k = 0;
+  r.fault = run_rig(session, cycles, [&](const RigSample& s) {
+    if (k++ >= settle_cycles) energy += s.true_force.dot(s.true_velocity) / kRate;
+  });
+  r.energy_per_period_j = energy / periods;
+  return r;
+}
+
+}  // namespace hapticd::eval

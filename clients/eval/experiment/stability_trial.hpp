@@ -1,0 +1,71 @@
+#pragma once
+// The stability trials of the minimum-inertia and Z-width experiments (docs/evaluation.md, "Stability
+// criterion"): standardized operator loads - the simulated operator with a loose or a firm grasp, voluntary
+// motion, a hard collision with a virtual wall - and one criterion, the same for every scheme and device:
+//   a trial is stable when the device does not fault and, over the last `window_s` of the run, the RMS of the
+//   handle's true velocity above `cutoff_hz` (all three axes together) stays below `threshold_m_s`.
+// The cutoff lies above the operator's voluntary motion (0.5 Hz) and below the lowest oscillation the schemes
+// show (about 5 Hz); the threshold is a visible oscillation (0.02 m/s RMS is 0.4 mm at 8 Hz).
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "rig.hpp"
+
+namespace hapticd::eval {
+
+struct OperatorLoad {
+  std::string id;                       // "loose-grasp"
+  std::string label;                    // "loose grasp, 5 N push"
+  std::vector<std::string> attachment;  // the sim's attachment parameters
+  std::vector<std::string> model;       // the virtual model's parameters the load needs (its wall)
+};
+
+// A virtual wall across `direction`, 1 cm ahead of where the handle starts, that the operator runs into.
+struct WallSpec {
+  double stiffness_n_per_m = 10000.0;
+  double damping_n_s_per_m = 20.0;
+};
+
+// loose-grasp (grasp 0, a 5 N step of voluntary force along the direction at 0.2 s), firm-grasp (grasp 1, the
+// same), voluntary-motion (grasp 0.5, the hand's target 4 cm along the direction and back, 0.5 Hz sine),
+// wall-collision (loose grasp, the hand's target steps 3 cm along the direction at 0.2 s, into `wall`).
+[[nodiscard]] std::vector<OperatorLoad> standard_loads(const Eigen::Vector3d& direction, const WallSpec& wall = {});
+// The collision with a given grasp (0 loose .. 1 firm): the Z-width's loads.
+[[nodiscard]] OperatorLoad wall_collision(const Eigen::Vector3d& direction, double grasp, const WallSpec& wall);
+
+struct StabilityCriterion {
+  double duration_s = 2.0;
+  double window_s = 0.5;
+  double cutoff_hz = 4.0;
+  double threshold_m_s = 0.02;
+};
+
+struct TrialResult {
+  bool stable = false;
+  double oscillation_m_s = 0.0;        // the RMS above the cutoff over the window
+  double oscillation_hz = 0.0;         // its frequency (zero crossings of its largest axis)
+  double least_operator_work_j = 0.0;  // the minimum over time of the work the operator did on the handle
+  double window_power_w = 0.0;         // the operator's mean power into the handle over the window
+  double largest_excursion_m = 0.0;    // the handle's largest distance from where it started
+  std::string fault;                   // the device's, if it faulted
+};
+
+// Runs the rig under the load (its attachment and model lines added to the spec's) and judges it.
+[[nodiscard]] TrialResult run_trial(RigSpec spec, const OperatorLoad& load, const StabilityCriterion& criterion);
+
+// Colgate's passivity experiment with the simulated operator: a firm grasp (the stiffest operator of the
+// protocols) pushes and pulls the handle with a 10 N sine of voluntary force along `direction` at `frequency_hz`
+// against a wall whose surface is where the handle starts (in contact half of each period); after two periods
+// (and at least 0.3 s) the energy the handle port absorbs over whole periods (the true force of the hand on the
+// handle times the true velocity), per period. Negative: the rendering gives out more energy than it takes at
+// that frequency (not passive). (A stiff position source would test the same for impedance display, but an
+// admittance display is active against any source that stiff, wall or no wall.)
+struct PassivityResult {
+  double energy_per_period_j = 0.0;
+  std::string fault;
+};
+[[nodiscard]] PassivityResult port_energy(RigSpec spec, const Eigen::Vector3d& direction, const WallSpec& wall,
+                                          double frequency_hz);
+
+}  // namespace hapticd::eval

@@ -1,0 +1,163 @@
+#include "friction_command.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "eval_options.hpp"
+#include "experiment/rig.hpp"
+#include "hapticd/model/friction_file.hpp"
+#include "report/progress.hpp"
+
+namespace hapticd::eval {
+namespace {
+
+struct Options {
+  CommonOptions common;
+  std::vector<double> joints;  // empty: all
+  std::vector<double> speeds{0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8, 1, 1.2, 1.4, 1.6, 1.8, 2};
+  double duration_s = 186.0;  // what the identification needs for three joints at the default speeds
+};
+
+constexpr double kRate = 2000.0;
+constexpr double kBinWidth = 0.05;  // rad/s
+constexpr double kMaxSpeed = 2.2;
+
+// The simulator's friction as it acted: the true friction torque of each joint (on the motor side, where the
+// simulation applies it) averaged per bin of the motor velocity over the cruise phases; the samples near rest
+// (stiction) left out.
+struct TruthCurve {
+  std::vector<double> sum, count;
+  TruthCurve() : sum(2 * static_cast<std::size_t>(kMaxSpeed / kBinWidth)), count(sum.size()) {}
+  void add(double velocity, double torque) {
+    const auto bin = static_cast<long>(std::floor((velocity + kMaxSpeed) / kBinWidth));
+    if (bin < 0 || bin >= static_cast<long>(sum.size())) return;
+    sum[static_cast<std::size_t>(bin)] += torque;
+    count[static_cast<std::size_t>(bin)] += 1.0;
+  }
+};
+
+int run(const Options& o) {
+  namespace fs = std::filesystem;
+  fs::create_directories(o.common.out);
+  const fs::path output = fs::absolute(fs::path(o.common.out) / "friction-identified.yaml");
+  RigSpec spec;
+  spec.device.name = o.common.device;
+  spec.device.sim_parameters = {"warm_up: false"};  // identify at one temperature (the 26 C curve)
+  spec.device.sim_parameters.insert(spec.device.sim_parameters.end(), o.common.sim_parameters.begin(),
+                                    o.common.sim_parameters.end());
+  spec.attachment = {"attachment: none"};
+  spec.seed = o.common.seed;
+  std::vector<long> joint_numbers;
+  for (double j : o.joints) joint_numbers.push_back(std::lround(j));
+  spec.scheme = {"friction-identification",
+                 "friction identification",
+                 Scheme::Display::impedance,
+                 "friction_identification",
+                 fmt::format("output_file: '{}', joints: [{}], speeds: [{}]", output.string(),
+                             fmt::join(joint_numbers, ", "), fmt::join(o.speeds, ", ")),
+                 0.0,
+                 0.0,
+                 "friction-identification",
+                 "friction identification"};
+  const std::string yaml = rig_yaml(spec);
+  std::string fault;
+  std::vector<TruthCurve> truth;
+  {
+    server::Session session = make_rig_session(spec);
+    const auto cycles = static_cast<std::uint64_t>(std::llround(o.duration_s * kRate));
+    Progress progress("friction", 20);
+    for (std::uint64_t k = 0; k < cycles && fault.empty(); ++k) {
+      session.step(1);
+      const server::DeviceView v = session.device("dut");
+      fault = v.fault;
+      if (!v.truth) continue;
+      const auto n = static_cast<std::size_t>(v.truth->motor_velocity.size());
+      truth.resize(n);
+      for (std::size_t j = 0; j < n; ++j) {
+        const double w = v.truth->motor_velocity[static_cast<Eigen::Index>(j)];
+        const double friction = v.truth->friction_torque[static_cast<Eigen::Index>(j)];
+        // Cruising: the drive's torque goes to friction (within 0.3 N m), not into accelerating or loading the
+        // joint (the load-dependent part would otherwise join the curve).
+        const double rest =
+            std::abs(std::abs(v.truth->motor_torque[static_cast<Eigen::Index>(j)]) - std::abs(friction));
+        if (std::abs(w) > 0.02 && rest < 0.3) truth[j].add(w, friction);
+      }
+      if ((k + 1) % (cycles / 20) == 0) progress.advance(fmt::format("{:.0f} s", v.time_s));
+    }
+    session.stop();  // the identification writes its file as it is deactivated
+  }
+  if (!fault.empty()) throw std::runtime_error("the identification run faulted: " + fault);
+  const model::FrictionFile identified = model::read_friction_file(output);
+  Json joints = Json::array();
+  fmt::print("{:<8} {:>10} {:>12} {:>22}\n", "joint", "coulomb", "break-away", "sliding error vs truth");
+  for (std::size_t j = 0; j < identified.joints.size() && j < truth.size(); ++j) {
+    const model::FrictionModel& m = identified.joints[j];
+    if (m.p[0] == 0.0) continue;  // not identified (not selected)
+    std::vector<double> velocity, true_torque, identified_torque;
+    double worst = 0.0, sum = 0.0;
+    for (std::size_t b = 0; b < truth[j].sum.size(); ++b) {
+      if (truth[j].count[b] < 20.0) continue;
+      const double v = -kMaxSpeed + (static_cast<double>(b) + 0.5) * kBinWidth;
+      const double t = truth[j].sum[b] / truth[j].count[b];
+      const double fit = std::copysign(m.sliding(std::abs(v)), v);
+      velocity.push_back(v);
+      true_torque.push_back(t);
+      identified_torque.push_back(fit);
+      const double error = std::abs(fit - t) / std::max(std::abs(t), 1e-3);
+      worst = std::max(worst, error);
+      sum += error * error;
+    }
+    const double rms = velocity.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(velocity.size()));
+    fmt::print("{:<8} {:>8.3f} Nm {:>9.3f} Nm {:>9.1f} % RMS, {:.1f} % worst\n", identified.joint_names[j], m.p[0],
+               m.breakaway_nm, 100 * rms, 100 * worst);
+    joints.push(Json::object()
+                    .set("joint", identified.joint_names[j])
+                    .set("coulomb_nm", m.p[0])
+                    .set("breakaway_nm", m.breakaway_nm)
+                    .set("rms_error_percent", 100 * rms)
+                    .set("worst_error_percent", 100 * worst)
+                    .set("velocity_rad_s", velocity)
+                    .set("true_torque_nm", true_torque)
+                    .set("identified_torque_nm", identified_torque));
+  }
+  Json result = Json::object();
+  result.set("experiment", "friction")
+      .set("title", "Friction identification against the simulator's truth")
+      .set("device", o.common.device)
+      .set("friction_file", output.string())
+      .set("joints", joints)
+      .set("command", command_line())
+      .set("example_session", yaml);
+  publish_result(o.common.report(), "friction", result);
+  return 0;
+}
+
+}  // namespace
+
+void add_friction_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "friction",
+      "Runs the friction identification on the simulated device and plots the identified curves against the "
+      "friction the simulation applied");
+  add_common_options(cmd, o->common);
+  cmd->add_option("--joints", o->joints, "joints to identify, counted from 1 (default: all)");
+  cmd->add_option("--speeds", o->speeds, "cruise speeds of the strokes [rad/s]")->capture_default_str();
+  cmd->add_option("--duration", o->duration_s, "simulated time the identification is given [s]")
+      ->check(CLI::Range(1.0, 3600.0))
+      ->capture_default_str();
+  cmd->callback([o, &exit_code] {
+    Options run_options = *o;
+    if (run_options.common.quick) {  // one joint, five speeds
+      run_options.joints = {1};
+      run_options.speeds = {0.1, 0.3, 0.6, 1.2, 2.0};
+      run_options.duration_s = 30.0;
+    }
+    exit_code = run(run_options);
+  });
+}
+
+}  // namespace hapticd::eval
