@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
@@ -25,7 +26,7 @@ int run_self(const std::vector<std::string>& arguments) {
   argv.push_back(const_cast<char*>(self.c_str()));
   for (const std::string& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
-  std::cout.flush();
+  std::fflush(stdout);  // what this process printed comes before the child's output
   const pid_t pid = fork();
   if (pid < 0) return 127;
   if (pid == 0) {

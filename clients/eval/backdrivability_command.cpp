@@ -44,9 +44,7 @@ SchemeRun run_scheme(const Options& o, const Scheme& scheme, std::string& exampl
                      fmt::format("source_path_speed: {:.17g}", o.speed_m_s)};
   if (example_yaml.empty()) example_yaml = rig_yaml(spec);
   server::Session session = make_rig_session(spec);
-  // One leg: accelerate, cruise, decelerate (triangular when too short for the speed).
-  const double v = std::min(o.speed_m_s, std::sqrt(o.acceleration_m_s2 * o.distance_m));
-  const double leg_s = 2.0 * v / o.acceleration_m_s2 + (o.distance_m - v * v / o.acceleration_m_s2) / v;
+  const double leg_s = shuttle_leg_s(o.distance_m, o.acceleration_m_s2, o.speed_m_s);
   const double end_s = kPathStart + o.legs * leg_s;
   const auto cycles = static_cast<std::uint64_t>(std::ceil(end_s * kRate));
   SchemeRun run{scheme, {}, {}, {}, {}, 0.0, 0.0, {}};

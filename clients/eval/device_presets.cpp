@@ -39,21 +39,26 @@ DevicePreset device_preset(const std::string& name) {
   return p;
 }
 
-std::filesystem::path find_device_urdf(const std::string& name_or_path) {
+std::optional<std::filesystem::path> find_config_file(const std::filesystem::path& relative, std::string* tried) {
   namespace fs = std::filesystem;
-  if (fs::is_regular_file(name_or_path)) return name_or_path;
   std::vector<fs::path> config_dirs;
   if (const char* env = std::getenv("HAPTICD_CONFIG_DIR")) config_dirs.emplace_back(env);
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) config_dirs.push_back(exe.parent_path().parent_path() / HAPTICD_INSTALL_DATADIR / "hapticd" / "config");
   config_dirs.emplace_back(HAPTICD_SOURCE_CONFIG_DIR);
-  std::string tried;
   for (const fs::path& dir : config_dirs) {
-    const fs::path candidate = dir / "urdf" / (name_or_path + ".urdf");
+    const fs::path candidate = dir / relative;
     if (fs::is_regular_file(candidate)) return candidate;
-    tried += "\n  " + candidate.string();
+    if (tried != nullptr) *tried += "\n  " + candidate.string();
   }
+  return std::nullopt;
+}
+
+std::filesystem::path find_device_urdf(const std::string& name_or_path) {
+  if (std::filesystem::is_regular_file(name_or_path)) return name_or_path;
+  std::string tried;
+  if (auto found = find_config_file(std::filesystem::path("urdf") / (name_or_path + ".urdf"), &tried)) return *found;
   throw std::invalid_argument("device '" + name_or_path + "': not a file, and none of these exists:" + tried);
 }
 

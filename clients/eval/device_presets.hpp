@@ -5,6 +5,7 @@
 // documented in docs/output-capability.md.
 #include <Eigen/Core>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,12 @@ struct DevicePreset {
 
 // The preset of a shipped device (vishard3, vishard6, vishard10); throws std::invalid_argument otherwise.
 DevicePreset device_preset(const std::string& name);
+
+// A file of the project's configuration (`relative` to the config folder: "friction/vishard3.yaml") in
+// $HAPTICD_CONFIG_DIR, the installed share/hapticd/config or the source tree's config/, in that order; none if
+// it is in none of them. `tried` (if given) lists the paths looked at.
+std::optional<std::filesystem::path> find_config_file(const std::filesystem::path& relative,
+                                                      std::string* tried = nullptr);
 
 // The URDF of a device name or path: an existing file as given, else <config>/urdf/<name>.urdf with
 // <config> = $HAPTICD_CONFIG_DIR, the installed share/hapticd/config, or the source tree's config/.

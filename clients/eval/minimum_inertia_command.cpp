@@ -76,12 +76,7 @@ DirectionResult bisect_direction(const Options& o, const Scheme& scheme, const s
     for (const OperatorLoad& load : loads) {
       const TrialResult trial = run_trial(spec, load, criterion);
       ++result.trials;
-      if (example_yaml.empty()) {
-        RigSpec shown = spec;
-        shown.attachment = load.attachment;
-        shown.model.insert(shown.model.end(), load.model.begin(), load.model.end());
-        example_yaml = rig_yaml(shown);
-      }
+      if (example_yaml.empty()) example_yaml = rig_yaml(with_load(spec, load));
       if (!trial.stable) {
         // Keep the failure nearest the boundary (the largest unstable mass).
         if (mass >= unstable_mass) {

@@ -55,8 +55,8 @@ int run(const Options& o) {
     if (schemes.back().display != Scheme::Display::admittance)
       throw std::invalid_argument("tracking: '" + text + "' is not an admittance scheme (rac, ijc, tjc)");
   }
-  const double v = std::min(o.speed_m_s, std::sqrt(o.acceleration_m_s2 * o.distance_m));
-  const double leg_s = 2.0 * v / o.acceleration_m_s2 + (o.distance_m - v * v / o.acceleration_m_s2) / v;
+  const double v = std::min(o.speed_m_s, std::sqrt(o.acceleration_m_s2 * o.distance_m));  // the cruise speed
+  const double leg_s = shuttle_leg_s(o.distance_m, o.acceleration_m_s2, o.speed_m_s);
   const auto cycles = static_cast<std::uint64_t>(std::ceil((kPathStart + o.legs * leg_s + 0.2) * kRate));
   Progress progress("tracking", schemes.size());
   std::vector<SchemeRun> runs;

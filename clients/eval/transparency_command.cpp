@@ -71,9 +71,8 @@ int run(const Options& o) {
   std::unique_ptr<model::FrictionFile> friction;
   std::string friction_path = o.friction_file;
   if (friction_path.empty()) {
-    const auto guess =
-        find_device_urdf(o.common.device).parent_path().parent_path() / "friction" / (o.common.device + ".yaml");
-    if (std::filesystem::is_regular_file(guess)) friction_path = guess.string();
+    if (auto found = find_config_file(std::filesystem::path("friction") / (o.common.device + ".yaml")))
+      friction_path = found->string();
   }
   if (!friction_path.empty())
     friction = std::make_unique<model::FrictionFile>(model::read_friction_file(friction_path));

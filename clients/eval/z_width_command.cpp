@@ -65,12 +65,7 @@ Boundary largest_wall(const Options& o, const RigSpec& base, double wall_damping
       const OperatorLoad load = wall_collision(d, grasp, wall);
       const TrialResult t = run_trial(base, load, criterion);
       ++b.trials;
-      if (example_yaml.empty()) {
-        RigSpec shown = base;
-        shown.attachment.insert(shown.attachment.end(), load.attachment.begin(), load.attachment.end());
-        shown.model.insert(shown.model.end(), load.model.begin(), load.model.end());
-        example_yaml = rig_yaml(shown);
-      }
+      if (example_yaml.empty()) example_yaml = rig_yaml(with_load(base, load));
       if (!t.fault.empty()) return fail(stiffness, fmt::format("collision, grasp {:g}: fault {}", grasp, t.fault));
       if (t.least_operator_work_j < -o.energy_tolerance_j) {
         return fail(stiffness, fmt::format("collision, grasp {:g}: gives back {:.3f} J more than it took ({:.0f} Hz)",

@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "device_presets.hpp"
 
 namespace hapticd::eval {
@@ -19,6 +22,11 @@ bool has_key(const std::vector<std::string>& lines, const std::string& key) {
 }
 
 }  // namespace
+
+double shuttle_leg_s(double distance, double acceleration, double speed) {
+  const double v = std::min(speed, std::sqrt(acceleration * distance));
+  return 2.0 * v / acceleration + (distance - v * v / acceleration) / v;
+}
 
 std::string rig_yaml(const RigSpec& spec) {
   const DevicePreset preset = device_preset(spec.device.name);

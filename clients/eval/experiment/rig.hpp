@@ -37,6 +37,10 @@ struct RigSpec {
   std::uint64_t seed = 1;
 };
 
+// The duration of one leg of the sim's `shuttle` path (docs/simulated-devices.md): accelerate, cruise, decelerate
+// over `distance` (triangular when too short to reach `speed`).
+[[nodiscard]] double shuttle_leg_s(double distance, double acceleration, double speed);
+
 // The session file text of a rig (for the report, and to reproduce a run with `hapticd --lockstep`).
 std::string rig_yaml(const RigSpec& spec);
 // The session; throws std::runtime_error with the session's error when it cannot be built.

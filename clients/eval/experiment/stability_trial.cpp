@@ -57,23 +57,22 @@ std::vector<OperatorLoad> standard_loads(const Eigen::Vector3d& direction, const
   return loads;
 }
 
-TrialResult run_trial(RigSpec spec, const OperatorLoad& load, const StabilityCriterion& criterion) {
+RigSpec with_load(RigSpec spec, const OperatorLoad& load) {
   spec.attachment.insert(spec.attachment.end(), load.attachment.begin(), load.attachment.end());
   spec.model.insert(spec.model.end(), load.model.begin(), load.model.end());
-  server::Session session = make_rig_session(spec);
+  return spec;
+}
+
+TrialResult run_trial(const RigSpec& spec, const OperatorLoad& load, const StabilityCriterion& criterion) {
+  server::Session session = make_rig_session(with_load(spec, load));
   const auto cycles = static_cast<std::uint64_t>(std::llround(criterion.duration_s * kRate));
   std::vector<double> vx, vy, vz;
   vx.reserve(cycles);
   vy.reserve(cycles);
   vz.reserve(cycles);
   TrialResult r;
-  double work = 0.0, work_at_window = 0.0;
-  const auto window_start = cycles - static_cast<std::uint64_t>(std::llround(criterion.window_s * kRate));
-  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  double work = 0.0;
   r.fault = run_rig(session, cycles, [&](const RigSample& s) {
-    if (vx.empty()) start = s.position;
-    r.largest_excursion_m = std::max(r.largest_excursion_m, (s.position - start).norm());
-    if (vx.size() == window_start) work_at_window = work;
     vx.push_back(s.true_velocity.x());
     vy.push_back(s.true_velocity.y());
     vz.push_back(s.true_velocity.z());
@@ -81,7 +80,6 @@ TrialResult run_trial(RigSpec spec, const OperatorLoad& load, const StabilityCri
     r.least_operator_work_j = std::min(r.least_operator_work_j, work);
   });
   if (!r.fault.empty() || vx.size() < cycles) return r;
-  r.window_power_w = (work - work_at_window) / criterion.window_s;
   double sum = 0.0, largest = -1.0;
   for (const auto* axis : {&vx, &vy, &vz}) {
     const Oscillation o = oscillation(*axis, kRate, criterion.cutoff_hz, criterion.window_s);

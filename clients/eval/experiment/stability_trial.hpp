@@ -46,13 +46,13 @@ struct TrialResult {
   double oscillation_m_s = 0.0;        // the RMS above the cutoff over the window
   double oscillation_hz = 0.0;         // its frequency (zero crossings of its largest axis)
   double least_operator_work_j = 0.0;  // the minimum over time of the work the operator did on the handle
-  double window_power_w = 0.0;         // the operator's mean power into the handle over the window
-  double largest_excursion_m = 0.0;    // the handle's largest distance from where it started
   std::string fault;                   // the device's, if it faulted
 };
 
-// Runs the rig under the load (its attachment and model lines added to the spec's) and judges it.
-[[nodiscard]] TrialResult run_trial(RigSpec spec, const OperatorLoad& load, const StabilityCriterion& criterion);
+// The rig under the load: its attachment and model lines added to the spec's.
+[[nodiscard]] RigSpec with_load(RigSpec spec, const OperatorLoad& load);
+// Runs the rig under the load and judges it.
+[[nodiscard]] TrialResult run_trial(const RigSpec& spec, const OperatorLoad& load, const StabilityCriterion& criterion);
 
 // Colgate's passivity experiment with the simulated operator: a firm grasp (the stiffest operator of the
 // protocols) pushes and pulls the handle with a 10 N sine of voluntary force along `direction` at `frequency_hz`
