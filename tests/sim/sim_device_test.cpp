@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "hapticd/testing/allocation_guard.hpp"
+#include "support/handle_mass_urdf.hpp"
 #include "support/sim_device_fixture.hpp"
 
 namespace hapticd {
@@ -105,6 +106,50 @@ TEST(SimDevice, Vishard3SensorMeasuresAccelerations) {
                               .norm());
   }
   EXPECT_GT(largest, 1.0);
+}
+
+TEST(SimDevice, SensorReadsTheWeightAndInertialForceOfWhatItCarries) {
+  const std::string urdf = test::vishard3_urdf_with_handle_mass(0.5);
+  const std::string held = "urdf: " + urdf +
+                           "\ninitial_position: [-0.3, 1.6, 0.0]\npassive_gimbal: true\nsensor_accelerations: true\n"
+                           "attachment: wrench\nwrench_force: step\nwrench_force_n: [0, 20, 0]\n"
+                           "wrench_force_start_s: 0.25\n";
+  SimRig rig(held);
+  const auto& truth = rig.device.ground_truth();
+  JointVector hold;
+  for (int k = 0; k < 600; ++k) {
+    if (k == 1) hold = rig.state.joints.position;
+    if (k >= 1) rig.command.torque_nm = 2000.0 * (hold - rig.state.joints.position);
+    rig.cycle();
+    if (k == 480) {
+      // Held still, no external wrench yet: the sensor carries the handle's weight, 0.5 kg * 9.81 m/s^2 down.
+      const Eigen::Matrix3d r = truth.handle_pose.linear();
+      // (Within what the stiff joint hold lets the handle shake; exactly m (g - a) as the accelerometer has it.)
+      EXPECT_NEAR((r * truth.sensor_wrench.head<3>() - Eigen::Vector3d(0, 0, -0.5 * 9.81)).norm(), 0.0, 0.3);
+      EXPECT_NEAR((truth.sensor_wrench.head<3>() + 0.5 * truth.sensor_acceleration.head<3>()).norm(), 0.0, 0.05);
+    }
+  }
+  // Released under a 20 N push: the reading is the push plus the weight minus the handle's inertial force, the
+  // accelerometer's specific force f = a - g times the mass.
+  rig.command.torque_nm.setZero();
+  for (int k = 0; k < 100; ++k) rig.cycle();
+  double largest_inertial = 0.0;
+  for (int k = 0; k < 20; ++k) {
+    rig.cycle();
+    const Eigen::Matrix3d rt = truth.handle_pose.linear().transpose();
+    const Eigen::Vector3d push = rt * Eigen::Vector3d(0, 20, 0);
+    const Eigen::Vector3d inertial = 0.5 * truth.sensor_acceleration.head<3>();
+    EXPECT_NEAR((truth.sensor_wrench.head<3>() - (push - inertial)).norm(), 0.0, 0.05) << "cycle " << k;
+    largest_inertial = std::max(largest_inertial, (inertial - rt * Eigen::Vector3d(0, 0, 0.5 * 9.81)).norm());
+  }
+  EXPECT_GT(largest_inertial, 1.0) << "the released arm should accelerate the handle";
+  // Switched off: the weight only.
+  SimRig ideal(held + "sensor_handle_inertia: false\n");
+  ideal.command.torque_nm.setZero();
+  for (int k = 0; k < 700; ++k) ideal.cycle();
+  const auto& t = ideal.device.ground_truth();
+  EXPECT_NEAR((t.handle_pose.linear() * t.sensor_wrench.head<3>() - Eigen::Vector3d(0, 20, -0.5 * 9.81)).norm(), 0.0,
+              1e-9);
 }
 
 TEST(SimDevice, SensorSaturatesAtItsRange) {

@@ -60,8 +60,12 @@ class ChainBuilder {
  public:
   explicit ChainBuilder(std::string source) : source_(std::move(source)) {}
 
-  void walk(const urdf::Link& link, int body, const Eigen::Isometry3d& link_in_body) {
+  // Adds the link's frame and those below it; returns the mass the link carries rigidly (itself and its fixed
+  // subtree), in the body's frame.
+  MassProperties walk(const urdf::Link& link, int body, const Eigen::Isometry3d& link_in_body) {
+    const std::size_t frame = frames_.size();
     frames_.push_back({link.name, body, link_in_body});
+    MassProperties carried = link_mass_properties(link, link_in_body);
     for (const auto& collision : link.collision_array)
       if (collision && collision->geometry)
         add_capsule(link.name, body, link_in_body * to_isometry(collision->origin), *collision->geometry);
@@ -78,7 +82,7 @@ class ChainBuilder {
           b.com = merged.com;
           b.inertia = merged.inertia;
         }
-        walk(*child, body, joint_in_body);
+        carried = combine(carried, walk(*child, body, joint_in_body));
         continue;
       }
       if (joint.type != urdf::Joint::REVOLUTE && joint.type != urdf::Joint::CONTINUOUS &&
@@ -115,6 +119,9 @@ class ChainBuilder {
       bodies_.push_back(std::move(b));
       walk(*child, static_cast<int>(bodies_.size()) - 1, Eigen::Isometry3d::Identity());
     }
+    frames_[frame].carried_mass = carried.mass;
+    frames_[frame].carried_com = link_in_body.inverse() * carried.com;
+    return carried;
   }
 
   // A <collision> shape as the capsule that covers it, along its local z (a cylinder), its longest side (a box),
@@ -191,7 +198,7 @@ void read_drives(const TiXmlDocument& doc, const std::string& source, std::vecto
                                          "motor_continuous_torque",
                                          "rotor_inertia",
                                          "encoder_counts_per_motor_rev"};
-  static const char* const kOptional[] = {"structural_stiffness"};
+  static const char* const kOptional[] = {"structural_stiffness", "damping_ratio"};
   const TiXmlElement* robot = doc.RootElement();
   std::set<std::string> seen;
   for (const TiXmlElement* e = robot->FirstChildElement("hapticd_drive"); e != nullptr;
@@ -235,6 +242,7 @@ void read_drives(const TiXmlDocument& doc, const std::string& source, std::vecto
     d.stiffness_min = values["stiffness_min"];
     d.stiffness_max = values["stiffness_max"];
     d.structural_stiffness = values.count("structural_stiffness") ? values["structural_stiffness"] : 0.0;
+    d.damping_ratio = values.count("damping_ratio") ? values["damping_ratio"] : -1.0;
     d.max_input_speed_rpm = values["max_input_speed_rpm"];
     d.wave_generator_inertia = values["wave_generator_inertia"];
     d.motor_stall_torque = values["motor_stall_torque"];

@@ -31,7 +31,8 @@ OperatorLoad wall_collision(const Eigen::Vector3d& direction, double grasp, cons
           fmt::format("collision with a {:g} N/m wall, grasp {:g}", wall.stiffness_n_per_m, grasp),
           {"attachment: operator", fmt::format("operator_grasp: {:g}", grasp), "operator_motion: step",
            "operator_motion_m: " + vector3(0.06 * direction), "operator_motion_start_s: 0.2"},
-          wall_lines(direction, wall)};
+          wall_lines(direction, wall),
+          true};
 }
 
 std::vector<OperatorLoad> standard_loads(const Eigen::Vector3d& direction, const WallSpec& wall) {
@@ -90,7 +91,8 @@ TrialResult run_trial(const RigSpec& spec, const OperatorLoad& load, const Stabi
     }
   }
   r.oscillation_m_s = std::sqrt(sum);
-  r.stable = r.oscillation_m_s < criterion.threshold_m_s;
+  r.stable = load.collision ? r.least_operator_work_j >= -criterion.collision_tolerance_j
+                            : r.oscillation_m_s < criterion.threshold_m_s;
   return r;
 }
 

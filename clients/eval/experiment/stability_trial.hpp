@@ -3,7 +3,10 @@
 // criterion"): standardized operator loads - the simulated operator with a loose or a firm grasp, voluntary
 // motion, a hard collision with a virtual wall - and one criterion, the same for every scheme and device:
 //   a trial is stable when the device does not fault and, over the last `window_s` of the run, the RMS of the
-//   handle's true velocity above `cutoff_hz` (all three axes together) stays below `threshold_m_s`.
+//   handle's true velocity above `cutoff_hz` (all three axes together) stays below `threshold_m_s`;
+//   a collision is stable when the device does not fault and the operator never gets back more energy than it
+//   gave (its work on the handle never below -`collision_tolerance_j`): a heavy virtual mass pushed by a soft
+//   hand bounces on a stiff wall for seconds, passively, which the velocity measure would call an oscillation.
 // The cutoff lies above the operator's voluntary motion (0.5 Hz) and below the lowest oscillation the schemes
 // show (about 5 Hz); the threshold is a visible oscillation (0.02 m/s RMS is 0.4 mm at 8 Hz).
 #include <Eigen/Core>
@@ -19,6 +22,7 @@ struct OperatorLoad {
   std::string label;                    // "loose grasp, 5 N push"
   std::vector<std::string> attachment;  // the sim's attachment parameters
   std::vector<std::string> model;       // the virtual model's parameters the load needs (its wall)
+  bool collision = false;               // judged by the operator's work, not by the velocity
 };
 
 // A virtual wall across `direction`, 1 cm ahead of where the handle starts, that the operator runs into.
@@ -39,6 +43,7 @@ struct StabilityCriterion {
   double window_s = 0.5;
   double cutoff_hz = 4.0;
   double threshold_m_s = 0.02;
+  double collision_tolerance_j = 0.01;
 };
 
 struct TrialResult {

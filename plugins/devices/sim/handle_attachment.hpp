@@ -5,6 +5,7 @@
 // path); or a scripted wrench. Settings can be replaced at any time; the new attachment starts from the
 // handle's current pose (no jump). Real-time safe.
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "profile.hpp"
 
@@ -18,7 +19,12 @@ struct AttachmentSettings {
   AttachmentKind kind = AttachmentKind::none;
   // Operator.
   double grasp = 0.5;  // 0 loose .. 1 firm
-  double hand_mass_kg = 1.0;
+  double hand_mass_kg = 1.5;
+  // The grasp's stiffness and damping at a loose (grasp 0) and a firm (grasp 1) grasp, geometric between.
+  double loose_grasp_stiffness = 100.0;   // [N/m]
+  double firm_grasp_stiffness = 30000.0;  // [N/m]
+  double loose_grasp_damping = 2.0;       // [N s/m]
+  double firm_grasp_damping = 30.0;       // [N s/m]
   // Selected again with the same kind: keep the anchor, the hand's state and the profiles' clock (a move).
   bool keep_anchor = false;
   double arm_stiffness = 300.0;  // [N/m] towards the target motion
@@ -51,11 +57,20 @@ class HandleAttachment {
   // next dt, given the handle's pose and twist ([linear; angular]); t is the simulated time.
   Vector6d step(double t, double dt, const Eigen::Isometry3d& handle, const Vector6d& twist) noexcept;
 
-  // Grasp stiffness and damping of the operator at the current grasp setting.
-  [[nodiscard]] double grasp_stiffness() const noexcept { return 100.0 + settings_.grasp * (3000.0 - 100.0); }
-  [[nodiscard]] double grasp_damping() const noexcept { return 2.0 + settings_.grasp * (30.0 - 2.0); }
+  // Grasp stiffness and damping of the operator at the current grasp setting: geometric between loose and firm
+  // (the values span two orders of magnitude; co-contraction raises them multiplicatively).
+  [[nodiscard]] double grasp_stiffness() const noexcept {
+    return between(settings_.loose_grasp_stiffness, settings_.firm_grasp_stiffness);
+  }
+  [[nodiscard]] double grasp_damping() const noexcept {
+    return between(settings_.loose_grasp_damping, settings_.firm_grasp_damping);
+  }
 
  private:
+  [[nodiscard]] double between(double loose, double firm) const noexcept {
+    if (loose <= 0.0 || firm <= 0.0) return loose + settings_.grasp * (firm - loose);
+    return loose * std::pow(firm / loose, settings_.grasp);
+  }
   AttachmentSettings settings_;
   bool anchored_ = false;
   double anchor_time_ = 0.0;

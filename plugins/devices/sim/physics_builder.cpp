@@ -35,7 +35,10 @@ FlexibleChain build_flexible_chain(const model::RobotModel& model, int handle_fr
     j.spring.k_min = series(d.stiffness_min);
     j.spring.k_max = series(d.stiffness_max);
     j.spring.rated_deflection = std::max(1e-6, d.gear_average_torque / j.spring.k_max);
-    j.damping = 2.0 * options.damping_ratio * std::sqrt(j.spring.k_min * j.motor_inertia);
+    const double zeta = options.damping_ratio >= 0.0 ? options.damping_ratio
+                        : d.damping_ratio >= 0.0     ? d.damping_ratio
+                                                     : PhysicsOptions::kDefaultDampingRatio;
+    j.damping = 2.0 * zeta * std::sqrt(j.spring.k_min * j.motor_inertia);
     j.friction = options.friction_template;
     if (!options.friction) {
       j.friction.sliding = j.friction.load_dependent = j.friction.stiction = false;

@@ -7,14 +7,17 @@
 namespace hapticd::sim {
 
 struct PhysicsOptions {
-  double damping_ratio = 0.02;           // structural damping of each spring (on the motor inertia)
+  // Damping ratio of each drive spring (on the motor inertia); below 0: the model's (DriveData::damping_ratio)
+  // where it gives one, else kDefaultDampingRatio.
+  static constexpr double kDefaultDampingRatio = 0.02;
+  double damping_ratio = -1.0;
   double friction_variation = 0.1;       // relative standard deviation of the per-joint friction scale
   bool friction = true;                  // master switch of all friction effects
   FrictionParameters friction_template;  // switches and curves shared by the joints
   bool ripple = true;
   // The structure's compliance in series with each gear (DriveData::structural_stiffness, where the model gives
   // one): the joint's spring is the series combination (docs/simulated-devices.md).
-  bool structural_compliance = false;
+  bool structural_compliance = true;
   double ripple_min_nm = 0.12, ripple_max_nm = 0.19;
 };
 

@@ -63,7 +63,12 @@ ParameterSchema SimDevice::parameter_schema() {
   s.real_vector("initial_position", "joint positions at activation; empty: all zero")
       .default_value(std::vector<double>{});
   s.real("substep_hz", "physics integration rate").unit("Hz").minimum(2000.0).maximum(1e6).default_value(20000.0);
-  s.real("structural_damping_ratio", "damping of each gear spring").minimum(0.0).maximum(1.0).default_value(0.02);
+  s.real("structural_damping_ratio",
+         "damping ratio of each drive's spring (the gear's hysteresis); -1: the model's drive damping_ratio "
+         "where it gives one (ViSHaRD3: 0.15, calibrated, docs/evaluation.md), else 0.02")
+      .minimum(-1.0)
+      .maximum(1.0)
+      .default_value(-1.0);
   s.boolean("friction", "master switch of all gear friction").default_value(true);
   s.boolean("sliding_friction", "Coulomb and viscous (Stribeck curve) friction").default_value(true);
   s.boolean("stiction", "stiction with a random break-away level per sticking").default_value(true);
@@ -85,9 +90,9 @@ ParameterSchema SimDevice::parameter_schema() {
       .maximum(0.004)
       .default_value(0.0);
   s.boolean("structural_compliance",
-            "the structure's compliance in series with each gear (the model's structural_stiffness; off until "
-            "the calibration of docs/evaluation.md is complete)")
-      .default_value(false);
+            "the structure's compliance in series with each gear (the model's structural_stiffness; "
+            "docs/evaluation.md)")
+      .default_value(true);
   s.boolean("thermal_limit", "limit to the continuous torque while the winding is hot").default_value(true);
   s.real("thermal_time_constant_s", "winding time constant").unit("s").greater_than(0.0).default_value(30.0);
   s.real("current_offset_nm", "amplifier current offset, as a joint torque").unit("N m").default_value(0.0);
@@ -122,6 +127,10 @@ ParameterSchema SimDevice::parameter_schema() {
       .minimum(0.0)
       .default_value(0.5);
   s.real("sensor_bandwidth_hz", "sensor bandwidth").unit("Hz").greater_than(0.0).default_value(8000.0);
+  s.boolean("sensor_handle_inertia",
+            "the sensor reads the inertial force of what it carries (the URDF's links beyond the sensor frame: "
+            "handle, gimbal) besides their weight; false: their weight only")
+      .default_value(true);
   s.boolean("sensor_accelerations", "the sensor also measures linear and angular acceleration (ViSHaRD3's JR3)")
       .default_value(false);
   s.real_vector("sensor_acceleration_range", "ranges of the linear [m/s^2] and angular [rad/s^2] acceleration")
@@ -136,7 +145,17 @@ ParameterSchema SimDevice::parameter_schema() {
       .choices({"none", "operator", "position_source", "wrench"})
       .default_value(std::string("none"));
   s.real("operator_grasp", "operator's grasp, 0 loose .. 1 firm").minimum(0.0).maximum(1.0).default_value(0.5);
-  s.real("operator_hand_mass_kg", "operator's hand-arm mass").unit("kg").greater_than(0.0).default_value(1.0);
+  s.real("operator_hand_mass_kg", "operator's hand-arm mass").unit("kg").greater_than(0.0).default_value(1.5);
+  s.real_vector("operator_grasp_stiffness", "operator's grasp stiffness, loose and firm")
+      .size(2)
+      .unit("N/m")
+      .minimum(0.0)
+      .default_value(std::vector<double>{100.0, 30000.0});
+  s.real_vector("operator_grasp_damping", "operator's grasp damping, loose and firm")
+      .size(2)
+      .unit("N s/m")
+      .minimum(0.0)
+      .default_value(std::vector<double>{2.0, 30.0});
   s.real("operator_arm_stiffness", "operator's arm stiffness towards the target motion")
       .unit("N/m")
       .minimum(0.0)
@@ -252,6 +271,11 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   sensor.noise_lsb = p.real("sensor_noise_lsb");
   sensor.bandwidth_hz = p.real("sensor_bandwidth_hz");
   sensor_.configure(sensor, context.seed ^ 0x5EB5EB5EULL);
+  if (sensor_present_) {
+    carried_mass_ = robot.frame(sensor_frame_).carried_mass;
+    carried_com_ = robot.frame(sensor_frame_).carried_com;
+  }
+  carried_inertia_ = p.boolean("sensor_handle_inertia");
   accelerations_ = sensor_present_ && p.boolean("sensor_accelerations");
   description_.reports_sensor_acceleration = accelerations_;
   const auto& ar = p.real_vector("sensor_acceleration_range");
@@ -263,6 +287,12 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   a.kind = parse_attachment(p.string("attachment"));
   a.grasp = p.real("operator_grasp");
   a.hand_mass_kg = p.real("operator_hand_mass_kg");
+  const auto& grasp_stiffness = p.real_vector("operator_grasp_stiffness");
+  const auto& grasp_damping = p.real_vector("operator_grasp_damping");
+  a.loose_grasp_stiffness = grasp_stiffness[0];
+  a.firm_grasp_stiffness = grasp_stiffness[1];
+  a.loose_grasp_damping = grasp_damping[0];
+  a.firm_grasp_damping = grasp_damping[1];
   a.arm_stiffness = p.real("operator_arm_stiffness");
   a.arm_damping = p.real("operator_arm_damping");
   a.motion = read_profile(p, "operator_motion", "m");
@@ -291,6 +321,7 @@ Outcome SimDevice::enable() {
   chain_->reset(initial_position_);
   for (Drive& d : drives_) d.reset();
   sensor_.reset();
+  carried_velocity_valid_ = false;
   attachment_.select(initial_attachment_);
   command_.setZero();
   delayed_count_ = 0;
@@ -315,6 +346,32 @@ void SimDevice::apply_due_commands() noexcept {
   }
 }
 
+void SimDevice::sensor_reading(const Eigen::Isometry3d& handle, const Vector6d& twist,
+                               const Vector6d& wrench) noexcept {
+  // The sensor reads the force and moment (about its origin) with which what it carries pulls on it: the
+  // external wrench at the handle plus the carried mass's weight minus its inertial force, m (g - a).
+  const Eigen::Isometry3d s = model::frame_pose(chain_->link_model(), chain_->data(), sensor_frame_);
+  Eigen::Vector3d force = wrench.head<3>();
+  Eigen::Vector3d moment = wrench.tail<3>() + (handle.translation() - s.translation()).cross(force);
+  if (carried_mass_ > 0.0) {
+    const Eigen::Vector3d centre = s * carried_com_;
+    const Eigen::Vector3d velocity = twist.head<3>() + twist.tail<3>().cross(centre - handle.translation());
+    Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
+    if (carried_inertia_ && carried_velocity_valid_) acceleration = (velocity - carried_velocity_) / substep_s_;
+    carried_velocity_ = velocity;
+    carried_velocity_valid_ = true;
+    const Eigen::Vector3d load = carried_mass_ * (chain_->link_model().gravity() - acceleration);
+    force += load;
+    moment += (centre - s.translation()).cross(load);
+  }
+  const Eigen::Matrix3d rt = s.linear().transpose();
+  Vector6d at_sensor;
+  at_sensor.head<3>() = rt * force;
+  at_sensor.tail<3>() = rt * moment;
+  sensor_.update(at_sensor, substep_s_);
+  truth_.sensor_wrench = at_sensor;
+}
+
 void SimDevice::substep() noexcept {
   const int n = chain_->dof();
   apply_due_commands();
@@ -326,15 +383,7 @@ void SimDevice::substep() noexcept {
   const double t = static_cast<double>(simulated_ns_) * 1e-9;
   Vector6d wrench = attachment_.step(t, substep_s_, handle, twist);
   if (passive_gimbal_) wrench.tail<3>().setZero();
-  if (sensor_present_) {
-    const Eigen::Isometry3d s = model::frame_pose(chain_->link_model(), chain_->data(), sensor_frame_);
-    const Eigen::Matrix3d rt = s.linear().transpose();
-    Vector6d at_sensor;
-    at_sensor.head<3>() = rt * wrench.head<3>();
-    at_sensor.tail<3>() = rt * (wrench.tail<3>() + (handle.translation() - s.translation()).cross(wrench.head<3>()));
-    sensor_.update(at_sensor, substep_s_);
-    truth_.sensor_wrench = at_sensor;
-  }
+  if (sensor_present_) sensor_reading(handle, twist, wrench);
   truth_.handle_pose = handle;
   truth_.handle_twist = twist;
   truth_.handle_wrench = wrench;

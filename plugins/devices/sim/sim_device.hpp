@@ -96,6 +96,14 @@ class SimDevice final : public Device {
   bool sensor_present_ = true;
   bool passive_gimbal_ = false;
   bool accelerations_ = false;
+  // What the sensor carries (the URDF's links beyond its frame: a handle, a gimbal): its weight always, its
+  // inertial force with "sensor_handle_inertia"; the centre's velocity one substep ago for the acceleration.
+  void sensor_reading(const Eigen::Isometry3d& handle, const Vector6d& twist, const Vector6d& wrench) noexcept;
+  double carried_mass_ = 0.0;
+  Eigen::Vector3d carried_com_ = Eigen::Vector3d::Zero();  // sensor frame
+  bool carried_inertia_ = true;
+  bool carried_velocity_valid_ = false;
+  Eigen::Vector3d carried_velocity_ = Eigen::Vector3d::Zero();
   bool joint_torque_sensors_ = false;
   double joint_torque_resolution_ = 0.01;
   std::array<double, 2> acceleration_range_{49.0, 100.0};

@@ -48,11 +48,15 @@ void ChainStateEstimator::estimate(DeviceState& measured, std::int64_t time_ns, 
   c.handle_twist.linear = twist.head<3>();
   c.handle_twist.angular = twist.tail<3>();
   if (sensor_frame_ >= 0) {
-    // The sensor's wrench, turned into the world and moved to the handle point (the handle's own dynamics
-    // beyond the sensor are not subtracted yet).
+    // The sensor's wrench, turned into the world, less the weight of what the sensor carries (the model's
+    // links beyond the sensor frame: handle, gimbal), moved to the handle point. The carried mass's inertial
+    // force stays in the estimate: the operator feels it as part of the device.
     const Eigen::Isometry3d sensor = model::frame_pose(*robot_, d, sensor_frame_);
-    const Eigen::Vector3d force = sensor.linear() * measured.sensor_wrench.force;
-    const Eigen::Vector3d moment = sensor.linear() * measured.sensor_wrench.torque;
+    const model::Frame& carried = robot_->frame(sensor_frame_);
+    const Eigen::Vector3d weight = carried.carried_mass * robot_->gravity();
+    const Eigen::Vector3d force = sensor.linear() * measured.sensor_wrench.force - weight;
+    const Eigen::Vector3d moment =
+        sensor.linear() * measured.sensor_wrench.torque - (sensor.linear() * carried.carried_com).cross(weight);
     c.operator_wrench.force = force;
     c.operator_wrench.torque = moment + (sensor.translation() - c.handle_pose.position).cross(force);
     c.has_operator_wrench = true;

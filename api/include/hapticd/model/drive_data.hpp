@@ -17,6 +17,9 @@ struct HAPTICD_API DriveData {
   // Compliance of the structure (links, bearings, sensor mount) in series with the gear, as a torsional
   // stiffness at the joint [N m/rad]; 0: rigid (optional attribute; the simulator's structural_compliance).
   double structural_stiffness = 0.0;
+  // Damping ratio of the drive's spring (the gear's hysteresis, on the motor inertia); below 0: not given
+  // (optional attribute; the simulator then uses its own default).
+  double damping_ratio = -1.0;
   double max_input_speed_rpm = 0.0;      // gear input (motor) speed limit
   double wave_generator_inertia = 0.0;   // [kg m^2, motor side]
   std::string motor;                     // type designation, informative

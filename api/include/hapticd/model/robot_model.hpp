@@ -41,6 +41,11 @@ struct Frame {
   std::string name;
   int body = -1;
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();  // in the body's joint frame
+  // What the frame's link carries rigidly: its own mass and that of the links below it through fixed joints
+  // (not through movable ones), centre of mass in this frame. For a force sensor's frame, the mass whose weight
+  // and inertial force the sensor reads besides the external wrench (a handle, a gimbal).
+  double carried_mass = 0.0;
+  Eigen::Vector3d carried_com = Eigen::Vector3d::Zero();
 };
 
 class HAPTICD_API RobotModel {
