@@ -67,8 +67,8 @@ class HandleAttachment {
   }
 
  private:
+  // Both ends above zero (the parameters' bounds).
   [[nodiscard]] double between(double loose, double firm) const noexcept {
-    if (loose <= 0.0 || firm <= 0.0) return loose + settings_.grasp * (firm - loose);
     return loose * std::pow(firm / loose, settings_.grasp);
   }
   AttachmentSettings settings_;

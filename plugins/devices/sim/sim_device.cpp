@@ -149,12 +149,12 @@ ParameterSchema SimDevice::parameter_schema() {
   s.real_vector("operator_grasp_stiffness", "operator's grasp stiffness, loose and firm")
       .size(2)
       .unit("N/m")
-      .minimum(0.0)
+      .greater_than(0.0)
       .default_value(std::vector<double>{100.0, 30000.0});
   s.real_vector("operator_grasp_damping", "operator's grasp damping, loose and firm")
       .size(2)
       .unit("N s/m")
-      .minimum(0.0)
+      .greater_than(0.0)
       .default_value(std::vector<double>{2.0, 30.0});
   s.real("operator_arm_stiffness", "operator's arm stiffness towards the target motion")
       .unit("N/m")
