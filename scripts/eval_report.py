@@ -102,24 +102,38 @@ def backdrivability(result, out_dir):
 
 
 def minimum_inertia(result, out_dir):
-    """Smallest stable virtual mass per scheme and direction, beside the thesis's (worst direction)."""
+    """Smallest stable virtual mass (and rotational inertia) per scheme and direction, beside the thesis's."""
     schemes = result["schemes"]
-    directions = ["x", "y", "z"]
-    fig, ax = plt.subplots(figsize=(max(6, 0.6 * len(schemes) + 2), 5))
+    present = [d for d in ["x", "y", "z", "rx", "ry", "rz"]
+               if any(r["direction"] == d for s in schemes for r in s["directions"])]
+    groups = [(ds, unit) for ds, unit in ((["x", "y", "z"], "kg"), (["rx", "ry", "rz"], "kg m^2"))
+              if any(d in present for d in ds)]
+    fig, axes = plt.subplots(1, len(groups), figsize=(max(6, 0.6 * len(schemes) + 2) * len(groups), 5),
+                             squeeze=False)
     width = 0.2
-    for i, d in enumerate(directions):
-        values = []
-        for s in schemes:
-            found = [r for r in s["directions"] if r["direction"] == d]
-            values.append(found[0]["minimum_kg"] if found and found[0]["minimum_kg"] is not None else float("nan"))
-        ax.bar([k + (i - 1) * width for k in range(len(schemes))], values, width, label=f"ours, {d}")
-    published = [s["published_kg"] if s["published_kg"] is not None else float("nan") for s in schemes]
-    ax.plot(range(len(schemes)), published, "k_", markersize=20, markeredgewidth=2, label="thesis (ViSHaRD3)")
-    ax.set_xticks(range(len(schemes)))
-    ax.set_xticklabels([s["label"] for s in schemes], rotation=45, ha="right", fontsize=8)
-    ax.set_ylabel("smallest stable virtual mass [kg]")
-    ax.legend(fontsize=8)
-    ax.grid(True, axis="y", alpha=0.3)
+    for ax, (ds, unit) in zip(axes[0], groups):
+        for i, d in enumerate(ds):
+            values, thesis = [], []
+            for s in schemes:
+                found = [r for r in s["directions"] if r["direction"] == d]
+                values.append(found[0]["minimum"] if found and found[0]["minimum"] is not None else float("nan"))
+                thesis.append(found[0]["published"] if found and found[0].get("published") is not None
+                              else float("nan"))
+            xs = [k + (i - 1) * width for k in range(len(schemes))]
+            ax.bar(xs, values, width, label=f"ours, {d}")
+            if any(t == t for t in thesis):
+                ax.plot(xs, thesis, "k_", markersize=10, markeredgewidth=2)
+        if unit == "kg":
+            published = [s["published_kg"] if s["published_kg"] is not None else float("nan") for s in schemes]
+            ax.plot(range(len(schemes)), published, "k_", markersize=20, markeredgewidth=2,
+                    label="thesis (worst; short marks: per axis)")
+        else:
+            ax.set_yscale("log")
+        ax.set_xticks(range(len(schemes)))
+        ax.set_xticklabels([s["label"] for s in schemes], rotation=45, ha="right", fontsize=8)
+        ax.set_ylabel(f"smallest stable virtual {'mass' if unit == 'kg' else 'inertia'} [{unit}]")
+        ax.legend(fontsize=8)
+        ax.grid(True, axis="y", alpha=0.3)
     fig.suptitle(f"Minimum virtual inertia, {result['device']}")
     fig.tight_layout()
     png = out_dir / "minimum-inertia.png"
@@ -129,9 +143,15 @@ def minimum_inertia(result, out_dir):
     for s in schemes:
         cells = {r["direction"]: r for r in s["directions"]}
         row = [s["label"]]
-        for d in directions:
+        for d in present:
             r = cells.get(d)
-            row.append("-" if r is None else (">range" if r["above_range"] else fmt(r["minimum_kg"], "kg")))
+            if r is None:
+                row.append("-")
+                continue
+            cell = ">range" if r["above_range"] else fmt(r["minimum"], r["unit"])
+            if r.get("published") is not None:
+                cell += f" (thesis {fmt(r['published'], r['unit'])})"
+            row.append(cell)
         why = "; ".join(f"{r['direction']}: {r['unstable']['load']} "
                         f"({r['unstable']['fault'] or fmt(r['unstable']['oscillation_hz'], 'Hz')})"
                         for r in s["directions"] if r.get("unstable"))
@@ -141,9 +161,34 @@ def minimum_inertia(result, out_dir):
     criterion = (["stability criterion", "value"],
                  [["run", f"{c['duration_s']} s per load"], ["window", f"last {c['window_s']} s"],
                   ["high-pass", f"{c['cutoff_hz']} Hz (2nd-order Butterworth)"],
-                  ["threshold", f"{c['threshold_m_s']} m/s RMS of the handle velocity"],
-                  ["loads", ", ".join(x["label"] for x in result["loads"])]])
-    return [png], [(["scheme", "x", "y", "z", "worst", "thesis", "unstable near the boundary"], rows), criterion]
+                  ["threshold", f"{c['threshold_m_s']} m/s RMS of the handle velocity"
+                                f"{', ' + str(c['rotational_threshold_rad_s']) + ' rad/s angular' if result.get('rotational_loads') else ''}"],
+                  ["loads", ", ".join(x["label"] for x in result["loads"] + result.get("rotational_loads", []))]])
+    return [png], [(["scheme"] + present + ["worst", "thesis", "unstable near the boundary"], rows), criterion]
+
+
+def force_gain(result, out_dir):
+    """Largest stable force-feedback gain per direction, beside the thesis's."""
+    ds = result["directions"]
+    fig, ax = plt.subplots(figsize=(5, 4))
+    values = [d["largest_kp"] if d["largest_kp"] is not None else float("nan") for d in ds]
+    ax.bar([d["direction"] for d in ds], values, label="ours (largest stable Kp)")
+    ax.axhline(result["published_kp"], color="k", linestyle="--", label=f"thesis: up to {result['published_kp']:g}")
+    ax.set_ylabel("force-feedback gain Kp")
+    ax.legend(fontsize=8)
+    ax.grid(True, axis="y", alpha=0.3)
+    fig.suptitle(f"Largest stable force gain, {result['device']} (Kd {result['kd']:g} s)")
+    fig.tight_layout()
+    png = out_dir / "force-gain.png"
+    fig.savefig(png, dpi=100)
+    plt.close(fig)
+    rows = []
+    for d in ds:
+        u = d.get("unstable")
+        why = "-" if not u else f"{u['load']} ({u['fault'] or fmt(u['oscillation_hz'], 'Hz')})"
+        rows.append([d["direction"], ">range" if d["above_range"] else fmt(d["largest_kp"]),
+                     fmt(d["smallest_unstable_kp"]), why])
+    return [png], [(["direction", "largest stable Kp", "unstable at", "unstable near the boundary"], rows)]
 
 
 def z_width(result, out_dir):
@@ -266,6 +311,7 @@ def friction(result, out_dir):
 
 
 DRAW = {"force-response": force_response, "backdrivability": backdrivability, "minimum-inertia": minimum_inertia,
+        "force-gain": force_gain,
         "tracking": tracking, "z-width": z_width, "transparency": transparency, "friction": friction}
 
 

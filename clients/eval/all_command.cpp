@@ -15,8 +15,9 @@ namespace hapticd::eval {
 namespace {
 
 // The experiments of the chapter in the order the report shows them.
-const std::vector<std::string> kExperiments{"output-capability", "backdrivability", "force-response", "minimum-inertia",
-                                            "tracking",          "z-width",         "transparency",   "friction"};
+const std::vector<std::string> kExperiments{"output-capability", "backdrivability", "force-response",
+                                            "minimum-inertia",   "force-gain",      "tracking",
+                                            "z-width",           "transparency",    "friction"};
 
 // Runs this program with the arguments (a child process per experiment: each has its own options and a fault
 // in one does not stop the others). Returns its exit status.

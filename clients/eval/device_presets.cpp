@@ -24,6 +24,8 @@ DevicePreset device_preset(const std::string& name) {
     p.workspace_center = {1.0, 0.0, 1.10};
     p.workspace_size = {0.3, 0.86, 0.3};
     p.free_orientation = true;
+    // The shipped admittance sessions' start: the forearm across the pitched wrist, well conditioned in 6-D.
+    p.rig_position = {-0.5, 1.0, -0.5, 0.5, 1.57, 0.0};
   } else if (name == "vishard10") {
     // Box of the simple inverse function, 0.85 x 0.71 m in the plane; the model's wrist reaches 0.42 m of
     // height (links 6 and 7), so the height evaluated is 0.3 m, not the published 0.6 m. 360 deg about
@@ -32,6 +34,12 @@ DevicePreset device_preset(const std::string& name) {
     p.workspace_center = {0.45, 0.0, 1.49};
     p.workspace_size = {0.85, 0.71, 0.3};
     p.rotation_range_deg = {360.0, 120.0, 360.0};
+    // The shipped computed-torque session's start (SCARA folded, wrist away from q9 = 0) and its redundancy
+    // resolution (docs/redundancy.md).
+    p.rig_position = {0.8, -1.6, 1.6, -1.6, 0.8, 1.0, -2.0, 1.0, 1.3, 0.0};
+    p.inverse_kinematics = "redundancy_ik";
+    p.inverse_kinematics_parameters =
+        "inverse: inertia_weighted, level: acceleration, wrist: 1.0, null_space_gain: 0.5";
   } else {
     throw std::invalid_argument("no evaluation preset for device '" + name +
                                 "' (known: vishard3, vishard6, vishard10; give --center and --size for others)");

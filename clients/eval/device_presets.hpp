@@ -23,6 +23,12 @@ struct DevicePreset {
   // Orientation ranges about the world axes (full widths, degrees); all zero for translational devices.
   Eigen::Vector3d rotation_range_deg = Eigen::Vector3d::Zero();
   bool free_orientation = false;  // see WorkspaceGrid::free_orientation
+  // The closed-loop experiments' rig: where the joints start (empty: `seed`), and the inverse kinematics a
+  // joint-space scheme (computed torque) runs on (plugin name and its parameters, a YAML flow-mapping body
+  // without the task).
+  std::vector<double> rig_position;
+  std::string inverse_kinematics = "newton_ik";
+  std::string inverse_kinematics_parameters;
 };
 
 // The preset of a shipped device (vishard3, vishard6, vishard10); throws std::invalid_argument otherwise.

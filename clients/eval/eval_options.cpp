@@ -2,9 +2,9 @@
 
 namespace hapticd::eval {
 
-void add_common_options(CLI::App* command, CommonOptions& o) {
+void add_common_options(CLI::App* command, CommonOptions& o, const std::vector<std::string>& devices) {
   command->add_option("--device", o.device, "the simulated device")
-      ->check(CLI::IsMember({"vishard3"}))
+      ->check(CLI::IsMember(devices))
       ->capture_default_str();
   command->add_option("--out", o.out, "folder of the results (JSON, PNG, report.html)")->capture_default_str();
   command->add_flag("--quick", o.quick, "a short run of the same protocol (fewer points; what CI runs)");

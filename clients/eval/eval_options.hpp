@@ -21,7 +21,9 @@ struct CommonOptions {
   [[nodiscard]] ReportOptions report() const { return {out, !no_figures}; }
 };
 
-void add_common_options(CLI::App* command, CommonOptions& options);
+// `devices`: the shipped devices the experiment's protocol is written for.
+void add_common_options(CLI::App* command, CommonOptions& options,
+                        const std::vector<std::string>& devices = {"vishard3"});
 // The experiments' scheme list (parse_scheme's spellings) and the mass admittance display renders.
 void add_scheme_options(CLI::App* command, std::vector<std::string>& schemes, double& virtual_mass_kg);
 

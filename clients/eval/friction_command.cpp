@@ -61,7 +61,9 @@ int run(const Options& o) {
                  0.0,
                  0.0,
                  "friction-identification",
-                 "friction identification"};
+                 "friction identification",
+                 false,
+                 false};
   const std::string yaml = rig_yaml(spec);
   std::string fault;
   std::vector<TruthCurve> truth;

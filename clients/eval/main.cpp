@@ -6,6 +6,7 @@
 
 #include "all_command.hpp"
 #include "backdrivability_command.hpp"
+#include "force_gain_command.hpp"
 #include "force_response_command.hpp"
 #include "friction_command.hpp"
 #include "minimum_inertia_command.hpp"
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   hapticd::eval::add_backdrivability_command(app, exit_code);
   hapticd::eval::add_force_response_command(app, exit_code);
   hapticd::eval::add_minimum_inertia_command(app, exit_code);
+  hapticd::eval::add_force_gain_command(app, exit_code);
   hapticd::eval::add_z_width_command(app, exit_code);
   hapticd::eval::add_tracking_command(app, exit_code);
   hapticd::eval::add_friction_command(app, exit_code);

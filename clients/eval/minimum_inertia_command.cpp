@@ -6,7 +6,9 @@
 #include <optional>
 
 #include "analysis/stability.hpp"
+#include "device_presets.hpp"
 #include "eval_options.hpp"
+#include "experiment/device_model.hpp"
 #include "experiment/rig.hpp"
 #include "experiment/stability_trial.hpp"
 #include "report/progress.hpp"
@@ -16,31 +18,67 @@ namespace {
 
 struct Options {
   CommonOptions common;
-  std::vector<std::string> schemes{"rac:10000:ff", "rac:10000",   "ijc:10000:ff", "ijc:10000",   "tjc:10000:ff",
-                                   "tjc:10000",    "rac:1000:ff", "rac:1000",     "ijc:1000:ff", "ijc:1000",
-                                   "tjc:1000:ff",  "tjc:1000",    "rac:250:ff",   "rac:250",     "ijc:250:ff",
-                                   "ijc:250",      "tjc:250:ff",  "tjc:250"};
-  std::vector<std::string> directions{"x", "y", "z"};
+  std::vector<std::string> schemes;     // empty: the device's (default_schemes)
+  std::vector<std::string> directions;  // empty: x y z, and rx ry rz on devices that render rotations
   std::vector<std::string> loads{"firm-grasp", "loose-grasp", "voluntary-motion", "wall-collision"};
   double low_kg = 0.2, high_kg = 20.0, tolerance = 0.05;
-  double other_axes_kg = 10.0;  // the mass of the directions not under test
+  double low_kg_m2 = 0.001, high_kg_m2 = 5.0;
+  double other_axes_kg = 10.0;    // the mass of the directions not under test
+  double other_axes_kg_m2 = 1.0;  // the rotational inertia of the directions not under test
 };
 
-// The thesis's figures for ViSHaRD3 (kg; issue 20's table): with / without feedforward.
-std::optional<double> published(const Scheme& s) {
-  static const std::vector<std::pair<std::string, double>> table{
-      {"tjc-kp10000-ff", 2.5}, {"tjc-kp10000", 4.2}, {"ijc-kp10000-ff", 2.6}, {"ijc-kp10000", 4.3},
-      {"rac-kp10000-ff", 2.5}, {"rac-kp10000", 4.5}, {"tjc-kp1000-ff", 1.75}, {"tjc-kp1000", 2.0},
-      {"ijc-kp1000-ff", 3.4},  {"ijc-kp1000", 2.8},  {"rac-kp1000-ff", 2.0},  {"rac-kp1000", 2.3}};
-  for (const auto& [id, kg] : table)
-    if (id == s.loop_id) return kg;
-  return std::nullopt;
+// The schemes the thesis reports per device (issue 20's table): every inner loop, gain and feedforward setting
+// on ViSHaRD3; RAC and computed torque at kp 250 on ViSHaRD6; computed torque at kp 250 on ViSHaRD10.
+std::vector<std::string> default_schemes(const std::string& device) {
+  if (device == "vishard6") return {"rac:250:ff", "ctc:250:ff"};
+  if (device == "vishard10") return {"ctc:250:ff"};
+  return {"rac:10000:ff", "rac:10000", "ijc:10000:ff", "ijc:10000", "tjc:10000:ff", "tjc:10000",
+          "rac:1000:ff",  "rac:1000",  "ijc:1000:ff",  "ijc:1000",  "tjc:1000:ff",  "tjc:1000",
+          "rac:250:ff",   "rac:250",   "ijc:250:ff",   "ijc:250",   "tjc:250:ff",   "tjc:250"};
 }
 
-Eigen::Vector3d axis_of(const std::string& name) {
-  if (name == "x") return Eigen::Vector3d::UnitX();
-  if (name == "y") return Eigen::Vector3d::UnitY();
-  return Eigen::Vector3d::UnitZ();
+// A direction under test: a translation along a world axis (the virtual mass) or a rotation about a handle axis
+// (the virtual admittance's principal inertia is about the handle axes).
+struct Direction {
+  std::string name;  // x, y, z, rx, ry, rz
+  bool rotation = false;
+  int index = 0;
+};
+
+Direction parse_direction(const std::string& name) {
+  const bool rotation = name.size() == 2;
+  return {name, rotation, name.back() - 'x'};
+}
+
+// The thesis's figures (issue 20's table). ViSHaRD3: one per scheme (the worst direction, kg); ViSHaRD6: the
+// translation's worst and the rotational inertia per handle axis; ViSHaRD10: per axis in both.
+struct Published {
+  std::optional<double> worst_kg;
+  std::vector<std::pair<std::string, double>> per_direction;  // kg or kg m^2
+  [[nodiscard]] std::optional<double> of(const std::string& direction) const {
+    for (const auto& [d, v] : per_direction)
+      if (d == direction) return v;
+    return std::nullopt;
+  }
+};
+
+Published published(const std::string& device, const Scheme& s) {
+  Published p;
+  if (device == "vishard3") {
+    static const std::vector<std::pair<std::string, double>> table{
+        {"tjc-kp10000-ff", 2.5}, {"tjc-kp10000", 4.2}, {"ijc-kp10000-ff", 2.6}, {"ijc-kp10000", 4.3},
+        {"rac-kp10000-ff", 2.5}, {"rac-kp10000", 4.5}, {"tjc-kp1000-ff", 1.75}, {"tjc-kp1000", 2.0},
+        {"ijc-kp1000-ff", 3.4},  {"ijc-kp1000", 2.8},  {"rac-kp1000-ff", 2.0},  {"rac-kp1000", 2.3}};
+    for (const auto& [id, kg] : table)
+      if (id == s.loop_id) p.worst_kg = kg;
+  } else if (device == "vishard6" && (s.loop_id == "rac-kp250-ff" || s.loop_id == "ctc-kp250-ff")) {
+    p.worst_kg = 4.8;
+    p.per_direction = {{"rx", 0.005}, {"ry", 0.5}, {"rz", 0.5}};
+  } else if (device == "vishard10" && s.loop_id == "ctc-kp250-ff") {
+    p.worst_kg = 7.0;
+    p.per_direction = {{"x", 5.0}, {"y", 7.0}, {"z", 2.0}, {"rx", 0.01}, {"ry", 0.01}, {"rz", 0.005}};
+  }
+  return p;
 }
 
 struct Failure {
@@ -50,37 +88,44 @@ struct Failure {
 
 // Per direction: the bisection, and why its unstable end failed.
 struct DirectionResult {
-  std::string direction;
   Bisection bisection;
   Failure failure;
   int trials = 0;
 };
 
-DirectionResult bisect_direction(const Options& o, const Scheme& scheme, const std::string& direction,
+std::string vector_line(const std::string& key, const Eigen::Vector3d& v) {
+  return fmt::format("{}: [{:.17g}, {:.17g}, {:.17g}]", key, v.x(), v.y(), v.z());
+}
+
+DirectionResult bisect_direction(const Options& o, const Scheme& scheme, const Direction& direction,
+                                 const Eigen::Matrix3d& handle_rotation, bool rotations,
                                  const StabilityCriterion& criterion, std::string& example_yaml) {
-  const Eigen::Vector3d d = axis_of(direction);
+  const Eigen::Vector3d axis = direction.rotation ? Eigen::Vector3d(handle_rotation.col(direction.index))
+                                                  : Eigen::Vector3d(Eigen::Vector3d::Unit(direction.index));
   std::vector<OperatorLoad> loads;
-  for (const OperatorLoad& load : standard_loads(d))
+  for (const OperatorLoad& load : direction.rotation ? rotational_loads(axis) : standard_loads(axis))
     if (std::find(o.loads.begin(), o.loads.end(), load.id) != o.loads.end()) loads.push_back(load);
-  DirectionResult result{direction, {}, {}, 0};
-  double unstable_mass = 0.0;
-  const auto stable = [&](double mass) {
+  DirectionResult result;
+  double unstable_value = 0.0;
+  const auto stable = [&](double value) {
     RigSpec spec;
     spec.device.name = o.common.device;
     spec.device.sim_parameters = o.common.sim_parameters;
     spec.scheme = scheme;
     spec.seed = o.common.seed;
     Eigen::Vector3d masses = Eigen::Vector3d::Constant(o.other_axes_kg);
-    masses[direction == "x" ? 0 : direction == "y" ? 1 : 2] = mass;
-    spec.model = {fmt::format("mass_kg: [{:.17g}, {:.17g}, {:.17g}]", masses.x(), masses.y(), masses.z())};
+    Eigen::Vector3d inertias = Eigen::Vector3d::Constant(o.other_axes_kg_m2);
+    (direction.rotation ? inertias : masses)[direction.index] = value;
+    spec.model = {vector_line("mass_kg", masses)};
+    if (rotations) spec.model.push_back(vector_line("inertia_kg_m2", inertias));
     for (const OperatorLoad& load : loads) {
       const TrialResult trial = run_trial(spec, load, criterion);
       ++result.trials;
       if (example_yaml.empty()) example_yaml = rig_yaml(with_load(spec, load));
       if (!trial.stable) {
-        // Keep the failure nearest the boundary (the largest unstable mass).
-        if (mass >= unstable_mass) {
-          unstable_mass = mass;
+        // Keep the failure nearest the boundary (the largest unstable value).
+        if (value >= unstable_value) {
+          unstable_value = value;
           result.failure = {load.id, trial};
         }
         return false;
@@ -88,7 +133,8 @@ DirectionResult bisect_direction(const Options& o, const Scheme& scheme, const s
     }
     return true;
   };
-  result.bisection = smallest_stable(stable, o.low_kg, o.high_kg, o.tolerance);
+  result.bisection = direction.rotation ? smallest_stable(stable, o.low_kg_m2, o.high_kg_m2, o.tolerance)
+                                        : smallest_stable(stable, o.low_kg, o.high_kg, o.tolerance);
   return result;
 }
 
@@ -97,70 +143,108 @@ Json trial_json(const Failure& f) {
   return Json::object()
       .set("load", f.load)
       .set("oscillation_m_s", f.trial.oscillation_m_s)
+      .set("oscillation_rad_s", f.trial.oscillation_rad_s)
       .set("oscillation_hz", f.trial.oscillation_hz)
       .set("fault", f.trial.fault);
 }
 
+Json optional_json(const std::optional<double>& v) { return v ? Json(*v) : Json(); }
+
 int run(const Options& o) {
+  const DevicePreset preset = device_preset(o.common.device);
+  const bool rotations = preset.task != model::TaskRows::translation;
   std::vector<Scheme> schemes;
-  for (const std::string& text : o.schemes) {
+  for (const std::string& text : o.schemes.empty() ? default_schemes(o.common.device) : o.schemes) {
     Scheme s = parse_scheme(text, o.other_axes_kg);
     if (s.display != Scheme::Display::admittance)
-      throw std::invalid_argument("minimum-inertia: '" + text + "' is not an admittance scheme (rac, ijc, tjc)");
+      throw std::invalid_argument("minimum-inertia: '" + text + "' is not an admittance scheme (rac, ijc, tjc, ctc)");
     schemes.push_back(s);
   }
+  std::vector<Direction> directions;
+  for (const std::string& name :
+       o.directions.empty() ? std::vector<std::string>{"x", "y", "z", "rx", "ry", "rz"} : o.directions) {
+    const Direction d = parse_direction(name);
+    if (d.rotation && !rotations) {
+      if (o.directions.empty()) continue;
+      throw std::invalid_argument("minimum-inertia: " + o.common.device + " renders no rotations ('" + name + "')");
+    }
+    directions.push_back(d);
+  }
+  // The rotational loads turn about the handle's axes where the rig starts.
+  DeviceModel device_model(o.common.device);
+  const Eigen::Matrix3d handle_rotation =
+      device_model.handle_rotation_at(preset.rig_position.empty() ? preset.seed : preset.rig_position);
   const StabilityCriterion criterion;
-  Progress progress("minimum-inertia", schemes.size() * o.directions.size());
+  Progress progress("minimum-inertia", schemes.size() * directions.size());
   Json list = Json::array();
   std::string example_yaml;
-  fmt::print("{:<32} {:>10} {:>10} {:>10} {:>10} {:>10}   {}\n", "scheme", "x [kg]", "y [kg]", "z [kg]", "worst",
-             "thesis", "unstable near the boundary");
+  std::string header = fmt::format("{:<28}", "scheme");
+  for (const Direction& d : directions) header += fmt::format(" {:>9}", d.name + (d.rotation ? " [kgm2]" : " [kg]"));
+  fmt::print("{} {:>14} {:>9}   {}\n", header, "worst", "thesis", "unstable near the boundary (thesis per axis)");
   for (const Scheme& scheme : schemes) {
-    Json directions = Json::array();
-    double worst = 0.0;
-    bool worst_above = false;
-    std::string cells, why;
-    for (const std::string& direction : {std::string("x"), std::string("y"), std::string("z")}) {
-      if (std::find(o.directions.begin(), o.directions.end(), direction) == o.directions.end()) {
-        cells += fmt::format(" {:>10}", "-");
-        continue;
-      }
-      const DirectionResult r = bisect_direction(o, scheme, direction, criterion, example_yaml);
-      progress.advance(scheme.loop_id + " " + direction);
+    const Published pub = published(o.common.device, scheme);
+    Json results = Json::array();
+    double worst = 0.0, worst_rotation = 0.0;
+    bool worst_above = false, rotation_above = false, any_rotation = false;
+    std::string cells, why, thesis_axes;
+    for (const Direction& direction : directions) {
+      const DirectionResult r =
+          bisect_direction(o, scheme, direction, handle_rotation, rotations, criterion, example_yaml);
+      progress.advance(scheme.loop_id + " " + direction.name);
       const Bisection& b = r.bisection;
-      directions.push(Json::object()
-                          .set("direction", direction)
-                          .set("minimum_kg", b.above_range ? Json() : Json(b.value))
-                          .set("largest_unstable_kg", b.unstable > 0.0 ? Json(b.unstable) : Json())
-                          .set("below_range", b.below_range)
-                          .set("above_range", b.above_range)
-                          .set("trials", r.trials)
-                          .set("unstable", trial_json(r.failure)));
-      worst = std::max(worst, b.value);
-      worst_above = worst_above || b.above_range;
-      cells +=
-          b.above_range ? fmt::format(" {:>10}", fmt::format(">{:g}", o.high_kg)) : fmt::format(" {:>10.2f}", b.value);
+      const std::optional<double> thesis = pub.of(direction.name);
+      results.push(Json::object()
+                       .set("direction", direction.name)
+                       .set("quantity", direction.rotation ? "inertia" : "mass")
+                       .set("unit", direction.rotation ? "kg m^2" : "kg")
+                       .set("minimum", b.above_range ? Json() : Json(b.value))
+                       .set("largest_unstable", b.unstable > 0.0 ? Json(b.unstable) : Json())
+                       .set("below_range", b.below_range)
+                       .set("above_range", b.above_range)
+                       .set("published", optional_json(thesis))
+                       .set("trials", r.trials)
+                       .set("unstable", trial_json(r.failure)));
+      if (direction.rotation) {
+        any_rotation = true;
+        worst_rotation = std::max(worst_rotation, b.value);
+        rotation_above = rotation_above || b.above_range;
+      } else {
+        worst = std::max(worst, b.value);
+        worst_above = worst_above || b.above_range;
+      }
+      const double high = direction.rotation ? o.high_kg_m2 : o.high_kg;
+      cells += b.above_range ? fmt::format(" {:>9}", fmt::format(">{:g}", high))
+                             : fmt::format(" {:>9.{}f}", b.value, direction.rotation ? 3 : 2);
+      if (thesis) thesis_axes += fmt::format("{}{} {:g}", thesis_axes.empty() ? "" : ", ", direction.name, *thesis);
       if (!r.failure.load.empty()) {
         why += fmt::format(
-            "{}{}: {} ({})", why.empty() ? "" : "; ", direction, r.failure.load,
+            "{}{}: {} ({})", why.empty() ? "" : "; ", direction.name, r.failure.load,
             r.failure.trial.fault.empty() ? fmt::format("{:.0f} Hz", r.failure.trial.oscillation_hz) : "fault");
       }
     }
-    const std::optional<double> pub = published(scheme);
-    fmt::print("{:<32}{} {:>10} {:>10}   {}\n", scheme.loop_label, cells,
-               worst_above ? fmt::format(">{:g}", o.high_kg) : fmt::format("{:.2f}", worst),
-               pub ? fmt::format("{:g}", *pub) : std::string("-"), why);
+    std::string worst_cell = worst_above ? fmt::format(">{:g}", o.high_kg) : fmt::format("{:.2f}", worst);
+    if (any_rotation)
+      worst_cell += rotation_above ? fmt::format(" / >{:g}", o.high_kg_m2) : fmt::format(" / {:.3f}", worst_rotation);
+    fmt::print("{:<28}{} {:>14} {:>9}   {}{}\n", scheme.loop_label, cells, worst_cell,
+               pub.worst_kg ? fmt::format("{:g}", *pub.worst_kg) : std::string("-"), why,
+               thesis_axes.empty() ? "" : " (thesis: " + thesis_axes + ")");
     list.push(Json::object()
                   .set("id", scheme.loop_id)
                   .set("label", scheme.loop_label)
                   .set("worst_kg", worst_above ? Json() : Json(worst))
-                  .set("published_kg", pub ? Json(*pub) : Json())
-                  .set("directions", directions));
+                  .set("worst_kg_m2", !any_rotation || rotation_above ? Json() : Json(worst_rotation))
+                  .set("published_kg", optional_json(pub.worst_kg))
+                  .set("directions", results));
   }
   Json loads = Json::array();
   for (const OperatorLoad& load : standard_loads(Eigen::Vector3d::UnitX()))
     if (std::find(o.loads.begin(), o.loads.end(), load.id) != o.loads.end())
       loads.push(Json::object().set("id", load.id).set("label", load.label));
+  Json rotational = Json::array();
+  if (rotations)
+    for (const OperatorLoad& load : rotational_loads(Eigen::Vector3d::UnitX()))
+      if (std::find(o.loads.begin(), o.loads.end(), load.id) != o.loads.end())
+        rotational.push(Json::object().set("id", load.id).set("label", load.label));
   Json result = Json::object();
   result.set("experiment", "minimum-inertia")
       .set("title", "Minimum virtual inertia (admittance display, pure mass)")
@@ -170,11 +254,15 @@ int run(const Options& o) {
                             .set("window_s", criterion.window_s)
                             .set("cutoff_hz", criterion.cutoff_hz)
                             .set("threshold_m_s", criterion.threshold_m_s)
+                            .set("rotational_threshold_rad_s", criterion.rotational_threshold_rad_s)
                             .set("collision_tolerance_j", criterion.collision_tolerance_j))
       .set("loads", loads)
+      .set("rotational_loads", rotational)
       .set("range_kg", std::vector<double>{o.low_kg, o.high_kg})
+      .set("range_kg_m2", std::vector<double>{o.low_kg_m2, o.high_kg_m2})
       .set("tolerance", o.tolerance)
       .set("other_axes_kg", o.other_axes_kg)
+      .set("other_axes_kg_m2", o.other_axes_kg_m2)
       .set("schemes", list)
       .set("command", command_line())
       .set("example_session", example_yaml);
@@ -190,12 +278,16 @@ void add_minimum_inertia_command(CLI::App& app, int& exit_code) {
       "minimum-inertia",
       "Bisection of the smallest pure virtual mass each admittance scheme renders stably, per direction, under "
       "the standardized operator loads");
-  add_common_options(cmd, o->common);
-  cmd->add_option("--schemes", o->schemes, "admittance schemes: rac:KP[:ff], ijc:KP[:ff], tjc:KP[:ff]")
-      ->capture_default_str();
-  cmd->add_option("--directions", o->directions, "directions under test")
-      ->check(CLI::IsMember({"x", "y", "z"}))
-      ->capture_default_str();
+  add_common_options(cmd, o->common, {"vishard3", "vishard6", "vishard10"});
+  cmd->add_option("--schemes", o->schemes,
+                  "admittance schemes: rac:KP[:ff], ijc:KP[:ff], tjc:KP[:ff], ctc:KP[:ff] (computed torque on the "
+                  "device's inverse kinematics); default: the thesis's for the device (vishard3: RAC, IJC, TJC at kp "
+                  "10000, 1000, 250 with and without feedforward; vishard6: rac:250:ff ctc:250:ff; vishard10: "
+                  "ctc:250:ff)");
+  cmd->add_option("--directions", o->directions,
+                  "directions under test: translation along the world axes, rotation (rx, ry, rz) about the handle "
+                  "axes; default: x y z, and rx ry rz on devices that render rotations")
+      ->check(CLI::IsMember({"x", "y", "z", "rx", "ry", "rz"}));
   cmd->add_option("--loads", o->loads, "operator loads (a mass is stable when it is under every one)")
       ->check(CLI::IsMember({"firm-grasp", "loose-grasp", "voluntary-motion", "wall-collision"}))
       ->capture_default_str();
@@ -205,17 +297,27 @@ void add_minimum_inertia_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--high", o->high_kg, "the bisection's upper end [kg]")
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();
+  cmd->add_option("--low-inertia", o->low_kg_m2, "the rotational bisection's lower end [kg m^2]")
+      ->check(CLI::Range(1e-5, 10.0))
+      ->capture_default_str();
+  cmd->add_option("--high-inertia", o->high_kg_m2, "the rotational bisection's upper end [kg m^2]")
+      ->check(CLI::Range(1e-3, 100.0))
+      ->capture_default_str();
   cmd->add_option("--tolerance", o->tolerance, "relative width of the final bracket")
       ->check(CLI::Range(0.001, 1.0))
       ->capture_default_str();
   cmd->callback([o, &exit_code] {
     Options run_options = *o;
     if (run_options.common.quick) {  // one scheme, one direction, a coarse bracket
+      if (run_options.schemes.empty()) run_options.schemes = default_schemes(run_options.common.device);
       run_options.schemes.resize(1);
-      run_options.directions = {"x"};
+      if (run_options.directions.empty()) run_options.directions = {"x"};
+      run_options.directions.resize(1);
       run_options.tolerance = std::max(run_options.tolerance, 0.3);
     }
     if (!(run_options.low_kg < run_options.high_kg)) throw CLI::ValidationError("--low", "must be below --high");
+    if (!(run_options.low_kg_m2 < run_options.high_kg_m2))
+      throw CLI::ValidationError("--low-inertia", "must be below --high-inertia");
     exit_code = run(run_options);
   });
 }

@@ -43,9 +43,18 @@ mi = json.loads((work / "minimum-inertia.json").read_text())
 [x] = scheme["directions"]
 # The bisection brackets a boundary inside the range, and the unstable end says which load broke it.
 assert not x["below_range"] and not x["above_range"], x
-assert 0.2 < x["minimum_kg"] < 20 and x["largest_unstable_kg"] < x["minimum_kg"], x
+assert x["quantity"] == "mass" and x["unit"] == "kg", x
+assert 0.2 < x["minimum"] < 20 and x["largest_unstable"] < x["minimum"], x
 assert x["unstable"]["load"] in {"firm-grasp", "loose-grasp", "voluntary-motion", "wall-collision"}, x
 assert scheme["published_kg"] == 2.5, scheme
+
+fg = json.loads((work / "force-gain.json").read_text())
+[fx] = fg["directions"]
+# Force feedback has a largest stable gain inside the range (the firm grasp's mode breaks it), and the thesis's
+# figure is beside it.
+assert fx["direction"] == "x" and not fx["below_range"] and not fx["above_range"], fx
+assert 0.1 < fx["largest_kp"] < fx["smallest_unstable_kp"] < 50, fx
+assert fg["published_kp"] == 3.75 and fg["worst_kp"] == fx["largest_kp"], fg
 
 tr = json.loads((work / "tracking.json").read_text())
 tby = {s["id"]: s for s in tr["schemes"]}
@@ -76,8 +85,27 @@ assert len(j1["velocity_rad_s"]) > 20, len(j1["velocity_rad_s"])
 print("experiments ok")
 PY
 
+# Rotation on a device that renders it: the bisection of a rotational inertia about a handle axis, computed
+# torque on the ViSHaRD10's redundancy resolution (the thesis's scheme there).
+timeout 100 "$eval_bin" minimum-inertia --device vishard10 --quick --directions rx --no-figures --out "$work/v10" \
+  > "$work/v10.txt"
+"$py" - "$work/v10/minimum-inertia.json" <<'PY'
+import json, sys
+mi = json.load(open(sys.argv[1]))
+[scheme] = mi["schemes"]
+assert scheme["id"] == "ctc-kp250-ff", scheme["id"]
+[rx] = scheme["directions"]
+assert rx["quantity"] == "inertia" and rx["unit"] == "kg m^2" and rx["published"] == 0.01, rx
+assert not rx["below_range"] and not rx["above_range"], rx
+assert 0.001 < rx["minimum"] < 5 and rx["largest_unstable"] < rx["minimum"], rx
+assert rx["unstable"]["load"] in {"firm-grasp", "loose-grasp", "voluntary-motion"}, rx
+assert "redundancy_ik" in mi["example_session"] and "inertia_kg_m2" in mi["example_session"]
+assert [l["id"] for l in mi["rotational_loads"]] == ["firm-grasp", "loose-grasp", "voluntary-motion"]
+print("rotation ok")
+PY
+
 if "$py" -c "import matplotlib" 2> /dev/null; then
-  for f in report.html force-response.png backdrivability.png minimum-inertia.png tracking.png z-width.png \
+  for f in report.html force-response.png backdrivability.png minimum-inertia.png force-gain.png tracking.png z-width.png \
     transparency.png friction.png; do
     [ -s "$work/$f" ] || { echo "missing $f"; exit 1; }
   done

@@ -5,6 +5,7 @@
 
 #include <thread>
 
+#include "handle_attachment.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "support/handle_mass_urdf.hpp"
 #include "support/sim_device_fixture.hpp"
@@ -183,6 +184,61 @@ TEST(SimDevice, OperatorGraspsWithoutJumpAndPushesTheFreeHandle) {
   for (int k = 0; k < 600; ++k) rig.cycle();
   const Eigen::Vector3d moved = rig.device.ground_truth().handle_pose.translation() - start;
   EXPECT_GT(moved.y(), 0.005) << moved.transpose();
+}
+
+// The operator's rotation: the hand's inertia on the grasp's rotational spring-damper, pulled by the arm. With
+// the handle held still, a voluntary torque step settles at tau k_g / (k_g + k_arm) on the handle, after a
+// ring at the hand's damped frequency; a loose grasp passes less of it.
+TEST(SimDevice, OperatorHandTurnsTheHandleThroughItsRotationalGrasp) {
+  const auto torque_on_a_held_handle = [](double grasp, std::vector<double>& series) {
+    sim::AttachmentSettings s;
+    s.kind = sim::AttachmentKind::operator_hand;
+    s.grasp = grasp;
+    s.torque.kind = Profile::Kind::step;
+    s.torque.value = Eigen::Vector3d(0, 0, 0.2);
+    s.torque.start_s = 0.0;
+    sim::HandleAttachment a;
+    a.select(s);
+    const double dt = 5e-5;
+    for (int k = 0; k < 40000; ++k)
+      series.push_back(a.step(k * dt, dt, Eigen::Isometry3d::Identity(), sim::Vector6d::Zero())(5));
+    return s;
+  };
+  std::vector<double> firm, loose;
+  const sim::AttachmentSettings s = torque_on_a_held_handle(1.0, firm);
+  torque_on_a_held_handle(0.0, loose);
+  const double k = s.firm_grasp_rotational_stiffness, b = s.firm_grasp_rotational_damping;
+  EXPECT_NEAR(firm.back(), 0.2 * k / (k + s.arm_rotational_stiffness), 1e-4);
+  const double kl = s.loose_grasp_rotational_stiffness;
+  EXPECT_NEAR(loose.back(), 0.2 * kl / (kl + s.arm_rotational_stiffness), 1e-3);
+  // The ring at the hand's damped frequency: the transmitted torque crosses its final value every pi / w_d.
+  const double wn = std::sqrt((k + s.arm_rotational_stiffness) / s.hand_inertia_kg_m2);
+  const double zeta =
+      (b + s.arm_rotational_damping) / (2.0 * std::sqrt((k + s.arm_rotational_stiffness) * s.hand_inertia_kg_m2));
+  std::vector<double> crossings;
+  for (std::size_t i = 1; i < firm.size() && crossings.size() < 2; ++i)
+    if ((firm[i - 1] - firm.back()) * (firm[i] - firm.back()) < 0.0) crossings.push_back(static_cast<double>(i) * 5e-5);
+  ASSERT_EQ(crossings.size(), 2U);
+  const double half_period = M_PI / (wn * std::sqrt(1.0 - zeta * zeta));
+  EXPECT_NEAR(crossings[1] - crossings[0], half_period, 0.03 * half_period);
+}
+
+TEST(SimDevice, OperatorTwistsTheFreeHandleOfASixDofDevice) {
+  // The same device and start with and without a voluntary torque about z: the difference is the operator's.
+  const auto rotation_after_half_a_second = [](const std::string& torque) {
+    SimRig rig(
+        "urdf: ../urdf/vishard6.urdf\ninitial_position: [-0.5, 1.0, -0.5, 0.5, 1.57, 0.0]\nattachment: operator\n"
+        "friction: false\noperator_torque: step\noperator_torque_start_s: 0.1\noperator_torque_nm: " +
+        torque + "\n");
+    rig.cycle();
+    const Eigen::Matrix3d start = rig.device.ground_truth().handle_pose.linear();
+    for (int k = 0; k < 1000; ++k) rig.cycle();
+    const Eigen::AngleAxisd turned(rig.device.ground_truth().handle_pose.linear() * start.transpose());
+    return Eigen::Vector3d(turned.angle() * turned.axis());
+  };
+  const Eigen::Vector3d twisted =
+      rotation_after_half_a_second("[0, 0, 0.5]") - rotation_after_half_a_second("[0, 0, 0]");
+  EXPECT_GT(twisted.z(), 0.02) << twisted.transpose();
 }
 
 TEST(SimDevice, PositionSourceDragsTheHandleAlongItsPath) {

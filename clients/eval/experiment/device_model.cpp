@@ -41,6 +41,12 @@ Eigen::Vector3d DeviceModel::handle_at(const std::vector<double>& joints) {
   return model::frame_pose(robot_, data_, frame_).translation();
 }
 
+Eigen::Matrix3d DeviceModel::handle_rotation_at(const std::vector<double>& joints) {
+  const JointVector q = Eigen::Map<const Eigen::VectorXd>(joints.data(), static_cast<Eigen::Index>(joints.size()));
+  model::forward_kinematics(robot_, data_, q);
+  return model::frame_pose(robot_, data_, frame_).linear();
+}
+
 DeviceModel::Inertia DeviceModel::inertia_at(const std::vector<double>& joints) {
   const JointVector q = Eigen::Map<const Eigen::VectorXd>(joints.data(), static_cast<Eigen::Index>(joints.size()));
   const JointVector qd = JointVector::Zero(robot_.dof());

@@ -19,6 +19,8 @@ class DeviceModel {
   // std::runtime_error when the point is out of reach.
   [[nodiscard]] std::vector<double> joints_at(const Eigen::Vector3d& position);
   [[nodiscard]] Eigen::Vector3d handle_at(const std::vector<double>& joints);
+  // The handle's orientation (its axes in world coordinates, columns).
+  [[nodiscard]] Eigen::Matrix3d handle_rotation_at(const std::vector<double>& joints);
 
   // At a configuration: the translational rows of the handle Jacobian (3 x n), the joint-space inertia M and the
   // handle's task-space inertia Lambda = (J M^-1 J^T)^-1 (3 x 3, the apparent mass of the open-loop device).

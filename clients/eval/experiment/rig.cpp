@@ -31,7 +31,9 @@ double shuttle_leg_s(double distance, double acceleration, double speed) {
 std::string rig_yaml(const RigSpec& spec) {
   const DevicePreset preset = device_preset(spec.device.name);
   const bool translational = preset.task == model::TaskRows::translation;
-  const std::vector<double>& q0 = spec.device.initial_position.empty() ? preset.seed : spec.device.initial_position;
+  const std::vector<double>& nominal = preset.rig_position.empty() ? preset.seed : preset.rig_position;
+  const std::vector<double>& q0 = spec.device.initial_position.empty() ? nominal : spec.device.initial_position;
+  const std::string task = translational ? "translation" : "full";
   std::string y = fmt::format(
       "# hapticd-eval rig: {} on the simulated {}\n"
       "server: {{rate_hz: 2000, clock: lockstep, seed: {}, shutdown_ramp_s: 0.05}}\n"
@@ -59,7 +61,13 @@ std::string rig_yaml(const RigSpec& spec) {
       const double m = spec.scheme.virtual_mass_kg;
       if (!has_key(spec.model, "mass_kg")) y += fmt::format("        mass_kg: [{0:.17g}, {0:.17g}, {0:.17g}]\n", m);
       if (!has_key(spec.model, "damping_n_s_per_m")) y += "        damping_n_s_per_m: [0, 0, 0]\n";
-      if (translational) y += "        rotation: false\n";
+      if (translational) {
+        y += "        rotation: false\n";
+      } else {
+        y += "        rotation: true\n";
+        if (!has_key(spec.model, "inertia_kg_m2")) y += "        inertia_kg_m2: [0.05, 0.05, 0.05]\n";
+        if (!has_key(spec.model, "rotational_damping_n_m_s")) y += "        rotational_damping_n_m_s: [0, 0, 0]\n";
+      }
       if (scripted) y += "        display: admittance\n";
     } else {
       y += "        display: impedance\n";
@@ -68,8 +76,13 @@ std::string rig_yaml(const RigSpec& spec) {
     add_lines(y, spec.script, "        ");
     add_lines(y, spec.model, "        ");
   }
-  y += fmt::format("    controller:\n      plugin: {}\n      parameters: {{{}}}\n", spec.scheme.controller,
-                   spec.scheme.controller_parameters);
+  if (spec.scheme.joint_space) {
+    y += fmt::format("    inverse_kinematics:\n      plugin: {}\n      parameters: {{task: {}{}{}}}\n",
+                     preset.inverse_kinematics, task, preset.inverse_kinematics_parameters.empty() ? "" : ", ",
+                     preset.inverse_kinematics_parameters);
+  }
+  y += fmt::format("    controller:\n      plugin: {}\n      parameters: {{{}{}}}\n", spec.scheme.controller,
+                   spec.scheme.task_rows ? "task: " + task + ", " : std::string(), spec.scheme.controller_parameters);
   // The thesis's experiments had no rate limit on the rendered force: a 10 N sine at 60 Hz changes at 3.8 kN/s.
   y += "    safety: {max_force_rate_n_per_s: 100000}\n";
   return y;
@@ -92,6 +105,7 @@ std::string run_rig(server::Session& session, std::uint64_t cycles,
     s.position = v.handle_pose.position;
     s.desired_position = v.task.pose.position;
     s.true_velocity = v.truth ? v.truth->handle_twist.linear : v.handle_twist.linear;
+    s.true_angular_velocity = v.truth ? v.truth->handle_twist.angular : v.handle_twist.angular;
     s.true_force = v.truth ? v.truth->handle_wrench.force : v.operator_wrench.force;
     s.torque = v.command.torque_nm;
     sample(s);

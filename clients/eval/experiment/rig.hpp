@@ -16,7 +16,7 @@ namespace hapticd::eval {
 // (extra `key: value` lines for the sim plugin's parameters, for instance to switch an effect off).
 struct RigDevice {
   std::string name = "vishard3";            // vishard3, vishard6, vishard10
-  std::vector<double> initial_position;     // empty: the device preset's nominal configuration
+  std::vector<double> initial_position;     // empty: the device preset's rig position
   std::vector<std::string> sim_parameters;  // "key: value" added to the sim plugin's parameters
 };
 
@@ -54,8 +54,9 @@ struct RigSample {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();          // the handle (measured joints)
   Eigen::Vector3d desired_position = Eigen::Vector3d::Zero();  // the virtual model's target (admittance display)
   Eigen::Vector3d true_velocity = Eigen::Vector3d::Zero();     // the simulation's truth
-  Eigen::Vector3d true_force = Eigen::Vector3d::Zero();        // the truth: what holds the handle applies to it
-  JointVector torque;                                          // written
+  Eigen::Vector3d true_angular_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d true_force = Eigen::Vector3d::Zero();  // the truth: what holds the handle applies to it
+  JointVector torque;                                    // written
 };
 
 // Runs `cycles` cycles and calls `sample` after each with the cycle's sample; stops early (returning the

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "device_presets.hpp"
 #include "stability.hpp"
 
 namespace hapticd::eval {
@@ -58,6 +59,26 @@ std::vector<OperatorLoad> standard_loads(const Eigen::Vector3d& direction, const
   return loads;
 }
 
+std::vector<OperatorLoad> rotational_loads(const Eigen::Vector3d& axis) {
+  std::vector<OperatorLoad> loads;
+  loads.push_back({"firm-grasp",
+                   "firm grasp, 0.2 N m twist",
+                   {"attachment: operator", "operator_grasp: 1", "operator_torque: step",
+                    "operator_torque_nm: " + vector3(0.2 * axis), "operator_torque_start_s: 0.2"},
+                   {}});
+  loads.push_back({"loose-grasp",
+                   "loose grasp, 0.2 N m twist",
+                   {"attachment: operator", "operator_grasp: 0", "operator_torque: step",
+                    "operator_torque_nm: " + vector3(0.2 * axis), "operator_torque_start_s: 0.2"},
+                   {}});
+  loads.push_back({"voluntary-motion",
+                   "voluntary motion, 0.2 rad at 0.5 Hz",
+                   {"attachment: operator", "operator_grasp: 0.5", "operator_rotation: sine",
+                    "operator_rotation_rad: " + vector3(0.1 * axis), "operator_rotation_frequency_hz: 0.5"},
+                   {}});
+  return loads;
+}
+
 RigSpec with_load(RigSpec spec, const OperatorLoad& load) {
   spec.attachment.insert(spec.attachment.end(), load.attachment.begin(), load.attachment.end());
   spec.model.insert(spec.model.end(), load.model.begin(), load.model.end());
@@ -67,32 +88,36 @@ RigSpec with_load(RigSpec spec, const OperatorLoad& load) {
 TrialResult run_trial(const RigSpec& spec, const OperatorLoad& load, const StabilityCriterion& criterion) {
   server::Session session = make_rig_session(with_load(spec, load));
   const auto cycles = static_cast<std::uint64_t>(std::llround(criterion.duration_s * kRate));
-  std::vector<double> vx, vy, vz;
-  vx.reserve(cycles);
-  vy.reserve(cycles);
-  vz.reserve(cycles);
+  const bool rotations = device_preset(spec.device.name).task != model::TaskRows::translation;
+  std::vector<std::vector<double>> velocity(6);  // linear x, y, z; angular x, y, z
+  for (auto& v : velocity) v.reserve(cycles);
   TrialResult r;
   double work = 0.0;
   r.fault = run_rig(session, cycles, [&](const RigSample& s) {
-    vx.push_back(s.true_velocity.x());
-    vy.push_back(s.true_velocity.y());
-    vz.push_back(s.true_velocity.z());
+    for (int i = 0; i < 3; ++i) {
+      velocity[static_cast<std::size_t>(i)].push_back(s.true_velocity[i]);
+      velocity[static_cast<std::size_t>(i) + 3].push_back(s.true_angular_velocity[i]);
+    }
     work += s.true_force.dot(s.true_velocity) / kRate;
     r.least_operator_work_j = std::min(r.least_operator_work_j, work);
   });
-  if (!r.fault.empty() || vx.size() < cycles) return r;
-  double sum = 0.0, largest = -1.0;
-  for (const auto* axis : {&vx, &vy, &vz}) {
-    const Oscillation o = oscillation(*axis, kRate, criterion.cutoff_hz, criterion.window_s);
-    sum += o.rms * o.rms;
-    if (o.rms > largest) {
-      largest = o.rms;
+  if (!r.fault.empty() || velocity[0].size() < cycles) return r;
+  // Each axis's oscillation relative to its threshold; the frequency is the largest one's.
+  double linear = 0.0, angular = 0.0, largest = -1.0;
+  for (std::size_t i = 0; i < (rotations ? 6U : 3U); ++i) {
+    const Oscillation o = oscillation(velocity[i], kRate, criterion.cutoff_hz, criterion.window_s);
+    const double threshold = i < 3 ? criterion.threshold_m_s : criterion.rotational_threshold_rad_s;
+    (i < 3 ? linear : angular) += o.rms * o.rms;
+    if (o.rms / threshold > largest) {
+      largest = o.rms / threshold;
       r.oscillation_hz = o.frequency_hz;
     }
   }
-  r.oscillation_m_s = std::sqrt(sum);
+  r.oscillation_m_s = std::sqrt(linear);
+  r.oscillation_rad_s = std::sqrt(angular);
   r.stable = load.collision ? r.least_operator_work_j >= -criterion.collision_tolerance_j
-                            : r.oscillation_m_s < criterion.threshold_m_s;
+                            : r.oscillation_m_s < criterion.threshold_m_s &&
+                                  r.oscillation_rad_s < criterion.rotational_threshold_rad_s;
   return r;
 }
 

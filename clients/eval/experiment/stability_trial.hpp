@@ -8,7 +8,9 @@
 //   gave (its work on the handle never below -`collision_tolerance_j`): a heavy virtual mass pushed by a soft
 //   hand bounces on a stiff wall for seconds, passively, which the velocity measure would call an oscillation.
 // The cutoff lies above the operator's voluntary motion (0.5 Hz) and below the lowest oscillation the schemes
-// show (about 5 Hz); the threshold is a visible oscillation (0.02 m/s RMS is 0.4 mm at 8 Hz).
+// show (about 5 Hz); the threshold is a visible oscillation (0.02 m/s RMS is 0.4 mm at 8 Hz). On a device that
+// renders rotations too (ViSHaRD6, ViSHaRD10) the handle's angular velocity above the cutoff is held to
+// `rotational_threshold_rad_s` the same way (0.2 rad/s RMS is 4 mrad at 8 Hz: 0.4 mm at a 10 cm grip).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -35,6 +37,10 @@ struct WallSpec {
 // same), voluntary-motion (grasp 0.5, the hand's target 4 cm along the direction and back, 0.5 Hz sine),
 // wall-collision (loose grasp, the hand's target steps 3 cm along the direction at 0.2 s, into `wall`).
 [[nodiscard]] std::vector<OperatorLoad> standard_loads(const Eigen::Vector3d& direction, const WallSpec& wall = {});
+// The same loads in rotation about `axis` (world): firm-grasp and loose-grasp (a 0.2 N m step of voluntary
+// torque at 0.2 s), voluntary-motion (grasp 0.5, the hand's target turns 0.2 rad about the axis and back, 0.5 Hz
+// sine). No collision: the virtual admittance's walls are translational.
+[[nodiscard]] std::vector<OperatorLoad> rotational_loads(const Eigen::Vector3d& axis);
 // The collision with a given grasp (0 loose .. 1 firm): the Z-width's loads.
 [[nodiscard]] OperatorLoad wall_collision(const Eigen::Vector3d& direction, double grasp, const WallSpec& wall);
 
@@ -43,13 +49,15 @@ struct StabilityCriterion {
   double window_s = 0.5;
   double cutoff_hz = 4.0;
   double threshold_m_s = 0.02;
+  double rotational_threshold_rad_s = 0.2;  // devices that render rotations
   double collision_tolerance_j = 0.01;
 };
 
 struct TrialResult {
   bool stable = false;
   double oscillation_m_s = 0.0;        // the RMS above the cutoff over the window
-  double oscillation_hz = 0.0;         // its frequency (zero crossings of its largest axis)
+  double oscillation_rad_s = 0.0;      // the same of the angular velocity (devices that render rotations)
+  double oscillation_hz = 0.0;         // its frequency (zero crossings of its largest axis, relative to threshold)
   double least_operator_work_j = 0.0;  // the minimum over time of the work the operator did on the handle
   std::string fault;                   // the device's, if it faulted
 };

@@ -13,6 +13,8 @@ Vector6d HandleAttachment::step(double t, double dt, const Eigen::Isometry3d& ha
     anchor_rotation_ = handle.linear();
     hand_position_ = p;
     hand_velocity_ = v;
+    hand_rotation_.setZero();
+    hand_angular_velocity_ = w;
   }
   const double local_t = t - anchor_time_;
   Vector6d wrench = Vector6d::Zero();
@@ -33,8 +35,16 @@ Vector6d HandleAttachment::step(double t, double dt, const Eigen::Isometry3d& ha
       hand_velocity_ += dt * (arm_force + s.force.at(local_t) - grasp_force) / s.hand_mass_kg;
       hand_position_ += dt * hand_velocity_;
       wrench.head<3>() = grasp_force;
-      // The wrist holds the handle's orientation softly.
-      wrench.tail<3>() = -(0.5 + 5.0 * s.grasp) * rotation_error - (0.02 + 0.2 * s.grasp) * w;
+      // Rotation: the hand's rotation vector and the handle's, both from the anchor orientation (their
+      // difference is the grasp's twist for the moderate angles a hand holds a handle through).
+      const Eigen::Vector3d grasp_torque = grasp_rotational_stiffness() * (hand_rotation_ - rotation_error) +
+                                           grasp_rotational_damping() * (hand_angular_velocity_ - w);
+      const Eigen::Vector3d arm_torque =
+          s.arm_rotational_stiffness * (s.rotation.at(local_t) - hand_rotation_) +
+          s.arm_rotational_damping * (s.rotation.rate_at(local_t) - hand_angular_velocity_);
+      hand_angular_velocity_ += dt * (arm_torque + s.torque.at(local_t) - grasp_torque) / s.hand_inertia_kg_m2;
+      hand_rotation_ += dt * hand_angular_velocity_;
+      wrench.tail<3>() = grasp_torque;
       break;
     }
     case AttachmentKind::position_source: {

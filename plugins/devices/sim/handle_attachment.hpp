@@ -1,9 +1,9 @@
 #pragma once
-// What is attached to the simulated handle: nothing; a simulated operator (a hand-arm mass pulled by the
-// arm towards a target motion, plus a voluntary force, holding the handle through a grasp spring-damper from
-// loose to firm); a stiff position source (a linear guide with coupling stiffness and damping following a
-// path); or a scripted wrench. Settings can be replaced at any time; the new attachment starts from the
-// handle's current pose (no jump). Real-time safe.
+// What is attached to the simulated handle: nothing; a simulated operator (a hand-arm mass and rotational
+// inertia pulled by the arm towards a target motion and rotation, plus a voluntary force and torque, holding the
+// handle through a grasp spring-damper, translational and rotational, from loose to firm); a stiff position source (a
+// linear guide with coupling stiffness and damping following a path); or a scripted wrench. Settings can be replaced at
+// any time; the new attachment starts from the handle's current pose (no jump). Real-time safe.
 #include <Eigen/Geometry>
 #include <cmath>
 
@@ -31,6 +31,17 @@ struct AttachmentSettings {
   double arm_damping = 25.0;     // [N s/m]
   Profile motion;                // target offset from the grasp position [m]
   Profile force;                 // voluntary force [N]
+  // The same in rotation: the hand's rotational inertia held by the grasp's rotational spring-damper [loose,
+  // firm] (geometric between, as the translational one) and pulled by the arm towards a target rotation.
+  double hand_inertia_kg_m2 = 0.005;
+  double loose_grasp_rotational_stiffness = 0.5;  // [N m/rad]
+  double firm_grasp_rotational_stiffness = 50.0;  // [N m/rad]
+  double loose_grasp_rotational_damping = 0.02;   // [N m s/rad]
+  double firm_grasp_rotational_damping = 0.5;     // [N m s/rad]
+  double arm_rotational_stiffness = 5.0;          // [N m/rad] towards the target rotation
+  double arm_rotational_damping = 0.2;            // [N m s/rad]
+  Profile rotation;                               // target rotation from the grasp orientation (rotation vector) [rad]
+  Profile torque;                                 // voluntary torque [N m]
   // Position source.
   double source_stiffness = 1e5;               // [N/m]
   double source_damping = 500.0;               // [N s/m]
@@ -65,6 +76,12 @@ class HandleAttachment {
   [[nodiscard]] double grasp_damping() const noexcept {
     return between(settings_.loose_grasp_damping, settings_.firm_grasp_damping);
   }
+  [[nodiscard]] double grasp_rotational_stiffness() const noexcept {
+    return between(settings_.loose_grasp_rotational_stiffness, settings_.firm_grasp_rotational_stiffness);
+  }
+  [[nodiscard]] double grasp_rotational_damping() const noexcept {
+    return between(settings_.loose_grasp_rotational_damping, settings_.firm_grasp_rotational_damping);
+  }
 
  private:
   // Both ends above zero (the parameters' bounds).
@@ -78,6 +95,9 @@ class HandleAttachment {
   Eigen::Matrix3d anchor_rotation_ = Eigen::Matrix3d::Identity();
   Eigen::Vector3d hand_position_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d hand_velocity_ = Eigen::Vector3d::Zero();
+  // The hand's rotation from the anchor orientation (a rotation vector, world) and its angular velocity.
+  Eigen::Vector3d hand_rotation_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d hand_angular_velocity_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace hapticd::sim

@@ -163,6 +163,31 @@ ParameterSchema SimDevice::parameter_schema() {
   s.real("operator_arm_damping", "operator's arm damping").unit("N s/m").minimum(0.0).default_value(25.0);
   declare_profile(s, "operator_motion", "operator's target motion from the grasp position", "m", "constant");
   declare_profile(s, "operator_force", "operator's voluntary force", "n", "constant");
+  s.real("operator_hand_inertia_kg_m2", "operator's hand rotational inertia (about every axis)")
+      .unit("kg m^2")
+      .greater_than(0.0)
+      .default_value(0.005);
+  s.real_vector("operator_grasp_rotational_stiffness", "operator's grasp rotational stiffness, loose and firm")
+      .size(2)
+      .unit("N m/rad")
+      .greater_than(0.0)
+      .default_value(std::vector<double>{0.5, 50.0});
+  s.real_vector("operator_grasp_rotational_damping", "operator's grasp rotational damping, loose and firm")
+      .size(2)
+      .unit("N m s/rad")
+      .greater_than(0.0)
+      .default_value(std::vector<double>{0.02, 0.5});
+  s.real("operator_arm_rotational_stiffness", "operator's arm stiffness towards the target rotation")
+      .unit("N m/rad")
+      .minimum(0.0)
+      .default_value(5.0);
+  s.real("operator_arm_rotational_damping", "operator's arm rotational damping")
+      .unit("N m s/rad")
+      .minimum(0.0)
+      .default_value(0.2);
+  declare_profile(s, "operator_rotation", "operator's target rotation from the grasp orientation (rotation vector)",
+                  "rad", "constant");
+  declare_profile(s, "operator_torque", "operator's voluntary torque", "nm", "constant");
   s.real("source_stiffness", "position source coupling stiffness").unit("N/m").greater_than(0.0).default_value(1e5);
   s.real("source_damping", "position source coupling damping").unit("N s/m").minimum(0.0).default_value(500.0);
   declare_profile(s, "source_path", "position source path from the attach position", "m", "constant");
@@ -297,6 +322,17 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   a.arm_damping = p.real("operator_arm_damping");
   a.motion = read_profile(p, "operator_motion", "m");
   a.force = read_profile(p, "operator_force", "n");
+  a.hand_inertia_kg_m2 = p.real("operator_hand_inertia_kg_m2");
+  const auto& rotational_stiffness = p.real_vector("operator_grasp_rotational_stiffness");
+  const auto& rotational_damping = p.real_vector("operator_grasp_rotational_damping");
+  a.loose_grasp_rotational_stiffness = rotational_stiffness[0];
+  a.firm_grasp_rotational_stiffness = rotational_stiffness[1];
+  a.loose_grasp_rotational_damping = rotational_damping[0];
+  a.firm_grasp_rotational_damping = rotational_damping[1];
+  a.arm_rotational_stiffness = p.real("operator_arm_rotational_stiffness");
+  a.arm_rotational_damping = p.real("operator_arm_rotational_damping");
+  a.rotation = read_profile(p, "operator_rotation", "rad");
+  a.torque = read_profile(p, "operator_torque", "nm");
   a.source_stiffness = p.real("source_stiffness");
   a.source_damping = p.real("source_damping");
   a.path = read_profile(p, "source_path", "m");
