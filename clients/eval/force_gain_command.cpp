@@ -34,9 +34,7 @@ int run(const Options& o) {
   fmt::print("{:<10} {:>12} {:>16}   {}\n", "direction", "largest Kp", "unstable above", "unstable near the boundary");
   for (const std::string& name : o.directions) {
     const Eigen::Vector3d axis = Eigen::Vector3d::Unit(name[0] - 'x');
-    std::vector<OperatorLoad> loads;
-    for (const OperatorLoad& load : standard_loads(axis))
-      if (std::find(o.loads.begin(), o.loads.end(), load.id) != o.loads.end()) loads.push_back(load);
+    const std::vector<OperatorLoad> loads = selected_loads(standard_loads(axis), o.loads);
     std::string failed_load;
     TrialResult failed;
     double failed_kp = 0.0;
@@ -96,22 +94,13 @@ int run(const Options& o) {
   }
   fmt::print("worst direction: Kp {}; thesis: stable up to {:g}\n",
              any_below ? fmt::format("<{:g}", o.low) : fmt::format("{:.2f}", worst), kPublishedKp);
-  Json loads = Json::array();
-  for (const OperatorLoad& load : standard_loads(Eigen::Vector3d::UnitX()))
-    if (std::find(o.loads.begin(), o.loads.end(), load.id) != o.loads.end())
-      loads.push(Json::object().set("id", load.id).set("label", load.label));
   Json result = Json::object();
   result.set("experiment", "force-gain")
       .set("title", "Largest stable force-feedback gain (impedance display, PD force feedback)")
       .set("device", o.common.device)
       .set("kd", o.kd)
-      .set("criterion", Json::object()
-                            .set("duration_s", criterion.duration_s)
-                            .set("window_s", criterion.window_s)
-                            .set("cutoff_hz", criterion.cutoff_hz)
-                            .set("threshold_m_s", criterion.threshold_m_s)
-                            .set("collision_tolerance_j", criterion.collision_tolerance_j))
-      .set("loads", loads)
+      .set("criterion", criterion_json(criterion))
+      .set("loads", loads_json(selected_loads(standard_loads(Eigen::Vector3d::UnitX()), o.loads)))
       .set("range", std::vector<double>{o.low, o.high})
       .set("tolerance", o.tolerance)
       .set("directions", directions)

@@ -102,9 +102,8 @@ DirectionResult bisect_direction(const Options& o, const Scheme& scheme, const D
                                  const StabilityCriterion& criterion, std::string& example_yaml) {
   const Eigen::Vector3d axis = direction.rotation ? Eigen::Vector3d(handle_rotation.col(direction.index))
                                                   : Eigen::Vector3d(Eigen::Vector3d::Unit(direction.index));
-  std::vector<OperatorLoad> loads;
-  for (const OperatorLoad& load : direction.rotation ? rotational_loads(axis) : standard_loads(axis))
-    if (std::find(o.loads.begin(), o.loads.end(), load.id) != o.loads.end()) loads.push_back(load);
+  const std::vector<OperatorLoad> loads =
+      selected_loads(direction.rotation ? rotational_loads(axis) : standard_loads(axis), o.loads);
   DirectionResult result;
   double unstable_value = 0.0;
   const auto stable = [&](double value) {
@@ -185,7 +184,7 @@ int run(const Options& o) {
     const Published pub = published(o.common.device, scheme);
     Json results = Json::array();
     double worst = 0.0, worst_rotation = 0.0;
-    bool worst_above = false, rotation_above = false, any_rotation = false;
+    bool worst_above = false, rotation_above = false, any_rotation = false, any_translation = false;
     std::string cells, why, thesis_axes;
     for (const Direction& direction : directions) {
       const DirectionResult r =
@@ -209,6 +208,7 @@ int run(const Options& o) {
         worst_rotation = std::max(worst_rotation, b.value);
         rotation_above = rotation_above || b.above_range;
       } else {
+        any_translation = true;
         worst = std::max(worst, b.value);
         worst_above = worst_above || b.above_range;
       }
@@ -222,7 +222,9 @@ int run(const Options& o) {
             r.failure.trial.fault.empty() ? fmt::format("{:.0f} Hz", r.failure.trial.oscillation_hz) : "fault");
       }
     }
-    std::string worst_cell = worst_above ? fmt::format(">{:g}", o.high_kg) : fmt::format("{:.2f}", worst);
+    std::string worst_cell = !any_translation ? std::string("-")
+                             : worst_above    ? fmt::format(">{:g}", o.high_kg)
+                                              : fmt::format("{:.2f}", worst);
     if (any_rotation)
       worst_cell += rotation_above ? fmt::format(" / >{:g}", o.high_kg_m2) : fmt::format(" / {:.3f}", worst_rotation);
     fmt::print("{:<28}{} {:>14} {:>9}   {}{}\n", scheme.loop_label, cells, worst_cell,
@@ -231,31 +233,19 @@ int run(const Options& o) {
     list.push(Json::object()
                   .set("id", scheme.loop_id)
                   .set("label", scheme.loop_label)
-                  .set("worst_kg", worst_above ? Json() : Json(worst))
+                  .set("worst_kg", !any_translation || worst_above ? Json() : Json(worst))
                   .set("worst_kg_m2", !any_rotation || rotation_above ? Json() : Json(worst_rotation))
                   .set("published_kg", optional_json(pub.worst_kg))
                   .set("directions", results));
   }
-  Json loads = Json::array();
-  for (const OperatorLoad& load : standard_loads(Eigen::Vector3d::UnitX()))
-    if (std::find(o.loads.begin(), o.loads.end(), load.id) != o.loads.end())
-      loads.push(Json::object().set("id", load.id).set("label", load.label));
-  Json rotational = Json::array();
-  if (rotations)
-    for (const OperatorLoad& load : rotational_loads(Eigen::Vector3d::UnitX()))
-      if (std::find(o.loads.begin(), o.loads.end(), load.id) != o.loads.end())
-        rotational.push(Json::object().set("id", load.id).set("label", load.label));
+  const Json loads = loads_json(selected_loads(standard_loads(Eigen::Vector3d::UnitX()), o.loads));
+  const Json rotational = loads_json(rotations ? selected_loads(rotational_loads(Eigen::Vector3d::UnitX()), o.loads)
+                                               : std::vector<OperatorLoad>{});
   Json result = Json::object();
   result.set("experiment", "minimum-inertia")
       .set("title", "Minimum virtual inertia (admittance display, pure mass)")
       .set("device", o.common.device)
-      .set("criterion", Json::object()
-                            .set("duration_s", criterion.duration_s)
-                            .set("window_s", criterion.window_s)
-                            .set("cutoff_hz", criterion.cutoff_hz)
-                            .set("threshold_m_s", criterion.threshold_m_s)
-                            .set("rotational_threshold_rad_s", criterion.rotational_threshold_rad_s)
-                            .set("collision_tolerance_j", criterion.collision_tolerance_j))
+      .set("criterion", criterion_json(criterion))
       .set("loads", loads)
       .set("rotational_loads", rotational)
       .set("range_kg", std::vector<double>{o.low_kg, o.high_kg})

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "device_presets.hpp"
@@ -72,11 +73,34 @@ std::vector<OperatorLoad> rotational_loads(const Eigen::Vector3d& axis) {
                     "operator_torque_nm: " + vector3(0.2 * axis), "operator_torque_start_s: 0.2"},
                    {}});
   loads.push_back({"voluntary-motion",
-                   "voluntary motion, 0.2 rad at 0.5 Hz",
+                   "voluntary motion, 0.1 rad at 0.5 Hz",
                    {"attachment: operator", "operator_grasp: 0.5", "operator_rotation: sine",
                     "operator_rotation_rad: " + vector3(0.1 * axis), "operator_rotation_frequency_hz: 0.5"},
                    {}});
   return loads;
+}
+
+std::vector<OperatorLoad> selected_loads(const std::vector<OperatorLoad>& loads, const std::vector<std::string>& ids) {
+  std::vector<OperatorLoad> out;
+  for (const OperatorLoad& load : loads)
+    if (std::find(ids.begin(), ids.end(), load.id) != ids.end()) out.push_back(load);
+  return out;
+}
+
+Json loads_json(const std::vector<OperatorLoad>& loads) {
+  Json list = Json::array();
+  for (const OperatorLoad& load : loads) list.push(Json::object().set("id", load.id).set("label", load.label));
+  return list;
+}
+
+Json criterion_json(const StabilityCriterion& c) {
+  return Json::object()
+      .set("duration_s", c.duration_s)
+      .set("window_s", c.window_s)
+      .set("cutoff_hz", c.cutoff_hz)
+      .set("threshold_m_s", c.threshold_m_s)
+      .set("rotational_threshold_rad_s", c.rotational_threshold_rad_s)
+      .set("collision_tolerance_j", c.collision_tolerance_j);
 }
 
 RigSpec with_load(RigSpec spec, const OperatorLoad& load) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "report/json.hpp"
 #include "rig.hpp"
 
 namespace hapticd::eval {
@@ -38,7 +39,7 @@ struct WallSpec {
 // wall-collision (loose grasp, the hand's target steps 3 cm along the direction at 0.2 s, into `wall`).
 [[nodiscard]] std::vector<OperatorLoad> standard_loads(const Eigen::Vector3d& direction, const WallSpec& wall = {});
 // The same loads in rotation about `axis` (world): firm-grasp and loose-grasp (a 0.2 N m step of voluntary
-// torque at 0.2 s), voluntary-motion (grasp 0.5, the hand's target turns 0.2 rad about the axis and back, 0.5 Hz
+// torque at 0.2 s), voluntary-motion (grasp 0.5, the hand's target turns 0.1 rad about the axis and back, 0.5 Hz
 // sine). No collision: the virtual admittance's walls are translational.
 [[nodiscard]] std::vector<OperatorLoad> rotational_loads(const Eigen::Vector3d& axis);
 // The collision with a given grasp (0 loose .. 1 firm): the Z-width's loads.
@@ -61,6 +62,13 @@ struct TrialResult {
   double least_operator_work_j = 0.0;  // the minimum over time of the work the operator did on the handle
   std::string fault;                   // the device's, if it faulted
 };
+
+// The loads of `loads` whose id is in `ids`, in their order.
+[[nodiscard]] std::vector<OperatorLoad> selected_loads(const std::vector<OperatorLoad>& loads,
+                                                       const std::vector<std::string>& ids);
+// For the result files: the loads (id, label) and the criterion's settings.
+[[nodiscard]] Json loads_json(const std::vector<OperatorLoad>& loads);
+[[nodiscard]] Json criterion_json(const StabilityCriterion& criterion);
 
 // The rig under the load: its attachment and model lines added to the spec's.
 [[nodiscard]] RigSpec with_load(RigSpec spec, const OperatorLoad& load);
