@@ -27,6 +27,9 @@ struct DevicePreset {
   // joint-space scheme (computed torque) runs on (plugin name and its parameters, a YAML flow-mapping body
   // without the task).
   std::vector<double> rig_position;
+  [[nodiscard]] const std::vector<double>& rig_start() const noexcept {
+    return rig_position.empty() ? seed : rig_position;
+  }
   std::string inverse_kinematics = "newton_ik";
   std::string inverse_kinematics_parameters;
 };

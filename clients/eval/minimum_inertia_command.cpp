@@ -171,8 +171,7 @@ int run(const Options& o) {
   }
   // The rotational loads turn about the handle's axes where the rig starts.
   DeviceModel device_model(o.common.device);
-  const Eigen::Matrix3d handle_rotation =
-      device_model.handle_rotation_at(preset.rig_position.empty() ? preset.seed : preset.rig_position);
+  const Eigen::Matrix3d handle_rotation = device_model.handle_rotation_at(preset.rig_start());
   const StabilityCriterion criterion;
   Progress progress("minimum-inertia", schemes.size() * directions.size());
   Json list = Json::array();

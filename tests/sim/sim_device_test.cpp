@@ -207,9 +207,9 @@ TEST(SimDevice, OperatorHandTurnsTheHandleThroughItsRotationalGrasp) {
   std::vector<double> firm, loose;
   const sim::AttachmentSettings s = torque_on_a_held_handle(1.0, firm);
   torque_on_a_held_handle(0.0, loose);
-  const double k = s.firm_grasp_rotational_stiffness, b = s.firm_grasp_rotational_damping;
+  const double k = s.grasp_rotational_stiffness.firm, b = s.grasp_rotational_damping.firm;
   EXPECT_NEAR(firm.back(), 0.2 * k / (k + s.arm_rotational_stiffness), 1e-4);
-  const double kl = s.loose_grasp_rotational_stiffness;
+  const double kl = s.grasp_rotational_stiffness.loose;
   EXPECT_NEAR(loose.back(), 0.2 * kl / (kl + s.arm_rotational_stiffness), 1e-3);
   // The ring at the hand's damped frequency: the transmitted torque crosses its final value every pi / w_d.
   const double wn = std::sqrt((k + s.arm_rotational_stiffness) / s.hand_inertia_kg_m2);

@@ -31,8 +31,8 @@ double shuttle_leg_s(double distance, double acceleration, double speed) {
 std::string rig_yaml(const RigSpec& spec) {
   const DevicePreset preset = device_preset(spec.device.name);
   const bool translational = preset.task == model::TaskRows::translation;
-  const std::vector<double>& nominal = preset.rig_position.empty() ? preset.seed : preset.rig_position;
-  const std::vector<double>& q0 = spec.device.initial_position.empty() ? nominal : spec.device.initial_position;
+  const std::vector<double>& q0 =
+      spec.device.initial_position.empty() ? preset.rig_start() : spec.device.initial_position;
   const std::string task = translational ? "translation" : "full";
   std::string y = fmt::format(
       "# hapticd-eval rig: {} on the simulated {}\n"

@@ -27,7 +27,7 @@ Vector6d HandleAttachment::step(double t, double dt, const Eigen::Isometry3d& ha
     case AttachmentKind::operator_hand: {
       const AttachmentSettings& s = settings_;
       const Eigen::Vector3d grasp_force =
-          grasp_stiffness() * (hand_position_ - p) + grasp_damping() * (hand_velocity_ - v);
+          s.grasp_stiffness.at(s.grasp) * (hand_position_ - p) + s.grasp_damping.at(s.grasp) * (hand_velocity_ - v);
       const Eigen::Vector3d target = anchor_position_ + s.motion.at(local_t);
       const Eigen::Vector3d target_velocity = s.motion.rate_at(local_t);
       const Eigen::Vector3d arm_force =
@@ -37,8 +37,9 @@ Vector6d HandleAttachment::step(double t, double dt, const Eigen::Isometry3d& ha
       wrench.head<3>() = grasp_force;
       // Rotation: the hand's rotation vector and the handle's, both from the anchor orientation (their
       // difference is the grasp's twist for the moderate angles a hand holds a handle through).
-      const Eigen::Vector3d grasp_torque = grasp_rotational_stiffness() * (hand_rotation_ - rotation_error) +
-                                           grasp_rotational_damping() * (hand_angular_velocity_ - w);
+      const Eigen::Vector3d grasp_torque =
+          s.grasp_rotational_stiffness.at(s.grasp) * (hand_rotation_ - rotation_error) +
+          s.grasp_rotational_damping.at(s.grasp) * (hand_angular_velocity_ - w);
       const Eigen::Vector3d arm_torque =
           s.arm_rotational_stiffness * (s.rotation.at(local_t) - hand_rotation_) +
           s.arm_rotational_damping * (s.rotation.rate_at(local_t) - hand_angular_velocity_);

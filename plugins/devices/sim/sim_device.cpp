@@ -32,6 +32,21 @@ void declare_profile(ParameterSchema& s, const std::string& prefix, const std::s
       .default_value(0.1);
 }
 
+// Defaults: the attachment's own (handle_attachment.hpp).
+void declare_grasp_range(ParameterSchema& s, const std::string& name, const std::string& what, const std::string& unit,
+                         const GraspRange& defaults) {
+  s.real_vector(name, what + ", loose and firm (geometric between)")
+      .size(2)
+      .unit(unit)
+      .greater_than(0.0)
+      .default_value(std::vector<double>{defaults.loose, defaults.firm});
+}
+
+GraspRange read_grasp_range(const Parameters& p, const std::string& name) {
+  const auto& v = p.real_vector(name);
+  return {v[0], v[1]};
+}
+
 Profile read_profile(const Parameters& p, const std::string& prefix, const std::string& unit) {
   Profile profile;
   profile.kind = Profile::parse(p.string(prefix));
@@ -146,16 +161,10 @@ ParameterSchema SimDevice::parameter_schema() {
       .default_value(std::string("none"));
   s.real("operator_grasp", "operator's grasp, 0 loose .. 1 firm").minimum(0.0).maximum(1.0).default_value(0.5);
   s.real("operator_hand_mass_kg", "operator's hand-arm mass").unit("kg").greater_than(0.0).default_value(1.5);
-  s.real_vector("operator_grasp_stiffness", "operator's grasp stiffness, loose and firm")
-      .size(2)
-      .unit("N/m")
-      .greater_than(0.0)
-      .default_value(std::vector<double>{100.0, 30000.0});
-  s.real_vector("operator_grasp_damping", "operator's grasp damping, loose and firm")
-      .size(2)
-      .unit("N s/m")
-      .greater_than(0.0)
-      .default_value(std::vector<double>{2.0, 30.0});
+  declare_grasp_range(s, "operator_grasp_stiffness", "operator's grasp stiffness", "N/m",
+                      AttachmentSettings{}.grasp_stiffness);
+  declare_grasp_range(s, "operator_grasp_damping", "operator's grasp damping", "N s/m",
+                      AttachmentSettings{}.grasp_damping);
   s.real("operator_arm_stiffness", "operator's arm stiffness towards the target motion")
       .unit("N/m")
       .minimum(0.0)
@@ -167,16 +176,10 @@ ParameterSchema SimDevice::parameter_schema() {
       .unit("kg m^2")
       .greater_than(0.0)
       .default_value(0.005);
-  s.real_vector("operator_grasp_rotational_stiffness", "operator's grasp rotational stiffness, loose and firm")
-      .size(2)
-      .unit("N m/rad")
-      .greater_than(0.0)
-      .default_value(std::vector<double>{0.5, 50.0});
-  s.real_vector("operator_grasp_rotational_damping", "operator's grasp rotational damping, loose and firm")
-      .size(2)
-      .unit("N m s/rad")
-      .greater_than(0.0)
-      .default_value(std::vector<double>{0.02, 0.5});
+  declare_grasp_range(s, "operator_grasp_rotational_stiffness", "operator's grasp rotational stiffness", "N m/rad",
+                      AttachmentSettings{}.grasp_rotational_stiffness);
+  declare_grasp_range(s, "operator_grasp_rotational_damping", "operator's grasp rotational damping", "N m s/rad",
+                      AttachmentSettings{}.grasp_rotational_damping);
   s.real("operator_arm_rotational_stiffness", "operator's arm stiffness towards the target rotation")
       .unit("N m/rad")
       .minimum(0.0)
@@ -312,23 +315,15 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   a.kind = parse_attachment(p.string("attachment"));
   a.grasp = p.real("operator_grasp");
   a.hand_mass_kg = p.real("operator_hand_mass_kg");
-  const auto& grasp_stiffness = p.real_vector("operator_grasp_stiffness");
-  const auto& grasp_damping = p.real_vector("operator_grasp_damping");
-  a.loose_grasp_stiffness = grasp_stiffness[0];
-  a.firm_grasp_stiffness = grasp_stiffness[1];
-  a.loose_grasp_damping = grasp_damping[0];
-  a.firm_grasp_damping = grasp_damping[1];
+  a.grasp_stiffness = read_grasp_range(p, "operator_grasp_stiffness");
+  a.grasp_damping = read_grasp_range(p, "operator_grasp_damping");
   a.arm_stiffness = p.real("operator_arm_stiffness");
   a.arm_damping = p.real("operator_arm_damping");
   a.motion = read_profile(p, "operator_motion", "m");
   a.force = read_profile(p, "operator_force", "n");
   a.hand_inertia_kg_m2 = p.real("operator_hand_inertia_kg_m2");
-  const auto& rotational_stiffness = p.real_vector("operator_grasp_rotational_stiffness");
-  const auto& rotational_damping = p.real_vector("operator_grasp_rotational_damping");
-  a.loose_grasp_rotational_stiffness = rotational_stiffness[0];
-  a.firm_grasp_rotational_stiffness = rotational_stiffness[1];
-  a.loose_grasp_rotational_damping = rotational_damping[0];
-  a.firm_grasp_rotational_damping = rotational_damping[1];
+  a.grasp_rotational_stiffness = read_grasp_range(p, "operator_grasp_rotational_stiffness");
+  a.grasp_rotational_damping = read_grasp_range(p, "operator_grasp_rotational_damping");
   a.arm_rotational_stiffness = p.real("operator_arm_rotational_stiffness");
   a.arm_rotational_damping = p.real("operator_arm_rotational_damping");
   a.rotation = read_profile(p, "operator_rotation", "rad");
