@@ -1,5 +1,6 @@
 // hapticctl: the command-line client of hapticd's DDS interface (docs/dds-interface.md).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <CLI/CLI.hpp>
 #include <atomic>
@@ -14,50 +15,14 @@
 namespace {
 
 using hapticd::client::Client;
-using hapticd::client::name_of;
 using hapticd::client::Reply;
 
 std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop.store(true); }
 
-const char* mode_name(hapticd_msg_DeviceMode m) {
-  switch (m) {
-    case hapticd_msg_MODE_STARTING:
-      return "starting";
-    case hapticd_msg_MODE_RUNNING:
-      return "running";
-    case hapticd_msg_MODE_STOPPING:
-      return "stopping";
-    case hapticd_msg_MODE_SAFE:
-      return "SAFE";
-    case hapticd_msg_MODE_OFF:
-      return "off";
-  }
-  return "?";
-}
-
-const char* event_name(hapticd_msg_EventKind k) {
-  switch (k) {
-    case hapticd_msg_EVENT_FAULT:
-      return "fault";
-    case hapticd_msg_EVENT_ESTOP:
-      return "e-stop";
-    case hapticd_msg_EVENT_MODE:
-      return "mode";
-    case hapticd_msg_EVENT_SCHEME:
-      return "scheme";
-    case hapticd_msg_EVENT_OWNER:
-      return "owner";
-    case hapticd_msg_EVENT_ENGINE_STALE:
-      return "engine stale";
-    case hapticd_msg_EVENT_ENGINE_REJECTED:
-      return "rejected";
-    case hapticd_msg_EVENT_RECOVERED:
-      return "recovered";
-    case hapticd_msg_EVENT_RECORDING:
-      return "recording";
-  }
-  return "?";
+// As the watch line has always shown it: the safe mode in capitals.
+std::string_view mode_name(hapticd::client::Mode m) {
+  return m == hapticd::client::Mode::safe ? "SAFE" : hapticd::client::to_string(m);
 }
 
 int report(const Reply& r) {
@@ -176,14 +141,14 @@ int main(int argc, char** argv) {
     }
     for (const auto& d : devices) {
       std::string schemes;
-      for (int k = 0; k < d.scheme_count; ++k) schemes += (k ? ", " : "") + std::string(name_of(d.schemes[k]));
+      for (const auto& s : d.schemes) schemes += (schemes.empty() ? "" : ", ") + s.name;
       const auto& base = d.base_pose;
       fmt::print(
           "{:<16} {} joints, {} ({}), {} Hz, schemes: {}; engine deadline {} ms; base at [{}, {}, {}] m, "
           "orientation [{}, {}, {}, {}]\n",
-          name_of(d.device), d.dof, name_of(d.device_plugin), d.simulated ? "simulated" : "hardware", d.rate_hz,
-          schemes, 1e3 * d.command_deadline_s, base.position[0], base.position[1], base.position[2],
-          base.orientation[0], base.orientation[1], base.orientation[2], base.orientation[3]);
+          d.device, d.dof, d.device_plugin, d.simulated ? "simulated" : "hardware", d.rate_hz, schemes,
+          1e3 * d.command_deadline_s, base.position[0], base.position[1], base.position[2], base.orientation.w(),
+          base.orientation.x(), base.orientation.y(), base.orientation.z());
     }
     return 0;
   }
@@ -198,10 +163,9 @@ int main(int argc, char** argv) {
       return 1;
     }
     for (const auto& g : described) {
-      std::string members;
-      for (int k = 0; k < g.device_count; ++k) members += (k ? ", " : "") + std::string(name_of(g.devices[k]));
-      fmt::print("{:<16} devices: {}; hard minimum {} m, repulsion from {} m; {}\n", name_of(g.group), members,
-                 g.min_distance_m, g.repulsion_distance_m, g.own_loop ? "a loop of its own" : "the session's loop");
+      fmt::print("{:<16} devices: {}; hard minimum {} m, repulsion from {} m; {}\n", g.group,
+                 fmt::join(g.devices, ", "), g.min_distance_m, g.repulsion_distance_m,
+                 g.own_loop ? "a loop of its own" : "the session's loop");
     }
     return 0;
   }
@@ -249,18 +213,18 @@ int main(int argc, char** argv) {
     std::mutex m;
     auto last = std::chrono::steady_clock::now() - std::chrono::hours(1);
     const auto period = std::chrono::duration<double>(1.0 / rate);
-    client.on_event([&](const hapticd_msg_Event& e) {
-      if (name_of(e.device) != device) return;
+    client.on_event([&](const hapticd::client::Event& e) {
+      if (e.device != device) return;
       std::lock_guard lock(m);
-      fmt::print("event {}: {} {}\n", event_name(e.kind), name_of(e.code), name_of(e.message));
+      fmt::print("event {}: {} {}\n", to_string(e.kind), e.code, e.message);
     });
-    client.on_fault_report([&](const hapticd_msg_FaultReport& r) {
-      if (name_of(r.device) != device) return;
+    client.on_fault_report([&](const hapticd::client::FaultReport& r) {
+      if (r.device != device) return;
       std::lock_guard lock(m);
-      fmt::print("fault report {}: {} at cycle {} ({}), {} cycles of history:\n", r.serial, name_of(r.fault), r.cycle,
-                 name_of(r.message), r.record_count);
-      for (int k = std::max(0, r.record_count - 5); k < r.record_count; ++k) {
-        const hapticd_msg_CycleRecord& c = r.records[k];
+      fmt::print("fault report {}: {} at cycle {} ({}), {} cycles of history:\n", r.serial, r.fault, r.cycle, r.message,
+                 r.records.size());
+      for (std::size_t k = r.records.size() > 5 ? r.records.size() - 5 : 0; k < r.records.size(); ++k) {
+        const hapticd::client::CycleRecord& c = r.records[k];
         fmt::print(
             "  cycle {:>8}  pos ({:+.4f} {:+.4f} {:+.4f}) m  vel ({:+.3f} {:+.3f} {:+.3f}) m/s  F_op ({:+6.2f} "
             "{:+6.2f} "
@@ -270,8 +234,8 @@ int main(int argc, char** argv) {
             c.flags);
       }
     });
-    client.on_state([&](const hapticd_msg_DeviceState& s) {
-      if (name_of(s.device) != device) return;
+    client.on_state([&](const hapticd::client::DeviceState& s) {
+      if (s.device != device) return;
       const auto now = std::chrono::steady_clock::now();
       if (now - last < period) return;
       last = now;
@@ -280,10 +244,10 @@ int main(int argc, char** argv) {
           "t={:8.3f} {:<8} scheme {:<22} owner {:<14} pos ({:+.4f} {:+.4f} {:+.4f}) m  F_op ({:+6.2f} {:+6.2f} "
           "{:+6.2f}) N  "
           "F_env ({:+6.2f} {:+6.2f} {:+6.2f}) N  flags {:#x}\n",
-          static_cast<double>(s.loop_time_ns) * 1e-9, mode_name(s.mode), name_of(s.scheme),
-          name_of(s.owner).empty() ? "-" : name_of(s.owner), s.pose.position[0], s.pose.position[1], s.pose.position[2],
-          s.operator_wrench[0], s.operator_wrench[1], s.operator_wrench[2], s.environment_wrench[0],
-          s.environment_wrench[1], s.environment_wrench[2], s.flags);
+          s.time_s(), mode_name(s.mode), s.scheme.view(), s.owner.empty() ? "-" : s.owner.view(), s.pose.position[0],
+          s.pose.position[1], s.pose.position[2], s.operator_wrench.force[0], s.operator_wrench.force[1],
+          s.operator_wrench.force[2], s.environment_wrench.force[0], s.environment_wrench.force[1],
+          s.environment_wrench.force[2], s.flags);
     });
     run_for(duration);
     client.on_state({});
@@ -301,16 +265,17 @@ int main(int argc, char** argv) {
            "env_fx,env_fy,env_fz,env_tx,env_ty,env_tz\n";
     std::mutex m;
     std::uint64_t rows = 0;
-    client.on_state([&](const hapticd_msg_DeviceState& s) {
-      if (name_of(s.device) != device) return;
+    client.on_state([&](const hapticd::client::DeviceState& s) {
+      if (s.device != device) return;
       std::lock_guard lock(m);
-      out << fmt::format("{},{},{:.6f},{},{}", s.serial, s.cycle, static_cast<double>(s.loop_time_ns) * 1e-9,
-                         static_cast<int>(s.mode), s.flags);
-      for (double v : s.pose.position) out << ',' << v;
-      for (double v : s.pose.orientation) out << ',' << v;
-      for (double v : s.twist) out << ',' << v;
-      for (double v : s.operator_wrench) out << ',' << v;
-      for (double v : s.environment_wrench) out << ',' << v;
+      out << fmt::format("{},{},{:.6f},{},{}", s.serial, s.cycle, s.time_s(), static_cast<int>(s.mode), s.flags);
+      const auto& q = s.pose.orientation;
+      for (double v : {s.pose.position.x(), s.pose.position.y(), s.pose.position.z(), q.w(), q.x(), q.y(), q.z()})
+        out << ',' << v;
+      for (const Eigen::Vector3d* v :
+           {&s.twist.linear, &s.twist.angular, &s.operator_wrench.force, &s.operator_wrench.torque,
+            &s.environment_wrench.force, &s.environment_wrench.torque})
+        out << ',' << v->x() << ',' << v->y() << ',' << v->z();
       out << '\n';
       ++rows;
     });

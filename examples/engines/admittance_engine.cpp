@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "admittance-engine: no device '{}' on domain {}\n", device, domain);
     return 1;
   }
-  hapticd::Pose object = hapticd::client::pose_of(first->pose);
+  hapticd::Pose object = first->pose;
   const double floor_z = object.position.z() - floor_depth;
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
   std::int64_t last_time = first->loop_time_ns;
@@ -51,11 +51,11 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "admittance-engine: cannot claim '{}': {}\n", device, claim.message);
     return 2;
   }
-  client.on_state([&](const hapticd_msg_DeviceState& s) {
-    if (hapticd::client::name_of(s.device) != device) return;
+  client.on_state([&](const hapticd::client::DeviceState& s) {
+    if (s.device != device) return;
     const double dt = std::clamp(static_cast<double>(s.loop_time_ns - last_time) * 1e-9, 0.0, 0.01);
     last_time = s.loop_time_ns;
-    Eigen::Vector3d force = hapticd::client::wrench_of(s.operator_wrench).force - damping * velocity;
+    Eigen::Vector3d force = s.operator_wrench.force - damping * velocity;
     const double below = floor_z - object.position.z();
     if (below > 0.0)
       force.z() += floor_stiffness * below - 2.0 * std::sqrt(floor_stiffness * mass) * std::min(0.0, velocity.z());

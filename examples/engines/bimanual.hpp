@@ -41,10 +41,10 @@ class BimanualEngine {
   std::string connect(std::chrono::duration<double> wait) {
     const auto described = client_.wait_for_group(group_, wait);
     if (!described) return "no group '" + group_ + "'";
-    if (described->device_count != 2) return "the example box is held by two hands";
+    if (described->devices.size() != 2) return "the example box is held by two hands";
     const auto first = client_.wait_for_group_state(group_, wait);
-    if (first == nullptr) return "no state of group '" + group_ + "'";
-    for (int k = 0; k < 2; ++k) devices_[static_cast<std::size_t>(k)] = client::name_of(described->devices[k]);
+    if (!first) return "no state of group '" + group_ + "'";
+    for (int k = 0; k < 2; ++k) devices_[static_cast<std::size_t>(k)] = described->devices[static_cast<std::size_t>(k)];
     // The box couples to the hands as the devices' virtual coupling does: the same spring and damper.
     const client::Reply k = client_.get_parameter(devices_[0], "virtual_model.coupling_stiffness_n_per_m", wait);
     const client::Reply b = client_.get_parameter(devices_[0], "virtual_model.coupling_damping_n_s_per_m", wait);
@@ -55,8 +55,8 @@ class BimanualEngine {
     box_.table_height_m = table_below_ ? hands_z(*first) - 0.5 * box_.size_m.z() : box_.table_height_m;
     body_.configure(box_, 1.0 / first->states[0].loop.rate_hz);
     // Between the hands, level, its x axis from the first hand to the second; each hand grasps it where it is.
-    const Eigen::Vector3d h0 = client::pose_of(first->states[0].pose).position;
-    const Eigen::Vector3d h1 = client::pose_of(first->states[1].pose).position;
+    const Eigen::Vector3d h0 = first->states[0].pose.position;
+    const Eigen::Vector3d h1 = first->states[1].pose.position;
     Pose pose;
     pose.position = 0.5 * (h0 + h1);
     pose.orientation =
@@ -66,7 +66,7 @@ class BimanualEngine {
     body_.reset(pose, grasp);
     start_ = report_of();
     if (!client_.claim_group(group_, wait).accepted) return "group '" + group_ + "' is claimed by another engine";
-    client_.on_group_state([this](const hapticd_msg_GroupState& g) { answer(g); });
+    client_.on_group_state([this](const client::GroupState& g) { answer(g); });
     return {};
   }
   // The table under the box at the hands' height at the start (default), or at this height (world z).
@@ -82,26 +82,26 @@ class BimanualEngine {
   [[nodiscard]] const BoxReport& start() const noexcept { return start_; }
 
  private:
-  static double hands_z(const hapticd_msg_GroupState& g) {
+  static double hands_z(const client::GroupState& g) {
     return 0.5 * (g.states[0].pose.position[2] + g.states[1].pose.position[2]);
   }
 
-  void answer(const hapticd_msg_GroupState& g) {
+  void answer(const client::GroupState& g) {
     if (g.device_count != 2 || g.serial <= last_serial_) return;  // (a repeated state: answered already)
     last_serial_ = g.serial;
     std::array<Eigen::Vector3d, 2> position, velocity, force;
     for (std::size_t k = 0; k < 2; ++k) {
-      position[k] = client::pose_of(g.states[k].pose).position;
-      velocity[k] = client::twist_of(g.states[k].twist).linear;
+      position[k] = g.states[k].pose.position;
+      velocity[k] = g.states[k].twist.linear;
     }
     body_.step(position, velocity, force);
-    std::array<hapticd_msg_EngineCommand, 2> commands;
+    std::array<client::DeviceCommand, 2> commands;
     for (std::size_t k = 0; k < 2; ++k) {
-      Pose proxy = client::pose_of(g.states[k].pose);
+      Pose proxy = g.states[k].pose;
       proxy.position = body_.grasp_point(k);
       Twist twist;
       twist.linear = body_.velocity() + body_.angular_velocity().cross(proxy.position - body_.position());
-      commands[k] = client::coupling_command(devices_[k], proxy, twist, g.states[k].serial);
+      commands[k] = {client::Name(devices_[k]), client::EngineCommand::coupling(proxy, twist, g.states[k].serial)};
     }
     (void)client_.send_group(group_, commands);
     const BoxReport r = report_of();

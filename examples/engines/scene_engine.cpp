@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "scene-engine: '{}' has not started\n", device);
     return 1;
   }
-  const Eigen::Vector3d origin = hapticd::client::pose_of(described->start_pose).position;
+  const Eigen::Vector3d origin = described->start_pose->position;
   const hapticd::examples::Scene scene = hapticd::examples::demo_scene();
 
   std::ofstream out;
@@ -72,19 +72,19 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "scene-engine: cannot claim '{}': {}\n", device, claim.message);
     return 2;
   }
-  client.on_state([&](const hapticd_msg_DeviceState& s) {
-    if (hapticd::client::name_of(s.device) != device) return;
+  client.on_state([&](const hapticd::client::DeviceState& s) {
+    if (s.device != device) return;
     // The coupling pulls the server's virtual body (the target pose); its proxy is the body kept out of the
     // objects (using the measured handle instead would tie the body to the handle in free space).
-    const Eigen::Vector3d x = hapticd::client::pose_of(s.target_pose).position - origin;
+    const Eigen::Vector3d x = s.target_pose.position - origin;
     const Eigen::Vector3d p = scene.proxy(x);
-    hapticd::Pose proxy = hapticd::client::pose_of(s.pose);
+    hapticd::Pose proxy = s.pose;
     proxy.position = origin + p;
     hapticd::Twist twist;  // slides with the handle along a surface, never into it
-    twist.linear = scene.proxy_velocity(x, p, hapticd::client::twist_of(s.twist).linear);
+    twist.linear = scene.proxy_velocity(x, p, s.twist.linear);
     client.send_coupling(device, proxy, twist, s.serial);
     answered.fetch_add(1);
-    if (s.mode == hapticd_msg_MODE_STOPPING || s.mode == hapticd_msg_MODE_OFF) server_gone.store(true);
+    if (s.mode == hapticd::client::Mode::stopping || s.mode == hapticd::client::Mode::off) server_gone.store(true);
     const std::string contact = scene.contact(x);
     const double depth = (p - x).norm();
     std::lock_guard lock(out_mutex);
@@ -92,16 +92,16 @@ int main(int argc, char** argv) {
       fmt::print("t={:6.3f} s  {}  handle at ({:+.1f}, {:+.1f}, {:+.1f}) mm, operator force {:.1f} N\n",
                  static_cast<double>(s.loop_time_ns) * 1e-9,
                  contact.empty() ? "free space  " : fmt::format("touches the {}", contact), 1e3 * x.x(), 1e3 * x.y(),
-                 1e3 * x.z(), hapticd::client::wrench_of(s.operator_wrench).force.norm());
+                 1e3 * x.z(), s.operator_wrench.force.norm());
       last_contact = contact;
     }
     deepest = std::max(deepest, depth);
     if (out.is_open()) {
       out << fmt::format(
-          "{:.4f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{}\n",
-          static_cast<double>(s.loop_time_ns) * 1e-9, x.x(), x.y(), x.z(), p.x(), p.y(), p.z(), s.environment_wrench[0],
-          s.environment_wrench[1], s.environment_wrench[2], s.operator_wrench[0], s.operator_wrench[1],
-          s.operator_wrench[2], contact);
+          "{:.4f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{}\n", s.time_s(),
+          x.x(), x.y(), x.z(), p.x(), p.y(), p.z(), s.environment_wrench.force.x(), s.environment_wrench.force.y(),
+          s.environment_wrench.force.z(), s.operator_wrench.force.x(), s.operator_wrench.force.y(),
+          s.operator_wrench.force.z(), contact);
     }
   });
   fmt::print(

@@ -81,7 +81,7 @@ TEST(DdsEngine, ASecondEngineCannotTakeAClaimedDevice) {
   // Its commands are rejected as not the owner's, and it may not switch the scheme either.
   const auto seen = second.wait_for_state("v3", std::chrono::seconds(10));
   ASSERT_TRUE(seen.has_value());
-  Pose far = client::pose_of(seen->pose);
+  Pose far = seen->pose;
   far.position.x() += 0.05;
   // (Best effort: a command written before the writer has matched the server's reader is lost, so keep
   // sending for a while.)
@@ -124,7 +124,7 @@ TEST(DdsEngine, AKilledEngineFadesToZeroWithinTheDeadline) {
   ASSERT_TRUE(engine->claim("v3", std::chrono::seconds(10)).accepted);
   std::atomic<int> answers{0};
   std::atomic<bool> alive{true};
-  engine->on_state([&](const hapticd_msg_DeviceState& s) {
+  engine->on_state([&](const client::DeviceState& s) {
     if (!alive.load()) return;
     Wrench w;
     w.force = Eigen::Vector3d(-10.0, 0.0, 0.0);
@@ -160,9 +160,9 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   std::vector<std::string> events;
   Server server(session_yaml(64, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
   Client engine({"careful-engine", 64, {}, 0.05});
-  engine.on_event([&](const hapticd_msg_Event& e) {
+  engine.on_event([&](const client::Event& e) {
     std::lock_guard lock(events_mutex);
-    events.push_back(std::to_string(static_cast<int>(e.kind)) + ":" + std::string(client::name_of(e.code)));
+    events.push_back(std::to_string(static_cast<int>(e.kind)) + ":" + e.code);
   });
   server.start();
   ASSERT_TRUE(engine.wait_for_state("v3", std::chrono::seconds(20)));
@@ -252,8 +252,8 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
     }
     return false;
   };
-  EXPECT_TRUE(saw(std::to_string(hapticd_msg_EVENT_ENGINE_REJECTED) + ":stale"));
-  EXPECT_TRUE(saw(std::to_string(hapticd_msg_EVENT_MODE) + ":stopping"));
+  EXPECT_TRUE(saw(std::to_string(static_cast<int>(client::EventKind::engine_rejected)) + ":stale"));
+  EXPECT_TRUE(saw(std::to_string(static_cast<int>(client::EventKind::mode)) + ":stopping"));
   // Nothing but the one good command (2 N) ever reached the device.
   for (const auto& f : server.recording().force()) {
     EXPECT_TRUE(f.allFinite());
@@ -322,17 +322,17 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   // tool that joins later: transient-local), the device stays in its safe mode until asked to recover, and
   // recovers only once its safe mode has reached zero torque (safe_damping_s after the stop).
   std::mutex m;  // before the clients: their callbacks use these until they are gone
-  std::unique_ptr<hapticd_msg_FaultReport> report, late_report;
+  std::unique_ptr<client::FaultReport> report, late_report;
   std::vector<std::string> events;
   Server server(session_yaml(69, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime", "safe_damping_s: 0.5"));
   Client tool({"safety-tool", 69, {}, 0.05});
-  tool.on_fault_report([&](const hapticd_msg_FaultReport& r) {
+  tool.on_fault_report([&](const client::FaultReport& r) {
     std::lock_guard lock(m);
-    report = std::make_unique<hapticd_msg_FaultReport>(r);
+    report = std::make_unique<client::FaultReport>(r);
   });
-  tool.on_event([&](const hapticd_msg_Event& e) {
+  tool.on_event([&](const client::Event& e) {
     std::lock_guard lock(m);
-    events.push_back(std::to_string(static_cast<int>(e.kind)) + ":" + std::string(client::name_of(e.code)));
+    events.push_back(std::to_string(static_cast<int>(e.kind)) + ":" + e.code);
   });
   const auto eventually = [&](const std::function<bool()>& done) {  // at most 10 s
     for (int i = 0; i < 1000; ++i) {
@@ -350,7 +350,7 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   server.start();
   // Once the loop has run long enough to fill the history (50 cycles): 0.5 s = 1000 periods, of which even a
   // loop that falls behind under a sanitizer runs a few hundred.
-  std::optional<hapticd_msg_DeviceState> first = tool.wait_for_state("v3", std::chrono::seconds(20));
+  std::optional<client::DeviceState> first = tool.wait_for_state("v3", std::chrono::seconds(20));
   for (int i = 0; i < 20000 && first && first->loop_time_ns < 500'000'000; ++i)
     first = tool.wait_for_state("v3", std::chrono::seconds(1), first->serial);
   ASSERT_TRUE(first && first->loop_time_ns >= 500'000'000);
@@ -362,13 +362,13 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   ASSERT_TRUE(eventually([&] { return report != nullptr; })) << "no fault report";
   {
     std::lock_guard lock(m);
-    EXPECT_EQ(client::name_of(report->device), "v3");
-    EXPECT_EQ(client::name_of(report->fault), "emergency_stop");
+    EXPECT_EQ(report->device, "v3");
+    EXPECT_EQ(report->fault, "emergency_stop");
     EXPECT_EQ(report->serial, 1u);
     EXPECT_EQ(report->dof, 3);
-    ASSERT_EQ(report->record_count, 50);  // history_cycles' default
-    for (int k = 0; k < report->record_count; ++k) {
-      const hapticd_msg_CycleRecord& c = report->records[k];
+    ASSERT_EQ(report->records.size(), 50u);  // history_cycles' default
+    for (std::size_t k = 0; k < report->records.size(); ++k) {
+      const client::CycleRecord& c = report->records[k];
       if (k > 0) {
         EXPECT_GT(c.cycle, report->records[k - 1].cycle);
         EXPECT_GT(c.loop_time_ns, report->records[k - 1].loop_time_ns);
@@ -378,47 +378,48 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
         EXPECT_TRUE(std::isfinite(c.handle_position[i]));
       }
     }
-    EXPECT_LT(report->records[report->record_count - 1].cycle, report->cycle);  // the cycles before the stop
+    EXPECT_LT(report->records.back().cycle, report->cycle);  // the cycles before the stop
   }
-  EXPECT_TRUE(eventually([&] { return saw(hapticd_msg_EVENT_ESTOP, "emergency_stop"); }));
+  EXPECT_TRUE(eventually([&] { return saw(static_cast<int>(client::EventKind::estop), "emergency_stop"); }));
   // A tool started after the fault still gets the report.
   Client late({"late-tool", 69, {}, 0.05});
-  late.on_fault_report([&](const hapticd_msg_FaultReport& r) {
+  late.on_fault_report([&](const client::FaultReport& r) {
     std::lock_guard lock(m);
-    late_report = std::make_unique<hapticd_msg_FaultReport>(r);
+    late_report = std::make_unique<client::FaultReport>(r);
   });
   ASSERT_TRUE(eventually([&] { return late_report != nullptr; })) << "a late joiner got no report";
   EXPECT_EQ(late_report->serial, 1u);
   EXPECT_EQ(late_report->cycle, report->cycle);
   const auto kept = late.latest_fault_report("v3");
-  ASSERT_NE(kept, nullptr);
+  ASSERT_TRUE(kept.has_value());
   EXPECT_EQ(kept->serial, 1u);
 
   // In its safe mode, and it stays there: no recovery without a request.
   const auto safe = tool.wait_for_state("v3", std::chrono::seconds(5));
   ASSERT_TRUE(safe.has_value());
-  EXPECT_EQ(safe->mode, hapticd_msg_MODE_SAFE);
-  EXPECT_EQ(client::name_of(safe->fault), "emergency_stop");
+  EXPECT_EQ(safe->mode, client::Mode::safe);
+  EXPECT_EQ(safe->fault, "emergency_stop");
   std::this_thread::sleep_for(std::chrono::milliseconds(800));
   EXPECT_EQ(server.device().fault(), DeviceFault::emergency_stop);
   EXPECT_EQ(server.device().recoveries(), 0u);
 
   // On request it recovers and runs again: the first running state after a safe one (at most ~10 s of states).
   const auto running_again = [&](std::uint64_t after, bool was_safe) {
-    std::optional<hapticd_msg_DeviceState> s = tool.wait_for_state("v3", std::chrono::seconds(1), after);
-    for (int i = 0; i < 20000 && s && !(was_safe && s->mode == hapticd_msg_MODE_RUNNING); ++i) {
-      was_safe = was_safe || s->mode == hapticd_msg_MODE_SAFE;
+    std::optional<client::DeviceState> s = tool.wait_for_state("v3", std::chrono::seconds(1), after);
+    for (int i = 0; i < 20000 && s && !(was_safe && s->mode == client::Mode::running); ++i) {
+      was_safe = was_safe || s->mode == client::Mode::safe;
       s = tool.wait_for_state("v3", std::chrono::seconds(1), s->serial);
     }
     return s;
   };
   const client::Reply recovered = tool.recover("v3");
   EXPECT_TRUE(recovered.accepted) << recovered.message;
-  EXPECT_TRUE(eventually([&] { return saw(hapticd_msg_EVENT_RECOVERED, "emergency_stop"); })) << "no recovered event";
-  std::optional<hapticd_msg_DeviceState> running = running_again(safe->serial, true);
-  ASSERT_TRUE(running && running->mode == hapticd_msg_MODE_RUNNING);
-  EXPECT_EQ(client::name_of(running->fault), "");
-  EXPECT_EQ(running->flags & (hapticd_msg_FLAG_ESTOP | hapticd_msg_FLAG_FAULT), 0u);
+  EXPECT_TRUE(eventually([&] { return saw(static_cast<int>(client::EventKind::recovered), "emergency_stop"); }))
+      << "no recovered event";
+  std::optional<client::DeviceState> running = running_again(safe->serial, true);
+  ASSERT_TRUE(running && running->mode == client::Mode::running);
+  EXPECT_EQ(running->fault, "");
+  EXPECT_EQ(running->flags & (client::kEstop | client::kFault), 0u);
 
   // Asked right after a new stop, it recovers only once its safe mode has reached zero torque.
   ASSERT_TRUE(tool.emergency_stop("v3").accepted);
@@ -428,12 +429,12 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   const auto stopped = tool.wait_for_state("v3", std::chrono::seconds(5));
   ASSERT_TRUE(stopped.has_value());
   running = running_again(stopped->serial, false);
-  ASSERT_TRUE(running && running->mode == hapticd_msg_MODE_RUNNING);
+  ASSERT_TRUE(running && running->mode == client::Mode::running);
   const double after_s = 1e-9 * static_cast<double>(running->loop_time_ns - stopped_ns);
   std::printf(
-      "e-stop over DDS: report with %d cycles; asked at once, recovered %.4f s after the stop (safe mode "
+      "e-stop over DDS: report with %zu cycles; asked at once, recovered %.4f s after the stop (safe mode "
       "0.5 s)\n",
-      report->record_count, after_s);
+      report->records.size(), after_s);
   // Loop times on the real-time clock are measured wake-up times: one period (0.5 ms) of jitter allowed.
   EXPECT_GE(after_s, 0.5 - 0.0005);
   EXPECT_LT(after_s, 1.0);

@@ -16,6 +16,7 @@
 #include "app/served_session.hpp"
 #include "dds_server_rig.hpp"
 #include "hapticd/client/client.hpp"
+#include "hapticd_msg.h"
 #include "support/test_session.hpp"
 
 namespace hapticd::server::e2e {
@@ -103,22 +104,22 @@ TEST(DdsGroups, TheGroupIsDescribedAndItsStateHoldsEveryDeviceFromOneCycle) {
   const auto described = client.wait_for_group("hands", 10s);
   ASSERT_TRUE(described.has_value());
   EXPECT_EQ(described->version, hapticd_msg_VERSION);
-  ASSERT_EQ(described->device_count, 2);
-  EXPECT_EQ(client::name_of(described->devices[0]), "left");
-  EXPECT_EQ(client::name_of(described->devices[1]), "right");
+  ASSERT_EQ(described->devices.size(), 2u);
+  EXPECT_EQ(described->devices[0], "left");
+  EXPECT_EQ(described->devices[1], "right");
   EXPECT_EQ(described->min_distance_m, 0.02);
   // In real time, where a device's own state may be a cycle ahead of another's, every group state is of one
   // cycle, and its states are the devices' own states of that cycle.
   std::mutex m;
-  std::vector<std::unique_ptr<hapticd_msg_GroupState>> groups;
-  std::map<std::pair<std::string, std::uint64_t>, hapticd_msg_DeviceState> states;  // (device, cycle)
-  client.on_state([&](const hapticd_msg_DeviceState& s) {
+  std::vector<std::unique_ptr<client::GroupState>> groups;
+  std::map<std::pair<std::string, std::uint64_t>, client::DeviceState> states;  // (device, cycle)
+  client.on_state([&](const client::DeviceState& s) {
     std::lock_guard lock(m);
-    if (states.size() < 20000) states[{std::string(client::name_of(s.device)), s.cycle}] = s;
+    if (states.size() < 20000) states[{s.device.str(), s.cycle}] = s;
   });
-  client.on_group_state([&](const hapticd_msg_GroupState& g) {
+  client.on_group_state([&](const client::GroupState& g) {
     std::lock_guard lock(m);
-    if (groups.size() < 2000) groups.push_back(std::make_unique<hapticd_msg_GroupState>(g));
+    if (groups.size() < 2000) groups.push_back(std::make_unique<client::GroupState>(g));
   });
   for (int i = 0; i < 400; ++i) {  // at most 4 s
     {
@@ -136,15 +137,16 @@ TEST(DdsGroups, TheGroupIsDescribedAndItsStateHoldsEveryDeviceFromOneCycle) {
   std::size_t matched = 0;
   for (const auto& g : groups) {
     ASSERT_EQ(g->device_count, 2);
-    EXPECT_EQ(client::name_of(g->states[0].device), "left");
-    EXPECT_EQ(client::name_of(g->states[1].device), "right");
+    EXPECT_EQ(g->states[0].device, "left");
+    EXPECT_EQ(g->states[1].device, "right");
     EXPECT_GT(g->clearance_m, 1.0);  // measured: the arms stand 2 m apart
     for (int k = 0; k < 2; ++k) {
       ASSERT_EQ(g->states[k].cycle, g->cycle) << "a group state mixes cycles";
-      const auto own = states.find({std::string(client::name_of(g->states[k].device)), g->cycle});
+      const auto own = states.find({g->states[k].device.str(), g->cycle});
       if (own == states.end()) continue;  // (best effort: the device's own state of that cycle may be lost)
       ++matched;
-      EXPECT_EQ(std::memcmp(&own->second.pose, &g->states[k].pose, sizeof own->second.pose), 0);
+      EXPECT_EQ(own->second.pose.position, g->states[k].pose.position);  // bit for bit
+      EXPECT_EQ(own->second.pose.orientation.coeffs(), g->states[k].pose.orientation.coeffs());
       EXPECT_EQ(own->second.serial, g->states[k].serial);
     }
   }
@@ -210,15 +212,15 @@ TEST(DdsGroups, AGroupEStopStopsTheGroupAndOnlyItAndARecoveryIsAllOrNone) {
   const auto mode_of = [&](const std::string& device) {
     for (int i = 0; i < 300; ++i) {
       const auto s = owner.latest_state(device);
-      if (s && s->mode == hapticd_msg_MODE_SAFE) return s->mode;
+      if (s && s->mode == client::Mode::safe) return s->mode;
       std::this_thread::sleep_for(10ms);
     }
     return owner.latest_state(device)->mode;
   };
-  EXPECT_EQ(mode_of("left"), hapticd_msg_MODE_SAFE);
-  EXPECT_EQ(mode_of("right"), hapticd_msg_MODE_SAFE);
+  EXPECT_EQ(mode_of("left"), client::Mode::safe);
+  EXPECT_EQ(mode_of("right"), client::Mode::safe);
   std::this_thread::sleep_for(200ms);
-  EXPECT_EQ(owner.latest_state("third")->mode, hapticd_msg_MODE_RUNNING);
+  EXPECT_EQ(owner.latest_state("third")->mode, client::Mode::running);
   EXPECT_EQ(server.device(2).fault(), DeviceFault::none);
   // Recovery is the owner's: another client's group recovery recovers none.
   const client::Reply refused = other.recover_group("hands", 5s);
@@ -255,11 +257,11 @@ struct WallEngine {
   bool connect() {
     const auto first = client.wait_for_state(device, 20s);
     if (!first) return false;
-    wall = client::pose_of(first->pose).position.x() + 0.03;
+    wall = first->pose.position.x() + 0.03;
     if (!client.claim(device, 10s).accepted) return false;
-    client.on_state([this](const hapticd_msg_DeviceState& s) {
-      if (client::name_of(s.device) != device) return;
-      Pose proxy = client::pose_of(s.target_pose);
+    client.on_state([this](const client::DeviceState& s) {
+      if (s.device != device) return;
+      Pose proxy = s.target_pose;
       proxy.position.x() = std::min(proxy.position.x(), wall) - 0.001;  // and a 3 N pull from the first answer
       client.send_coupling(device, proxy, Twist{}, s.serial);
     });
@@ -312,18 +314,18 @@ TEST(DdsGroups, AnEngineCouplesToAWholeGroupWithOneCommandPerCycle) {
   server.start();
   ASSERT_TRUE(engine.wait_for_group("hands", 20s).has_value());
   const auto first = engine.wait_for_group_state("hands", 20s);
-  ASSERT_TRUE(first != nullptr);
-  const std::array<double, 2> wall = {client::pose_of(first->states[0].pose).position.x() + 0.03,
-                                      client::pose_of(first->states[1].pose).position.x() + 0.03};
+  ASSERT_TRUE(first.has_value());
+  const std::array<double, 2> wall = {first->states[0].pose.position.x() + 0.03,
+                                      first->states[1].pose.position.x() + 0.03};
   ASSERT_TRUE(engine.claim_group("hands", 10s).accepted);
   std::atomic<std::uint64_t> sent{0};
-  engine.on_group_state([&](const hapticd_msg_GroupState& g) {
-    std::array<hapticd_msg_EngineCommand, 2> commands;
+  engine.on_group_state([&](const client::GroupState& g) {
+    std::array<client::DeviceCommand, 2> commands;
     for (std::size_t k = 0; k < 2; ++k) {
-      const hapticd_msg_DeviceState& s = g.states[k];
-      Pose proxy = client::pose_of(s.target_pose);
+      const client::DeviceState& s = g.states[k];
+      Pose proxy = s.target_pose;
       proxy.position.x() = std::min(proxy.position.x(), wall[k]) - 0.001;
-      commands[k] = client::coupling_command(client::name_of(s.device), proxy, Twist{}, s.serial);
+      commands[k] = {s.device, client::EngineCommand::coupling(proxy, Twist{}, s.serial)};
     }
     if (engine.send_group("hands", commands)) sent.fetch_add(1);
   });
@@ -377,12 +379,11 @@ TEST(DdsGroups, TheBimanualEngineLetsTwoOperatorsLiftAndTurnItsBox) {
   const examples::BoxReport lifted = engine.report();
   const auto g = client.latest_group_state("hands");
   for (int k = 0; k < 2; ++k) {
-    Eigen::Vector3d r = client::pose_of(g->states[k].pose).position - lifted.position;
+    Eigen::Vector3d r = g->states[k].pose.position - lifted.position;
     r.z() = 0.0;
     const Eigen::Vector3d d =
         Eigen::AngleAxisd(30.0 * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitZ()) * r - r;
-    EXPECT_TRUE(
-        client.operator_command(client::name_of(g->states[k].device), "move", {d.x(), d.y(), 0.0, 1.0}).accepted);
+    EXPECT_TRUE(client.operator_command(g->states[k].device, "move", {d.x(), d.y(), 0.0, 1.0}).accepted);
   }
   server.finish();
   const examples::BoxReport end = engine.report();

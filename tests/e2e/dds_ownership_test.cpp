@@ -36,7 +36,7 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 std::string owner_seen(Client& watcher) {
   const auto s = watcher.wait_for_state("v3", std::chrono::seconds(2),
                                         watcher.latest_state("v3") ? watcher.latest_state("v3")->serial : 0);
-  return s ? std::string(client::name_of(s->owner)) : "?";
+  return s ? s->owner.str() : "?";
 }
 
 // Waits (at most `limit` s) until the device's owner is `owner`; returns the time it took, or nullopt.

@@ -144,17 +144,17 @@ struct SceneEngine {
     // The scene sits at the device's start pose (from the description, re-sent once the loop has run).
     const auto described = client.wait_for_device("v3", std::chrono::seconds(5), true);
     if (!described) return false;
-    origin = client::pose_of(described->start_pose).position;
+    origin = described->start_pose->position;
     if (!client.claim("v3", std::chrono::seconds(10)).accepted) return false;
-    client.on_state([this](const hapticd_msg_DeviceState& s) {
+    client.on_state([this](const client::DeviceState& s) {
       if (!answering.load()) return;
-      const Eigen::Vector3d x = client::pose_of(s.target_pose).position - origin;  // the virtual body
+      const Eigen::Vector3d x = s.target_pose.position - origin;  // the virtual body
       const Eigen::Vector3d p = scene.proxy(x);
       depth = std::max(depth.load(), (p - x).norm());
-      Pose proxy = client::pose_of(s.pose);
+      Pose proxy = s.pose;
       proxy.position = origin + p;
       Twist twist;  // slides with the handle along a surface, never into it
-      twist.linear = scene.proxy_velocity(x, p, client::twist_of(s.twist).linear);
+      twist.linear = scene.proxy_velocity(x, p, s.twist.linear);
       client.send_coupling("v3", proxy, twist, s.serial);
     });
     return true;

@@ -44,7 +44,7 @@ kill -9 "$engine"
 wait "$watcher" || true
 cat watch.txt
 grep -q "owner scene-engine" watch.txt || fail "the watcher never saw the engine own the device"
-grep -q "event engine stale" watch.txt || fail "no stale-engine event after the engine was killed"
+grep -q "event engine_stale" watch.txt || fail "no stale-engine event after the engine was killed"
 
 # E-stop: the device goes to its safe state; a watcher started afterwards still gets the fault report with the
 # cycles before the stop (transient-local); the device stays safe until `hapticctl recover`, then runs again;

@@ -2,7 +2,9 @@
 # The SDK as a plugin author gets it: install hapticd to a prefix, build examples/out_of_tree_plugin against
 # the installed package with find_package(hapticd), then have the installed server load the new plugin and run
 # a lockstep session with it; then build examples/session_api against the same package and step an installed
-# session file in-process with the session API (the installed plugins found beside libhapticd_server.so). Usage: out_of_tree_plugin_test.sh BUILD_DIR SOURCE_DIR WORK_DIR
+# session file in-process with the session API (the installed plugins found beside libhapticd_server.so); then
+# build examples/client_engine against the installed client library (hapticd::client) and have it render its
+# wall over DDS (loopback, domain 90) to the installed server. Usage: out_of_tree_plugin_test.sh BUILD_DIR SOURCE_DIR WORK_DIR
 set -eu
 build=$1; src=$2; work=$3
 rm -rf "$work"; mkdir -p "$work"
@@ -41,4 +43,21 @@ if err=$("$work/session_api/step_session" "$session" 1 devices.vishard3.virtual_
   echo "FAIL: a negative mass was accepted"; exit 1
 fi
 echo "$err" | grep -q "override 'devices.vishard3.virtual_model.parameters.mass_kg=-1'" || { echo "FAIL: $err"; exit 1; }
-echo "2 passed, 0 failed"
+
+# A rendering engine on the installed client library, against the installed server over DDS (real time, 4 s).
+cmake -S "$src/examples/client_engine" -B "$work/client_engine" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" > "$work/client_engine_configure.log"
+cmake --build "$work/client_engine" > "$work/client_engine_build.log"
+dds_session="$prefix/share/hapticd/config/sessions/vishard3/dds-coupling.yaml"
+"$prefix/bin/hapticd" --config "$dds_session" --dds-domain 90 --duration 5 --stats-json "$work/dds_stats.json" \
+  --log-level warn --set server.realtime_priority=0 --set server.lock_memory=false &
+server=$!
+engine_out=$(timeout 60 "$work/client_engine/wall_engine" --domain 90 --device vishard3 --duration 3 --push 15) || {
+  kill "$server" 2>/dev/null; echo "FAIL: wall engine: $engine_out"; exit 1; }
+wait "$server"
+echo "$engine_out"
+grep -q '"fault": "none"' "$work/dds_stats.json" || { echo "FAIL: device faulted"; cat "$work/dds_stats.json"; exit 1; }
+# The 15 N push holds at the wall 2 cm ahead: through the 3000 N/m coupling the handle stops about 5 mm past it.
+past=$(echo "$engine_out" | sed -n 's/.*handle \([-0-9.]*\) m past the start.*/\1/p')
+awk -v x="$past" 'BEGIN { exit !(x > 0.015 && x < 0.03) }' || { echo "FAIL: the wall did not hold: $past m"; exit 1; }
+echo "3 passed, 0 failed"

@@ -1,12 +1,17 @@
 #pragma once
-// The C++ client library of hapticd's DDS interface (docs/dds-interface.md): connect, find devices by name,
-// receive their state, events and telemetry through typed callbacks, claim a device and send it engine
-// commands, and make requests with a timeout. One Client is one DDS participant (loopback-only by default).
+// The C++ client library of hapticd's DDS interface (docs/dds-interface.md, docs/client-library.md): find
+// devices and groups, read their states, events, telemetry and fault reports, claim a device and send it
+// engine commands, make every request with a timeout. One Client is one DDS participant (loopback-only by
+// default). Values only: the types of types.hpp, no DDS header.
 //
-// Callbacks run one at a time: state callbacks on Cyclone's receive thread (no extra thread wake-up between a
-// state's arrival and the engine's answer), the others on the client's own thread. A callback may send
-// commands (an engine answers each state from its state callback) but must not wait for a reply, set a
-// callback or destroy the client.
+// Threading:
+//  - Waiting calls (wait_for_*, every request) block the calling thread up to their timeout; polling calls
+//    (devices, latest_*, take_events) return at once. Both may be called from any thread, concurrently.
+//  - State and group-state callbacks run on Cyclone's receive thread, one at a time: an engine answers a state
+//    from there with no thread wake-up in between. Event, telemetry and fault-report callbacks run on the
+//    client's own thread, one at a time. A callback may send commands and poll but must not wait (no request, no
+//    wait_for_*), set a callback or destroy the client.
+//  - Setting a callback replaces the previous one atomically; once on_*() returns the old one is not called again.
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -18,13 +23,12 @@
 #include <string_view>
 #include <vector>
 
-#include "hapticd/spatial.hpp"
-#include "hapticd_msg.h"
+#include "hapticd/client/types.hpp"
 
 namespace hapticd::client {
 
 struct ClientOptions {
-  std::string client_id;  // unique per client; the owner name a claim records
+  std::string client_id;  // 1..31 characters, unique per client; the owner name a claim records
   int domain_id = 0;
   std::filesystem::path cyclone_config;  // empty: the built-in loopback-only configuration
   double command_deadline_s = 0.05;      // offered on the command writer: must not exceed the server's deadline
@@ -38,9 +42,18 @@ struct Reply {
 };
 
 using Timeout = std::chrono::duration<double>;
+inline constexpr Timeout kDefaultTimeout{2.0};
 
-class Client {
+// One device's command within a group command (Client::send_group).
+struct DeviceCommand {
+  Name device;
+  EngineCommand command;
+};
+
+class HAPTICD_API Client {
  public:
+  // Throws std::invalid_argument for a client id out of 1..31 characters, std::runtime_error when the DDS
+  // participant cannot be created (the message says why: a bad Cyclone configuration, for example).
   explicit Client(ClientOptions options);
   ~Client();
   Client(const Client&) = delete;
@@ -48,94 +61,76 @@ class Client {
 
   [[nodiscard]] const std::string& id() const noexcept;
 
-  // ---- discovery ----
-  // The descriptions received so far (one per device).
-  [[nodiscard]] std::vector<hapticd_msg_DeviceDescription> devices() const;
-  // Waits until the named device's description arrived; with started, one that carries the start pose (sent
-  // again once the server's loop has run its first cycle).
-  std::optional<hapticd_msg_DeviceDescription> wait_for_device(std::string_view device, Timeout timeout,
-                                                               bool started = false);
-  // The newest state of a device, if any arrived.
-  [[nodiscard]] std::optional<hapticd_msg_DeviceState> latest_state(std::string_view device) const;
+  // ---- devices ----
+  [[nodiscard]] std::vector<DeviceInfo> devices() const;  // the descriptions received so far
+  // Waits until the device's description arrived; with started, one that carries the start pose (sent again once
+  // the server's loop has run its first cycle).
+  std::optional<DeviceInfo> wait_for_device(std::string_view device, Timeout timeout, bool started = false);
+  [[nodiscard]] std::optional<DeviceState> latest_state(std::string_view device) const;
   // Waits until a state of the device with serial > after arrives.
-  std::optional<hapticd_msg_DeviceState> wait_for_state(std::string_view device, Timeout timeout,
-                                                        std::uint64_t after = 0);
+  std::optional<DeviceState> wait_for_state(std::string_view device, Timeout timeout, std::uint64_t after = 0);
 
   // ---- device groups (docs/multi-device.md) ----
-  // The group descriptions received so far, and waiting for one.
-  [[nodiscard]] std::vector<hapticd_msg_GroupDescription> groups() const;
-  std::optional<hapticd_msg_GroupDescription> wait_for_group(std::string_view group, Timeout timeout);
-  // The newest group state (every device's state from one cycle; about 7 kB, hence on the heap), nullptr if none.
-  [[nodiscard]] std::unique_ptr<hapticd_msg_GroupState> latest_group_state(std::string_view group) const;
-  // Waits until a group state with serial > after arrives.
-  std::unique_ptr<hapticd_msg_GroupState> wait_for_group_state(std::string_view group, Timeout timeout,
-                                                               std::uint64_t after = 0);
+  [[nodiscard]] std::vector<GroupInfo> groups() const;
+  std::optional<GroupInfo> wait_for_group(std::string_view group, Timeout timeout);
+  [[nodiscard]] std::optional<GroupState> latest_group_state(std::string_view group) const;
+  std::optional<GroupState> wait_for_group_state(std::string_view group, Timeout timeout, std::uint64_t after = 0);
 
-  // ---- callbacks (set before the data flows; replaced atomically) ----
-  void on_state(std::function<void(const hapticd_msg_DeviceState&)> callback);
-  // Group states, on Cyclone's receive thread like on_state (an engine of a group answers from here).
-  void on_group_state(std::function<void(const hapticd_msg_GroupState&)> callback);
-  void on_event(std::function<void(const hapticd_msg_Event&)> callback);
-  void on_telemetry(std::function<void(const hapticd_msg_Telemetry&)> callback);
-  // A device's fault and the cycles before it (a late joiner gets the newest one per device). Reports that
-  // arrived before the callback was set are handed to it at once, on the caller's thread.
-  void on_fault_report(std::function<void(const hapticd_msg_FaultReport&)> callback);
-  // The newest fault report of a device received so far (a copy: about 100 kB), nullptr if none.
-  [[nodiscard]] std::unique_ptr<hapticd_msg_FaultReport> latest_fault_report(std::string_view device) const;
+  // ---- events, telemetry, fault reports ----
+  // The events received since the last call, oldest first (the newest 1024 are kept between calls).
+  std::vector<Event> take_events();
+  [[nodiscard]] std::optional<Telemetry> latest_telemetry(std::string_view device) const;
+  // The newest fault report of a device (a late joiner gets the newest one per device).
+  [[nodiscard]] std::optional<FaultReport> latest_fault_report(std::string_view device) const;
 
-  // ---- requests ----
-  Reply request(std::string_view device, hapticd_msg_RequestKind kind, std::string_view name = {},
-                const std::vector<double>& values = {}, Timeout timeout = std::chrono::seconds(2));
-  Reply claim(std::string_view device, Timeout timeout = std::chrono::seconds(2));
-  Reply release(std::string_view device, Timeout timeout = std::chrono::seconds(2));
-  Reply switch_scheme(std::string_view device, std::string_view scheme, Timeout timeout = std::chrono::seconds(2));
+  // ---- callbacks (see Threading above) ----
+  void on_state(std::function<void(const DeviceState&)> callback);
+  void on_group_state(std::function<void(const GroupState&)> callback);
+  // Events are also kept for take_events.
+  void on_event(std::function<void(const Event&)> callback);
+  void on_telemetry(std::function<void(const Telemetry&)> callback);
+  // Reports that arrived before the callback was set are handed to it at once, on the caller's thread.
+  void on_fault_report(std::function<void(const FaultReport&)> callback);
+
+  // ---- requests: the reply, or answered = false after the timeout ----
+  Reply request(std::string_view device, RequestKind kind, std::string_view name = {},
+                const std::vector<double>& values = {}, Timeout timeout = kDefaultTimeout);
+  Reply claim(std::string_view device, Timeout timeout = kDefaultTimeout);
+  Reply release(std::string_view device, Timeout timeout = kDefaultTimeout);
+  Reply switch_scheme(std::string_view device, std::string_view scheme, Timeout timeout = kDefaultTimeout);
   // parameter: "<stage>.<name>", e.g. "virtual_model.mass_kg".
   Reply set_parameter(std::string_view device, std::string_view parameter, const std::vector<double>& values,
-                      Timeout timeout = std::chrono::seconds(2));
+                      Timeout timeout = kDefaultTimeout);
   // Any parameter of the stage's plugin (tunable or not) or safety.passivity_control: Reply::values holds it,
   // the message says "name = value" (text parameters only there).
-  Reply get_parameter(std::string_view device, std::string_view parameter, Timeout timeout = std::chrono::seconds(2));
-  Reply emergency_stop(std::string_view device, Timeout timeout = std::chrono::seconds(2));
+  Reply get_parameter(std::string_view device, std::string_view parameter, Timeout timeout = kDefaultTimeout);
+  Reply emergency_stop(std::string_view device, Timeout timeout = kDefaultTimeout);
   // Leave the safe mode (accepted when the device is in it; it recovers once at zero torque).
-  Reply recover(std::string_view device, Timeout timeout = std::chrono::seconds(2));
+  Reply recover(std::string_view device, Timeout timeout = kDefaultTimeout);
+  // Simulated devices: "push" {fx, fy, fz[, ramp_s]}, "move" {dx, dy, dz[, duration_s]}, "grasp" {g}, "release".
+  Reply operator_command(std::string_view device, std::string_view command, const std::vector<double>& values = {},
+                         Timeout timeout = kDefaultTimeout);
   // Group requests: claim every device of the group or none; release those the client owns; E-stop every
   // device; recover every device (each in its safe mode, free or the client's) or none. Group "*": E-stop or
   // recover every device of every server on the domain.
-  Reply claim_group(std::string_view group, Timeout timeout = std::chrono::seconds(2));
-  Reply release_group(std::string_view group, Timeout timeout = std::chrono::seconds(2));
-  Reply emergency_stop_group(std::string_view group, Timeout timeout = std::chrono::seconds(2));
-  Reply recover_group(std::string_view group, Timeout timeout = std::chrono::seconds(2));
-  // Simulated devices: "push" {fx, fy, fz[, ramp_s]} or "release".
-  Reply operator_command(std::string_view device, std::string_view command, const std::vector<double>& values = {},
-                         Timeout timeout = std::chrono::seconds(2));
+  Reply claim_group(std::string_view group, Timeout timeout = kDefaultTimeout);
+  Reply release_group(std::string_view group, Timeout timeout = kDefaultTimeout);
+  Reply emergency_stop_group(std::string_view group, Timeout timeout = kDefaultTimeout);
+  Reply recover_group(std::string_view group, Timeout timeout = kDefaultTimeout);
 
-  // ---- engine commands (after a successful claim) ----
-  // Fills device, engine id and the next serial number, then writes. state_serial: the state it answers.
-  bool send(std::string_view device, hapticd_msg_EngineCommand& command);
+  // ---- engine commands (after a successful claim): false when the command could not be written ----
+  bool send(std::string_view device, const EngineCommand& command);
   bool send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist, std::uint64_t state_serial);
   bool send_wrench(std::string_view device, const Wrench& wrench, std::uint64_t state_serial);
   bool send_motion(std::string_view device, const Pose& pose, const Twist& twist, std::uint64_t state_serial);
-  // One command for a whole group (after claim_group): one per device, in the group's order, each with its
-  // device's name and the device state it answers (coupling_command makes a coupling one). Fills the engine id
-  // and the serials. Writes one GroupCommand; false if it cannot.
-  bool send_group(std::string_view group, std::span<hapticd_msg_EngineCommand> commands);
-  // Restart serial numbers (a new claim after a release).
+  // One command for a whole group (after claim_group): one per device, in the group's order.
+  bool send_group(std::string_view group, std::span<const DeviceCommand> commands);
+  // Restart serial numbers (claim and claim_group do it).
   void reset_serial() noexcept;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-// A coupling command for one device of a group command (Client::send_group).
-[[nodiscard]] hapticd_msg_EngineCommand coupling_command(std::string_view device, const Pose& proxy,
-                                                         const Twist& proxy_twist, std::uint64_t state_serial);
-
-// Conversions from the wire types.
-[[nodiscard]] std::string_view name_of(const hapticd_msg_Name& name) noexcept;
-[[nodiscard]] std::string_view name_of(const hapticd_msg_Text& text) noexcept;
-[[nodiscard]] Pose pose_of(const hapticd_msg_Pose& pose) noexcept;
-[[nodiscard]] Twist twist_of(const double (&twist)[6]) noexcept;
-[[nodiscard]] Wrench wrench_of(const double (&wrench)[6]) noexcept;
 
 }  // namespace hapticd::client
