@@ -1,0 +1,45 @@
+"""hapticd: the Python package of the hapticd haptic control server (docs/python.md).
+
+- ``Client``: hapticd's DDS interface - devices, states (NumPy arrays), claims, every request, events, fault
+  reports, engine commands. Loopback only by default.
+- ``run_engine``: a Python function answers each state of a device with an engine command at the loop rate.
+- ``Session``: a session in this process, stepped in lockstep (for experiments and notebooks).
+- Errors: ``Error``, ``SessionError``, ``RequestRefused``, ``Timeout`` (``hapticd.errors``).
+"""
+from ._hapticd import (  # noqa: F401
+    Client,
+    CycleRecord,
+    DeviceDescription,
+    DeviceInfo,
+    DeviceState,
+    DeviceView,
+    EngineCommand,
+    EngineInput,
+    Event,
+    EventKind,
+    FaultReport,
+    GroupInfo,
+    GroupState,
+    JointDescription,
+    LoopSummary,
+    Mode,
+    Pose,
+    SchemeInfo,
+    Session,
+    SessionStatistics,
+    SimulatedTruth,
+    Telemetry,
+    Twist,
+    Wrench,
+    flag_names,
+)
+from .engine import EngineStats, run_engine, states  # noqa: F401
+from .errors import Error, RequestRefused, SessionError, Timeout  # noqa: F401
+
+__all__ = [
+    "Client", "CycleRecord", "DeviceDescription", "DeviceInfo", "DeviceState", "DeviceView", "EngineCommand",
+    "EngineInput", "EngineStats", "Error", "Event", "EventKind", "FaultReport", "GroupInfo", "GroupState",
+    "JointDescription", "LoopSummary", "Mode", "Pose", "RequestRefused", "SchemeInfo", "Session", "SessionError",
+    "SessionStatistics", "SimulatedTruth", "Telemetry", "Timeout", "Twist", "Wrench", "flag_names", "run_engine",
+    "states",
+]

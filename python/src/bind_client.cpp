@@ -1,0 +1,431 @@
+// The DDS client library (hapticd/client/client.hpp) as hapticd.Client with its value types. Every call that can
+// block (waiting for a device, a state, a reply) releases the GIL. Python code never runs on the library's
+// threads: states, events, telemetry and fault reports are polled or waited for (the C++ callbacks are not
+// offered).
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <stdexcept>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "hapticd/client/client.hpp"
+
+namespace hapticd::python {
+
+namespace {
+
+using namespace hapticd::client;
+
+// A Client that can be closed before Python collects it (with-statement, close()).
+struct ClientHandle {
+  std::unique_ptr<Client> client;
+  Client& get() {
+    if (!client) throw std::runtime_error("the client is closed");
+    return *client;
+  }
+};
+
+Timeout seconds(double s) { return Timeout(s); }
+
+// The reply's message when accepted; else the package's exception with the server's message.
+std::string answer(const Reply& r) {
+  if (!r.answered) raise_timeout(r.message);
+  if (!r.accepted) raise_refused(r.message);
+  return r.message;
+}
+
+// Calls f(client) with the GIL released and turns its reply into a message or an exception.
+template <class F>
+std::string request(ClientHandle& h, F&& f) {
+  Client& c = h.get();
+  Reply r;
+  {
+    py::gil_scoped_release release;
+    r = f(c);
+  }
+  return answer(r);
+}
+
+template <class T>
+T or_timeout(std::optional<T>&& value, const std::string& what) {
+  if (!value) raise_timeout(what);
+  return std::move(*value);
+}
+
+void bind_types(py::module_& m) {
+  py::enum_<Mode>(m, "Mode", "A device's mode.")
+      .value("STARTING", Mode::starting)
+      .value("RUNNING", Mode::running)
+      .value("STOPPING", Mode::stopping)
+      .value("SAFE", Mode::safe)
+      .value("OFF", Mode::off);
+  py::enum_<EventKind>(m, "EventKind", "What an event reports.")
+      .value("FAULT", EventKind::fault)
+      .value("ESTOP", EventKind::estop)
+      .value("MODE", EventKind::mode)
+      .value("SCHEME", EventKind::scheme)
+      .value("OWNER", EventKind::owner)
+      .value("ENGINE_STALE", EventKind::engine_stale)
+      .value("ENGINE_REJECTED", EventKind::engine_rejected)
+      .value("RECOVERED", EventKind::recovered)
+      .value("RECORDING", EventKind::recording);
+  m.def("flag_names", &flag_names, py::arg("flags"), "The names of the set DeviceState flags, lowest bit first.");
+
+  py::class_<LoopSummary>(m, "LoopSummary", "The loop's health: counts since the start, worst times over 1 s.")
+      .def_readonly("rate_hz", &LoopSummary::rate_hz)
+      .def_readonly("cycles", &LoopSummary::cycles)
+      .def_readonly("overruns", &LoopSummary::overruns)
+      .def_readonly("latency_max_us", &LoopSummary::latency_max_us)
+      .def_readonly("compute_max_us", &LoopSummary::compute_max_us);
+
+  py::class_<SchemeInfo>(m, "SchemeInfo", "A control scheme and the virtual model engine commands reach.")
+      .def_readonly("name", &SchemeInfo::name)
+      .def_readonly("virtual_model", &SchemeInfo::virtual_model)
+      .def("__repr__", [](const SchemeInfo& s) { return "SchemeInfo('" + s.name + "', '" + s.virtual_model + "')"; });
+
+  py::class_<DeviceInfo>(m, "DeviceInfo", "A device's description as its server publishes it.")
+      .def_readonly("device", &DeviceInfo::device)
+      .def_readonly("version", &DeviceInfo::version)
+      .def_readonly("device_plugin", &DeviceInfo::device_plugin)
+      .def_readonly("simulated", &DeviceInfo::simulated)
+      .def_readonly("rate_hz", &DeviceInfo::rate_hz)
+      .def_readonly("dof", &DeviceInfo::dof)
+      .def_readonly("joint_names", &DeviceInfo::joint_names)
+      .def_property_readonly("position_min", [](const DeviceInfo& d) { return joint_array(d.position_min); })
+      .def_property_readonly("position_max", [](const DeviceInfo& d) { return joint_array(d.position_max); })
+      .def_property_readonly("velocity_max", [](const DeviceInfo& d) { return joint_array(d.velocity_max); })
+      .def_property_readonly("torque_peak", [](const DeviceInfo& d) { return joint_array(d.torque_peak); })
+      .def_property_readonly("torque_continuous", [](const DeviceInfo& d) { return joint_array(d.torque_continuous); })
+      .def_readonly("base_frame", &DeviceInfo::base_frame)
+      .def_readonly("base_pose", &DeviceInfo::base_pose)
+      .def_readonly("handle_frame", &DeviceInfo::handle_frame)
+      .def_readonly("start_pose", &DeviceInfo::start_pose, "the handle at the first cycle; None before it")
+      .def_readonly("workspace_radius", &DeviceInfo::workspace_radius)
+      .def_property_readonly("workspace_min", [](const DeviceInfo& d) { return Eigen::Vector3d(d.workspace_min); })
+      .def_property_readonly("workspace_max", [](const DeviceInfo& d) { return Eigen::Vector3d(d.workspace_max); })
+      .def_readonly("schemes", &DeviceInfo::schemes)
+      .def_readonly("command_deadline_s", &DeviceInfo::command_deadline_s)
+      .def_readonly("command_fade_s", &DeviceInfo::command_fade_s)
+      .def("__repr__", [](const DeviceInfo& d) {
+        return "DeviceInfo('" + d.device + "', " + d.device_plugin + ", " + std::to_string(d.dof) + " joints)";
+      });
+
+  py::class_<DeviceState>(m, "DeviceState", "One published state of a device (world frame, SI units).")
+      .def_property_readonly("device", [](const DeviceState& s) { return s.device.str(); })
+      .def_readonly("serial", &DeviceState::serial)
+      .def_readonly("cycle", &DeviceState::cycle)
+      .def_readonly("loop_time_ns", &DeviceState::loop_time_ns)
+      .def_property_readonly("time_s", &DeviceState::time_s)
+      .def_readonly("pose", &DeviceState::pose, "the measured handle pose")
+      .def_readonly("twist", &DeviceState::twist)
+      .def_readonly("operator_wrench", &DeviceState::operator_wrench, "the operator's wrench on the handle")
+      .def_readonly("environment_wrench", &DeviceState::environment_wrench, "what the rendered environment applies")
+      .def_readonly("target_pose", &DeviceState::target_pose, "the chain's desired pose (admittance schemes)")
+      .def_readonly("dof", &DeviceState::dof)
+      .def_property_readonly(
+          "position", [](const DeviceState& s) { return joint_array(s.position); }, "joints")
+      .def_property_readonly(
+          "velocity", [](const DeviceState& s) { return joint_array(s.velocity); }, "joints")
+      .def_property_readonly(
+          "torque", [](const DeviceState& s) { return joint_array(s.torque); }, "commanded")
+      .def_readonly("mode", &DeviceState::mode)
+      .def_readonly("flags", &DeviceState::flags)
+      .def_property_readonly("flag_names", [](const DeviceState& s) { return flag_names(s.flags); })
+      .def_property_readonly("fault", [](const DeviceState& s) { return s.fault.str(); })
+      .def_property_readonly("scheme", [](const DeviceState& s) { return s.scheme.str(); })
+      .def_property_readonly("owner", [](const DeviceState& s) { return s.owner.str(); })
+      .def_readonly("engine_serial", &DeviceState::engine_serial)
+      .def_readonly("loop", &DeviceState::loop)
+      .def("__repr__", [](const DeviceState& s) {
+        return "DeviceState('" + s.device.str() + "', serial=" + std::to_string(s.serial) +
+               ", t=" + std::to_string(s.time_s()) + " s, " + std::string(to_string(s.mode)) + ")";
+      });
+
+  py::class_<GroupInfo>(m, "GroupInfo", "A device group's description.")
+      .def_readonly("group", &GroupInfo::group)
+      .def_readonly("version", &GroupInfo::version)
+      .def_readonly("devices", &GroupInfo::devices)
+      .def_readonly("min_distance_m", &GroupInfo::min_distance_m)
+      .def_readonly("repulsion_distance_m", &GroupInfo::repulsion_distance_m)
+      .def_readonly("own_loop", &GroupInfo::own_loop);
+
+  py::class_<GroupState>(m, "GroupState", "Every device of a group from one cycle.")
+      .def_property_readonly("group", [](const GroupState& g) { return g.group.str(); })
+      .def_readonly("serial", &GroupState::serial)
+      .def_readonly("cycle", &GroupState::cycle)
+      .def_readonly("loop_time_ns", &GroupState::loop_time_ns)
+      .def_readonly("clearance_m", &GroupState::clearance_m)
+      .def_property_readonly("states", [](const GroupState& g) {
+        return std::vector<DeviceState>(g.states.begin(), g.states.begin() + g.device_count);
+      });
+
+  py::class_<Event>(m, "Event", "A device's event (fault, E-stop, mode, scheme, owner, ...).")
+      .def_readonly("device", &Event::device)
+      .def_readonly("serial", &Event::serial)
+      .def_readonly("loop_time_ns", &Event::loop_time_ns)
+      .def_readonly("kind", &Event::kind)
+      .def_readonly("code", &Event::code)
+      .def_readonly("message", &Event::message)
+      .def("__repr__", [](const Event& e) {
+        return "Event('" + e.device + "', " + std::string(to_string(e.kind)) + ", '" + e.code + "')";
+      });
+
+  py::class_<Telemetry>(m, "Telemetry", "A device's counters, ten times a second.")
+      .def_readonly("device", &Telemetry::device)
+      .def_readonly("wall_time_ns", &Telemetry::wall_time_ns)
+      .def_readonly("loop", &Telemetry::loop)
+      .def_readonly("states_published", &Telemetry::states_published)
+      .def_readonly("commands_received", &Telemetry::commands_received)
+      .def_readonly("commands_accepted", &Telemetry::commands_accepted)
+      .def_readonly("rejected", &Telemetry::rejected,
+                    "by reason: malformed, non-finite, out of bounds, out of order, stale, not the owner, wrong kind, "
+                    "other")
+      .def_readonly("requests", &Telemetry::requests)
+      .def_readonly("deadline_misses", &Telemetry::deadline_misses)
+      .def_readonly("scheme_switches", &Telemetry::scheme_switches)
+      .def_readonly("saturated_cycles", &Telemetry::saturated_cycles)
+      .def_readonly("limited_cycles", &Telemetry::limited_cycles)
+      .def_readonly("render_limited_cycles", &Telemetry::render_limited_cycles)
+      .def_readonly("faults", &Telemetry::faults)
+      .def_readonly("recoveries", &Telemetry::recoveries)
+      .def_readonly("thermal_load", &Telemetry::thermal_load)
+      .def_readonly("dissipated_j", &Telemetry::dissipated_j);
+
+  py::class_<CycleRecord>(m, "CycleRecord", "One cycle before a fault.")
+      .def_readonly("cycle", &CycleRecord::cycle)
+      .def_readonly("loop_time_ns", &CycleRecord::loop_time_ns)
+      .def_property_readonly("position", [](const CycleRecord& c) { return joint_array(c.position); })
+      .def_property_readonly("velocity", [](const CycleRecord& c) { return joint_array(c.velocity); })
+      .def_property_readonly("torque", [](const CycleRecord& c) { return joint_array(c.torque); })
+      .def_property_readonly("handle_position", [](const CycleRecord& c) { return Eigen::Vector3d(c.handle_position); })
+      .def_property_readonly("handle_velocity", [](const CycleRecord& c) { return Eigen::Vector3d(c.handle_velocity); })
+      .def_property_readonly("operator_force", [](const CycleRecord& c) { return Eigen::Vector3d(c.operator_force); })
+      .def_property_readonly("environment_force",
+                             [](const CycleRecord& c) { return Eigen::Vector3d(c.environment_force); })
+      .def_readonly("flags", &CycleRecord::flags);
+
+  py::class_<FaultReport>(m, "FaultReport", "A fault and the cycles before it (oldest first).")
+      .def_readonly("device", &FaultReport::device)
+      .def_readonly("serial", &FaultReport::serial)
+      .def_readonly("fault", &FaultReport::fault)
+      .def_readonly("message", &FaultReport::message)
+      .def_readonly("cycle", &FaultReport::cycle)
+      .def_readonly("loop_time_ns", &FaultReport::loop_time_ns)
+      .def_readonly("dof", &FaultReport::dof)
+      .def_readonly("records", &FaultReport::records);
+
+  py::class_<EngineCommand>(m, "EngineCommand", "What an engine sends a device; made by coupling, force or motion.")
+      .def_static("coupling", &EngineCommand::coupling, py::arg("proxy"), py::arg("proxy_twist") = Twist{},
+                  py::arg("state_serial") = 0, "impedance type: the proxy the virtual coupling ties the handle to")
+      .def_static("force", &EngineCommand::force, py::arg("wrench"), py::arg("state_serial") = 0,
+                  "impedance type: a wrench to display")
+      .def_static("motion", &EngineCommand::motion, py::arg("pose"), py::arg("twist") = Twist{},
+                  py::arg("state_serial") = 0, "admittance type: the handle's desired motion")
+      .def_readwrite("state_serial", &EngineCommand::state_serial);
+}
+
+}  // namespace
+
+void bind_client(py::module_& m) {
+  bind_types(m);
+  py::class_<ClientHandle>(m, "Client", R"(A client of hapticd's DDS interface: one DDS participant (loopback only by
+default). Waiting calls release the GIL; a refused request raises RequestRefused, no reply in time Timeout.)")
+      .def(py::init([](const std::string& client_id, int domain, const std::string& cyclone_config,
+                       double command_deadline_s) {
+             return ClientHandle{
+                 std::make_unique<Client>(ClientOptions{client_id, domain, cyclone_config, command_deadline_s})};
+           }),
+           py::arg("client_id"), py::arg("domain") = 0, py::arg("cyclone_config") = "",
+           py::arg("command_deadline_s") = 0.05)
+      .def_property_readonly("id", [](ClientHandle& h) { return h.get().id(); })
+      .def(
+          "close",
+          [](ClientHandle& h) {
+            py::gil_scoped_release release;
+            h.client.reset();
+          },
+          "leave the domain (claims end with the participant)")
+      .def("__enter__", [](ClientHandle& h) -> ClientHandle& { return h; })
+      .def("__exit__",
+           [](ClientHandle& h, const py::args&) {
+             py::gil_scoped_release release;
+             h.client.reset();
+           })
+      // ---- devices and states ----
+      .def(
+          "devices", [](ClientHandle& h) { return h.get().devices(); }, "the descriptions received so far")
+      .def(
+          "wait_for_device",
+          [](ClientHandle& h, const std::string& device, double timeout, bool started) {
+            std::optional<DeviceInfo> d;
+            {
+              py::gil_scoped_release release;
+              d = h.get().wait_for_device(device, seconds(timeout), started);
+            }
+            return or_timeout(std::move(d), "no device '" + device + "' within the timeout");
+          },
+          py::arg("device"), py::arg("timeout") = 5.0, py::arg("started") = false,
+          "the device's description (with started: once it carries the start pose)")
+      .def(
+          "latest_state", [](ClientHandle& h, const std::string& device) { return h.get().latest_state(device); },
+          py::arg("device"), "the newest state, or None")
+      .def(
+          "wait_for_state",
+          [](ClientHandle& h, const std::string& device, double timeout, std::uint64_t after) {
+            std::optional<DeviceState> s;
+            {
+              py::gil_scoped_release release;
+              s = h.get().wait_for_state(device, seconds(timeout), after);
+            }
+            return or_timeout(std::move(s), "no state of '" + device + "' within the timeout");
+          },
+          py::arg("device"), py::arg("timeout") = 1.0, py::arg("after") = 0,
+          "the newest state with serial > after (waits for it)")
+      .def("groups", [](ClientHandle& h) { return h.get().groups(); })
+      .def(
+          "wait_for_group",
+          [](ClientHandle& h, const std::string& group, double timeout) {
+            std::optional<GroupInfo> g;
+            {
+              py::gil_scoped_release release;
+              g = h.get().wait_for_group(group, seconds(timeout));
+            }
+            return or_timeout(std::move(g), "no group '" + group + "' within the timeout");
+          },
+          py::arg("group"), py::arg("timeout") = 5.0)
+      .def(
+          "wait_for_group_state",
+          [](ClientHandle& h, const std::string& group, double timeout, std::uint64_t after) {
+            std::optional<GroupState> g;
+            {
+              py::gil_scoped_release release;
+              g = h.get().wait_for_group_state(group, seconds(timeout), after);
+            }
+            return or_timeout(std::move(g), "no state of group '" + group + "' within the timeout");
+          },
+          py::arg("group"), py::arg("timeout") = 1.0, py::arg("after") = 0)
+      // ---- events, telemetry, fault reports ----
+      .def(
+          "take_events", [](ClientHandle& h) { return h.get().take_events(); },
+          "the events received since the last call, oldest first")
+      .def(
+          "latest_telemetry",
+          [](ClientHandle& h, const std::string& device) { return h.get().latest_telemetry(device); },
+          py::arg("device"))
+      .def(
+          "latest_fault_report",
+          [](ClientHandle& h, const std::string& device) { return h.get().latest_fault_report(device); },
+          py::arg("device"), "the newest fault report of the device, or None")
+      // ---- requests ----
+      .def(
+          "claim",
+          [](ClientHandle& h, const std::string& d, double t) {
+            return request(h, [&](Client& c) { return c.claim(d, seconds(t)); });
+          },
+          py::arg("device"), py::arg("timeout") = 2.0, "become the device's engine")
+      .def(
+          "release",
+          [](ClientHandle& h, const std::string& d, double t) {
+            return request(h, [&](Client& c) { return c.release(d, seconds(t)); });
+          },
+          py::arg("device"), py::arg("timeout") = 2.0)
+      .def(
+          "switch_scheme",
+          [](ClientHandle& h, const std::string& d, const std::string& scheme, double t) {
+            return request(h, [&](Client& c) { return c.switch_scheme(d, scheme, seconds(t)); });
+          },
+          py::arg("device"), py::arg("scheme"), py::arg("timeout") = 2.0)
+      .def(
+          "set_parameter",
+          [](ClientHandle& h, const std::string& d, const std::string& parameter, const py::object& values, double t) {
+            const std::vector<double> v = values_of(values);
+            return request(h, [&](Client& c) { return c.set_parameter(d, parameter, v, seconds(t)); });
+          },
+          py::arg("device"), py::arg("parameter"), py::arg("values"), py::arg("timeout") = 2.0,
+          "parameter: '<stage>.<name>', e.g. 'virtual_model.mass_kg'; values: a number or a sequence")
+      .def(
+          "get_parameter",
+          [](ClientHandle& h, const std::string& d, const std::string& parameter, double t) {
+            Client& c = h.get();
+            Reply r;
+            {
+              py::gil_scoped_release release;
+              r = c.get_parameter(d, parameter, seconds(t));
+            }
+            answer(r);
+            return r.values;
+          },
+          py::arg("device"), py::arg("parameter"), py::arg("timeout") = 2.0,
+          "the value in effect, as a list (a boolean as 0 or 1)")
+      .def(
+          "estop",
+          [](ClientHandle& h, const std::string& d, double t) {
+            return request(h, [&](Client& c) { return c.emergency_stop(d, seconds(t)); });
+          },
+          py::arg("device"), py::arg("timeout") = 2.0, "emergency stop: the device goes to its safe mode")
+      .def(
+          "recover",
+          [](ClientHandle& h, const std::string& d, double t) {
+            return request(h, [&](Client& c) { return c.recover(d, seconds(t)); });
+          },
+          py::arg("device"), py::arg("timeout") = 2.0, "leave the safe mode")
+      .def(
+          "operator",
+          [](ClientHandle& h, const std::string& d, const std::string& command, const py::object& values, double t) {
+            const std::vector<double> v = values_of(values);
+            return request(h, [&](Client& c) { return c.operator_command(d, command, v, seconds(t)); });
+          },
+          py::arg("device"), py::arg("command"), py::arg("values") = py::none(), py::arg("timeout") = 2.0,
+          "a simulated device's operator: push [fx, fy, fz, ramp_s], move [dx, dy, dz, duration_s], grasp [g], "
+          "release")
+      .def(
+          "claim_group",
+          [](ClientHandle& h, const std::string& g, double t) {
+            return request(h, [&](Client& c) { return c.claim_group(g, seconds(t)); });
+          },
+          py::arg("group"), py::arg("timeout") = 2.0, "claim every device of the group, or none")
+      .def(
+          "release_group",
+          [](ClientHandle& h, const std::string& g, double t) {
+            return request(h, [&](Client& c) { return c.release_group(g, seconds(t)); });
+          },
+          py::arg("group"), py::arg("timeout") = 2.0)
+      .def(
+          "estop_group",
+          [](ClientHandle& h, const std::string& g, double t) {
+            return request(h, [&](Client& c) { return c.emergency_stop_group(g, seconds(t)); });
+          },
+          py::arg("group"), py::arg("timeout") = 2.0, "group '*': every device of every server on the domain")
+      .def(
+          "recover_group",
+          [](ClientHandle& h, const std::string& g, double t) {
+            return request(h, [&](Client& c) { return c.recover_group(g, seconds(t)); });
+          },
+          py::arg("group"), py::arg("timeout") = 2.0)
+      // ---- engine commands ----
+      .def(
+          "send", [](ClientHandle& h, const std::string& d, const EngineCommand& c) { return h.get().send(d, c); },
+          py::arg("device"), py::arg("command"), "False when it could not be written")
+      .def(
+          "send_coupling",
+          [](ClientHandle& h, const std::string& d, const Pose& proxy, const Twist& twist, std::uint64_t serial) {
+            return h.get().send_coupling(d, proxy, twist, serial);
+          },
+          py::arg("device"), py::arg("proxy"), py::arg("proxy_twist") = Twist{}, py::arg("state_serial") = 0)
+      .def(
+          "send_wrench",
+          [](ClientHandle& h, const std::string& d, const Wrench& w, std::uint64_t serial) {
+            return h.get().send_wrench(d, w, serial);
+          },
+          py::arg("device"), py::arg("wrench"), py::arg("state_serial") = 0)
+      .def(
+          "send_motion",
+          [](ClientHandle& h, const std::string& d, const Pose& pose, const Twist& twist, std::uint64_t serial) {
+            return h.get().send_motion(d, pose, twist, serial);
+          },
+          py::arg("device"), py::arg("pose"), py::arg("twist") = Twist{}, py::arg("state_serial") = 0);
+}
+
+}  // namespace hapticd::python
