@@ -1,5 +1,5 @@
 #pragma once
-// The C++ client library of hapticd's DDS interface (docs/dds-interface.md, docs/client-library.md): find
+// The C++ client library of hapticd's DDS interface (docs/dds-interface.md, "Clients"): find
 // devices and groups, read their states, events, telemetry and fault reports, claim a device and send it
 // engine commands, make every request with a timeout. One Client is one DDS participant (loopback-only by
 // default). Values only: the types of types.hpp, no DDS header.
