@@ -306,6 +306,10 @@ default). Waiting calls release the GIL; a refused request raises RequestRefused
             return or_timeout(std::move(g), "no state of group '" + group + "' within the timeout");
           },
           py::arg("group"), py::arg("timeout") = 1.0, py::arg("after") = 0)
+      .def(
+          "latest_group_state",
+          [](ClientHandle& h, const std::string& group) { return h.get().latest_group_state(group); }, py::arg("group"),
+          "the newest group state, or None")
       // ---- events, telemetry, fault reports ----
       .def(
           "take_events", [](ClientHandle& h) { return h.get().take_events(); },
@@ -425,7 +429,17 @@ default). Waiting calls release the GIL; a refused request raises RequestRefused
           [](ClientHandle& h, const std::string& d, const Pose& pose, const Twist& twist, std::uint64_t serial) {
             return h.get().send_motion(d, pose, twist, serial);
           },
-          py::arg("device"), py::arg("pose"), py::arg("twist") = Twist{}, py::arg("state_serial") = 0);
+          py::arg("device"), py::arg("pose"), py::arg("twist") = Twist{}, py::arg("state_serial") = 0)
+      .def(
+          "send_group",
+          [](ClientHandle& h, const std::string& group,
+             const std::vector<std::pair<std::string, EngineCommand>>& commands) {
+            std::vector<DeviceCommand> list;
+            for (const auto& [device, command] : commands) list.push_back({Name(device), command});
+            return h.get().send_group(group, list);
+          },
+          py::arg("group"), py::arg("commands"),
+          "one command per device of a claimed group, in the group's order: [(device, EngineCommand), ...]");
 }
 
 }  // namespace hapticd::python

@@ -60,4 +60,18 @@ grep -q '"fault": "none"' "$work/dds_stats.json" || { echo "FAIL: device faulted
 # The 15 N push holds at the wall 2 cm ahead: through the 3000 N/m coupling the handle stops about 5 mm past it.
 past=$(echo "$engine_out" | sed -n 's/.*handle \([-0-9.]*\) m past the start.*/\1/p')
 awk -v x="$past" 'BEGIN { exit !(x > 0.015 && x < 0.03) }' || { echo "FAIL: the wall did not hold: $past m"; exit 1; }
-echo "3 passed, 0 failed"
+
+# The installed Python package: importable from the prefix, its session finds the installed plugins.
+if [ -d "$prefix"/lib/python3*/dist-packages/hapticd ]; then
+  site=$(echo "$prefix"/lib/python3*/dist-packages)
+  PYTHONPATH="$site" /usr/bin/python3 -c "
+import hapticd
+with hapticd.Session.from_file('$session', ['server.seed=3']) as s:
+    s.step(100)
+    v = s.device('vishard3')
+    assert v.fault == '' and v.cycle == 99, v
+print('installed python package:', hapticd.__file__)" || { echo "FAIL: the installed Python package"; exit 1; }
+  echo "4 passed, 0 failed"
+else
+  echo "3 passed, 0 failed (no Python package in this build)"
+fi
