@@ -4,12 +4,14 @@ Run by ctest (tests/CMakeLists.txt) with PYTHONPATH at the build tree's package 
 programs. Every server runs on a DDS domain of its own (91..99), loopback only, for a bounded time."""
 import os
 import subprocess
+import sys
 import time
 
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SESSIONS = os.path.join(ROOT, "config", "sessions")
+sys.path.insert(0, os.path.join(ROOT, "examples", "python"))  # the tests use the examples' engines
 BIN = os.environ.get("HAPTICD_BIN_DIR", os.path.join(ROOT, "build", "default", "bin"))
 
 

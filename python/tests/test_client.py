@@ -2,26 +2,10 @@
 import threading
 import time
 
-import numpy as np
 import pytest
 
 import hapticd
-
-
-class WallEngine:
-    """A wall normal to x: the proxy is the handle, held back at the wall."""
-
-    def __init__(self, wall_x):
-        self.wall_x = wall_x
-        self.deepest = 0.0
-
-    def __call__(self, state):
-        proxy = state.pose
-        depth = proxy.position[0] - self.wall_x
-        if depth > 0.0:
-            self.deepest = max(self.deepest, depth)
-            proxy.position = [self.wall_x, proxy.position[1], proxy.position[2]]
-        return hapticd.EngineCommand.coupling(proxy)
+from wall_engine import Wall  # examples/python (conftest puts it on the path)
 
 
 @pytest.mark.domain(91)
@@ -59,7 +43,7 @@ def test_a_python_engine_renders_a_wall_the_operator_pushes_against(server):
         pusher = hapticd.Client("py-operator", domain=92)
         timer = threading.Timer(0.3, lambda: pusher.operator("vishard3", "push", [15.0, 0.0, 0.0, 0.2]))
         timer.start()
-        wall = WallEngine(wall_x)
+        wall = Wall(wall_x)
         stats = hapticd.run_engine(c, "vishard3", wall, duration=2.5)
         timer.join()
         pusher.close()
