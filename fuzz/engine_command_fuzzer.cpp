@@ -27,9 +27,9 @@ hapticd_msg_EngineCommand patched(const std::uint8_t* data, std::size_t size) {
   c.serial = 1;
   c.kind = static_cast<hapticd_msg_CommandKind>(data[0] / 2 % 3);
   c.local_model = (data[0] & 8) != 0;
-  c.pose.orientation[0] = c.anchor.orientation[0] = 1.0;
-  double* fields[] = {c.wrench,  c.anchor.position, c.anchor.orientation, c.stiffness,
-                      c.damping, c.pose.position,   c.pose.orientation,   c.twist};
+  c.command_pose.orientation[0] = c.anchor.orientation[0] = 1.0;
+  double* fields[] = {c.wrench,  c.anchor.position,       c.anchor.orientation,       c.stiffness,
+                      c.damping, c.command_pose.position, c.command_pose.orientation, c.twist};
   const int lengths[] = {6, 3, 4, 6, 6, 3, 4, 6};
   for (std::size_t at = 1; at + 9 <= size; at += 9) {
     int index = data[at] % 38;

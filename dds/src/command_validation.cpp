@@ -77,7 +77,7 @@ ContentCheck check_command_content(const hapticd_msg_EngineCommand& c, const Com
   if (local_model > 1) return reject(RejectReason::malformed);
   if (c.serial == 0) return reject(RejectReason::malformed);  // serial numbers start at 1
   if (!all_finite(c.wrench) || !all_finite(c.anchor) || !all_finite(c.stiffness) || !all_finite(c.damping) ||
-      !all_finite(c.pose) || !all_finite(c.twist))
+      !all_finite(c.command_pose) || !all_finite(c.twist))
     return reject(RejectReason::non_finite);
   switch (kind) {
     case hapticd_msg_COMMAND_WRENCH:
@@ -93,8 +93,8 @@ ContentCheck check_command_content(const hapticd_msg_EngineCommand& c, const Com
       break;
     case hapticd_msg_COMMAND_COUPLING:
     case hapticd_msg_COMMAND_MOTION:
-      if (!unit_quaternion(c.pose)) return reject(RejectReason::malformed);
-      if (distance_from(c.pose.position, b.base_position) > b.max_distance_m)
+      if (!unit_quaternion(c.command_pose)) return reject(RejectReason::malformed);
+      if (distance_from(c.command_pose.position, b.base_position) > b.max_distance_m)
         return reject(RejectReason::out_of_bounds);
       if (!within(c.twist, b.max_speed_m_s, b.max_angular_speed_rad_s)) return reject(RejectReason::out_of_bounds);
       break;
@@ -128,13 +128,13 @@ EngineInput to_engine_input(const hapticd_msg_EngineCommand& c) noexcept {
       break;
     case hapticd_msg_COMMAND_COUPLING:
       e.has_proxy = true;
-      e.proxy_pose = to_pose(c.pose);
+      e.proxy_pose = to_pose(c.command_pose);
       e.proxy_pose.orientation.normalize();
       e.proxy_twist = twist(c.twist);
       break;
     case hapticd_msg_COMMAND_MOTION:
       e.has_motion = true;
-      e.motion_pose = to_pose(c.pose);
+      e.motion_pose = to_pose(c.command_pose);
       e.motion_pose.orientation.normalize();
       e.motion_twist = twist(c.twist);
       break;

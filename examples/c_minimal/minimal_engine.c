@@ -139,10 +139,10 @@ int main(int argc, char** argv) {
     while (dds_take(states, samples, &info, 1, 1) > 0) {
       if (!info.valid_data || strcmp(s.device, device) != 0) continue;
       if (!have_floor) {
-        floor_z = s.pose.position[2] - 0.01;
+        floor_z = s.handle_pose.position[2] - 0.01;
         have_floor = 1;
       }
-      if (s.pose.position[2] < lowest) lowest = s.pose.position[2];
+      if (s.handle_pose.position[2] < lowest) lowest = s.handle_pose.position[2];
       hapticd_msg_EngineCommand c;
       memset(&c, 0, sizeof c);
       copy_name(c.device, device);
@@ -151,16 +151,16 @@ int main(int argc, char** argv) {
       c.state_serial = s.serial;
       c.kind = hapticd_msg_COMMAND_WRENCH;
       /* A floor: a one-sided spring, linearised about the floor height while the handle is below it. */
-      if (s.pose.position[2] < floor_z) {
+      if (s.handle_pose.position[2] < floor_z) {
         c.local_model = true;
-        c.anchor.position[0] = s.pose.position[0];
-        c.anchor.position[1] = s.pose.position[1];
+        c.anchor.position[0] = s.handle_pose.position[0];
+        c.anchor.position[1] = s.handle_pose.position[1];
         c.anchor.position[2] = floor_z;
         c.anchor.orientation[0] = 1.0;
         c.stiffness[2] = 3000.0;
         c.damping[2] = 20.0;
       }
-      c.pose.orientation[0] = 1.0;
+      c.command_pose.orientation[0] = 1.0;
       dds_write(commands, &c);
       ++answered;
     }

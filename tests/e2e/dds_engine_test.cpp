@@ -189,7 +189,7 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
     c.serial = serial;
     c.kind = hapticd_msg_COMMAND_WRENCH;
     c.wrench[0] = 2.0;
-    c.anchor.orientation[0] = c.pose.orientation[0] = 1.0;
+    c.anchor.orientation[0] = c.command_pose.orientation[0] = 1.0;
     return c;
   };
   const std::int64_t now = dds::wall_clock_ns();
@@ -215,7 +215,7 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   c = good(14);  // stale: written 1 s ago
   send(c, 1'000'000'000);
   c = good(15);
-  c.pose.orientation[0] = 0.0;  // malformed quaternion on a coupling command
+  c.command_pose.orientation[0] = 0.0;  // malformed quaternion on a coupling command
   c.kind = hapticd_msg_COMMAND_COUPLING;
   send(c);
   c = good(16);

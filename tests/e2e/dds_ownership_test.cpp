@@ -113,7 +113,7 @@ TEST(DdsOwnership, AnotherParticipantWritingUnderTheOwnersIdIsNotTheOwner) {
     c.state_serial = state->serial;
     c.kind = hapticd_msg_COMMAND_WRENCH;
     c.wrench[0] = 60.0;
-    c.pose.orientation[0] = 1.0;
+    c.command_pose.orientation[0] = 1.0;
     c.anchor.orientation[0] = 1.0;
     (void)writer.write(c);
     std::this_thread::sleep_for(std::chrono::microseconds(500));

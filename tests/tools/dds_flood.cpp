@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
       dds::set_text(r.client, id);
       r.request_id = static_cast<unsigned long long>(i) + 1;
       r.kind = hapticd_msg_REQUEST_SET_PARAMETER;
-      dds::set_text(r.name, "virtual_model.mass_kg");
+      dds::set_text(r.subject, "virtual_model.mass_kg");
       r.value_count = 3;
       r.values[0] = r.values[1] = r.values[2] = 3.0;
       sent += requests.write(r) ? 1 : 0;
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
       dds::set_text(c.engine, id);
       c.serial = 1;
       c.kind = hapticd_msg_COMMAND_WRENCH;
-      c.pose.orientation[0] = 1.0;
+      c.command_pose.orientation[0] = 1.0;
       c.anchor.orientation[0] = 1.0;
       sent += commands.write(c) ? 1 : 0;
     }

@@ -35,7 +35,7 @@ TEST(BridgeMessages, TheStateCarriesTheSnapshotItsLabelsAndItsFlags) {
   EXPECT_EQ(m.serial, 42u);
   EXPECT_EQ(m.cycle, 41u);
   EXPECT_EQ(m.dof, 3);
-  EXPECT_DOUBLE_EQ(m.pose.position[1], -0.2);
+  EXPECT_DOUBLE_EQ(m.handle_pose.position[1], -0.2);
   EXPECT_DOUBLE_EQ(m.velocity[2], -1.0);
   EXPECT_DOUBLE_EQ(m.torque[0], 2.0);
   EXPECT_EQ(m.engine_serial, 7u);

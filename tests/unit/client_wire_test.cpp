@@ -19,10 +19,10 @@ hapticd_msg_DeviceState wire_state() {
   s.serial = 42;
   s.cycle = 7;
   s.loop_time_ns = 1'500'000'000;
-  s.pose.position[0] = 0.1;
-  s.pose.position[2] = -0.3;
-  s.pose.orientation[0] = std::sqrt(0.5);
-  s.pose.orientation[3] = std::sqrt(0.5);
+  s.handle_pose.position[0] = 0.1;
+  s.handle_pose.position[2] = -0.3;
+  s.handle_pose.orientation[0] = std::sqrt(0.5);
+  s.handle_pose.orientation[3] = std::sqrt(0.5);
   for (int i = 0; i < 6; ++i) {
     s.twist[i] = 1.0 + i;
     s.operator_wrench[i] = 10.0 + i;
@@ -104,13 +104,13 @@ TEST(ClientWire, ADescriptionWithoutAStartPoseHasNone) {
   auto d = std::make_unique<hapticd_msg_DeviceDescription>();
   dds::set_text(d->device, "v3");
   d->dof = 2;
-  dds::set_text(d->joint_names[0], "q1");
-  dds::set_text(d->joint_names[1], "q2");
+  dds::set_text(d->joint_names[0].text, "q1");
+  dds::set_text(d->joint_names[1].text, "q2");
   d->torque_peak[1] = 5.0;
   d->scheme_count = 2;
-  dds::set_text(d->schemes[0], "default");
-  dds::set_text(d->schemes[1], "impedance");
-  dds::set_text(d->scheme_virtual_model[0], "admittance");
+  dds::set_text(d->schemes[0].text, "default");
+  dds::set_text(d->schemes[1].text, "impedance");
+  dds::set_text(d->scheme_virtual_model[0].text, "admittance");
   d->base_pose.orientation[0] = 1.0;
   DeviceInfo info = wire::from_msg(*d);
   EXPECT_EQ(info.joint_names, (std::vector<std::string>{"q1", "q2"}));
@@ -134,8 +134,8 @@ TEST(ClientWire, AnEngineCommandLeavesAsTheWireSaysAndWithAValidAnchor) {
   EXPECT_EQ(c.kind, hapticd_msg_COMMAND_COUPLING);
   EXPECT_EQ(dds::text_of(c.device), "v3");
   EXPECT_EQ(c.state_serial, 9u);
-  EXPECT_EQ(c.pose.position[1], 0.2);
-  EXPECT_EQ(c.pose.orientation[0], 1.0);
+  EXPECT_EQ(c.command_pose.position[1], 0.2);
+  EXPECT_EQ(c.command_pose.orientation[0], 1.0);
   EXPECT_EQ(c.twist[0], 1.0);
   EXPECT_FALSE(c.local_model);
   EXPECT_EQ(c.anchor.orientation[0], 1.0);  // a valid quaternion even when unused

@@ -25,8 +25,8 @@ hapticd_msg_EngineCommand command(const char* engine, std::uint64_t serial) {
   dds::set_text(c.engine, engine);
   c.serial = serial;
   c.kind = hapticd_msg_COMMAND_COUPLING;
-  c.pose.position[0] = 0.1;
-  c.pose.orientation[0] = 1.0;
+  c.command_pose.position[0] = 0.1;
+  c.command_pose.orientation[0] = 1.0;
   c.anchor.orientation[0] = 1.0;
   return c;
 }
@@ -103,7 +103,7 @@ TEST(CommandValidation, EachKindIsCheckedForItsOwnFields) {
   const dds::CommandBounds b;
   auto c = command("a", 1);
   EXPECT_TRUE(dds::check_command_content(c, b).ok);
-  c.pose.orientation[0] = 0.0;
+  c.command_pose.orientation[0] = 0.0;
   EXPECT_EQ(dds::check_command_content(c, b).reason, RejectReason::malformed);
   c = command("a", 1);
   c.twist[0] = 100.0;
@@ -131,9 +131,9 @@ TEST(CommandValidation, PoseDistancesAreTakenFromTheDevicesBase) {
   dds::CommandBounds b;  // 2 m
   b.base_position = {3.0, 0.0, 0.0};
   auto c = command("a", 1);
-  c.pose.position[0] = 4.5;  // 1.5 m from the base, 4.5 m from the world's origin
+  c.command_pose.position[0] = 4.5;  // 1.5 m from the base, 4.5 m from the world's origin
   EXPECT_TRUE(dds::check_command_content(c, b).ok);
-  c.pose.position[0] = 0.5;  // 2.5 m from the base
+  c.command_pose.position[0] = 0.5;  // 2.5 m from the base
   EXPECT_EQ(dds::check_command_content(c, b).reason, RejectReason::out_of_bounds);
   c = command("a", 1);
   c.kind = hapticd_msg_COMMAND_WRENCH;
@@ -161,7 +161,7 @@ TEST(CommandValidation, RandomisedSamplesNeverPassWithBadContent) {
       double* fields = &c.wrench[0];
       const double specials[] = {std::nan(""), std::numeric_limits<double>::infinity(), -1e300, 1e9, -5.0, 0.5};
       fields[rng() % 6] = specials[rng() % 6];
-      c.pose.position[rng() % 3] = specials[rng() % 6];
+      c.command_pose.position[rng() % 3] = specials[rng() % 6];
     }
     const dds::ContentCheck r = dds::check_command_content(c, b);
     if (!r.ok) continue;

@@ -354,7 +354,7 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
   dds::set_text(r.client, impl_->options.client_id);
   r.request_id = impl_->next_request.fetch_add(1);
   r.kind = wire::to_msg(kind);
-  dds::set_text(r.name, name);
+  dds::set_text(r.subject, name);
   r.value_count = static_cast<std::int32_t>(std::min<std::size_t>(values.size(), kMaxValues));
   for (std::int32_t i = 0; i < r.value_count; ++i) r.values[i] = values[static_cast<std::size_t>(i)];
   // A reliable writer delivers to the readers it has matched: give discovery a moment after start-up.

@@ -47,12 +47,12 @@ static_assert(kMaxGroupDevices == hapticd_msg_MAX_GROUP_DEVICES && kMaxValues ==
 DeviceInfo from_msg(const hapticd_msg_DeviceDescription& in) {
   DeviceInfo d;
   d.device = text_of(in.device);
-  d.version = in.version;
+  d.version = in.data_model_version;
   d.device_plugin = text_of(in.device_plugin);
   d.simulated = in.simulated;
   d.rate_hz = in.rate_hz;
   d.dof = bounded(in.dof, kMaxJoints);
-  for (int i = 0; i < d.dof; ++i) d.joint_names.emplace_back(text_of(in.joint_names[i]));
+  for (int i = 0; i < d.dof; ++i) d.joint_names.emplace_back(text_of(in.joint_names[i].text));
   d.position_min = joints(in.position_min, d.dof);
   d.position_max = joints(in.position_max, d.dof);
   d.velocity_max = joints(in.velocity_max, d.dof);
@@ -66,7 +66,8 @@ DeviceInfo from_msg(const hapticd_msg_DeviceDescription& in) {
   d.workspace_min = vector3(in.workspace_min);
   d.workspace_max = vector3(in.workspace_max);
   for (int k = 0; k < bounded(in.scheme_count, hapticd_msg_MAX_SCHEMES); ++k)
-    d.schemes.push_back({std::string(text_of(in.schemes[k])), std::string(text_of(in.scheme_virtual_model[k]))});
+    d.schemes.push_back(
+        {std::string(text_of(in.schemes[k].text)), std::string(text_of(in.scheme_virtual_model[k].text))});
   d.command_deadline_s = in.command_deadline_s;
   d.command_fade_s = in.command_fade_s;
   return d;
@@ -77,7 +78,7 @@ void from_msg(const hapticd_msg_DeviceState& in, DeviceState& out) noexcept {
   out.serial = in.serial;
   out.cycle = in.cycle;
   out.loop_time_ns = in.loop_time_ns;
-  out.pose = dds::to_pose(in.pose);
+  out.pose = dds::to_pose(in.handle_pose);
   out.twist = twist(in.twist);
   out.operator_wrench = wrench(in.operator_wrench);
   out.environment_wrench = wrench(in.environment_wrench);
@@ -98,8 +99,9 @@ void from_msg(const hapticd_msg_DeviceState& in, DeviceState& out) noexcept {
 GroupInfo from_msg(const hapticd_msg_GroupDescription& in) {
   GroupInfo g;
   g.group = text_of(in.group);
-  g.version = in.version;
-  for (int k = 0; k < bounded(in.device_count, kMaxGroupDevices); ++k) g.devices.emplace_back(text_of(in.devices[k]));
+  g.version = in.data_model_version;
+  for (int k = 0; k < bounded(in.device_count, kMaxGroupDevices); ++k)
+    g.devices.emplace_back(text_of(in.devices[k].text));
   g.min_distance_m = in.min_distance_m;
   g.repulsion_distance_m = in.repulsion_distance_m;
   g.own_loop = in.own_loop;
@@ -180,7 +182,7 @@ void to_msg(const EngineCommand& in, std::string_view device, hapticd_msg_Engine
   } else {
     out.anchor.orientation[0] = 1.0;
   }
-  dds::to_msg(in.pose, out.pose);
+  dds::to_msg(in.pose, out.command_pose);
   dds::to_msg(in.twist, out.twist);
 }
 

@@ -31,7 +31,7 @@ hapticd_msg_DeviceState state_message(const DeviceSnapshot& s, const StateLabels
   m.serial = labels.serial;
   m.cycle = s.cycle;
   m.loop_time_ns = s.time_ns;
-  dds::to_msg(s.handle_pose, m.pose);
+  dds::to_msg(s.handle_pose, m.handle_pose);
   dds::to_msg(s.handle_twist, m.twist);
   dds::to_msg(s.operator_wrench, m.operator_wrench);
   dds::to_msg(s.environment_wrench, m.environment_wrench);
@@ -57,14 +57,14 @@ hapticd_msg_DeviceDescription description_message(const DeviceSession& s, double
   const DeviceDescription& desc = s.description();
   hapticd_msg_DeviceDescription m{};
   dds::set_text(m.device, s.name());
-  m.version = hapticd_msg_VERSION;
+  m.data_model_version = hapticd_msg_VERSION;
   dds::set_text(m.device_plugin, s.chain().device.descriptor->name);
   m.simulated = desc.simulated;
   m.rate_hz = rate_hz;
   m.dof = desc.dof();
   for (int i = 0; i < desc.dof() && i < hapticd_msg_MAX_JOINTS; ++i) {
     const JointDescription& j = desc.joints[static_cast<std::size_t>(i)];
-    dds::set_text(m.joint_names[i], j.name);
+    dds::set_text(m.joint_names[i].text, j.name);
     m.position_min[i] = j.position_min;
     m.position_max[i] = j.position_max;
     m.velocity_max[i] = j.velocity_max;
@@ -84,8 +84,8 @@ hapticd_msg_DeviceDescription description_message(const DeviceSession& s, double
   m.scheme_count = static_cast<std::int32_t>(std::min<std::size_t>(schemes.size(), hapticd_msg_MAX_SCHEMES));
   for (std::int32_t k = 0; k < m.scheme_count; ++k) {
     const SchemeChain& sc = schemes[static_cast<std::size_t>(k)];
-    dds::set_text(m.schemes[k], sc.name);
-    dds::set_text(m.scheme_virtual_model[k],
+    dds::set_text(m.schemes[k].text, sc.name);
+    dds::set_text(m.scheme_virtual_model[k].text,
                   sc.virtual_model ? std::string_view(sc.virtual_model->descriptor->name) : "");
   }
   m.command_deadline_s = s.chain().engine_deadline_s;

@@ -43,7 +43,7 @@ void RequestDispatcher::handle_requests() {
     for (DeviceLink* member : members) member->requests.fetch_add(1, std::memory_order_relaxed);
     const std::optional<PeerId> requester = dds_.peers.participant_of(dds_.request.get(), info.publication_handle);
     Answer answer;
-    if (dds::text_of(m.client).empty() || !dds::terminated(m.client) || !dds::terminated(m.name)) {
+    if (dds::text_of(m.client).empty() || !dds::terminated(m.client) || !dds::terminated(m.subject)) {
       answer.message = "malformed request (no client id)";
     } else if (!requester) {
       answer.message = "request from a writer that is no longer known";
@@ -53,7 +53,7 @@ void RequestDispatcher::handle_requests() {
           info,
           *requester,
           dds::text_of(m.client),
-          dds::text_of(m.name),
+          dds::text_of(m.subject),
           std::vector<double>(m.values, m.values + std::clamp<std::int32_t>(m.value_count, 0, hapticd_msg_MAX_VALUES))};
       if (is_group_request(m.kind)) {
         answer = d != nullptr ? Answer{false, "'" + target + "' is a device: group requests name a group"}

@@ -124,10 +124,10 @@ void StatePublisher::publish_group_states() {
 void StatePublisher::publish_group_description(const GroupLink& group) {
   hapticd_msg_GroupDescription m{};
   dds::set_text(m.group, group.name);
-  m.version = hapticd_msg_VERSION;
+  m.data_model_version = hapticd_msg_VERSION;
   m.device_count = static_cast<std::int32_t>(group.members.size());
   for (std::size_t k = 0; k < group.members.size(); ++k)
-    dds::set_text(m.devices[k], links_[group.members[k]].session->name());
+    dds::set_text(m.devices[k].text, links_[group.members[k]].session->name());
   m.min_distance_m = group.stage->min_distance_m();
   m.repulsion_distance_m = group.stage->repulsion_distance_m();
   m.own_loop = group.stage->own_loop();
