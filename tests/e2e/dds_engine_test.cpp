@@ -446,6 +446,49 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   EXPECT_EQ(server.monitor().reports(), 2u);
 }
 
+TEST(DdsEngine, ARequestSentAgainIsAnsweredAgainAndAppliedOnce) {
+  // A client sends a request again (the same id) when no reply came: the server answers every copy and applies
+  // the request once. Set the coupling stiffness to 2000 (id 7), then to 2500 (id 8), then send id 7 again: the
+  // reply repeats the first answer, and 2500 stays in effect.
+  Server server(session_yaml(98, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
+  server.start();
+  dds::Participant participant(dds::ParticipantOptions{98, {}});
+  dds::Writer<hapticd_msg_ControlRequest> requests(participant);
+  dds::Reader<hapticd_msg_ControlReply> replies(participant);
+  for (int i = 0; i < 500 && (requests.matched() == 0 || replies.matched() == 0); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_GT(requests.matched(), 0);
+  const auto ask = [&](std::uint64_t id, double stiffness) {
+    hapticd_msg_ControlRequest r{};
+    dds::set_text(r.device, "v3");
+    dds::set_text(r.client, "repeater");
+    r.request_id = id;
+    r.kind = hapticd_msg_REQUEST_SET_PARAMETER;
+    dds::set_text(r.subject, "virtual_model.coupling_stiffness_n_per_m");
+    r.value_count = 1;
+    r.values[0] = stiffness;
+    EXPECT_TRUE(requests.write(r));
+    std::string answer;
+    for (int i = 0; i < 500 && answer.empty(); ++i) {
+      replies.take([&](const hapticd_msg_ControlReply& a, const dds_sample_info_t&) {
+        if (a.request_id == id) answer = std::string(a.accepted ? "accepted: " : "refused: ") + a.message;
+      });
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return answer;
+  };
+  const std::string first = ask(7, 2000.0);
+  EXPECT_EQ(first.rfind("accepted", 0), 0u) << first;
+  EXPECT_EQ(ask(8, 2500.0).rfind("accepted", 0), 0u);
+  EXPECT_EQ(ask(7, 2000.0), first);  // answered again, as the first time
+  Client reader({"reader", 98, {}, 0.05});
+  const client::Reply in_effect = reader.get_parameter("v3", "virtual_model.coupling_stiffness_n_per_m");
+  ASSERT_TRUE(in_effect.accepted) << in_effect.message;
+  ASSERT_EQ(in_effect.values.size(), 1u);
+  EXPECT_EQ(in_effect.values[0], 2500.0);  // the repeated request was not applied again
+  server.stop();
+}
+
 TEST(DdsEngine, TheLoopSideOfTheBridgeDoesNotAllocate) {
   // The loop publishes a snapshot every cycle and wakes the publisher; engine input arrives lock-free.
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";

@@ -7,6 +7,7 @@
 #include <map>
 #include <mutex>
 #include <random>
+#include <set>
 #include <thread>
 
 #include "hapticd/dds/conversion.hpp"
@@ -14,6 +15,10 @@
 #include "wire.hpp"
 
 namespace hapticd::client {
+
+namespace {
+constexpr std::chrono::milliseconds kRequestRetry{250};  // a request without a reply is sent again after this
+}  // namespace
 
 struct Client::Impl {
   explicit Impl(ClientOptions o)
@@ -116,6 +121,7 @@ struct Client::Impl {
         if (dds::text_of(r.client) != options.client_id) return;
         {
           std::lock_guard lock(mutex);
+          if (!pending.contains(r.request_id)) return;  // another copy's reply, answered already
           Reply answer{true, r.accepted, std::string(dds::text_of(r.message)), {}};
           const auto count = static_cast<std::size_t>(std::clamp<std::int32_t>(r.value_count, 0, kMaxValues));
           answer.values.assign(r.values, r.values + count);
@@ -202,6 +208,7 @@ struct Client::Impl {
   GroupState group_scratch;
   std::atomic<int> waiters{0};  // threads in a wait_for_*: only then does a state notify
   std::map<std::uint64_t, Reply> replies;
+  std::set<std::uint64_t> pending;  // requests waiting for their reply
   // Request ids start at a random point: replies are matched by (client id, request id), and two clients that
   // declare the same id must not take each other's replies.
   std::atomic<std::uint64_t> next_request{std::random_device{}() | (std::uint64_t{std::random_device{}()} << 32) | 1};
@@ -362,13 +369,30 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
       std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout);
   while (impl_->request.matched() == 0 && std::chrono::steady_clock::now() < until)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  if (!impl_->request.write(r)) return Reply{false, false, "cannot write the request", {}};
+  // Sent again, with the same id, every kRequestRetry without a reply: the server answers a repeated request
+  // again and applies it once (the first may have arrived before discovery let the server know this
+  // participant, or its reply before the server had matched our reply reader).
   std::unique_lock lock(impl_->mutex);
-  if (!impl_->changed.wait_until(lock, until, [&] { return impl_->replies.count(r.request_id) > 0; }))
-    return Reply{false, false, "no reply within the timeout", {}};
-  Reply reply = impl_->replies[r.request_id];
-  impl_->replies.erase(r.request_id);
-  return reply;
+  impl_->pending.insert(r.request_id);
+  struct Done {  // whatever the way out: no longer pending, no reply kept
+    Impl& impl;
+    std::uint64_t id;
+    ~Done() {
+      impl.pending.erase(id);
+      impl.replies.erase(id);
+    }
+  } done{*impl_, r.request_id};
+  const auto answered = [&] { return impl_->replies.count(r.request_id) > 0; };
+  for (;;) {
+    lock.unlock();
+    const bool written = impl_->request.write(r);
+    lock.lock();
+    if (!written && !answered()) return Reply{false, false, "cannot write the request", {}};
+    const auto retry = std::min(until, std::chrono::steady_clock::now() + kRequestRetry);
+    if (impl_->changed.wait_until(lock, retry, answered)) break;
+    if (retry >= until) return Reply{false, false, "no reply within the timeout", {}};
+  }
+  return impl_->replies[r.request_id];
 }
 
 Reply Client::claim(std::string_view device, Timeout timeout) {

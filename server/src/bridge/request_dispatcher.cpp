@@ -42,12 +42,20 @@ void RequestDispatcher::handle_requests() {
     if (d != nullptr) d->requests.fetch_add(1, std::memory_order_relaxed);
     for (DeviceLink* member : members) member->requests.fetch_add(1, std::memory_order_relaxed);
     const std::optional<PeerId> requester = dds_.peers.participant_of(dds_.request.get(), info.publication_handle);
+    if (requester) {
+      if (const hapticd_msg_ControlReply* again = answered_->find(*requester, m)) {
+        (void)dds_.reply.write_once(*again);  // sent again: the same answer, nothing applied twice
+        return;
+      }
+    }
     Answer answer;
+    bool dispatched = false;
     if (dds::text_of(m.client).empty() || !dds::terminated(m.client) || !dds::terminated(m.subject)) {
       answer.message = "malformed request (no client id)";
     } else if (!requester) {
       answer.message = "request from a writer that is no longer known";
     } else {
+      dispatched = true;
       const Request r{
           m,
           info,
@@ -71,7 +79,8 @@ void RequestDispatcher::handle_requests() {
     const std::size_t count = std::min<std::size_t>(answer.values.size(), hapticd_msg_MAX_VALUES);
     reply.value_count = static_cast<std::int32_t>(count);
     std::copy_n(answer.values.begin(), count, reply.values);
-    (void)dds_.reply.write_once(reply);  // no state kept per client id
+    if (dispatched) answered_->remember(*requester, reply);
+    (void)dds_.reply.write_once(reply);  // no state kept per client id (beyond the bounded AnsweredRequests)
   });
 }
 

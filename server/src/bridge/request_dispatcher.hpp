@@ -3,14 +3,17 @@
 // release, switch scheme, set parameter, operator, E-stop, recover, describe; for a device group: claim all or
 // none, release, E-stop, recover all or none). The requester is the participant
 // of the request's writer, whatever client id the request declares; owner-only requests (release, switch, set,
-// recover) are accepted only from the claimant's participant, or on a free device. The same thread ends claims
-// whose claimant's participant is gone, and counts the engines' missed deadlines.
+// recover) are accepted only from the claimant's participant, or on a free device. A request sent again (the same
+// client and request id from the same participant) is answered again and not applied twice (AnsweredRequests). The same
+// thread ends claims whose claimant's participant is gone, and counts the engines' missed deadlines.
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "bridge/answered_requests.hpp"
 #include "bridge/dds_endpoints.hpp"
 #include "bridge/device_link.hpp"
 #include "bridge/event_sender.hpp"
@@ -83,6 +86,7 @@ class RequestDispatcher {
   StatePublisher& publisher_;
   std::int64_t claim_grace_ns_;
   std::atomic<std::uint64_t> claims_ended_{0};
+  std::unique_ptr<AnsweredRequests> answered_ = std::make_unique<AnsweredRequests>();  // about 90 kB
 };
 
 }  // namespace hapticd::server

@@ -92,7 +92,8 @@ class HAPTICD_API Client {
   // Reports that arrived before the callback was set are handed to it at once, on the caller's thread.
   void on_fault_report(std::function<void(const FaultReport&)> callback);
 
-  // ---- requests: the reply, or answered = false after the timeout ----
+  // ---- requests: the reply, or answered = false after the timeout. A request without a reply is sent again
+  // (the same id) every 250 ms until the timeout; the server applies it once and answers each copy. ----
   Reply request(std::string_view device, RequestKind kind, std::string_view name = {},
                 const std::vector<double>& values = {}, Timeout timeout = kDefaultTimeout);
   Reply claim(std::string_view device, Timeout timeout = kDefaultTimeout);
