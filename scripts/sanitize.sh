@@ -14,6 +14,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 presets=("$@")
+unset HAPTICD_DDS_NETWORK HAPTICD_DDS_CONFIG  # the tests bind to the loopback interface
 [ ${#presets[@]} -eq 0 ] && presets=(asan tsan fuzz)
 export TSAN_OPTIONS="${TSAN_OPTIONS:-} suppressions=$PWD/tests/tsan.supp halt_on_error=1"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-} halt_on_error=1 print_stacktrace=1"

@@ -54,7 +54,11 @@ int main(int argc, char** argv) {
   double timeout = 2.0;
   app.add_option("--domain", domain, "DDS domain")->check(CLI::Range(0, 230));
   app.add_option("--id", id, "client id (the owner name of a claim)");
+  std::string network;
   app.add_option("--cyclone-config", cyclone, "Cyclone DDS XML (default: the built-in loopback configuration)");
+  app.add_option("--network", network,
+                 "the network instead: interfaces=NAME|ADDRESS,...;peers=ADDRESS,...;multicast=false (default: "
+                 "HAPTICD_DDS_NETWORK, else loopback only)");
   app.add_option("--timeout", timeout, "seconds to wait for devices and replies");
 
   std::string device, scheme, parameter, file, what;
@@ -125,7 +129,10 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
-  Client client({id, domain, cyclone, 0.05});
+  hapticd::client::ClientOptions options(id, domain);
+  options.cyclone_config = cyclone;
+  options.network = network;
+  Client client(options);
   const auto wait = std::chrono::duration<double>(timeout);
 
   if (*list) {

@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     }
   }
   using namespace std::chrono_literals;
-  hapticd::client::Client client({"wall-engine", domain, {}, 0.05});
+  hapticd::client::Client client({"wall-engine", domain});
   const auto first = client.wait_for_state(device, 20s);
   if (!first) {
     std::fprintf(stderr, "no state from '%s' on domain %d\n", device.c_str(), domain);

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
-  hapticd::client::Client client({id, domain, {}, 0.05});
+  hapticd::client::Client client({id, domain});
   const auto first = client.wait_for_state(device, std::chrono::seconds(10));
   if (!first) {
     fmt::print(stderr, "admittance-engine: no device '{}' on domain {}\n", device, domain);

@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
-  hapticd::client::Client client({id, domain, {}, 0.05});
+  hapticd::client::Client client({id, domain});
   hapticd::group_models::SharedBodySettings box;
   box.mass_kg = mass;
   box.size_m = Eigen::Vector3d(size[0], size[1], size[2]);

@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
-  hapticd::client::Client client({id, domain, {}, 0.05});
+  hapticd::client::Client client({id, domain});
   const auto description = client.wait_for_device(device, std::chrono::duration<double>(wait));
   if (!description) {
     fmt::print(stderr, "scene-engine: no device '{}' on domain {} within {} s\n", device, domain, wait);

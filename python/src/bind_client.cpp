@@ -233,12 +233,16 @@ void bind_client(py::module_& m) {
   py::class_<ClientHandle>(m, "Client", R"(A client of hapticd's DDS interface: one DDS participant (loopback only by
 default). Waiting calls release the GIL; a refused request raises RequestRefused, no reply in time Timeout.)")
       .def(py::init([](const std::string& client_id, int domain, const std::string& cyclone_config,
-                       double command_deadline_s) {
-             return ClientHandle{
-                 std::make_unique<Client>(ClientOptions{client_id, domain, cyclone_config, command_deadline_s})};
+                       const std::string& network, double command_deadline_s) {
+             ClientOptions options(client_id, domain);
+             options.cyclone_config = cyclone_config;
+             options.network = network;
+             options.command_deadline_s = command_deadline_s;
+             return ClientHandle{std::make_unique<Client>(std::move(options))};
            }),
-           py::arg("client_id"), py::arg("domain") = 0, py::arg("cyclone_config") = "",
-           py::arg("command_deadline_s") = 0.05)
+           py::arg("client_id"), py::arg("domain") = 0, py::arg("cyclone_config") = "", py::arg("network") = "",
+           py::arg("command_deadline_s") = 0.05,
+           "network: 'interfaces=eth1;peers=192.0.2.2;multicast=false' (default: HAPTICD_DDS_NETWORK, else loopback)")
       .def_property_readonly("id", [](ClientHandle& h) { return h.get().id(); })
       .def(
           "close",

@@ -73,7 +73,7 @@ TEST(DdsEngine, ASecondEngineCannotTakeAClaimedDevice) {
   SceneEngine first(62, "first-engine");
   server.start();
   ASSERT_TRUE(first.connect());
-  Client second({"second-engine", 62, {}, 0.05});
+  Client second({"second-engine", 62});
   const client::Reply r = second.claim("v3", std::chrono::seconds(10));
   EXPECT_TRUE(r.answered);
   EXPECT_FALSE(r.accepted);
@@ -118,7 +118,7 @@ TEST(DdsEngine, AKilledEngineFadesToZeroWithinTheDeadline) {
   // An engine pushes with a 10 N wrench, then dies. The device must hold 10 N until the deadline (50 ms
   // after the last command) and fade to zero within the fade time (20 ms), without a step.
   Server server(session_yaml(63, 1.5, "constant", "[0.0, 0.0, 0.0]"));
-  auto engine = std::make_unique<Client>(client::ClientOptions{"doomed-engine", 63, {}, 0.05});
+  auto engine = std::make_unique<Client>(client::ClientOptions{"doomed-engine", 63});
   server.start();
   ASSERT_TRUE(engine->wait_for_state("v3", std::chrono::seconds(20)));
   ASSERT_TRUE(engine->claim("v3", std::chrono::seconds(10)).accepted);
@@ -159,7 +159,7 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   std::mutex events_mutex;  // before the client: its callbacks use them until it is gone
   std::vector<std::string> events;
   Server server(session_yaml(64, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
-  Client engine({"careful-engine", 64, {}, 0.05});
+  Client engine({"careful-engine", 64});
   engine.on_event([&](const client::Event& e) {
     std::lock_guard lock(events_mutex);
     events.push_back(std::to_string(static_cast<int>(e.kind)) + ":" + e.code);
@@ -168,7 +168,7 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   ASSERT_TRUE(engine.wait_for_state("v3", std::chrono::seconds(20)));
   // A raw participant claims the device in the engine's name and writes what the client library never would
   // (the claim binds to the participant: its own command writer must belong to it).
-  dds::Participant raw_participant(dds::ParticipantOptions{64, {}});
+  dds::Participant raw_participant(dds::ParticipantOptions{64, {}, {}});
   dds::Writer<hapticd_msg_EngineCommand> raw(raw_participant);
   dds::Writer<hapticd_msg_ControlRequest> raw_requests(raw_participant);
   for (int i = 0; i < 200 && (raw.matched() == 0 || raw_requests.matched() == 0); ++i)
@@ -325,7 +325,7 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   std::unique_ptr<client::FaultReport> report, late_report;
   std::vector<std::string> events;
   Server server(session_yaml(69, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime", "safe_damping_s: 0.5"));
-  Client tool({"safety-tool", 69, {}, 0.05});
+  Client tool({"safety-tool", 69});
   tool.on_fault_report([&](const client::FaultReport& r) {
     std::lock_guard lock(m);
     report = std::make_unique<client::FaultReport>(r);
@@ -382,7 +382,7 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   }
   EXPECT_TRUE(eventually([&] { return saw(static_cast<int>(client::EventKind::estop), "emergency_stop"); }));
   // A tool started after the fault still gets the report.
-  Client late({"late-tool", 69, {}, 0.05});
+  Client late({"late-tool", 69});
   late.on_fault_report([&](const client::FaultReport& r) {
     std::lock_guard lock(m);
     late_report = std::make_unique<client::FaultReport>(r);
@@ -452,7 +452,7 @@ TEST(DdsEngine, ARequestSentAgainIsAnsweredAgainAndAppliedOnce) {
   // reply repeats the first answer, and 2500 stays in effect.
   Server server(session_yaml(98, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
   server.start();
-  dds::Participant participant(dds::ParticipantOptions{98, {}});
+  dds::Participant participant(dds::ParticipantOptions{98, {}, {}});
   dds::Writer<hapticd_msg_ControlRequest> requests(participant);
   dds::Reader<hapticd_msg_ControlReply> replies(participant);
   for (int i = 0; i < 500 && (requests.matched() == 0 || replies.matched() == 0); ++i)
@@ -481,7 +481,7 @@ TEST(DdsEngine, ARequestSentAgainIsAnsweredAgainAndAppliedOnce) {
   EXPECT_EQ(first.rfind("accepted", 0), 0u) << first;
   EXPECT_EQ(ask(8, 2500.0).rfind("accepted", 0), 0u);
   EXPECT_EQ(ask(7, 2000.0), first);  // answered again, as the first time
-  Client reader({"reader", 98, {}, 0.05});
+  Client reader({"reader", 98});
   const client::Reply in_effect = reader.get_parameter("v3", "virtual_model.coupling_stiffness_n_per_m");
   ASSERT_TRUE(in_effect.accepted) << in_effect.message;
   ASSERT_EQ(in_effect.values.size(), 1u);

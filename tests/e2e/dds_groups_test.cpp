@@ -100,7 +100,7 @@ class GroupServer {
 TEST(DdsGroups, TheGroupIsDescribedAndItsStateHoldsEveryDeviceFromOneCycle) {
   GroupServer server(hands_session(81, "realtime", 60.0));
   server.start();
-  Client client({"observer", 81, {}, 0.05});
+  Client client({"observer", 81});
   const auto described = client.wait_for_group("hands", 10s);
   ASSERT_TRUE(described.has_value());
   EXPECT_EQ(described->version, hapticd_msg_VERSION);
@@ -156,7 +156,7 @@ TEST(DdsGroups, TheGroupIsDescribedAndItsStateHoldsEveryDeviceFromOneCycle) {
 TEST(DdsGroups, AGroupClaimTakesEveryDeviceOrNoneEvenInARace) {
   GroupServer server(hands_session(82, "realtime", 120.0));
   server.start();
-  Client a({"engine-a", 82, {}, 0.05}), b({"engine-b", 82, {}, 0.05}), single({"engine-c", 82, {}, 0.05});
+  Client a({"engine-a", 82}), b({"engine-b", 82}), single({"engine-c", 82});
   for (Client* c : {&a, &b, &single}) ASSERT_TRUE(c->wait_for_group("hands", 10s).has_value());
   ASSERT_TRUE(single.wait_for_device("right", 10s).has_value());
   const auto owner = [&](std::size_t i) { return server.bridge().owner(i); };
@@ -202,7 +202,7 @@ TEST(DdsGroups, AGroupClaimTakesEveryDeviceOrNoneEvenInARace) {
 TEST(DdsGroups, AGroupEStopStopsTheGroupAndOnlyItAndARecoveryIsAllOrNone) {
   GroupServer server(hands_session(83, "realtime", 120.0));
   server.start();
-  Client owner({"owner", 83, {}, 0.05}), other({"other", 83, {}, 0.05});
+  Client owner({"owner", 83}), other({"other", 83});
   ASSERT_TRUE(owner.wait_for_group("hands", 10s).has_value());
   ASSERT_TRUE(other.wait_for_group("hands", 10s).has_value());
   ASSERT_TRUE(owner.wait_for_state("third", 10s).has_value());
@@ -230,8 +230,10 @@ TEST(DdsGroups, AGroupEStopStopsTheGroupAndOnlyItAndARecoveryIsAllOrNone) {
   EXPECT_NE(server.device(0).fault(), DeviceFault::none);
   const client::Reply recovered = owner.recover_group("hands", 5s);
   EXPECT_TRUE(recovered.accepted) << recovered.message;
+  // At most 10 s: under ThreadSanitizer with other tests beside it, the bridge's threads can lag by seconds.
   for (int i = 0;
-       i < 300 && (server.device(0).fault() != DeviceFault::none || server.device(1).fault() != DeviceFault::none); ++i)
+       i < 1000 && (server.device(0).fault() != DeviceFault::none || server.device(1).fault() != DeviceFault::none);
+       ++i)
     std::this_thread::sleep_for(10ms);
   EXPECT_EQ(server.device(0).fault(), DeviceFault::none);
   EXPECT_EQ(server.device(1).fault(), DeviceFault::none);
@@ -252,7 +254,7 @@ TEST(DdsGroups, AGroupEStopStopsTheGroupAndOnlyItAndARecoveryIsAllOrNone) {
 // an engine that started late would show in the trajectory).
 struct WallEngine {
   WallEngine(int domain, const std::string& id, std::string device_name)
-      : client({id, domain, {}, 0.05}), device(std::move(device_name)) {}
+      : client({id, domain}), device(std::move(device_name)) {}
   ~WallEngine() { client.on_state({}); }
   bool connect() {
     const auto first = client.wait_for_state(device, 20s);
@@ -310,7 +312,7 @@ TEST(DdsGroups, TwoArmLockstepRunsWithTwoEnginesAreBitIdentical) {
 TEST(DdsGroups, AnEngineCouplesToAWholeGroupWithOneCommandPerCycle) {
   const std::string arms = arm("left", 0.0, "[6.0, 0.0, 0.0]") + arm("right", 2.0, "[6.0, 0.0, 0.0]");
   GroupServer server(hands_session(85, "lockstep", 0.8, arms));
-  Client engine({"group-engine", 85, {}, 0.05});
+  Client engine({"group-engine", 85});
   server.start();
   ASSERT_TRUE(engine.wait_for_group("hands", 20s).has_value());
   const auto first = engine.wait_for_group_state("hands", 20s);
@@ -357,7 +359,7 @@ TEST(DdsGroups, TheBimanualEngineLetsTwoOperatorsLiftAndTurnItsBox) {
   const std::string arms = held_arm("left", "{xyz: [0, 0, 0]}") +
                            held_arm("right", "{xyz: [0.45, 0.558, 0], rpy: [0, 0, 3.141592653589793]}");
   GroupServer server(hands_session(86, "lockstep", 4.5, arms));
-  Client client({"bimanual-engine", 86, {}, 0.05});
+  Client client({"bimanual-engine", 86});
   group_models::SharedBodySettings box;
   box.size_m = Eigen::Vector3d(0.32, 0.15, 0.10);
   examples::BimanualEngine engine(client, "hands", box);

@@ -88,7 +88,7 @@ TEST(DdsOwnership, AnotherParticipantWritingUnderTheOwnersIdIsNotTheOwner) {
   const auto accepted_before = server.bridge().commands_accepted(0);
 
   // The requests, from a client of its own that declares the owner's id.
-  Client spoofer({"engine", 71, {}, 0.05});
+  Client spoofer({"engine", 71});
   ASSERT_TRUE(spoofer.wait_for_state("v3", std::chrono::seconds(10)));
   for (const client::Reply& r :
        {spoofer.claim("v3"), spoofer.release("v3"), spoofer.recover("v3"), spoofer.switch_scheme("v3", "default"),
@@ -98,7 +98,7 @@ TEST(DdsOwnership, AnotherParticipantWritingUnderTheOwnersIdIsNotTheOwner) {
   }
 
   // The commands, raw: a participant and writer of their own, the owner's id, serials from 2^64 - 10000.
-  dds::Participant participant(dds::ParticipantOptions{71, {}});
+  dds::Participant participant(dds::ParticipantOptions{71, {}, {}});
   dds::Writer<hapticd_msg_EngineCommand> writer(participant, dds::CommandTiming{0.05, 0.5});
   const auto state = spoofer.latest_state("v3");
   ASSERT_TRUE(state.has_value());
@@ -145,10 +145,10 @@ TEST(DdsOwnership, AnotherParticipantWritingUnderTheOwnersIdIsNotTheOwner) {
 TEST(DdsOwnership, AClaimEndsWhenItsClaimantExitsWithoutReleasing) {
   Server server(session_yaml(72, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
   server.start();
-  Client watcher({"watcher", 72, {}, 0.05});
+  Client watcher({"watcher", 72});
   ASSERT_TRUE(watcher.wait_for_state("v3", std::chrono::seconds(20)));
   {
-    Client quitter({"quitter", 72, {}, 0.05});
+    Client quitter({"quitter", 72});
     ASSERT_TRUE(quitter.claim("v3").accepted);
     ASSERT_TRUE(wait_for_owner(watcher, "quitter", 2.0));
     EXPECT_FALSE(watcher.claim("v3").accepted);
@@ -169,7 +169,7 @@ TEST(DdsOwnership, AClaimEndsWhenItsClaimantExitsWithoutReleasing) {
 TEST(DdsOwnership, AClaimEndsWhenItsClaimantIsKilledOrFrozen) {
   Server server(session_yaml(73, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
   server.start();
-  Client watcher({"watcher", 73, {}, 0.05});
+  Client watcher({"watcher", 73});
   ASSERT_TRUE(watcher.wait_for_state("v3", std::chrono::seconds(20)));
   const auto measure = [&](const char* what, Process& claimant, const std::string& id, int sig) {
     ASSERT_TRUE(claimant.started());

@@ -135,7 +135,7 @@ class Server {
 
 // The scene engine of examples/engines: answers every state with the proxy of the handle in the scene.
 struct SceneEngine {
-  SceneEngine(int domain, const std::string& id) : client({id, domain, {}, 0.05}) {}
+  SceneEngine(int domain, const std::string& id) : client({id, domain}) {}
   ~SceneEngine() { client.on_state({}); }  // before the members the callback uses are gone
   SceneEngine(const SceneEngine&) = delete;
   SceneEngine& operator=(const SceneEngine&) = delete;

@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   const int domain = std::atoi(argv[2]);
   const char* device = argv[3];
   const long count = std::atol(argv[4]);
-  dds::Participant participant(dds::ParticipantOptions{domain, {}});
+  dds::Participant participant(dds::ParticipantOptions{domain, {}, {}});
   dds::Writer<hapticd_msg_ControlRequest> requests(participant);
   dds::Writer<hapticd_msg_EngineCommand> commands(participant, dds::CommandTiming{0.05, 0.5});
   const auto start = std::chrono::steady_clock::now();

@@ -23,7 +23,9 @@ constexpr std::chrono::milliseconds kRequestRetry{250};  // a request without a 
 struct Client::Impl {
   explicit Impl(ClientOptions o)
       : options(std::move(o)),
-        participant(dds::ParticipantOptions{options.domain_id, options.cyclone_config}),
+        participant(dds::ParticipantOptions{
+            options.domain_id, options.cyclone_config,
+            options.network.empty() ? std::nullopt : std::optional(dds::parse_network(options.network))}),
         timing{options.command_deadline_s, 0.5},
         description(participant),
         state(participant),

@@ -127,11 +127,10 @@ int run_session(const RunOptions& options) {
   if (bridge != nullptr) {
     std::string cpus;
     for (int c : served->dds_cpus()) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
-    spdlog::info(
-        "DDS interface on domain {} ({}){}", s->config.dds.domain_id,
-        s->config.dds.cyclone_config.empty() ? std::string("loopback only") : s->config.dds.cyclone_config.string(),
-        cpus.empty() ? std::string()
-                     : fmt::format(", DDS threads on CPU {}, the loop on CPU {}", cpus, served->loop_cpu()));
+    spdlog::info("DDS interface on domain {} ({}){}", s->config.dds.domain_id,
+                 dds::describe_network({s->config.dds.domain_id, s->config.dds.cyclone_config, s->config.dds.network}),
+                 cpus.empty() ? std::string()
+                              : fmt::format(", DDS threads on CPU {}, the loop on CPU {}", cpus, served->loop_cpu()));
   }
 
   for (const ConfigureFailure& f : s->configure_failures)

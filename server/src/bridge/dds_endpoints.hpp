@@ -11,7 +11,7 @@ namespace hapticd::server {
 struct DdsEndpoints {
   DdsEndpoints(const DdsSettings& s, const dds::CommandTiming& timing, const dds_topic_filter& command_filter,
                const dds_topic_filter& request_filter, const dds_topic_filter& group_command_filter)
-      : participant(dds::ParticipantOptions{s.domain_id, s.cyclone_config}),
+      : participant(dds::ParticipantOptions{s.domain_id, s.cyclone_config, s.network}),
         description(participant),
         state(participant),
         event(participant),

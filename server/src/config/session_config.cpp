@@ -111,13 +111,47 @@ ServerSettings read_server(const YAML::Node& node, const std::string& file, cons
   return settings;
 }
 
+// `dds.network`: {interfaces: [names or addresses], peers: [addresses], multicast: false}.
+dds::NetworkSettings read_network(const YAML::Node& node, const std::string& file) {
+  if (!node.IsMap())
+    throw ConfigError(file, line_of(node), "dds.network", "expected a mapping: interfaces, peers, multicast");
+  MappingReader r(node, "dds.network", file, {"interfaces", "peers", "multicast"});
+  dds::NetworkSettings n;
+  const auto names = [&](const std::string& key, std::vector<std::string>& out) {
+    const YAML::Node list = r.optional(key);
+    if (!list.IsDefined()) return;
+    if (!list.IsSequence())
+      throw ConfigError(file, line_of(list), r.path_of(key), "expected a list of interface names or addresses");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      if (!list[i].IsScalar())
+        throw ConfigError(file, line_of(list[i]), r.path_of(key) + "[" + std::to_string(i) + "]",
+                          "expected a name or address");
+      out.push_back(list[i].Scalar());
+    }
+  };
+  names("interfaces", n.interfaces);
+  names("peers", n.peers);
+  if (const YAML::Node m = r.optional("multicast"); m.IsDefined()) {
+    bool value = false;
+    if (!m.IsScalar() || !YAML::convert<bool>::decode(m, value))
+      throw ConfigError(file, line_of(m), r.path_of("multicast"), "expected true or false");
+    n.multicast = value;
+  }
+  try {
+    dds::validate(n);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(file, line_of(node), "dds.network", e.what());
+  }
+  return n;
+}
+
 DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std::filesystem::path& base) {
   DdsSettings d;
   if (!node.IsDefined()) return d;
   d.enabled = true;
   if (node.IsNull()) return d;  // `dds:` alone: on with the defaults
   if (!node.IsMap()) throw ConfigError(file, line_of(node), "dds", "expected a mapping of DDS settings");
-  const Parameters p = read_parameters(node, dds_settings_schema(), file, "dds", line_of(node), {});
+  const Parameters p = read_parameters(node, dds_settings_schema(), file, "dds", line_of(node), {"network"});
   d.enabled = p.boolean("enabled");
   d.domain_id = static_cast<int>(p.integer("domain_id"));
   if (const std::string c = p.string("cyclone_config"); !c.empty()) {
@@ -126,6 +160,12 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
     if (!std::filesystem::exists(d.cyclone_config))
       throw ConfigError(file, line_of(node["cyclone_config"]), "dds.cyclone_config",
                         "no such file: " + d.cyclone_config.string());
+  }
+  if (node["network"].IsDefined()) {
+    if (!d.cyclone_config.empty())
+      throw ConfigError(file, line_of(node["network"]), "dds.network",
+                        "give either dds.network or dds.cyclone_config, not both");
+    d.network = read_network(node["network"], file);
   }
   d.state_rate_hz = p.real("state_rate_hz");
   d.telemetry_rate_hz = p.real("telemetry_rate_hz");

@@ -11,6 +11,7 @@
 
 #include "config/config_overrides.hpp"
 #include "group/repulsion.hpp"
+#include "hapticd/dds/network.hpp"
 #include "hapticd/parameters.hpp"
 #include "hapticd/spatial.hpp"
 #include "safety/safety_settings.hpp"
@@ -36,7 +37,10 @@ struct DdsSettings {
   bool enabled = false;
   int domain_id = 0;
   std::filesystem::path cyclone_config;  // empty: the built-in loopback configuration
-  double state_rate_hz = 0.0;            // 0: every cycle
+  // `dds.network` (not with cyclone_config): interfaces, unicast peers, multicast - docs/deployment.md. Neither:
+  // HAPTICD_DDS_CONFIG or HAPTICD_DDS_NETWORK from the environment, else loopback only.
+  std::optional<dds::NetworkSettings> network;
+  double state_rate_hz = 0.0;  // 0: every cycle
   double telemetry_rate_hz = 10.0;
   double max_sample_age_s = 0.1;  // commands older than this (source timestamp) are rejected
   double max_force_n = 300.0;     // bounds of accepted engine commands

@@ -28,10 +28,15 @@
 namespace hapticd::client {
 
 struct ClientOptions {
+  ClientOptions(std::string id, int domain = 0) : client_id(std::move(id)), domain_id(domain) {}  // NOLINT
+
   std::string client_id;  // 1..31 characters, unique per client; the owner name a claim records
   int domain_id = 0;
-  std::filesystem::path cyclone_config;  // empty: the built-in loopback-only configuration
-  double command_deadline_s = 0.05;      // offered on the command writer: must not exceed the server's deadline
+  std::filesystem::path cyclone_config;  // a Cyclone XML file
+  // Else the network: "interfaces=eth1;peers=192.0.2.2;multicast=false" (docs/deployment.md). Neither: the
+  // environment's HAPTICD_DDS_CONFIG or HAPTICD_DDS_NETWORK, else the built-in loopback-only configuration.
+  std::string network;
+  double command_deadline_s = 0.05;  // offered on the command writer: must not exceed the server's deadline
 };
 
 struct Reply {
