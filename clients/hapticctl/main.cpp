@@ -46,7 +46,8 @@ bool run_for(double duration_s) {  // false when interrupted
 
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace {
+int run(int argc, char** argv) {
   CLI::App app{"hapticctl: list, watch and command hapticd devices over DDS (loopback-only by default)"};
   app.require_subcommand(1);
   int domain = 0;
@@ -293,4 +294,16 @@ int main(int argc, char** argv) {
     return rows > 0 ? 0 : 1;
   }
   return 0;
+}
+}  // namespace
+
+// Every error ends with a message and exit code 2, never an abort: a DDS participant that cannot be made (a
+// malformed HAPTICD_DDS_NETWORK, a Cyclone configuration or DDS Security refusing it), a bad client id.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctl: %s\n", e.what());
+    return 2;
+  }
 }

@@ -12,7 +12,8 @@
 
 #include "hapticd/client/client.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+int run(int argc, char** argv) {
   int domain = 0;
   std::string device = "vishard3";
   double duration_s = 10.0, push_n = 0.0;
@@ -65,4 +66,16 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(answered.load()), last ? last->pose.position.x() - (wall_x - 0.02) : 0.0,
               deepest.load());
   return answered.load() > 0 ? 0 : 1;
+}
+}  // namespace
+
+// Every error ends with a message and exit code 2, never an abort: a DDS participant that cannot be made (a
+// malformed HAPTICD_DDS_NETWORK, a Cyclone configuration or DDS Security refusing it), a bad client id.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "wall_engine: %s\n", e.what());
+    return 2;
+  }
 }

@@ -17,7 +17,8 @@ std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop.store(true); }
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace {
+int run(int argc, char** argv) {
   CLI::App app{"hapticd-admittance-engine: a virtual mass on a floor, sent as desired motion"};
   std::string device = "vishard3", id = "admittance-engine";
   int domain = 0;
@@ -76,4 +77,16 @@ int main(int argc, char** argv) {
   (void)client.release(device, std::chrono::milliseconds(500));
   fmt::print("admittance-engine: answered {} states\n", answered.load());
   return 0;
+}
+}  // namespace
+
+// Every error ends with a message and exit code 2, never an abort: a DDS participant that cannot be made (a
+// malformed HAPTICD_DDS_NETWORK, a Cyclone configuration or DDS Security refusing it), a bad client id.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticd-admittance-engine: %s\n", e.what());
+    return 2;
+  }
 }

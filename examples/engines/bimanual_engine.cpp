@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <csignal>
+#include <cstdio>
 #include <thread>
 
 #include "bimanual.hpp"
@@ -15,7 +16,8 @@ std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop.store(true); }
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace {
+int run(int argc, char** argv) {
   CLI::App app{"hapticd-bimanual-engine: a virtual box held by the two hands of a device group"};
   std::string group = "hands", id = "bimanual-engine";
   int domain = 0;
@@ -63,4 +65,16 @@ int main(int argc, char** argv) {
   fmt::print("bimanual-engine: answered {} group states\n", engine.report().answered);
   (void)client.release_group(group, std::chrono::seconds(2));
   return 0;
+}
+}  // namespace
+
+// Every error ends with a message and exit code 2, never an abort: a DDS participant that cannot be made (a
+// malformed HAPTICD_DDS_NETWORK, a Cyclone configuration or DDS Security refusing it), a bad client id.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticd-bimanual-engine: %s\n", e.what());
+    return 2;
+  }
 }

@@ -20,7 +20,8 @@ std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop.store(true); }
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace {
+int run(int argc, char** argv) {
   CLI::App app{"hapticd-scene-engine: renders a wall, a box and a sphere through the virtual coupling"};
   std::string device = "vishard3", id = "scene-engine", csv;
   int domain = 0;
@@ -128,4 +129,16 @@ int main(int argc, char** argv) {
   std::lock_guard lock(out_mutex);
   fmt::print("scene-engine: answered {} states; deepest penetration {:.2f} mm\n", answered.load(), 1e3 * deepest);
   return 0;
+}
+}  // namespace
+
+// Every error ends with a message and exit code 2, never an abort: a DDS participant that cannot be made (a
+// malformed HAPTICD_DDS_NETWORK, a Cyclone configuration or DDS Security refusing it), a bad client id.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticd-scene-engine: %s\n", e.what());
+    return 2;
+  }
 }

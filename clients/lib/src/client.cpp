@@ -6,6 +6,7 @@
 #include <deque>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <set>
 #include <thread>
@@ -18,6 +19,17 @@ namespace hapticd::client {
 
 namespace {
 constexpr std::chrono::milliseconds kRequestRetry{250};  // a request without a reply is sent again after this
+
+// A writer, or none where the domain's DDS Security permissions do not let this identity publish the topic.
+template <class T>
+std::optional<dds::Writer<T>> permitted(const dds::Participant& participant, const dds::CommandTiming& timing) {
+  try {
+    return std::optional<dds::Writer<T>>(std::in_place, participant, timing);
+  } catch (const std::runtime_error& e) {
+    if (std::string_view(e.what()).find("Not Allowed By Security") == std::string_view::npos) throw;
+    return std::nullopt;
+  }
+}
 }  // namespace
 
 struct Client::Impl {
@@ -35,9 +47,9 @@ struct Client::Impl {
         reply(participant),
         group_description(participant),
         group_state(participant),
-        command(participant, timing),
-        group_command(participant, timing),
-        request(participant),
+        command(permitted<hapticd_msg_EngineCommand>(participant, timing)),
+        group_command(permitted<hapticd_msg_GroupCommand>(participant, timing)),
+        request(permitted<hapticd_msg_ControlRequest>(participant, {})),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {
     for (dds_entity_t r :
@@ -236,9 +248,10 @@ struct Client::Impl {
   dds::Reader<hapticd_msg_ControlReply> reply;
   dds::Reader<hapticd_msg_GroupDescription> group_description;
   dds::Reader<hapticd_msg_GroupState> group_state;
-  dds::Writer<hapticd_msg_EngineCommand> command;
-  dds::Writer<hapticd_msg_GroupCommand> group_command;
-  dds::Writer<hapticd_msg_ControlRequest> request;
+  // Absent where DDS Security does not permit this identity to write them (a watcher): sending then fails.
+  std::optional<dds::Writer<hapticd_msg_EngineCommand>> command;
+  std::optional<dds::Writer<hapticd_msg_GroupCommand>> group_command;
+  std::optional<dds::Writer<hapticd_msg_ControlRequest>> request;
   dds::Entity waitset, wake;
   std::thread thread;
   std::atomic<bool> stopping{false};
@@ -369,7 +382,8 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
   // A reliable writer delivers to the readers it has matched: give discovery a moment after start-up.
   const auto until =
       std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout);
-  while (impl_->request.matched() == 0 && std::chrono::steady_clock::now() < until)
+  if (!impl_->request) return Reply{false, false, "this identity may not send requests (DDS Security permissions)", {}};
+  while (impl_->request->matched() == 0 && std::chrono::steady_clock::now() < until)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   // Sent again, with the same id, every kRequestRetry without a reply: the server answers a repeated request
   // again and applies it once (the first may have arrived before discovery let the server know this
@@ -387,7 +401,7 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
   const auto answered = [&] { return impl_->replies.count(r.request_id) > 0; };
   for (;;) {
     lock.unlock();
-    const bool written = impl_->request.write(r);
+    const bool written = impl_->request->write(r);
     lock.lock();
     if (!written && !answered()) return Reply{false, false, "cannot write the request", {}};
     const auto retry = std::min(until, std::chrono::steady_clock::now() + kRequestRetry);
@@ -446,7 +460,7 @@ bool Client::send(std::string_view device, const EngineCommand& command) {
   wire::to_msg(command, device, c);
   dds::set_text(c.engine, impl_->options.client_id);
   c.serial = impl_->serial.fetch_add(1) + 1;
-  return impl_->command.write(c);
+  return impl_->command && impl_->command->write(c);
 }
 
 bool Client::send_group(std::string_view group, std::span<const DeviceCommand> commands) {
@@ -459,7 +473,7 @@ bool Client::send_group(std::string_view group, std::span<const DeviceCommand> c
     dds::set_text(g->commands[k].engine, impl_->options.client_id);
     g->commands[k].serial = impl_->serial.fetch_add(1) + 1;
   }
-  return impl_->group_command.write(*g);
+  return impl_->group_command && impl_->group_command->write(*g);
 }
 
 bool Client::send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist,

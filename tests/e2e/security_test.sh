@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# DDS Security (docs/deployment.md, "A secure lab network"): scripts/make-security.sh makes a CA, the identities
+# server, engine and watcher and the signed governance and permissions documents for DDS domain 89; the server
+# runs with its identity (loopback). An engine with valid credentials claims the device and answers its states;
+# a client without credentials is not matched (sees no device); the watcher sees the device but may not send a
+# request (its permissions do not cover the request topic: refused with a clear message); the captured payloads
+# on the domain's ports show neither the device's name nor its joint names, which the same capture finds in a
+# plain run. The round trip with security against the plain one, in the same run. Skipped (77) without root
+# (the capture needs it). Usage: security_test.sh BIN_DIR SOURCE_DIR WORK_DIR
+set -uo pipefail
+bin=$1 src=$2 work=$3
+rm -rf "$work"; mkdir -p "$work"
+[ "$(id -u)" -eq 0 ] || { echo "SKIP: capturing packets needs root"; exit 77; }
+fail() { echo "FAIL: $*"; exit 1; }
+domain=89
+ports=(29650 29900)  # 7400 + 250 * 89 and the participants' unicast ports above it
+bash "$src/scripts/make-security.sh" "$work/security" $domain > /dev/null || fail "make-security.sh"
+session=$src/config/sessions/vishard3/dds-coupling.yaml
+secure() { echo "$work/security/$1/cyclonedds.xml"; }
+# serve NAME DURATION EXTRA...: the server in the background; its pid in $server.
+serve() {  # NAME DURATION EXTRA...
+  local name=$1 duration=$2; shift 2
+  "$bin/hapticd" --config "$session" --dds-domain $domain --duration "$duration" --stats-json "$work/stats-$name.json" \
+    --set server.realtime_priority=0 --set server.lock_memory=false "$@" > "$work/server-$name.log" 2>&1 &
+  server=$!
+}
+round_trip() { python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['dds_round_trip_us']; print(r['count'], r['p50'], r['p99'])" "$1"; }
+
+# ---- plain: the capture sees the names ----
+serve plain 7
+sleep 0.5
+python3 "$src/tests/e2e/sniff_udp.py" 3 "${ports[@]}" vishard3 joint1 > "$work/sniff-plain.txt" &
+sniffer=$!
+timeout 20 "$bin/hapticd-scene-engine" --domain $domain --duration 5 --wait 5 > "$work/engine-plain.log" 2>&1
+wait $sniffer; wait $server
+grep -q "found .*vishard3" "$work/sniff-plain.txt" || fail "the capture did not see the plain traffic: $(cat "$work/sniff-plain.txt")"
+
+# ---- secure ----
+serve secure 16 --set "dds.cyclone_config=$(secure server)"
+sleep 0.5
+python3 "$src/tests/e2e/sniff_udp.py" 3 "${ports[@]}" vishard3 joint1 > "$work/sniff-secure.txt" &
+sniffer=$!
+HAPTICD_DDS_CONFIG=$(secure engine) timeout 20 "$bin/hapticd-scene-engine" --domain $domain --duration 5 --wait 5 \
+  > "$work/engine-secure.log" 2>&1 || fail "the engine with credentials: $(cat "$work/engine-secure.log")"
+wait $sniffer
+# Without credentials: not matched. The watcher: sees the device, may not request.
+timeout 20 "$bin/hapticctl" --domain $domain --timeout 2 list > "$work/list-plain.txt" 2>&1
+HAPTICD_DDS_CONFIG=$(secure watcher) timeout 20 "$bin/hapticctl" --domain $domain --timeout 3 --id watcher list \
+  > "$work/list-watcher.txt" 2>&1
+HAPTICD_DDS_CONFIG=$(secure watcher) timeout 20 "$bin/hapticctl" --domain $domain --timeout 3 --id watcher claim vishard3 \
+  > "$work/claim-watcher.txt" 2>&1
+claim_code=$?
+wait $server
+echo "secure engine: $(tail -1 "$work/engine-secure.log")"
+echo "capture, plain:  $(cat "$work/sniff-plain.txt")"
+echo "capture, secure: $(cat "$work/sniff-secure.txt")"
+grep -q "answered [1-9]" "$work/engine-secure.log" || fail "the engine with credentials answered no state"
+grep -q '"fault": "none"' "$work/stats-secure.json" || fail "the device faulted"
+grep -q "^packets [1-9].* found -$" "$work/sniff-secure.txt" || fail "plain text in the secure traffic: $(cat "$work/sniff-secure.txt")"
+grep -q "no devices on domain $domain" "$work/list-plain.txt" || fail "a client without credentials saw: $(cat "$work/list-plain.txt")"
+grep -q "^vishard3 " "$work/list-watcher.txt" || fail "the watcher did not see the device: $(cat "$work/list-watcher.txt")"
+[ $claim_code -ne 0 ] && grep -q "may not send requests" "$work/claim-watcher.txt" ||
+  fail "the watcher's claim: exit $claim_code: $(cat "$work/claim-watcher.txt")"
+read -r n_plain p50_plain p99_plain < <(round_trip "$work/stats-plain.json")
+read -r n_secure p50_secure p99_secure < <(round_trip "$work/stats-secure.json")
+echo "round trip, plain:  $n_plain samples, p50 $p50_plain us, p99 $p99_plain us"
+echo "round trip, secure: $n_secure samples, p50 $p50_secure us, p99 $p99_secure us"
+python3 -c "print(f'security / plain: p50 {$p50_secure / $p50_plain:.2f}x, p99 {$p99_secure / $p99_plain:.2f}x')"
+echo "1 passed, 0 failed"
