@@ -2,16 +2,23 @@
 # DDS Security for hapticd (docs/deployment.md, "A secure lab network"): creates, with openssl, a certificate
 # authority, one identity per role and the signed governance and permissions documents, and a Cyclone
 # configuration per identity that turns on authentication, access control and encryption.
-#   scripts/make-security.sh OUT_DIR [DOMAIN_SPEC]     (DOMAIN_SPEC: e.g. 0 or 0-230; default 0-230)
-# Identities: server (the hapticd server: every topic), engine (may command devices: requests and commands,
-# reads everything), watcher (may only watch: reads the server's topics, writes nothing). The governance
+#   scripts/make-security.sh OUT_DIR [DOMAIN_SPEC] [ENGINE=DEVICES ...]
+#     DOMAIN_SPEC: e.g. 0 or 0-230 (default 0-230); ENGINE=DEVICES: an engine identity and the devices (or groups)
+#     it may command, comma-separated, * for all (default: engine=*)
+# Identities: server (the hapticd server: every topic), one per engine (writes requests and commands in its
+# devices' partitions only - hapticd.<device>, docs/dds-interface.md - and reads the server's topics), watcher
+# (may only watch: reads the server's topics, writes nothing). The governance
 # document requires authentication for joining, encrypts discovery, liveliness and every topic's payload, and
 # checks read and write access on every topic. Keys are EC P-256; certificates valid for 365 days.
 # OUT_DIR/<identity>/cyclonedds.xml is what `dds.cyclone_config` (server) or HAPTICD_DDS_CONFIG (clients) takes;
 # it keeps the loopback-only network (edit its Interfaces and Peers for a lab network).
 set -euo pipefail
-out=${1:?usage: make-security.sh OUT_DIR [DOMAIN_SPEC]}
+set -f  # the topic and partition patterns (hapticd_*, *) are not file names
+out=${1:?usage: make-security.sh OUT_DIR [DOMAIN_SPEC] [ENGINE=DEVICES ...]}
 domains=${2:-0-230}
+shift $(($# < 2 ? $# : 2))
+engines=("$@")
+[ ${#engines[@]} -eq 0 ] && engines=("engine=*")
 command -v openssl > /dev/null || { echo "make-security: openssl is needed" >&2; exit 1; }
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -65,11 +72,15 @@ server_topics="hapticd_*"
 engine_publish="hapticd_command hapticd_group_command hapticd_request"
 reads="hapticd_description hapticd_state hapticd_reply hapticd_event hapticd_telemetry hapticd_fault_report hapticd_group_description hapticd_group_state"
 topics_xml() { for t in $1; do printf '<topic>%s</topic>' "$t"; done; }
-grant() {  # name publish-topics subscribe-topics
+partitions_xml() { for p in $1; do printf '<partition>%s</partition>' "$p"; done; }
+grant() {  # name publish-topics subscribe-topics [publish-partitions]  (subscriptions: the default partition)
   local name=$1 subject="/C=DE/O=hapticd lab/CN=$1"
-  local publish="" subscribe=""
-  [ -n "$2" ] && publish="<publish><topics>$(topics_xml "$2")</topics></publish>"
-  [ -n "$3" ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics></subscribe>"
+  local publish="" subscribe="" partitions=""
+  [ -n "${4:-}" ] && partitions="<partitions>$(partitions_xml "$4")</partitions>"
+  [ -n "$2" ] && publish="<publish><topics>$(topics_xml "$2")</topics>$partitions</publish>"
+  [ -n "$3" ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics>$partitions</subscribe>"
+  [ "$name" != server ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics></subscribe>"
+  [ -z "$3" ] && subscribe=""
   cat << XML
     <grant name="$name">
       <subject_name>$(echo "$subject" | sed 's|^/||; s|/|,|g')</subject_name>
@@ -83,8 +94,12 @@ XML
   echo '<?xml version="1.0" encoding="UTF-8"?>'
   echo '<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_permissions.xsd">'
   echo '  <permissions>'
-  grant server "$server_topics" "$server_topics"
-  grant engine "$engine_publish" "$reads"
+  grant server "$server_topics" "$server_topics" "*"
+  for e in "${engines[@]}"; do
+    devices=${e#*=} parts=""
+    for d in ${devices//,/ }; do parts="$parts hapticd.$d"; done
+    grant "${e%%=*}" "$engine_publish" "$reads" "$parts"
+  done
   grant watcher "" "$reads"
   echo '  </permissions>'
   echo '</dds>'
@@ -92,7 +107,9 @@ XML
 openssl smime -sign -in "$out/permissions.xml" -text -out "$out/permissions.p7s" -signer "$out/ca.pem" \
   -inkey "$out/ca_key.pem" 2> /dev/null
 
-for name in server engine watcher; do
+identities=(server watcher)
+for e in "${engines[@]}"; do identities+=("${e%%=*}"); done
+for name in "${identities[@]}"; do
   dir="$out/$name"
   mkdir -p "$dir"
   openssl ecparam -name prime256v1 -genkey -noout -out "$dir/key.pem" 2> /dev/null
@@ -136,5 +153,6 @@ for name in server engine watcher; do
 </CycloneDDS>
 XML
 done
+set +f
 chmod 600 "$out"/ca_key.pem "$out"/*/key.pem
-echo "make-security: CA, governance, permissions and identities server, engine, watcher in $out"
+echo "make-security: CA, governance, permissions and identities ${identities[*]} in $out"

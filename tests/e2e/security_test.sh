@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # DDS Security (docs/deployment.md, "A secure lab network"): scripts/make-security.sh makes a CA, the identities
-# server, engine and watcher and the signed governance and permissions documents for DDS domain 89; the server
-# runs with its identity (loopback). An engine with valid credentials claims the device and answers its states;
-# a client without credentials is not matched (sees no device); the watcher sees the device but may not send a
-# request (its permissions do not cover the request topic: refused with a clear message); the captured payloads
+# server, engine (may command vishard3), other (may command another device only) and watcher and the signed
+# governance and permissions documents for DDS domain 89; the server runs with its identity (loopback). The
+# engine claims the device and answers its states; a client without credentials is not matched (sees no device);
+# 'other' sees the device but may not command it, nor may the watcher (their permissions do not cover the device's
+# partition: refused with a clear message); the captured payloads
 # on the domain's ports show neither the device's name nor its joint names, which the same capture finds in a
 # plain run. The round trip with security against the plain one, in the same run. Skipped (77) without root
 # (the capture needs it). Usage: security_test.sh BIN_DIR SOURCE_DIR WORK_DIR
@@ -14,7 +15,8 @@ rm -rf "$work"; mkdir -p "$work"
 fail() { echo "FAIL: $*"; exit 1; }
 domain=89
 ports=(29650 29900)  # 7400 + 250 * 89 and the participants' unicast ports above it
-bash "$src/scripts/make-security.sh" "$work/security" $domain > /dev/null || fail "make-security.sh"
+bash "$src/scripts/make-security.sh" "$work/security" $domain engine=vishard3 other=another-device > /dev/null ||
+  fail "make-security.sh"
 session=$src/config/sessions/vishard3/dds-coupling.yaml
 secure() { echo "$work/security/$1/cyclonedds.xml"; }
 # serve NAME DURATION EXTRA...: the server in the background; its pid in $server.
@@ -50,6 +52,9 @@ HAPTICD_DDS_CONFIG=$(secure watcher) timeout 20 "$bin/hapticctl" --domain $domai
 HAPTICD_DDS_CONFIG=$(secure watcher) timeout 20 "$bin/hapticctl" --domain $domain --timeout 3 --id watcher claim vishard3 \
   > "$work/claim-watcher.txt" 2>&1
 claim_code=$?
+HAPTICD_DDS_CONFIG=$(secure other) timeout 20 "$bin/hapticctl" --domain $domain --timeout 3 --id other claim vishard3 \
+  > "$work/claim-other.txt" 2>&1
+other_code=$?
 wait $server
 echo "secure engine: $(tail -1 "$work/engine-secure.log")"
 echo "capture, plain:  $(cat "$work/sniff-plain.txt")"
@@ -59,8 +64,11 @@ grep -q '"fault": "none"' "$work/stats-secure.json" || fail "the device faulted"
 grep -q "^packets [1-9].* found -$" "$work/sniff-secure.txt" || fail "plain text in the secure traffic: $(cat "$work/sniff-secure.txt")"
 grep -q "no devices on domain $domain" "$work/list-plain.txt" || fail "a client without credentials saw: $(cat "$work/list-plain.txt")"
 grep -q "^vishard3 " "$work/list-watcher.txt" || fail "the watcher did not see the device: $(cat "$work/list-watcher.txt")"
-[ $claim_code -ne 0 ] && grep -q "may not send requests" "$work/claim-watcher.txt" ||
+[ $claim_code -ne 0 ] && grep -q "may not send requests to 'vishard3'" "$work/claim-watcher.txt" ||
   fail "the watcher's claim: exit $claim_code: $(cat "$work/claim-watcher.txt")"
+[ $other_code -ne 0 ] && grep -q "may not send requests to 'vishard3'" "$work/claim-other.txt" ||
+  fail "the other device's engine claimed: exit $other_code: $(cat "$work/claim-other.txt")"
+echo "watcher's claim: $(cat "$work/claim-watcher.txt")"
 read -r n_plain p50_plain p99_plain < <(round_trip "$work/stats-plain.json")
 read -r n_secure p50_secure p99_secure < <(round_trip "$work/stats-secure.json")
 echo "round trip, plain:  $n_plain samples, p50 $p50_plain us, p99 $p99_plain us"

@@ -20,16 +20,26 @@ namespace hapticd::client {
 namespace {
 constexpr std::chrono::milliseconds kRequestRetry{250};  // a request without a reply is sent again after this
 
-// A writer, or none where the domain's DDS Security permissions do not let this identity publish the topic.
+// A writer in a target's partition, or none where the domain's DDS Security permissions do not let this identity
+// publish the topic there.
 template <class T>
-std::optional<dds::Writer<T>> permitted(const dds::Participant& participant, const dds::CommandTiming& timing) {
+std::unique_ptr<dds::Writer<T>> permitted(const dds::Participant& participant, const dds::CommandTiming& timing,
+                                          std::string_view target) {
   try {
-    return std::optional<dds::Writer<T>>(std::in_place, participant, timing);
+    return std::make_unique<dds::Writer<T>>(participant, timing, dds::target_partition(target));
   } catch (const std::runtime_error& e) {
     if (std::string_view(e.what()).find("Not Allowed By Security") == std::string_view::npos) throw;
-    return std::nullopt;
+    return nullptr;
   }
 }
+
+// What a client writes to one device or group, in its partition (dds::target_partition); made on first use.
+struct TargetWriters {
+  std::unique_ptr<dds::Writer<hapticd_msg_ControlRequest>> request;
+  std::unique_ptr<dds::Writer<hapticd_msg_EngineCommand>> command;
+  std::unique_ptr<dds::Writer<hapticd_msg_GroupCommand>> group_command;
+  bool made_request = false, made_command = false, made_group_command = false;
+};
 }  // namespace
 
 struct Client::Impl {
@@ -47,9 +57,6 @@ struct Client::Impl {
         reply(participant),
         group_description(participant),
         group_state(participant),
-        command(permitted<hapticd_msg_EngineCommand>(participant, timing)),
-        group_command(permitted<hapticd_msg_GroupCommand>(participant, timing)),
-        request(permitted<hapticd_msg_ControlRequest>(participant, {})),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")) {
     for (dds_entity_t r :
@@ -248,10 +255,32 @@ struct Client::Impl {
   dds::Reader<hapticd_msg_ControlReply> reply;
   dds::Reader<hapticd_msg_GroupDescription> group_description;
   dds::Reader<hapticd_msg_GroupState> group_state;
-  // Absent where DDS Security does not permit this identity to write them (a watcher): sending then fails.
-  std::optional<dds::Writer<hapticd_msg_EngineCommand>> command;
-  std::optional<dds::Writer<hapticd_msg_GroupCommand>> group_command;
-  std::optional<dds::Writer<hapticd_msg_ControlRequest>> request;
+  // Per device or group, made on first use; a writer is absent where DDS Security does not permit this identity to
+  // write it (a watcher, an engine of other devices): sending then fails.
+  std::mutex writers_mutex;
+  std::map<std::string, TargetWriters, std::less<>> writers;
+  template <class T>
+  dds::Writer<T>* writer(std::string_view target, std::unique_ptr<dds::Writer<T>> TargetWriters::*slot,
+                         bool TargetWriters::*made) {
+    std::lock_guard lock(writers_mutex);
+    auto it = writers.find(target);
+    if (it == writers.end()) it = writers.emplace(std::string(target), TargetWriters{}).first;
+    TargetWriters& w = it->second;
+    if (!(w.*made)) {
+      w.*slot = permitted<T>(participant, timing, target);
+      w.*made = true;
+    }
+    return (w.*slot).get();
+  }
+  dds::Writer<hapticd_msg_ControlRequest>* request_writer(std::string_view target) {
+    return writer(target, &TargetWriters::request, &TargetWriters::made_request);
+  }
+  dds::Writer<hapticd_msg_EngineCommand>* command_writer(std::string_view target) {
+    return writer(target, &TargetWriters::command, &TargetWriters::made_command);
+  }
+  dds::Writer<hapticd_msg_GroupCommand>* group_command_writer(std::string_view target) {
+    return writer(target, &TargetWriters::group_command, &TargetWriters::made_group_command);
+  }
   dds::Entity waitset, wake;
   std::thread thread;
   std::atomic<bool> stopping{false};
@@ -382,8 +411,13 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
   // A reliable writer delivers to the readers it has matched: give discovery a moment after start-up.
   const auto until =
       std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout);
-  if (!impl_->request) return Reply{false, false, "this identity may not send requests (DDS Security permissions)", {}};
-  while (impl_->request->matched() == 0 && std::chrono::steady_clock::now() < until)
+  dds::Writer<hapticd_msg_ControlRequest>* writer = impl_->request_writer(device);
+  if (writer == nullptr)
+    return Reply{false,
+                 false,
+                 "this identity may not send requests to '" + std::string(device) + "' (DDS Security permissions)",
+                 {}};
+  while (writer->matched() == 0 && std::chrono::steady_clock::now() < until)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   // Sent again, with the same id, every kRequestRetry without a reply: the server answers a repeated request
   // again and applies it once (the first may have arrived before discovery let the server know this
@@ -401,7 +435,7 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
   const auto answered = [&] { return impl_->replies.count(r.request_id) > 0; };
   for (;;) {
     lock.unlock();
-    const bool written = impl_->request->write(r);
+    const bool written = writer->write(r);
     lock.lock();
     if (!written && !answered()) return Reply{false, false, "cannot write the request", {}};
     const auto retry = std::min(until, std::chrono::steady_clock::now() + kRequestRetry);
@@ -412,6 +446,7 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
 }
 
 Reply Client::claim(std::string_view device, Timeout timeout) {
+  (void)impl_->command_writer(device);  // made (and matched) while the claim is on its way
   Reply r = request(device, RequestKind::claim, {}, {}, timeout);
   if (r.accepted) reset_serial();
   return r;
@@ -441,6 +476,7 @@ Reply Client::operator_command(std::string_view device, std::string_view command
 }
 
 Reply Client::claim_group(std::string_view group, Timeout timeout) {
+  (void)impl_->group_command_writer(group);
   Reply r = request(group, RequestKind::group_claim, {}, {}, timeout);
   if (r.accepted) reset_serial();
   return r;
@@ -460,7 +496,8 @@ bool Client::send(std::string_view device, const EngineCommand& command) {
   wire::to_msg(command, device, c);
   dds::set_text(c.engine, impl_->options.client_id);
   c.serial = impl_->serial.fetch_add(1) + 1;
-  return impl_->command && impl_->command->write(c);
+  dds::Writer<hapticd_msg_EngineCommand>* writer = impl_->command_writer(device);
+  return writer != nullptr && writer->write(c);
 }
 
 bool Client::send_group(std::string_view group, std::span<const DeviceCommand> commands) {
@@ -473,7 +510,8 @@ bool Client::send_group(std::string_view group, std::span<const DeviceCommand> c
     dds::set_text(g->commands[k].engine, impl_->options.client_id);
     g->commands[k].serial = impl_->serial.fetch_add(1) + 1;
   }
-  return impl_->group_command && impl_->group_command->write(*g);
+  dds::Writer<hapticd_msg_GroupCommand>* writer = impl_->group_command_writer(group);
+  return writer != nullptr && writer->write(*g);
 }
 
 bool Client::send_coupling(std::string_view device, const Pose& proxy, const Twist& proxy_twist,

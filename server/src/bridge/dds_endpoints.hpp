@@ -1,6 +1,9 @@
 #pragma once
 // The server's DDS entities: one participant, a writer per published topic, the command and request readers
-// (with the device filters), the receiver's waitset and wake-up, and the directory of who wrote what.
+// (with the device filters), the receiver's waitset and wake-up, and the directory of who wrote what. The command
+// and request readers read the default partition and the partition of each of the server's devices and groups
+// (dds::target_partition): a client writes a device's requests and commands in its partition, so that DDS
+// Security's permissions can grant an identity some devices and not others.
 #include "bridge/peer_directory.hpp"
 #include "config/session_config.hpp"
 #include "hapticd/dds/endpoints.hpp"
@@ -10,7 +13,8 @@ namespace hapticd::server {
 
 struct DdsEndpoints {
   DdsEndpoints(const DdsSettings& s, const dds::CommandTiming& timing, const dds_topic_filter& command_filter,
-               const dds_topic_filter& request_filter, const dds_topic_filter& group_command_filter)
+               const dds_topic_filter& request_filter, const dds_topic_filter& group_command_filter,
+               const std::vector<std::string>& partitions)
       : participant(dds::ParticipantOptions{s.domain_id, s.cyclone_config, s.network}),
         description(participant),
         state(participant),
@@ -20,9 +24,9 @@ struct DdsEndpoints {
         reply(participant),
         group_description(participant),
         group_state(participant),
-        command(participant, timing, &command_filter),
-        request(participant, {}, &request_filter),
-        group_command(participant, timing, &group_command_filter),
+        command(participant, timing, &command_filter, partitions),
+        request(participant, {}, &request_filter, partitions),
+        group_command(participant, timing, &group_command_filter, partitions),
         waitset(dds::check(dds_create_waitset(participant.get()), "cannot create a DDS waitset")),
         wake(dds::check(dds_create_guardcondition(participant.get()), "cannot create a DDS guard condition")),
         peers(static_cast<std::size_t>(s.max_peers)) {}

@@ -3,6 +3,9 @@
 // caller-owned samples and never allocates message memory.
 #include <array>
 #include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "hapticd/dds/participant.hpp"
 #include "hapticd/dds/topics.hpp"
@@ -17,14 +20,28 @@ Entity make_topic(const Participant& participant, const CommandTiming& timing) {
             "cannot create a DDS topic"));
 }
 
+// The DDS partition of a request, command or group command for a device or group (`target`; "*": every device):
+// "hapticd.<target>", "hapticd.all" for "*". Clients write in it, the server reads all of its own; DDS Security's
+// permissions grant an identity the partitions of the devices it may command (docs/deployment.md).
+[[nodiscard]] std::string target_partition(std::string_view target);
+
+// A publisher or subscriber in the given partitions (none: the default partition).
+[[nodiscard]] Entity publisher_in(const Participant& participant, const std::vector<std::string>& partitions);
+[[nodiscard]] Entity subscriber_in(const Participant& participant, const std::vector<std::string>& partitions);
+
 template <class T>
 class Writer {
  public:
-  explicit Writer(const Participant& participant, const CommandTiming& timing = {})
+  // partition: "" the default partition; else a publisher of its own in that partition.
+  explicit Writer(const Participant& participant, const CommandTiming& timing = {}, const std::string& partition = {})
       : topic_(make_topic<T>(participant, timing)) {
     const Qos qos = topic_qos(TopicOf<T>::kind, timing);
-    writer_ = Entity(
-        check(dds_create_writer(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS writer"));
+    dds_entity_t parent = participant.get();
+    if (!partition.empty()) {
+      publisher_ = publisher_in(participant, {partition});
+      parent = publisher_.get();
+    }
+    writer_ = Entity(check(dds_create_writer(parent, topic_.get(), qos.get(), nullptr), "cannot create a DDS writer"));
   }
   bool write(const T& sample) const noexcept { return dds_write(writer_.get(), &sample) == DDS_RETCODE_OK; }
   // Writes, then unregisters the sample's instance: a writer of one-off messages (replies to ever new client
@@ -47,6 +64,7 @@ class Writer {
 
  private:
   Entity topic_;
+  Entity publisher_;  // when in a partition of its own
   Entity writer_;
 };
 
@@ -57,14 +75,19 @@ class Reader {
 
   // filter: samples it refuses are dropped before the reader stores them (no instance is created for them); it
   // runs on Cyclone's receive threads. The reader has a topic entity of its own, so the filter is the reader's.
+  // partitions: none, the default partition; else a subscriber of its own in them.
   explicit Reader(const Participant& participant, const CommandTiming& timing = {},
-                  const dds_topic_filter* filter = nullptr)
+                  const dds_topic_filter* filter = nullptr, const std::vector<std::string>& partitions = {})
       : topic_(make_topic<T>(participant, timing)) {
     for (std::size_t i = 0; i < kBatch; ++i) pointers_[i] = &samples_[i];
     const Qos qos = topic_qos(TopicOf<T>::kind, timing);
     if (filter != nullptr) check(dds_set_topic_filter_extended(topic_.get(), filter), "cannot set a DDS topic filter");
-    reader_ = Entity(
-        check(dds_create_reader(participant.get(), topic_.get(), qos.get(), nullptr), "cannot create a DDS reader"));
+    dds_entity_t parent = participant.get();
+    if (!partitions.empty()) {
+      subscriber_ = subscriber_in(participant, partitions);
+      parent = subscriber_.get();
+    }
+    reader_ = Entity(check(dds_create_reader(parent, topic_.get(), qos.get(), nullptr), "cannot create a DDS reader"));
   }
   // Callbacks on Cyclone's receive thread from now on (Cyclone copies the listener). Set it once the owner
   // is fully built: a callback may run at once.
@@ -96,6 +119,7 @@ class Reader {
 
  private:
   Entity topic_;
+  Entity subscriber_;  // when in partitions of its own
   Entity reader_;
   std::array<T, kBatch> samples_{};
   std::array<void*, kBatch> pointers_{};
