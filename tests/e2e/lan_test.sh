@@ -5,7 +5,8 @@
 # the device and answers every state with a coupling command; the server measures the round trip across the
 # pair. Then the same with packet loss injected by Cyclone itself (Internal/Test/XmitLossiness: each side drops
 # that share of the packets it sends), 5 % and 20 %: what loss does to the round trip, to how stale the applied
-# engine input is, and to the fade (deadline misses). Skipped (exit 77) where namespaces cannot be made.
+# engine input is, and to the fade (deadline misses). And once with DDS Security (scripts/make-security.sh) across
+# the pair. Skipped (exit 77) where namespaces cannot be made.
 # Usage: lan_test.sh BIN_DIR SOURCE_DIR WORK_DIR
 set -uo pipefail
 bin=$1 src=$2 work=$3
@@ -43,10 +44,21 @@ lossy_xml() {  # interface peer per_mille
 </Domain></CycloneDDS>
 XML
 }
-# run NAME PER_MILLE: 5 s of the server in its namespace and the scene engine in the other, on DDS domain 99.
+# run NAME PER_MILLE|secure: 5 s of the server in its namespace and the scene engine in the other, on DDS domain 99.
 run() {
   local name=$1 loss=$2 server_net engine_env
-  if [ "$loss" -eq 0 ]; then
+  if [ "$loss" = secure ]; then  # DDS Security's identities, their configurations moved onto the pair
+    bash "$src/scripts/make-security.sh" "$work/security" 99 engine=vishard3 > /dev/null || fail "make-security.sh"
+    for who in server:$if_srv:192.0.2.2 engine:$if_eng:192.0.2.1; do
+      IFS=: read -r id iface peer <<< "$who"
+      sed -e "s|<NetworkInterface address=\"127.0.0.1\"|<NetworkInterface name=\"$iface\"|" \
+        -e "s|<Peer address=\"127.0.0.1\"/>|<Peer address=\"$peer\"/>|" "$work/security/$id/cyclonedds.xml" \
+        > "$work/security/$id/lan.xml"
+    done
+    server_net=(--set "dds.cyclone_config=$work/security/server/lan.xml")
+    engine_env=(HAPTICD_DDS_CONFIG="$work/security/engine/lan.xml")
+    loss=0
+  elif [ "$loss" -eq 0 ]; then
     server_net=(--set "dds.network={interfaces: [$if_srv], peers: [192.0.2.2]}")
     engine_env=(HAPTICD_DDS_NETWORK="interfaces=$if_eng;peers=192.0.2.1")
   else
@@ -90,8 +102,11 @@ read -r answered cycles misses rejected < "$work/stats-clean.json.row"
 [ "$answered" -gt $((cycles / 2)) ] || fail "clean: only $answered of $cycles cycles answered"
 [ "$misses" -eq 0 ] && [ "$rejected" -eq 0 ] || fail "clean: $misses deadline misses, $rejected rejected"
 grep -q "accepted" "$work/push-clean.log" || fail "clean: the operator request was not accepted"
+run secure secure || exit 1
+read -r answered_secure cycles_secure misses_secure rejected_secure < "$work/stats-secure.json.row"
+[ "$answered_secure" -gt $((cycles_secure / 2)) ] || fail "secure: only $answered_secure of $cycles_secure cycles answered"
 run loss-5 50 || exit 1
 run loss-20 200 || exit 1
 read -r answered20 cycles20 misses20 rejected20 < "$work/stats-loss-20.json.row"
 [ "$answered20" -lt "$answered" ] || fail "20 % loss answered as many cycles as none ($answered20 vs $answered)"
-echo "3 passed, 0 failed"
+echo "4 passed, 0 failed"
