@@ -85,6 +85,8 @@ int run(int argc, char** argv) {
     twist.linear = scene.proxy_velocity(x, p, s.twist.linear);
     client.send_coupling(device, proxy, twist, s.serial);
     answered.fetch_add(1);
+    // The session ends: its torques ramp down while the states still come - answered to the last (an engine that
+    // fell silent here would make the server count missed deadlines).
     if (s.mode == hapticd::client::Mode::stopping || s.mode == hapticd::client::Mode::off) server_gone.store(true);
     const std::string contact = scene.contact(x);
     const double depth = (p - x).norm();
@@ -112,13 +114,15 @@ int run(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   std::uint64_t last_answered = 0;
   auto last_progress = start;
-  while (!g_stop.load() && !server_gone.load()) {
+  while (!g_stop.load()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     const auto now = std::chrono::steady_clock::now();
     if (duration > 0.0 && now - start > std::chrono::duration<double>(duration)) break;
     if (answered.load() != last_answered) {
       last_answered = answered.load();
       last_progress = now;
+    } else if (server_gone.load() && now - last_progress > std::chrono::milliseconds(200)) {
+      break;  // the session ended: no state since its last stopping one
     } else if (now - last_progress > std::chrono::seconds(3)) {
       fmt::print("scene-engine: no state for 3 s, the server is gone\n");
       break;

@@ -109,4 +109,9 @@ run loss-5 50 || exit 1
 run loss-20 200 || exit 1
 read -r answered20 cycles20 misses20 rejected20 < "$work/stats-loss-20.json.row"
 [ "$answered20" -lt "$answered" ] || fail "20 % loss answered as many cycles as none ($answered20 vs $answered)"
+# Loss removes round trips but never 100 in a row: no deadline is missed, nothing fades, nothing is rejected.
+for run in secure loss-5 loss-20; do
+  read -r a c m r < "$work/stats-$run.json.row"
+  [ "$m" -eq 0 ] && [ "$r" -eq 0 ] || fail "$run: $m deadline misses, $r rejected"
+done
 echo "4 passed, 0 failed"
