@@ -3,6 +3,7 @@
 #include <fmt/ranges.h>
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -23,6 +24,54 @@ void on_signal(int) { g_stop.store(true); }
 // As the watch line has always shown it: the safe mode in capitals.
 std::string_view mode_name(hapticd::client::Mode m) {
   return m == hapticd::client::Mode::safe ? "SAFE" : hapticd::client::to_string(m);
+}
+
+// "torque_saturated,engine_active", or "-".
+std::string flags_text(std::uint32_t flags) {
+  const std::vector<std::string> names = hapticd::client::flag_names(flags);
+  return names.empty() ? std::string("-") : fmt::format("{}", fmt::join(names, ","));
+}
+
+void print_state(const hapticd::client::DeviceState& s) {
+  fmt::print(
+      "{} t={:8.3f} {:<8} scheme {:<22} owner {:<14} pos ({:+.4f} {:+.4f} {:+.4f}) m  F_op ({:+6.2f} {:+6.2f} "
+      "{:+6.2f}) N  F_env ({:+6.2f} {:+6.2f} {:+6.2f}) N  flags {}\n",
+      s.device.view(), s.time_s(), mode_name(s.mode), s.scheme.view(), s.owner.empty() ? "-" : s.owner.view(),
+      s.pose.position[0], s.pose.position[1], s.pose.position[2], s.operator_wrench.force[0],
+      s.operator_wrench.force[1], s.operator_wrench.force[2], s.environment_wrench.force[0],
+      s.environment_wrench.force[1], s.environment_wrench.force[2], flags_text(s.flags));
+}
+
+// "vishard3 event mode: safe", and the message when it says more than the code.
+void print_event(const hapticd::client::Event& e) {
+  const std::string kind(to_string(e.kind));
+  const bool says_more = !e.message.empty() && e.message != e.code && e.message != kind + ": " + e.code;
+  fmt::print("{} event {}: {}{}{}\n", e.device, kind, e.code.empty() ? "-" : e.code, says_more ? " - " : "",
+             says_more ? e.message : "");
+}
+
+// A cycle record's flags (their own bits: 1 torque saturated, 2 limit engaged, 4 render limited, 8 thermal).
+std::string record_flags(std::uint32_t flags) {
+  static constexpr std::array<const char*, 4> kNames = {"torque_saturated", "limit_engaged", "render_limited",
+                                                        "thermal_derating"};
+  std::string out;
+  for (std::size_t bit = 0; bit < kNames.size(); ++bit)
+    if ((flags & (1u << bit)) != 0) out += (out.empty() ? "" : ",") + std::string(kNames[bit]);
+  return out.empty() ? "-" : out;
+}
+
+void print_fault_report(const hapticd::client::FaultReport& r, bool earlier) {
+  fmt::print("{} fault report {}{}: {} at cycle {} ({}), {} cycles of history:\n", r.device, r.serial,
+             earlier ? " (from before this watch)" : "", r.fault, r.cycle, r.message, r.records.size());
+  for (std::size_t k = r.records.size() > 5 ? r.records.size() - 5 : 0; k < r.records.size(); ++k) {
+    const hapticd::client::CycleRecord& c = r.records[k];
+    fmt::print(
+        "{}   cycle {:>8}  pos ({:+.4f} {:+.4f} {:+.4f}) m  vel ({:+.3f} {:+.3f} {:+.3f}) m/s  F_op ({:+6.2f} "
+        "{:+6.2f} {:+6.2f}) N  flags {}\n",
+        r.device, c.cycle, c.handle_position[0], c.handle_position[1], c.handle_position[2], c.handle_velocity[0],
+        c.handle_velocity[1], c.handle_velocity[2], c.operator_force[0], c.operator_force[1], c.operator_force[2],
+        record_flags(c.flags));
+  }
 }
 
 int report(const Reply& r) {
@@ -50,10 +99,14 @@ namespace {
 int run(int argc, char** argv) {
   CLI::App app{"hapticctl: list, watch and command hapticd devices over DDS (loopback-only by default)"};
   app.require_subcommand(1);
+  app.fallthrough();                                // the options before or after the subcommand
+  app.option_defaults()->always_capture_default();  // help shows the defaults
   int domain = 0;
   std::string id = "hapticctl", cyclone;
   double timeout = 2.0;
-  app.add_option("--domain", domain, "DDS domain")->check(CLI::Range(0, 230));
+  app.add_option("--domain", domain, "DDS domain (else HAPTICD_DOMAIN)")
+      ->envname("HAPTICD_DOMAIN")
+      ->check(CLI::Range(0, 230));
   app.add_option("--id", id, "client id (the owner name of a claim)");
   std::string network;
   app.add_option("--cyclone-config", cyclone, "Cyclone DDS XML (default: the built-in loopback configuration)");
@@ -221,41 +274,29 @@ int run(int argc, char** argv) {
     std::mutex m;
     auto last = std::chrono::steady_clock::now() - std::chrono::hours(1);
     const auto period = std::chrono::duration<double>(1.0 / rate);
+    // Every line names its device; flags by name; a fault report from before this watch says so.
     client.on_event([&](const hapticd::client::Event& e) {
       if (e.device != device) return;
       std::lock_guard lock(m);
-      fmt::print("event {}: {} {}\n", to_string(e.kind), e.code, e.message);
+      print_event(e);
     });
+    // A report of a fault before the first state this watch saw (a late joiner gets the newest) is marked so.
+    std::atomic<std::uint64_t> first_cycle{0};
     client.on_fault_report([&](const hapticd::client::FaultReport& r) {
       if (r.device != device) return;
+      const std::uint64_t first = first_cycle.load();
       std::lock_guard lock(m);
-      fmt::print("fault report {}: {} at cycle {} ({}), {} cycles of history:\n", r.serial, r.fault, r.cycle, r.message,
-                 r.records.size());
-      for (std::size_t k = r.records.size() > 5 ? r.records.size() - 5 : 0; k < r.records.size(); ++k) {
-        const hapticd::client::CycleRecord& c = r.records[k];
-        fmt::print(
-            "  cycle {:>8}  pos ({:+.4f} {:+.4f} {:+.4f}) m  vel ({:+.3f} {:+.3f} {:+.3f}) m/s  F_op ({:+6.2f} "
-            "{:+6.2f} "
-            "{:+6.2f}) N  flags {:#x}\n",
-            c.cycle, c.handle_position[0], c.handle_position[1], c.handle_position[2], c.handle_velocity[0],
-            c.handle_velocity[1], c.handle_velocity[2], c.operator_force[0], c.operator_force[1], c.operator_force[2],
-            c.flags);
-      }
+      print_fault_report(r, first == 0 || r.cycle < first);
     });
     client.on_state([&](const hapticd::client::DeviceState& s) {
       if (s.device != device) return;
+      std::uint64_t none = 0;
+      first_cycle.compare_exchange_strong(none, s.cycle);
       const auto now = std::chrono::steady_clock::now();
       if (now - last < period) return;
       last = now;
       std::lock_guard lock(m);
-      fmt::print(
-          "t={:8.3f} {:<8} scheme {:<22} owner {:<14} pos ({:+.4f} {:+.4f} {:+.4f}) m  F_op ({:+6.2f} {:+6.2f} "
-          "{:+6.2f}) N  "
-          "F_env ({:+6.2f} {:+6.2f} {:+6.2f}) N  flags {:#x}\n",
-          s.time_s(), mode_name(s.mode), s.scheme.view(), s.owner.empty() ? "-" : s.owner.view(), s.pose.position[0],
-          s.pose.position[1], s.pose.position[2], s.operator_wrench.force[0], s.operator_wrench.force[1],
-          s.operator_wrench.force[2], s.environment_wrench.force[0], s.environment_wrench.force[1],
-          s.environment_wrench.force[2], s.flags);
+      print_state(s);
     });
     run_for(duration);
     client.on_state({});

@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
     hapticd_msg_DeviceState s;
     void* samples[1] = {&s};
     dds_sample_info_t info;
-    while (dds_take(states, samples, &info, 1, 1) > 0) {
+    while (answered < states_wanted && dds_take(states, samples, &info, 1, 1) > 0) {
       if (!info.valid_data || strcmp(s.device, device) != 0) continue;
       if (!have_floor) {
         floor_z = s.handle_pose.position[2] - 0.01;

@@ -179,7 +179,11 @@ RuntimeReply get_parameter(DeviceSession& device, std::string_view target_text) 
 RuntimeReply apply_request(DeviceSession& device, const DeviceRequest& request) {
   switch (request.kind) {
     case DeviceRequest::Kind::switch_scheme:
-      if (!device.schemes().request(request.name)) return {false, "no scheme named " + in_quotes(request.name)};
+      if (!device.schemes().request(request.name)) {
+        std::vector<std::string> names;
+        for (const SchemeChain& sc : device.chain().schemes) names.push_back(sc.name);
+        return {false, "no scheme named " + in_quotes(request.name) + " (schemes: " + listed(names) + ")"};
+      }
       return {true, "switching to " + request.name};
     case DeviceRequest::Kind::set_parameter:
       return set_parameter(device, request.name, request.values);
