@@ -6,7 +6,6 @@ from dataclasses import dataclass
 from typing import Callable, Iterator, Optional
 
 from ._hapticd import Client, DeviceState, EngineCommand, Mode
-from .errors import Timeout
 
 
 def states(client: Client, device: str, timeout: float = 1.0,

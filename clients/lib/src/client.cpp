@@ -27,8 +27,8 @@ std::unique_ptr<dds::Writer<T>> permitted(const dds::Participant& participant, c
                                           std::string_view target) {
   try {
     return std::make_unique<dds::Writer<T>>(participant, timing, dds::target_partition(target));
-  } catch (const std::runtime_error& e) {
-    if (std::string_view(e.what()).find("Not Allowed By Security") == std::string_view::npos) throw;
+  } catch (const dds::Error& e) {
+    if (e.code() != DDS_RETCODE_NOT_ALLOWED_BY_SECURITY) throw;
     return nullptr;
   }
 }

@@ -409,8 +409,9 @@ ParameterSchema dds_settings_schema() {
   s.boolean("enabled", "run the DDS interface").default_value(true);
   s.integer("domain_id", "DDS domain").minimum(0).maximum(230).default_value(std::int64_t{0});
   s.string("cyclone_config",
-           "Cyclone DDS XML file; empty: the built-in loopback-only configuration "
-           "(config/dds/cyclonedds-loopback.xml)")
+           "Cyclone DDS XML file; empty: dds.network (a mapping - interfaces, peers, multicast - not with this "
+           "file; docs/deployment.md), else HAPTICD_DDS_CONFIG or HAPTICD_DDS_NETWORK, else the built-in "
+           "loopback-only configuration (config/dds/cyclonedds-loopback.xml)")
       .default_value(std::string());
   s.real("state_rate_hz", "device state publication rate; 0: every loop cycle")
       .unit("Hz")

@@ -7,11 +7,25 @@
 #include <string>
 #include <utility>
 
+#include "hapticd/export.hpp"
+
 namespace hapticd::dds {
 
-// Throws std::runtime_error naming `what` when a Cyclone call returned a negative (error) value.
+// A Cyclone call that failed: the message names what was tried and why; code() is Cyclone's return code
+// (DDS_RETCODE_NOT_ALLOWED_BY_SECURITY: DDS Security's permissions refused it).
+class HAPTICD_API Error : public std::runtime_error {
+ public:
+  Error(const char* what, dds_return_t code)
+      : std::runtime_error(std::string(what) + ": " + dds_strretcode(code)), code_(code) {}
+  [[nodiscard]] dds_return_t code() const noexcept { return code_; }
+
+ private:
+  dds_return_t code_;
+};
+
+// Throws Error naming `what` when a Cyclone call returned a negative (error) value.
 inline dds_entity_t check(dds_entity_t result, const char* what) {
-  if (result < 0) throw std::runtime_error(std::string(what) + ": " + dds_strretcode(result));
+  if (result < 0) throw Error(what, result);
   return result;
 }
 
