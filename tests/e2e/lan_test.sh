@@ -47,6 +47,9 @@ XML
 # run NAME PER_MILLE|secure: 5 s of the server in its namespace and the scene engine in the other, on DDS domain 99.
 run() {
   local name=$1 loss=$2 server_net engine_env
+  # hapticctl, which only drives the simulated operator, joins without loss (with the engine's identity when
+  # secure): the loss is the server's and the engine's, and a lossy tool could miss discovery within its timeout.
+  local ctl_env=(HAPTICD_DDS_NETWORK="interfaces=$if_eng;peers=192.0.2.1")
   if [ "$loss" = secure ]; then  # DDS Security's identities, their configurations moved onto the pair
     bash "$src/scripts/make-security.sh" "$work/security" 99 engine=vishard3 > /dev/null || fail "make-security.sh"
     for who in server:$if_srv:192.0.2.2 engine:$if_eng:192.0.2.1; do
@@ -57,6 +60,7 @@ run() {
     done
     server_net=(--set "dds.cyclone_config=$work/security/server/lan.xml")
     engine_env=(HAPTICD_DDS_CONFIG="$work/security/engine/lan.xml")
+    ctl_env=("${engine_env[@]}")
     loss=0
   elif [ "$loss" -eq 0 ]; then
     server_net=(--set "dds.network={interfaces: [$if_srv], peers: [192.0.2.2]}")
@@ -67,15 +71,15 @@ run() {
     server_net=(--set "dds.cyclone_config=$work/srv-$name.xml")
     engine_env=(HAPTICD_DDS_CONFIG="$work/eng-$name.xml")
   fi
-  ip netns exec "$ns_srv" "$bin/hapticd" --config "$session" --dds-domain 99 --duration 7 \
+  ip netns exec "$ns_srv" "$bin/hapticd" --config "$session" --dds-domain 99 --duration 9 \
     --stats-json "$work/stats-$name.json" --set server.realtime_priority=0 --set server.lock_memory=false \
     "${server_net[@]}" > "$work/server-$name.log" 2>&1 &
   local server=$!
   ip netns exec "$ns_eng" env "${engine_env[@]}" timeout 30 "$bin/hapticd-scene-engine" --domain 99 --wait 10 \
-    --duration 9 > "$work/engine-$name.log" 2>&1 &
+    --duration 11 > "$work/engine-$name.log" 2>&1 &
   local engine=$!
   sleep 2
-  ip netns exec "$ns_eng" env "${engine_env[@]}" timeout 10 "$bin/hapticctl" --domain 99 --timeout 5 \
+  ip netns exec "$ns_eng" env "${ctl_env[@]}" timeout 12 "$bin/hapticctl" --domain 99 --timeout 8 \
     operator vishard3 push 12 0 0 0.5 > "$work/push-$name.log" 2>&1 || fail "$name: hapticctl across the pair: $(cat "$work/push-$name.log")"
   wait "$server" || fail "$name: the server: $(tail -5 "$work/server-$name.log")"
   wait "$engine"
