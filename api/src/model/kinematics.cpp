@@ -4,7 +4,8 @@
 
 namespace hapticd::model {
 
-void forward_kinematics(const RobotModel& model, ModelData& data, const JointVector& q) noexcept {
+void forward_kinematics(const RobotModel& model, ModelData& data, const JointVector& q,
+                        BodyInertias inertias) noexcept {
   const int n = model.dof();
   data.q = q;
   Eigen::Matrix3d parent_rotation = Eigen::Matrix3d::Identity();
@@ -27,15 +28,18 @@ void forward_kinematics(const RobotModel& model, ModelData& data, const JointVec
     }
     data.rotation[i] = r;
     data.position[i] = p;
-    const Eigen::Vector3d com = p + r * b.com;
-    data.inertia[i] = SpatialInertia::from_body(b.mass, com, r * b.inertia * r.transpose());
+    if (inertias == BodyInertias::update) {
+      const Eigen::Vector3d com = p + r * b.com;
+      data.inertia[i] = SpatialInertia::from_body(b.mass, com, r * b.inertia * r.transpose());
+    }
     parent_rotation = r;
     parent_position = p;
   }
 }
 
-void forward_velocity(const RobotModel& model, ModelData& data, const JointVector& q, const JointVector& qd) noexcept {
-  forward_kinematics(model, data, q);
+void forward_velocity(const RobotModel& model, ModelData& data, const JointVector& q, const JointVector& qd,
+                      BodyInertias inertias) noexcept {
+  forward_kinematics(model, data, q, inertias);
   data.qd = qd;
   Motion v;
   Motion a;

@@ -1,7 +1,9 @@
 #include "hapticd/model/redundancy.hpp"
 
-#include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
+
+#include "triangular_solve.hpp"
 
 namespace hapticd::model {
 
@@ -28,50 +30,77 @@ void GeneralizedInverse::configure(InverseKind kind, int dof, const JointVector&
   weights_ = weights.size() == dof ? weights : JointVector(JointVector::Ones(dof));
   if (kind == InverseKind::pseudoinverse) weights_.setOnes(dof);
   inverse_sqrt_ = weights_.cwiseSqrt().cwiseInverse();
+  jacobian_.setZero(6, dof);
+  scaled_t_.setZero(dof, 6);
+  gram_.setZero(6, 6);
+  gram_inverse_.setZero(6, 6);
   inverse_.setZero(dof, 6);
-  projector_.setIdentity(dof, dof);
-  scaled_.setZero(6, dof);
-  singular_values_.setZero(6);
+  rank_ = 0;
 }
 
 void GeneralizedInverse::compute(const TaskJacobian& jacobian, const Eigen::LLT<JointMatrix>* mass_llt) noexcept {
   const auto m = jacobian.rows();
   const auto n = jacobian.cols();
   mass_llt_ = kind_ == InverseKind::inertia_weighted ? mass_llt : nullptr;
-  // A = J L^-T: for a diagonal W, the columns scaled by 1/sqrt(w); for W = M = L L^T, (L^-1 J^T)^T.
+  jacobian_ = jacobian;
+  // A^T = L^-1 J^T: for a diagonal W the rows of J^T scaled by 1/sqrt(w); for W = M = L L^T a triangular solve.
   if (mass_llt_ != nullptr) {
-    InverseJacobian t = jacobian.transpose();
-    mass_llt_->matrixL().solveInPlace(t);
-    scaled_ = t.transpose();
+    scaled_t_ = jacobian.transpose();
+    detail::solve_lower_in_place(mass_llt_->matrixLLT(), scaled_t_);
   } else {
-    scaled_ = jacobian * inverse_sqrt_.head(n).asDiagonal();
+    scaled_t_.noalias() = inverse_sqrt_.head(n).asDiagonal() * jacobian.transpose();
   }
-  // SVD of A^T (n x m, thin): A^T = V S U^T, so A = U S V^T.
-  Eigen::JacobiSVD<InverseJacobian> svd(scaled_.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const auto& s = svd.singularValues();
-  singular_values_ = s;
-  const double largest = s.size() > 0 ? s[0] : 0.0;
-  rank_ = 0;
-  TaskVector f = TaskVector::Zero(m);
-  for (Eigen::Index i = 0; i < s.size(); ++i) {
-    if (kind_ == InverseKind::damped) {
-      f[i] = s[i] / (s[i] * s[i] + damping_ * damping_);
-      if (s[i] > tolerance_ * largest) ++rank_;
-    } else if (s[i] > tolerance_ * largest && s[i] > 0.0) {
-      f[i] = 1.0 / s[i];
-      ++rank_;
+  // Small products coefficient-wise (lazyProduct): Eigen's blocked GEMM costs more than it saves at 6 x 10.
+  gram_.noalias() = scaled_t_.transpose().lazyProduct(scaled_t_);
+  if (kind_ == InverseKind::damped) gram_.diagonal().array() += damping_ * damping_;
+  gram_llt_.compute(gram_);
+  // A pivot below 1e-13 of the largest: G is singular to working precision (sigma ratio below about 3e-7).
+  constexpr double kSingularPivot = 1e-13;
+  const auto pivots = gram_llt_.matrixLLT().diagonal().cwiseAbs2();
+  const bool factored =
+      gram_llt_.info() == Eigen::Success && m > 0 && pivots.minCoeff() > kSingularPivot * pivots.maxCoeff();
+  if (factored || (kind_ == InverseKind::damped && gram_llt_.info() == Eigen::Success)) {
+    gram_inverse_.setIdentity(m, m);
+    detail::cholesky_solve_in_place(gram_llt_.matrixLLT(), gram_inverse_);
+    rank_ = static_cast<int>(m);
+  } else {
+    // Eigenvalues of G are the squared singular values of A; drop those below the tolerance.
+    gram_eigen_.compute(gram_);
+    const auto& s2 = gram_eigen_.eigenvalues();  // ascending
+    const double largest = m > 0 ? std::max(s2[m - 1], 0.0) : 0.0;
+    const double floor = std::max(tolerance_ * tolerance_, kSingularPivot) * largest;
+    TaskVector f = TaskVector::Zero(m);
+    rank_ = 0;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      if (s2[i] > floor && s2[i] > 0.0) {
+        f[i] = 1.0 / s2[i];
+        ++rank_;
+      }
     }
+    gram_inverse_.noalias() = gram_eigen_.eigenvectors() * f.asDiagonal() * gram_eigen_.eigenvectors().transpose();
   }
-  // A# = V_A diag(f) U_A^T; with A^T = U_svd S V_svd^T: V_A = U_svd (n x m), U_A = V_svd (m x m).
-  inverse_.noalias() = svd.matrixU() * f.asDiagonal() * svd.matrixV().transpose();
-  // J^W# = L^-T A#.
+  inverse_.noalias() = scaled_t_.lazyProduct(gram_inverse_);
+  // J^W# = L^-T A^T G^-1.
   if (mass_llt_ != nullptr) {
-    mass_llt_->matrixU().solveInPlace(inverse_);
+    detail::solve_upper_in_place(mass_llt_->matrixLLT(), inverse_);
   } else {
     inverse_ = inverse_sqrt_.head(n).asDiagonal() * inverse_;
   }
-  projector_.setIdentity(n, n);
-  projector_.noalias() -= inverse_ * jacobian;
+}
+
+JointMatrix GeneralizedInverse::null_space_projector() const noexcept {
+  JointMatrix projector = JointMatrix::Identity(jacobian_.cols(), jacobian_.cols());
+  projector.noalias() -= inverse_ * jacobian_;
+  return projector;
+}
+
+JointVector GeneralizedInverse::project_null_space(const JointVector& v) const noexcept {
+  // (I - J^W# J) v = v - J^W# (J v).
+  TaskVector x(jacobian_.rows());
+  x.noalias() = jacobian_ * v;
+  JointVector out = v;
+  out.noalias() -= inverse_ * x;
+  return out;
 }
 
 JointVector GeneralizedInverse::solve(const TaskVector& x) const noexcept {
@@ -87,7 +116,7 @@ JointVector GeneralizedInverse::weight_inverse_times(const JointVector& v) const
 
 JointVector resolve_velocity(const GeneralizedInverse& inverse, const TaskVector& xd, const JointVector& qd0) noexcept {
   JointVector qd = inverse.solve(xd);
-  qd.noalias() += inverse.null_space_projector() * qd0;
+  qd += inverse.project_null_space(qd0);
   return qd;
 }
 

@@ -46,13 +46,13 @@ ReturnCode NewtonIk::update(const CycleTime& /*cycle*/, const InverseKinematicsI
   desired.translation() = in.task.pose.position;
   desired.linear() = in.task.pose.orientation.toRotationMatrix();
   for (int s = 0; s < steps_; ++s) {
-    model::forward_kinematics(*model_, *data_, q_);
+    model::forward_kinematics(*model_, *data_, q_, model::BodyInertias::skip);
     model::frame_jacobian(*model_, *data_, handle_, jacobian_);
     const model::TaskJacobian j = jacobian_.topRows(rows_);
     const model::Vector6d error = model::pose_difference(desired, model::frame_pose(*model_, *data_, handle_));
     q_ += model::minimum_norm_solution(j, model::TaskVector(error.head(rows_)), damping_);
   }
-  model::forward_kinematics(*model_, *data_, q_);
+  model::forward_kinematics(*model_, *data_, q_, model::BodyInertias::skip);
   model::frame_jacobian(*model_, *data_, handle_, jacobian_);
   const model::TaskJacobian j = jacobian_.topRows(rows_);
   model::Vector6d twist;

@@ -183,11 +183,22 @@ ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsI
   Eigen::Isometry3d desired = Eigen::Isometry3d::Identity();
   desired.translation() = in.task.pose.position;
   desired.linear() = in.task.pose.orientation.toRotationMatrix();
-  model::forward_velocity(*model_, *data_, q_, qd_);
+  const bool own_inertia = inverse_.kind() == model::InverseKind::inertia_weighted &&
+                           (in.chain.data == nullptr || in.chain.data->mass_llt.rows() != model_->dof());
+  model::forward_velocity(*model_, *data_, q_, qd_,
+                          own_inertia ? model::BodyInertias::update : model::BodyInertias::skip);
   model::frame_jacobian(*model_, *data_, handle_, jacobian_);
   const model::TaskJacobian j = jacobian_.topRows(rows_);
-  if (inverse_.kind() == model::InverseKind::inertia_weighted) model::joint_space_inertia(*model_, *data_);
-  inverse_.compute(j, &data_->mass_llt);
+  // The inertia-weighted inverse at the target takes the inertia the server factored at the measured joints
+  // this cycle (the target tracks them; any positive definite weighting keeps J J^W# = I): the same weighting as
+  // the controller's resolution, and no second factorisation of M per cycle.
+  const Eigen::LLT<JointMatrix>* mass = &data_->mass_llt;
+  if (own_inertia) {
+    model::joint_space_inertia(*model_, *data_);
+  } else if (inverse_.kind() == model::InverseKind::inertia_weighted) {
+    mass = &in.chain.data->mass_llt;
+  }
+  inverse_.compute(j, mass);
   const model::Vector6d error = model::pose_difference(desired, model::frame_pose(*model_, *data_, handle_));
   model::Vector6d xd;
   xd << in.task.twist.linear, in.task.twist.angular;
@@ -198,7 +209,7 @@ ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsI
   if (criteria_.empty()) {
     gradient_.setZero(model_->dof());
   } else {
-    criterion_ = criteria_.evaluate(in.device.joints.position, gradient_);
+    criterion_ = criteria_.evaluate(in.device.joints.position, gradient_, in.chain.data);
   }
   criterion_ += add_clearance_term(in.chain.neighbour);
   const JointVector qd0 = -null_gain_ * inverse_.weight_inverse_times(gradient_);

@@ -239,7 +239,7 @@ const JointVector& Vishard10Ik::solve(const Pose& pose, const Twist& twist, doub
   if (scara_ != Scara::pseudoinverse) {
     // l6 and l7 differ by 0.1 mm: the pair leaves the handle that far off joint 5's axis, sideways. One shift of
     // the SCARA target removes it (the offset depends on q6 and q5' only, not on joints 1-4).
-    model::forward_kinematics(*model_, *data_, q_);
+    model::forward_kinematics(*model_, *data_, q_, model::BodyInertias::skip);
     const Eigen::Vector2d off =
         pose.position.head<2>() - model::frame_pose(*model_, *data_, handle_).translation().head<2>();
     solve_scara(target + off, Eigen::Vector2d::Zero(), dt);

@@ -3,12 +3,18 @@
 // the null-space projector, and the velocity-, acceleration- and torque-level resolutions of
 // docs/redundancy.md ([U06] methods 3). Real-time safe: fixed-capacity Eigen storage only.
 //
-// Every inverse is computed the same way: with the joint weighting W = L L^T (identity, a diagonal, or the
-// joint-space inertia M), the singular value decomposition of A = J L^-T gives
-//   J^W# = L^-T V diag(f(sigma)) U^T,
-// with f(s) = 1/s above a tolerance and 0 below (the pseudoinverse: exact where J has full rank, minimising
-// qd^T W qd), or f(s) = s / (s^2 + lambda^2) (the singularity-robust, damped inverse: bounded rates, inexact).
+// Every inverse is computed the same way, without a singular value decomposition: with the joint weighting
+// W = L L^T (identity, a diagonal, or the joint-space inertia M, whose Cholesky factor the model terms already
+// hold) and A = J L^-T, the m x m Gram matrix G = A A^T = J W^-1 J^T gives
+//   J^W# = L^-T A^T (G + lambda^2 I)^-1
+// by one Cholesky factorisation of G: lambda = 0 is the exact inverse where J has full row rank (minimising
+// qd^T W qd), lambda > 0 the singularity-robust, damped inverse (bounded rates, inexact). Where G is singular to
+// working precision (a pivot below 1e-13 of the largest: sigma_min / sigma_max below about 3e-7), the exact
+// kinds fall back to G's eigen-decomposition G = U S^2 U^T and drop the lost directions:
+//   J^W# = L^-T A^T U diag(1/s^2 above the tolerance, else 0) U^T.
+// This is the SVD's f(s) = 1/s, or s / (s^2 + lambda^2), written as A^T U diag(f(s)/s) U^T.
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include "hapticd/export.hpp"
 #include "hapticd/model/model_data.hpp"
@@ -30,7 +36,8 @@ enum class InverseKind {
 class HAPTICD_API GeneralizedInverse {
  public:
   // Before use (not real-time safe: sizes the workspace). weights: n positive entries (kWeighted, kDamped);
-  // damping: lambda [task units] (kDamped); tolerance: singular values below tolerance * sigma_max count as zero.
+  // damping: lambda [task units] (kDamped); tolerance: singular values below tolerance * sigma_max count as zero
+  // (effectively at least 3e-7: below that the Gram matrix cannot tell them from zero).
   void configure(InverseKind kind, int dof, const JointVector& weights, double damping = 0.0, double tolerance = 1e-9);
 
   // J^W# at this Jacobian; mass_llt: the Cholesky factor of M (used by kInertiaWeighted only). Real-time safe.
@@ -38,10 +45,11 @@ class HAPTICD_API GeneralizedInverse {
 
   [[nodiscard]] InverseKind kind() const noexcept { return kind_; }
   [[nodiscard]] const InverseJacobian& matrix() const noexcept { return inverse_; }
-  // N = I - J^W# J: maps any joint vector into the null space (J N = 0 where J has full rank).
-  [[nodiscard]] const JointMatrix& null_space_projector() const noexcept { return projector_; }
-  // Singular values of A = J L^-T, largest first (for W = I those of J).
-  [[nodiscard]] const TaskVector& singular_values() const noexcept { return singular_values_; }
+  // N = I - J^W# J: maps any joint vector into the null space (J N = 0 where J has full rank). Formed on demand
+  // (n x n); project_null_space applies it without forming it.
+  [[nodiscard]] JointMatrix null_space_projector() const noexcept;
+  [[nodiscard]] JointVector project_null_space(const JointVector& v) const noexcept;
+  // Task rows the inverse treats as independent (m unless the exact kinds dropped lost directions).
   [[nodiscard]] int rank() const noexcept { return rank_; }
 
   // x -> J^W# x (m entries) and the W^-1 weighting of a gradient (the homogeneous solution must descend along
@@ -56,10 +64,13 @@ class HAPTICD_API GeneralizedInverse {
   JointVector weights_;       // diagonal W (kWeighted, kDamped)
   JointVector inverse_sqrt_;  // diag(1 / sqrt(w))
   const Eigen::LLT<JointMatrix>* mass_llt_ = nullptr;
-  TaskJacobian scaled_;  // A = J L^-T
+  TaskJacobian jacobian_;     // J of the last compute
+  InverseJacobian scaled_t_;  // A^T = L^-1 J^T
+  TaskMatrix gram_;           // G = A A^T (+ lambda^2 I)
+  TaskMatrix gram_inverse_;   // its (truncated) inverse
+  Eigen::LLT<TaskMatrix> gram_llt_;
+  Eigen::SelfAdjointEigenSolver<TaskMatrix> gram_eigen_;  // the rank-deficient fallback
   InverseJacobian inverse_;
-  JointMatrix projector_;
-  TaskVector singular_values_;
   int rank_ = 0;
 };
 

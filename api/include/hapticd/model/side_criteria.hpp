@@ -9,8 +9,11 @@
 //   joint_limits              H = sum over limited joints of ((q - mid) / range)^2
 //   keep_out                  H = (max(0, margin - d) / margin)^2, d: distance from a frame's origin to the
 //                             surface of a keep-out sphere (a second device, the operator's body)
-// The joint criteria have analytic gradients; the Jacobian and distance ones forward differences (n + 1
-// evaluations of the kinematics). Real-time safe after configure (its own model workspace).
+// Every gradient is analytic: the singular values' through the Jacobian's derivative, which for a serial chain
+// follows from the Jacobian itself (side_criteria.cpp: O(n) per criterion), the keep-out distance's through the
+// frame's Jacobian. One evaluation of the kinematics and one 6 x 6 eigen-decomposition per call (manipulability
+// alone: a Cholesky factorisation). Real-time safe after configure (its own model workspace).
+#include <Eigen/Eigenvalues>
 #include <memory>
 
 #include "hapticd/export.hpp"
@@ -34,7 +37,6 @@ struct SideCriteriaSettings {
   Eigen::Vector3d keep_out_center = Eigen::Vector3d::Zero();
   double keep_out_radius_m = 0.1;
   double keep_out_margin_m = 0.1;
-  double gradient_step = 1e-6;  // forward-difference step [rad]
 };
 
 class HAPTICD_API SideCriteria {
@@ -49,21 +51,29 @@ class HAPTICD_API SideCriteria {
   [[nodiscard]] bool empty() const noexcept;
   [[nodiscard]] const SideCriteriaSettings& settings() const noexcept { return settings_; }
 
-  // H(q) and its gradient. Real-time safe.
-  double evaluate(const JointVector& q, JointVector& gradient) noexcept;
+  // H(q) and its gradient. Real-time safe. kinematics: a workspace of the same model whose forward kinematics
+  // are already at q (the server's model terms at the measured joints: ChainState::data), saving their
+  // evaluation; used only if its q equals q.
+  double evaluate(const JointVector& q, JointVector& gradient, const ModelData* kinematics = nullptr) noexcept;
   // H(q) alone.
   [[nodiscard]] double value(const JointVector& q) noexcept;
 
  private:
   [[nodiscard]] double joint_terms(const JointVector& q, JointVector* gradient) const noexcept;
-  [[nodiscard]] double kinematic_terms(const JointVector& q) noexcept;  // needs the kinematics at q
+  // The Jacobian and distance terms and (gradient not null) their gradients added, with the kinematics at q.
+  [[nodiscard]] double kinematic_terms(const ModelData& at_q, JointVector* gradient) noexcept;
+  [[nodiscard]] double keep_out_term(const ModelData& at_q, JointVector* gradient) noexcept;
   [[nodiscard]] bool has_kinematic_terms() const noexcept;
 
   const RobotModel* model_ = nullptr;
   std::unique_ptr<ModelData> data_;
   SideCriteriaSettings settings_;
-  TaskJacobian jacobian_;
-  JointVector probe_;
+  TaskJacobian jacobian_, keep_out_jacobian_, scaled_;
+  TaskJacobian derivative_by_jacobian_;  // dH/dJ (6 x n) of the Jacobian criteria
+  TaskMatrix gram_;
+  Eigen::SelfAdjointEigenSolver<TaskMatrix> eigen_;
+  Eigen::LLT<TaskMatrix> gram_llt_;         // manipulability alone
+  TaskVector sigma_ = TaskVector::Zero(6);  // singular values, largest first
 };
 
 }  // namespace hapticd::model
