@@ -78,6 +78,14 @@ ParameterSchema SimDevice::parameter_schema() {
   s.real_vector("initial_position", "joint positions at activation; empty: all zero")
       .default_value(std::vector<double>{});
   s.real("substep_hz", "physics integration rate").unit("Hz").minimum(2000.0).maximum(1e6).default_value(20000.0);
+  s.real("rigid_body_hz",
+         "rate of the rigid-body terms (mass matrix, Coriolis and gravity, the handle's Jacobian; the drive springs, "
+         "motors and friction run at substep_hz), rounded to a whole number of substeps; 0 or substep_hz and "
+         "above: single-rate (docs/simulated-devices.md)")
+      .unit("Hz")
+      .minimum(0.0)
+      .maximum(1e6)
+      .default_value(4000.0);
   s.real("structural_damping_ratio",
          "damping ratio of each drive's spring (the gear's hysteresis); -1: the model's drive damping_ratio "
          "where it gives one (ViSHaRD3: 0.15, calibrated, docs/evaluation.md), else 0.02")
@@ -252,6 +260,9 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
                                            std::to_string(context.rate_hz) + " Hz)");
   }
   substep_s_ = static_cast<double>(substep_ns_) * 1e-9;
+  const double rigid_body_hz = p.real("rigid_body_hz");
+  if (rigid_body_hz > 0.0)
+    chain_->set_rigid_body_every(static_cast<int>(std::max(1L, std::lround(p.real("substep_hz") / rigid_body_hz))));
   chain_->reset(initial_position_);
   const double highest = chain_->highest_frequency();
   if (highest * substep_s_ > 0.5) {
@@ -381,7 +392,7 @@ void SimDevice::sensor_reading(const Eigen::Isometry3d& handle, const Vector6d& 
                                const Vector6d& wrench) noexcept {
   // The sensor reads the force and moment (about its origin) with which what it carries pulls on it: the
   // external wrench at the handle plus the carried mass's weight minus its inertial force, m (g - a).
-  const Eigen::Isometry3d s = model::frame_pose(chain_->link_model(), chain_->data(), sensor_frame_);
+  const Eigen::Isometry3d s = chain_->carried_frame_pose(sensor_frame_);
   Eigen::Vector3d force = wrench.head<3>();
   Eigen::Vector3d moment = wrench.tail<3>() + (handle.translation() - s.translation()).cross(force);
   if (carried_mass_ > 0.0) {
@@ -550,14 +561,10 @@ Outcome SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
 
 void SimDevice::read_accelerations(DeviceState& state) noexcept {
   // Classical acceleration of the sensor from the links' last acceleration: J qdd + dJ/dt qd.
-  FlexibleChain& chain = *chain_;
-  chain.prepare();
-  const model::RobotModel& m = chain.link_model();
-  model::frame_jacobian(m, chain.data(), sensor_frame_, sensor_jacobian_);
-  Vector6d a = sensor_jacobian_ * chain.link_acceleration();
-  a += model::frame_jacobian_dot_times_qd(m, chain.data(), sensor_frame_);
-  a.head<3>() -= m.gravity();  // an accelerometer measures acceleration minus gravity
-  const Eigen::Matrix3d rt = model::frame_pose(m, chain.data(), sensor_frame_).linear().transpose();
+  FlexibleChain::FrameAcceleration f = chain_->frame_acceleration(sensor_frame_);
+  Vector6d& a = f.acceleration;
+  a.head<3>() -= chain_->link_model().gravity();  // an accelerometer measures acceleration minus gravity
+  const Eigen::Matrix3d rt = f.pose.linear().transpose();
   truth_.sensor_acceleration.head<3>() = rt * a.head<3>();
   truth_.sensor_acceleration.tail<3>() = rt * a.tail<3>();
   const auto quantise = [](double v, double resolution, double range) {

@@ -108,7 +108,6 @@ class SimDevice final : public Device {
   double joint_torque_resolution_ = 0.01;
   std::array<double, 2> acceleration_range_{49.0, 100.0};
   std::array<double, 2> acceleration_resolution_{0.0981, 0.1};
-  model::TaskJacobian sensor_jacobian_;
 };
 
 }  // namespace hapticd::sim
