@@ -15,7 +15,7 @@ for rate in 2000 4000; do
   period_us=$((1000000 / rate))
   loops=$((seconds * rate))
   echo "== $rate Hz: hapticd" >&2
-  sed "s/rate_hz: 2000/rate_hz: $rate/; s/realtime_priority: 80/realtime_priority: $priority/" \
+  sed "s/rate_hz: 2000/rate_hz: $rate/; s/realtime_priority: 80/realtime_priority: $priority\n  cpu_dma_latency_us: ${HAPTICD_CPU_DMA_LATENCY_US:-0}/" \
     config/sessions/test-mass-spring.yaml > "$out/session-$rate.yaml"
   sed -i "s|^server:|server:\n  plugin_paths: [$(pwd)/build/default/lib/hapticd/plugins]|" "$out/session-$rate.yaml"
   "$hapticd" --config "$out/session-$rate.yaml" --duration "$seconds" --stats-json "$out/hapticd-$rate.json" \

@@ -17,6 +17,7 @@ ExecutorSettings executor_settings(const ServerSettings& server, bool realtime_s
   s.realtime_priority = realtime_setup ? server.realtime_priority : 0;
   s.lock_memory = realtime_setup && server.lock_memory;
   s.cpu = realtime_setup ? server.cpu : -1;
+  s.cpu_dma_latency_us = realtime_setup ? server.cpu_dma_latency_us : -1;
   return s;
 }
 

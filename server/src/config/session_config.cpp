@@ -107,6 +107,7 @@ ServerSettings read_server(const YAML::Node& node, const std::string& file, cons
   settings.realtime_priority = static_cast<int>(p.integer("realtime_priority"));
   settings.lock_memory = p.boolean("lock_memory");
   settings.cpu = static_cast<int>(p.integer("cpu"));
+  settings.cpu_dma_latency_us = static_cast<int>(p.integer("cpu_dma_latency_us"));
   settings.shutdown_ramp_s = p.real("shutdown_ramp_s");
   return settings;
 }
@@ -525,6 +526,14 @@ ParameterSchema server_settings_schema() {
       .maximum(99)
       .default_value(std::int64_t{80});
   s.boolean("lock_memory", "lock all pages in memory (mlockall) in realtime mode").default_value(true);
+  s.integer("cpu_dma_latency_us",
+            "in realtime mode, hold the kernel's CPU latency limit (/dev/cpu_dma_latency, as cyclictest does) at "
+            "this many microseconds while the session runs: 0 keeps the CPUs out of idle states that take long to "
+            "leave (docs/measurements.md: it halves the loop's wake-up latency here); -1 leaves it alone (the "
+            "default until the stalls seen with it in the multi-process tests are understood)")
+      .minimum(-1)
+      .maximum(2000000)
+      .default_value(std::int64_t{-1});
   s.integer("cpu", "pin the loop thread to this CPU; -1 does not pin")
       .minimum(-1)
       .maximum(1023)

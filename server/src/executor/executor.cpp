@@ -140,6 +140,10 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
   ExecutorResult result;
   if (!settings_.lockstep && settings_.lock_memory)
     if (std::string w = lock_process_memory(); !w.empty()) result.warnings.push_back(std::move(w));
+  CpuLatencyLimit cpu_latency;  // held until the loops have ended
+  if (!settings_.lockstep && settings_.cpu_dma_latency_us >= 0)
+    if (std::string w = cpu_latency.hold(settings_.cpu_dma_latency_us); !w.empty())
+      result.warnings.push_back(std::move(w));
   result.loops.resize(loops_.size());
   for (std::size_t k = 0; k < loops_.size(); ++k) {
     result.loops[k].name = loops_[k]->name;

@@ -41,6 +41,7 @@ struct ExecutorSettings {
   int realtime_priority = 0;
   bool lock_memory = false;
   int cpu = -1;
+  int cpu_dma_latency_us = -1;  // held while running (realtime only); -1: left alone
 };
 
 // A group whose devices run on a loop thread of their own (`groups[i].loop`).

@@ -1,11 +1,14 @@
 #include "executor/realtime_setup.hpp"
 
+#include <fcntl.h>
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
+#include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 
 namespace hapticd::server {
@@ -36,6 +39,25 @@ std::vector<std::string> make_thread_realtime(std::thread& thread, int priority,
       warnings.push_back("cannot pin the loop thread to CPU " + std::to_string(cpu) + " (" + std::strerror(rc) + ")");
   }
   return warnings;
+}
+
+CpuLatencyLimit::~CpuLatencyLimit() {
+  if (fd_ >= 0) close(fd_);
+}
+
+std::string CpuLatencyLimit::hold(int microseconds) {
+  const int fd = open("/dev/cpu_dma_latency", O_WRONLY | O_CLOEXEC);
+  if (fd < 0)
+    return std::string("cannot hold the CPU latency limit (/dev/cpu_dma_latency: ") + std::strerror(errno) +
+           "); idle CPUs may wake the loop late. Run as root, or set server.cpu_dma_latency_us: -1.";
+  const std::int32_t value = microseconds;
+  if (write(fd, &value, sizeof value) != static_cast<ssize_t>(sizeof value)) {
+    const int error = errno;
+    close(fd);
+    return std::string("cannot set the CPU latency limit (/dev/cpu_dma_latency: ") + std::strerror(error) + ")";
+  }
+  fd_ = fd;
+  return {};
 }
 
 void minimise_timer_slack() noexcept { prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL); }
