@@ -220,6 +220,30 @@ TEST_F(Redundancy, TheDampedInverseBoundsJointRatesNearASingularity) {
   EXPECT_LE(damped_rate, 0.1 / (2.0 * 0.05) + 1e-12);
 }
 
+TEST_F(Redundancy, ExactInversesDropTheLostDirectionOfARankDeficientJacobian) {
+  // Two equal rows: rank 5, the Gram matrix singular, so the exact kinds take the eigen-decomposition fallback.
+  // The result must still be a generalised inverse (J J# J = J, J# J J# = J#), finite, and computed without
+  // allocating.
+  at(random_q());
+  TaskJacobian deficient = jacobian_;
+  deficient.row(5) = deficient.row(4);
+  for (InverseKind kind : {InverseKind::pseudoinverse, InverseKind::weighted, InverseKind::inertia_weighted}) {
+    GeneralizedInverse g;
+    g.configure(kind, 10, weights_);
+    std::size_t allocations = 0;
+    if (testing::AllocationGuard::available()) {
+      allocations = testing::count_allocations([&] { g.compute(deficient, &data_->mass_llt); });
+    } else {
+      g.compute(deficient, &data_->mass_llt);
+    }
+    EXPECT_EQ(allocations, 0u) << to_string(kind);
+    EXPECT_EQ(g.rank(), 5) << to_string(kind);
+    ASSERT_TRUE(g.matrix().allFinite()) << to_string(kind);
+    EXPECT_LT((deficient * g.matrix() * deficient - deficient).norm() / deficient.norm(), 1e-9) << to_string(kind);
+    EXPECT_LT((g.matrix() * deficient * g.matrix() - g.matrix()).norm() / g.matrix().norm(), 1e-9) << to_string(kind);
+  }
+}
+
 TEST_F(Redundancy, SideCriteriaGradientsMatchFiniteDifferences) {
   // The analytic gradients (the singular values' through the Jacobian's derivative, the keep-out distance's
   // through the frame Jacobian) against central differences of the criteria's values, for the full task and the

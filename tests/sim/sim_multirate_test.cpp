@@ -8,8 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "physics_builder.hpp"
-#include "support/device_models.hpp"
+#include "support/flexible_chain_rig.hpp"
 #include "support/sim_device_fixture.hpp"
 
 namespace hapticd {
@@ -18,22 +17,13 @@ namespace {
 using sim::FlexibleChain;
 using sim::PhysicsOptions;
 
-constexpr double kDt = 1.0 / 20000.0;  // the default substep
-constexpr int kEvery = 5;              // the default: 4 kHz rigid-body terms at 20 kHz substeps
+using test::lossless;
+
+constexpr double kDt = test::kSubstepS;
+constexpr int kEvery = 5;  // the default: 4 kHz rigid-body terms at 20 kHz substeps
 
 FlexibleChain make_chain(const char* device, const PhysicsOptions& options, int every) {
-  const model::RobotModel robot = test::load_device_model(device);
-  FlexibleChain chain = sim::build_flexible_chain(robot, robot.require_frame("handle"), options, 1);
-  chain.set_rigid_body_every(every);
-  return chain;
-}
-
-PhysicsOptions lossless() {
-  PhysicsOptions o;
-  o.friction = false;
-  o.ripple = false;
-  o.damping_ratio = 0.0;
-  return o;
+  return test::make_chain(device, options, 1, every);
 }
 
 class Multirate : public ::testing::TestWithParam<const char*> {};

@@ -6,8 +6,7 @@
 #include <cmath>
 
 #include "hapticd/testing/allocation_guard.hpp"
-#include "physics_builder.hpp"
-#include "support/device_models.hpp"
+#include "support/flexible_chain_rig.hpp"
 
 namespace hapticd {
 namespace {
@@ -15,20 +14,10 @@ namespace {
 using sim::FlexibleChain;
 using sim::PhysicsOptions;
 
-constexpr double kDt = 1.0 / 20000.0;  // the default substep
+using test::lossless;
+using test::make_chain;
 
-FlexibleChain make_chain(const char* device, const PhysicsOptions& options, std::uint64_t seed = 1) {
-  const model::RobotModel robot = test::load_device_model(device);
-  return sim::build_flexible_chain(robot, robot.require_frame("handle"), options, seed);
-}
-
-PhysicsOptions lossless() {
-  PhysicsOptions o;
-  o.friction = false;
-  o.ripple = false;
-  o.damping_ratio = 0.0;
-  return o;
-}
+constexpr double kDt = test::kSubstepS;
 
 PhysicsOptions friction_only() {
   PhysicsOptions o;
