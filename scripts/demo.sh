@@ -18,7 +18,7 @@ rm -f "$out"/engine.csv
 
 echo "== hapticd --config config/sessions/demo.yaml --dds-domain $domain (11 s, real time)"
 "$bin/hapticd" --config config/sessions/demo.yaml --dds-domain "$domain" \
-  --record "$out/recording.csv" --stats-json "$out/stats.json" > "$out/server.log" 2>&1 &
+  --record "$out/recording.h5" --stats-json "$out/stats.json" > "$out/server.log" 2>&1 &
 server=$!
 trap 'kill $server $engine 2>/dev/null || true' EXIT
 engine=
@@ -57,4 +57,4 @@ ctl estop --group table
 wait "$server" || true  # exit code 3: the devices were stopped
 trap - EXIT
 grep -E "group 'table'|device '(left|right)'" "$out/dual-arm.log" | sed 's/^\[[^]]*\] \[[a-z]*\] /server: /'
-echo "== engine view: $out/engine.csv, server recording: $out/recording.csv, server log: $out/server.log, plot: $out/demo.png, dual-arm log: $out/dual-arm.log"
+echo "== engine view: $out/engine.csv, server recording: $out/recording.h5 (hapticctl export ... --csv), server log: $out/server.log, plot: $out/demo.png, dual-arm log: $out/dual-arm.log"

@@ -21,6 +21,7 @@ packages=(
   clang-14 libclang-rt-14-dev clang-format-14
   python3 python3-matplotlib python3-dev python3-numpy python3-pytest pybind11-dev
   libfastrtps-dev fastddsgen
+  libhdf5-dev python3-h5py
   iproute2
 )
 

@@ -1,52 +1,49 @@
 #!/usr/bin/python3
-"""Plot a hapticd --record CSV: joint positions, torque commands and sensor forces of every device."""
-import csv
+"""Plot a hapticd recording (hapticd --record FILE.h5): per device the joint positions, the torque commands,
+the handle's position and the operator's force, over time. Needs python3-h5py and python3-matplotlib; reads
+the file with the hapticd package's reader (python/hapticd/recording.py, pure Python: no build needed)."""
+import importlib.util
+import os
 import sys
-from collections import defaultdict
 
-import matplotlib
+_reader = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python", "hapticd", "recording.py")
+_spec = importlib.util.spec_from_file_location("hapticd_recording", _reader)
+recording = importlib.util.module_from_spec(_spec)
+sys.modules["hapticd_recording"] = recording  # (its dataclasses look their module up)
+_spec.loader.exec_module(recording)
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def main(csv_path: str, png_path: str) -> None:
-    series = defaultdict(lambda: {"t": [], "position": [], "torque_command": []})
-    forces = defaultdict(lambda: {"t": [], "fx": [], "fy": [], "fz": []})
-    with open(csv_path, newline="") as f:
-        for row in csv.DictReader(f):
-            s = series[(row["device"], int(row["joint"]))]
-            s["t"].append(float(row["time_s"]))
-            s["position"].append(float(row["position"]))
-            s["torque_command"].append(float(row["torque_command"]))
-            if row["joint"] == "0" and "sensor_fx" in row:
-                w = forces[row["device"]]
-                w["t"].append(float(row["time_s"]))
-                for axis in ("fx", "fy", "fz"):
-                    w[axis].append(float(row["sensor_" + axis]))
-    if not series:
-        sys.exit(f"{csv_path}: no samples")
-    fig, (ax_q, ax_tau, ax_f) = plt.subplots(3, 1, sharex=True, figsize=(9, 8))
-    for (device, joint), s in sorted(series.items()):
-        label = f"{device} joint {joint}"
-        ax_q.plot(s["t"], s["position"], label=label)
-        ax_tau.plot(s["t"], s["torque_command"], label=label)
-    for device, w in sorted(forces.items()):
-        for axis in ("fx", "fy", "fz"):
-            ax_f.plot(w["t"], w[axis], label=f"{device} {axis}")
-    ax_q.set_ylabel("position [rad or m]")
-    ax_tau.set_ylabel("torque command [N m or N]")
-    ax_f.set_ylabel("sensor force [N]\n(sensor frame)")
-    ax_f.set_xlabel("time [s]")
-    for ax in (ax_q, ax_tau, ax_f):
+
+def main(path: str, png_path: str) -> None:
+    rec = recording.read(path)
+    if not rec.devices:
+        sys.exit(f"{path}: no devices")
+    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(9, 10))
+    for name, dev in rec.devices.items():
+        t = dev.time_s
+        for j, joint in enumerate(dev.joint_names):
+            axes[0].plot(t, dev["joints/position"][:, j], label=f"{name} {joint}")
+            axes[1].plot(t, dev["joints/torque_command"][:, j], label=f"{name} {joint}")
+        for a, axis in enumerate("xyz"):
+            axes[2].plot(t, dev["handle/pose"][:, a], label=f"{name} {axis}")
+            axes[3].plot(t, dev["wrench/operator"][:, a], label=f"{name} F{axis}")
+    for ax, label in zip(axes, ["position [rad or m]", "torque command [N m]", "handle position [m]",
+                                "operator force [N]"]):
+        ax.set_ylabel(label)
         ax.grid(True)
-        ax.legend(loc="upper right", fontsize="small")
-    fig.suptitle(csv_path)
+        ax.legend(fontsize="small", ncol=3)
+    axes[-1].set_xlabel("time [s]")
+    fig.suptitle(f"{os.path.basename(path)}: {', '.join(rec.devices)}")
     fig.tight_layout()
     fig.savefig(png_path, dpi=100)
 
 
 if __name__ == "__main__":
     if len(sys.argv) != 3:
-        sys.exit("usage: plot_recording.py RECORDING.csv OUT.png")
+        sys.exit("usage: plot_recording.py RECORDING.h5 OUT.png")
     main(sys.argv[1], sys.argv[2])

@@ -7,11 +7,13 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <thread>
 
 #include "hapticd/client/client.hpp"
+#include "recording_export.hpp"
 
 namespace {
 
@@ -48,6 +50,36 @@ void print_event(const hapticd::client::Event& e) {
   const bool says_more = !e.message.empty() && e.message != e.code && e.message != kind + ": " + e.code;
   fmt::print("{} event {}: {}{}{}\n", e.device, kind, e.code.empty() ? "-" : e.code, says_more ? " - " : "",
              says_more ? e.message : "");
+}
+
+// hapticctl export: every (or the named) device's cycles as CSV beside the recording (or in out_dir).
+int export_recording(const std::string& recording, std::vector<std::string> devices,
+                     const std::vector<std::string>& exclude, const std::string& out_dir) {
+  try {
+    const std::vector<std::string> recorded = hapticd::recording::recorded_devices(recording);
+    if (devices.empty()) devices = recorded;
+    const std::filesystem::path source(recording);
+    const std::filesystem::path dir = out_dir.empty() ? source.parent_path() : std::filesystem::path(out_dir);
+    for (const std::string& d : devices) {
+      const std::filesystem::path target = dir / (source.stem().string() + "." + d + ".csv");
+      std::ofstream out(target);
+      if (!out) {
+        fmt::print(stderr, "cannot write {}\n", target.string());
+        return 2;
+      }
+      const std::size_t rows = hapticd::recording::export_csv(recording, d, out, exclude);
+      out.close();
+      if (!out) {
+        fmt::print(stderr, "cannot write {}\n", target.string());
+        return 2;
+      }
+      fmt::print("{}: {} cycles of '{}'\n", target.string(), rows, d);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "hapticctl export: {}\n", e.what());
+    return 2;
+  }
 }
 
 // A cycle record's flags (their own bits: 1 torque saturated, 2 limit engaged, 4 render limited, 8 thermal).
@@ -160,6 +192,17 @@ int run(int argc, char** argv) {
   record->add_option("device", device)->required();
   record->add_option("file", file)->required();
   record->add_option("--duration", duration, "seconds (default: until Ctrl-C)");
+  auto* export_cmd = app.add_subcommand(
+      "export", "a recording (hapticd --record, HDF5) as CSV: one file per device, FILE's name with .DEVICE.csv");
+  std::string recording;
+  bool csv = false;
+  std::vector<std::string> export_devices, exclude;
+  std::string out_dir;
+  export_cmd->add_option("file", recording, "the recording (.h5)")->required();
+  export_cmd->add_flag("--csv", csv, "CSV (the one format there is; required, for clarity)")->required();
+  export_cmd->add_option("--device", export_devices, "only these devices (default: every one)");
+  export_cmd->add_option("--exclude", exclude, "leave out these datasets or groups, e.g. timing");
+  export_cmd->add_option("--out", out_dir, "folder of the CSV files (default: the recording's)");
   auto* estop = app.add_subcommand(
       "estop", "emergency stop: the device (--group: each of the group's, --all: every one) goes to its safe mode");
   target(estop, true);
@@ -179,6 +222,7 @@ int run(int argc, char** argv) {
                  command->get_option_no_throw("--all") != nullptr ? ", or --all" : "");
       return 106;  // CLI11's code for a missing argument
     }
+  if (*export_cmd) return export_recording(recording, export_devices, exclude, out_dir);
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

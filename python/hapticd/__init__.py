@@ -4,6 +4,7 @@
   reports, engine commands. Loopback only by default.
 - ``run_engine``: a Python function answers each state of a device with an engine command at the loop rate.
 - ``Session``: a session in this process, stepped in lockstep (for experiments and notebooks).
+- ``recording.read``: a recording (``hapticd --record FILE.h5``) as NumPy arrays.
 - Errors: ``Error``, ``SessionError``, ``RequestRefused``, ``Timeout`` (``hapticd.errors``).
 """
 from ._hapticd import (  # noqa: F401
@@ -34,6 +35,7 @@ from ._hapticd import (  # noqa: F401
     flag_names,
 )
 from .engine import EngineStats, run_engine, states  # noqa: F401
+from . import recording  # noqa: F401
 from .errors import Error, RequestRefused, SessionError, Timeout  # noqa: F401
 
 __all__ = [

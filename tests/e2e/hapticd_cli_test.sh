@@ -4,6 +4,7 @@
 # Usage: hapticd_cli_test.sh HAPTICD SOURCE_DIR WORK_DIR
 set -u
 hapticd=$1; src=$2; work=$3
+hapticctl="$(dirname "$hapticd")/hapticctl"
 rm -rf "$work"; mkdir -p "$work"
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
@@ -35,17 +36,19 @@ out=$(timeout 30 "$hapticd" --check-config "$bad" --set "devices.0.controller.pa
 
 # 3. Lockstep determinism through the executable: two runs, identical recordings.
 for run in 1 2; do
-  timeout 60 "$hapticd" --config "$session" --clock lockstep --duration 2 --record "$work/run$run.csv" \
+  timeout 60 "$hapticd" --config "$session" --clock lockstep --duration 2 --record "$work/run$run.h5" \
     --stats-json "$work/stats$run.json" --log-level warn || fail "lockstep run $run exited $?"
+  "$hapticctl" export "$work/run$run.h5" --csv --exclude timing > /dev/null || fail "export of run $run"
 done
-rows=$(wc -l < "$work/run1.csv")
-if [ "$rows" -gt 4000 ] && cmp -s "$work/run1.csv" "$work/run2.csv"; then pass "lockstep runs are identical ($rows rows)"
+rows=$(cat "$work"/run1.*.csv | wc -l)
+if [ "$rows" -gt 4000 ] && cmp -s <(cat "$work"/run1.*.csv) <(cat "$work"/run2.*.csv); then
+  pass "lockstep runs are identical ($rows rows)"
 else fail "lockstep recordings differ or are short ($rows rows)"; fi
 grep -q '"cycles": 4400' "$work/stats1.json" && pass "stats: 4400 cycles (2 s + 0.2 s ramp)" || fail "stats: $(head -5 "$work/stats1.json")"
 grep -q '"compute_time_us": {"count": 4400' "$work/stats1.json" && pass "stats: compute-time histogram" || fail "no compute histogram"
 
 # 4. SIGTERM: every device stops through its safe mode, exit 0, last torque zero.
-timeout 60 "$hapticd" --config "$session" --clock realtime --duration 0 --record "$work/term.csv" \
+timeout 60 "$hapticd" --config "$session" --clock realtime --duration 0 --record "$work/term.h5" \
   --stats-json "$work/term.json" --log-level info > "$work/term.log" 2>&1 &
 pid=$!
 sleep 1
@@ -53,7 +56,10 @@ kill -TERM "$pid"
 wait "$pid"; rc=$?
 [ "$rc" -eq 0 ] && pass "SIGTERM: exit code 0" || fail "SIGTERM: exit code $rc; log: $(cat "$work/term.log")"
 grep -q '"stop_requested": true' "$work/term.json" && pass "SIGTERM: stop was requested" || fail "SIGTERM: stats say no stop request"
-last=$(tail -n 1 "$work/term.csv" | awk -F, '{print $8}')
+"$hapticctl" export "$work/term.h5" --csv > /dev/null || fail "SIGTERM: the recording does not export"
+# the first device's first joint: its torque command in the last cycle
+last=$(awk -F, 'NR == 1 { for (i = NF; i >= 1; --i) if ($i ~ /^joints\.torque_command\./) c = i; next } { v = $c }
+                END { print v }' "$(ls "$work"/term.*.csv | head -n 1)")
 [ "$last" = "0" ] && pass "SIGTERM: last torque command is 0" || fail "SIGTERM: last torque command is '$last'"
 grep -q "stops through its safe mode" "$work/term.log" && pass "SIGTERM: safe stop logged" || fail "SIGTERM: no safe stop in log"
 

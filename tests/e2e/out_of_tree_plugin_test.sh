@@ -21,10 +21,11 @@ export HAPTICD_PLUGIN_PATH="$plugin_dir"
 "$prefix/bin/hapticd" --list-plugins | grep -q "example_spring_wall .*controller" || { echo "FAIL: plugin not listed"; exit 1; }
 "$prefix/bin/hapticd" --check-config "$src/examples/out_of_tree_plugin/session.yaml"
 "$prefix/bin/hapticd" --config "$src/examples/out_of_tree_plugin/session.yaml" --clock lockstep --duration 1 \
-  --stats-json "$work/stats.json" --record "$work/run.csv" --log-level warn
+  --stats-json "$work/stats.json" --record "$work/run.h5" --log-level warn
+"$prefix/bin/hapticctl" export "$work/run.h5" --csv > /dev/null || { echo "FAIL: the recording does not export"; exit 1; }
 grep -q '"fault": "none"' "$work/stats.json" || { echo "FAIL: device faulted"; cat "$work/stats.json"; exit 1; }
 # The wall at 0.02 m holds the test device that the example's setpoint pushes to 0.05 m.
-max=$(awk -F, 'NR > 1 && $1 > 1000 { if ($5 > m) m = $5 } END { print m }' "$work/run.csv")
+max=$(awk -F, 'NR > 1 && $1 > 1000 { if ($3 > m) m = $3 } END { print m }' "$(ls "$work"/run.*.csv | head -n 1)")
 awk -v m="$max" 'BEGIN { exit !(m > 0.015 && m < 0.03) }' || { echo "FAIL: wall did not hold, max position $max"; exit 1; }
 echo "out-of-tree plugin built against the installed SDK and loaded; wall holds at $max m"
 

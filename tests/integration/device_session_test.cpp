@@ -4,10 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include "app/served_session.hpp"
+#include "executor/loop_cycle.hpp"
 #include "hapticd/chain_state.hpp"
 #include "hapticd/model/kinematics.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
+#include "recorder/recorder.hpp"
 #include "support/handle_mass_urdf.hpp"
+#include "support/temp_file.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -105,6 +109,23 @@ TEST(DeviceSession, CycleOfTheWholeChainDoesNotAllocate) {
   for (std::uint64_t k = 0; k < 5000; ++k) d.cycle(cycle_at(k), k < 4000 ? 1.0 : 0.5);
   EXPECT_EQ(guard.allocations(), 0u);
   EXPECT_EQ(d.fault(), DeviceFault::none);
+}
+
+TEST(DeviceSession, ARecordedCycleDoesNotAllocate) {
+  // The loop's side of the recording: the cycle snapshot, the record and the ring (real-time mode: a full ring
+  // drops, so the writer thread's pace does not matter here).
+  if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
+  auto s = session_with(test::mass_spring_device_yaml("axis", ", position_noise_m: 1.0e-5"));
+  const auto file = test::write_temp_file("alloc.h5", "");
+  Recorder recorder(file, recording_header(s.impl().config, s.impl().device_pointers()), /*wait_when_full=*/false);
+  LoopCycle loop(s.impl().device_pointers(), &recorder);
+  s.impl().devices[0]->activate();
+  testing::AllocationGuard guard;
+  for (std::uint64_t k = 0; k < 5000; ++k) loop.run_cycle(cycle_at(k), 1.0, 0, 0);
+  EXPECT_EQ(guard.allocations(), 0u);
+  recorder.close();
+  EXPECT_FALSE(recorder.failed()) << recorder.error();
+  EXPECT_EQ(recorder.written() + recorder.dropped(), 5000u);
 }
 
 // A simulated ViSHaRD3 pushed by a scripted force, held by the test PD controller.

@@ -7,37 +7,34 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/served_session.hpp"
 #include "recorder/recorder.hpp"
+#include "support/recording.hpp"
 #include "support/temp_file.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
 namespace {
 
-std::string read_file(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string lockstep_yaml(double duration_s, const std::string& devices, std::uint64_t seed = 1) {
   return "server: {clock: lockstep, rate_hz: 2000, duration_s: " + std::to_string(duration_s) +
          ", shutdown_ramp_s: 0.1, seed: " + std::to_string(seed) + "}\ndevices:\n" + devices;
 }
 
-// Runs a session and returns its recording.
+// Runs a session and returns its recording (both devices' cycles as CSV, without the machine's timing).
 std::string run_recorded(const std::string& yaml, const std::string& record_name) {
   auto s = test::build_test_session(yaml);
   const auto file = test::write_temp_file(record_name, "");
-  Recorder recorder(file, {"a", "b"}, /*wait_when_full=*/true);
+  Recorder recorder(file, recording_header(s.impl().config, s.impl().device_pointers()), /*wait_when_full=*/true);
   Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), &recorder);
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop);
-  recorder.finish();
+  recorder.close();
+  EXPECT_FALSE(recorder.failed()) << recorder.error();
   EXPECT_EQ(recorder.dropped(), 0u);
   EXPECT_EQ(recorder.written(), r.statistics.cycles * s.impl().devices.size());
-  return read_file(file);
+  const auto csv = test::recording_csv(file);
+  return csv.at("a") + csv.at("b");
 }
 
 TEST(Executor, LockstepRunsTheDurationThenTheRamp) {
@@ -59,10 +56,10 @@ TEST(Executor, LockstepRunsTheDurationThenTheRamp) {
 TEST(Executor, LockstepIsBitIdenticalAcrossRunsAndDependsOnTheSeed) {
   const std::string devices = test::mass_spring_device_yaml("a", ", position_noise_m: 1.0e-4") +
                               test::mass_spring_device_yaml("b", ", position_noise_m: 1.0e-4");
-  const std::string first = run_recorded(lockstep_yaml(1.0, devices, 7), "first.csv");
-  const std::string second = run_recorded(lockstep_yaml(1.0, devices, 7), "second.csv");
-  const std::string other_seed = run_recorded(lockstep_yaml(1.0, devices, 8), "other.csv");
-  EXPECT_GT(first.size(), 100'000u);
+  const std::string first = run_recorded(lockstep_yaml(1.0, devices, 7), "first.h5");
+  const std::string second = run_recorded(lockstep_yaml(1.0, devices, 7), "second.h5");
+  const std::string other_seed = run_recorded(lockstep_yaml(1.0, devices, 8), "other.h5");
+  EXPECT_GT(first.size(), 1'000'000u);
   EXPECT_TRUE(first == second) << "two lockstep runs of the same session differ";
   EXPECT_FALSE(first == other_seed) << "the seed has no effect: the determinism check would prove nothing";
 }
@@ -72,14 +69,14 @@ TEST(Executor, StopRequestTakesEveryDeviceThroughItsSafeModeThenEnds) {
   // stop; every device then damps for safe_damping_s (0.5 s = 1000 cycles) and the loop ends at zero torque.
   auto s = test::build_test_session(
       lockstep_yaml(0.0, test::mass_spring_device_yaml("a") + test::mass_spring_device_yaml("b")));
-  const auto file = test::write_temp_file("stop.csv", "");
-  Recorder recorder(file, {"a", "b"}, true);
+  const auto file = test::write_temp_file("stop.h5", "");
+  Recorder recorder(file, recording_header(s.impl().config, s.impl().device_pointers()), true);
   Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), &recorder);
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop, [&] {
     if (executor.live().cycles.load() >= 400) stop.store(true);  // once the devices move
   });
-  recorder.finish();
+  recorder.close();
   EXPECT_TRUE(r.stop_requested);
   ASSERT_GE(r.statistics.cycles, 1401u);
   for (const auto& d : s.impl().devices) {
@@ -89,18 +86,9 @@ TEST(Executor, StopRequestTakesEveryDeviceThroughItsSafeModeThenEnds) {
   }
   // Device a's velocity and torque columns: over the last 1001 cycles - after the 20 ms (40 cycles) in which
   // the last torque fades out - the torque only opposes the motion (damping), and the last one is zero.
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  std::vector<double> velocity, torque;
-  while (std::getline(in, line)) {
-    if (line.find(",a,") == std::string::npos) continue;
-    std::vector<double> columns;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) columns.push_back(cell == "a" ? 0.0 : std::stod(cell));
-    velocity.push_back(columns[5]);
-    torque.push_back(columns[7]);
-  }
+  const std::string a = test::recording_csv(file).at("a");
+  const std::vector<double> velocity = test::recording_column(a, "joints.velocity.");
+  const std::vector<double> torque = test::recording_column(a, "joints.torque_command.");
   ASSERT_EQ(torque.size(), r.statistics.cycles);
   int damping = 0;
   for (std::size_t k = torque.size() - 1001 + 40; k < torque.size(); ++k) {

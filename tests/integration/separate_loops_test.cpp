@@ -4,11 +4,13 @@
 // same bit for bit as without the setting.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <sstream>
 
 #include "app/served_session.hpp"
+#include "support/recording.hpp"
 #include "support/temp_file.hpp"
 #include "support/test_session.hpp"
 
@@ -26,43 +28,34 @@ std::string four_devices(const std::string& clock, const std::string& loops) {
 
 struct Served {
   ExecutorResult result;
-  std::string recording;
+  std::map<std::string, std::string> recording;  // device -> its cycles as CSV
 };
 
 Served serve(const std::string& yaml, const std::string& record_name) {
   Session s = test::build_test_session(yaml);
   ServeOptions options;
   options.realtime_setup = false;  // no SCHED_FIFO or pinning on a shared test machine
-  options.record_csv = test::write_temp_file(record_name, "");
+  options.record_file = test::write_temp_file(record_name, "");
   ServedSession served(s.impl().config, s.impl().device_pointers(), s.impl().stage_pointers(), options);
   std::atomic<bool> stop{false};
   Served out;
   out.result = served.run(stop);
   EXPECT_EQ(served.recorder()->dropped(), 0u);
-  std::ifstream in(options.record_csv);
-  std::stringstream text;
-  text << in.rdbuf();
-  out.recording = text.str();
+  served.recorder()->close();
+  out.recording = test::recording_csv(options.record_file);
   return out;
 }
 
-// Rows per device in a recording (one per joint and cycle; these devices have one joint).
-std::map<std::string, std::uint64_t> rows_per_device(const std::string& csv) {
+// Rows per device in a recording (one per cycle).
+std::map<std::string, std::uint64_t> rows_per_device(const std::map<std::string, std::string>& csv) {
   std::map<std::string, std::uint64_t> rows;
-  std::stringstream in(csv);
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::stringstream cells(line);
-    std::string cell, device;
-    for (int k = 0; k < 3 && std::getline(cells, cell, ','); ++k) device = cell;
-    ++rows[device];
-  }
+  for (const auto& [device, text] : csv)
+    rows[device] = static_cast<std::uint64_t>(std::count(text.begin(), text.end(), '\n')) - 1;  // less the header
   return rows;
 }
 
 TEST(SeparateLoops, InRealTimeEachGroupWithALoopRunsOnItsOwnBesideTheSessionsLoop) {
-  const Served s = serve(four_devices("realtime", "    loop: {}\n"), "loops.csv");
+  const Served s = serve(four_devices("realtime", "    loop: {}\n"), "loops.h5");
   ASSERT_EQ(s.result.loops.size(), 3u);
   EXPECT_EQ(s.result.loops[0].name, "session");
   EXPECT_EQ(s.result.loops[0].devices, std::vector<std::string>({"d"}));
@@ -88,13 +81,13 @@ TEST(SeparateLoops, InRealTimeEachGroupWithALoopRunsOnItsOwnBesideTheSessionsLoo
 }
 
 TEST(SeparateLoops, InLockstepEveryLoopRunsOnOneThreadAndTheRunIsUnchanged) {
-  const Served with = serve(four_devices("lockstep", "    loop: {cpu: 0}\n"), "with.csv");
-  const Served without = serve(four_devices("lockstep", ""), "without.csv");
+  const Served with = serve(four_devices("lockstep", "    loop: {cpu: 0}\n"), "with.h5");
+  const Served without = serve(four_devices("lockstep", ""), "without.h5");
   ASSERT_EQ(with.result.loops.size(), 1u);
   EXPECT_EQ(with.result.loops[0].devices, std::vector<std::string>({"a", "b", "c", "d"}));
   EXPECT_EQ(with.result.loops[0].cpu, -1);
   EXPECT_EQ(with.result.statistics.cycles, 440u);
-  EXPECT_GT(with.recording.size(), 50'000u);
+  EXPECT_GT(with.recording.at("a").size(), 50'000u);
   EXPECT_TRUE(with.recording == without.recording) << "a group's loop setting changed a lockstep run";
 }
 

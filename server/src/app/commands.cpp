@@ -117,13 +117,13 @@ int run_session(const RunOptions& options) {
     std::vector<GroupStage*> stages;
     for (const auto& g : s->stages) stages.push_back(g.get());
     served = std::make_unique<ServedSession>(s->config, sessions, std::move(stages),
-                                             ServeOptions{options.record_csv, /*realtime_setup=*/true, &stop});
+                                             ServeOptions{options.record_file, /*realtime_setup=*/true, &stop});
   } catch (const std::exception& e) {
     spdlog::error("{}; no device was powered", e.what());
     return kExitRuntimeError;
   }
   DdsBridge* bridge = served->bridge();
-  const Recorder* recorder = served->recorder();
+  Recorder* recorder = served->recorder();
   if (bridge != nullptr) {
     std::string cpus;
     for (int c : served->dds_cpus()) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
@@ -183,10 +183,13 @@ int run_session(const RunOptions& options) {
   report.sessions = &s->sessions;
   report.stages = &s->stages;
   report.monitor = &served->monitor();
-  report.records_written = recorder ? recorder->written() : 0;
-  report.records_dropped = recorder ? recorder->dropped() : 0;
-  report.records_lost = recorder ? recorder->lost() : 0;
-  report.recording_failed = recorder && recorder->failed();
+  const auto recording_counts = [&] {
+    report.records_written = recorder ? recorder->written() : 0;
+    report.records_dropped = recorder ? recorder->dropped() : 0;
+    report.records_lost = recorder ? recorder->lost() : 0;
+    report.recording_failed = recorder && recorder->failed();
+  };
+  recording_counts();
   if (bridge) {
     report.round_trip = bridge->round_trip();
     report.has_round_trip = report.round_trip.count > 0;
@@ -201,13 +204,22 @@ int run_session(const RunOptions& options) {
     report.dds.log_forwarded = log.forwarded;
     report.dds.log_suppressed = log.suppressed;
   }
+  if (recorder) {  // the session's statistics and safety events end the recording
+    std::vector<RecordingEvent> events;
+    for (std::size_t i = 0; i < sessions.size(); ++i)
+      for (const SafetyEvent& e : served->monitor().safety_log(i))
+        events.push_back({sessions[i]->name(), e.kind == SafetyEvent::Kind::fault ? "fault" : "recovery",
+                          std::string(fault_code(e.fault)), e.cycle, static_cast<double>(e.time_ns) * 1e-9});
+    recorder->close(report_json(report), events);
+    recording_counts();
+  }
   for (const auto& line : report_lines(report)) spdlog::info("{}", line);
   if (recorder) {
     if (recorder->failed()) {
-      spdlog::error("recording FAILED: {}; {} device-cycles in {} (whole rows), {} lost, {} dropped", recorder->error(),
-                    recorder->written(), options.record_csv, recorder->lost(), recorder->dropped());
+      spdlog::error("recording FAILED: {}; {} device-cycles in {} (whole records), {} lost, {} dropped",
+                    recorder->error(), recorder->written(), options.record_file, recorder->lost(), recorder->dropped());
     } else {
-      spdlog::info("recorded {} device-cycles to {} ({} dropped)", recorder->written(), options.record_csv,
+      spdlog::info("recorded {} device-cycles to {} ({} dropped)", recorder->written(), options.record_file,
                    recorder->dropped());
     }
   }

@@ -15,7 +15,7 @@ struct RunOptions {
   std::optional<double> duration_s;  // overrides server.duration_s
   std::optional<std::string> clock;  // overrides server.clock
   std::string stats_json;            // write the loop statistics here
-  std::string record_csv;            // record every cycle here
+  std::string record_file;           // record every cycle here (HDF5, docs/recording.md)
   std::optional<int> dds_domain;     // turns the DDS interface on, on this domain (overrides dds.domain_id)
   std::vector<std::string> sets;     // --set key.path=value: overrides of the session file (config_overrides)
 };

@@ -44,7 +44,9 @@ int run_command(int argc, char** argv) {
                  "override a key of the session file before it is validated, e.g. --set server.seed=7 --set "
                  "devices.v3.virtual_model.parameters.mass_kg=[2,2,2] (a device entry by its name; the value is YAML)");
   app.add_option("--stats-json", run.stats_json, "write loop statistics (histograms, percentiles) to this JSON file");
-  app.add_option("--record", run.record_csv, "record every cycle of every device to this CSV file");
+  app.add_option(
+      "--record", run.record_file,
+      "record every cycle of every device to this HDF5 file (docs/recording.md; hapticctl export FILE --csv)");
   int dds_domain = 0;
   auto* dds_opt = app.add_option("--dds-domain", dds_domain,
                                  "run the DDS interface on this domain (loopback-only "

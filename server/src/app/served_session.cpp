@@ -1,6 +1,8 @@
 #include "app/served_session.hpp"
 
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "group/group_stage.hpp"
@@ -59,15 +61,33 @@ std::vector<int> dds_cpus_for(const DdsSettings& dds, bool realtime_setup, Execu
 
 }  // namespace
 
+// What the recording says of the session before its first cycle.
+RecordingHeader recording_header(const SessionConfig& config, const std::vector<DeviceSession*>& devices) {
+  RecordingHeader h;
+  h.session_file = config.file.string();
+  if (!config.file.empty()) {
+    std::ifstream in(config.file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    h.session_text = text.str();
+  }
+  h.rate_hz = config.server.rate_hz;
+  h.lockstep = config.server.clock == ClockMode::lockstep;
+  for (const DeviceSession* d : devices) {
+    RecordingDevice rd{d->name(), d->description(), {}};
+    for (const SchemeChain& s : d->chain().schemes) rd.schemes.push_back(s.name);
+    h.devices.push_back(std::move(rd));
+  }
+  return h;
+}
+
 ServedSession::ServedSession(const SessionConfig& config, const std::vector<DeviceSession*>& devices,
                              std::vector<GroupStage*> stages, const ServeOptions& options)
     : settings_(executor_settings(config.server, options.realtime_setup)) {
   const std::vector<SeparateLoop> separate = separate_loops(config, stages, options.realtime_setup);
   dds_cpus_ = dds_cpus_for(config.dds, options.realtime_setup, settings_, separate);
-  if (!options.record_csv.empty()) {
-    std::vector<std::string> names;
-    for (const DeviceSession* d : devices) names.push_back(d->name());
-    recorder_ = std::make_unique<Recorder>(options.record_csv, names, settings_.lockstep,
+  if (!options.record_file.empty()) {
+    recorder_ = std::make_unique<Recorder>(options.record_file, recording_header(config, devices), settings_.lockstep,
                                            settings_.lockstep ? 1 : 1 + separate.size());
   }
   executor_ = std::make_unique<Executor>(settings_, devices, recorder_.get(), stages, separate);
@@ -98,8 +118,8 @@ ExecutorResult ServedSession::run(const std::atomic<bool>& stop) {
     ServedSession& s;
     ~Finish() {
       if (s.recorder_) {
-        s.recorder_->finish();
-        s.monitor_->poll();  // a failure at the end (the last chunk, the sync, the close) is announced too
+        s.recorder_->finish();  // the summary and the close follow (close_recording)
+        s.monitor_->poll();     // a failure at the end (the last chunk, the sync, the close) is announced too
       }
       if (s.bridge_) s.bridge_->stop();
     }

@@ -21,13 +21,16 @@
 namespace hapticd::server {
 
 struct ServeOptions {
-  std::filesystem::path record_csv;  // empty: no recording
+  std::filesystem::path record_file;  // the HDF5 recording (docs/recording.md); empty: no recording
   // false: no SCHED_FIFO, locked memory or CPU pinning for the loop and the DDS threads, whatever the session
   // file says (tests on a shared machine).
   bool realtime_setup = true;
   // Set by whoever ends the session (a signal handler, a test); the monitor logs the request once.
   const std::atomic<bool>* stop = nullptr;
 };
+
+// What a recording says of the session before its first cycle: the session file, the devices and their schemes.
+RecordingHeader recording_header(const SessionConfig& config, const std::vector<DeviceSession*>& devices);
 
 class ServedSession {
  public:
@@ -49,7 +52,7 @@ class ServedSession {
 
   [[nodiscard]] DdsBridge* bridge() const noexcept { return bridge_.get(); }  // null without a dds section
   [[nodiscard]] const SessionMonitor& monitor() const noexcept { return *monitor_; }
-  [[nodiscard]] const Recorder* recorder() const noexcept { return recorder_.get(); }  // null: not recording
+  [[nodiscard]] Recorder* recorder() const noexcept { return recorder_.get(); }  // null: not recording
   // Where the threads run: the loop's CPU (-1 not pinned) and the DDS threads' CPUs (empty: not pinned).
   [[nodiscard]] int loop_cpu() const noexcept { return settings_.cpu; }
   [[nodiscard]] const std::vector<int>& dds_cpus() const noexcept { return dds_cpus_; }

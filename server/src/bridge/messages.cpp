@@ -4,26 +4,33 @@
 
 #include "hapticd/dds/conversion.hpp"
 #include "session/device_session.hpp"
+#include "session/state_flags.hpp"
 
 namespace hapticd::server {
 
+// The IDL's constants and the server's own (session/state_flags.hpp) are one definition.
+static_assert(hapticd_msg_FLAG_TORQUE_SATURATED == state_flag::torque_saturated);
+static_assert(hapticd_msg_FLAG_ENGINE_ACTIVE == state_flag::engine_active);
+static_assert(hapticd_msg_FLAG_ENGINE_STALE == state_flag::engine_stale);
+static_assert(hapticd_msg_FLAG_ESTOP == state_flag::estop);
+static_assert(hapticd_msg_FLAG_FAULT == state_flag::fault);
+static_assert(hapticd_msg_FLAG_SWITCHING == state_flag::switching);
+static_assert(hapticd_msg_FLAG_SAFE_DAMPING == state_flag::safe_damping);
+static_assert(hapticd_msg_FLAG_LIMIT_ENGAGED == state_flag::limit_engaged);
+static_assert(hapticd_msg_FLAG_RENDER_LIMITED == state_flag::render_limited);
+static_assert(hapticd_msg_FLAG_THERMAL_DERATING == state_flag::thermal_derating);
+static_assert(hapticd_msg_FLAG_PASSIVITY_CONTROL == state_flag::passivity_control);
+static_assert(hapticd_msg_MODE_STARTING == static_cast<int>(DeviceMode::starting));
+static_assert(hapticd_msg_MODE_RUNNING == static_cast<int>(DeviceMode::running));
+static_assert(hapticd_msg_MODE_STOPPING == static_cast<int>(DeviceMode::stopping));
+static_assert(hapticd_msg_MODE_SAFE == static_cast<int>(DeviceMode::safe));
+static_assert(hapticd_msg_MODE_OFF == static_cast<int>(DeviceMode::off));
+
 hapticd_msg_DeviceMode mode_of(const DeviceSnapshot& s) noexcept {
-  if (s.fault != DeviceFault::none) return hapticd_msg_MODE_SAFE;
-  if (s.stopping) return hapticd_msg_MODE_STOPPING;
-  return hapticd_msg_MODE_RUNNING;
+  return static_cast<hapticd_msg_DeviceMode>(device_mode(s));
 }
 
-std::uint32_t flags_of(const DeviceSnapshot& s) noexcept {
-  return (s.saturated ? hapticd_msg_FLAG_TORQUE_SATURATED : 0u) |
-         (s.engine_weight > 0.0 && !s.engine_stale ? hapticd_msg_FLAG_ENGINE_ACTIVE : 0u) |
-         (s.engine_stale ? hapticd_msg_FLAG_ENGINE_STALE : 0u) | (s.estop ? hapticd_msg_FLAG_ESTOP : 0u) |
-         (s.fault != DeviceFault::none ? hapticd_msg_FLAG_FAULT : 0u) |
-         (s.switching ? hapticd_msg_FLAG_SWITCHING : 0u) | (s.safe_damping ? hapticd_msg_FLAG_SAFE_DAMPING : 0u) |
-         (s.limit_engaged ? hapticd_msg_FLAG_LIMIT_ENGAGED : 0u) |
-         (s.render_limited ? hapticd_msg_FLAG_RENDER_LIMITED : 0u) |
-         (s.thermal_derating ? hapticd_msg_FLAG_THERMAL_DERATING : 0u) |
-         (s.passivity_control ? hapticd_msg_FLAG_PASSIVITY_CONTROL : 0u);
-}
+std::uint32_t flags_of(const DeviceSnapshot& s) noexcept { return state_flags(s); }
 
 hapticd_msg_DeviceState state_message(const DeviceSnapshot& s, const StateLabels& labels) noexcept {
   hapticd_msg_DeviceState m{};

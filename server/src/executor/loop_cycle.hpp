@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hapticd/cycle_time.hpp"
+#include "recorder/cycle_record.hpp"
 
 namespace hapticd::server {
 
@@ -39,6 +40,7 @@ class LoopCycle {
   std::vector<GroupStage*> stages_;
   std::vector<std::uint16_t> record_ids_;
   std::size_t producer_;
+  CycleRecord record_;  // scratch for the recorder (not on the loop's stack: 1.6 kB)
 };
 
 }  // namespace hapticd::server

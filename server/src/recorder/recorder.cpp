@@ -1,63 +1,33 @@
 #include "recorder/recorder.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
-#include <cstdio>
-#include <cstring>
 #include <stdexcept>
 
 namespace hapticd::server {
 namespace {
 
-constexpr std::size_t kChunkBytes = 64 * 1024;        // written when this full (or when the ring is empty)
-constexpr std::int64_t kSyncBytes = 4 * 1024 * 1024;  // synced to the disk this often
+constexpr std::size_t kWriteRecords = 2048;  // appended when this many are buffered (or when the rings are empty)
+constexpr auto kFlushInterval = std::chrono::seconds(1);
 
 }  // namespace
 
-Recorder::Recorder(const std::filesystem::path& file, std::vector<std::string> device_names, bool wait_when_full,
+Recorder::Recorder(const std::filesystem::path& file, const RecordingHeader& header, bool wait_when_full,
                    std::size_t producers)
-    : device_names_(std::move(device_names)), wait_when_full_(wait_when_full), file_(file) {
+    : wait_when_full_(wait_when_full), path_(file) {
   for (std::size_t k = 0; k < std::max<std::size_t>(1, producers); ++k)
-    rings_.push_back(std::make_unique<SpscRing<CycleRecord>>(1 << 14));
-  fd_ = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd_ < 0)
-    throw std::runtime_error("cannot open the recording file " + file.string() + ": " + std::strerror(errno));
-  chunk_.reserve(2 * kChunkBytes);
-  chunk_ =
-      "cycle,time_s,device,joint,position,velocity,effort,torque_command,"
-      "sensor_fx,sensor_fy,sensor_fz,sensor_tx,sensor_ty,sensor_tz\n";
-  if (!flush_chunk()) {
-    const std::string e = error();
-    ::close(fd_);
-    fd_ = -1;
-    throw std::runtime_error(e);
-  }
+    rings_.push_back(std::make_unique<SpscRing<CycleRecord>>(1 << 13));
+  file_ = std::make_unique<RecordingFile>(file, header);  // throws with the reason
+  last_flush_ = std::chrono::steady_clock::now();
   writer_ = std::thread([this] { write_loop(); });
 }
 
-Recorder::~Recorder() { finish(); }
+Recorder::~Recorder() {
+  finish();
+  if (file_) close();
+}
 
-void Recorder::record(std::size_t producer, const CycleTime& cycle, std::uint16_t device, const DeviceState& state,
-                      const JointCommand& command) noexcept {
-  CycleRecord r;
-  r.cycle = cycle.index;
-  r.time_ns = cycle.time_ns;
-  r.device = device;
-  r.dof = static_cast<std::uint8_t>(state.joints.position.size());
-  for (int i = 0; i < r.dof; ++i) {
-    r.position[i] = state.joints.position[i];
-    r.velocity[i] = state.joints.velocity[i];
-    r.effort[i] = state.joints.effort[i];
-    r.torque_command[i] = command.torque_nm[i];
-  }
-  for (int a = 0; a < 3; ++a) {
-    r.sensor_wrench[a] = state.sensor_wrench.force[a];
-    r.sensor_wrench[3 + a] = state.sensor_wrench.torque[a];
-  }
+void Recorder::record(std::size_t producer, const CycleRecord& r) noexcept {
   SpscRing<CycleRecord>& ring = *rings_[producer];
   while (!ring.try_push(r)) {
     if (!wait_when_full_) {
@@ -73,70 +43,49 @@ std::string Recorder::error() const {
   return error_;
 }
 
-void Recorder::fail(const std::string& what, int error_number, std::uint64_t records_lost) {
+void Recorder::fail(const std::string& message, std::uint64_t records_lost) {
   {
     std::lock_guard lock(error_mutex_);
-    error_ = what + " " + file_.string() + ": " + std::strerror(error_number);
+    if (error_.empty()) error_ = message;
   }
   lost_.fetch_add(records_lost, std::memory_order_relaxed);
   failed_.store(true, std::memory_order_release);
 }
 
-void Recorder::format_record(const CycleRecord& r) {
-  const std::string& device = device_names_[r.device];
-  char line[512];
-  for (int i = 0; i < r.dof; ++i) {
-    const int n = std::snprintf(
-        line, sizeof line, "%llu,%.17g,%s,%d,%.17g,%.17g,%.17g,%.17g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
-        static_cast<unsigned long long>(r.cycle), static_cast<double>(r.time_ns) * 1e-9, device.c_str(), i,
-        r.position[i], r.velocity[i], r.effort[i], r.torque_command[i], r.sensor_wrench[0], r.sensor_wrench[1],
-        r.sensor_wrench[2], r.sensor_wrench[3], r.sensor_wrench[4], r.sensor_wrench[5]);
-    chunk_.append(line, static_cast<std::size_t>(std::clamp(n, 0, static_cast<int>(sizeof line) - 1)));
-  }
-  ++chunk_records_;
-}
-
-bool Recorder::flush_chunk() {
+void Recorder::take(const CycleRecord& r) {
   if (failed()) {
-    lost_.fetch_add(chunk_records_, std::memory_order_relaxed);
-  } else {
-    std::size_t done = 0;
-    while (done < chunk_.size()) {
-      const ssize_t n = ::write(fd_, chunk_.data() + done, chunk_.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        const int e = n < 0 ? errno : ENOSPC;
-        // Cut a partly written chunk back to the last whole record (not possible on a device such as /dev/full).
-        if (done > 0) (void)::ftruncate(fd_, written_bytes_);
-        fail("cannot write the recording", e, chunk_records_);
-        break;
-      }
-      done += static_cast<std::size_t>(n);
-    }
-    if (!failed()) {
-      written_bytes_ += static_cast<std::int64_t>(chunk_.size());
-      written_.fetch_add(chunk_records_, std::memory_order_relaxed);
-    }
+    lost_.fetch_add(1, std::memory_order_relaxed);
+    return;
   }
-  chunk_.clear();
-  chunk_records_ = 0;
-  if (!failed() && written_bytes_ - synced_bytes_ >= kSyncBytes) (void)sync_file();
-  return !failed();
+  file_->add(r);
+  if (file_->buffered() >= kWriteRecords) write_buffered();
 }
 
-bool Recorder::sync_file() {
-  if (::fdatasync(fd_) == 0 || errno == EINVAL || errno == EROFS) {  // EINVAL: a file that cannot be synced
-    synced_bytes_ = written_bytes_;
-    synced_records_ = written_.load(std::memory_order_relaxed);
-    return true;
+void Recorder::write_buffered() {
+  if (failed() || file_->buffered() == 0) return;
+  const std::size_t n = file_->buffered();
+  try {
+    file_->write();
+  } catch (const std::exception& e) {
+    fail(e.what(), n);
+    return;
   }
-  // What was written since the last sync may not be on the disk: keep only what is known to be there.
-  const int e = errno;
-  (void)::ftruncate(fd_, synced_bytes_);
-  const std::uint64_t unsynced = written_.load(std::memory_order_relaxed) - synced_records_;
-  written_.fetch_sub(unsynced, std::memory_order_relaxed);
-  fail("cannot sync the recording", e, unsynced);
-  return false;
+  written_.fetch_add(n, std::memory_order_relaxed);
+  unflushed_ += n;
+  if (std::chrono::steady_clock::now() - last_flush_ >= kFlushInterval) flush_file();
+}
+
+void Recorder::flush_file() {
+  if (failed()) return;
+  try {
+    file_->flush();
+  } catch (const std::exception& e) {
+    // What was written since the last flush may not be in the file: count it as lost.
+    written_.fetch_sub(unflushed_, std::memory_order_relaxed);
+    fail(e.what(), unflushed_);
+  }
+  unflushed_ = 0;
+  last_flush_ = std::chrono::steady_clock::now();
 }
 
 void Recorder::write_loop() {
@@ -145,17 +94,17 @@ void Recorder::write_loop() {
     bool any = false;
     for (const auto& ring : rings_) {
       while (ring->try_pop(r)) {
-        format_record(r);
+        take(r);
         any = true;
-        if (chunk_.size() >= kChunkBytes) (void)flush_chunk();
       }
     }
-    if (!chunk_.empty()) (void)flush_chunk();
+    write_buffered();
     if (!any) {
       if (stop_.load(std::memory_order_acquire)) {
         for (const auto& ring : rings_)
-          while (ring->try_pop(r)) format_record(r);
-        (void)flush_chunk();
+          while (ring->try_pop(r)) take(r);
+        write_buffered();
+        flush_file();
         return;
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
@@ -168,11 +117,20 @@ void Recorder::finish() {
     stop_.store(true, std::memory_order_release);
     writer_.join();
   }
-  if (fd_ >= 0) {
-    if (!failed()) (void)sync_file();
-    if (::close(fd_) != 0 && !failed()) fail("cannot close the recording", errno, 0);
-    fd_ = -1;
+}
+
+void Recorder::close(const std::string& statistics_json, const std::vector<RecordingEvent>& events) {
+  finish();
+  if (!file_) return;
+  try {
+    // After a failure the summary is still written when the file is whole (the recording stopped before the
+    // disk was full); after a failed write it fails again, and the close says so.
+    file_->write_summary(statistics_json, events);
+    file_->close();
+  } catch (const std::exception& e) {
+    fail(e.what(), 0);
   }
+  file_.reset();
 }
 
 }  // namespace hapticd::server

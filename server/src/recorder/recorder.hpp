@@ -1,15 +1,14 @@
 #pragma once
-// Records every cycle of every device to CSV without touching the loop's timing: the loop pushes fixed-size
-// records into a lock-free ring, a writer thread formats and writes them. In real-time mode a full ring drops
-// the record (counted); in lockstep mode the loop waits for the writer instead, so a recording is complete.
-// Long format, one row per joint and cycle: cycle,time_s,device,joint,position,velocity,effort,torque_command,
-// then the device's sensor wrench (sensor_fx .. sensor_tz, repeated on each joint's row)
-// Numbers are printed with 17 significant digits: identical files mean bit-identical values.
-// Every write is checked. Rows are written in chunks of whole records; a write that fails (a full disk, an
-// I/O error) is cut back to the last whole record (the file always ends on a whole row), the recorder stops
-// writing, and every record from then on is counted as lost (failed(), error(), lost()). The data is synced
-// to the disk every few megabytes and at the end; a failing sync cuts the file back to what was synced.
+// Records every cycle of every device to an HDF5 file (recording_file.hpp; docs/recording.md) without touching
+// the loop's timing: the loop pushes fixed-size CycleRecords into a lock-free ring (one per loop thread), a
+// writer thread appends them to the file in chunks of whole records. In real-time mode a full ring drops the
+// record (counted); in lockstep mode the loop waits for the writer instead, so a recording is complete.
+// Every write is checked. A failing write (a full disk, an I/O error) leaves the datasets at the records before
+// it; the recorder stops writing and counts every record from then on as lost (failed(), error(), lost()).
+// The file is flushed (HDF5's metadata and data, then fdatasync) about every second and at the end: what was
+// flushed stays readable whatever happens later; a failing flush counts the records since the last one as lost.
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -18,30 +17,17 @@
 #include <thread>
 #include <vector>
 
-#include "hapticd/chain_signals.hpp"
-#include "hapticd/cycle_time.hpp"
+#include "recorder/cycle_record.hpp"
+#include "recorder/recording_file.hpp"
 #include "recorder/spsc_ring.hpp"
 
 namespace hapticd::server {
 
-struct CycleRecord {
-  std::uint64_t cycle = 0;
-  std::int64_t time_ns = 0;
-  std::uint16_t device = 0;
-  std::uint8_t dof = 0;
-  double position[kMaxJoints] = {};
-  double velocity[kMaxJoints] = {};
-  double effort[kMaxJoints] = {};
-  double torque_command[kMaxJoints] = {};
-  double sensor_wrench[6] = {};  // force [N] and torque [N m] in the sensor frame (zero without a sensor)
-};
-
 class Recorder {
  public:
-  // Opens the file (throws std::runtime_error if it cannot) and starts the writer thread. producers: the loop
-  // threads that record, each into a ring of its own (with several, rows of different loops interleave in
-  // chunks: sort by cycle).
-  Recorder(const std::filesystem::path& file, std::vector<std::string> device_names, bool wait_when_full,
+  // Creates the file and writes the header (throws std::runtime_error if it cannot), starts the writer thread.
+  // producers: the loop threads that record, each into a ring of its own.
+  Recorder(const std::filesystem::path& file, const RecordingHeader& header, bool wait_when_full,
            std::size_t producers = 1);
   ~Recorder();
   Recorder(const Recorder&) = delete;
@@ -49,38 +35,34 @@ class Recorder {
 
   // Real-time safe (in real-time mode; in lockstep it may wait for the writer). Only `producer`'s loop thread
   // records into its ring (0 .. producers - 1).
-  void record(std::size_t producer, const CycleTime& cycle, std::uint16_t device, const DeviceState& state,
-              const JointCommand& command) noexcept;
+  void record(std::size_t producer, const CycleRecord& record) noexcept;
   [[nodiscard]] std::size_t producers() const noexcept { return rings_.size(); }
-  // Not real-time safe. Writes what is queued, stops the writer and closes the file.
+  // Not real-time safe. Writes what is queued and stops the writer; the file stays open for the summary.
   void finish();
+  // After finish(): the session's statistics and safety events, then closes the file. A failure here fails the
+  // recording (the cycles already flushed stay readable).
+  void close(const std::string& statistics_json = "{}", const std::vector<RecordingEvent>& events = {});
 
   [[nodiscard]] std::uint64_t written() const noexcept { return written_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
-  // A write, sync or close failed: the records not in the file (the failed chunk and all after it).
   [[nodiscard]] bool failed() const noexcept { return failed_.load(std::memory_order_acquire); }
   [[nodiscard]] std::uint64_t lost() const noexcept { return lost_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::string error() const;
-  [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
+  [[nodiscard]] const std::filesystem::path& file() const noexcept { return path_; }
 
  private:
   void write_loop();
-  void format_record(const CycleRecord& r);
-  // Writes the chunk (whole records); false on failure (then the recorder has failed).
-  bool flush_chunk();
-  bool sync_file();
-  void fail(const std::string& what, int error_number, std::uint64_t records_lost);
+  void take(const CycleRecord& r);
+  void write_buffered();
+  void flush_file();
+  void fail(const std::string& message, std::uint64_t records_lost);
 
-  std::vector<std::string> device_names_;
   bool wait_when_full_;
   std::vector<std::unique_ptr<SpscRing<CycleRecord>>> rings_;  // one per producer
-  std::filesystem::path file_;
-  int fd_ = -1;
-  std::string chunk_;  // formatted whole records not yet written (writer thread)
-  std::uint64_t chunk_records_ = 0;
-  std::int64_t written_bytes_ = 0;  // file offset after the last whole record written
-  std::int64_t synced_bytes_ = 0;   // ... and synced to the disk
-  std::uint64_t synced_records_ = 0;
+  std::filesystem::path path_;
+  std::unique_ptr<RecordingFile> file_;  // writer thread (then the caller of finish/close)
+  std::uint64_t unflushed_ = 0;          // records written since the last flush
+  std::chrono::steady_clock::time_point last_flush_;
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> written_{0};
   std::atomic<std::uint64_t> dropped_{0};

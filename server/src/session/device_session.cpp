@@ -220,7 +220,8 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
 }
 
 void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept {
-  if (snapshot_interval_ == 0 || cycle.index % snapshot_interval_ != 0) return;
+  const bool publish = snapshot_interval_ != 0 && cycle.index % snapshot_interval_ == 0;
+  if (!publish && !snapshot_every_cycle_) return;
   DeviceSnapshot& s = snapshot_;
   s.cycle = cycle.index;
   s.time_ns = cycle.time_ns;
@@ -252,7 +253,7 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.thermal_load = safety_.thermal().max_load();
   s.dissipated_j = safety_.guard().dissipated_j();
   s.passivity_control = safety_.guard().passivity_control();
-  status_.snapshots.publish(s);
+  if (publish) status_.snapshots.publish(s);
 }
 
 void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns,

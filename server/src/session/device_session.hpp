@@ -113,8 +113,13 @@ class DeviceSession {
   bool take_snapshot(DeviceSnapshot& out) noexcept { return status_.snapshots.take(out); }
   // Before activate(): the loop publishes a snapshot every `cycles` cycles (0: never, the default).
   void set_snapshot_interval(std::uint64_t cycles) noexcept { snapshot_interval_ = cycles; }
-  // Loop thread: the snapshot built at the newest published cycle (a group's stage gathers its devices').
+  // Before activate(): build the snapshot every cycle (the recorder reads it), publishing still at the interval.
+  void set_snapshot_every_cycle(bool on) noexcept { snapshot_every_cycle_ = on; }
+  // Loop thread: the snapshot built at the newest published cycle (a group's stage gathers its devices'), or
+  // of this cycle with set_snapshot_every_cycle.
   [[nodiscard]] const DeviceSnapshot& published_snapshot() const noexcept { return snapshot_; }
+  // Loop thread: the engine input in effect this cycle.
+  [[nodiscard]] const EngineInput& engine_input() const noexcept { return engine_.input(); }
   // Any thread: emergency stop. The loop puts the device in its safe state at the next cycle (fault
   // emergency_stop); the session keeps running for the other devices. A stop latches: it cancels every
   // recovery requested before it, and a stop while the device is already safe is a fault of its own (report,
@@ -233,6 +238,7 @@ class DeviceSession {
   SchemeSwitcher schemes_;
   DeviceSnapshot snapshot_;
   std::uint64_t snapshot_interval_ = 0;
+  bool snapshot_every_cycle_ = false;
   // E-stops and recoveries (any thread -> loop). Every stop (an E-stop request, a fault the loop raises)
   // increments stop_epoch_; a recovery request records the epoch it was made in (+1, 0: none) and is carried
   // out only while no stop has come since.

@@ -1,0 +1,45 @@
+#pragma once
+// One device's cycle as the recording keeps it (docs/recording.md): fixed size, copied through the recorder's
+// lock-free ring without allocating. Poses are position then quaternion (x y z qw qx qy qz), twists and wrenches
+// linear then angular, all in the world frame at the handle point.
+#include <cstdint>
+
+#include "hapticd/cycle_time.hpp"
+#include "hapticd/joint_vector.hpp"
+
+namespace hapticd::server {
+
+class DeviceSession;
+
+struct CycleRecord {
+  std::uint64_t cycle = 0;
+  std::int64_t time_ns = 0;  // the cycle's time on the loop clock
+  std::uint16_t device = 0;  // index into the recording's devices
+  std::uint8_t dof = 0;
+  std::uint8_t mode = 0;     // DeviceMode (session/state_flags.hpp)
+  std::uint32_t flags = 0;   // state_flag bits
+  std::uint16_t scheme = 0;  // index into the device's schemes
+  double position[kMaxJoints] = {};
+  double velocity[kMaxJoints] = {};         // the server's estimate
+  double torque_command[kMaxJoints] = {};   // written to the drives (after the safety supervisor)
+  double torque_measured[kMaxJoints] = {};  // the device's effort (joint torque sensors, else its drive torque)
+  double handle_pose[7] = {};
+  double handle_twist[6] = {};
+  double operator_wrench[6] = {};     // the operator's wrench on the handle
+  double environment_wrench[6] = {};  // what the virtual model rendered
+  double sensor_wrench[6] = {};       // the force/torque sensor's reading, sensor frame (zero without a sensor)
+  double target_pose[7] = {};         // the chain's desired pose
+  double engine_weight = 0.0;         // 1: fresh engine input applied, 0..1 fading, 0 none
+  std::uint64_t engine_sequence = 0;  // the engine input in effect (its serial number; 0 none)
+  double engine_proxy_pose[7] = {};   // ... its proxy pose (zeros when it sent none)
+  double engine_wrench[6] = {};       // ... and its wrench (zeros when it sent none)
+  std::int64_t lateness_ns = 0;       // the loop woke this late for the cycle
+  std::int64_t compute_ns = 0;        // from the cycle's start to this device's torque written
+};
+
+// The record of device `index` after limit_and_write() of this cycle (reads the session's own cycle snapshot,
+// which the recorder makes it fill every cycle). Real-time safe.
+void fill_cycle_record(CycleRecord& r, const DeviceSession& session, std::uint16_t index, const CycleTime& cycle,
+                       std::int64_t lateness_ns, std::int64_t compute_ns) noexcept;
+
+}  // namespace hapticd::server
