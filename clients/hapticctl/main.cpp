@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "hapticd/client/client.hpp"
-#include "recording_export.hpp"
+#include "recorder/recording_export.hpp"
 
 namespace {
 

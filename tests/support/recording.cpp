@@ -3,7 +3,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "recording_export.hpp"
+#include "recorder/recording_export.hpp"
 
 namespace hapticd::test {
 

@@ -1,6 +1,5 @@
 #include "recorder/recording_file.hpp"
 
-#include <hdf5.h>
 #include <sys/resource.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
@@ -13,8 +12,16 @@
 #include <stdexcept>
 #include <utility>
 
+#include "recorder/hdf5_support.hpp"
+#include "session/state_flags.hpp"
+
 namespace hapticd::server {
 namespace {
+
+using hdf5::check;
+using hdf5::fail;
+using hdf5::Handle;
+using hdf5::quiet;
 
 // ---- the schema's per-cycle columns ------------------------------------------------------------------------
 using Extract = void (*)(const CycleRecord&, unsigned char* out);
@@ -111,22 +118,6 @@ hid_t file_type(const char* t) {
   return H5T_STD_U8LE;
 }
 
-// ---- HDF5 handles and errors ---------------------------------------------------------------------------------
-herr_t collect_error(unsigned n, const H5E_error2_t* e, void* text) {
-  auto& s = *static_cast<std::string*>(text);
-  if (n == 0 && e->desc != nullptr) s = e->desc;  // the innermost error says what failed
-  return 0;
-}
-
-// HDF5 keeps its error-printing setting per thread: every entry point calls this first. The library's own
-// clean-up at exit is off too: it closes the files still open, and a file whose close failed (a write error)
-// crashes it there; the process's end closes the file descriptor either way.
-void quiet() {
-  static const bool no_atexit = [] { return H5dont_atexit() >= 0; }();
-  (void)no_atexit;
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-}
-
 // Bytes the file may still grow by: the free space of its file system (for an unprivileged user) and the
 // process's file size limit (RLIMIT_FSIZE).
 std::uint64_t room_left(const std::filesystem::path& file, std::uint64_t file_size) {
@@ -142,45 +133,6 @@ std::uint64_t room_left(const std::filesystem::path& file, std::uint64_t file_si
 
 // What the file keeps free for its metadata, the summary and the close.
 constexpr std::uint64_t kReserveBytes = 1u << 20;
-
-[[noreturn]] void fail(const std::string& what) {
-  std::string detail;
-  const int saved_errno = errno;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect_error, &detail);
-  H5Eclear2(H5E_DEFAULT);
-  std::string message = what;
-  if (saved_errno != 0) message += std::string(": ") + std::strerror(saved_errno);
-  if (!detail.empty()) message += " (HDF5: " + detail + ")";
-  throw std::runtime_error(message);
-}
-
-template <typename T>
-T check(T value, const std::string& what) {
-  if (value < 0) fail(what);
-  return value;
-}
-
-// Closes any HDF5 object when it goes out of scope.
-class Handle {
- public:
-  Handle() = default;
-  explicit Handle(hid_t id) : id_(id) {}
-  Handle(Handle&& o) noexcept : id_(o.id_) { o.id_ = -1; }
-  Handle& operator=(Handle&& o) noexcept {
-    std::swap(id_, o.id_);
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() {
-    if (id_ >= 0) (void)H5Idec_ref(id_);  // closes the object, whatever its kind, at the last reference
-  }
-  [[nodiscard]] hid_t get() const noexcept { return id_; }
-  hid_t release() noexcept { return std::exchange(id_, -1); }
-
- private:
-  hid_t id_ = -1;
-};
 
 Handle string_type(std::size_t length) {
   Handle t(check(H5Tcopy(H5T_C_S1), "H5Tcopy"));
@@ -318,6 +270,13 @@ struct RecordingFile::Impl {
   std::size_t buffered = 0;
   bool closed = false;
 
+  void drop_buffered() {
+    for (Device& d : devices) {
+      d.pending = 0;
+      for (Dataset& s : d.datasets) s.buffer.clear();
+    }
+    buffered = 0;
+  }
   void set_rows(Device& d, hsize_t rows) {
     for (Dataset& s : d.datasets) {
       const hsize_t dims[2] = {rows, static_cast<hsize_t>(s.width)};
@@ -385,10 +344,8 @@ RecordingFile::RecordingFile(const std::filesystem::path& file, const RecordingH
                                           b.orientation.x(), b.orientation.y(), b.orientation.z()},
                       H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE);
     strings_attribute(g.get(), "schemes", rd.schemes);
-    strings_attribute(g.get(), "mode_names", {"starting", "running", "stopping", "safe", "off"});
-    strings_attribute(g.get(), "flag_names",
-                      {"TORQUE_SATURATED", "ENGINE_ACTIVE", "ENGINE_STALE", "ESTOP", "FAULT", "SWITCHING",
-                       "SAFE_DAMPING", "LIMIT_ENGAGED", "RENDER_LIMITED", "THERMAL_DERATING", "PASSIVITY_CONTROL"});
+    strings_attribute(g.get(), "mode_names", {kDeviceModeNames.begin(), kDeviceModeNames.end()});
+    strings_attribute(g.get(), "flag_names", {kStateFlagNames.begin(), kStateFlagNames.end()});
     std::vector<std::string> column_paths;
     for (const Column& c : columns()) column_paths.emplace_back(c.meta.path);
     strings_attribute(g.get(), "columns", column_paths);  // the per-cycle datasets, in the schema's order
@@ -461,11 +418,7 @@ void RecordingFile::write() {
   if (H5Fget_filesize(m.file.get(), &size) >= 0) {
     const std::uint64_t room = room_left(m.path, size);
     if (room < need) {
-      for (Impl::Device& d : m.devices) {
-        d.pending = 0;
-        for (Impl::Dataset& s : d.datasets) s.buffer.clear();
-      }
-      m.buffered = 0;
+      m.drop_buffered();
       throw std::runtime_error("cannot write the recording " + m.path.string() + ": the disk (or the file size " +
                                "limit) is nearly full (" + std::to_string(room / 1024) +
                                " kB left): the file is complete up to here");
@@ -503,11 +456,7 @@ void RecordingFile::write() {
       } catch (...) {
       }
     }
-    for (Impl::Device& d : m.devices) {
-      d.pending = 0;
-      for (Impl::Dataset& s : d.datasets) s.buffer.clear();
-    }
-    m.buffered = 0;
+    m.drop_buffered();
     throw;
   }
 }

@@ -1,56 +1,31 @@
-#include "recording_export.hpp"
-
-#include <hdf5.h>
+#include "recorder/recording_export.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <utility>
 
+#include "recorder/hdf5_support.hpp"
+
 namespace hapticd::recording {
 namespace {
 
-herr_t innermost(unsigned n, const H5E_error2_t* e, void* text) {
-  if (n == 0 && e->desc != nullptr) *static_cast<std::string*>(text) = e->desc;
-  return 0;
-}
-
-[[noreturn]] void fail(const std::string& what) {
-  std::string detail;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, innermost, &detail);
-  H5Eclear2(H5E_DEFAULT);
-  throw std::runtime_error(detail.empty() ? what : what + " (HDF5: " + detail + ")");
-}
-
-class Handle {
- public:
-  explicit Handle(hid_t id, const std::string& what) : id_(id) {
-    if (id_ < 0) fail(what);
-  }
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, -1)) {}
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  Handle& operator=(Handle&&) = delete;
-  ~Handle() {
-    if (id_ >= 0) (void)H5Idec_ref(id_);
-  }
-  [[nodiscard]] hid_t get() const noexcept { return id_; }
-
- private:
-  hid_t id_;
-};
+using hdf5::check;
+using hdf5::fail;
+using hdf5::Handle;
 
 Handle open_file(const std::filesystem::path& file) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  Handle f(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open " + file.string());
-  return f;
+  hdf5::quiet();
+  errno = 0;  // what fail() reports is this call's
+  return Handle(check(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open " + file.string()));
 }
 
 std::string string_attribute(hid_t object, const char* name) {
-  Handle a(H5Aopen(object, name, H5P_DEFAULT), std::string("no attribute ") + name);
-  Handle type(H5Aget_type(a.get()), "H5Aget_type");
+  Handle a(check(H5Aopen(object, name, H5P_DEFAULT), std::string("no attribute ") + name));
+  Handle type(check(H5Aget_type(a.get()), "H5Aget_type"));
   const std::size_t size = H5Tget_size(type.get());
   std::string value(size, '\0');
   if (H5Aread(a.get(), type.get(), value.data()) < 0) fail(std::string("cannot read ") + name);
@@ -59,9 +34,9 @@ std::string string_attribute(hid_t object, const char* name) {
 }
 
 std::vector<std::string> strings_attribute(hid_t object, const char* name) {
-  Handle a(H5Aopen(object, name, H5P_DEFAULT), std::string("no attribute ") + name);
-  Handle type(H5Aget_type(a.get()), "H5Aget_type");
-  Handle space(H5Aget_space(a.get()), "H5Aget_space");
+  Handle a(check(H5Aopen(object, name, H5P_DEFAULT), std::string("no attribute ") + name));
+  Handle type(check(H5Aget_type(a.get()), "H5Aget_type"));
+  Handle space(check(H5Aget_space(a.get()), "H5Aget_space"));
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
   const std::size_t size = H5Tget_size(type.get());
   std::string packed(size * static_cast<std::size_t>(std::max<hssize_t>(n, 0)), '\0');
@@ -132,7 +107,7 @@ std::size_t export_csv(const std::filesystem::path& file, const std::string& dev
     throw std::runtime_error(file.string() + " has no device '" + device + "'");
   const Handle f = open_file(file);
   const std::string group_path = "/devices/" + device;
-  const Handle g(H5Gopen2(f.get(), group_path.c_str(), H5P_DEFAULT), "cannot open " + group_path);
+  const Handle g(check(H5Gopen2(f.get(), group_path.c_str(), H5P_DEFAULT), "cannot open " + group_path));
   const std::vector<std::string> joints = strings_attribute(g.get(), "joint_names");
   std::vector<Column> columns;
   std::string header;
@@ -140,14 +115,14 @@ std::size_t export_csv(const std::filesystem::path& file, const std::string& dev
   bool first = true;
   for (const std::string& path : strings_attribute(g.get(), "columns")) {
     if (excluded(path, exclude)) continue;
-    Column c{Handle(H5Dopen2(g.get(), path.c_str(), H5P_DEFAULT), "cannot open " + group_path + "/" + path),
+    Column c{Handle(check(H5Dopen2(g.get(), path.c_str(), H5P_DEFAULT), "cannot open " + group_path + "/" + path)),
              1,
              1,
              false,
              {},
              {}};
-    const Handle space(H5Dget_space(c.dataset.get()), "H5Dget_space");
-    const Handle type(H5Dget_type(c.dataset.get()), "H5Dget_type");
+    const Handle space(check(H5Dget_space(c.dataset.get()), "H5Dget_space"));
+    const Handle type(check(H5Dget_type(c.dataset.get()), "H5Dget_type"));
     hsize_t dims[2] = {0, 1};
     const int rank = H5Sget_simple_extent_dims(space.get(), dims, nullptr);
     if (rank < 1 || rank > 2) throw std::runtime_error(group_path + "/" + path + ": not a table");
@@ -172,10 +147,10 @@ std::size_t export_csv(const std::filesystem::path& file, const std::string& dev
     for (Column& c : columns) {
       const hsize_t offset[2] = {start, 0};
       const hsize_t count[2] = {n, static_cast<hsize_t>(c.width)};
-      const Handle file_space(H5Dget_space(c.dataset.get()), "H5Dget_space");
+      const Handle file_space(check(H5Dget_space(c.dataset.get()), "H5Dget_space"));
       if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, offset, nullptr, count, nullptr) < 0)
         fail("H5Sselect_hyperslab");
-      const Handle memory(H5Screate_simple(c.rank, count, nullptr), "H5Screate_simple");
+      const Handle memory(check(H5Screate_simple(c.rank, count, nullptr), "H5Screate_simple"));
       const std::size_t values = static_cast<std::size_t>(n) * static_cast<std::size_t>(c.width);
       herr_t rc = 0;
       if (c.integer) {
