@@ -1,6 +1,7 @@
 // hapticd-eval: the evaluation suite (off-line; never talks to a running server). The experiments run the
 // server's own cycle through the in-process session API in lockstep (docs/evaluation.md).
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
@@ -31,8 +32,15 @@ int main(int argc, char** argv) {
   hapticd::eval::add_friction_command(app, exit_code);
   hapticd::eval::add_transparency_command(app, exit_code);
   hapticd::eval::add_all_command(app, exit_code);
+  const bool parse_only = std::getenv("HAPTICD_PARSE_ONLY") != nullptr;  // the documentation's commands test
+  if (parse_only)
+    for (CLI::App* command : app.get_subcommands({})) command->callback([] {});
   try {
     app.parse(argc, argv);
+    if (parse_only) {
+      std::cerr << "hapticd-eval: the command line parsed (HAPTICD_PARSE_ONLY is set: nothing run)\n";
+      return 0;
+    }
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {

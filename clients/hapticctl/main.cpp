@@ -7,6 +7,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -14,6 +15,7 @@
 
 #include "hapticd/client/client.hpp"
 #include "recorder/recording_export.hpp"
+#include "state_recording.hpp"
 
 namespace {
 
@@ -106,6 +108,69 @@ void print_fault_report(const hapticd::client::FaultReport& r, bool earlier) {
   }
 }
 
+std::string unit_suffix(const hapticd::ParameterInfo& p) { return p.unit.empty() ? "" : " " + p.unit; }
+
+// hapticctl get: "controller.kp = 500 N/m", then its type, bounds and tunability, and what it is.
+void print_parameter(const hapticd::ParameterInfo& p) {
+  fmt::print("{} = {}{}\n  {}; bounds {}; {}\n", p.name, p.value_text, unit_suffix(p), to_string(p.type),
+             p.bounds_text(), p.tunable ? "tunable at run time" : "fixed while the device runs");
+  if (!p.description.empty()) fmt::print("  {}\n", p.description);
+}
+
+// hapticctl params: one line per parameter, in columns.
+void print_parameter_table(const std::vector<hapticd::ParameterInfo>& parameters) {
+  std::size_t name = 4, value = 5, unit = 4, bounds = 6;
+  for (const auto& p : parameters) {
+    name = std::max(name, p.name.size());
+    value = std::max(value, p.value_text.size());
+    unit = std::max(unit, p.unit.size());
+    bounds = std::max(bounds, p.bounds_text().size());
+  }
+  fmt::print("{:<{}}  {:<{}}  {:<{}}  {:<{}}  {:<7}  {}\n", "NAME", name, "VALUE", value, "UNIT", unit, "BOUNDS",
+             bounds, "TUNABLE", "DESCRIPTION");
+  for (const auto& p : parameters)
+    fmt::print("{:<{}}  {:<{}}  {:<{}}  {:<{}}  {:<7}  {}\n", p.name, name, p.value_text, value,
+               p.unit.empty() ? "-" : p.unit, unit, p.bounds_text(), bounds, p.tunable ? "yes" : "no", p.description);
+}
+
+// hapticctl record: every state the device publishes until the duration or Ctrl-C, in the recording format.
+int record_states(Client& client, const std::string& device, const std::string& file, double duration,
+                  std::chrono::duration<double> wait) {
+  if (std::filesystem::path(file).extension() == ".csv") {
+    fmt::print(stderr,
+               "hapticctl record writes HDF5 (docs/recording.md): name the file .h5; then hapticctl export "
+               "FILE.h5 --csv\n");
+    return 2;
+  }
+  const std::optional<hapticd::client::DeviceInfo> info = client.wait_for_device(device, wait);
+  if (!info) {
+    fmt::print(stderr, "no description of '{}'\n", device);
+    return 2;
+  }
+  // Shared with the callback: a state callback already running when it is unset still has the recording.
+  std::shared_ptr<hapticd::ctl::StateRecording> recording;
+  try {
+    recording = std::make_shared<hapticd::ctl::StateRecording>(file, *info);
+    client.on_state([recording, device](const hapticd::client::DeviceState& s) {
+      if (s.device == device) recording->add(s);
+    });
+    const auto start = std::chrono::steady_clock::now();
+    while (!g_stop.load() &&
+           (duration <= 0.0 || std::chrono::steady_clock::now() - start < std::chrono::duration<double>(duration))) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      recording->write();
+    }
+    client.on_state({});
+    recording->close();
+    fmt::print("recorded {} states of '{}' to {}\n", recording->states(), device, file);
+    return recording->states() > 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    client.on_state({});
+    fmt::print(stderr, "hapticctl record: {}\n", e.what());
+    return 2;
+  }
+}
+
 int report(const Reply& r) {
   if (!r.answered) {
     fmt::print(stderr, "no reply: {}\n", r.message);
@@ -185,12 +250,22 @@ int run(int argc, char** argv) {
   set->add_option("device", device)->required();
   set->add_option("parameter", parameter, "e.g. virtual_model.mass_kg")->required();
   set->add_option("values", values)->required();
-  auto* get = app.add_subcommand("get", "read a parameter's value in effect: <stage>.<name>");
+  auto* get = app.add_subcommand(
+      "get", "read a parameter: <stage>.<name>; its value in effect, unit, type, bounds and run-time tunability");
   get->add_option("device", device)->required();
   get->add_option("parameter", parameter, "e.g. controller.force_gain")->required();
-  auto* record = app.add_subcommand("record", "record a device's state to CSV");
+  auto* params = app.add_subcommand(
+      "params", "list a device's parameters: name, value in effect, unit, bounds, run-time tunable, description");
+  params->add_option("device", device)->required();
+  bool tunable_only = false;
+  std::string stage_filter;
+  params->add_flag("--tunable", tunable_only, "only those tunable at run time");
+  params->add_option("--stage", stage_filter, "only this stage's")
+      ->check(CLI::IsMember({"device", "virtual_model", "controller", "safety"}));
+  auto* record = app.add_subcommand(
+      "record", "record a device's published states to HDF5, the server's recording format (docs/recording.md)");
   record->add_option("device", device)->required();
-  record->add_option("file", file)->required();
+  record->add_option("file", file, "the recording (.h5; hapticctl export FILE --csv for CSV)")->required();
   record->add_option("--duration", duration, "seconds (default: until Ctrl-C)");
   auto* export_cmd = app.add_subcommand(
       "export", "a recording (hapticd --record, HDF5) as CSV: one file per device, FILE's name with .DEVICE.csv");
@@ -216,6 +291,10 @@ int run(int argc, char** argv) {
   op->add_option("command", what)->required()->check(CLI::IsMember({"push", "move", "release", "grasp"}));
   op->add_option("values", values);
   CLI11_PARSE(app, argc, argv);
+  if (std::getenv("HAPTICD_PARSE_ONLY") != nullptr) {  // the documentation's commands test (docs_commands)
+    std::fputs("hapticctl: the command line parsed (HAPTICD_PARSE_ONLY is set: nothing run)\n", stderr);
+    return 0;
+  }
   for (CLI::App* command : targeted)
     if (command->parsed() && device.empty() && group.empty() && !all) {
       fmt::print(stderr, "{}: name a device, or --group GROUP{}\n", command->get_name(),
@@ -305,9 +384,19 @@ int run(int argc, char** argv) {
   if (*switch_cmd) return report(client.switch_scheme(device, scheme, wait));
   if (*set) return report(client.set_parameter(device, parameter, values, wait));
   if (*get) {
-    const Reply r = client.get_parameter(device, parameter, wait);
-    if (!r.answered || !r.accepted) return report(r);
-    fmt::print("{}\n", r.message);  // "name = value"
+    const Client::ParameterAnswer a = client.describe_parameter(device, parameter, wait);
+    if (!a.info) return report(a.reply);
+    print_parameter(*a.info);
+    return 0;
+  }
+  if (*params) {
+    const Client::ParameterList described = client.parameters(device, wait);
+    if (!described.reply.accepted) return report(described.reply);
+    std::vector<hapticd::ParameterInfo> shown;
+    for (const auto& p : described.parameters)
+      if ((!tunable_only || p.tunable) && (stage_filter.empty() || p.name.starts_with(stage_filter + ".")))
+        shown.push_back(p);
+    print_parameter_table(shown);
     return 0;
   }
   if (*estop) return report(client.emergency_stop(device, wait));
@@ -348,36 +437,7 @@ int run(int argc, char** argv) {
     client.on_fault_report({});
     return 0;
   }
-  if (*record) {
-    std::ofstream out(file);
-    if (!out) {
-      fmt::print(stderr, "cannot write {}\n", file);
-      return 2;
-    }
-    out << "serial,cycle,time_s,mode,flags,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,op_fx,op_fy,op_fz,op_tx,op_ty,op_tz,"
-           "env_fx,env_fy,env_fz,env_tx,env_ty,env_tz\n";
-    std::mutex m;
-    std::uint64_t rows = 0;
-    client.on_state([&](const hapticd::client::DeviceState& s) {
-      if (s.device != device) return;
-      std::lock_guard lock(m);
-      out << fmt::format("{},{},{:.6f},{},{}", s.serial, s.cycle, s.time_s(), static_cast<int>(s.mode), s.flags);
-      const auto& q = s.pose.orientation;
-      for (double v : {s.pose.position.x(), s.pose.position.y(), s.pose.position.z(), q.w(), q.x(), q.y(), q.z()})
-        out << ',' << v;
-      for (const Eigen::Vector3d* v :
-           {&s.twist.linear, &s.twist.angular, &s.operator_wrench.force, &s.operator_wrench.torque,
-            &s.environment_wrench.force, &s.environment_wrench.torque})
-        out << ',' << v->x() << ',' << v->y() << ',' << v->z();
-      out << '\n';
-      ++rows;
-    });
-    run_for(duration);
-    client.on_state({});
-    std::lock_guard lock(m);
-    fmt::print("recorded {} states of '{}' to {}\n", rows, device, file);
-    return rows > 0 ? 0 : 1;
-  }
+  if (*record) return record_states(client, device, file, duration, wait);
   return 0;
 }
 }  // namespace

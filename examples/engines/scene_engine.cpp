@@ -8,6 +8,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <mutex>
 #include <thread>
@@ -33,6 +34,10 @@ int run(int argc, char** argv) {
   app.add_option("--wait", wait, "how long to wait for the device to appear");
   app.add_option("--csv", csv, "write time, handle position, proxy, rendered force and operator force here");
   CLI11_PARSE(app, argc, argv);
+  if (std::getenv("HAPTICD_PARSE_ONLY") != nullptr) {  // the documentation's commands test (docs_commands)
+    std::fputs("hapticd-scene-engine: the command line parsed (HAPTICD_PARSE_ONLY is set: nothing run)\n", stderr);
+    return 0;
+  }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

@@ -368,6 +368,23 @@ default). Waiting calls release the GIL; a refused request raises RequestRefused
           py::arg("device"), py::arg("parameter"), py::arg("timeout") = 2.0,
           "the value in effect, as a list (a boolean as 0 or 1)")
       .def(
+          "parameters",
+          [](ClientHandle& h, const std::string& d, double t) {
+            Client& c = h.get();
+            Client::ParameterList list;
+            {
+              py::gil_scoped_release release;
+              list = c.parameters(d, seconds(t));
+            }
+            answer(list.reply);
+            py::list out;
+            for (const ParameterInfo& p : list.parameters) out.append(parameter_dict(p));
+            return out;
+          },
+          py::arg("device"), py::arg("timeout") = 2.0,
+          "every parameter of the device: dicts of name, type, unit, description, tunable, minimum, maximum, "
+          "minimum_exclusive, value, value_text")
+      .def(
           "estop",
           [](ClientHandle& h, const std::string& d, double t) {
             return request(h, [&](Client& c) { return c.emergency_stop(d, seconds(t)); });

@@ -301,6 +301,25 @@ simulated devices true_position, true_velocity, true_operator_force.)")
           },
           py::arg("device"), py::arg("parameter"))
       .def(
+          "parameters",
+          [](Session& s, const std::string& d) {
+            py::list out;
+            for (std::size_t k = 0, count = 1; k < count; ++k) {
+              const RuntimeReply r = guarded([&] {
+                return s.request(d, DeviceRequest{Kind::describe_parameter, {}, {static_cast<double>(k)}});
+              });
+              answer(r);
+              const std::optional<DescribedParameter> described = decode_parameter_info(r.message, r.values);
+              if (!described) raise_session_error("unreadable parameter description: " + r.message);
+              count = described->count;
+              out.append(parameter_dict(described->info));
+            }
+            return out;
+          },
+          py::arg("device"),
+          "every parameter of the device: dicts of name, type, unit, description, tunable, minimum, maximum, "
+          "minimum_exclusive, value, value_text")
+      .def(
           "operator",
           [](Session& s, const std::string& d, const std::string& command, const py::object& values) {
             return device_request(s, d, Kind::drive_operator, command, values_of(values));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hapticd/joint_vector.hpp"
+#include "hapticd/parameter_info.hpp"
 
 namespace hapticd::python {
 
@@ -41,6 +42,23 @@ inline py::array_t<double> joint_array(const JointVector& v) {
   auto r = a.mutable_unchecked<1>();
   for (Eigen::Index i = 0; i < v.size(); ++i) r(i) = v[i];
   return a;
+}
+
+// A parameter's description as a dict: name, type, unit, description, tunable, minimum, maximum (None: no
+// bound), minimum_exclusive, value (a list of numbers; text parameters: the text), value_text.
+inline py::dict parameter_dict(const ParameterInfo& p) {
+  py::dict d;
+  d["name"] = p.name;
+  d["type"] = std::string(to_string(p.type));
+  d["unit"] = p.unit;
+  d["description"] = p.description;
+  d["tunable"] = p.tunable;
+  d["minimum"] = p.minimum ? py::object(py::float_(*p.minimum)) : py::object(py::none());
+  d["maximum"] = p.maximum ? py::object(py::float_(*p.maximum)) : py::object(py::none());
+  d["minimum_exclusive"] = p.minimum_exclusive;
+  d["value"] = p.type == ParameterType::string ? py::object(py::str(p.value_text)) : py::object(py::cast(p.value));
+  d["value_text"] = p.value_text;
+  return d;
 }
 
 }  // namespace hapticd::python

@@ -23,6 +23,9 @@ def test_devices_states_and_requests(server):
         seen = [s.serial for s in hapticd.states(c, "vishard3", duration=0.2)]
         assert len(seen) > 10 and seen == sorted(seen)
         assert c.get_parameter("vishard3", "virtual_model.coupling_stiffness_n_per_m") == [3000.0]
+        described = {p["name"]: p for p in c.parameters("vishard3")}
+        stiffness = described["virtual_model.coupling_stiffness_n_per_m"]
+        assert (stiffness["value"], stiffness["unit"], stiffness["tunable"]) == ([3000.0], "N/m", True)
         with pytest.raises(hapticd.RequestRefused, match="no-such-scheme"):
             c.switch_scheme("vishard3", "no-such-scheme")
         with pytest.raises(hapticd.RequestRefused):

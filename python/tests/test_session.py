@@ -68,6 +68,12 @@ def test_requests_answer_or_raise_with_the_servers_message():
         assert s.get_parameter("vishard3", "virtual_model.mass_kg") == [3.0, 3.0, 3.0]
         s.set_parameter("vishard3", "virtual_model.mass_kg", [2.0, 2.0, 2.0])
         assert s.get_parameter("vishard3", "virtual_model.mass_kg") == [2.0, 2.0, 2.0]
+        described = {p["name"]: p for p in s.parameters("vishard3")}
+        mass = described["virtual_model.mass_kg"]
+        assert mass["value"] == [2.0, 2.0, 2.0] and mass["unit"] == "kg" and mass["tunable"]
+        assert (mass["minimum"], mass["maximum"]) == (0.1, 1000.0)
+        assert described["device.urdf"]["type"] == "string" and not described["device.urdf"]["tunable"]
+        assert described["safety.passivity_control"]["value"] == [0.0]
         with pytest.raises(hapticd.RequestRefused, match="mass_kg"):
             s.set_parameter("vishard3", "virtual_model.mass_kg", -1.0)
         with pytest.raises(hapticd.RequestRefused, match="no-such-scheme"):

@@ -12,7 +12,7 @@ fail() { echo "FAIL: $*"; cat server.log || true; exit 1; }
 source "$src/tests/e2e/session_copy.sh"
 session_copy "$src/config/sessions/vishard3/dds-coupling.yaml" "$src" session.yaml
 timeout 60 "$bin/hapticd" --config session.yaml --dds-domain "$domain" \
-  --duration 12 > server.log 2>&1 &
+  --duration 16 > server.log 2>&1 &
 server=$!
 trap 'kill -9 $server 2>/dev/null || true; kill -9 ${engine:-} 2>/dev/null || true' EXIT
 
@@ -32,13 +32,43 @@ if ctl scheme vishard3 no-such-scheme > scheme.txt; then fail "an unknown scheme
 grep -q "no scheme named 'no-such-scheme' (schemes: default)" scheme.txt || fail "the refusal does not list the schemes: $(cat scheme.txt)"
 ctl set vishard3 virtual_model.damping_n_s_per_m 20 20 20 || fail "set parameter refused"
 ctl get vishard3 virtual_model.damping_n_s_per_m | tee get.txt
-grep -q "^damping_n_s_per_m = \[20, 20, 20\]" get.txt || fail "get does not show the value set"
+grep -q "^virtual_model.damping_n_s_per_m = \[20, 20, 20\] N s/m$" get.txt || fail "get does not show the value set"
+grep -q "^  list of reals; bounds >= 0; tunable at run time$" get.txt || fail "get does not show the bounds and tunability"
+if ctl get vishard3 controller.no_such > get-bad.txt; then fail "get of an unknown parameter was accepted"; fi
+grep -q "has no parameter 'no_such' (" get-bad.txt || fail "the refusal does not list the parameters: $(cat get-bad.txt)"
+# Every parameter of every stage, with the value in effect: the device's, the virtual model's, the controller's,
+# and the safety stage's; --tunable keeps those that are.
+ctl params vishard3 > params.txt || fail "params refused"
+grep -q "^NAME  *VALUE  *UNIT  *BOUNDS  *TUNABLE  *DESCRIPTION" params.txt || fail "params has no header"
+grep -q "^virtual_model.damping_n_s_per_m  *\[20, 20, 20\]  *N s/m  *>= 0  *yes " params.txt ||
+  fail "params does not show the value set with unit, bounds and tunability"
+grep -q "^device.substep_hz  *20000  *Hz  *2000 to 1000000  *no " params.txt || fail "params lacks the device's parameters"
+grep -q "^safety.passivity_control  *false  " params.txt || fail "params lacks the safety stage"
+ctl params vishard3 --tunable > tunable.txt
+grep -q "^device\." tunable.txt && fail "params --tunable shows a parameter that is not tunable"
+grep -q "^virtual_model.mass_kg " tunable.txt || fail "params --tunable lacks a tunable parameter"
 if ctl set vishard3 virtual_model.coupling 0; then fail "a parameter that is not tunable was set"; fi
 ctl operator vishard3 push 3 0 0 0.2 || fail "operator push refused"
 
+# An engine that ends and releases the device cleanly is not "stale": its forces fade, no stale flag or event.
+ctl watch vishard3 --rate 20 --duration 2.5 > clean.txt &
+watcher=$!
+timeout 10 "$bin/hapticd-scene-engine" --domain "$domain" --duration 1 > engine-clean.txt 2>&1 ||
+  fail "the scene engine failed: $(cat engine-clean.txt)"
+wait "$watcher" || true
+grep -q "event owner: - - scene-engine released the device" clean.txt || fail "no release event: $(cat clean.txt)"
+grep -q "owner scene-engine .*engine_active" clean.txt || fail "the watcher never saw the engine active"
+if grep -q "engine_stale" clean.txt; then fail "a clean release showed the engine as stale: $(cat clean.txt)"; fi
+
 # Record, and watch while an engine dies: the watcher sees the engine's deadline missed.
-ctl record vishard3 rec.csv --duration 0.5
-[ "$(wc -l < rec.csv)" -gt 100 ] || fail "recorded too few states"
+# hapticctl record writes the server's recording format (HDF5): the same export reads it.
+if ctl record vishard3 rec.csv --duration 0.1 2> csv-refused.txt; then fail "record to .csv was accepted"; fi
+grep -q "name the file .h5" csv-refused.txt || fail "record to .csv: $(cat csv-refused.txt)"
+ctl record vishard3 rec.h5 --duration 0.5 | tee record.txt
+"$bin/hapticctl" export rec.h5 --csv > /dev/null || fail "the client's recording does not export"
+[ "$(wc -l < rec.vishard3.csv)" -gt 100 ] || fail "recorded too few states"
+head -1 rec.vishard3.csv | grep -q "^cycle,time_s,joints.position.joint1,.*handle.pose.x," ||
+  fail "the client's recording lacks the schema's columns: $(head -1 rec.vishard3.csv)"
 "$bin/hapticd-scene-engine" --domain "$domain" > engine.txt 2>&1 &
 engine=$!
 ctl watch vishard3 --rate 4 --duration 2.5 > watch.txt &

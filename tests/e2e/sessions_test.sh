@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every shipped session file checks out, every per-scheme session runs, and the demo session (simulated ViSHaRD3 with the simulated
-# operator) runs in lockstep, twice with identical recordings, without a device fault.
+# operator) runs in lockstep, twice with identical recordings, without a device fault; its recording replayed by
+# the playback device through the same scheme (config/sessions/playback.yaml) reproduces it bit for bit.
 # Usage: sessions_test.sh HAPTICD SOURCE_DIR WORK_DIR
 set -u
 hapticd=$1; src=$2; work=$3
@@ -9,7 +10,7 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 pass() { echo "ok: $*"; }
 
-for session in $(find "$src/config/sessions" -name "*.yaml" | sort); do
+for session in $(find "$src/config/sessions" -name "*.yaml" ! -name playback.yaml | sort); do  # playback: below
   if out=$(timeout 30 "$hapticd" --check-config "$session" 2>&1); then pass "check-config ${session#$src/config/sessions/}"
   else fail "check-config ${session#$src/config/sessions/}: $out"; fi
 done
@@ -44,4 +45,20 @@ done
 cmp -s "$work/demo1.vishard3.csv" "$work/demo2.vishard3.csv" && pass "demo lockstep runs identical" \
   || fail "demo recordings differ"
 grep -q "device 'vishard3': ok" "$work/demo1.log" && pass "demo device ok" || fail "demo device: $(cat "$work/demo1.log")"
+
+# Playback: the demo's recording replayed through the demo's scheme gives the same recording - every joint,
+# torque command, wrench and flag of every cycle (the input is the recorded device's; the chain is deterministic).
+replay=(--set "devices.vishard3.device.parameters.recording=$work/demo1.h5")
+"$hapticd" --check-config "$src/config/sessions/playback.yaml" "${replay[@]}" > /dev/null 2>&1 && pass "check-config playback.yaml" \
+  || fail "check-config playback.yaml: $("$hapticd" --check-config "$src/config/sessions/playback.yaml" "${replay[@]}" 2>&1)"
+timeout 60 "$hapticd" --config "$src/config/sessions/playback.yaml" "${replay[@]}" --clock lockstep --duration 1 \
+  --dds-domain 68 --record "$work/replay.h5" > "$work/replay.log" 2>&1 || fail "replay exited $?: $(cat "$work/replay.log")"
+"$(dirname "$hapticd")/hapticctl" export "$work/replay.h5" --csv --exclude timing > /dev/null || fail "export of the replay"
+cmp -s "$work/demo1.vishard3.csv" "$work/replay.vishard3.csv" && pass "the replay reproduces the recording" \
+  || fail "the replay differs from the recording: $(cmp "$work/demo1.vishard3.csv" "$work/replay.vishard3.csv")"
+if "$hapticd" --check-config "$src/config/sessions/playback.yaml" > "$work/no-recording.txt" 2>&1; then
+  fail "a playback session without its recording checked out"
+fi
+grep -q "playback.yaml:[0-9]*: devices\[0\].device.parameters.recording: cannot open" "$work/no-recording.txt" \
+  && pass "a missing recording names the file, line and key" || fail "missing recording: $(cat "$work/no-recording.txt")"
 [ "$failures" -eq 0 ]

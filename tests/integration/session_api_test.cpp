@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hapticd/parameter_info.hpp"
 #include "hapticd/server/session.hpp"
 
 namespace hapticd::server {
@@ -88,6 +89,61 @@ TEST(SessionApi, RequestsAsTheDdsInterfaceOffersThem) {
   EXPECT_EQ(v.fault, "");
   EXPECT_EQ(v.recoveries, 1u);
   EXPECT_THROW(s.request("nobody", {Kind::emergency_stop, "", {}}), std::out_of_range);
+}
+
+// hapticctl params and get: every parameter of the running scheme's stages and the safety stage's, by index or
+// by name, with its declaration and the value in effect (a tuned one after the set).
+TEST(SessionApi, DescribesEveryParameterWithItsValueInEffect) {
+  Session s = shipped("scheme-switching.yaml");
+  s.step(10);
+  ASSERT_TRUE(s.request("vishard3", {Kind::set_parameter, "virtual_model.mass_kg", {2.0, 2.5, 3.0}}).accepted);
+  std::vector<ParameterInfo> all;
+  for (std::size_t k = 0, count = 1; k < count; ++k) {
+    const RuntimeReply r = s.request("vishard3", {Kind::describe_parameter, "", {static_cast<double>(k)}});
+    ASSERT_TRUE(r.accepted) << r.message;
+    const auto d = decode_parameter_info(r.message, r.values);
+    ASSERT_TRUE(d.has_value()) << r.message;
+    count = d->count;
+    all.push_back(d->info);
+  }
+  ASSERT_GT(all.size(), 20u);
+  EXPECT_EQ(all.front().name.rfind("device.", 0), 0u);
+  EXPECT_EQ(all.back().name, "safety.passivity_control");
+  const auto named = [&](const std::string& name) {
+    for (const ParameterInfo& p : all)
+      if (p.name == name) return p;
+    ADD_FAILURE() << "no " << name;
+    return ParameterInfo{};
+  };
+  const ParameterInfo mass = named("virtual_model.mass_kg");
+  EXPECT_EQ(mass.type, ParameterType::real_vector);
+  EXPECT_EQ(mass.unit, "kg");
+  EXPECT_TRUE(mass.tunable);
+  EXPECT_EQ(mass.minimum, 0.1);
+  EXPECT_EQ(mass.maximum, 1000.0);
+  EXPECT_EQ(mass.value, (std::vector<double>{2.0, 2.5, 3.0}));
+  EXPECT_EQ(mass.value_text, "[2, 2.5, 3]");
+  const ParameterInfo urdf = named("device.urdf");  // text: the value in the text only, never tunable
+  EXPECT_EQ(urdf.type, ParameterType::string);
+  EXPECT_FALSE(urdf.tunable);
+  EXPECT_TRUE(urdf.value.empty());
+  EXPECT_NE(urdf.value_text.find("vishard3.urdf"), std::string::npos);
+  const ParameterInfo bandwidth = named("controller.bandwidth_rad_s");
+  EXPECT_TRUE(bandwidth.minimum_exclusive);
+  EXPECT_EQ(bandwidth.bounds_text(), "> 0, <= 1000");
+  // By name, the same; an index past the end, a name the plugin lacks, a stage that does not exist: refused,
+  // saying what would be valid.
+  const RuntimeReply by_name = s.request("vishard3", {Kind::describe_parameter, "virtual_model.mass_kg", {}});
+  ASSERT_TRUE(by_name.accepted);
+  EXPECT_EQ(decode_parameter_info(by_name.message, by_name.values)->info.value, mass.value);
+  const RuntimeReply past = s.request("vishard3", {Kind::describe_parameter, "", {static_cast<double>(all.size())}});
+  EXPECT_FALSE(past.accepted);
+  EXPECT_NE(past.message.find("indices 0 to"), std::string::npos) << past.message;
+  const RuntimeReply unknown = s.request("vishard3", {Kind::describe_parameter, "controller.no_such", {}});
+  EXPECT_FALSE(unknown.accepted);
+  EXPECT_NE(unknown.message.find("bandwidth_rad_s"), std::string::npos) << unknown.message;
+  EXPECT_FALSE(s.request("vishard3", {Kind::describe_parameter, "gearbox.ratio", {}}).accepted);
+  EXPECT_FALSE(decode_parameter_info(unknown.message, unknown.values).has_value());
 }
 
 TEST(SessionApi, EngineInputReachesTheVirtualModelWeightedByItsAge) {

@@ -49,5 +49,45 @@ TEST(EngineInputPort, WeightsTheNewestInputByItsAgeAndRampsInAfterARestart) {
   EXPECT_FALSE(port.stale());
 }
 
+// A clean release (hapticctl release, Client::release): the forces fade out at once over the fade time, as
+// after a missed deadline, but the engine is never flagged stale; a new owner's input ramps in and can go stale.
+TEST(EngineInputPort, AReleasedEngineFadesOutWithoutBeingStale) {
+  EngineInputPort port(kTiming);
+  const auto at = [](std::int64_t k) { return CycleTime{k * 500'000, 500'000, static_cast<std::uint64_t>(k)}; };
+  EngineInput in;
+  in.sequence = 1;
+  in.has_wrench = true;
+  std::int64_t k = 0;
+  for (; k < 300; ++k) {  // fresh input every cycle: ramped in to full weight
+    in.sequence = static_cast<std::uint64_t>(k + 1);
+    port.publish(in);
+    port.take(at(k));
+  }
+  EXPECT_EQ(port.input().weight, 1.0);
+  port.publish(in);  // the engine's last command and its release reach the same cycle
+  port.end();
+  port.take(at(k++));
+  EXPECT_LT(port.input().weight, 1.0);  // the fade started at once ...
+  EXPECT_GT(port.input().weight, 0.9);  // ... and is a fade, not a step
+  EXPECT_FALSE(port.stale());
+  for (int n = 0; n < 400; ++n, ++k) {
+    port.take(at(k));
+    ASSERT_FALSE(port.stale()) << n;
+  }
+  EXPECT_EQ(port.input().weight, 0.0);  // gone after the fade time (20 ms = 40 cycles)
+  in.sequence = 1000;                   // the next owner
+  port.publish(in);
+  port.take(at(k++));
+  EXPECT_NEAR(port.input().weight, kPeriod / 0.1, 1e-12);
+  for (int n = 0; n < 300; ++n, ++k) port.take(at(k));
+  EXPECT_TRUE(port.stale());  // it went silent without a release
+  port.end();                 // a release when nothing has been seen since a restart changes nothing
+  port.restart();
+  port.end();
+  port.take(at(k++));
+  EXPECT_FALSE(port.stale());
+  EXPECT_EQ(port.input().weight, 0.0);
+}
+
 }  // namespace
 }  // namespace hapticd::server

@@ -464,6 +464,36 @@ Reply Client::set_parameter(std::string_view device, std::string_view parameter,
 Reply Client::get_parameter(std::string_view device, std::string_view parameter, Timeout timeout) {
   return request(device, RequestKind::get_parameter, parameter, {}, timeout);
 }
+Client::ParameterAnswer Client::describe_parameter(std::string_view device, std::string_view parameter,
+                                                   Timeout timeout) {
+  ParameterAnswer a{request(device, RequestKind::describe_parameter, parameter, {}, timeout), std::nullopt};
+  if (!a.reply.accepted) return a;
+  if (auto d = decode_parameter_info(a.reply.message, a.reply.values)) {
+    a.info = std::move(d->info);
+  } else {
+    a.reply.accepted = false;
+    a.reply.message =
+        "the server's description of " + std::string(parameter) + " is not readable (\"" + a.reply.message + "\")";
+  }
+  return a;
+}
+
+Client::ParameterList Client::parameters(std::string_view device, Timeout timeout) {
+  ParameterList list;
+  for (std::size_t k = 0, count = 1; k < count; ++k) {
+    list.reply = request(device, RequestKind::describe_parameter, {}, {static_cast<double>(k)}, timeout);
+    if (!list.reply.accepted) return list;
+    auto d = decode_parameter_info(list.reply.message, list.reply.values);
+    if (!d) {
+      list.reply.accepted = false;
+      list.reply.message = "the server's description of parameter " + std::to_string(k) + " is not readable";
+      return list;
+    }
+    count = d->count;
+    list.parameters.push_back(std::move(d->info));
+  }
+  return list;
+}
 Reply Client::emergency_stop(std::string_view device, Timeout timeout) {
   return request(device, RequestKind::estop, {}, {}, timeout);
 }

@@ -38,7 +38,7 @@ bool valid_quaternion(const double (&q)[4]) noexcept {
 static_assert(static_cast<int>(Mode::off) == hapticd_msg_MODE_OFF);
 static_assert(static_cast<int>(EventKind::recording) == hapticd_msg_EVENT_RECORDING);
 static_assert(static_cast<int>(CommandKind::motion) == hapticd_msg_COMMAND_MOTION);
-static_assert(static_cast<int>(RequestKind::group_recover) == hapticd_msg_REQUEST_GROUP_RECOVER);
+static_assert(static_cast<int>(RequestKind::describe_parameter) == hapticd_msg_REQUEST_DESCRIBE_PARAMETER);
 static_assert(kMaxGroupDevices == hapticd_msg_MAX_GROUP_DEVICES && kMaxValues == hapticd_msg_MAX_VALUES &&
               kRejectReasons == hapticd_msg_REJECT_REASONS && kMaxJoints == hapticd_msg_MAX_JOINTS);
 

@@ -19,7 +19,10 @@ void declare_profile(ParameterSchema& s, const std::string& prefix, const std::s
                        "along the value and back, trapezoidal velocity: _acceleration, _speed)")
       .choices(kProfiles)
       .default_value(default_kind);
+  // The name's unit suffix as the unit it stands for.
+  const std::string si = unit == "n" ? "N" : unit == "nm" ? "N m" : unit;
   s.real_vector(prefix + "_" + unit, what + " value (x, y, z, world)")
+      .unit(si)
       .size(3)
       .default_value(std::vector<double>{0, 0, 0});
   s.real(prefix + "_start_s", what + ": start of the step, ramp or sine").unit("s").minimum(0.0).default_value(0.0);
@@ -139,10 +142,12 @@ ParameterSchema SimDevice::parameter_schema() {
       .default_value(0.01);
   s.boolean("encoder_quantisation", "positions in whole encoder counts (motor side)").default_value(true);
   s.real_vector("sensor_force_range_n", "force ranges of the sensor")
+      .unit("N")
       .size(3)
       .minimum(0.0)
       .default_value(std::vector<double>{200, 200, 400});
   s.real_vector("sensor_torque_range_nm", "torque ranges of the sensor")
+      .unit("N m")
       .size(3)
       .minimum(0.0)
       .default_value(std::vector<double>{12, 12, 12});

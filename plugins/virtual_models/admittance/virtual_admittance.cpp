@@ -30,6 +30,7 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
       .default_value(std::vector<double>{5.0, 5.0, 5.0})
       .tunable();
   s.real_vector("damping_n_s_per_m", "virtual damping along the world axes")
+      .unit("N s/m")
       .size(3)
       .minimum(0.0)
       .default_value(std::vector<double>{10.0, 10.0, 10.0})
@@ -43,6 +44,7 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
       .default_value(std::vector<double>{0.02, 0.02, 0.02})
       .tunable();
   s.real_vector("rotational_damping_n_m_s", "virtual rotational damping about the handle axes")
+      .unit("N m s/rad")
       .size(3)
       .minimum(0.0)
       .default_value(std::vector<double>{0.1, 0.1, 0.1})

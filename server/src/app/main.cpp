@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <new>
 
@@ -57,6 +58,10 @@ int run_command(int argc, char** argv) {
   check_opt->excludes(config_opt);
   server_opt->excludes(check_opt)->excludes(list_opt)->excludes(describe_opt);
   CLI11_PARSE(app, argc, argv);
+  if (std::getenv("HAPTICD_PARSE_ONLY") != nullptr) {  // the documentation's commands test (docs_commands)
+    std::fputs("hapticd: the command line parsed (HAPTICD_PARSE_ONLY is set: nothing run)\n", stderr);
+    return 0;
+  }
 
   spdlog::set_level(spdlog::level::from_str(log_level));
   spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");

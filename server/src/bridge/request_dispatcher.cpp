@@ -176,6 +176,8 @@ RequestDispatcher::Answer RequestDispatcher::dispatch(DeviceLink& d, const Reque
       return set_parameter(d, r);
     case hapticd_msg_REQUEST_GET_PARAMETER:
       return get_parameter(d, r);
+    case hapticd_msg_REQUEST_DESCRIBE_PARAMETER:
+      return forward(d, DeviceRequest::Kind::describe_parameter, r);  // reading: anyone may
     case hapticd_msg_REQUEST_OPERATOR:
       return drive_operator(d, r);
     case hapticd_msg_REQUEST_ESTOP:
@@ -218,6 +220,7 @@ RequestDispatcher::Answer RequestDispatcher::release(DeviceLink& d, const Reques
     released = d.gate.release(r.requester);
   }
   if (!released) return {false, "not the owner"};
+  d.session->end_engine_input();  // a clean release: the forces fade, the engine is not stale
   d.synced.store(false, std::memory_order_release);
   events_.send(d, hapticd_msg_EVENT_OWNER, "", std::string(r.client) + " released the device");
   return {true, "released"};

@@ -1,14 +1,16 @@
 #pragma once
-// The recording's HDF5 plumbing, shared by its writer (recording_file.cpp) and reader (recording_export.cpp):
-// a handle that closes any HDF5 object, errors as exceptions with HDF5's own message, and the library kept
-// quiet. Only those two files include this (and so hdf5.h).
+// The recording's HDF5 plumbing, shared by its writer (recording_file.cpp) and readers (recording_reader.cpp,
+// recording_export.cpp): a handle that closes any HDF5 object, errors as exceptions with HDF5's own message, the
+// library kept quiet, and reading attributes. Only those files include this (and so hdf5.h).
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace hapticd::hdf5 {
 
@@ -67,5 +69,56 @@ class Handle {
  private:
   hid_t id_ = -1;
 };
+
+// ---- reading ----
+
+// A text attribute (fixed-length, NUL-padded as the writer stores them).
+inline std::string read_string_attribute(hid_t object, const char* name) {
+  Handle a(check(H5Aopen(object, name, H5P_DEFAULT), std::string("no attribute ") + name));
+  Handle type(check(H5Aget_type(a.get()), "H5Aget_type"));
+  const std::size_t size = H5Tget_size(type.get());
+  std::string value(size, '\0');
+  if (H5Aread(a.get(), type.get(), value.data()) < 0) fail(std::string("cannot read ") + name);
+  value.resize(std::strlen(value.c_str()));
+  return value;
+}
+
+// An attribute of several texts.
+inline std::vector<std::string> read_strings_attribute(hid_t object, const char* name) {
+  Handle a(check(H5Aopen(object, name, H5P_DEFAULT), std::string("no attribute ") + name));
+  Handle type(check(H5Aget_type(a.get()), "H5Aget_type"));
+  Handle space(check(H5Aget_space(a.get()), "H5Aget_space"));
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  const std::size_t size = H5Tget_size(type.get());
+  std::string packed(size * static_cast<std::size_t>(std::max<hssize_t>(n, 0)), '\0');
+  if (n > 0 && H5Aread(a.get(), type.get(), packed.data()) < 0) fail(std::string("cannot read ") + name);
+  std::vector<std::string> out;
+  for (hssize_t k = 0; k < n; ++k) {
+    std::string v = packed.substr(static_cast<std::size_t>(k) * size, size);
+    v.resize(std::strlen(v.c_str()));
+    out.push_back(v);
+  }
+  return out;
+}
+
+// A numeric attribute as doubles (HDF5 converts integers).
+inline std::vector<double> read_numbers_attribute(hid_t object, const char* name) {
+  Handle a(check(H5Aopen(object, name, H5P_DEFAULT), std::string("no attribute ") + name));
+  Handle space(check(H5Aget_space(a.get()), "H5Aget_space"));
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<double> values(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
+  if (n > 0 && H5Aread(a.get(), H5T_NATIVE_DOUBLE, values.data()) < 0) fail(std::string("cannot read ") + name);
+  return values;
+}
+
+// A hapticd recording opened to read; throws when the file does not open or is not one.
+inline Handle open_recording(const std::string& file) {
+  quiet();
+  errno = 0;  // what fail() reports is this call's
+  Handle f(check(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open " + file));
+  if (H5Aexists(f.get(), "format") <= 0 || read_string_attribute(f.get(), "format") != "hapticd-recording")
+    throw std::runtime_error(file + " is not a hapticd recording (no format attribute 'hapticd-recording')");
+  return f;
+}
 
 }  // namespace hapticd::hdf5

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "recorder/hdf5_support.hpp"
+#include "recorder/recording_reader.hpp"
 
 namespace hapticd::recording {
 namespace {
@@ -16,39 +17,6 @@ namespace {
 using hdf5::check;
 using hdf5::fail;
 using hdf5::Handle;
-
-Handle open_file(const std::filesystem::path& file) {
-  hdf5::quiet();
-  errno = 0;  // what fail() reports is this call's
-  return Handle(check(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open " + file.string()));
-}
-
-std::string string_attribute(hid_t object, const char* name) {
-  Handle a(check(H5Aopen(object, name, H5P_DEFAULT), std::string("no attribute ") + name));
-  Handle type(check(H5Aget_type(a.get()), "H5Aget_type"));
-  const std::size_t size = H5Tget_size(type.get());
-  std::string value(size, '\0');
-  if (H5Aread(a.get(), type.get(), value.data()) < 0) fail(std::string("cannot read ") + name);
-  value.resize(std::strlen(value.c_str()));
-  return value;
-}
-
-std::vector<std::string> strings_attribute(hid_t object, const char* name) {
-  Handle a(check(H5Aopen(object, name, H5P_DEFAULT), std::string("no attribute ") + name));
-  Handle type(check(H5Aget_type(a.get()), "H5Aget_type"));
-  Handle space(check(H5Aget_space(a.get()), "H5Aget_space"));
-  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
-  const std::size_t size = H5Tget_size(type.get());
-  std::string packed(size * static_cast<std::size_t>(std::max<hssize_t>(n, 0)), '\0');
-  if (n > 0 && H5Aread(a.get(), type.get(), packed.data()) < 0) fail(std::string("cannot read ") + name);
-  std::vector<std::string> out;
-  for (hssize_t k = 0; k < n; ++k) {
-    std::string v = packed.substr(static_cast<std::size_t>(k) * size, size);
-    v.resize(std::strlen(v.c_str()));
-    out.push_back(v);
-  }
-  return out;
-}
 
 std::vector<std::string> value_names(const std::string& path, int width, const std::vector<std::string>& joints) {
   std::string base = path;
@@ -93,27 +61,20 @@ constexpr hsize_t kBlockRows = 16384;
 
 }  // namespace
 
-std::vector<std::string> recorded_devices(const std::filesystem::path& file) {
-  const Handle f = open_file(file);
-  if (!H5Aexists(f.get(), "format") || string_attribute(f.get(), "format") != "hapticd-recording")
-    throw std::runtime_error(file.string() + " is not a hapticd recording (no format attribute 'hapticd-recording')");
-  return strings_attribute(f.get(), "devices");
-}
-
 std::size_t export_csv(const std::filesystem::path& file, const std::string& device, std::ostream& out,
                        const std::vector<std::string>& exclude) {
   const std::vector<std::string> devices = recorded_devices(file);
   if (std::find(devices.begin(), devices.end(), device) == devices.end())
     throw std::runtime_error(file.string() + " has no device '" + device + "'");
-  const Handle f = open_file(file);
+  const Handle f = hdf5::open_recording(file.string());
   const std::string group_path = "/devices/" + device;
   const Handle g(check(H5Gopen2(f.get(), group_path.c_str(), H5P_DEFAULT), "cannot open " + group_path));
-  const std::vector<std::string> joints = strings_attribute(g.get(), "joint_names");
+  const std::vector<std::string> joints = hdf5::read_strings_attribute(g.get(), "joint_names");
   std::vector<Column> columns;
   std::string header;
   hsize_t rows = 0;
   bool first = true;
-  for (const std::string& path : strings_attribute(g.get(), "columns")) {
+  for (const std::string& path : hdf5::read_strings_attribute(g.get(), "columns")) {
     if (excluded(path, exclude)) continue;
     Column c{Handle(check(H5Dopen2(g.get(), path.c_str(), H5P_DEFAULT), "cannot open " + group_path + "/" + path)),
              1,

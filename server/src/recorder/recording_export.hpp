@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "recorder/recording_reader.hpp"
+
 namespace hapticd::recording {
 
-// The devices of a recording, in its order. Throws std::runtime_error (not a hapticd recording, unreadable).
-std::vector<std::string> recorded_devices(const std::filesystem::path& file);
 // Writes device's cycles as CSV. exclude: column paths (or their first segments, e.g. "timing") left out.
 // Returns the rows written. Throws std::runtime_error.
 std::size_t export_csv(const std::filesystem::path& file, const std::string& device, std::ostream& out,

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <stdexcept>
 #include <utility>
 
@@ -300,6 +301,7 @@ RecordingFile::RecordingFile(const std::filesystem::path& file, const RecordingH
   real_attribute(root, "rate_hz", header.rate_hz);
   string_attribute(root, "clock", header.lockstep ? "lockstep" : "realtime");
   string_attribute(root, "created_utc", utc_now());
+  string_attribute(root, "source", header.source);
   text_dataset(root, "session/file", header.session_text);
   {
     const Handle session(check(H5Oopen(root, "session", H5P_DEFAULT), "H5Oopen session"));
@@ -336,7 +338,11 @@ RecordingFile::RecordingFile(const std::filesystem::path& file, const RecordingH
     numbers_attribute(g.get(), "torque_continuous", continuous, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE);
     string_attribute(g.get(), "handle_frame", desc.handle_frame);
     string_attribute(g.get(), "sensor_frame", desc.sensor_frame);
-    string_attribute(g.get(), "robot_model_file", desc.robot_model_file);
+    // Absolute: a relative path is the server's working directory's, which a reader does not know.
+    string_attribute(g.get(), "robot_model_file",
+                     desc.robot_model_file.empty()
+                         ? std::string()
+                         : std::filesystem::absolute(desc.robot_model_file).lexically_normal().string());
     int_attribute(g.get(), "simulated", desc.simulated ? 1 : 0);
     const Pose& b = desc.base_pose;
     numbers_attribute(g.get(), "base_pose",

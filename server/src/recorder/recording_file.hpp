@@ -22,8 +22,9 @@ struct RecordingDevice {
 };
 
 struct RecordingHeader {
-  std::string session_file;  // path as given ("" for a session built from text)
-  std::string session_text;  // the session file itself
+  std::string source = "hapticd";  // who wrote it: the server, or "hapticctl (DDS states)"
+  std::string session_file;        // path as given ("" for a session built from text)
+  std::string session_text;        // the session file itself
   double rate_hz = 0.0;
   bool lockstep = false;
   std::vector<RecordingDevice> devices;

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <variant>
 
+#include "hapticd/parameter_info.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
@@ -174,6 +175,74 @@ RuntimeReply get_parameter(DeviceSession& device, std::string_view target_text) 
   return {true, std::string(name) + " = " + format_value(value), numbers_of(value)};
 }
 
+// The server's own parameter of the safety stage, declared as a plugin's would be.
+ParameterSpec passivity_control_spec() {
+  ParameterSpec spec;
+  spec.name = "passivity_control";
+  spec.type = ParameterType::boolean;
+  spec.description = "the passivity controller on the engine port (docs/safety.md)";
+  spec.tunable = true;
+  return spec;
+}
+
+// Every parameter a describe request can name, in its order: the device's, the running scheme's virtual model's
+// and controller's, then the safety stage's.
+struct Listed {
+  std::string_view stage_text;
+  std::optional<Stage> stage;  // none: the safety stage
+  ParameterSpec spec;
+};
+std::vector<Listed> listed_parameters(const DeviceSession& device) {
+  std::vector<Listed> out;
+  for (const auto& [stage, text] : {std::pair{Stage::device, std::string_view("device")},
+                                    std::pair{Stage::virtual_model, std::string_view("virtual_model")},
+                                    std::pair{Stage::controller, std::string_view("controller")}}) {
+    const PluginDescriptor* plugin = device.stage_plugin(stage);
+    if (plugin == nullptr) continue;
+    const ParameterSchema schema = plugin->parameter_schema();
+    for (const ParameterSpec& spec : schema.specs()) out.push_back({text, stage, spec});
+  }
+  out.push_back({"safety", std::nullopt, passivity_control_spec()});
+  return out;
+}
+
+RuntimeReply describe(DeviceSession& device, const Listed& p, std::size_t count) {
+  ParameterInfo info;
+  info.name = std::string(p.stage_text) + "." + p.spec.name;
+  info.type = p.spec.type;
+  info.unit = p.spec.unit;
+  info.description = p.spec.description;
+  info.tunable = p.spec.tunable;
+  info.minimum = p.spec.minimum;
+  info.maximum = p.spec.maximum;
+  info.minimum_exclusive = p.spec.minimum_exclusive;
+  const ParameterValue value =
+      p.stage ? device.stage_parameters(*p.stage).value(p.spec.name) : ParameterValue{device.passivity_control()};
+  info.value_text = format_value(value);
+  info.value = numbers_of(value);
+  return encode_parameter_info(info, count);
+}
+
+// A parameter's declaration and value in effect: by name ("<stage>.<parameter>"), or with no name the K-th of
+// the device's list (values: {K}).
+RuntimeReply describe_parameter(DeviceSession& device, std::string_view target, const std::vector<double>& values) {
+  const std::vector<Listed> listed = listed_parameters(device);
+  if (target.empty()) {
+    if (values.size() != 1 || !(values[0] >= 0.0) || values[0] != std::floor(values[0]))
+      return {false, "name a parameter (<stage>.<parameter>), or give its index (0 to " +
+                         std::to_string(listed.size() - 1) + ")"};
+    if (values[0] >= static_cast<double>(listed.size()))
+      return {false, "the device has " + std::to_string(listed.size()) + " parameters (indices 0 to " +
+                         std::to_string(listed.size() - 1) + ")"};
+    return describe(device, listed[static_cast<std::size_t>(values[0])], listed.size());
+  }
+  for (const Listed& p : listed)
+    if (target == std::string(p.stage_text) + "." + p.spec.name) return describe(device, p, listed.size());
+  // Not listed: get_parameter's refusal names what is wrong (the target, the stage or the parameter).
+  const RuntimeReply refused = get_parameter(device, target);
+  return refused.accepted ? RuntimeReply{false, "no parameter " + in_quotes(target)} : refused;
+}
+
 }  // namespace
 
 RuntimeReply apply_request(DeviceSession& device, const DeviceRequest& request) {
@@ -189,6 +258,8 @@ RuntimeReply apply_request(DeviceSession& device, const DeviceRequest& request) 
       return set_parameter(device, request.name, request.values);
     case DeviceRequest::Kind::get_parameter:
       return get_parameter(device, request.name);
+    case DeviceRequest::Kind::describe_parameter:
+      return describe_parameter(device, request.name, request.values);
     case DeviceRequest::Kind::drive_operator:
       return plugin_command(device, Stage::device, "device", "operator." + request.name, request.values);
     case DeviceRequest::Kind::emergency_stop:

@@ -108,6 +108,8 @@ class DeviceSession {
   // Any thread (the DDS interface): the rendering engine's newest input; the loop picks it up at the next cycle
   // and stamps it with that cycle's time.
   void publish_engine_input(const EngineInput& input) { engine_.publish(input); }
+  // Any thread: the engine released the device; its input fades out without the engine counting as stale.
+  void end_engine_input() noexcept { engine_.end(); }
   // Any thread: the newest snapshot the loop published (see set_snapshot_interval); false if none since the
   // last take. One reader at a time.
   bool take_snapshot(DeviceSnapshot& out) noexcept { return status_.snapshots.take(out); }

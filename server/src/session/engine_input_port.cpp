@@ -12,10 +12,19 @@ double engine_weight(double age_s, double previous, double period_s, const Engin
 }
 
 void EngineInputPort::take(const CycleTime& cycle) noexcept {
-  if (inbox_.take(incoming_)) {
+  if (inbox_.take(incoming_)) {  // the owner's newest input (a new owner's after a release)
     input_ = incoming_;
     input_.received_ns = cycle.time_ns;
     seen_ = true;
+    released_ = false;
+  }
+  // After the input: what the inbox held when the release arrived was the released engine's last command (the
+  // gate passes no command of its after the release).
+  if (ended_.exchange(false, std::memory_order_acq_rel) && seen_) {
+    // As if the deadline had passed one cycle ago: the fade starts this cycle.
+    input_.received_ns = std::min(
+        input_.received_ns, cycle.time_ns - static_cast<std::int64_t>(timing_.deadline_s * 1e9) - cycle.period_ns);
+    released_ = true;
   }
   if (!seen_) {
     input_.weight = weight_ = 0.0;

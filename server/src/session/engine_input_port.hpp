@@ -3,6 +3,9 @@
 // reconnection"): the newest input from the DDS side through a lock-free hand-off, weighted by how old it is -
 // fresh until the deadline, then a linear fade to zero; input that (re)starts after a silence ramps in, so an
 // engine that connects or reconnects causes no force step. The weight is a pure function (engine_weight).
+// An engine that releases the device cleanly (end()) fades out as after a missed deadline, without being stale:
+// it did nothing wrong.
+#include <atomic>
 #include <cstdint>
 
 #include "hapticd/device.hpp"
@@ -26,6 +29,8 @@ class EngineInputPort {
 
   // Any thread (the DDS command listener): the engine's newest input.
   void publish(const EngineInput& input) { inbox_.publish(input); }
+  // Any thread: the engine released the device; its input fades out from the next cycle on, not stale.
+  void end() noexcept { ended_.store(true, std::memory_order_release); }
   // Loop thread: takes the newest input, if any, and weights it for this cycle.
   void take(const CycleTime& cycle) noexcept;
   // Loop thread: after a recovery the input ramps in again, as after a silence.
@@ -36,7 +41,7 @@ class EngineInputPort {
 
   [[nodiscard]] const EngineInput& input() const noexcept { return input_; }
   // The engine missed its deadline (its input is fading or gone).
-  [[nodiscard]] bool stale() const noexcept { return seen_ && late_; }
+  [[nodiscard]] bool stale() const noexcept { return seen_ && late_ && !released_; }
 
  private:
   EngineTiming timing_;
@@ -45,6 +50,8 @@ class EngineInputPort {
   bool seen_ = false;
   double weight_ = 0.0;
   bool late_ = false;
+  bool released_ = false;  // the input fading is a released engine's
+  std::atomic<bool> ended_{false};
 };
 
 }  // namespace hapticd::server

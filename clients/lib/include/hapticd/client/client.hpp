@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "hapticd/client/types.hpp"
+#include "hapticd/parameter_info.hpp"
 
 namespace hapticd::client {
 
@@ -110,6 +111,21 @@ class HAPTICD_API Client {
   // Any parameter of the stage's plugin (tunable or not) or safety.passivity_control: Reply::values holds it,
   // the message says "name = value" (text parameters only there).
   Reply get_parameter(std::string_view device, std::string_view parameter, Timeout timeout = kDefaultTimeout);
+  // A parameter's declaration (type, unit, bounds, run-time tunable, description) and value in effect; info is
+  // empty when the reply refused or did not come (reply says why).
+  struct ParameterAnswer {
+    Reply reply;
+    std::optional<ParameterInfo> info;
+  };
+  ParameterAnswer describe_parameter(std::string_view device, std::string_view parameter,
+                                     Timeout timeout = kDefaultTimeout);
+  // Every parameter of the device (its plugins' in stage order, then the safety stage's), one request each;
+  // reply is the last one (the one that failed, if any).
+  struct ParameterList {
+    Reply reply;
+    std::vector<ParameterInfo> parameters;
+  };
+  ParameterList parameters(std::string_view device, Timeout timeout = kDefaultTimeout);
   Reply emergency_stop(std::string_view device, Timeout timeout = kDefaultTimeout);
   // Leave the safe mode (accepted when the device is in it; it recovers once at zero torque).
   Reply recover(std::string_view device, Timeout timeout = kDefaultTimeout);

@@ -237,7 +237,8 @@ enum class RequestKind : std::uint8_t {
   group_claim,
   group_release,
   group_estop,
-  group_recover
+  group_recover,
+  describe_parameter
 };
 
 }  // namespace hapticd::client
