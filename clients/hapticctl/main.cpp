@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -133,6 +134,27 @@ void print_parameter_table(const std::vector<hapticd::ParameterInfo>& parameters
                p.unit.empty() ? "-" : p.unit, unit, p.bounds_text(), bounds, p.tunable ? "yes" : "no", p.description);
 }
 
+int report(const Reply& r) {
+  if (!r.answered) {
+    fmt::print(stderr, "no reply: {}\n", r.message);
+    return 3;
+  }
+  fmt::print("{}: {}\n", r.accepted ? "accepted" : "refused", r.message);
+  return r.accepted ? 0 : 1;
+}
+
+// Until the duration (0: until Ctrl-C), calling `tick` every 20 ms; false when interrupted.
+bool run_for(double duration_s, const std::function<void()>& tick = {}) {
+  const auto start = std::chrono::steady_clock::now();
+  while (!g_stop.load()) {
+    if (duration_s > 0.0 && std::chrono::steady_clock::now() - start > std::chrono::duration<double>(duration_s))
+      return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (tick) tick();
+  }
+  return false;
+}
+
 // hapticctl record: every state the device publishes until the duration or Ctrl-C, in the recording format.
 int record_states(Client& client, const std::string& device, const std::string& file, double duration,
                   std::chrono::duration<double> wait) {
@@ -154,12 +176,7 @@ int record_states(Client& client, const std::string& device, const std::string& 
     client.on_state([recording, device](const hapticd::client::DeviceState& s) {
       if (s.device == device) recording->add(s);
     });
-    const auto start = std::chrono::steady_clock::now();
-    while (!g_stop.load() &&
-           (duration <= 0.0 || std::chrono::steady_clock::now() - start < std::chrono::duration<double>(duration))) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      recording->write();
-    }
+    run_for(duration, [&] { recording->write(); });
     client.on_state({});
     recording->close();
     fmt::print("recorded {} states of '{}' to {}\n", recording->states(), device, file);
@@ -169,25 +186,6 @@ int record_states(Client& client, const std::string& device, const std::string& 
     fmt::print(stderr, "hapticctl record: {}\n", e.what());
     return 2;
   }
-}
-
-int report(const Reply& r) {
-  if (!r.answered) {
-    fmt::print(stderr, "no reply: {}\n", r.message);
-    return 3;
-  }
-  fmt::print("{}: {}\n", r.accepted ? "accepted" : "refused", r.message);
-  return r.accepted ? 0 : 1;
-}
-
-bool run_for(double duration_s) {  // false when interrupted
-  const auto start = std::chrono::steady_clock::now();
-  while (!g_stop.load()) {
-    if (duration_s > 0.0 && std::chrono::steady_clock::now() - start > std::chrono::duration<double>(duration_s))
-      return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
 }
 
 }  // namespace

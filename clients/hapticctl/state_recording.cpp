@@ -1,6 +1,7 @@
 #include "state_recording.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 
 #include "recorder/recording_file.hpp"
@@ -9,17 +10,6 @@ namespace hapticd::ctl {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-void put(double (&out)[7], const Pose& p) {
-  const Eigen::Vector3d& x = p.position;
-  const Eigen::Quaterniond& q = p.orientation;
-  const double v[7] = {x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z()};
-  std::copy(v, v + 7, out);
-}
-void put(double (&out)[6], const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const double v[6] = {a.x(), a.y(), a.z(), b.x(), b.y(), b.z()};
-  std::copy(v, v + 6, out);
-}
 
 server::RecordingHeader header_of(const client::DeviceInfo& d, std::vector<std::string>& schemes) {
   server::RecordingDevice device;
@@ -60,12 +50,11 @@ void StateRecording::add(const client::DeviceState& s) {
   r.flags = s.flags;
   const auto scheme = std::find(schemes_.begin(), schemes_.end(), s.scheme.view());
   r.scheme = static_cast<std::uint16_t>(scheme == schemes_.end() ? 0 : scheme - schemes_.begin());
-  for (int j = 0; j < r.dof; ++j) {
-    r.position[j] = s.position[j];
-    r.velocity[j] = s.velocity[j];
-    r.torque_command[j] = s.torque[j];
-    r.torque_measured[j] = kNaN;
-  }
+  using server::put;
+  put(r.position, s.position, r.dof);
+  put(r.velocity, s.velocity, r.dof);
+  put(r.torque_command, s.torque, r.dof);
+  std::fill(r.torque_measured, r.torque_measured + r.dof, kNaN);
   put(r.handle_pose, s.pose);
   put(r.handle_twist, s.twist.linear, s.twist.angular);
   put(r.operator_wrench, s.operator_wrench.force, s.operator_wrench.torque);
@@ -89,8 +78,12 @@ void StateRecording::write() {
   if (batch.empty()) return;
   for (const server::CycleRecord& r : batch) file_->add(r);
   file_->write();
-  file_->flush();
   written_ += batch.size();
+  const auto now = std::chrono::steady_clock::now();
+  if (now - flushed_ >= std::chrono::seconds(1)) {  // as the server's recorder: a whole file up to here
+    file_->flush();
+    flushed_ = now;
+  }
 }
 
 void StateRecording::close() {

@@ -4,6 +4,7 @@
 // publish every Nth cycle: the `cycle` column says which). What the wire does not carry - the measured joint
 // torque, the sensor's reading, the engine input in effect, the loop timing - is NaN (reals) or 0 (integers);
 // the root attribute `source` says "hapticctl (DDS states)".
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -29,7 +30,7 @@ class StateRecording {
 
   // Any thread (the client's state callback): keeps the state until the next write().
   void add(const client::DeviceState& state);
-  // The caller's thread, now and then: appends the kept states to the file and flushes it. Throws.
+  // The caller's thread, now and then: appends the kept states to the file (flushed about every second). Throws.
   void write();
   // Writes what is left and closes the file. Throws.
   void close();
@@ -41,6 +42,7 @@ class StateRecording {
   std::mutex mutex_;
   std::vector<server::CycleRecord> pending_;
   std::uint64_t written_ = 0;
+  std::chrono::steady_clock::time_point flushed_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace hapticd::ctl

@@ -139,15 +139,17 @@ TEST(PlaybackDevice, ConfigurationErrorsNameTheirKey) {
   const std::string late = key_of("device: a, start_s: 5");
   EXPECT_EQ(late.rfind("start_s: ", 0), 0u) << late;
   EXPECT_THROW(Rig("device: a, at_end: rewind"), std::exception);  // not one of the schema's choices
-  try {
-    const Parameters p = server::read_parameters(YAML::Load("{recording: /nonexistent/run.h5}"),
-                                                 PlaybackDevice::parameter_schema(), "test.yaml", "parameters", 1);
-    PlaybackDevice d;
-    d.configure(p, PluginContext{});
-    ADD_FAILURE() << "a missing recording was accepted";
-  } catch (const ParameterError& e) {
-    EXPECT_EQ(e.key(), "recording");
-    EXPECT_NE(std::string(e.what()).find("cannot open /nonexistent/run.h5"), std::string::npos) << e.what();
+  for (const char* yaml : {"{recording: /nonexistent/run.h5}", "{recording: /nonexistent/run.h5, device: a}"}) {
+    try {  // a missing file is the recording's fault, whether a device is named or not
+      const Parameters p =
+          server::read_parameters(YAML::Load(yaml), PlaybackDevice::parameter_schema(), "test.yaml", "parameters", 1);
+      PlaybackDevice d;
+      d.configure(p, PluginContext{});
+      ADD_FAILURE() << "a missing recording was accepted: " << yaml;
+    } catch (const ParameterError& e) {
+      EXPECT_EQ(e.key(), "recording") << yaml;
+      EXPECT_NE(std::string(e.what()).find("cannot open /nonexistent/run.h5"), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 
 #include "recorder/recording_reader.hpp"
 
@@ -48,24 +49,29 @@ ParameterSchema PlaybackDevice::parameter_schema() {
 
 void PlaybackDevice::configure(const Parameters& p, const PluginContext& context) {
   const std::filesystem::path file = resolved(p.string("recording"), context.config_directory);
+  // An unreadable file is the recording's fault; a device it lacks, the device parameter's.
+  std::vector<std::string> devices;
+  try {
+    devices = recording::recorded_devices(file);
+  } catch (const std::exception& e) {
+    throw ParameterError("recording", e.what());
+  }
+  std::string names;
+  for (const std::string& d : devices) names += (names.empty() ? "" : ", ") + d;
   std::string device = p.string("device");
+  if (device.empty()) {
+    if (devices.size() != 1)
+      throw ParameterError("device", file.string() + " has " + std::to_string(devices.size()) + " devices (" + names +
+                                         "): name the one to replay");
+    device = devices.front();
+  } else if (std::find(devices.begin(), devices.end(), device) == devices.end()) {
+    throw ParameterError("device", file.string() + " has no device '" + device + "' (it has " + names + ")");
+  }
   recording::RecordedDevice r;
   try {
-    if (device.empty()) {
-      const std::vector<std::string> devices = recording::recorded_devices(file);
-      if (devices.size() != 1) {
-        std::string names;
-        for (const std::string& d : devices) names += (names.empty() ? "" : ", ") + d;
-        throw ParameterError("device", file.string() + " has " + std::to_string(devices.size()) + " devices (" + names +
-                                           "): name the one to replay");
-      }
-      device = devices.front();
-    }
     r = recording::read_device(file, device, {kTime, kPosition, kVelocity, kEffort, kWrench});
-  } catch (const ParameterError&) {
-    throw;
   } catch (const std::exception& e) {
-    throw ParameterError(device.empty() || p.string("device").empty() ? "recording" : "device", e.what());
+    throw ParameterError("recording", e.what());
   }
   if (r.cycles < 2)
     throw ParameterError("recording", file.string() + " holds " + std::to_string(r.cycles) + " cycles of '" + device +
@@ -73,14 +79,15 @@ void PlaybackDevice::configure(const Parameters& p, const PluginContext& context
   description_ = r.description;
   dof_ = description_.dof();
   const std::string urdf = p.string("urdf");
-  if (!urdf.empty()) description_.robot_model_file = resolved(urdf, context.config_directory).string();
-  if (!description_.robot_model_file.empty() &&
-      !std::filesystem::exists(resolved(description_.robot_model_file, context.config_directory)))
-    throw ParameterError(urdf.empty() ? "recording" : "urdf",
-                         "the robot model " + description_.robot_model_file + " does not exist" +
-                             (urdf.empty() ? " (the recording names it): give it as the parameter urdf" : ""));
-  if (!description_.robot_model_file.empty())
-    description_.robot_model_file = resolved(description_.robot_model_file, context.config_directory).string();
+  const std::string model = urdf.empty() ? description_.robot_model_file : urdf;
+  if (!model.empty()) {
+    const std::filesystem::path path = resolved(model, context.config_directory);
+    if (!std::filesystem::exists(path))
+      throw ParameterError(urdf.empty() ? "recording" : "urdf",
+                           "the robot model " + path.string() + " does not exist" +
+                               (urdf.empty() ? " (the recording names it): give it as the parameter urdf" : ""));
+    description_.robot_model_file = path.string();
+  }
   description_.model = "playback of " + r.description.model;
   description_.simulated = true;               // not hardware
   description_.reports_joint_velocity = true;  // the recorded estimate, so the replay's twist is the recorded one
@@ -98,10 +105,10 @@ void PlaybackDevice::configure(const Parameters& p, const PluginContext& context
       throw ParameterError(
           "recording", file.string() + ": the times of '" + device + "' do not increase at cycle " + std::to_string(k));
   }
-  position_ = r.datasets.at(kPosition).values;
-  velocity_ = r.datasets.at(kVelocity).values;
-  effort_ = r.datasets.at(kEffort).values;
-  wrench_ = r.datasets.at(kWrench).values;
+  position_ = std::move(r.datasets.at(kPosition).values);
+  velocity_ = std::move(r.datasets.at(kVelocity).values);
+  effort_ = std::move(r.datasets.at(kEffort).values);
+  wrench_ = std::move(r.datasets.at(kWrench).values);
   speed_ = p.real("speed");
   start_s_ = p.real("start_s");
   if (start_s_ >= duration_s())

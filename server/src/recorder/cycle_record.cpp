@@ -7,31 +7,6 @@
 #include "session/state_flags.hpp"
 
 namespace hapticd::server {
-namespace {
-
-void put(double (&out)[7], const Pose& p) noexcept {
-  for (int a = 0; a < 3; ++a) out[a] = p.position[a];
-  out[3] = p.orientation.w();
-  out[4] = p.orientation.x();
-  out[5] = p.orientation.y();
-  out[6] = p.orientation.z();
-}
-
-void put(double (&out)[6], const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) noexcept {
-  for (int a = 0; a < 3; ++a) {
-    out[a] = linear[a];
-    out[3 + a] = angular[a];
-  }
-}
-
-void put(double (&out)[kMaxJoints], const JointVector& v, int dof) noexcept {
-  const int n = std::min<int>(dof, static_cast<int>(v.size()));
-  for (int i = 0; i < n; ++i) out[i] = v[i];
-  for (int i = n; i < kMaxJoints; ++i) out[i] = 0.0;
-}
-
-}  // namespace
-
 void fill_cycle_record(CycleRecord& r, const DeviceSession& session, std::uint16_t index, const CycleTime& cycle,
                        std::int64_t lateness_ns, std::int64_t compute_ns) noexcept {
   const DeviceSnapshot& s = session.published_snapshot();

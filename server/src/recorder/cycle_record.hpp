@@ -6,6 +6,7 @@
 
 #include "hapticd/cycle_time.hpp"
 #include "hapticd/joint_vector.hpp"
+#include "hapticd/spatial.hpp"
 
 namespace hapticd::server {
 
@@ -36,6 +37,27 @@ struct CycleRecord {
   std::int64_t lateness_ns = 0;       // the loop woke this late for the cycle
   std::int64_t compute_ns = 0;        // from the cycle's start to this device's torque written
 };
+
+// A record's fields from the SDK's types (the loop's fill_cycle_record and hapticctl's recording of DDS states):
+// a pose as x y z qw qx qy qz; a twist or wrench as its linear then angular part; joints, the rest zero.
+inline void put(double (&out)[7], const Pose& p) noexcept {
+  for (int a = 0; a < 3; ++a) out[a] = p.position[a];
+  out[3] = p.orientation.w();
+  out[4] = p.orientation.x();
+  out[5] = p.orientation.y();
+  out[6] = p.orientation.z();
+}
+inline void put(double (&out)[6], const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) noexcept {
+  for (int a = 0; a < 3; ++a) {
+    out[a] = linear[a];
+    out[3 + a] = angular[a];
+  }
+}
+inline void put(double (&out)[kMaxJoints], const JointVector& v, int dof) noexcept {
+  const int n = dof < static_cast<int>(v.size()) ? dof : static_cast<int>(v.size());
+  for (int i = 0; i < n; ++i) out[i] = v[i];
+  for (int i = n; i < kMaxJoints; ++i) out[i] = 0.0;
+}
 
 // The record of device `index` after limit_and_write() of this cycle (reads the session's own cycle snapshot,
 // which the recorder makes it fill every cycle). Real-time safe.

@@ -44,11 +44,11 @@ struct Column {
 #define HAPTICD_JOINTS(field) [](const CycleRecord& r, unsigned char* o) { store_all(o, r.field, r.dof); }
 #define HAPTICD_ARRAY(field) \
   [](const CycleRecord& r, unsigned char* o) { store_all(o, r.field, static_cast<int>(std::size(r.field))); }
+#define HAPTICD_SCALAR(field) [](const CycleRecord& r, unsigned char* o) { store(o, 0, r.field); }
 
 const std::vector<Column>& columns() {
   static const std::vector<Column> c = {
-      {{"cycle", "u64", 1, "", "the cycle's index (period number on the loop clock)"},
-       [](const CycleRecord& r, unsigned char* o) { store(o, 0, r.cycle); }},
+      {{"cycle", "u64", 1, "", "the cycle's index (period number on the loop clock)"}, HAPTICD_SCALAR(cycle)},
       {{"time_s", "f64", 1, "s", "the cycle's time on the loop clock"},
        [](const CycleRecord& r, unsigned char* o) { store(o, 0, static_cast<double>(r.time_ns) * 1e-9); }},
       {{"joints/position", "f64", 0, "rad or m", "measured joint positions"}, HAPTICD_JOINTS(position)},
@@ -69,30 +69,29 @@ const std::vector<Column>& columns() {
        HAPTICD_ARRAY(sensor_wrench)},
       {{"target/pose", "f64", 7, "m, quaternion", "the chain's desired pose, world: x y z qw qx qy qz"},
        HAPTICD_ARRAY(target_pose)},
-      {{"mode", "u8", 1, "", "device mode, an index into the device's mode_names attribute"},
-       [](const CycleRecord& r, unsigned char* o) { store(o, 0, r.mode); }},
-      {{"flags", "u32", 1, "", "state flags, bit i named by the device's flag_names attribute"},
-       [](const CycleRecord& r, unsigned char* o) { store(o, 0, r.flags); }},
+      {{"mode", "u8", 1, "", "device mode, an index into the device's mode_names attribute"}, HAPTICD_SCALAR(mode)},
+      {{"flags", "u32", 1, "", "state flags, bit i named by the device's flag_names attribute"}, HAPTICD_SCALAR(flags)},
       {{"scheme", "u16", 1, "", "the running control scheme, an index into the device's schemes attribute"},
-       [](const CycleRecord& r, unsigned char* o) { store(o, 0, r.scheme); }},
+       HAPTICD_SCALAR(scheme)},
       {{"engine/weight", "f64", 1, "", "the engine input's weight: 1 fresh, between 0 and 1 fading, 0 none"},
-       [](const CycleRecord& r, unsigned char* o) { store(o, 0, r.engine_weight); }},
+       HAPTICD_SCALAR(engine_weight)},
       {{"engine/sequence", "u64", 1, "", "serial number of the engine input in effect (0: none yet)"},
-       [](const CycleRecord& r, unsigned char* o) { store(o, 0, r.engine_sequence); }},
+       HAPTICD_SCALAR(engine_sequence)},
       {{"engine/proxy_pose", "f64", 7, "m, quaternion", "the engine's proxy pose in effect (zeros: none sent)"},
        HAPTICD_ARRAY(engine_proxy_pose)},
       {{"engine/wrench", "f64", 6, "N, N m", "the engine's wrench in effect (zeros: none sent)"},
        HAPTICD_ARRAY(engine_wrench)},
       {{"timing/lateness_ns", "i64", 1, "ns", "how late the loop woke for this cycle (0 in lockstep)"},
-       [](const CycleRecord& r, unsigned char* o) { store(o, 0, r.lateness_ns); }},
+       HAPTICD_SCALAR(lateness_ns)},
       {{"timing/compute_ns", "i64", 1, "ns", "from the cycle's start to this device's torque written"},
-       [](const CycleRecord& r, unsigned char* o) { store(o, 0, r.compute_ns); }},
+       HAPTICD_SCALAR(compute_ns)},
   };
   return c;
 }
 
 #undef HAPTICD_JOINTS
 #undef HAPTICD_ARRAY
+#undef HAPTICD_SCALAR
 
 std::size_t type_size(const char* t) {
   if (std::strcmp(t, "u8") == 0) return 1;
