@@ -16,8 +16,10 @@ out=build/demo
 mkdir -p "$out"
 rm -f "$out"/engine.csv
 
+live_view_port=${HAPTICD_LIVE_VIEW_PORT:-8765}
 echo "== hapticd --config config/sessions/demo.yaml --dds-domain $domain (11 s, real time)"
-"$bin/hapticd" --config config/sessions/demo.yaml --dds-domain "$domain" \
+echo "   live view: ws://127.0.0.1:$live_view_port (Foxglove or Lichtblick, Foxglove WebSocket; docs/live-view.md)"
+"$bin/hapticd" --config config/sessions/demo.yaml --dds-domain "$domain" --live-view "$live_view_port" \
   --record "$out/recording.h5" --stats-json "$out/stats.json" > "$out/server.log" 2>&1 &
 server=$!
 trap 'kill $server $engine 2>/dev/null || true' EXIT
@@ -41,7 +43,7 @@ ctl operator vishard3 release
 wait "$engine" || true
 wait "$server"
 trap - EXIT
-grep -E "round trip|engine commands|commands applied|cycles in|device " "$out/server.log" | sed 's/^\[[^]]*\] \[[a-z]*\] /server: /'
+grep -E "round trip|engine commands|commands applied|cycles in|device |live view" "$out/server.log" | sed 's/^\[[^]]*\] \[[a-z]*\] /server: /'
 /usr/bin/python3 scripts/plot_engine_run.py "$out/engine.csv" "$out/demo.png"
 
 echo "== dual arm: hapticd --config config/sessions/dual-arm/vishard3-pair.yaml (6 s, real time)"

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package hapticd needs to build, test, benchmark and plot.
+# Installs every Debian 12 package hapticd needs to build, test, benchmark and plot, and the live view test's
+# client from the npm registry (tests/live_view: @foxglove/ws-protocol and ws, pinned by its package-lock.json).
 # Idempotent: packages already present are not reinstalled, and apt is not touched when nothing is missing.
 # Works as root or through sudo. Nothing else is ever downloaded: the build uses only these packages.
 set -euo pipefail
@@ -29,9 +30,27 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# Node.js and npm for the live view test: Debian's, unless the machine has a node and npm already (Debian's npm
+# package conflicts with the nodejs builds that bring their own npm).
+if ! command -v node > /dev/null || ! command -v npm > /dev/null; then
+  missing+=(nodejs npm)
+fi
+
+# The live view test's npm packages, into tests/live_view/node_modules (again only when the lock file changed).
+install_npm_packages() {
+  local dir
+  dir="$(cd "$(dirname "$0")/.." && pwd)/tests/live_view"
+  if [ -f "$dir/node_modules/.package-lock.json" ] && cmp -s "$dir/package-lock.json" "$dir/.installed-lock.json"; then
+    echo "install-deps: npm packages of tests/live_view present"
+    return
+  fi
+  echo "install-deps: npm ci in tests/live_view"
+  (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error) && cp "$dir/package-lock.json" "$dir/.installed-lock.json"
+}
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
+  install_npm_packages
   exit 0
 fi
 
@@ -45,3 +64,4 @@ echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+install_npm_packages

@@ -111,6 +111,32 @@ TEST(DeviceSession, CycleOfTheWholeChainDoesNotAllocate) {
   EXPECT_EQ(d.fault(), DeviceFault::none);
 }
 
+TEST(DeviceSession, SnapshotsForTheDdsInterfaceAndTheLiveViewDoNotAllocate) {
+  // Both hand-offs at their own intervals; each reader takes only its own.
+  if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
+  auto s = session_with(test::mass_spring_device_yaml("axis", ", position_noise_m: 1.0e-5"));
+  DeviceSession& d = *s.impl().devices[0];
+  d.set_snapshot_interval(2);
+  d.set_view_interval(3);
+  d.activate();
+  DeviceSnapshot view, dds;
+  testing::AllocationGuard guard;
+  for (std::uint64_t k = 0; k < 5000; ++k) d.cycle(cycle_at(k), 1.0);
+  EXPECT_EQ(guard.allocations(), 0u);
+  ASSERT_TRUE(d.take_view_snapshot(view));
+  ASSERT_TRUE(d.take_snapshot(dds));
+  EXPECT_EQ(view.cycle, 4998u);              // the newest multiple of 3 below 5000
+  EXPECT_EQ(dds.cycle, 4998u);               // ... and of 2
+  EXPECT_FALSE(d.take_view_snapshot(view));  // taken once
+  d.cycle(cycle_at(5000), 1.0);
+  EXPECT_FALSE(d.take_view_snapshot(view));  // 5000 is not the view's
+  ASSERT_TRUE(d.take_snapshot(dds));
+  EXPECT_EQ(dds.cycle, 5000u);
+  d.cycle(cycle_at(5001), 1.0);
+  ASSERT_TRUE(d.take_view_snapshot(view));
+  EXPECT_EQ(view.cycle, 5001u);
+}
+
 TEST(DeviceSession, ARecordedCycleDoesNotAllocate) {
   // The loop's side of the recording: the cycle snapshot, the record and the ring (real-time mode: a full ring
   // drops, so the writer thread's pace does not matter here).

@@ -104,7 +104,8 @@ int run_session(const RunOptions& options) {
 
   // The stacks the threads still to come reserve (loop, recorder, bridge; Cyclone creates its own with smaller
   // stacks), and 8 MB of working memory: calibrated with ulimit -v (docs/safety.md).
-  if (const std::string missing = check_address_space(s->config.dds.enabled ? 6 : 3, 8u << 20); !missing.empty()) {
+  const int threads = (s->config.dds.enabled ? 6 : 3) + (s->config.live_view.enabled ? 1 : 0);
+  if (const std::string missing = check_address_space(threads, 8u << 20); !missing.empty()) {
     spdlog::error("cannot start the session: {}; no device was powered", missing);
     return kExitRuntimeError;
   }
@@ -131,6 +132,14 @@ int run_session(const RunOptions& options) {
                  dds::describe_network({s->config.dds.domain_id, s->config.dds.cyclone_config, s->config.dds.network}),
                  cpus.empty() ? std::string()
                               : fmt::format(", DDS threads on CPU {}, the loop on CPU {}", cpus, served->loop_cpu()));
+  }
+
+  if (const live_view::LiveView* view = served->live_view()) {
+    spdlog::info("live view on {} (Foxglove WebSocket: open it in Foxglove or Lichtblick; docs/live-view.md)",
+                 view->url());
+    if (s->config.live_view.address != "127.0.0.1" && s->config.live_view.address != "::1")
+      spdlog::warn("the live view listens on {}, not on loopback only: whoever reaches it can watch the session",
+                   s->config.live_view.address);
   }
 
   for (const ConfigureFailure& f : s->configure_failures)
@@ -214,6 +223,13 @@ int run_session(const RunOptions& options) {
     recording_counts();
   }
   for (const auto& line : report_lines(report)) spdlog::info("{}", line);
+  if (const live_view::LiveView* view = served->live_view()) {
+    const auto& c = view->counters();
+    spdlog::info(
+        "live view: {} viewer(s) connected, {} refused, {} messages sent, {} dropped (slow viewers), {} bad "
+        "requests",
+        c.connections.load(), c.refused.load(), c.sent.load(), c.dropped.load(), c.bad_requests.load());
+  }
   if (recorder) {
     if (recorder->failed()) {
       spdlog::error("recording FAILED: {}; {} device-cycles in {} (whole records), {} lost, {} dropped",
@@ -308,6 +324,8 @@ int describe_config(const std::string& config_file) {
              "", "list of folders, relative to the session file");
   fmt::print("\ndds section of a session file (present: the DDS interface runs):\n");
   print_schema(dds_settings_schema());
+  fmt::print("\nlive_view section (present: the Foxglove WebSocket live view runs; docs/live-view.md):\n");
+  print_schema(live_view_settings_schema());
   fmt::print("\na device entry (devices: [...]):\n");
   for (const EntryKey& k : device_entry_keys()) fmt::print("  {:<24} {}\n", k.key, k.text);
   fmt::print("\ngroups (optional, top level; docs/multi-device.md): a list of\n");

@@ -36,7 +36,7 @@ int run_command(int argc, char** argv) {
   auto* describe_opt =
       app.add_option("--describe-plugin", describe_name, "print a plugin's parameters (type, unit, bounds, default)");
   auto* server_opt = app.add_flag("--describe-config", describe_server,
-                                  "print the settings of a session file's server and dds sections");
+                                  "print the settings of a session file's server, dds and live_view sections");
   auto* duration_opt = app.add_option("--duration", duration, "run for this many seconds (overrides server.duration_s)")
                            ->check(CLI::NonNegativeNumber);
   auto* clock_opt = app.add_option("--clock", clock, "realtime or lockstep (overrides server.clock)")
@@ -48,6 +48,12 @@ int run_command(int argc, char** argv) {
   app.add_option(
       "--record", run.record_file,
       "record every cycle of every device to this HDF5 file (docs/recording.md; hapticctl export FILE --csv)");
+  int live_view_port = 0;
+  auto* live_view_opt =
+      app.add_option("--live-view", live_view_port,
+                     "serve the live view (Foxglove WebSocket, docs/live-view.md) on this port of 127.0.0.1 unless "
+                     "the session file's live_view section names another address; 0 takes any free port")
+          ->check(CLI::Range(0, 65535));
   int dds_domain = 0;
   auto* dds_opt = app.add_option("--dds-domain", dds_domain,
                                  "run the DDS interface on this domain (loopback-only "
@@ -69,6 +75,8 @@ int run_command(int argc, char** argv) {
   if (*duration_opt) run.duration_s = duration;
   if (*clock_opt) run.clock = clock;
   if (*dds_opt) run.dds_domain = dds_domain;
+  if (*live_view_opt)  // before the --set overrides: an explicit --set live_view.port wins
+    run.sets.insert(run.sets.begin(), {"live_view.enabled=true", "live_view.port=" + std::to_string(live_view_port)});
 
   if (describe_server) return describe_config(run.config_file);
   if (!describe_name.empty()) return describe_plugin(describe_name, run.config_file);

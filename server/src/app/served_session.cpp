@@ -91,6 +91,9 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
                                            settings_.lockstep ? 1 : 1 + separate.size());
   }
   executor_ = std::make_unique<Executor>(settings_, devices, recorder_.get(), stages, separate);
+  if (config.live_view.enabled)  // binds its port before the DDS interface starts
+    live_view_ = std::make_unique<live_view::LiveView>(config.live_view, devices, config.server.rate_hz,
+                                                       config.file.filename().string());
   if (config.dds.enabled) {
     try {
       bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices, stages, dds_cpus_);
@@ -101,10 +104,12 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
     set_cycle_listener(bridge_.get());
     bridge_->start();
   }
+  if (live_view_) live_view_->start();
   monitor_ = std::make_unique<SessionMonitor>(devices, bridge_.get(), options.stop, recorder_.get());
 }
 
 ServedSession::~ServedSession() {
+  if (live_view_) live_view_->stop();
   if (bridge_) bridge_->stop();
 }
 
@@ -121,6 +126,7 @@ ExecutorResult ServedSession::run(const std::atomic<bool>& stop) {
         s.recorder_->finish();  // the summary and the close follow (close_recording)
         s.monitor_->poll();     // a failure at the end (the last chunk, the sync, the close) is announced too
       }
+      if (s.live_view_) s.live_view_->stop();
       if (s.bridge_) s.bridge_->stop();
     }
   } finish{*this};

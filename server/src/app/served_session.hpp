@@ -1,11 +1,11 @@
 #pragma once
 // A session served: its devices on the executor's loop, with the DDS interface (when the session file has a dds
-// section), the monitor and, when asked, a recording. The one place these are assembled: `hapticd` runs a session
-// file through it, and so do the end-to-end tests over DDS.
+// section), the live view (a live_view section), the monitor and, when asked, a recording. The one place these are
+// assembled: `hapticd` runs a session file through it, and so do the end-to-end tests over DDS.
 //
 // Construction sets everything up before any device is powered (a recording that cannot be opened or a DDS
-// interface that cannot start throws std::runtime_error, and nothing moved); run() powers the devices, runs the
-// loop until its duration ends or `stop` is set, and leaves every device disabled.
+// interface or live view that cannot start throws std::runtime_error, and nothing moved); run() powers the devices,
+// runs the loop until its duration ends or `stop` is set, and leaves every device disabled.
 #include <atomic>
 #include <filesystem>
 #include <memory>
@@ -15,6 +15,7 @@
 #include "bridge/dds_bridge.hpp"
 #include "config/session_config.hpp"
 #include "executor/executor.hpp"
+#include "live_view/live_view.hpp"
 #include "recorder/recorder.hpp"
 #include "session/device_session.hpp"
 
@@ -52,7 +53,8 @@ class ServedSession {
 
   [[nodiscard]] DdsBridge* bridge() const noexcept { return bridge_.get(); }  // null without a dds section
   [[nodiscard]] const SessionMonitor& monitor() const noexcept { return *monitor_; }
-  [[nodiscard]] Recorder* recorder() const noexcept { return recorder_.get(); }  // null: not recording
+  [[nodiscard]] Recorder* recorder() const noexcept { return recorder_.get(); }               // null: not recording
+  [[nodiscard]] live_view::LiveView* live_view() const noexcept { return live_view_.get(); }  // null: none
   // Where the threads run: the loop's CPU (-1 not pinned) and the DDS threads' CPUs (empty: not pinned).
   [[nodiscard]] int loop_cpu() const noexcept { return settings_.cpu; }
   [[nodiscard]] const std::vector<int>& dds_cpus() const noexcept { return dds_cpus_; }
@@ -63,6 +65,7 @@ class ServedSession {
   std::unique_ptr<Recorder> recorder_;
   std::unique_ptr<Executor> executor_;
   std::unique_ptr<DdsBridge> bridge_;
+  std::unique_ptr<live_view::LiveView> live_view_;
   std::unique_ptr<SessionMonitor> monitor_;
   CycleListener* listener_ = nullptr;
 };

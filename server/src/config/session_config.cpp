@@ -1,5 +1,7 @@
 #include "config/session_config.hpp"
 
+#include <arpa/inet.h>
+
 #include <algorithm>
 #include <set>
 
@@ -189,6 +191,26 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
   d.claim_grace_s = p.real("claim_grace_s");
   d.log_lines_per_s = p.real("log_lines_per_s");
   return d;
+}
+
+LiveViewSettings read_live_view(const YAML::Node& node, const std::string& file) {
+  LiveViewSettings v;
+  if (!node.IsDefined()) return v;
+  v.enabled = true;
+  if (node.IsNull()) return v;  // `live_view:` alone: on with the defaults
+  if (!node.IsMap()) throw ConfigError(file, line_of(node), "live_view", "expected a mapping of live view settings");
+  const Parameters p = read_parameters(node, live_view_settings_schema(), file, "live_view", line_of(node), {});
+  v.enabled = p.boolean("enabled");
+  v.address = p.string("address");
+  v.port = static_cast<int>(p.integer("port"));
+  v.rate_hz = p.real("rate_hz");
+  v.max_clients = static_cast<int>(p.integer("max_clients"));
+  v.force_scale_m_per_n = p.real("force_scale_m_per_n");
+  unsigned char parsed[sizeof(in6_addr)];
+  if (inet_pton(AF_INET, v.address.c_str(), parsed) != 1 && inet_pton(AF_INET6, v.address.c_str(), parsed) != 1)
+    throw ConfigError(file, line_of(node["address"]), "live_view.address",
+                      "'" + v.address + "' is not an IP address (127.0.0.1 for this machine only, the default)");
+  return v;
 }
 
 SafetySettings read_safety(const YAML::Node& node, const std::string& file, const std::string& key_path) {
@@ -404,6 +426,31 @@ ParameterSchema group_loop_schema() {
   return s;
 }
 
+ParameterSchema live_view_settings_schema() {
+  ParameterSchema s;
+  const LiveViewSettings d;
+  s.boolean("enabled", "serve the live view").default_value(true);
+  s.string("address",
+           "IP address to listen on: 127.0.0.1 (the default) serves this machine only; another interface's address "
+           "lets anyone who reaches it watch the session")
+      .default_value(d.address);
+  s.integer("port", "TCP port; 0 takes any free port (the log names it)")
+      .minimum(0)
+      .maximum(65535)
+      .default_value(std::int64_t{d.port});
+  s.real("rate_hz", "messages per channel and second").unit("Hz").minimum(1.0).maximum(200.0).default_value(d.rate_hz);
+  s.integer("max_clients", "viewers connected at once (more are refused)")
+      .minimum(1)
+      .maximum(64)
+      .default_value(std::int64_t{d.max_clients});
+  s.real("force_scale_m_per_n", "length of a force arrow in the 3-D view per newton")
+      .unit("m/N")
+      .greater_than(0.0)
+      .maximum(1.0)
+      .default_value(d.force_scale_m_per_n);
+  return s;
+}
+
 ParameterSchema dds_settings_schema() {
   ParameterSchema s;
   const DdsSettings d;
@@ -596,9 +643,10 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
   SessionConfig config;
   config.file = path;
   config.overrides = applied;
-  MappingReader top(root, "", file, {"server", "dds", "devices", "groups"});
+  MappingReader top(root, "", file, {"server", "dds", "live_view", "devices", "groups"});
   config.server = read_server(top.optional("server"), file, path.parent_path());
   config.dds = read_dds(top.optional("dds"), file, path.parent_path());
+  config.live_view = read_live_view(top.optional("live_view"), file);
 
   const YAML::Node devices = top.required("devices");
   if (!devices.IsSequence() || devices.size() == 0)

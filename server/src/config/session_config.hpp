@@ -71,6 +71,16 @@ struct DdsSettings {
   double log_lines_per_s = 5.0;
 };
 
+// The `live_view` section: the Foxglove WebSocket live view (docs/live-view.md). Absent: none.
+struct LiveViewSettings {
+  bool enabled = false;
+  std::string address = "127.0.0.1";  // the interface it listens on (loopback by default)
+  int port = 8765;                    // 0: any free port (the log says which)
+  double rate_hz = 30.0;              // messages per channel and second
+  int max_clients = 4;
+  double force_scale_m_per_n = 0.005;  // length of the wrench arrows in the 3-D view
+};
+
 struct PluginConfig {
   std::string plugin;
   std::optional<std::string> library;
@@ -143,6 +153,7 @@ struct SessionConfig {
   std::filesystem::path file;
   ServerSettings server;
   DdsSettings dds;
+  LiveViewSettings live_view;
   std::vector<DeviceConfig> devices;
   std::vector<GroupConfig> groups;
   std::vector<AppliedOverride> overrides;  // what overrides changed: an error there names the override
@@ -160,6 +171,8 @@ const std::vector<EntryKey>& device_entry_keys();
 ParameterSchema server_settings_schema();
 // The schema of the `dds` section.
 ParameterSchema dds_settings_schema();
+// The schema of the `live_view` section.
+ParameterSchema live_view_settings_schema();
 // The `base_pose` of a device entry.
 ParameterSchema base_pose_schema();
 // The schema of a group's `repulsion` mapping.

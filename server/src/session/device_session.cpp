@@ -221,7 +221,8 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
 
 void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept {
   const bool publish = snapshot_interval_ != 0 && cycle.index % snapshot_interval_ == 0;
-  if (!publish && !snapshot_every_cycle_) return;
+  const bool view = view_interval_ != 0 && cycle.index % view_interval_ == 0;
+  if (!publish && !view && !snapshot_every_cycle_) return;
   DeviceSnapshot& s = snapshot_;
   s.cycle = cycle.index;
   s.time_ns = cycle.time_ns;
@@ -244,6 +245,10 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.engine_weight = engine_.input().weight;
   s.engine_stale = engine_.stale();
   s.engine_sequence = engine_.input().sequence;
+  s.engine_has_proxy = engine_.input().has_proxy;
+  s.engine_proxy_pose = engine_.input().proxy_pose;
+  s.engine_has_wrench = engine_.input().has_wrench;
+  s.engine_wrench = engine_.input().wrench;
   s.safe_damping = (s.fault != DeviceFault::none || stopped_) && !safety_.at_rest();
   s.stopping = s.stopping || stopped_;
   const std::uint32_t flags = safety_.flags();
@@ -254,6 +259,7 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.dissipated_j = safety_.guard().dissipated_j();
   s.passivity_control = safety_.guard().passivity_control();
   if (publish) status_.snapshots.publish(s);
+  if (view) status_.view_snapshots.publish(s);
 }
 
 void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns,

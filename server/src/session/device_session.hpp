@@ -115,6 +115,9 @@ class DeviceSession {
   bool take_snapshot(DeviceSnapshot& out) noexcept { return status_.snapshots.take(out); }
   // Before activate(): the loop publishes a snapshot every `cycles` cycles (0: never, the default).
   void set_snapshot_interval(std::uint64_t cycles) noexcept { snapshot_interval_ = cycles; }
+  // The live view's snapshots (its own hand-off, at its own interval: the two readers never take each other's).
+  bool take_view_snapshot(DeviceSnapshot& out) noexcept { return status_.view_snapshots.take(out); }
+  void set_view_interval(std::uint64_t cycles) noexcept { view_interval_ = cycles; }
   // Before activate(): build the snapshot every cycle (the recorder reads it), publishing still at the interval.
   void set_snapshot_every_cycle(bool on) noexcept { snapshot_every_cycle_ = on; }
   // Loop thread: the snapshot built at the newest published cycle (a group's stage gathers its devices'), or
@@ -240,6 +243,7 @@ class DeviceSession {
   SchemeSwitcher schemes_;
   DeviceSnapshot snapshot_;
   std::uint64_t snapshot_interval_ = 0;
+  std::uint64_t view_interval_ = 0;
   bool snapshot_every_cycle_ = false;
   // E-stops and recoveries (any thread -> loop). Every stop (an E-stop request, a fault the loop raises)
   // increments stop_epoch_; a recovery request records the epoch it was made in (+1, 0: none) and is carried

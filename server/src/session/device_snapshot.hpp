@@ -1,6 +1,7 @@
 #pragma once
 // What the loop tells the outside world about a device after a cycle: a fixed-size copy handed over lock-free
-// (LatestValue) to the DDS bridge, which publishes it as the device state. Copying it never allocates.
+// (LatestValue) to the DDS bridge, which publishes it as the device state, and to the live view. Copying it
+// never allocates.
 #include <cstdint>
 
 #include "hapticd/joint_vector.hpp"
@@ -29,9 +30,13 @@ struct DeviceSnapshot {
   double engine_weight = 0.0;         // 1: fresh engine input applied; between 0 and 1: fading
   bool engine_stale = false;          // the engine missed its deadline
   std::uint64_t engine_sequence = 0;  // the engine input the loop applied this cycle
-  bool safe_damping = false;          // in safe mode, damping phase (false once at zero torque)
-  bool limit_engaged = false;         // velocity damping or a workspace wall acted
-  bool render_limited = false;        // the rendered wrench was limited
+  bool engine_has_proxy = false;      // the engine input in effect: its proxy pose ...
+  Pose engine_proxy_pose;
+  bool engine_has_wrench = false;  // ... and its wrench
+  Wrench engine_wrench;
+  bool safe_damping = false;    // in safe mode, damping phase (false once at zero torque)
+  bool limit_engaged = false;   // velocity damping or a workspace wall acted
+  bool render_limited = false;  // the rendered wrench was limited
   bool thermal_derating = false;
   double thermal_load = 0.0;  // largest joint thermal load (1: continuous torque for ever)
   double dissipated_j = 0.0;  // energy the passivity controller has dissipated since the chain activated

@@ -1,8 +1,8 @@
 #pragma once
 // What a device's loop tells the other threads (docs/architecture.md, "Threads and hand-offs"): its fault and
-// counters (atomics), the snapshot for the DDS publisher and the newest fault report (lock-free latest-value
-// hand-offs), and the log of its faults and recoveries (a lock-free ring the monitor drains). The loop writes;
-// nothing here ever blocks it.
+// counters (atomics), the snapshots for the DDS publisher and the live view, and the newest fault report (lock-free
+// latest-value hand-offs), and the log of its faults and recoveries (a lock-free ring the monitor drains). The loop
+// writes; nothing here ever blocks it.
 #include <atomic>
 #include <cstdint>
 
@@ -37,9 +37,10 @@ struct DeviceStatus {
   std::atomic<std::uint64_t> render_limited_cycles{0};
   std::atomic<double> dissipated_j{0.0};
   std::atomic<double> thermal_load{0.0};
-  std::atomic<bool> at_rest{true};             // the safe mode has reached zero torque (or there is no fault)
-  std::atomic<bool> passivity_control{false};  // the safety stage's passivity controller is on
-  realtime::LatestValue<DeviceSnapshot> snapshots;
+  std::atomic<bool> at_rest{true};                       // the safe mode has reached zero torque (or there is no fault)
+  std::atomic<bool> passivity_control{false};            // the safety stage's passivity controller is on
+  realtime::LatestValue<DeviceSnapshot> snapshots;       // the DDS publisher's
+  realtime::LatestValue<DeviceSnapshot> view_snapshots;  // the live view's
   realtime::LatestValue<FaultReport> reports;
   SpscRing<SafetyEvent> safety_events{256};
   std::atomic<std::uint64_t> lost_safety_events{0};

@@ -1,0 +1,55 @@
+#pragma once
+// The session's live view (docs/live-view.md): a Foxglove WebSocket server with three channels per device -
+// /<device>/transforms, /<device>/scene and /<device>/state - fed from the loop's view snapshots (a lock-free
+// hand-off of their own, published every loop_rate / rate_hz cycles) on the server's own thread. The loop never
+// waits for it and does nothing more for it than copy a snapshot at that interval.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/session_config.hpp"
+#include "live_view/device_view.hpp"
+#include "live_view/foxglove_server.hpp"
+#include "session/device_session.hpp"
+
+namespace hapticd::server::live_view {
+
+class LiveView {
+ public:
+  // Binds the address and port (throws std::runtime_error naming them and the reason) and has every device
+  // publish view snapshots; call before the loop starts.
+  LiveView(const LiveViewSettings& settings, const std::vector<DeviceSession*>& devices, double loop_rate_hz,
+           const std::string& session_name);
+  ~LiveView();
+  LiveView(const LiveView&) = delete;
+  LiveView& operator=(const LiveView&) = delete;
+
+  void start();
+  void stop();  // idempotent
+  [[nodiscard]] std::string url() const;
+  [[nodiscard]] const FoxgloveServerCounters& counters() const noexcept { return server_->counters(); }
+
+  // The channel ids of device d: transforms 3d+1, scene 3d+2, state 3d+3.
+  static std::uint32_t channel_id(std::size_t device, int which) noexcept {
+    return static_cast<std::uint32_t>(3 * device + 1 + static_cast<std::size_t>(which));
+  }
+
+ private:
+  void tick();
+
+  struct Source {
+    DeviceSession* session;
+    DeviceView view;
+    DeviceSnapshot snapshot;
+    std::int64_t epoch_offset_ns = 0;  // wall clock minus loop clock, set at the first snapshot
+    bool seen = false;
+  };
+  std::vector<Source> sources_;
+  std::string address_;
+  std::unique_ptr<FoxgloveServer> server_;
+  double rate_hz_;
+  std::string message_;
+};
+
+}  // namespace hapticd::server::live_view
