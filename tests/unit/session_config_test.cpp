@@ -133,6 +133,13 @@ INSTANTIATE_TEST_SUITE_P(
                             "    controller: {plugin: test_pd}\n",
                   "devices[0].name", "my arm", "must be 1-31 characters"},
         BadConfig{"empty_device_list", kHeader + "devices: []\n", "devices", "devices: []", "non-empty list"},
+        // The live view.
+        BadConfig{"live_view_port", kHeader + kValidDevices + "live_view:\n  port: 70000\n", "live_view.port",
+                  "port: 70000", "above the maximum 65535"},
+        BadConfig{"live_view_address", kHeader + kValidDevices + "live_view:\n  address: localhost\n",
+                  "live_view.address", "address: localhost", "not an IP address"},
+        BadConfig{"live_view_unknown_key", kHeader + kValidDevices + "live_view:\n  prot: 1\n", "live_view.prot",
+                  "prot: 1", "unknown key"},
         // Plugins.
         BadConfig{"unknown_plugin",
                   kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n"
@@ -185,6 +192,23 @@ TEST(SessionConfig, ValidFileGivesDefaultsAndOverrides) {
   EXPECT_EQ(c.devices[0].controller.plugin, "test_pd");
   EXPECT_FALSE(c.devices[0].virtual_model.has_value());
   EXPECT_NO_THROW(load_and_build(file));
+}
+
+TEST(SessionConfig, LiveViewIsOffUnlessASectionTurnsItOn) {
+  EXPECT_FALSE(load_session_config(test::write_temp_file("session.yaml", kHeader + kValidDevices)).live_view.enabled);
+  // `live_view:` alone: on, loopback, the defaults.
+  const SessionConfig on =
+      load_session_config(test::write_temp_file("session.yaml", kHeader + kValidDevices + "live_view:\n"));
+  EXPECT_TRUE(on.live_view.enabled);
+  EXPECT_EQ(on.live_view.address, "127.0.0.1");
+  EXPECT_EQ(on.live_view.port, 8765);
+  EXPECT_EQ(on.live_view.rate_hz, 30.0);
+  // An override makes the section (hapticd --live-view PORT is one).
+  const SessionConfig set = load_session_config(test::write_temp_file("session.yaml", kHeader + kValidDevices),
+                                                {"live_view.port=0", "live_view.address=::1"});
+  EXPECT_TRUE(set.live_view.enabled);
+  EXPECT_EQ(set.live_view.port, 0);
+  EXPECT_EQ(set.live_view.address, "::1");
 }
 
 TEST(SessionConfig, ShippedConfigsAreValid) {
