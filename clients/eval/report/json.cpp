@@ -5,35 +5,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "hapticd/json_text.hpp"
+
 namespace hapticd::eval {
 namespace {
 
-void write_string(std::string& out, const std::string& s) {
-  out += '"';
-  for (const char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
-        } else {
-          out += c;
-        }
-    }
-  }
-  out += '"';
-}
+void write_string(std::string& out, const std::string& s) { json_text::append_string(out, s); }
 
 }  // namespace
 

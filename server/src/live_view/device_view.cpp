@@ -4,13 +4,15 @@
 #include <algorithm>
 #include <numeric>
 
+#include "hapticd/json_text.hpp"
 #include "hapticd/model/collision.hpp"
 #include "hapticd/model/kinematics.hpp"
-#include "live_view/json_text.hpp"
 #include "safety/device_fault.hpp"
 #include "session/state_flags.hpp"
 
 namespace hapticd::server::live_view {
+
+using namespace json_text;
 
 namespace {
 

@@ -5,9 +5,11 @@
 #include <charconv>
 #include <sstream>
 
-#include "live_view/json_text.hpp"
+#include "hapticd/json_text.hpp"
 
 namespace hapticd::server::live_view {
+
+using namespace json_text;
 
 std::string server_info_message(std::string_view name, std::string_view session_id) {
   std::string out = "{\"op\":\"serverInfo\",\"name\":";

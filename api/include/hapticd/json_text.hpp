@@ -1,14 +1,14 @@
 #pragma once
-// Writing JSON text by hand for the live view's messages, fast enough to build every message of every device
-// 30 times a second without a document tree: numbers in their shortest exact form (non-finite ones as null,
-// which JSON has instead of NaN), strings escaped.
+// Writing JSON text by hand, without a document tree (the live view's messages, 30 a second per channel; the
+// evaluation reports' strings): numbers in their shortest exact form (non-finite ones as null, which JSON has
+// instead of NaN), strings escaped.
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
 
-namespace hapticd::server::live_view {
+namespace hapticd::json_text {
 
 inline void append_number(std::string& out, double v) {
   if (!std::isfinite(v)) {
@@ -94,4 +94,4 @@ inline void append_quaternion(std::string& out, double x, double y, double z, do
   out += '}';
 }
 
-}  // namespace hapticd::server::live_view
+}  // namespace hapticd::json_text
