@@ -45,7 +45,11 @@ install_npm_packages() {
     return
   fi
   echo "install-deps: npm ci in tests/live_view"
-  (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error) && cp "$dir/package-lock.json" "$dir/.installed-lock.json"
+  if ! (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error); then
+    echo "install-deps: npm ci in tests/live_view failed (the live view test needs it)" >&2
+    exit 1
+  fi
+  cp "$dir/package-lock.json" "$dir/.installed-lock.json"
 }
 
 if [ ${#missing[@]} -eq 0 ]; then

@@ -20,6 +20,7 @@ fi
 
 session="$src/config/sessions/demo.yaml"
 links=$(grep -o '<link name="[^"]*"' "$src/config/urdf/vishard3.urdf" | sed 's/<link name="//; s/"//' | paste -sd, -)
+dof=$(grep -cE '<joint [^>]*type="(revolute|continuous|prismatic)"' "$src/config/urdf/vishard3.urdf")
 max_clients=2
 
 timeout 60 "$hapticd" --config "$session" --set dds.enabled=false --duration 25 --live-view 0 \
@@ -45,7 +46,7 @@ if command -v ss > /dev/null; then
   [ "$listening" = "127.0.0.1:$port" ] && pass "listening on $listening only" || fail "listening on '$listening'"
 fi
 
-if (cd "$client_dir" && timeout 40 node live_view_client.mjs "$url" vishard3 "$links" $max_clients 30) \
+if (cd "$client_dir" && timeout 40 node live_view_client.mjs "$url" vishard3 "$links" "$dof" $max_clients 30) \
   > "$work/client.log" 2>&1; then
   pass "$(tail -1 "$work/client.log")"
 else

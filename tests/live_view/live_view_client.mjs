@@ -3,13 +3,14 @@
 // checks the messages' contents; beside it, what the server must refuse. Exits 0 when every check passed, 1 with
 // the failures listed. Bounded: gives up after --timeout seconds.
 //
-// Usage: node live_view_client.mjs URL DEVICE LINK[,LINK...] MAX_CLIENTS [TIMEOUT_S]
+// Usage: node live_view_client.mjs URL DEVICE LINK[,LINK...] DOF MAX_CLIENTS [TIMEOUT_S]
 import foxglove from "@foxglove/ws-protocol";  // a CommonJS package: its exports through the default
 import { WebSocket } from "ws";
 
 const { FoxgloveClient } = foxglove;
 
-const [url, device, linkList, maxClientsText, timeoutText] = process.argv.slice(2);
+const [url, device, linkList, dofText, maxClientsText, timeoutText] = process.argv.slice(2);
+const dof = Number(dofText);
 const links = linkList.split(",");
 const maxClients = Number(maxClientsText);
 const timeoutMs = 1000 * Number(timeoutText ?? "30");
@@ -130,11 +131,8 @@ async function main() {
   check(state.device === device, `state of ${state.device}`);
   check(state.mode === "running", `mode ${state.mode}`);
   check(Array.isArray(state.flags), "flags by name");
-  check(
-    state.joints.position.length === links.length - 1 || state.joints.position.length > 0,
-    `joints ${state.joints.position.length}`
-  );
-  check(state.joints.name.length === state.joints.position.length, "a name per joint");
+  for (const key of ["name", "position", "velocity", "torque"])
+    check(state.joints[key].length === dof, `joints.${key}: ${state.joints[key].length} of ${dof}`);
   check(finiteVector(state.handle.position) && finiteVector(state.operator_wrench.force), "finite handle and wrench");
   let matched = false;
   for (const t of transforms) {

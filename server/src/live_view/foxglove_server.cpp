@@ -333,9 +333,7 @@ bool FoxgloveServer::subscribed(std::uint32_t channel) const noexcept {
 
 void FoxgloveServer::publish(std::uint32_t channel, std::uint64_t time_ns, std::string_view payload) {
   Impl& s = *impl_;
-  // Copy the list: a send that fails removes its viewer from it.
-  const std::vector<std::shared_ptr<Viewer>> viewers = s.viewers;
-  for (const auto& v : viewers) {
+  for (const auto& v : s.viewers) {  // send() only queues: a failed write removes its viewer later, not here
     v->for_each_subscription(channel, [&](std::uint32_t subscription) {
       message_data(s.frame, subscription, time_ns, payload);
       v->send(std::make_shared<const std::string>(s.frame), true);

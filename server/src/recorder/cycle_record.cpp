@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "hapticd/engine_input.hpp"
 #include "session/device_session.hpp"
 #include "session/state_flags.hpp"
 
@@ -28,16 +27,15 @@ void fill_cycle_record(CycleRecord& r, const DeviceSession& session, std::uint16
   put(r.environment_wrench, s.environment_wrench.force, s.environment_wrench.torque);
   put(r.sensor_wrench, state.sensor_wrench.force, state.sensor_wrench.torque);
   put(r.target_pose, s.target_pose);
-  const EngineInput& e = session.engine_input();
   r.engine_weight = s.engine_weight;
   r.engine_sequence = s.engine_sequence;
-  if (e.has_proxy) {
-    put(r.engine_proxy_pose, e.proxy_pose);
+  if (s.engine_has_proxy) {
+    put(r.engine_proxy_pose, s.engine_proxy_pose);
   } else {
     std::fill(std::begin(r.engine_proxy_pose), std::end(r.engine_proxy_pose), 0.0);
   }
-  if (e.has_wrench) {
-    put(r.engine_wrench, e.wrench.force, e.wrench.torque);
+  if (s.engine_has_wrench) {
+    put(r.engine_wrench, s.engine_wrench.force, s.engine_wrench.torque);
   } else {
     std::fill(std::begin(r.engine_wrench), std::end(r.engine_wrench), 0.0);
   }

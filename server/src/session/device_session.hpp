@@ -124,7 +124,6 @@ class DeviceSession {
   // of this cycle with set_snapshot_every_cycle.
   [[nodiscard]] const DeviceSnapshot& published_snapshot() const noexcept { return snapshot_; }
   // Loop thread: the engine input in effect this cycle.
-  [[nodiscard]] const EngineInput& engine_input() const noexcept { return engine_.input(); }
   // Any thread: emergency stop. The loop puts the device in its safe state at the next cycle (fault
   // emergency_stop); the session keeps running for the other devices. A stop latches: it cancels every
   // recovery requested before it, and a stop while the device is already safe is a fault of its own (report,
