@@ -8,8 +8,9 @@
 set -eu
 hapticd=$1; engine=$2; src=$3; work=$4
 rm -rf "$work"; mkdir -p "$work"
+source "$src/tests/e2e/session_copy.sh"  # loose_watchdogs: why, there
 "$hapticd" --config "$src/config/sessions/vishard3/dds-coupling.yaml" --dds-domain 96 --duration 7 \
-  --stats-json "$work/stats.json" --log-level warn --set server.realtime_priority=0 --set server.lock_memory=false \
+  --stats-json "$work/stats.json" --log-level warn --set server.realtime_priority=0 --set server.lock_memory=false $(loose_watchdogs vishard3) \
   > "$work/server.log" 2>&1 &
 server=$!
 trap 'kill $server 2>/dev/null || true' EXIT

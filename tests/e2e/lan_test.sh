@@ -33,6 +33,7 @@ ip -n "$ns_srv" link set "$if_srv" up
 ip -n "$ns_eng" link set "$if_eng" up
 
 session=$src/config/sessions/vishard3/dds-coupling.yaml
+source "$src/tests/e2e/session_copy.sh"  # loose_watchdogs: why, there
 fail() { echo "FAIL: $*"; exit 1; }
 # A Cyclone configuration as the network settings give it, plus the loss (per mille of sent packets).
 lossy_xml() {  # interface peer per_mille
@@ -73,7 +74,7 @@ run() {
   fi
   ip netns exec "$ns_srv" "$bin/hapticd" --config "$session" --dds-domain 99 --duration 9 \
     --stats-json "$work/stats-$name.json" --set server.realtime_priority=0 --set server.lock_memory=false \
-    "${server_net[@]}" > "$work/server-$name.log" 2>&1 &
+    $(loose_watchdogs vishard3) "${server_net[@]}" > "$work/server-$name.log" 2>&1 &
   local server=$!
   ip netns exec "$ns_eng" env "${engine_env[@]}" timeout 30 "$bin/hapticd-scene-engine" --domain 99 --wait 10 \
     --duration 11 > "$work/engine-$name.log" 2>&1 &

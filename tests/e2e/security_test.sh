@@ -18,12 +18,13 @@ ports=(29650 29900)  # 7400 + 250 * 89 and the participants' unicast ports above
 bash "$src/scripts/make-security.sh" "$work/security" $domain engine=vishard3 other=another-device > /dev/null ||
   fail "make-security.sh"
 session=$src/config/sessions/vishard3/dds-coupling.yaml
+source "$src/tests/e2e/session_copy.sh"  # loose_watchdogs: why, there
 secure() { echo "$work/security/$1/cyclonedds.xml"; }
 # serve NAME DURATION EXTRA...: the server in the background; its pid in $server.
 serve() {  # NAME DURATION EXTRA...
   local name=$1 duration=$2; shift 2
   "$bin/hapticd" --config "$session" --dds-domain $domain --duration "$duration" --stats-json "$work/stats-$name.json" \
-    --set server.realtime_priority=0 --set server.lock_memory=false "$@" > "$work/server-$name.log" 2>&1 &
+    --set server.realtime_priority=0 --set server.lock_memory=false $(loose_watchdogs vishard3) "$@" > "$work/server-$name.log" 2>&1 &
   server=$!
 }
 round_trip() { python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['dds_round_trip_us']; print(r['count'], r['p50'], r['p99'])" "$1"; }
