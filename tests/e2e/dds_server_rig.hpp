@@ -61,12 +61,11 @@ constexpr bool kSanitized = true;
 constexpr bool kSanitized = false;
 #endif
 
-// The loop watchdogs of the real-time tests here, which test the DDS path, not the machine: this 2-core VM now
-// and then runs the loop late for several milliseconds (docs/safety.md, docs/measurements.md), which trips the
-// default watchdogs (10 consecutive overruns, a 20 ms stall) in a few sessions in ten. Under a sanitizer the
-// loop runs several times slower than its period: the watchdogs are off there.
+// The loop watchdogs of the real-time tests here, which test the DDS path, not the machine: loosened as in
+// tests/e2e/session_copy.sh (why: there) - a shared CI machine runs the loop late now and then, for over 0.1 s
+// in bursts. Under a sanitizer the loop runs several times slower than its period: the watchdogs are off there.
 inline const std::string kRealtimeWatchdogs =
-    kSanitized ? "max_consecutive_overruns: 0, max_stall_s: 0" : "max_consecutive_overruns: 60, max_stall_s: 0.1";
+    kSanitized ? "max_consecutive_overruns: 0, max_stall_s: 0" : "max_consecutive_overruns: 2000, max_stall_s: 1.0";
 
 // The chain of the rig's ViSHaRD3: admittance display (3 kg, 30 N s/m) with the virtual coupling (3000 N/m,
 // 40 N s/m) for an engine's proxy, resolved acceleration control.

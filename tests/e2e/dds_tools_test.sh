@@ -112,7 +112,7 @@ grep -q "recovered from emergency_stop at cycle" server.log || fail "the final r
 # none; a group E-stop stops both; a group recovery by another client is refused while the group is claimed;
 # `estop --all` stops every device.
 sed -e "s|\.\./\.\./urdf/|$src/config/urdf/|" \
-    -e 's|^  - name: \(left\|right\)$|  - name: \1\n    safety: {max_consecutive_overruns: 60, max_stall_s: 0.1}|' \
+    -e 's|^  - name: \(left\|right\)$|  - name: \1\n    safety: {max_consecutive_overruns: 2000, max_stall_s: 1.0}|' \
     "$src/config/sessions/dual-arm/vishard3-pair.yaml" > pair.yaml  # session_copy, for the devices only
 timeout 60 "$bin/hapticd" --config pair.yaml --dds-domain "$domain" --duration 20 > server.log 2>&1 &
 server=$!

@@ -50,13 +50,14 @@ in_file=$(sed -n 's/.*recording FAILED: .*; \([0-9]*\) device-cycles in rec.h5.*
 grep -q ": $in_file cycles of" export.txt && [ "${in_file:-0}" -gt 0 ] \
   || fail "the recording holds other cycles than reported ($in_file): $(cat export.txt)"
 
-# A stalled process (SIGSTOP for 0.3 s) is a fault: loop_stall, the device's safe mode, exit code 3.
+# A stalled process (SIGSTOP for 1.5 s, beyond the test sessions' 1 s) is a fault: loop_stall, the device's safe
+# mode, exit code 3.
 source "$src/tests/e2e/session_copy.sh"
 session_copy "$session" "$src" stall.yaml
 "$hapticd" --config stall.yaml --duration 3 > stall.txt 2>&1 &
 server=$!
 sleep 1.2
-kill -STOP "$server"; sleep 0.3; kill -CONT "$server"
+kill -STOP "$server"; sleep 1.5; kill -CONT "$server"
 wait "$server"; code=$?
 grep -q "fault loop_stall" stall.txt || { cat stall.txt; fail "the stall was not a fault"; }
 [ "$code" -eq 3 ] || { cat stall.txt; fail "exit $code after a stall, expected 3"; }

@@ -19,12 +19,13 @@ if [ ! -d "$client_dir/node_modules/@foxglove/ws-protocol" ] || ! command -v nod
 fi
 
 session="$src/config/sessions/demo.yaml"
+source "$src/tests/e2e/session_copy.sh"  # loose_watchdogs: why, there
 links=$(grep -o '<link name="[^"]*"' "$src/config/urdf/vishard3.urdf" | sed 's/<link name="//; s/"//' | paste -sd, -)
 dof=$(grep -cE '<joint [^>]*type="(revolute|continuous|prismatic)"' "$src/config/urdf/vishard3.urdf")
 max_clients=2
 
 timeout 60 "$hapticd" --config "$session" --set dds.enabled=false --duration 25 --live-view 0 \
-  --set live_view.max_clients=$max_clients > "$work/server.log" 2>&1 &
+  --set live_view.max_clients=$max_clients $(loose_watchdogs vishard3) > "$work/server.log" 2>&1 &
 server=$!
 trap 'kill $server 2>/dev/null' EXIT
 url=

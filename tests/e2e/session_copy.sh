@@ -1,13 +1,16 @@
 # Sourced by the real-time end-to-end scripts. session_copy SESSION SOURCE_DIR OUT writes a copy of a shipped
 # single-device session that runs from any folder (the robot model paths made absolute) with the loop watchdogs
-# loosened for this virtual machine: it runs the loop late for several milliseconds now and then, which trips the
-# default watchdogs (10 consecutive overruns, a 20 ms stall) in a few sessions in ten (docs/safety.md). These
-# tests test the tools and the DDS path, not the machine; hardening_test.sh's stall is 0.3 s and still trips.
+# loosened: these tests test the tools and the DDS path, not the machine. A shared CI virtual machine runs the
+# loop late now and then - a few milliseconds often, and in bursts the whole machine for over 0.1 s (two
+# tests of one CI run tripped in the same instant, one with 60 overruns in a row at SCHED_FIFO, the other with a
+# 0.1 s stall) - which trips the defaults (10 overruns in a row, a 20 ms stall; docs/safety.md). Loosened, not
+# off: a loop that falls behind for a whole second (2000 periods at 2 kHz) or sleeps a second still stops the
+# device. The watchdogs themselves are tested in lockstep (safety_test) and by hardening_test.sh's 1.5 s stop.
 # loose_watchdogs DEVICE prints the same loosening as --set arguments, for a shipped session run where it lies.
 session_copy() {
   sed -e "s|\.\./\.\./urdf/|$2/config/urdf/|" \
-      -e 's|^  - name: \(.*\)$|  - name: \1\n    safety: {max_consecutive_overruns: 60, max_stall_s: 0.1}|' "$1" > "$3"
+      -e 's|^  - name: \(.*\)$|  - name: \1\n    safety: {max_consecutive_overruns: 2000, max_stall_s: 1.0}|' "$1" > "$3"
 }
 loose_watchdogs() {
-  echo "--set devices.$1.safety.max_consecutive_overruns=60 --set devices.$1.safety.max_stall_s=0.1"
+  echo "--set devices.$1.safety.max_consecutive_overruns=2000 --set devices.$1.safety.max_stall_s=1.0"
 }

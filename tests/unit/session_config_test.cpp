@@ -186,7 +186,8 @@ TEST(SessionConfig, ValidFileGivesDefaultsAndOverrides) {
   const SessionConfig c = load_session_config(file);
   EXPECT_EQ(c.server.rate_hz, 4000.0);
   EXPECT_EQ(c.server.clock, ClockMode::lockstep);
-  EXPECT_EQ(c.server.shutdown_ramp_s, 0.2);  // default
+  EXPECT_EQ(c.server.shutdown_ramp_s, 0.2);   // default
+  EXPECT_EQ(c.server.cpu_dma_latency_us, 0);  // default: a real-time loop holds the CPUs out of deep idle
   ASSERT_EQ(c.devices.size(), 1u);
   EXPECT_EQ(c.devices[0].name, "axis");
   EXPECT_EQ(c.devices[0].controller.plugin, "test_pd");

@@ -574,13 +574,13 @@ ParameterSchema server_settings_schema() {
       .default_value(std::int64_t{80});
   s.boolean("lock_memory", "lock all pages in memory (mlockall) in realtime mode").default_value(true);
   s.integer("cpu_dma_latency_us",
-            "in realtime mode, hold the kernel's CPU latency limit (/dev/cpu_dma_latency, as cyclictest does) at "
-            "this many microseconds while the session runs: 0 keeps the CPUs out of idle states that take long to "
-            "leave (docs/measurements.md: it halves the loop's wake-up latency here); -1 leaves it alone (the "
-            "default until the stalls seen with it in the multi-process tests are understood)")
+            "with a real-time loop (realtime clock, realtime_priority above 0), hold the kernel's CPU latency limit "
+            "(/dev/cpu_dma_latency, as cyclictest does) at this many microseconds while the session runs: 0 keeps "
+            "the CPUs out of idle states that take long to leave (docs/measurements.md: it halves the loop's "
+            "wake-up latency on a virtual machine); -1 leaves it alone")
       .minimum(-1)
       .maximum(2000000)
-      .default_value(std::int64_t{-1});
+      .default_value(std::int64_t{0});
   s.integer("cpu", "pin the loop thread to this CPU; -1 does not pin")
       .minimum(-1)
       .maximum(1023)

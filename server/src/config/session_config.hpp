@@ -28,7 +28,7 @@ struct ServerSettings {
   int realtime_priority = 80;  // SCHED_FIFO priority; 0: do not ask
   bool lock_memory = true;
   int cpu = -1;                                     // pin the loop thread to this CPU; -1: no pinning
-  int cpu_dma_latency_us = -1;                      // PM QoS limit held while running; -1: left alone
+  int cpu_dma_latency_us = 0;                       // PM QoS limit held by a real-time loop; -1: left alone
   double shutdown_ramp_s = 0.2;                     // torques ramp to zero over this time at the end of a session
   std::vector<std::filesystem::path> plugin_paths;  // resolved against the session file's folder
 };
