@@ -169,6 +169,8 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
         // thread that powers the devices, and the kernel's real-time throttling would then stall the loops).
         go.wait(false, std::memory_order_acquire);
         if (cancelled.load(std::memory_order_acquire)) return;
+        // "hapticd-loop", or "loop-<group>" for a group's own loop: found by name in ps, top and traces.
+        name_this_thread(loops_[k]->name == "session" ? "hapticd-loop" : "loop-" + loops_[k]->name);
         if (!settings_.lockstep) minimise_timer_slack();
         if (!settings_.lockstep && settings_.lock_memory) prefault_stack();
         if (settings_.lockstep) {

@@ -60,6 +60,10 @@ std::string CpuLatencyLimit::hold(int microseconds) {
   return {};
 }
 
+void name_this_thread(const std::string& name) noexcept {
+  prctl(PR_SET_NAME, name.substr(0, 15).c_str(), 0UL, 0UL, 0UL);
+}
+
 void minimise_timer_slack() noexcept { prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL); }
 
 void prefault_stack() noexcept {

@@ -26,6 +26,8 @@ class CpuLatencyLimit {
 };
 // SCHED_FIFO at `priority` (if > 0) and pinning to `cpu` (if >= 0) for the given thread. Returns warnings.
 std::vector<std::string> make_thread_realtime(std::thread& thread, int priority, int cpu);
+// Names the calling thread (at most 15 characters kept) for ps, top and the kernel's traces.
+void name_this_thread(const std::string& name) noexcept;
 // Timer slack of the calling thread to 1 ns (the default 50 us delays every wake-up of a normal thread).
 void minimise_timer_slack() noexcept;
 // Touch a stack region so that its pages are resident before the loop needs them (no page faults later).
