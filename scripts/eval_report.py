@@ -111,6 +111,7 @@ def minimum_inertia(result, out_dir):
     fig, axes = plt.subplots(1, len(groups), figsize=(max(6, 0.6 * len(schemes) + 2) * len(groups), 5),
                              squeeze=False)
     width = 0.2
+    shape = result.get("shape", "per-direction")
     for ax, (ds, unit) in zip(axes[0], groups):
         for i, d in enumerate(ds):
             values, thesis = [], []
@@ -120,7 +121,7 @@ def minimum_inertia(result, out_dir):
                 thesis.append(found[0]["published"] if found and found[0].get("published") is not None
                               else float("nan"))
             xs = [k + (i - 1) * width for k in range(len(schemes))]
-            ax.bar(xs, values, width, label=f"ours, {d}")
+            ax.bar(xs, values, width, label=f"ours, {'pushed along ' if shape == 'isotropic' else ''}{d}")
             if any(t == t for t in thesis):
                 ax.plot(xs, thesis, "k_", markersize=10, markeredgewidth=2)
         if unit == "kg":
@@ -134,7 +135,9 @@ def minimum_inertia(result, out_dir):
         ax.set_ylabel(f"smallest stable virtual {'mass' if unit == 'kg' else 'inertia'} [{unit}]")
         ax.legend(fontsize=8)
         ax.grid(True, axis="y", alpha=0.3)
-    fig.suptitle(f"Minimum virtual inertia, {result['device']}")
+    fig.suptitle(f"Minimum virtual inertia, {result['device']}\n"
+                 f"({'m I: the same on every axis, pushed along each' if shape == 'isotropic' else 'per direction'})",
+                 fontsize=10)
     fig.tight_layout()
     png = out_dir / "minimum-inertia.png"
     fig.savefig(png, dpi=100)
@@ -159,7 +162,10 @@ def minimum_inertia(result, out_dir):
         rows.append(row)
     c = result["criterion"]
     criterion = (["stability criterion", "value"],
-                 [["run", f"{c['duration_s']} s per load"], ["window", f"last {c['window_s']} s"],
+                 [["inertia", "the same on every axis (m I), each direction's loads in turn" if shape == "isotropic"
+                   else f"on the direction under test; the others {result.get('other_axes_kg')} kg, "
+                        f"{result.get('other_axes_kg_m2')} kg m^2"],
+                  ["run", f"{c['duration_s']} s per load"], ["window", f"last {c['window_s']} s"],
                   ["high-pass", f"{c['cutoff_hz']} Hz (2nd-order Butterworth)"],
                   ["threshold", f"{c['threshold_m_s']} m/s RMS of the handle velocity"
                                 f"{', ' + str(c['rotational_threshold_rad_s']) + ' rad/s angular' if result.get('rotational_loads') else ''}"],

@@ -23,9 +23,17 @@ struct Options {
   std::vector<std::string> loads{"firm-grasp", "loose-grasp", "voluntary-motion", "wall-collision"};
   double low_kg = 0.2, high_kg = 20.0, tolerance = 0.05;
   double low_kg_m2 = 0.001, high_kg_m2 = 5.0;
-  double other_axes_kg = 10.0;    // the mass of the directions not under test
-  double other_axes_kg_m2 = 1.0;  // the rotational inertia of the directions not under test
+  double other_axes_kg = 10.0;    // the mass of the directions not under test (per-direction)
+  double other_axes_kg_m2 = 1.0;  // the rotational inertia of the directions not under test (per-direction)
+  // per-direction: the value under test on its own axis, the others heavy (other_axes_*); isotropic: the value
+  // on every axis of its kind (a pure inertia m I, J I), pushed along each direction in turn. Empty: the
+  // device's (default_shape).
+  std::string shape;
 };
+
+// How the thesis reports the device's minimum inertia: one mass per scheme on ViSHaRD3 (a pure mass m I, the
+// same in every direction), a diagonal per direction on ViSHaRD6 and ViSHaRD10.
+std::string default_shape(const std::string& device) { return device == "vishard3" ? "isotropic" : "per-direction"; }
 
 // The schemes the thesis reports per device (issue 20's table): every inner loop, gain and feedforward setting
 // on ViSHaRD3; RAC and computed torque at kp 250 on ViSHaRD6; computed torque at kp 250 on ViSHaRD10.
@@ -114,7 +122,10 @@ DirectionResult bisect_direction(const Options& o, const Scheme& scheme, const D
     spec.seed = o.common.seed;
     Eigen::Vector3d masses = Eigen::Vector3d::Constant(o.other_axes_kg);
     Eigen::Vector3d inertias = Eigen::Vector3d::Constant(o.other_axes_kg_m2);
-    (direction.rotation ? inertias : masses)[direction.index] = value;
+    if (o.shape == "isotropic")  // run() resolves an empty shape to the device's
+      (direction.rotation ? inertias : masses).setConstant(value);
+    else
+      (direction.rotation ? inertias : masses)[direction.index] = value;
     spec.model = {vector_line("mass_kg", masses)};
     if (rotations) spec.model.push_back(vector_line("inertia_kg_m2", inertias));
     for (const OperatorLoad& load : loads) {
@@ -250,6 +261,7 @@ int run(const Options& o) {
       .set("range_kg", std::vector<double>{o.low_kg, o.high_kg})
       .set("range_kg_m2", std::vector<double>{o.low_kg_m2, o.high_kg_m2})
       .set("tolerance", o.tolerance)
+      .set("shape", o.shape)
       .set("other_axes_kg", o.other_axes_kg)
       .set("other_axes_kg_m2", o.other_axes_kg_m2)
       .set("schemes", list)
@@ -280,6 +292,12 @@ void add_minimum_inertia_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--loads", o->loads, "operator loads (a mass is stable when it is under every one)")
       ->check(CLI::IsMember({"firm-grasp", "loose-grasp", "voluntary-motion", "wall-collision"}))
       ->capture_default_str();
+  cmd->add_option("--shape", o->shape,
+                  "per-direction: the mass (inertia) under test on its own axis, the others heavy (10 kg, 1 kg m^2); "
+                  "isotropic: the same mass on every axis (a pure inertia m I), pushed along each direction; "
+                  "default: as the thesis reports the device (vishard3: isotropic, one mass per scheme; vishard6, "
+                  "vishard10: per-direction)")
+      ->check(CLI::IsMember({"per-direction", "isotropic"}));
   cmd->add_option("--low", o->low_kg, "the bisection's lower end [kg]")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
@@ -297,6 +315,7 @@ void add_minimum_inertia_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->callback([o, &exit_code] {
     Options run_options = *o;
+    if (run_options.shape.empty()) run_options.shape = default_shape(run_options.common.device);
     if (run_options.common.quick) {  // one scheme, one direction, a coarse bracket
       if (run_options.schemes.empty()) run_options.schemes = default_schemes(run_options.common.device);
       run_options.schemes.resize(1);

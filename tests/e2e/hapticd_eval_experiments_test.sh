@@ -47,6 +47,11 @@ assert x["quantity"] == "mass" and x["unit"] == "kg", x
 assert 0.2 < x["minimum"] < 20 and x["largest_unstable"] < x["minimum"], x
 assert x["unstable"]["load"] in {"firm-grasp", "loose-grasp", "voluntary-motion", "wall-collision"}, x
 assert scheme["published_kg"] == 2.5, scheme
+# ViSHaRD3's figure is a pure mass m I (the thesis's one mass per scheme): the rig renders it on every axis.
+assert mi["shape"] == "isotropic", mi["shape"]
+import re
+masses = re.search(r"mass_kg: \[([^\]]*)\]", mi["example_session"]).group(1).split(",")
+assert len(set(float(m) for m in masses)) == 1, masses
 
 fg = json.loads((work / "force-gain.json").read_text())
 [fx] = fg["directions"]
@@ -100,6 +105,7 @@ assert not rx["below_range"] and not rx["above_range"], rx
 assert 0.001 < rx["minimum"] < 5 and rx["largest_unstable"] < rx["minimum"], rx
 assert rx["unstable"]["load"] in {"firm-grasp", "loose-grasp", "voluntary-motion"}, rx
 assert "redundancy_ik" in mi["example_session"] and "inertia_kg_m2" in mi["example_session"]
+assert mi["shape"] == "per-direction", mi["shape"]  # the thesis's diagonal per direction
 assert [l["id"] for l in mi["rotational_loads"]] == ["firm-grasp", "loose-grasp", "voluntary-motion"]
 print("rotation ok")
 PY
