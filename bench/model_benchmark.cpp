@@ -60,6 +60,21 @@ void cycle_set_ours(benchmark::State& state, const std::string& device) {
   }
 }
 
+// The same with joint velocities in the subnormal range (below 2.2e-308), as a low-passed velocity estimate of a
+// joint at rest passes through on its way to zero (no FTZ/DAZ on the loop thread): the cost of subnormal
+// arithmetic in the cycle's model terms, against cycle_set/ours in the same run.
+void cycle_set_subnormal_velocity(benchmark::State& state, const std::string& device) {
+  Fixture& f = fixture(device);
+  std::array<JointVector, Fixture::kStates> tiny;
+  for (int k = 0; k < Fixture::kStates; ++k) tiny[k] = f.qd[k] * 1e-310;
+  int k = 0;
+  for (auto _ : state) {
+    model::compute_cycle_terms(f.robot, f.data, f.q[k], tiny[k], f.handle);
+    benchmark::DoNotOptimize(f.data.coriolis_torque.data());
+    k = (k + 1) % Fixture::kStates;
+  }
+}
+
 void cycle_set_kdl(benchmark::State& state, const std::string& device) {
   Fixture& f = fixture(device);
   auto& s = f.kdl;
@@ -131,6 +146,15 @@ class RatioReporter : public benchmark::ConsoleReporter {
       std::printf("  %-32s ours %9.1f ns  kdl %9.1f ns  ratio %5.2fx\n", name.substr(0, pos).c_str(), ours, kdl->second,
                   kdl->second / ours);
     }
+    std::printf("\nSubnormal joint velocities / normal ones (median real time, same run):\n");
+    for (const auto& [name, tiny] : times_) {
+      const auto pos = name.find("/subnormal_velocity");
+      if (pos == std::string::npos) continue;
+      const auto ours = times_.find(name.substr(0, pos) + "/ours");
+      if (ours == times_.end()) continue;
+      std::printf("  %-32s normal %9.1f ns  subnormal %9.1f ns  ratio %5.2fx\n", name.substr(0, pos).c_str(),
+                  ours->second, tiny, tiny / ours->second);
+    }
   }
 
  private:
@@ -142,6 +166,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
 int main(int argc, char** argv) {
   for (const std::string device : {"vishard3", "vishard6", "vishard10"}) {
     benchmark::RegisterBenchmark((device + "/cycle_set/ours").c_str(), cycle_set_ours, device);
+    benchmark::RegisterBenchmark((device + "/cycle_set/subnormal_velocity").c_str(), cycle_set_subnormal_velocity,
+                                 device);
     benchmark::RegisterBenchmark((device + "/cycle_set/kdl").c_str(), cycle_set_kdl, device);
     benchmark::RegisterBenchmark((device + "/forward_dynamics/ours").c_str(), forward_dynamics_ours, device);
     benchmark::RegisterBenchmark((device + "/forward_dynamics/kdl").c_str(), forward_dynamics_kdl, device);
