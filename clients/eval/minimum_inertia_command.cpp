@@ -25,15 +25,15 @@ struct Options {
   double low_kg_m2 = 0.001, high_kg_m2 = 5.0;
   double other_axes_kg = 10.0;    // the mass of the directions not under test (per-direction)
   double other_axes_kg_m2 = 1.0;  // the rotational inertia of the directions not under test (per-direction)
-  // per-direction: the value under test on its own axis, the others heavy (other_axes_*); isotropic: the value
-  // on every axis of its kind (a pure inertia m I, J I), pushed along each direction in turn. Empty: the
-  // device's (default_shape).
+  // The translational mass's shape. per-direction: the mass under test on its own axis, the others heavy
+  // (other_axes_kg); isotropic: the same mass on every axis (a pure mass m I), pushed along each direction in
+  // turn. Empty: the device's (default_shape). Rotations are always per direction (the thesis's diagonals).
   std::string shape;
 };
 
-// How the thesis reports the device's minimum inertia: one mass per scheme on ViSHaRD3 (a pure mass m I, the
-// same in every direction), a diagonal per direction on ViSHaRD6 and ViSHaRD10.
-std::string default_shape(const std::string& device) { return device == "vishard3" ? "isotropic" : "per-direction"; }
+// How the thesis reports the device's minimum mass: one figure - a pure mass m I - on ViSHaRD3 (per scheme) and
+// ViSHaRD6 (4.8 kg), a diagonal on ViSHaRD10 (diag(5, 7, 2) kg).
+std::string default_shape(const std::string& device) { return device == "vishard10" ? "per-direction" : "isotropic"; }
 
 // The schemes the thesis reports per device (issue 20's table): every inner loop, gain and feedforward setting
 // on ViSHaRD3; RAC and computed torque at kp 250 on ViSHaRD6; computed torque at kp 250 on ViSHaRD10.
@@ -122,10 +122,12 @@ DirectionResult bisect_direction(const Options& o, const Scheme& scheme, const D
     spec.seed = o.common.seed;
     Eigen::Vector3d masses = Eigen::Vector3d::Constant(o.other_axes_kg);
     Eigen::Vector3d inertias = Eigen::Vector3d::Constant(o.other_axes_kg_m2);
-    if (o.shape == "isotropic")  // run() resolves an empty shape to the device's
-      (direction.rotation ? inertias : masses).setConstant(value);
+    if (direction.rotation)
+      inertias[direction.index] = value;
+    else if (o.shape == "isotropic")  // run() resolves an empty shape to the device's
+      masses.setConstant(value);
     else
-      (direction.rotation ? inertias : masses)[direction.index] = value;
+      masses[direction.index] = value;
     spec.model = {vector_line("mass_kg", masses)};
     if (rotations) spec.model.push_back(vector_line("inertia_kg_m2", inertias));
     for (const OperatorLoad& load : loads) {
@@ -293,10 +295,10 @@ void add_minimum_inertia_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"firm-grasp", "loose-grasp", "voluntary-motion", "wall-collision"}))
       ->capture_default_str();
   cmd->add_option("--shape", o->shape,
-                  "per-direction: the mass (inertia) under test on its own axis, the others heavy (10 kg, 1 kg m^2); "
-                  "isotropic: the same mass on every axis (a pure inertia m I), pushed along each direction; "
-                  "default: as the thesis reports the device (vishard3: isotropic, one mass per scheme; vishard6, "
-                  "vishard10: per-direction)")
+                  "the translational mass: per-direction (the mass under test on its own axis, the others 10 kg) "
+                  "or isotropic (the same mass on every axis, a pure mass m I, pushed along each direction); "
+                  "default: as the thesis reports the device (vishard3, vishard6: isotropic; vishard10: "
+                  "per-direction); rotations are always per direction, the others at 1 kg m^2")
       ->check(CLI::IsMember({"per-direction", "isotropic"}));
   cmd->add_option("--low", o->low_kg, "the bisection's lower end [kg]")
       ->check(CLI::Range(0.01, 100.0))
