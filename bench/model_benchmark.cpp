@@ -137,27 +137,24 @@ class RatioReporter : public benchmark::ConsoleReporter {
   }
   void Finalize() override {
     ConsoleReporter::Finalize();
-    std::printf("\nKDL / hapticd time ratio (median real time, same run):\n");
-    for (const auto& [name, ours] : times_) {
-      const auto pos = name.find("/ours");
-      if (pos == std::string::npos) continue;
-      const auto kdl = times_.find(name.substr(0, pos) + "/kdl");
-      if (kdl == times_.end()) continue;
-      std::printf("  %-32s ours %9.1f ns  kdl %9.1f ns  ratio %5.2fx\n", name.substr(0, pos).c_str(), ours, kdl->second,
-                  kdl->second / ours);
-    }
-    std::printf("\nSubnormal joint velocities / normal ones (median real time, same run):\n");
-    for (const auto& [name, tiny] : times_) {
-      const auto pos = name.find("/subnormal_velocity");
-      if (pos == std::string::npos) continue;
-      const auto ours = times_.find(name.substr(0, pos) + "/ours");
-      if (ours == times_.end()) continue;
-      std::printf("  %-32s normal %9.1f ns  subnormal %9.1f ns  ratio %5.2fx\n", name.substr(0, pos).c_str(),
-                  ours->second, tiny, tiny / ours->second);
-    }
+    print_ratios("KDL / hapticd", "/kdl", "kdl", "/ours", "ours");
+    print_ratios("Subnormal joint velocities / normal ones", "/subnormal_velocity", "subnormal", "/ours", "normal");
   }
 
  private:
+  // For every pair "<set><numerator>" and "<set><denominator>" of this run: both times and their ratio.
+  void print_ratios(const char* title, const std::string& numerator, const char* numerator_label,
+                    const std::string& denominator, const char* denominator_label) const {
+    std::printf("\n%s time ratio (median real time, same run):\n", title);
+    for (const auto& [name, below] : times_) {
+      const auto pos = name.find(denominator);
+      if (pos == std::string::npos) continue;
+      const auto above = times_.find(name.substr(0, pos) + numerator);
+      if (above == times_.end()) continue;
+      std::printf("  %-32s %s %9.1f ns  %s %9.1f ns  ratio %5.2fx\n", name.substr(0, pos).c_str(), denominator_label,
+                  below, numerator_label, above->second, above->second / below);
+    }
+  }
   std::map<std::string, double> times_;
 };
 
