@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -72,26 +73,28 @@ inline void append_time(std::string& out, std::uint64_t ns) {
   out += '}';
 }
 
-// {"x":..,"y":..,"z":..} and the same with "w" for a quaternion.
-inline void append_vector3(std::string& out, double x, double y, double z) {
-  out += "{\"x\":";
-  append_number(out, x);
-  out += ",\"y\":";
-  append_number(out, y);
-  out += ",\"z\":";
-  append_number(out, z);
+// An object of numbers, {"k1":v1,"k2":v2,...}, in the order given.
+struct NumberField {
+  std::string_view key;
+  double value;
+};
+inline void append_number_object(std::string& out, std::initializer_list<NumberField> fields) {
+  out += '{';
+  bool first = true;
+  for (const NumberField& f : fields) {
+    append_key(out, f.key, first);
+    append_number(out, f.value);
+    first = false;
+  }
   out += '}';
 }
+
+// {"x":..,"y":..,"z":..} and the same with "w" for a quaternion.
+inline void append_vector3(std::string& out, double x, double y, double z) {
+  append_number_object(out, {{"x", x}, {"y", y}, {"z", z}});
+}
 inline void append_quaternion(std::string& out, double x, double y, double z, double w) {
-  out += "{\"x\":";
-  append_number(out, x);
-  out += ",\"y\":";
-  append_number(out, y);
-  out += ",\"z\":";
-  append_number(out, z);
-  out += ",\"w\":";
-  append_number(out, w);
-  out += '}';
+  append_number_object(out, {{"x", x}, {"y", y}, {"z", z}, {"w", w}});
 }
 
 }  // namespace hapticd::json_text

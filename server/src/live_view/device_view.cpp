@@ -29,15 +29,7 @@ constexpr Rgba kRenderedColour{0.1, 0.7, 0.2, 1.0};
 constexpr double kLinkDiameter = 0.02, kJointDiameter = 0.03, kHandleDiameter = 0.025, kMarkerDiameter = 0.015;
 
 void append_colour(std::string& out, const Rgba& c) {
-  out += "{\"r\":";
-  append_number(out, c.r);
-  out += ",\"g\":";
-  append_number(out, c.g);
-  out += ",\"b\":";
-  append_number(out, c.b);
-  out += ",\"a\":";
-  append_number(out, c.a);
-  out += '}';
+  append_number_object(out, {{"r", c.r}, {"g", c.g}, {"b", c.b}, {"a", c.a}});
 }
 
 void append_pose(std::string& out, const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
