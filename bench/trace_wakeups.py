@@ -16,8 +16,12 @@ so the split is at the handler, whose trace line names the task that was on the 
 percentiles of each part and of the total, what was on the CPU at the slowest wake-ups, the CPU's time by task
 during the run, and the events on the CPU before the slowest wake-ups.
 
+With --probe KB[:THREADS] ... it also traces bench/wake_probe (built with the benchmarks): cyclictest's loop
+with KB of memory written after every wake-up and THREADS other sleeping threads in the process - what the
+server's loop has and cyclictest's has not - one run per value, to tell which of them slows the wake part.
+
 Usage: sudo python3 bench/trace_wakeups.py [--rate 2000] [--seconds 10] [--cpu N] [--build build/default]
-       [--out DIR] [--top 5]
+       [--out DIR] [--top 5] [--probe 0 64 1024:8] [--no-hapticd]
 """
 import argparse
 import collections
@@ -174,6 +178,9 @@ def main():
     ap.add_argument("--top", type=int, default=5, help="slowest wake-ups shown with their context")
     ap.add_argument("--priority", type=int, default=80)
     ap.add_argument("--cpu", type=int, default=-1, help="pin both measuring threads to this CPU (-1: not pinned)")
+    ap.add_argument("--probe", nargs="*", default=[], metavar="KB[:THREADS]",
+                    help="also trace bench/wake_probe touching KB after each wake-up, with THREADS other threads")
+    ap.add_argument("--no-hapticd", action="store_true", help="leave the server out (cyclictest and probes only)")
     args = ap.parse_args()
     if os.geteuid() != 0:
         sys.exit("trace_wakeups.py: ftrace needs root")
@@ -196,6 +203,14 @@ def main():
             ("cyclictest", "cyclictest",
              ["cyclictest", "-q", "-p", str(args.priority), "-i", str(period_us), "-l",
               str(int(args.seconds * args.rate)), "-m"] + (["-a", str(args.cpu)] if args.cpu >= 0 else []))]
+    if args.no_hapticd:
+        runs = runs[1:]
+    for probe in args.probe:
+        kb, _, threads = probe.partition(":")
+        runs.append((f"wake_probe {kb} KB, {threads or 0} threads", "wake-probe",
+                     [os.path.join(root, args.build, "bin/wake_probe"), "--rate", str(args.rate), "--seconds",
+                      str(args.seconds), "--priority", str(args.priority), "--cpu", str(args.cpu), "--touch-kb", kb,
+                      "--threads", threads or "0"]))
     print(f"{args.rate} Hz, {args.seconds} s each, SCHED_FIFO {args.priority}, mlockall, CPU latency limit 0, "
           f"{'CPU ' + str(args.cpu) if args.cpu >= 0 else 'not pinned'}; "
           f"trace files in {out}")
