@@ -110,10 +110,15 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  /* Wait for the server (a matched request reader), then claim. */
+  /* Wait for the server both ways - its request reader matched to our writer and its reply writer to our
+     reader (a reply written before the second match is lost) - then claim. */
   for (int i = 0; i < 500; ++i) {
     dds_publication_matched_status_t m;
-    if (dds_get_publication_matched_status(requests, &m) == DDS_RETCODE_OK && m.current_count > 0) break;
+    dds_subscription_matched_status_t r;
+    if (dds_get_publication_matched_status(requests, &m) == DDS_RETCODE_OK && m.current_count > 0 &&
+        dds_get_subscription_matched_status(replies, &r) == DDS_RETCODE_OK && r.current_count > 0) {
+      break;
+    }
     dds_sleepfor(DDS_MSECS(10));
   }
   const char* client = "minimal-c-engine";
