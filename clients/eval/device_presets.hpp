@@ -32,6 +32,11 @@ struct DevicePreset {
   }
   std::string inverse_kinematics = "newton_ik";
   std::string inverse_kinematics_parameters;
+  // The constant inertias of the Jacobian inner loops where the thesis gives them (its workspace means): IJC's
+  // diagonal joint inertia M_hat [kg m^2] and TJC's diagonal task mass Mx_hat [kg]; empty: the plugins' own
+  // (the diagonals at activation).
+  std::vector<double> ijc_joint_inertia;
+  std::vector<double> tjc_task_mass;
 };
 
 // The preset of a shipped device (vishard3, vishard6, vishard10); throws std::invalid_argument otherwise.

@@ -12,6 +12,13 @@ export HAPTICD_PYTHON=$py
 timeout 200 "$eval_bin" all --quick --out "$work" > "$work/all.txt"
 cat "$work/all.txt"
 
+# On ViSHaRD3 the Jacobian inner loops run on the thesis's constant inertias (CONTROL-METHODS.md section 2).
+for scheme in ijc:500:ff tjc:500:ff; do
+  timeout 60 "$eval_bin" backdrivability --quick --no-figures --schemes "$scheme" --out "$work/${scheme%%:*}" > /dev/null
+done
+grep -q "joint_inertia: \[0.93, 0.416, 0.279\]" "$work/ijc/backdrivability.json" || { echo "FAIL: IJC's M_hat"; exit 1; }
+grep -q "task_mass: \[6.813, 9.35, 4.812\]" "$work/tjc/backdrivability.json" || { echo "FAIL: TJC's Mx_hat"; exit 1; }
+
 "$py" - "$work" <<'PY'
 import json, math, pathlib, sys
 work = pathlib.Path(sys.argv[1])

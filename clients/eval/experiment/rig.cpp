@@ -81,8 +81,15 @@ std::string rig_yaml(const RigSpec& spec) {
                      preset.inverse_kinematics, task, preset.inverse_kinematics_parameters.empty() ? "" : ", ",
                      preset.inverse_kinematics_parameters);
   }
-  y += fmt::format("    controller:\n      plugin: {}\n      parameters: {{{}{}}}\n", spec.scheme.controller,
-                   spec.scheme.task_rows ? "task: " + task + ", " : std::string(), spec.scheme.controller_parameters);
+  std::string constant_inertia;
+  if (spec.scheme.controller == "inverse_jacobian" && !preset.ijc_joint_inertia.empty()) {
+    constant_inertia = fmt::format(", joint_inertia: [{}]", fmt::join(preset.ijc_joint_inertia, ", "));
+  } else if (spec.scheme.controller == "transposed_jacobian" && !preset.tjc_task_mass.empty()) {
+    constant_inertia = fmt::format(", task_mass: [{}]", fmt::join(preset.tjc_task_mass, ", "));
+  }
+  y += fmt::format("    controller:\n      plugin: {}\n      parameters: {{{}{}{}}}\n", spec.scheme.controller,
+                   spec.scheme.task_rows ? "task: " + task + ", " : std::string(), spec.scheme.controller_parameters,
+                   constant_inertia);
   // The thesis's experiments had no rate limit on the rendered force: a 10 N sine at 60 Hz changes at 3.8 kN/s.
   y += "    safety: {max_force_rate_n_per_s: 100000}\n";
   return y;
