@@ -14,7 +14,7 @@ namespace {
 struct Options {
   CommonOptions common;
   std::vector<std::string> schemes{"open-loop", "pd:1.5:0.003", "rac:10000:ff", "rac:1000:ff", "tjc:10000:ff"};
-  // Above every ViSHaRD3 scheme's smallest stable pure mass under the firm grasp (4.58 kg, minimum-inertia): a
+  // Above every ViSHaRD3 scheme's smallest stable pure mass under the firm grasp (3.96 kg, minimum-inertia): a
   // lighter display oscillates with the passivity experiment's firm grasp whatever the wall, and the Z-width
   // would measure that instead of the wall.
   double virtual_mass_kg = 5.0;
