@@ -43,6 +43,7 @@ int run(const CommonOptions& o) {
   std::vector<std::string> common{"--device",    o.device, "--out", o.out, "--seed", std::to_string(o.seed),
                                   "--no-figures"};
   if (o.quick) common.push_back("--quick");
+  if (o.no_friction_compensation) common.push_back("--no-friction-compensation");
   for (const std::string& line : o.sim_parameters) {  // back from "key: value" to KEY=VALUE
     const auto colon = line.find(": ");
     common.push_back("--sim");

@@ -32,8 +32,7 @@ struct SchemeRun {
 
 SchemeRun run_scheme(const Options& o, const Scheme& scheme, std::string& example_yaml) {
   RigSpec spec;
-  spec.device.name = o.common.device;
-  spec.device.sim_parameters = o.common.sim_parameters;
+  spec.device = rig_device(o.common);
   spec.scheme = scheme;
   spec.seed = o.common.seed;
   spec.attachment = {"attachment: position_source",

@@ -19,6 +19,7 @@ DevicePreset device_preset(const std::string& name) {
     // ../shared/spec/CONTROL-METHODS.md section 2: the thesis's IJC and TJC on ViSHaRD3.
     p.ijc_joint_inertia = {0.930, 0.416, 0.279};
     p.tjc_task_mass = {6.813, 9.350, 4.812};
+    p.friction_file = "friction/vishard3.yaml";
   } else if (name == "vishard6") {
     // Workspace 0.86 x 0.3 x 0.3 m. Joints 1-3 are vertical, so the handle height is set by the wrist pitch
     // (joint 4) alone: height and pitch are coupled and a box x orientation grid is not reachable. The grid

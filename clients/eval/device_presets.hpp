@@ -37,6 +37,9 @@ struct DevicePreset {
   // (the diagonals at activation).
   std::vector<double> ijc_joint_inertia;
   std::vector<double> tjc_task_mass;
+  // The device's identified friction (the config folder's friction file, docs/friction.md) that admittance
+  // display's inner loops compensate; empty: none identified, the loops run uncompensated.
+  std::string friction_file;
 };
 
 // The preset of a shipped device (vishard3, vishard6, vishard10); throws std::invalid_argument otherwise.

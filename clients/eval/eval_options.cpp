@@ -1,5 +1,7 @@
 #include "eval_options.hpp"
 
+#include "experiment/rig.hpp"
+
 namespace hapticd::eval {
 
 void add_common_options(CLI::App* command, CommonOptions& o, const std::vector<std::string>& devices) {
@@ -22,6 +24,16 @@ void add_common_options(CLI::App* command, CommonOptions& o, const std::vector<s
           },
           "a simulator parameter for this run, KEY=VALUE (docs/simulated-devices.md); repeatable")
       ->type_name("KEY=VALUE");
+  command->add_flag("--no-friction-compensation", o.no_friction_compensation,
+                    "admittance display without the friction compensation of the device's identified friction");
+}
+
+RigDevice rig_device(const CommonOptions& o) {
+  RigDevice d;
+  d.name = o.device;
+  d.sim_parameters = o.sim_parameters;
+  d.friction_compensation = !o.no_friction_compensation;
+  return d;
 }
 
 void add_scheme_options(CLI::App* command, std::vector<std::string>& schemes, double& virtual_mass_kg) {

@@ -17,9 +17,16 @@ struct CommonOptions {
   std::uint64_t seed = 1;
   // The simulator's parameters changed for this run ("key: value", the sim plugin's; --sim friction=false).
   std::vector<std::string> sim_parameters;
+  // The admittance loops compensate the device's identified friction (the thesis's `+ h`) where its preset has
+  // a friction file; --no-friction-compensation runs them without.
+  bool no_friction_compensation = false;
 
   [[nodiscard]] ReportOptions report() const { return {out, !no_figures}; }
 };
+
+struct RigDevice;
+// The rig's device for these options (experiment/rig.hpp).
+RigDevice rig_device(const CommonOptions& options);
 
 // `devices`: the shipped devices the experiment's protocol is written for.
 void add_common_options(CLI::App* command, CommonOptions& options,

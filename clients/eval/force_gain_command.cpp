@@ -41,8 +41,7 @@ int run(const Options& o) {
     int trials = 0;
     const auto stable = [&](double kp) {
       RigSpec spec;
-      spec.device.name = o.common.device;
-      spec.device.sim_parameters = o.common.sim_parameters;
+      spec.device = rig_device(o.common);
       spec.scheme = pd_force_feedback(kp, o.kd);
       spec.seed = o.common.seed;
       for (const OperatorLoad& load : loads) {

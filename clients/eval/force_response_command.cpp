@@ -73,8 +73,7 @@ int run(const Options& o) {
     Json faults = Json::array();
     for (double f : freqs) {
       RigSpec spec;
-      spec.device.name = o.common.device;
-      spec.device.sim_parameters = o.common.sim_parameters;
+      spec.device = rig_device(o.common);
       spec.scheme = scheme;
       spec.seed = o.common.seed;
       Eigen::Vector3d force = Eigen::Vector3d::Zero();

@@ -116,8 +116,7 @@ DirectionResult bisect_direction(const Options& o, const Scheme& scheme, const D
   double unstable_value = 0.0;
   const auto stable = [&](double value) {
     RigSpec spec;
-    spec.device.name = o.common.device;
-    spec.device.sim_parameters = o.common.sim_parameters;
+    spec.device = rig_device(o.common);
     spec.scheme = scheme;
     spec.seed = o.common.seed;
     Eigen::Vector3d masses = Eigen::Vector3d::Constant(o.other_axes_kg);

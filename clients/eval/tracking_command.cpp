@@ -63,9 +63,8 @@ int run(const Options& o) {
   std::string example_yaml;
   for (const Scheme& scheme : schemes) {
     RigSpec spec;
-    spec.device.name = o.common.device;
+    spec.device = rig_device(o.common);
     spec.device.initial_position = q0;
-    spec.device.sim_parameters = o.common.sim_parameters;
     spec.scheme = scheme;
     spec.seed = o.common.seed;
     spec.model_plugin = "trajectory";

@@ -102,8 +102,7 @@ int run(const Options& o) {
   fmt::print("\n");
   for (const Scheme& scheme : schemes) {
     RigSpec base;
-    base.device.name = o.common.device;
-    base.device.sim_parameters = o.common.sim_parameters;
+    base.device = rig_device(o.common);
     base.scheme = scheme;
     base.seed = o.common.seed;
     Json region = Json::array();

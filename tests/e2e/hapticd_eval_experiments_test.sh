@@ -59,6 +59,9 @@ assert mi["shape"] == "isotropic", mi["shape"]
 import re
 masses = re.search(r"mass_kg: \[([^\]]*)\]", mi["example_session"]).group(1).split(",")
 assert len(set(float(m) for m in masses)) == 1, masses
+# The admittance loops compensate ViSHaRD3's identified friction (the thesis's `+ h`); the impedance schemes not.
+assert "friction_compensation: true" in mi["example_session"] and "friction/vishard3.yaml" in mi["example_session"]
+assert "friction_compensation" not in json.loads((work / "force-gain.json").read_text())["example_session"]
 
 fg = json.loads((work / "force-gain.json").read_text())
 [fx] = fg["directions"]
@@ -114,6 +117,7 @@ assert 0.001 < rx["minimum"] < 5 and rx["largest_unstable"] < rx["minimum"], rx
 assert rx["unstable"]["load"] in {"firm-grasp", "loose-grasp", "voluntary-motion"}, rx
 assert "redundancy_ik" in mi["example_session"] and "inertia_kg_m2" in mi["example_session"]
 assert mi["shape"] == "per-direction", mi["shape"]  # the thesis's diagonal per direction
+assert "friction_compensation" not in mi["example_session"]  # no identified friction file for ViSHaRD10
 assert [l["id"] for l in mi["rotational_loads"]] == ["firm-grasp", "loose-grasp", "voluntary-motion"]
 print("rotation ok")
 PY
@@ -128,6 +132,12 @@ if "$py" -c "import matplotlib" 2> /dev/null; then
 else
   echo "python3-matplotlib not installed: the figures were not checked"
 fi
+
+# --no-friction-compensation runs the admittance loops without the friction term.
+timeout 60 "$eval_bin" force-response --quick --schemes rac:10000:ff --frequencies 1 --no-friction-compensation \
+  --no-figures --out "$work/nofc" > "$work/nofc.txt"
+"$py" -c 'import json, sys; s = json.load(open(sys.argv[1]))["example_session"]; assert "resolved_acceleration" in s and "friction_compensation" not in s, s' \
+  "$work/nofc/force-response.json"
 
 if "$eval_bin" force-response --quick --schemes nonsense --out "$work/bad" > "$work/bad.txt" 2>&1; then
   echo "an unknown scheme was accepted"; exit 1

@@ -89,8 +89,8 @@ void write_friction_file(const std::filesystem::path& file, const FrictionFile& 
   out << std::setprecision(6);
   out << "# Joint friction of " << (f.device.empty() ? "a device" : f.device)
       << ": sliding f = coulomb + viscous[0]|v| + .. + viscous[3]|v|^4 (held beyond velocity_max),\n"
-         "# load part a0 + a1|t| + a2 t^2 with load = [a0, a1, a2] [N m, rad/s]. Loaded by the impedance\n"
-         "# controller's friction_file.\n";
+         "# load part a0 + a1|t| + a2 t^2 with load = [a0, a1, a2] [N m, rad/s]. Loaded by the controllers'\n"
+         "# friction_file (impedance, and admittance display's inner loops).\n";
   out << "device: " << (f.device.empty() ? "unknown" : f.device) << "\njoints:\n";
   for (std::size_t i = 0; i < f.joints.size(); ++i) {
     const FrictionModel& m = f.joints[i];

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "device_presets.hpp"
 
@@ -87,9 +88,16 @@ std::string rig_yaml(const RigSpec& spec) {
   } else if (spec.scheme.controller == "transposed_jacobian" && !preset.tjc_task_mass.empty()) {
     constant_inertia = fmt::format(", task_mass: [{}]", fmt::join(preset.tjc_task_mass, ", "));
   }
-  y += fmt::format("    controller:\n      plugin: {}\n      parameters: {{{}{}{}}}\n", spec.scheme.controller,
+  std::string friction;
+  if (admittance && spec.device.friction_compensation && !preset.friction_file.empty()) {
+    std::string tried;
+    const auto file = find_config_file(preset.friction_file, &tried);
+    if (!file) throw std::runtime_error("the friction file " + preset.friction_file + " is none of these:" + tried);
+    friction = fmt::format(", friction_compensation: true, friction_file: {}", file->string());
+  }
+  y += fmt::format("    controller:\n      plugin: {}\n      parameters: {{{}{}{}{}}}\n", spec.scheme.controller,
                    spec.scheme.task_rows ? "task: " + task + ", " : std::string(), spec.scheme.controller_parameters,
-                   constant_inertia);
+                   constant_inertia, friction);
   // The thesis's experiments had no rate limit on the rendered force: a 10 N sine at 60 Hz changes at 3.8 kN/s.
   y += "    safety: {max_force_rate_n_per_s: 100000}\n";
   return y;

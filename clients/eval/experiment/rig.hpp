@@ -18,6 +18,10 @@ struct RigDevice {
   std::string name = "vishard3";            // vishard3, vishard6, vishard10
   std::vector<double> initial_position;     // empty: the device preset's rig position
   std::vector<std::string> sim_parameters;  // "key: value" added to the sim plugin's parameters
+  // What the controllers know of it: admittance display's inner loops compensate its identified friction (the
+  // thesis's `+ h`, the controllers' friction_compensation with the preset's friction file; a device without
+  // one runs uncompensated).
+  bool friction_compensation = true;
 };
 
 struct RigSpec {

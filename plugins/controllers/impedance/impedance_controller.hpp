@@ -14,8 +14,8 @@
 #include <memory>
 
 #include "disturbance_observer.hpp"
-#include "friction_compensation.hpp"
 #include "friction_estimator.hpp"
+#include "friction_parameters.hpp"
 #include "friction_retuner.hpp"
 #include "hapticd/controller.hpp"
 #include "hapticd/realtime/latest_value.hpp"

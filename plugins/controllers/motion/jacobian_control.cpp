@@ -16,11 +16,13 @@ ParameterSchema JacobianControl::parameter_schema() {
                 "transposed_jacobian: constant diagonal task-space mass Mx_hat, one per task row "
                 "(empty: diag of the operational-space inertia at activation)")
       .default_value(std::vector<double>{});
+  declare_friction_parameters(s);
   return s;
 }
 
 void JacobianControl::configure(const Parameters& p, const PluginContext& context) {
   law_.configure(p, context);
+  friction_.configure(p, context);
   const int n = context.device->dof();
   const auto& mj = p.real_vector("joint_inertia");
   const auto& mx = p.real_vector("task_mass");
@@ -83,6 +85,7 @@ ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerI
     if (in.redundancy != nullptr) command.torque_nm += in.redundancy->null_space_torque(in.device, c, rows);
   }
   command.torque_nm += d.gravity_torque;
+  friction_.add(c, in.device.joints.velocity, rows, command.torque_nm);
   law_.add_wrench_compensation(c, command.torque_nm);
   return ReturnCode::ok;
 }

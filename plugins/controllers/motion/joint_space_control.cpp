@@ -18,6 +18,7 @@ ParameterSchema JointSpaceControl::parameter_schema() {
   s.real("joint_damping", "joint_pd: Kd").unit("N m s/rad").minimum(0.0).default_value(10.0);
   s.boolean("acceleration_feedforward", "computed_torque: add qdd_d").default_value(true);
   s.boolean("wrench_compensation", "cancel the measured operator wrench (- J^T F_h)").default_value(true);
+  declare_friction_parameters(s);
   return s;
 }
 
@@ -33,6 +34,10 @@ void JointSpaceControl::configure(const Parameters& p, const PluginContext& cont
   joint_kd_ = p.real("joint_damping");
   acceleration_feedforward_ = p.boolean("acceleration_feedforward");
   wrench_compensation_ = p.boolean("wrench_compensation");
+  friction_.configure(p, context);
+  if (friction_.enabled() && kind_ == Kind::joint_pd) {
+    throw ParameterError("friction_compensation", "joint_pd is the uncompensated baseline: use computed_torque");
+  }
 }
 
 ReturnCode JointSpaceControl::activate(const ControllerInput& current, const JointCommand&) noexcept {
@@ -50,6 +55,7 @@ ReturnCode JointSpaceControl::update(const CycleTime& /*cycle*/, const Controlle
     if (acceleration_feedforward_) qdd += in.joints.acceleration;
     command.torque_nm.noalias() = d.mass_matrix * qdd;
     command.torque_nm += d.coriolis_torque + d.gravity_torque;
+    friction_.add(c, in.device.joints.velocity, rows_, command.torque_nm);
   } else {
     command.torque_nm = joint_kp_ * (in.joints.position - q) +
                         joint_kd_ * (in.joints.velocity - in.device.joints.velocity) + d.gravity_torque;

@@ -3,6 +3,8 @@
 //   computed_torque: qdd_c = qdd_d + Kd (qd_d - qd) + Kp (q_d - q),  tau = M qdd_c + C qd + g - J^T F_h
 //                    (Kp = w^2, Kd = 2 zeta w: the same error dynamics in every joint)
 //   joint_pd:        tau = Kp (q_d - q) + Kd (qd_d - qd) + g       (independent joint PD, the simplest baseline)
+// computed_torque adds [h], the model's sliding friction (friction_compensation, off by default).
+#include "friction_parameters.hpp"
 #include "hapticd/controller.hpp"
 #include "hapticd/model/model_data.hpp"
 
@@ -27,6 +29,7 @@ class JointSpaceControl : public Controller {
   bool acceleration_feedforward_ = true;
   bool wrench_compensation_ = true;
   int rows_ = 3;
+  SlidingFrictionTerm friction_;
 };
 
 class ComputedTorqueControl final : public JointSpaceControl {

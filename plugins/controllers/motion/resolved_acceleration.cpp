@@ -8,10 +8,14 @@ namespace hapticd::controllers {
 ParameterSchema ResolvedAcceleration::parameter_schema() {
   ParameterSchema s;
   TaskMotionLaw::declare(s);
+  declare_friction_parameters(s);
   return s;
 }
 
-void ResolvedAcceleration::configure(const Parameters& p, const PluginContext& context) { law_.configure(p, context); }
+void ResolvedAcceleration::configure(const Parameters& p, const PluginContext& context) {
+  law_.configure(p, context);
+  friction_.configure(p, context);
+}
 
 ReturnCode ResolvedAcceleration::activate(const ControllerInput& current, const JointCommand&) noexcept {
   return current.chain.model != nullptr ? ReturnCode::ok : ReturnCode::error;
@@ -33,6 +37,7 @@ ReturnCode ResolvedAcceleration::update(const CycleTime& /*cycle*/, const Contro
                               : model::minimum_norm_solution(d.frame_jacobian.topRows(rows), task, damping_);
   command.torque_nm.noalias() = d.mass_matrix * qdd;
   command.torque_nm += d.coriolis_torque + d.gravity_torque;
+  friction_.add(c, in.device.joints.velocity, rows, command.torque_nm);
   law_.add_wrench_compensation(c, command.torque_nm);
   return ReturnCode::ok;
 }

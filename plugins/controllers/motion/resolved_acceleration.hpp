@@ -2,8 +2,10 @@
 // Resolved acceleration control, the inner motion loop of admittance display ([U06] methods 2):
 //   xdd_c = xdd_d + Kd (xd_d - xd) + Kp (x_d - x)         (TaskMotionLaw)
 //   qdd_c = J^+ (xdd_c - dJ/dt qd)
-//   tau   = M qdd_c + C qd + g - J^T F_h                   (F_h: the operator's wrench on the handle)
+//   tau   = M qdd_c + C qd + [h] + g - J^T F_h             (F_h: the operator's wrench on the handle)
+// [h]: the model's sliding friction (friction_compensation, off by default; SlidingFrictionTerm).
 // Uses the server's per-cycle model terms (ChainState).
+#include "friction_parameters.hpp"
 #include "hapticd/controller.hpp"
 #include "task_motion_law.hpp"
 
@@ -22,6 +24,7 @@ class ResolvedAcceleration final : public Controller {
 
  private:
   TaskMotionLaw law_;
+  SlidingFrictionTerm friction_;
   double damping_ = 1e-6;  // damped least squares at singularities
 };
 
