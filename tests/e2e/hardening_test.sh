@@ -31,7 +31,7 @@ sed '0,/mass value="[^"]*"/s//mass value="-5"/' "$src/config/urdf/vishard3.urdf"
 sed "s|urdf: ../../urdf/vishard3.urdf|urdf: $work/negative.urdf|" "$session" > negative.yaml
 expect 2 "negative.urdf:[0-9]*: link '.*': mass -5.000000 kg: must be above zero" -- "$hapticd" --check-config negative.yaml
 { echo "server: {plugin_paths: [/usr/lib/x86_64-linux-gnu]}"; sed -n '/^devices:/,$p' "$session"; } |
-  sed "s|../../urdf/|$src/config/urdf/|" > system-libs.yaml
+  sed "s%\.\./\.\./\(urdf\|friction\)/%$src/config/\1/%g" > system-libs.yaml
 expect 0 ": ok" -- "$hapticd" --check-config system-libs.yaml
 { echo "devices: ["; for i in $(seq 1 1500000); do echo "1,"; done; echo "1]"; } > huge.yaml
 expect 2 "at most 4194304 are accepted" -- "$hapticd" --config huge.yaml

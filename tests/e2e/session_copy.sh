@@ -1,5 +1,5 @@
 # Sourced by the real-time end-to-end scripts. session_copy SESSION SOURCE_DIR OUT writes a copy of a shipped
-# single-device session that runs from any folder (the robot model paths made absolute) with the loop watchdogs
+# single-device session that runs from any folder (the robot model and friction file paths made absolute) with the loop watchdogs
 # loosened: these tests test the tools and the DDS path, not the machine. A shared CI virtual machine runs the
 # loop late now and then - a few milliseconds often, and in bursts the whole machine for over 0.1 s (two
 # tests of one CI run tripped in the same instant, one with 60 overruns in a row at SCHED_FIFO, the other with a
@@ -8,7 +8,7 @@
 # device. The watchdogs themselves are tested in lockstep (safety_test) and by hardening_test.sh's 1.5 s stop.
 # loose_watchdogs DEVICE prints the same loosening as --set arguments, for a shipped session run where it lies.
 session_copy() {
-  sed -e "s|\.\./\.\./urdf/|$2/config/urdf/|" \
+  sed -e "s%\.\./\.\./\(urdf\|friction\)/%$2/config/\1/%g" \
       -e 's|^  - name: \(.*\)$|  - name: \1\n    safety: {max_consecutive_overruns: 2000, max_stall_s: 1.0}|' "$1" > "$3"
 }
 loose_watchdogs() {

@@ -22,8 +22,10 @@ std::string shipped_session(const std::string& file, const std::string& safety) 
   std::stringstream text;
   text << in.rdbuf();
   std::string yaml = text.str();
-  for (std::size_t at; (at = yaml.find("../../urdf/")) != std::string::npos;)
-    yaml.replace(at, 11, std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/");
+  for (const std::string folder : {"urdf/", "friction/"}) {  // the session's relative paths, made absolute
+    for (std::size_t at; (at = yaml.find("../../" + folder)) != std::string::npos;)
+      yaml.replace(at, 6 + folder.size(), std::string(HAPTICD_SOURCE_DIR) + "/config/" + folder);
+  }
   for (std::size_t at; (at = yaml.find("clock: realtime")) != std::string::npos;)
     yaml.replace(at, 15, "clock: lockstep");
   return yaml + "    safety: {" + safety + "}\n";
