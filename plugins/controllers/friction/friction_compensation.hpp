@@ -1,10 +1,11 @@
 #pragma once
-// Model-based compensation of sliding friction, per joint ([U06] methods 1):
+// Model-based compensation of sliding friction, per joint ([U06] methods 1; the same `+ h` in the inner loops of
+// admittance display, methods 2):
 //   h_i = fraction * s(qd_i) * f_i(|qd_i|, t_i),   s(qd) = clamp(qd / v_s, -1, 1),
 // with f_i the joint's FrictionModel and t_i its static load torque. The smooth sign keeps quantised
 // velocities from chattering the compensation; the fraction below 1 guards against over-compensation.
-// Friction at rest is left to the stiction compensator. Real-time safe; the models can be replaced in the
-// loop (adaptive re-tuning) by a plain copy.
+// Friction at rest is left to the impedance controller's stiction compensator. Real-time safe; the models can be
+// replaced in the loop (adaptive re-tuning) by a plain copy.
 #include <array>
 
 #include "hapticd/joint_vector.hpp"

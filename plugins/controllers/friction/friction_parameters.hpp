@@ -2,7 +2,8 @@
 // The sliding-friction compensation's parameters, shared by every controller that compensates joint friction
 // (impedance display's `+ h` in [U06] methods 1, admittance display's inner loops' `+ h` in methods 2):
 // friction_compensation, friction_file, friction_polynomial, friction_load, friction_velocity_max,
-// friction_smooth_velocity, friction_fraction. Not real-time (configure time).
+// friction_smooth_velocity, friction_fraction. Declaring and configuring run at configure time (file access);
+// SlidingFrictionTerm::add is the real-time part.
 #include "friction_compensation.hpp"
 #include "hapticd/chain_state.hpp"
 #include "hapticd/parameters.hpp"
