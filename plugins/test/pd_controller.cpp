@@ -24,6 +24,7 @@ ParameterSchema PdController::parameter_schema() {
       .default_value(-1);
   s.boolean("throw_in_configure", "fault injection: configure() throws a plugin failure").default_value(false);
   s.boolean("throw_in_activate", "fault injection: activate() throws (against the contract)").default_value(false);
+  s.boolean("throw_in_deactivate", "fault injection: deactivate() throws").default_value(false);
   return s;
 }
 
@@ -34,6 +35,7 @@ void PdController::configure(const Parameters& p, const PluginContext& context) 
   fault_at_cycle_ = p.integer("fault_at_cycle");
   throw_at_cycle_ = p.integer("throw_at_cycle");
   throw_in_activate_ = p.boolean("throw_in_activate");
+  throw_in_deactivate_ = p.boolean("throw_in_deactivate");
   if (p.boolean("throw_in_configure")) throw std::runtime_error("injected configure failure");
   hold_at_activation_ = p.boolean("hold_at_activation");
   dof_ = context.device != nullptr ? context.device->dof() : 0;
@@ -51,6 +53,10 @@ ReturnCode PdController::activate(const ControllerInput& current, const JointCom
   differentiator_.reset(current.device.joints.position);
   velocity_.setZero();
   return ReturnCode::ok;
+}
+
+void PdController::deactivate() {
+  if (throw_in_deactivate_) throw std::runtime_error("injected deactivate failure (throw_in_deactivate)");
 }
 
 ReturnCode PdController::update(const CycleTime& cycle, const ControllerInput& in, JointCommand& command) {

@@ -18,7 +18,7 @@ class PdController final : public Controller {
   ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) override;
   // Not noexcept: throw_at_cycle tests that the server survives a plugin breaking the contract.
   ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) override;
-  void deactivate() override {}
+  void deactivate() override;
 
  private:
   double kp_ = 0.0;
@@ -27,6 +27,7 @@ class PdController final : public Controller {
   std::int64_t fault_at_cycle_ = -1;
   std::int64_t throw_at_cycle_ = -1;
   bool throw_in_activate_ = false;
+  bool throw_in_deactivate_ = false;
   int dof_ = 0;
   bool hold_at_activation_ = false;
   bool differentiate_ = false;

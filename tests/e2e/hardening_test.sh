@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The attacks of issue 17 that need the real process: a stopped (SIGSTOP) real-time server, recordings onto a
 # full file system and /dev/full, config and model files that are no files or not physical, a system library
-# folder as plugin path, and too little address space. Each must end with a clear message and its exit code,
-# never an abort or a hang. Usage: hardening_test.sh HAPTICD SOURCE_DIR WORK_DIR
+# folder as plugin path, a plugin that throws as it leaves the loop, and too little address space. Each must end
+# with a clear message and its exit code, never an abort or a hang. Usage: hardening_test.sh HAPTICD SOURCE_DIR WORK_DIR
 set -uo pipefail
 hapticd=$1 src=$2 work=$3
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
@@ -35,6 +35,14 @@ expect 2 "negative.urdf:[0-9]*: link '.*': mass -5.000000 kg: must be above zero
 expect 0 ": ok" -- "$hapticd" --check-config system-libs.yaml
 { echo "devices: ["; for i in $(seq 1 1500000); do echo "1,"; done; echo "1]"; } > huge.yaml
 expect 2 "at most 4194304 are accepted" -- "$hapticd" --config huge.yaml
+
+# A plugin that throws as it is deactivated (the friction identification, ended before it finished): the device
+# is disabled all the same, the error names device, scheme and plugin, exit code 4.
+sed "s%\.\./\.\./urdf/%$src/config/urdf/%; s%output_file: .*%output_file: $work/identified.yaml%" \
+  "$src/config/sessions/vishard3/identify-friction.yaml" > identify.yaml
+expect 4 "device 'vishard3': scheme 'default', controller 'friction_identification': friction identification incomplete" \
+  -- "$hapticd" --config identify.yaml --clock lockstep --duration 1
+grep -q "device 'vishard3': ok" out.txt || fail "the identification's device did not end in order"
 
 # Too little address space: a message and exit code 4 before any device is powered (Cyclone aborted before).
 expect 4 "not enough address space" -- bash -c "ulimit -v 60000; exec '$hapticd' --config '$session' --duration 1 --dds-domain 88"

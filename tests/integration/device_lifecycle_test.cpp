@@ -10,9 +10,9 @@
 namespace hapticd::server {
 namespace {
 
-Session two_devices(const std::string& first_parameters) {
+Session two_devices(const std::string& first_parameters, const std::string& first_controller_parameters = "") {
   return test::build_test_session("server: {clock: lockstep, seed: 3}\ndevices:\n" +
-                                  test::mass_spring_device_yaml("a", first_parameters) +
+                                  test::mass_spring_device_yaml("a", first_parameters, first_controller_parameters) +
                                   test::mass_spring_device_yaml("b"));
 }
 
@@ -83,6 +83,41 @@ TEST(DeviceLifecycle, AFailedDisableIsReportedAfterEveryDeviceIsDisabled) {
     EXPECT_TRUE(contains(e.what(), "a: disable() threw: injected disable failure")) << e.what();
   }
   EXPECT_EQ(s.impl().devices[1]->disable_error(), "");  // the other device was disabled too
+}
+
+TEST(DeviceLifecycle, APluginThatThrowsAsItIsDeactivatedDoesNotKeepItsDeviceFromBeingDisabled) {
+  // The controller's deactivate() throws at the end: the device's disable() still runs (it throws too here,
+  // which is how the test sees it ran), the other device is disabled, and stop() names both failures.
+  Session s = two_devices(", throw_in_disable: true", ", throw_in_deactivate: true");
+  s.step(10);
+  try {
+    s.stop();
+    ADD_FAILURE() << "stop() did not report the failures";
+  } catch (const std::runtime_error& e) {
+    EXPECT_TRUE(contains(e.what(), "a: disable() threw: injected disable failure")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "device 'a': scheme 'default', controller 'test_pd': injected deactivate failure"))
+        << e.what();
+  }
+  EXPECT_EQ(s.impl().devices[1]->disable_error(), "");
+}
+
+TEST(DeviceLifecycle, APluginThatThrowsAsAFaultTakesItsSchemeOutIsReportedAndTheRunGoesOn) {
+  // A read fault at cycle 50 takes device a's chain out of the loop; the monitor's service() deactivates it
+  // and the controller throws. The step does not: the fault stands with its own reason, device b runs on,
+  // and stop() reports what the plugin threw.
+  Session s = two_devices(", fail_read_at_cycle: 50", ", throw_in_deactivate: true");
+  EXPECT_NO_THROW(s.step(400));
+  EXPECT_TRUE(contains(s.device("a").fault, "injected read failure")) << s.device("a").fault;
+  EXPECT_EQ(s.device("b").fault, "");
+  EXPECT_GT(std::abs(s.device("b").command.torque_nm[0]), 0.0);
+  try {
+    s.stop();
+    ADD_FAILURE() << "stop() did not report the plugin's failure";
+  } catch (const std::runtime_error& e) {
+    EXPECT_TRUE(contains(e.what(), "plugins failed as they were deactivated")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "controller 'test_pd': injected deactivate failure")) << e.what();
+    EXPECT_FALSE(contains(e.what(), "disable() threw")) << e.what();
+  }
 }
 
 TEST(DeviceLifecycle, TheSimulatedDeviceIsHomedAndDescribesItsCapabilities) {

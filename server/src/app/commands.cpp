@@ -162,6 +162,7 @@ int run_session(const RunOptions& options) {
     return kExitRuntimeError;
   }
   for (const auto& w : result.warnings) spdlog::warn("{}", w);
+  for (const auto& e : result.plugin_errors) spdlog::error("{}", e);
   if (bridge != nullptr) {
     for (std::size_t i = 0; i < sessions.size(); ++i) {
       spdlog::info("{}: engine commands accepted {}, rejected {}, deadline misses {}", sessions[i]->name(),
@@ -248,6 +249,7 @@ int run_session(const RunOptions& options) {
     }
   }
   if (any_device_faulted(report)) return kExitDeviceFault;
+  if (!result.plugin_errors.empty() || served->monitor().plugin_errors() > 0) return kExitRuntimeError;
   return recorder && recorder->failed() ? kExitRecordingFailed : kExitOk;
 }
 

@@ -45,7 +45,13 @@ SessionMonitor::SessionMonitor(std::vector<DeviceSession*> devices, DdsBridge* b
 SessionMonitor::~SessionMonitor() = default;
 
 void SessionMonitor::poll() {
-  for (auto* d : devices_) d->service();
+  for (auto* d : devices_) {
+    d->service();
+    for (const std::string& e : d->take_plugin_errors()) {
+      spdlog::error("device '{}': {}", d->name(), e);
+      ++plugin_errors_;
+    }
+  }
   for (std::size_t i = 0; i < devices_.size(); ++i) {
     DeviceSession& d = *devices_[i];
     if (d.take_fault_report(*report_)) {

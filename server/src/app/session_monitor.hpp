@@ -30,6 +30,8 @@ class SessionMonitor {
   void poll();
   // Fault reports taken (and published) so far.
   [[nodiscard]] std::size_t reports() const noexcept { return reports_; }
+  // Plugins that threw as the monitor deactivated their scheme (logged as errors) so far.
+  [[nodiscard]] std::size_t plugin_errors() const noexcept { return plugin_errors_; }
   // Every fault and recovery of device i so far, oldest first (at most kMaxLoggedEvents; the rest counted).
   [[nodiscard]] const std::vector<SafetyEvent>& safety_log(std::size_t i) const { return logs_.at(i).events; }
   [[nodiscard]] std::uint64_t safety_events_not_kept(std::size_t i) const { return logs_.at(i).not_kept; }
@@ -47,6 +49,7 @@ class SessionMonitor {
   std::vector<Log> logs_;
   std::unique_ptr<FaultReport> report_;  // large: not on the stack
   std::size_t reports_ = 0;
+  std::size_t plugin_errors_ = 0;
   bool stop_logged_ = false;
   const Recorder* recorder_;
   bool recording_failure_logged_ = false;

@@ -221,11 +221,14 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
     result.stop_requested = result.stop_requested || l.stop_requested;
   }
   for (const auto& l : loops_)
-    for (GroupStage* g : l->cycle.stages()) g->deactivate();
+    for (GroupStage* g : l->cycle.stages())
+      if (std::string error = g->deactivate(); !error.empty())
+        result.plugin_errors.push_back("group '" + g->name() + "': " + error);
   for (DeviceSession* s : sessions_) {
-    s->deactivate();
+    s->deactivate();  // whatever its plugins threw
     if (!s->disable_error().empty())
       result.warnings.push_back("device '" + s->name() + "': " + s->disable_error() + " (its drives may still be on)");
+    for (std::string& e : s->take_plugin_errors()) result.plugin_errors.push_back("device '" + s->name() + "': " + e);
   }
   return result;
 }

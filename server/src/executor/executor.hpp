@@ -65,10 +65,13 @@ struct LoopResult {
 struct ExecutorResult {
   CycleStatistics statistics;  // every loop's cycles together
   std::vector<LoopResult> loops;
-  std::vector<std::string> warnings;  // real-time set-up that was not permitted
-  bool stop_requested = false;        // ended by request rather than by duration
-  std::uint64_t periods = 0;          // periods elapsed on the loop clock: cycles run + skipped (the longest loop)
-  double loop_time_s = 0.0;           // time on the loop clock (virtual in lockstep; the longest loop)
+  std::vector<std::string> warnings;  // real-time set-up that was not permitted; a device not disabled cleanly
+  // What plugins threw as they were deactivated at the end (those of schemes left during the run: the monitor
+  // logged them). The devices were disabled all the same.
+  std::vector<std::string> plugin_errors;
+  bool stop_requested = false;  // ended by request rather than by duration
+  std::uint64_t periods = 0;    // periods elapsed on the loop clock: cycles run + skipped (the longest loop)
+  double loop_time_s = 0.0;     // time on the loop clock (virtual in lockstep; the longest loop)
   double wall_time_s = 0.0;
 };
 

@@ -1,6 +1,7 @@
 #include "group/group_stage.hpp"
 
 #include "hapticd/demand.hpp"
+#include "plugins/plugin_deactivation.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {
@@ -62,9 +63,9 @@ void GroupStage::fail_model(const CycleTime& cycle, const char* reason) noexcept
     if (d->fault() == DeviceFault::none) d->raise_group_fault(DeviceFault::group_model, cycle, reason);
 }
 
-void GroupStage::deactivate() {
-  if (model_.object) model_->deactivate();
+std::string GroupStage::deactivate() {
   model_active_ = false;
+  return deactivate_plugin(model_, "group model");
 }
 
 void GroupStage::publish_snapshot(const CycleTime& cycle) noexcept {

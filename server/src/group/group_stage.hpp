@@ -48,8 +48,9 @@ class GroupStage {
   // force stops every device of the group (fault group_model).
   void set_model(PluginInstance<GroupModel> model);
   [[nodiscard]] GroupModel* model() noexcept { return model_.object.get(); }
-  // After the loop has ended.
-  void deactivate();
+  // After the loop has ended. Returns what the group's model threw as it was deactivated, empty if nothing (the
+  // caller goes on to disable the devices).
+  [[nodiscard]] std::string deactivate();
   // After phase (d), at the cycles the devices publish snapshots: the group's snapshot of them.
   void publish_snapshot(const CycleTime& cycle) noexcept;
   // Before the loop runs: the devices' snapshot interval (0: never, the default).

@@ -70,7 +70,8 @@ class DeviceSession {
     limit_and_write(cycle, torque_scale);
   }
   // Not real-time safe. Zero torque, chain off, device disabled (brakes engaged). A disable() that throws is
-  // caught, so the caller goes on to disable the other devices, and kept in disable_error().
+  // caught, so the caller goes on to disable the other devices, and kept in disable_error(); a plugin whose
+  // deactivate() throws does not keep the device from being disabled (take_plugin_errors()).
   void deactivate();
   // Why the last deactivate() could not disable the device cleanly; empty if it could.
   [[nodiscard]] const std::string& disable_error() const noexcept { return disable_error_; }
@@ -193,6 +194,9 @@ class DeviceSession {
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
   // (the executor's monitor does); deactivate() does it too.
   void service();
+  // The thread that calls service() and deactivate(): what the chain's plugins threw as they were deactivated
+  // since the last call ("scheme 's', controller 'c': what"). They were taken out all the same.
+  [[nodiscard]] std::vector<std::string> take_plugin_errors() { return schemes_.take_errors(); }
 
  private:
   // The device's description, checked (joints, peak torques, a scheme, the period); throws std::invalid_argument.

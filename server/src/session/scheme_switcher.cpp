@@ -1,6 +1,9 @@
 #include "session/scheme_switcher.hpp"
 
+#include <utility>
+
 #include "hapticd/demand.hpp"
+#include "plugins/plugin_deactivation.hpp"
 
 namespace hapticd::server {
 
@@ -67,11 +70,17 @@ void SchemeSwitcher::service(bool all) {
     const State s = state_[i].load(std::memory_order_acquire);
     if (s == State::idle || (s == State::active && !all)) continue;
     SchemeChain& scheme = schemes_[i];
-    scheme.controller->deactivate();
-    if (scheme.inverse_kinematics) (*scheme.inverse_kinematics)->deactivate();
-    if (scheme.virtual_model) (*scheme.virtual_model)->deactivate();
+    for (std::string error :
+         {deactivate_plugin(scheme.controller, "controller"),
+          scheme.inverse_kinematics ? deactivate_plugin(*scheme.inverse_kinematics, "inverse kinematics")
+                                    : std::string(),
+          scheme.virtual_model ? deactivate_plugin(*scheme.virtual_model, "virtual model") : std::string()}) {
+      if (!error.empty()) errors_.push_back("scheme '" + scheme.name + "', " + std::move(error));
+    }
     state_[i].store(State::idle, std::memory_order_release);
   }
 }
+
+std::vector<std::string> SchemeSwitcher::take_errors() { return std::exchange(errors_, {}); }
 
 }  // namespace hapticd::server

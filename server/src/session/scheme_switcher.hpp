@@ -50,12 +50,17 @@ class SchemeSwitcher {
   void refused_switch() noexcept;
 
   // Not the loop thread: deactivates the schemes that left the loop. all: every scheme, the loop has stopped.
+  // A plugin whose deactivate() throws is taken out all the same (its scheme becomes idle) and the other
+  // plugins are deactivated; what it threw waits in take_errors().
   void service(bool all = false);
+  // The thread that calls service(): what plugins threw as they were deactivated, since the last call.
+  std::vector<std::string> take_errors();
 
  private:
   enum class State : std::uint8_t { idle, active, leaving };
   std::vector<SchemeChain>& schemes_;
   std::vector<std::atomic<State>> state_;
+  std::vector<std::string> errors_;  // service()'s thread only
   std::atomic<int> active_{0};
   std::atomic<int> requested_{0};
   std::atomic<std::uint64_t> switches_{0};

@@ -104,10 +104,9 @@ void Session::step(std::uint64_t cycles) {
     const std::int64_t start_ns = monotonic_now_ns();
     s.cycle->run_cycle(CycleTime{static_cast<std::int64_t>(index) * s.period_ns, s.period_ns, index}, 1.0, 0, 0);
     s.statistics.record(0, monotonic_now_ns() - start_ns, false);
-    if (k % 64 == 63)
-      for (const auto& d : s.devices) d->service();  // as the server's monitor does every 20 ms
+    if (k % 64 == 63) s.service_devices();  // as the server's monitor does every 20 ms
   }
-  for (const auto& d : s.devices) d->service();
+  s.service_devices();
 }
 
 DeviceDescription Session::description(std::string_view name) const { return impl_->device(name).description(); }
@@ -176,13 +175,27 @@ void Session::stop() {
     const double scale = std::max(0.0, 1.0 - static_cast<double>(k) / static_cast<double>(ramp));
     s.cycle->run_cycle(CycleTime{static_cast<std::int64_t>(index) * s.period_ns, s.period_ns, index}, scale, 0, 0);
   }
-  for (const auto& g : s.stages) g->deactivate();
+  for (const auto& g : s.stages)
+    if (std::string error = g->deactivate(); !error.empty())
+      s.plugin_errors.push_back("group '" + g->name() + "': " + error);
   std::string failed;
   for (const auto& d : s.devices) {
-    d->deactivate();  // every device, whatever another one's disable() did
+    d->deactivate();  // every device, whatever another one's plugins or disable() did
     if (!d->disable_error().empty()) failed += (failed.empty() ? "" : "; ") + d->name() + ": " + d->disable_error();
   }
-  if (!failed.empty()) throw std::runtime_error("devices not disabled cleanly: " + failed);
+  s.service_devices();  // what the last deactivation threw
+  std::string message;
+  if (!failed.empty()) message = "devices not disabled cleanly: " + failed;
+  for (const std::string& e : s.plugin_errors)
+    message += (message.empty() ? "plugins failed as they were deactivated: " : "; ") + e;
+  if (!message.empty()) throw std::runtime_error(message);
+}
+
+void Session::Impl::service_devices() {
+  for (const auto& d : devices) {
+    d->service();
+    for (std::string& e : d->take_plugin_errors()) plugin_errors.push_back("device '" + d->name() + "': " + e);
+  }
 }
 
 }  // namespace hapticd::server

@@ -3,6 +3,7 @@
 // the loop cycle that runs them. The server's own tests reach the device sessions through it (to drive one
 // device's phases alone, or to run the real executor over them); everything else uses the public API.
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -28,6 +29,12 @@ struct Session::Impl {
   bool activated = false;
   bool stopped = false;
   CycleStatistics statistics;
+  // What plugins threw as they were deactivated ("device 'd': scheme 's', controller 'c': what"): reported
+  // by stop().
+  std::vector<std::string> plugin_errors;
+
+  // Deactivates the schemes the loop has left, keeping what their plugins threw.
+  void service_devices();
 
   // Throws std::out_of_range naming the device.
   [[nodiscard]] DeviceSession& device(std::string_view name) const;

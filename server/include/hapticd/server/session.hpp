@@ -103,7 +103,9 @@ class HAPTICD_API Session {
   [[nodiscard]] SessionStatistics statistics() const;
   // Ends the session as a run of its duration ends: the torques ramp to zero over server.shutdown_ramp_s (the
   // chains run on meanwhile), then the chains and devices are deactivated. Nothing can be stepped afterwards.
-  // Throws std::runtime_error naming each device whose disable() failed - after every device was disabled.
+  // Throws std::runtime_error naming each device whose disable() failed and each plugin that threw as it was
+  // deactivated (during the run - a scheme left by a fault or a switch - or now; an incomplete friction
+  // identification does) - after every device was disabled.
   void stop();
 
   struct Impl;  // the server's own tests reach the device sessions through it (session/session_impl.hpp)
