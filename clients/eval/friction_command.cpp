@@ -17,9 +17,38 @@ namespace {
 struct Options {
   CommonOptions common;
   std::vector<double> joints;  // empty: all
-  std::vector<double> speeds{0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8, 1, 1.2, 1.4, 1.6, 1.8, 2};
-  double duration_s = 186.0;  // what the identification needs for three joints at the default speeds
+  std::vector<double> speeds;  // empty, 0: the device's (with_device_defaults)
+  double acceleration = 0.0;
+  double duration_s = 0.0;
 };
+
+// The strokes each device takes. ViSHaRD3's joints up to 2 rad/s at 30 rad/s^2 (its shipped identification
+// session). ViSHaRD6 and ViSHaRD10 swing a long arm on their first joints: the strokes stop at 0.8 rad/s (the
+// handle then stays under the safety's 1 m/s, where its damping would join the measurement, and 1.5 m/s, where it
+// faults) and turn gently - 5 rad/s^2 on ViSHaRD6, 2 on ViSHaRD10 (at 5 the reaction of joint 1's turn saturates
+// the hold of joints 2-4 and the arm whips into a joint overspeed). The durations are what the identification
+// needs for every joint at these strokes.
+struct DeviceStrokes {
+  std::vector<double> speeds;
+  double acceleration, duration_s;
+};
+
+DeviceStrokes device_strokes(const std::string& device) {
+  const std::vector<double> slow{0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8};
+  if (device == "vishard6") return {slow, 5.0, 350.0};
+  if (device == "vishard10") return {slow, 2.0, 600.0};
+  std::vector<double> fast = slow;
+  fast.insert(fast.end(), {1, 1.2, 1.4, 1.6, 1.8, 2});
+  return {fast, 30.0, 186.0};
+}
+
+Options with_device_defaults(Options o) {
+  const DeviceStrokes d = device_strokes(o.common.device);
+  if (o.speeds.empty()) o.speeds = d.speeds;
+  if (o.acceleration <= 0.0) o.acceleration = d.acceleration;
+  if (o.duration_s <= 0.0) o.duration_s = d.duration_s;
+  return o;
+}
 
 constexpr double kRate = 2000.0;
 constexpr double kBinWidth = 0.05;  // rad/s
@@ -56,8 +85,8 @@ int run(const Options& o) {
                  "friction identification",
                  Scheme::Display::impedance,
                  "friction_identification",
-                 fmt::format("output_file: '{}', joints: [{}], speeds: [{}]", output.string(),
-                             fmt::join(joint_numbers, ", "), fmt::join(o.speeds, ", ")),
+                 fmt::format("output_file: '{}', joints: [{}], speeds: [{}], acceleration: {}", output.string(),
+                             fmt::join(joint_numbers, ", "), fmt::join(o.speeds, ", "), o.acceleration),
                  0.0,
                  0.0,
                  "friction-identification",
@@ -89,9 +118,9 @@ int run(const Options& o) {
       }
       if ((k + 1) % (cycles / 20) == 0) progress.advance(fmt::format("{:.0f} s", v.time_s));
     }
+    if (!fault.empty()) throw std::runtime_error("the identification run faulted: " + fault);
     session.stop();  // the identification writes its file as it is deactivated
   }
-  if (!fault.empty()) throw std::runtime_error("the identification run faulted: " + fault);
   const model::FrictionFile identified = model::read_friction_file(output);
   Json joints = Json::array();
   fmt::print("{:<8} {:>10} {:>12} {:>22}\n", "joint", "coulomb", "break-away", "sliding error vs truth");
@@ -145,20 +174,29 @@ void add_friction_command(CLI::App& app, int& exit_code) {
       "friction",
       "Runs the friction identification on the simulated device and plots the identified curves against the "
       "friction the simulation applied");
-  add_common_options(cmd, o->common);
+  add_common_options(cmd, o->common, {"vishard3", "vishard6", "vishard10"});
   cmd->add_option("--joints", o->joints, "joints to identify, counted from 1 (default: all)");
-  cmd->add_option("--speeds", o->speeds, "cruise speeds of the strokes [rad/s]")->capture_default_str();
-  cmd->add_option("--duration", o->duration_s, "simulated time the identification is given [s]")
-      ->check(CLI::Range(1.0, 3600.0))
-      ->capture_default_str();
+  cmd->add_option("--speeds", o->speeds,
+                  "cruise speeds of the strokes [rad/s] (default: 0.05 .. 2 on vishard3, 0.05 .. 0.8 on vishard6 and "
+                  "vishard10)");
+  cmd->add_option("--acceleration", o->acceleration,
+                  "acceleration at the ends of each stroke [rad/s^2] (default: 30 on vishard3, 5 on vishard6, 2 on "
+                  "vishard10)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--duration", o->duration_s,
+                  "simulated time the identification is given [s] (default: what it needs for every joint: 186 s on "
+                  "vishard3, 350 s on vishard6, 600 s on vishard10)")
+      ->check(CLI::Range(1.0, 3600.0));
   cmd->callback([o, &exit_code] {
     Options run_options = *o;
     if (run_options.common.quick) {  // one joint, five speeds
       run_options.joints = {1};
-      run_options.speeds = {0.1, 0.3, 0.6, 1.2, 2.0};
-      run_options.duration_s = 30.0;
+      const bool vishard3 = run_options.common.device == "vishard3";
+      run_options.speeds =
+          vishard3 ? std::vector<double>{0.1, 0.3, 0.6, 1.2, 2.0} : std::vector<double>{0.1, 0.2, 0.4, 0.6, 0.8};
+      run_options.duration_s = vishard3 ? 30.0 : 40.0;
     }
-    exit_code = run(run_options);
+    exit_code = run(with_device_defaults(run_options));
   });
 }
 

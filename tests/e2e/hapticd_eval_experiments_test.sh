@@ -122,6 +122,24 @@ assert [l["id"] for l in mi["rotational_loads"]] == ["firm-grasp", "loose-grasp"
 print("rotation ok")
 PY
 
+# The devices without ViSHaRD3's translational handle: `all` runs the experiments written for them (output
+# capability, minimum inertia, friction); the friction identification swings ViSHaRD10's heavy joint 1 with its
+# gentle strokes (0.8 rad/s at most, 2 rad/s^2) without faulting.
+timeout 100 "$eval_bin" all --device vishard10 --quick --no-figures --out "$work/all10" > "$work/all10.txt" 2>&1 \
+  || { cat "$work/all10.txt"; exit 1; }
+"$py" - "$work/all10" <<'PY'
+import json, pathlib, sys
+out = pathlib.Path(sys.argv[1])
+assert sorted(p.name for p in out.glob("*.json")) == ["friction.json", "minimum-inertia.json",
+                                                       "output-capability-table.json"], list(out.iterdir())
+fr = json.loads((out / "friction.json").read_text())
+[j1] = fr["joints"]
+assert fr["device"] == "vishard10" and j1["joint"] == "joint1", fr["device"]
+assert "acceleration: 2" in fr["example_session"] and "0.8]" in fr["example_session"], fr["example_session"]
+assert 0 < j1["coulomb_nm"] and j1["rms_error_percent"] < 25, j1
+print("vishard10 all ok")
+PY
+
 if "$py" -c "import matplotlib" 2> /dev/null; then
   for f in report.html force-response.png backdrivability.png minimum-inertia.png force-gain.png tracking.png z-width.png \
     transparency.png friction.png; do
