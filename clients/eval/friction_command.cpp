@@ -27,26 +27,28 @@ struct Options {
 // handle then stays under the safety's 1 m/s, where its damping would join the measurement, and 1.5 m/s, where it
 // faults) and turn gently - 5 rad/s^2 on ViSHaRD6, 2 on ViSHaRD10 (at 5 the reaction of joint 1's turn saturates
 // the hold of joints 2-4 and the arm whips into a joint overspeed). The durations are what the identification
-// needs for every joint at these strokes.
+// needs for every joint at these strokes; `--quick` identifies joint 1 alone at five speeds.
 struct DeviceStrokes {
   std::vector<double> speeds;
   double acceleration, duration_s;
 };
 
-DeviceStrokes device_strokes(const std::string& device) {
-  const std::vector<double> slow{0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8};
-  if (device == "vishard6") return {slow, 5.0, 350.0};
-  if (device == "vishard10") return {slow, 2.0, 600.0};
-  std::vector<double> fast = slow;
-  fast.insert(fast.end(), {1, 1.2, 1.4, 1.6, 1.8, 2});
-  return {fast, 30.0, 186.0};
+DeviceStrokes device_strokes(const std::string& device, bool quick) {
+  const double acceleration = device == "vishard6" ? 5.0 : device == "vishard10" ? 2.0 : 30.0;
+  if (device == "vishard3")
+    return quick ? DeviceStrokes{{0.1, 0.3, 0.6, 1.2, 2.0}, acceleration, 30.0}
+                 : DeviceStrokes{
+                       {0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8, 1, 1.2, 1.4, 1.6, 1.8, 2}, acceleration, 186.0};
+  if (quick) return {{0.1, 0.2, 0.4, 0.6, 0.8}, acceleration, 40.0};
+  return {{0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8}, acceleration, device == "vishard6" ? 350.0 : 600.0};
 }
 
 Options with_device_defaults(Options o) {
-  const DeviceStrokes d = device_strokes(o.common.device);
-  if (o.speeds.empty()) o.speeds = d.speeds;
+  const DeviceStrokes d = device_strokes(o.common.device, o.common.quick);
+  if (o.common.quick) o.joints = {1};
+  if (o.speeds.empty() || o.common.quick) o.speeds = d.speeds;
   if (o.acceleration <= 0.0) o.acceleration = d.acceleration;
-  if (o.duration_s <= 0.0) o.duration_s = d.duration_s;
+  if (o.duration_s <= 0.0 || o.common.quick) o.duration_s = d.duration_s;
   return o;
 }
 
@@ -187,17 +189,7 @@ void add_friction_command(CLI::App& app, int& exit_code) {
                   "simulated time the identification is given [s] (default: what it needs for every joint: 186 s on "
                   "vishard3, 350 s on vishard6, 600 s on vishard10)")
       ->check(CLI::Range(1.0, 3600.0));
-  cmd->callback([o, &exit_code] {
-    Options run_options = *o;
-    if (run_options.common.quick) {  // one joint, five speeds
-      run_options.joints = {1};
-      const bool vishard3 = run_options.common.device == "vishard3";
-      run_options.speeds =
-          vishard3 ? std::vector<double>{0.1, 0.3, 0.6, 1.2, 2.0} : std::vector<double>{0.1, 0.2, 0.4, 0.6, 0.8};
-      run_options.duration_s = vishard3 ? 30.0 : 40.0;
-    }
-    exit_code = run(with_device_defaults(run_options));
-  });
+  cmd->callback([o, &exit_code] { exit_code = run(with_device_defaults(*o)); });
 }
 
 }  // namespace hapticd::eval

@@ -70,13 +70,12 @@ void SchemeSwitcher::service(bool all) {
     const State s = state_[i].load(std::memory_order_acquire);
     if (s == State::idle || (s == State::active && !all)) continue;
     SchemeChain& scheme = schemes_[i];
-    for (std::string error :
-         {deactivate_plugin(scheme.controller, "controller"),
-          scheme.inverse_kinematics ? deactivate_plugin(*scheme.inverse_kinematics, "inverse kinematics")
-                                    : std::string(),
-          scheme.virtual_model ? deactivate_plugin(*scheme.virtual_model, "virtual model") : std::string()}) {
-      if (!error.empty()) errors_.push_back("scheme '" + scheme.name + "', " + std::move(error));
-    }
+    const auto keep = [&](const std::string& error) {
+      if (!error.empty()) errors_.push_back("scheme '" + scheme.name + "', " + error);
+    };
+    keep(deactivate_plugin(scheme.controller, "controller"));
+    if (scheme.inverse_kinematics) keep(deactivate_plugin(*scheme.inverse_kinematics, "inverse kinematics"));
+    if (scheme.virtual_model) keep(deactivate_plugin(*scheme.virtual_model, "virtual model"));
     state_[i].store(State::idle, std::memory_order_release);
   }
 }
