@@ -38,12 +38,21 @@ DevicePreset device_preset(const std::string& name) {
     p.workspace_center = {0.45, 0.0, 1.49};
     p.workspace_size = {0.85, 0.71, 0.3};
     p.rotation_range_deg = {360.0, 120.0, 360.0};
-    // The shipped computed-torque session's start (SCARA folded, wrist away from q9 = 0) and its redundancy
-    // resolution (docs/redundancy.md).
-    p.rig_position = {0.8, -1.6, 1.6, -1.6, 0.8, 1.0, -2.0, 1.0, 1.3, 0.0};
-    p.inverse_kinematics = "redundancy_ik";
+    // The thesis's computed torque ran on the partitioned solution's inverse functions (its q_d differentiated;
+    // the SCARA pseudoinverse failed on the hardware, ../shared/spec/CONTROL-METHODS.md section 3), with the
+    // SCARA's pair 1-2 along y: the published box of the inverse function, 0.85 x 0.71 m, is the speed limits'
+    // rectangle at 1 m/s with pair 1-2 (joint 2, 5.67 rad/s: |u| <= 0.71) along y and pair 3-4 (joint 4,
+    // 7.6 rad/s: 0.85) along x. The start: the functions' posture for the handle at (0.2, 0.15, 1.45) m, its
+    // axis vertical (the shipped partitioned session's pose; docs/evaluation.md "ViSHaRD6 and ViSHaRD10").
+    p.rig_position = {2.836900,  -2.532207, 4.819213,  -3.964626, -1.159279,
+                      -1.146954, 2.293908,  -2.717751, 1.570796,  0.0};
+    // The friction identification starts where it did before, the SCARA folded, the wrist at q8 = 1, q9 = 1.3
+    // (at the rig's start joint 8 carries the wrist's weight through all its strokes).
+    p.identification_position = {0.8, -1.6, 1.6, -1.6, 0.8, 1.0, -2.0, 1.0, 1.3, 0.0};
+    p.inverse_kinematics = "vishard10_ik";
+    p.inverse_kinematics_takes_task = false;
     p.inverse_kinematics_parameters =
-        "inverse: inertia_weighted, level: acceleration, wrist: 1.0, null_space_gain: 0.5";
+        "scara: inverse_function, scara_axes_yaw_rad: 1.5707963267948966, wrist: inverse_function, q5_0_rad: 0.0";
   } else {
     throw std::invalid_argument("no evaluation preset for device '" + name +
                                 "' (known: vishard3, vishard6, vishard10; give --center and --size for others)");

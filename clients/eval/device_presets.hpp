@@ -30,8 +30,12 @@ struct DevicePreset {
   [[nodiscard]] const std::vector<double>& rig_start() const noexcept {
     return rig_position.empty() ? seed : rig_position;
   }
+  // Where the friction identification starts (empty: rig_start()): a posture whose strokes leave the joints
+  // unloaded long enough to compare the identified curves with the truth.
+  std::vector<double> identification_position;
   std::string inverse_kinematics = "newton_ik";
   std::string inverse_kinematics_parameters;
+  bool inverse_kinematics_takes_task = true;  // the rig adds `task:` (translation or full) to its parameters
   // The constant inertias of the Jacobian inner loops where the thesis gives them (its workspace means): IJC's
   // diagonal joint inertia M_hat [kg m^2] and TJC's diagonal task mass Mx_hat [kg]; empty: the plugins' own
   // (the diagonals at activation).

@@ -78,9 +78,11 @@ std::string rig_yaml(const RigSpec& spec) {
     add_lines(y, spec.model, "        ");
   }
   if (spec.scheme.joint_space) {
-    y += fmt::format("    inverse_kinematics:\n      plugin: {}\n      parameters: {{task: {}{}{}}}\n",
-                     preset.inverse_kinematics, task, preset.inverse_kinematics_parameters.empty() ? "" : ", ",
-                     preset.inverse_kinematics_parameters);
+    std::string parameters = preset.inverse_kinematics_takes_task ? "task: " + task : std::string();
+    if (!parameters.empty() && !preset.inverse_kinematics_parameters.empty()) parameters += ", ";
+    parameters += preset.inverse_kinematics_parameters;
+    y += fmt::format("    inverse_kinematics:\n      plugin: {}\n      parameters: {{{}}}\n", preset.inverse_kinematics,
+                     parameters);
   }
   std::string constant_inertia;
   if (spec.scheme.controller == "inverse_jacobian" && !preset.ijc_joint_inertia.empty()) {
