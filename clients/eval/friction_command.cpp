@@ -148,14 +148,13 @@ int run(const Options& o) {
     }
     // No bin to compare (the joint carried a load through every cruise, so the truth there is not sliding
     // friction alone): no error, null in the JSON, said so - not 0 %.
-    const bool compared = !velocity.empty();
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    const double rms = compared ? std::sqrt(sum / static_cast<double>(velocity.size())) : nan;
-    if (!compared) worst = nan;
-    if (compared) {
+    double rms = std::numeric_limits<double>::quiet_NaN();
+    if (!velocity.empty()) {
+      rms = std::sqrt(sum / static_cast<double>(velocity.size()));
       fmt::print("{:<8} {:>8.3f} Nm {:>9.3f} Nm {:>9.1f} % RMS, {:.1f} % worst\n", identified.joint_names[j], m.p[0],
                  m.breakaway_nm, 100 * rms, 100 * worst);
     } else {
+      worst = std::numeric_limits<double>::quiet_NaN();
       fmt::print("{:<8} {:>8.3f} Nm {:>9.3f} Nm   not compared: no cruise without load\n", identified.joint_names[j],
                  m.p[0], m.breakaway_nm);
     }
