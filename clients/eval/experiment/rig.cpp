@@ -42,12 +42,15 @@ std::string rig_yaml(const RigSpec& spec) {
       "  - name: dut\n"
       "    device:\n"
       "      plugin: sim\n"
-      "      parameters:\n"
-      "        urdf: {}\n"
-      "        initial_position: [{:.17g}]\n",
-      spec.scheme.label, spec.device.name, spec.seed, find_device_urdf(spec.device.name).string(), fmt::join(q0, ", "));
-  if (translational) y += "        passive_gimbal: true\n        sensor_accelerations: true\n";
-  add_lines(y, spec.attachment, "        ");
+      "      parameters:\n",
+      spec.scheme.label, spec.device.name, spec.seed);
+  // The rig's sim parameters, each left out where the run's own (--sim) sets its key: one value per key.
+  std::vector<std::string> device_lines{fmt::format("urdf: {}", find_device_urdf(spec.device.name).string()),
+                                        fmt::format("initial_position: [{:.17g}]", fmt::join(q0, ", "))};
+  if (translational) device_lines.insert(device_lines.end(), {"passive_gimbal: true", "sensor_accelerations: true"});
+  device_lines.insert(device_lines.end(), spec.attachment.begin(), spec.attachment.end());
+  for (const std::string& line : device_lines)
+    if (!has_key(spec.device.sim_parameters, line.substr(0, line.find(':')))) add_lines(y, {line}, "        ");
   add_lines(y, spec.device.sim_parameters, "        ");
   const bool admittance = spec.scheme.display == Scheme::Display::admittance;
   if (!spec.model_plugin.empty()) {
