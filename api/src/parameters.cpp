@@ -71,9 +71,11 @@ ParameterError::~ParameterError() = default;
 void ParameterSpec::check(const ParameterValue& value) const {
   switch (type) {
     case ParameterType::integer:
+      if (can_be_off && std::get<std::int64_t>(value) == 0) break;  // off
       check_number(*this, static_cast<double>(std::get<std::int64_t>(value)), "value");
       break;
     case ParameterType::real:
+      if (can_be_off && std::get<double>(value) == 0.0) break;  // off
       check_number(*this, std::get<double>(value), "value");
       break;
     case ParameterType::real_vector: {
@@ -105,6 +107,7 @@ std::string ParameterSpec::constraints_text() const {
   if (is_number(type) || type == ParameterType::real_vector) {
     if (minimum) out << (minimum_exclusive ? ", > " : ", >= ") << number_text(*minimum);
     if (maximum) out << ", <= " << number_text(*maximum);
+    if (can_be_off) out << ", or off";
   }
   if (!choices.empty()) {
     out << ", one of:";
@@ -146,6 +149,12 @@ ParameterBuilder& ParameterBuilder::tunable() {
   if (spec().type == ParameterType::string)
     throw std::logic_error("parameter '" + spec().name + "': a text parameter cannot be tunable");
   spec().tunable = true;
+  return *this;
+}
+ParameterBuilder& ParameterBuilder::can_be_off() {
+  if (spec().type != ParameterType::real && spec().type != ParameterType::integer)
+    throw std::logic_error("parameter '" + spec().name + "': only a number can be turned off");
+  spec().can_be_off = true;
   return *this;
 }
 ParameterBuilder& ParameterBuilder::default_value(ParameterValue value) {

@@ -8,8 +8,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -17,6 +20,9 @@
 #include "../../examples/engines/scene.hpp"
 #include "app/served_session.hpp"
 #include "hapticd/client/client.hpp"
+#include "hapticd/dds/conversion.hpp"
+#include "hapticd/dds/endpoints.hpp"
+#include "hapticd_msg.h"
 #include "support/test_session.hpp"
 
 namespace hapticd::server::e2e {
@@ -37,11 +43,15 @@ class RecordingListener final : public CycleListener {
     force_.push_back(device_->task().wrench.force);
     position_.push_back(device_->chain_state().handle_pose.position);
     weight_.push_back(device_->engine_weight());
+    if (device_->command().torque_nm.size() > 0)
+      peak_torque_ = std::max(peak_torque_, device_->command().torque_nm.cwiseAbs().maxCoeff());
     next_->after_cycle(index, lockstep);
   }
   const std::vector<Eigen::Vector3d>& force() const { return force_; }
   const std::vector<Eigen::Vector3d>& position() const { return position_; }
   const std::vector<double>& engine_weight() const { return weight_; }
+  // The largest joint torque commanded in any cycle (N m).
+  double peak_torque() const { return peak_torque_; }
   // The loop's period index of each recorded cycle (a real-time loop that fell behind skips periods).
   const std::vector<std::uint64_t>& index() const { return index_; }
 
@@ -51,6 +61,7 @@ class RecordingListener final : public CycleListener {
   std::vector<Eigen::Vector3d> force_, position_;
   std::vector<double> weight_;
   std::vector<std::uint64_t> index_;
+  double peak_torque_ = 0.0;
 };
 
 // Under a sanitizer the real-time loop runs several times slower than its period: the overrun watchdog (a
@@ -65,7 +76,7 @@ constexpr bool kSanitized = false;
 // tests/e2e/session_copy.sh (why: there) - a shared CI machine runs the loop late now and then, for over 0.1 s
 // in bursts. Under a sanitizer the loop runs several times slower than its period: the watchdogs are off there.
 inline const std::string kRealtimeWatchdogs =
-    kSanitized ? "max_consecutive_overruns: 0, max_stall_s: 0" : "max_consecutive_overruns: 2000, max_stall_s: 1.0";
+    kSanitized ? "max_consecutive_overruns: off, max_stall_s: off" : "max_consecutive_overruns: 2000, max_stall_s: 1.0";
 
 // The chain of the rig's ViSHaRD3: admittance display (3 kg, 30 N s/m) with the virtual coupling (3000 N/m,
 // 40 N s/m) for an engine's proxy, resolved acceleration control.
@@ -163,6 +174,82 @@ struct SceneEngine {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   std::atomic<double> depth{0.0};
   std::atomic<bool> answering{true};
+};
+
+// A hostile client built from the IDL alone: one DDS participant that sends requests under any client id it
+// likes (the client library has one id per participant) and reads its replies.
+class RawRequester {
+ public:
+  explicit RawRequester(int domain) : participant_(dds::ParticipantOptions{domain, {}, {}}), replies_(participant_) {}
+  struct Answer {
+    bool answered = false;
+    bool accepted = false;
+    std::string message;
+  };
+  // Sends the request (to `target`'s partition, as the client library does) and waits at most `timeout_s` for
+  // its reply; sent again every 0.2 s until answered (the server answers a repeat, applies it once).
+  Answer request(const std::string& target, hapticd_msg_RequestKind kind, const std::string& client,
+                 const std::string& subject = {}, const std::vector<double>& values = {}, double timeout_s = 5.0) {
+    const hapticd_msg_ControlRequest r = make(target, kind, client, subject, values);
+    auto& writer = writer_for(target);
+    (void)drain();  // replies to earlier requests (this client's or others')
+    const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    while (writer.matched() == 0 && elapsed() < timeout_s) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    double sent_at = -1.0;
+    while (elapsed() < timeout_s) {
+      if (sent_at < 0.0 || elapsed() - sent_at > 0.2) {
+        (void)writer.write(r);
+        sent_at = elapsed();
+      }
+      Answer found;
+      replies_.take([&](const hapticd_msg_ControlReply& m, const dds_sample_info_t&) {
+        if (m.request_id == r.request_id && dds::text_of(m.client) == client)
+          found = Answer{true, m.accepted, std::string(dds::text_of(m.message))};
+      });
+      if (found.answered) return found;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return {};
+  }
+  // Sends without waiting for the reply (a flood); the replies are read and dropped by drain().
+  void send(const std::string& target, hapticd_msg_RequestKind kind, const std::string& client,
+            const std::string& subject = {}) {
+    (void)writer_for(target).write(make(target, kind, client, subject, {}));
+  }
+  int drain() {
+    return replies_.take([](const hapticd_msg_ControlReply&, const dds_sample_info_t&) {});
+  }
+  [[nodiscard]] bool matched(const std::string& target) { return writer_for(target).matched() > 0; }
+
+ private:
+  hapticd_msg_ControlRequest make(const std::string& target, hapticd_msg_RequestKind kind, const std::string& client,
+                                  const std::string& subject, const std::vector<double>& values) {
+    hapticd_msg_ControlRequest r{};
+    dds::set_text(r.device, target);
+    dds::set_text(r.client, client);
+    r.request_id = ++next_id_;
+    r.kind = kind;
+    dds::set_text(r.subject, subject);
+    r.value_count = static_cast<std::int32_t>(std::min<std::size_t>(values.size(), hapticd_msg_MAX_VALUES));
+    for (std::int32_t i = 0; i < r.value_count; ++i) r.values[i] = values[static_cast<std::size_t>(i)];
+    return r;
+  }
+  dds::Writer<hapticd_msg_ControlRequest>& writer_for(const std::string& target) {
+    auto& w = writers_[target];
+    if (!w)
+      w = std::make_unique<dds::Writer<hapticd_msg_ControlRequest>>(participant_, dds::CommandTiming{},
+                                                                    dds::target_partition(target));
+    return *w;
+  }
+  dds::Participant participant_;
+  dds::Reader<hapticd_msg_ControlReply> replies_;
+  std::map<std::string, std::unique_ptr<dds::Writer<hapticd_msg_ControlRequest>>> writers_;
+  // Request ids from a random point, as the client library's: a reply is matched by client id and request id,
+  // and every reader of a device's replies sees them all.
+  std::uint64_t next_id_ = (std::uint64_t{std::random_device{}()} << 32) | std::random_device{}();
 };
 
 }  // namespace hapticd::server::e2e

@@ -29,13 +29,15 @@ std::string sim_device(const std::string& push, std::string safety, const std::s
     safety = "gravity_hold: false" + (safety.empty() ? "" : ", " + safety);
   return test::sim_vishard3_device_yaml("v3", "constant", push) + R"(    virtual_model:
       plugin: admittance
-      parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [40.0, 40.0, 40.0], rotation: false)" +
-         model_extra + R"(}
+      parameters: )" +
+         test::flow_mapping("mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [40.0, 40.0, 40.0], rotation: false",
+                            model_extra) +
+         R"(
     controller:
       plugin: resolved_acceleration
       parameters: {task: translation}
-    safety: {)" +
-         safety + "}\n";
+    safety: )" +
+         test::flow_mapping("", safety) + "\n";
 }
 
 struct Outcome {

@@ -1,5 +1,11 @@
 #include "support/test_session.hpp"
 
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 #include "hapticd/testing/allocation_guard.hpp"
 
 namespace hapticd::test {
@@ -84,18 +90,41 @@ server::Session build_test_session(const std::string& yaml) {
   return server::Session::from_yaml(yaml, {{}, {HAPTICD_TEST_PLUGIN_DIR}}, "session.yaml");
 }
 
+std::string flow_mapping(const std::string& base, const std::string& overrides) {
+  std::string extra = overrides;
+  while (!extra.empty() && (extra.front() == ',' || extra.front() == ' ')) extra.erase(0, 1);
+  // In order: base's keys, then new ones; a later entry (of base or the overrides) replaces an earlier one.
+  std::vector<std::pair<std::string, YAML::Node>> entries;
+  for (const std::string& text : {base, extra})
+    for (const auto& e : YAML::Load("{" + text + "}")) {
+      const std::string key = e.first.Scalar();
+      const auto at = std::find_if(entries.begin(), entries.end(), [&](const auto& p) { return p.first == key; });
+      if (at != entries.end())
+        at->second = e.second;
+      else
+        entries.emplace_back(key, e.second);
+    }
+  YAML::Emitter out;
+  out.SetMapFormat(YAML::Flow);
+  out.SetSeqFormat(YAML::Flow);
+  out << YAML::BeginMap;
+  for (const auto& [key, value] : entries) out << YAML::Key << key << YAML::Value << value;
+  out << YAML::EndMap;
+  return out.c_str();
+}
+
 std::string mass_spring_device_yaml(const std::string& name, const std::string& device_parameters,
                                     const std::string& controller_parameters) {
   return "  - name: " + name +
          "\n"
-         "    device:\n      plugin: test_mass_spring\n      parameters: {encoder_resolution_m: 1.0e-6" +
-         device_parameters +
-         "}\n"
+         "    device:\n      plugin: test_mass_spring\n      parameters: " +
+         flow_mapping("encoder_resolution_m: 1.0e-6", device_parameters) +
+         "\n"
          "    virtual_model:\n      plugin: test_sine_setpoint\n      parameters: {amplitude_m: 0.05, frequency_hz: "
          "2}\n"
          "    inverse_kinematics:\n      plugin: test_axis_ik\n"
-         "    controller:\n      plugin: test_pd\n      parameters: {kp: 400, kd: 20" +
-         controller_parameters + "}\n";
+         "    controller:\n      plugin: test_pd\n      parameters: " +
+         flow_mapping("kp: 400, kd: 20", controller_parameters) + "\n";
 }
 
 }  // namespace hapticd::test

@@ -28,6 +28,9 @@ std::size_t allocations_over_cycles(server::DeviceSession& device, std::uint64_t
 server::Session build_test_session(const std::string& yaml);
 
 // A device entry of the 1-DOF test chain (mass-spring, sine setpoint, axis IK, PD), with extra parameters.
+// The flow mapping "{...}" of `base`'s entries ("a: 1, b: [2, 3]") with `overrides`' entries (", b: 4", the
+// leading comma optional) in their place or added: a session file gives each key once.
+std::string flow_mapping(const std::string& base, const std::string& overrides);
 std::string mass_spring_device_yaml(const std::string& name, const std::string& device_parameters = "",
                                     const std::string& controller_parameters = "");
 

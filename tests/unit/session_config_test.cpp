@@ -140,6 +140,21 @@ INSTANTIATE_TEST_SUITE_P(
                   "live_view.address", "address: localhost", "not an IP address"},
         BadConfig{"live_view_unknown_key", kHeader + kValidDevices + "live_view:\n  prot: 1\n", "live_view.prot",
                   "prot: 1", "unknown key"},
+        // Duplicate keys (hardening round 3, item 10): the second wins or the first, by the reader's whim.
+        BadConfig{"duplicate_server_key", kHeader + "  rate_hz: 2000\n  rate_hz: 500\n" + kValidDevices,
+                  "server.rate_hz", "rate_hz: 500", "given twice in one mapping (lines 3 and 4)"},
+        BadConfig{"duplicate_safety_key",
+                  kHeader + kValidDevices + "    safety: {max_stall_s: 0.02, max_stall_s: 0.5}\n",
+                  "devices[0].safety.max_stall_s", "safety:", "given twice"},
+        BadConfig{"duplicate_device_entry_key", kHeader + kValidDevices + "    controller: {plugin: test_pd}\n",
+                  "devices[0].controller", "controller: {plugin", "given twice"},
+        // A safety function is turned off by saying so, and safety settings have physical bounds.
+        BadConfig{"watchdog_zero", kHeader + kValidDevices + "    safety: {max_stall_s: 0}\n",
+                  "devices[0].safety.max_stall_s", "safety:", "write 'off' to turn it off"},
+        BadConfig{"overruns_zero", kHeader + kValidDevices + "    safety: {max_consecutive_overruns: 0}\n",
+                  "devices[0].safety.max_consecutive_overruns", "safety:", "write 'off'"},
+        BadConfig{"absurd_force_limit", kHeader + kValidDevices + "    safety: {max_force_n: 1e308}\n",
+                  "devices[0].safety.max_force_n", "safety:", "above the maximum 2000"},
         // Plugins.
         BadConfig{"unknown_plugin",
                   kHeader + "devices:\n  - name: axis\n    device:\n      plugin: test_mass_spring\n"
@@ -229,6 +244,60 @@ TEST(SessionConfig, ShippedConfigsAreValid) {
       continue;
     }
     EXPECT_NO_THROW((void)build_sessions(config, loader));
+  }
+}
+
+}  // namespace
+}  // namespace hapticd::server
+
+namespace hapticd::server {
+namespace {
+
+TEST(SessionConfig, AWatchdogTurnedOffIsSaidAndWarned) {
+  const SessionConfig c = parse_session_config(
+      kHeader + kValidDevices + "    safety: {max_stall_s: off, max_consecutive_overruns: off}\n", "off.yaml");
+  EXPECT_EQ(c.devices[0].safety.max_stall_s, 0.0);
+  EXPECT_EQ(c.devices[0].safety.max_consecutive_overruns, 0u);
+  ASSERT_EQ(c.warnings.size(), 2u);
+  EXPECT_NE(c.warnings[0].find("devices[0].safety.max_consecutive_overruns is off"), std::string::npos)
+      << c.warnings[0];
+  EXPECT_NE(c.warnings[1].find("devices[0].safety.max_stall_s is off"), std::string::npos) << c.warnings[1];
+  EXPECT_TRUE(parse_session_config(kHeader + kValidDevices, "on.yaml").warnings.empty());
+}
+
+TEST(SessionConfig, AnOverrideThroughAnAliasChangesOnlyThePathItNames) {
+  // The shipped dual-arm sessions share one chain through an anchor: `--set` on one arm changed the other too.
+  const std::string text = kHeader + R"(devices:
+  - name: left
+    device: {plugin: test_mass_spring}
+    controller: &pd
+      plugin: test_pd
+      parameters: {kp: 100, kd: 5}
+  - name: right
+    device: {plugin: test_mass_spring}
+    controller: *pd
+)";
+  const SessionConfig c = parse_session_config(text, "alias.yaml", {"devices.left.controller.parameters.kp=300"});
+  EXPECT_EQ(c.devices[0].controller.parameters["kp"].as<double>(), 300.0);
+  EXPECT_EQ(c.devices[1].controller.parameters["kp"].as<double>(), 100.0);
+  // The copy keeps its lines: an error inside the aliased chain still names one (the anchor's).
+  EXPECT_EQ(c.devices[1].controller.line, 6);
+  EXPECT_EQ(c.devices[1].controller.parameters.Mark().line + 1, 8);
+}
+
+TEST(SessionConfig, ADocumentWithTooManyValuesIsRefusedBeforeItIsBuilt) {
+  std::string bomb = "a0: &a0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
+  for (int i = 1; i < 9; ++i) {
+    const std::string p = "*a" + std::to_string(i - 1);
+    bomb += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [" + p;
+    for (int k = 1; k < 10; ++k) bomb += ", " + p;
+    bomb += "]\n";
+  }
+  try {
+    (void)parse_session_config(bomb + "devices: [*a8]\n", "bomb.yaml");
+    FAIL() << "an alias bomb was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 100000 values"), std::string::npos) << e.what();
   }
 }
 

@@ -50,6 +50,9 @@ struct ParameterSpec {
   // keeps the values in effect (answering get requests) and hands them to the plugin's tune(). Text parameters
   // are never tunable.
   bool tunable = false;
+  // A number that can be turned off (a watchdog, a limit): a session file writes `off` (0 inside, within any
+  // bound), while a written 0 is refused - turning a safety function off is said, never a side effect of a value.
+  bool can_be_off = false;
 
   [[nodiscard]] bool required() const noexcept { return !default_value.has_value(); }
   // Throws ParameterError if the value breaks a bound, size or choice; the message says what would be valid.
@@ -73,6 +76,8 @@ class HAPTICD_API ParameterBuilder {
   ParameterBuilder& choices(std::vector<std::string> allowed);
   // Settable at run time (ParameterSpec::tunable); the plugin implements tune().
   ParameterBuilder& tunable();
+  // A number that `off` turns off (ParameterSpec::can_be_off).
+  ParameterBuilder& can_be_off();
 
  private:
   ParameterSpec& spec();

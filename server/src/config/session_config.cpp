@@ -7,6 +7,7 @@
 
 #include "config/config_error.hpp"
 #include "config/config_overrides.hpp"
+#include "config/yaml_document.hpp"
 #include "config/yaml_reader.hpp"
 #include "hapticd/input_file.hpp"
 
@@ -189,6 +190,7 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
   d.cpu = static_cast<int>(p.integer("cpu"));
   d.max_peers = static_cast<int>(p.integer("max_peers"));
   d.claim_grace_s = p.real("claim_grace_s");
+  d.claim_hold_s = p.real("claim_hold_s");
   d.log_lines_per_s = p.real("log_lines_per_s");
   return d;
 }
@@ -199,7 +201,19 @@ LiveViewSettings read_live_view(const YAML::Node& node, const std::string& file)
   v.enabled = true;
   if (node.IsNull()) return v;  // `live_view:` alone: on with the defaults
   if (!node.IsMap()) throw ConfigError(file, line_of(node), "live_view", "expected a mapping of live view settings");
-  const Parameters p = read_parameters(node, live_view_settings_schema(), file, "live_view", line_of(node), {});
+  const Parameters p =
+      read_parameters(node, live_view_settings_schema(), file, "live_view", line_of(node), {"allowed_origins"});
+  if (const YAML::Node list = node["allowed_origins"]; list.IsDefined() && !list.IsNull()) {
+    if (!list.IsSequence() || list.size() > 16)
+      throw ConfigError(file, line_of(list), "live_view.allowed_origins",
+                        "expected a list of at most 16 origins, e.g. [\"https://app.foxglove.dev\"]");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string key = "live_view.allowed_origins[" + std::to_string(i) + "]";
+      if (!list[i].IsScalar() || list[i].Scalar().find("://") == std::string::npos || list[i].Scalar().size() > 200)
+        throw ConfigError(file, line_of(list[i]), key, "expected an origin: scheme://host[:port]");
+      v.allowed_origins.push_back(list[i].Scalar());
+    }
+  }
   v.enabled = p.boolean("enabled");
   v.address = p.string("address");
   v.port = static_cast<int>(p.integer("port"));
@@ -213,10 +227,18 @@ LiveViewSettings read_live_view(const YAML::Node& node, const std::string& file)
   return v;
 }
 
-SafetySettings read_safety(const YAML::Node& node, const std::string& file, const std::string& key_path) {
+SafetySettings read_safety(const YAML::Node& node, const std::string& file, const std::string& key_path,
+                           std::vector<std::string>& warnings) {
   if (node.IsDefined() && !node.IsNull() && !node.IsMap())
     throw ConfigError(file, line_of(node), key_path, "expected a mapping of safety settings");
-  const Parameters p = read_parameters(node, safety_settings_schema(), file, key_path, line_of(node), {});
+  const ParameterSchema schema = safety_settings_schema();
+  const Parameters p = read_parameters(node, schema, file, key_path, line_of(node), {});
+  for (const ParameterSpec& spec : schema.specs()) {  // a safety function turned off is said at start-up
+    if (!spec.can_be_off) continue;
+    const ParameterValue& v = p.value(spec.name);
+    const bool off = std::holds_alternative<double>(v) ? std::get<double>(v) == 0.0 : std::get<std::int64_t>(v) == 0;
+    if (off) warnings.push_back(key_path + "." + spec.name + " is off (" + p.origin(spec.name) + ")");
+  }
   try {
     return safety_settings_from(p);
   } catch (const ParameterError& e) {
@@ -548,6 +570,13 @@ ParameterSchema dds_settings_schema() {
       .greater_than(0.0)
       .maximum(1.0)
       .default_value(d.claim_grace_s);
+  s.real("claim_hold_s",
+         "a claimant whose participant is still on the domain but has had no live command writer this long "
+         "(frozen or killed) loses its claim; its forces fade at the command deadline meanwhile")
+      .unit("s")
+      .minimum(0.5)
+      .maximum(60.0)
+      .default_value(d.claim_hold_s);
   s.real("log_lines_per_s",
          "Cyclone DDS's own log lines (e.g. warnings about malformed packets) pass through the "
          "server's log at most this often, in bursts of 20; the rest are counted and summarised")
@@ -631,12 +660,7 @@ namespace {
 SessionConfig read_session_config(const std::string& text, const std::filesystem::path& path,
                                   const std::vector<std::string>& overrides, std::vector<AppliedOverride>& applied) {
   const std::string file = path.string();
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(file, e.mark.is_null() ? 0 : e.mark.line + 1, "", "YAML syntax error: " + e.msg);
-  }
+  YAML::Node root = load_yaml_document(text, file);  // bounded, no duplicate keys, no shared nodes
   if (!root.IsDefined() || root.IsNull()) throw ConfigError(file, 0, "", "the file is empty");
   applied = apply_overrides(root, overrides);
 
@@ -677,7 +701,7 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
       device.engine_fade_s = read_scalar_real(n, reader.path_of("engine_fade_s"), file, 0.0, 10.0);
     if (const YAML::Node n = reader.optional("engine_ramp_in_s"); n.IsDefined())
       device.engine_ramp_in_s = read_scalar_real(n, reader.path_of("engine_ramp_in_s"), file, 0.0, 10.0);
-    device.safety = read_safety(reader.optional("safety"), file, reader.path_of("safety"));
+    device.safety = read_safety(reader.optional("safety"), file, reader.path_of("safety"), config.warnings);
     device.base_pose = read_base_pose(reader.optional("base_pose"), file, reader.path_of("base_pose"));
     device.collision = read_collision(reader.optional("collision"), file, reader.path_of("collision"));
     config.devices.push_back(std::move(device));

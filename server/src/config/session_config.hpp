@@ -67,6 +67,10 @@ struct DdsSettings {
   // A claim whose participant has no live engine command writer this long after the claim ends (the claimant
   // cannot be watched; docs/safety.md).
   double claim_grace_s = 0.5;
+  // A claimant whose participant is still there but has had no live command writer this long (a frozen or
+  // killed process; a VR application loading a scene or collecting garbage is frozen for a second or so) loses
+  // its claim. Its forces fade at the command deadline all the same (docs/safety.md, "Ownership").
+  double claim_hold_s = 5.0;
   // Cyclone DDS's own log lines pass through the server's logger at most this often (the rest are counted).
   double log_lines_per_s = 5.0;
 };
@@ -79,6 +83,8 @@ struct LiveViewSettings {
   double rate_hz = 30.0;              // messages per channel and second
   int max_clients = 4;
   double force_scale_m_per_n = 0.005;  // length of the wrench arrows in the 3-D view
+  // Web pages that may connect besides those served from this machine (their Origin: "https://host[:port]").
+  std::vector<std::string> allowed_origins;
 };
 
 struct PluginConfig {
@@ -157,6 +163,7 @@ struct SessionConfig {
   std::vector<DeviceConfig> devices;
   std::vector<GroupConfig> groups;
   std::vector<AppliedOverride> overrides;  // what overrides changed: an error there names the override
+  std::vector<std::string> warnings;       // safety functions the session turns off: said at start-up
 };
 
 // The keys of a device entry (`devices[i]`) and what each is: the reader's allowed keys and

@@ -55,6 +55,19 @@ T convert_scalar(const YAML::Node& node, const std::string& file, const std::str
 
 ParameterValue convert(const YAML::Node& node, const ParameterSpec& spec, const std::string& file,
                        const std::string& key) {
+  if (spec.can_be_off && node.IsScalar()) {
+    // `off` says it; a 0 would turn a watchdog or a limit off without saying so.
+    if (node.Scalar() == "off")
+      return spec.type == ParameterType::integer ? ParameterValue{std::int64_t{0}} : ParameterValue{0.0};
+    double number = 1.0;
+    try {
+      number = node.as<double>();
+    } catch (const YAML::Exception&) {
+    }
+    if (number == 0.0)
+      throw ConfigError(file, line_of(node), key,
+                        "0 would turn it off: write 'off' to turn it off (" + spec.constraints_text() + ")");
+  }
   switch (spec.type) {
     case ParameterType::boolean:
       return convert_scalar<bool>(node, file, key, "true or false");

@@ -7,10 +7,11 @@ ParameterSchema safety_settings_schema() {
   const SafetySettings d;
   s.real("thermal_time_constant_s",
          "time constant of the drives' thermal model; the torque limit falls from peak "
-         "to continuous as the load reaches 1; 0: no thermal limit")
+         "to continuous as the load reaches 1; off: no thermal limit")
       .unit("s")
-      .minimum(0.0)
+      .greater_than(0.0)
       .maximum(3600.0)
+      .can_be_off()
       .default_value(d.thermal_time_constant_s);
   s.real("thermal_derate_from", "thermal load at which the limit starts falling towards the continuous torque")
       .greater_than(0.0)
@@ -27,54 +28,70 @@ ParameterSchema safety_settings_schema() {
   s.real("joint_damping_gain", "injected damping per unit of speed above joint_damping_from")
       .unit("N m s/rad")
       .minimum(0.0)
+      .maximum(1e4)
       .default_value(d.joint_damping_gain);
   s.real("speed_damping_from_m_s", "handle speed where damping injection starts")
       .unit("m/s")
       .greater_than(0.0)
+      .maximum(10.0)
       .default_value(d.speed_damping_from_m_s);
-  s.real("max_speed_m_s", "handle speed that faults the device; 0: no Cartesian speed limit")
+  s.real("max_speed_m_s", "handle speed that faults the device; off: no Cartesian speed limit")
       .unit("m/s")
-      .minimum(0.0)
+      .greater_than(0.0)
+      .maximum(10.0)
+      .can_be_off()
       .default_value(d.max_speed_m_s);
   s.real("speed_damping_n_s_per_m", "injected damping per unit of handle speed above speed_damping_from_m_s")
       .unit("N s/m")
       .minimum(0.0)
+      .maximum(1e4)
       .default_value(d.speed_damping_n_s_per_m);
   s.real_vector("workspace_min_m", "lower corner of the workspace box (world); the box is off when it is empty")
       .unit("m")
       .size(3)
+      .minimum(-10.0)
+      .maximum(10.0)
       .default_value(std::vector<double>{0.0, 0.0, 0.0});
   s.real_vector("workspace_max_m", "upper corner of the workspace box (world)")
       .unit("m")
       .size(3)
+      .minimum(-10.0)
+      .maximum(10.0)
       .default_value(std::vector<double>{0.0, 0.0, 0.0});
   s.real("wall_stiffness_n_per_m", "stiffness of the workspace walls")
       .unit("N/m")
       .minimum(0.0)
+      .maximum(1e6)
       .default_value(d.wall_stiffness_n_per_m);
   s.real("wall_damping_n_s_per_m", "damping of the workspace walls (outward motion only)")
       .unit("N s/m")
       .minimum(0.0)
+      .maximum(1e5)
       .default_value(d.wall_damping_n_s_per_m);
   s.real("wall_fault_depth_m", "depth beyond a workspace wall that faults the device")
       .unit("m")
       .greater_than(0.0)
+      .maximum(1.0)
       .default_value(d.wall_fault_depth_m);
   s.real("max_force_n", "largest force the virtual environment may render")
       .unit("N")
       .greater_than(0.0)
+      .maximum(2000.0)
       .default_value(d.max_force_n);
   s.real("max_torque_nm", "largest torque the virtual environment may render")
       .unit("N m")
       .greater_than(0.0)
+      .maximum(500.0)
       .default_value(d.max_torque_nm);
   s.real("max_force_rate_n_per_s", "largest rate of change of the rendered force")
       .unit("N/s")
       .greater_than(0.0)
+      .maximum(1e7)
       .default_value(d.max_force_rate_n_per_s);
   s.real("max_torque_rate_nm_per_s", "largest rate of change of the rendered torque")
       .unit("N m/s")
       .greater_than(0.0)
+      .maximum(1e6)
       .default_value(d.max_torque_rate_nm_per_s);
   s.real("soft_start_s",
          "the rendered-wrench limit ramps up from zero over this time at activation, after a "
@@ -88,23 +105,27 @@ ParameterSchema safety_settings_schema() {
   s.real("passivity_max_damping_n_s_per_m", "largest damping the passivity controller adds")
       .unit("N s/m")
       .minimum(0.0)
+      .maximum(1e5)
       .default_value(d.passivity_max_damping_n_s_per_m);
   s.real("passivity_max_rotational_damping_n_m_s", "largest rotational damping the passivity controller adds")
       .unit("N m s/rad")
       .minimum(0.0)
+      .maximum(1e4)
       .default_value(d.passivity_max_rotational_damping_n_m_s);
   s.integer("max_consecutive_overruns",
-            "this many consecutive loop overruns put the device in its safe mode; 0: "
+            "this many consecutive loop overruns put the device in its safe mode; off: "
             "never")
-      .minimum(0)
+      .minimum(1)
       .maximum(100000)
+      .can_be_off()
       .default_value(std::int64_t{d.max_consecutive_overruns});
   s.real("max_stall_s",
          "a loop that wakes this late for a cycle (the process was stopped or stalled) puts the "
-         "device in its safe mode (fault loop_stall); 0: off; real-time clock only")
+         "device in its safe mode (fault loop_stall); off: no stall watchdog; real-time clock only")
       .unit("s")
-      .minimum(0.0)
+      .greater_than(0.0)
       .maximum(1.0)
+      .can_be_off()
       .default_value(d.max_stall_s);
   s.boolean("gravity_hold",
             "safe mode of a device with a robot model: hold the posture with gravity compensation "
