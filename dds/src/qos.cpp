@@ -34,10 +34,10 @@ Qos topic_qos(TopicKind kind, const CommandTiming& timing) {
       dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
       dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 256);
       break;
-    case TopicKind::reply:
+    case TopicKind::reply:  // one instance per device, every client's replies in it: a deep history, as for requests
       dds_qset_reliability(p, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
       dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
-      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 32);
+      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 256);
       break;
     case TopicKind::event:
       dds_qset_reliability(p, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));

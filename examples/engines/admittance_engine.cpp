@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <thread>
 
+#include "claim_keeper.hpp"
 #include "hapticd/client/client.hpp"
 
 namespace {
@@ -74,14 +75,19 @@ int run(int argc, char** argv) {
   });
   fmt::print("admittance-engine: claimed '{}': a {} kg object, floor {} mm below\n", device, mass, 1e3 * floor_depth);
   const auto start = std::chrono::steady_clock::now();
+  int code = 0;
   while (!g_stop.load()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!hapticd::examples::keep_claim(client, device, "admittance-engine")) {
+      code = hapticd::examples::kExitClaimLost;
+      break;
+    }
     if (duration > 0.0 && std::chrono::steady_clock::now() - start > std::chrono::duration<double>(duration)) break;
   }
   client.on_state({});
   (void)client.release(device, std::chrono::milliseconds(500));
   fmt::print("admittance-engine: answered {} states\n", answered.load());
-  return 0;
+  return code;
 }
 }  // namespace
 

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "bimanual.hpp"
+#include "claim_keeper.hpp"
 
 namespace {
 std::atomic<bool> g_stop{false};
@@ -54,8 +55,15 @@ int run(int argc, char** argv) {
              start.position.z());
   const auto began = std::chrono::steady_clock::now();
   std::uint64_t seen = 0;
+  int code = 0;
+  const auto described = client.wait_for_group(group, std::chrono::seconds(1));
+  const std::vector<std::string> hands = described ? described->devices : std::vector<std::string>{};
   while (!g_stop.load()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    if (!hands.empty() && !hapticd::examples::keep_claim(client, group, "bimanual-engine", true, hands.front())) {
+      code = hapticd::examples::kExitClaimLost;
+      break;
+    }
     const auto r = engine.report();
     if (r.answered == seen) {
       if (seen > 0) break;  // the server has ended
@@ -69,7 +77,7 @@ int run(int argc, char** argv) {
   }
   fmt::print("bimanual-engine: answered {} group states\n", engine.report().answered);
   (void)client.release_group(group, std::chrono::seconds(2));
-  return 0;
+  return code;
 }
 }  // namespace
 

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <thread>
 
+#include "claim_keeper.hpp"
 #include "hapticd/client/client.hpp"
 #include "scene.hpp"
 
@@ -119,8 +120,13 @@ int run(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   std::uint64_t last_answered = 0;
   auto last_progress = start;
+  int code = 0;
   while (!g_stop.load()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!hapticd::examples::keep_claim(client, device, "scene-engine")) {
+      code = hapticd::examples::kExitClaimLost;
+      break;
+    }
     const auto now = std::chrono::steady_clock::now();
     if (duration > 0.0 && now - start > std::chrono::duration<double>(duration)) break;
     if (answered.load() != last_answered) {
@@ -137,7 +143,7 @@ int run(int argc, char** argv) {
   (void)client.release(device, std::chrono::milliseconds(500));
   std::lock_guard lock(out_mutex);
   fmt::print("scene-engine: answered {} states; deepest penetration {:.2f} mm\n", answered.load(), 1e3 * deepest);
-  return 0;
+  return code;
 }
 }  // namespace
 

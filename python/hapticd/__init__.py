@@ -36,10 +36,10 @@ from ._hapticd import (  # noqa: F401
 )
 from .engine import EngineStats, run_engine, states  # noqa: F401
 from . import recording  # noqa: F401
-from .errors import Error, RequestRefused, SessionError, Timeout  # noqa: F401
+from .errors import ClaimLost, Error, RequestRefused, SessionError, Timeout  # noqa: F401
 
 __all__ = [
-    "Client", "CycleRecord", "DeviceDescription", "DeviceInfo", "DeviceState", "DeviceView", "EngineCommand",
+    "ClaimLost", "Client", "CycleRecord", "DeviceDescription", "DeviceInfo", "DeviceState", "DeviceView", "EngineCommand",
     "EngineInput", "EngineStats", "Error", "Event", "EventKind", "FaultReport", "GroupInfo", "GroupState",
     "JointDescription", "LoopSummary", "Mode", "Pose", "RequestRefused", "SchemeInfo", "Session", "SessionError",
     "SessionStatistics", "SimulatedTruth", "Telemetry", "Timeout", "Twist", "Wrench", "flag_names", "run_engine",

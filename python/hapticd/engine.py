@@ -6,6 +6,7 @@ from dataclasses import dataclass
 from typing import Callable, Iterator, Optional
 
 from ._hapticd import Client, DeviceState, EngineCommand, Mode
+from .errors import ClaimLost
 
 
 def states(client: Client, device: str, timeout: float = 1.0,
@@ -39,7 +40,8 @@ def run_engine(client: Client, device: str, answer: Callable[[DeviceState], obje
     ``.force`` or ``.motion``; its state_serial is set to the state's), None (no command for this state) or False
     (stop). Claims the device first and releases it at the end when ``claim`` is true. The GIL is released while
     waiting for the next state, so other Python threads run meanwhile. Runs for ``duration`` seconds (None: until
-    the device stops or the function returns False)."""
+    the device stops or the function returns False). Raises ``ClaimLost`` when the server ends the claim (the
+    engine was gone - frozen, or its process stalled - for longer than the server's claim hold)."""
     stats = EngineStats()
     if claim:
         client.claim(device)
@@ -57,6 +59,9 @@ def run_engine(client: Client, device: str, answer: Callable[[DeviceState], obje
             if state.mode in (Mode.STOPPING, Mode.OFF):
                 stats.ended_by = "device stopped"
                 break
+            if claim and client.claim_lost(device):
+                raise ClaimLost(f"the claim of '{device}' ended without its release (owner now "
+                                f"'{state.owner}'): the server found this engine gone for longer than its claim hold")
             command = answer(state)
             if command is False:
                 stats.ended_by = "function"

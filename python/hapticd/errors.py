@@ -14,5 +14,10 @@ class RequestRefused(Error):
     """The server (or the in-process session) refused a request; the message says why."""
 
 
+class ClaimLost(Error):
+    """The engine's claim of the device ended without its release: the server found the engine gone for longer
+    than its claim hold (docs/safety.md, "Ownership"). Its commands are no longer taken; claim again or stop."""
+
+
 class Timeout(Error, TimeoutError):
     """No reply, device or state within the timeout."""

@@ -334,6 +334,10 @@ default). Waiting calls release the GIL; a refused request raises RequestRefused
           },
           py::arg("device"), py::arg("timeout") = 2.0, "become the device's engine")
       .def(
+          "claim_lost", [](ClientHandle& h, const std::string& d) { return h.get().claim_lost(d); }, py::arg("device"),
+          "whether this client's newest claim of the device ended without its release (the server's claim hold "
+          "ran out: claim again or stop)")
+      .def(
           "release",
           [](ClientHandle& h, const std::string& d, double t) {
             return request(h, [&](Client& c) { return c.release(d, seconds(t)); });

@@ -199,6 +199,89 @@ TEST(DdsGroups, AGroupClaimTakesEveryDeviceOrNoneEvenInARace) {
   EXPECT_FALSE(a.claim_group("*", 5s).accepted);
 }
 
+TEST(DdsGroups, AGroupClaimAfterADeviceClaimUnderAnotherIdOfTheSameParticipantIsRefusedNotAnAbort) {
+  // The attack (hardening round 3, item 1): one participant claims `left` as client A, then the group holding it
+  // as client B. The group claim took `left` for free (the same participant) while the gate wanted the same
+  // client id too: an invariant check aborted the server, both arms lost power without their safe ramp.
+  GroupServer server(hands_session(140, "realtime", 60.0));
+  server.start();
+  RawRequester attacker(140);
+  Client observer({"observer", 140});
+  ASSERT_TRUE(observer.wait_for_group("hands", 10s).has_value());
+  const auto a = attacker.request("left", hapticd_msg_REQUEST_CLAIM, "client-a");
+  ASSERT_TRUE(a.answered && a.accepted) << a.message;
+  const auto b = attacker.request("hands", hapticd_msg_REQUEST_GROUP_CLAIM, "client-b");
+  ASSERT_TRUE(b.answered) << "the server did not answer (aborted?)";
+  EXPECT_FALSE(b.accepted) << b.message;
+  EXPECT_NE(b.message.find("none claimed: left by 'client-a'"), std::string::npos) << b.message;
+  EXPECT_EQ(server.bridge().owner(0), "client-a");
+  EXPECT_EQ(server.bridge().owner(1), "");  // all or none: right was not taken either
+  // Under the id it claimed with, the same participant may take the whole group.
+  const auto again = attacker.request("hands", hapticd_msg_REQUEST_GROUP_CLAIM, "client-a");
+  EXPECT_TRUE(again.accepted) << again.message;
+  EXPECT_EQ(server.bridge().owner(1), "client-a");
+  // The devices ran on throughout.
+  EXPECT_EQ(server.device(0).fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(1).fault(), DeviceFault::none);
+}
+
+TEST(DdsGroups, AStopLatchesUntilItsStopperReleasesItForDeviceAndGroupRequestsAlike) {
+  // The attack (hardening round 3, item 5): an operator stops a device, any other participant recovered it
+  // (a device recovery on the free device, or "*"). A stop now holds until whoever made it releases it.
+  GroupServer server(hands_session(141, "realtime", 120.0));
+  server.start();
+  RawRequester operator_console(141), other(141);
+  Client watcher({"watcher", 141});
+  ASSERT_TRUE(watcher.wait_for_group("hands", 10s).has_value());
+  ASSERT_TRUE(watcher.wait_for_state("third", 10s).has_value());
+  const auto stopped = operator_console.request("third", hapticd_msg_REQUEST_ESTOP, "operator");
+  ASSERT_TRUE(stopped.accepted) << stopped.message;
+  for (int i = 0; i < 300 && server.device(2).fault() == DeviceFault::none; ++i) std::this_thread::sleep_for(10ms);
+  ASSERT_EQ(server.device(2).fault(), DeviceFault::emergency_stop);
+  std::this_thread::sleep_for(1300ms);  // the safe mode at zero torque: a recovery could be carried out now
+  // Another participant, under any id (the operator's too while the operator is there), recovers nothing.
+  for (const char* id : {"engine", "operator"}) {
+    const auto refused = other.request("third", hapticd_msg_REQUEST_RECOVER, id);
+    ASSERT_TRUE(refused.answered);
+    EXPECT_FALSE(refused.accepted) << id;
+    EXPECT_NE(refused.message.find("stopped by 'operator'"), std::string::npos) << refused.message;
+  }
+  const auto every = other.request("*", hapticd_msg_REQUEST_GROUP_RECOVER, "engine");
+  EXPECT_FALSE(every.accepted) << every.message;
+  EXPECT_NE(every.message.find("none recovered"), std::string::npos) << every.message;
+  std::this_thread::sleep_for(300ms);
+  EXPECT_EQ(server.device(2).fault(), DeviceFault::emergency_stop) << "another participant undid the operator's stop";
+  EXPECT_EQ(server.device(2).recoveries(), 0u);
+  // Two stoppers: each releases its own stop (lockout-tagout); the device recovers once none holds it.
+  ASSERT_TRUE(other.request("third", hapticd_msg_REQUEST_ESTOP, "supervisor").accepted);
+  const auto first = operator_console.request("third", hapticd_msg_REQUEST_RECOVER, "operator");
+  EXPECT_FALSE(first.accepted);
+  EXPECT_NE(first.message.find("its stop released, stopped by 'supervisor'"), std::string::npos) << first.message;
+  std::this_thread::sleep_for(1300ms);
+  const auto last = other.request("third", hapticd_msg_REQUEST_RECOVER, "supervisor");
+  EXPECT_TRUE(last.accepted) << last.message;
+  for (int i = 0; i < 1000 && server.device(2).fault() != DeviceFault::none; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(server.device(2).fault(), DeviceFault::none);
+  // A group stop through "*" latches every device under its stopper: a group recovery by another is refused,
+  // the stopper's is all or none.
+  ASSERT_TRUE(operator_console.request("*", hapticd_msg_REQUEST_GROUP_ESTOP, "operator").accepted);
+  for (int i = 0; i < 300 && server.device(0).fault() == DeviceFault::none; ++i) std::this_thread::sleep_for(10ms);
+  std::this_thread::sleep_for(1300ms);
+  EXPECT_FALSE(other.request("hands", hapticd_msg_REQUEST_GROUP_RECOVER, "engine").accepted);
+  EXPECT_FALSE(other.request("left", hapticd_msg_REQUEST_RECOVER, "engine").accepted);
+  const auto group = operator_console.request("hands", hapticd_msg_REQUEST_GROUP_RECOVER, "operator");
+  EXPECT_TRUE(group.accepted) << group.message;
+  const auto rest = operator_console.request("third", hapticd_msg_REQUEST_RECOVER, "operator");
+  EXPECT_TRUE(rest.accepted) << rest.message;
+  for (int i = 0;
+       i < 1000 && (server.device(0).fault() != DeviceFault::none || server.device(2).fault() != DeviceFault::none);
+       ++i)
+    std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(server.device(0).fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(1).fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(2).fault(), DeviceFault::none);
+}
+
 TEST(DdsGroups, AGroupEStopStopsTheGroupAndOnlyItAndARecoveryIsAllOrNone) {
   GroupServer server(hands_session(83, "realtime", 120.0));
   server.start();
@@ -222,13 +305,17 @@ TEST(DdsGroups, AGroupEStopStopsTheGroupAndOnlyItAndARecoveryIsAllOrNone) {
   std::this_thread::sleep_for(200ms);
   EXPECT_EQ(owner.latest_state("third")->mode, client::Mode::running);
   EXPECT_EQ(server.device(2).fault(), DeviceFault::none);
-  // Recovery is the owner's: another client's group recovery recovers none.
-  const client::Reply refused = other.recover_group("hands", 5s);
-  EXPECT_FALSE(refused.accepted);
-  EXPECT_NE(refused.message.find("none recovered"), std::string::npos) << refused.message;
+  // The stop holds until its stopper releases it: neither the owner nor a bystander recovers the group.
+  Client bystander({"bystander", 83});
+  for (Client* c : {&owner, &bystander}) {
+    const client::Reply refused = c->recover_group("hands", 5s);
+    EXPECT_FALSE(refused.accepted);
+    EXPECT_NE(refused.message.find("none recovered"), std::string::npos) << refused.message;
+    EXPECT_NE(refused.message.find("stopped by 'other'"), std::string::npos) << refused.message;
+  }
   std::this_thread::sleep_for(1300ms);  // both at zero torque: damping 0.5 s, gravity held 0.2 s, released 0.5 s
   EXPECT_NE(server.device(0).fault(), DeviceFault::none);
-  const client::Reply recovered = owner.recover_group("hands", 5s);
+  const client::Reply recovered = other.recover_group("hands", 5s);
   EXPECT_TRUE(recovered.accepted) << recovered.message;
   // At most 10 s: under ThreadSanitizer with other tests beside it, the bridge's threads can lag by seconds.
   for (int i = 0;

@@ -1,7 +1,9 @@
 // An attacker on the same host, built from the IDL: floods a server's request or command topic with samples
 // that each declare a new client or engine id, from one participant and writer, as fast as the writer goes
 // (bounded by COUNT and a 60 s limit). Used by tests/e2e/dds_flood_test.sh to show that the server's per-peer
-// state stays bounded. Usage: hapticd-dds-flood requests|commands DOMAIN DEVICE COUNT [HOLD_S]
+// state stays bounded. Usage: hapticd-dds-flood requests|commands|answered DOMAIN DEVICE COUNT [HOLD_S]
+// answered: a client that reads its replies, as the client library and Python do - GET_PARAMETER requests under
+// one client id, at most 32 unanswered at a time (every reply answered and read).
 // DEVICE "*": a new device name in every sample too. HOLD_S: stay (with every instance registered) this long
 // after the flood (at most 60 s).
 #include <algorithm>
@@ -19,7 +21,7 @@ using namespace hapticd;
 
 int main(int argc, char** argv) {
   if (argc != 5 && argc != 6) {
-    std::fprintf(stderr, "usage: %s requests|commands DOMAIN DEVICE COUNT [HOLD_S]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s requests|commands|answered DOMAIN DEVICE COUNT [HOLD_S]\n", argv[0]);
     return 2;
   }
   const std::string_view what = argv[1];
@@ -30,6 +32,30 @@ int main(int argc, char** argv) {
   dds::Writer<hapticd_msg_ControlRequest> requests(participant);
   dds::Writer<hapticd_msg_EngineCommand> commands(participant, dds::CommandTiming{0.05, 0.5});
   const auto start = std::chrono::steady_clock::now();
+  if (what == "answered") {
+    dds::Writer<hapticd_msg_ControlRequest> to_device(participant, {}, dds::target_partition(device));
+    dds::Reader<hapticd_msg_ControlReply> replies(participant);
+    while ((to_device.matched() == 0 || replies.matched() == 0) &&
+           std::chrono::steady_clock::now() - start < std::chrono::seconds(10))
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    long sent = 0, answered = 0;
+    while (answered < count && std::chrono::steady_clock::now() - start < std::chrono::seconds(60)) {
+      while (sent < count && sent - answered < 32) {
+        hapticd_msg_ControlRequest r{};
+        dds::set_text(r.device, device);
+        dds::set_text(r.client, "reader");
+        r.request_id = static_cast<unsigned long long>(++sent);
+        r.kind = hapticd_msg_REQUEST_GET_PARAMETER;
+        dds::set_text(r.subject, "virtual_model.mass_kg");
+        (void)to_device.write(r);
+      }
+      const int n = replies.take([](const hapticd_msg_ControlReply&, const dds_sample_info_t&) {});
+      answered += n;
+      if (n == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    std::printf("dds-flood: %ld requests sent, %ld replies read\n", sent, answered);
+    return answered >= count ? 0 : 1;
+  }
   while ((what == "requests" ? requests.matched() : commands.matched()) == 0 &&
          std::chrono::steady_clock::now() - start < std::chrono::seconds(10))
     std::this_thread::sleep_for(std::chrono::milliseconds(10));

@@ -107,14 +107,55 @@ struct Client::Impl {
     std::lock_guard one_at_a_time(state_take_mutex);
     state.take([&](const hapticd_msg_DeviceState& s, const dds_sample_info_t&) {
       wire::from_msg(s, state_scratch);
+      const ClaimWatch* lost = nullptr;
       {
         std::lock_guard lock(mutex);
         store(states, state_scratch, &DeviceState::device);
+        lost = watch_claim(state_scratch);
       }
       if (waiters.load(std::memory_order_acquire) > 0) changed.notify_all();
       std::lock_guard lock(callback_mutex);
+      if (lost != nullptr && claim_lost_callback)
+        claim_lost_callback(state_scratch.device.view(), state_scratch.owner.view().empty()
+                                                             ? "the server freed the device"
+                                                             : "the server handed the device to another owner");
       if (state_callback) state_callback(state_scratch);
     });
+  }
+
+  // The claims this client holds, watched in the states (fixed capacity: no allocation on the receive thread).
+  struct ClaimWatch {
+    Name device;
+    bool active = false;
+    bool confirmed = false;  // a state named this client as the owner
+    bool lost = false;
+  };
+  static constexpr std::size_t kWatchedClaims = 16;
+  std::array<ClaimWatch, kWatchedClaims> claims{};
+  // Under `mutex`: a state of a watched device that names another owner after one that named us: lost (once).
+  const ClaimWatch* watch_claim(const DeviceState& s) {
+    for (ClaimWatch& w : claims) {
+      if (!w.active || !(w.device == s.device.view())) continue;
+      if (s.owner == options.client_id) {
+        w.confirmed = true;
+      } else if (w.confirmed && !w.lost) {
+        w.lost = true;
+        return &w;
+      }
+    }
+    return nullptr;
+  }
+  void watch(std::string_view device, bool on) {
+    std::lock_guard lock(mutex);
+    ClaimWatch* free = nullptr;
+    for (ClaimWatch& w : claims) {
+      if (w.active && w.device == device) {
+        w = on ? ClaimWatch{Name(device), true, false, false} : ClaimWatch{};
+        return;
+      }
+      if (!w.active && free == nullptr) free = &w;
+    }
+    if (on && free != nullptr) *free = ClaimWatch{Name(device), true, false, false};
   }
 
   // The client's thread: descriptions, replies, events, telemetry, fault reports.
@@ -241,6 +282,7 @@ struct Client::Impl {
   std::function<void(const Event&)> event_callback;
   std::function<void(const Telemetry&)> telemetry_callback;
   std::function<void(const FaultReport&)> fault_report_callback;
+  std::function<void(std::string_view, std::string_view)> claim_lost_callback;
   std::deque<Event> events;  // for take_events
   std::map<std::string, Telemetry, std::less<>> telemetries;
   std::map<std::string, FaultReport, std::less<>> fault_reports;  // the newest per device
@@ -448,11 +490,27 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
 Reply Client::claim(std::string_view device, Timeout timeout) {
   (void)impl_->command_writer(device);  // made (and matched) while the claim is on its way
   Reply r = request(device, RequestKind::claim, {}, {}, timeout);
-  if (r.accepted) reset_serial();
+  if (r.accepted) {
+    reset_serial();
+    impl_->watch(device, true);
+  }
   return r;
 }
 Reply Client::release(std::string_view device, Timeout timeout) {
+  impl_->watch(device, false);  // a release ends the claim: no loss to tell
   return request(device, RequestKind::release, {}, {}, timeout);
+}
+
+void Client::on_claim_lost(std::function<void(std::string_view, std::string_view)> callback) {
+  std::lock_guard lock(impl_->callback_mutex);
+  impl_->claim_lost_callback = std::move(callback);
+}
+
+bool Client::claim_lost(std::string_view device) const {
+  std::lock_guard lock(impl_->mutex);
+  for (const Impl::ClaimWatch& w : impl_->claims)
+    if (w.active && w.device == device) return w.lost;
+  return false;
 }
 Reply Client::switch_scheme(std::string_view device, std::string_view scheme, Timeout timeout) {
   return request(device, RequestKind::switch_scheme, scheme, {}, timeout);
@@ -508,11 +566,21 @@ Reply Client::operator_command(std::string_view device, std::string_view command
 Reply Client::claim_group(std::string_view group, Timeout timeout) {
   (void)impl_->group_command_writer(group);
   Reply r = request(group, RequestKind::group_claim, {}, {}, timeout);
-  if (r.accepted) reset_serial();
+  if (r.accepted) {
+    reset_serial();
+    for (const std::string& d : group_devices(group)) impl_->watch(d, true);
+  }
   return r;
 }
 Reply Client::release_group(std::string_view group, Timeout timeout) {
+  for (const std::string& d : group_devices(group)) impl_->watch(d, false);
   return request(group, RequestKind::group_release, {}, {}, timeout);
+}
+
+std::vector<std::string> Client::group_devices(std::string_view group) const {
+  std::lock_guard lock(impl_->mutex);
+  const auto found = impl_->group_descriptions.find(group);
+  return found == impl_->group_descriptions.end() ? std::vector<std::string>{} : found->second.devices;
 }
 Reply Client::emergency_stop_group(std::string_view group, Timeout timeout) {
   return request(group, RequestKind::group_estop, {}, {}, timeout);

@@ -6,9 +6,13 @@
 
 namespace hapticd::server {
 
-bool CommandGate::claim(std::string_view client, const PeerId& participant) {
+bool CommandGate::may_claim(std::string_view client, const PeerId& participant) const noexcept {
   if (client.empty() || participant.empty()) return false;
-  if (!owner_.empty() && (owner_participant_ != participant || owner_ != client)) return false;
+  return owner_.empty() || (owner_participant_ == participant && owner_ == client);
+}
+
+bool CommandGate::claim(std::string_view client, const PeerId& participant) {
+  if (!may_claim(client, participant)) return false;
   owner_ = std::string(client);
   owner_participant_ = participant;
   serials_ = {};  // a (re)claiming engine starts its serial numbers again

@@ -31,6 +31,8 @@ class CommandGate {
   // true when `participant` (as `client`) now owns the device: it was free, or already that participant's
   // under the same client id.
   bool claim(std::string_view client, const PeerId& participant);
+  // Whether claim(client, participant) would succeed now (the one rule both use).
+  [[nodiscard]] bool may_claim(std::string_view client, const PeerId& participant) const noexcept;
   // true when `participant` owned the device and released it.
   bool release(const PeerId& participant);
   void release_any();

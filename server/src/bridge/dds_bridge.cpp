@@ -65,7 +65,8 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
   events_ = std::make_unique<EventSender>(dds_->event);
   publisher_ = std::make_unique<StatePublisher>(*dds_, links_, *events_, rate_hz, interval);
   intake_ = std::make_unique<CommandIntake>(*dds_, links_, *events_);
-  dispatcher_ = std::make_unique<RequestDispatcher>(*dds_, links_, *events_, *publisher_, settings.claim_grace_s);
+  dispatcher_ = std::make_unique<RequestDispatcher>(*dds_, links_, *events_, *publisher_, settings.claim_grace_s,
+                                                    settings.claim_hold_s);
   lockstep_ = std::make_unique<LockstepSync>(
       settings_, links_, interval, [](void* self) { static_cast<DdsBridge*>(self)->wake_publisher(); }, this);
   for (std::size_t i = 0; i < links_.size(); ++i) publisher_->publish_description(i);

@@ -16,6 +16,7 @@
 
 #include "bridge/command_gate.hpp"
 #include "bridge/round_trip_probe.hpp"
+#include "bridge/stop_latches.hpp"
 #include "config/session_config.hpp"
 
 namespace hapticd::server {
@@ -42,6 +43,10 @@ struct DeviceLink {
   CommandGate gate;
   dds_instance_handle_t claim_writer = 0;  // the request writer that made the claim (gone: the claimant left)
   std::int64_t claimed_ns = 0;             // steady clock; claim_grace_s runs from here
+  StopLatches stops;                       // the E-stops requested over DDS that still hold the device
+  // The request dispatcher's thread only: since when the claimant has had no live command writer (0: it has).
+  std::int64_t silent_since_ns = 0;
+  std::int64_t silent_claimed_ns = 0;  // the claim it counts for
   // Lockstep: the newest state serial an accepted command answered; whether the owner answers every state.
   std::atomic<std::uint64_t> answered{0};
   std::atomic<bool> synced{false};

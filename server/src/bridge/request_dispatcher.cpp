@@ -10,12 +10,13 @@
 namespace hapticd::server {
 
 RequestDispatcher::RequestDispatcher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events,
-                                     StatePublisher& publisher, double claim_grace_s)
+                                     StatePublisher& publisher, double claim_grace_s, double claim_hold_s)
     : dds_(dds),
       links_(links),
       events_(events),
       publisher_(publisher),
-      claim_grace_ns_(static_cast<std::int64_t>(claim_grace_s * 1e9)) {}
+      claim_grace_ns_(static_cast<std::int64_t>(claim_grace_s * 1e9)),
+      claim_hold_ns_(static_cast<std::int64_t>(claim_hold_s * 1e9)) {}
 
 namespace {
 
@@ -44,7 +45,7 @@ void RequestDispatcher::handle_requests() {
     const std::optional<PeerId> requester = dds_.peers.participant_of(dds_.request.get(), info.publication_handle);
     if (requester) {
       if (const hapticd_msg_ControlReply* again = answered_->find(*requester, m)) {
-        (void)dds_.reply.write_once(*again);  // sent again: the same answer, nothing applied twice
+        (void)dds_.reply.write(*again);  // sent again: the same answer, nothing applied twice
         return;
       }
     }
@@ -63,11 +64,17 @@ void RequestDispatcher::handle_requests() {
           dds::text_of(m.client),
           dds::text_of(m.subject),
           std::vector<double>(m.values, m.values + std::clamp<std::int32_t>(m.value_count, 0, hapticd_msg_MAX_VALUES))};
-      if (is_group_request(m.kind)) {
-        answer = d != nullptr ? Answer{false, "'" + target + "' is a device: group requests name a group"}
-                              : dispatch_group(members, every, r);
-      } else {
-        answer = d != nullptr ? dispatch(*d, r) : Answer{false, "'" + target + "' is not a device: name one"};
+      try {  // whatever a request meets (a plugin that throws, memory) is its refusal, never the thread's end
+        if (is_group_request(m.kind)) {
+          answer = d != nullptr ? Answer{false, "'" + target + "' is a device: group requests name a group"}
+                                : dispatch_group(members, every, r);
+        } else {
+          answer = d != nullptr ? dispatch(*d, r) : Answer{false, "'" + target + "' is not a device: name one"};
+        }
+      } catch (const std::exception& e) {
+        answer = Answer{false, std::string("the request failed: ") + e.what()};
+      } catch (...) {
+        answer = Answer{false, "the request failed"};
       }
     }
     hapticd_msg_ControlReply reply{};
@@ -80,7 +87,8 @@ void RequestDispatcher::handle_requests() {
     reply.value_count = static_cast<std::int32_t>(count);
     std::copy_n(answer.values.begin(), count, reply.values);
     if (dispatched) answered_->remember(*requester, reply);
-    (void)dds_.reply.write_once(reply);  // no state kept per client id (beyond the bounded AnsweredRequests)
+    // One instance per device (the reply's key): no state kept per client id beyond the bounded AnsweredRequests.
+    (void)dds_.reply.write(reply);
   });
 }
 
@@ -115,16 +123,22 @@ std::string names_of(const std::vector<std::string>& names) {
 RequestDispatcher::Answer RequestDispatcher::group_claim(const std::vector<DeviceLink*>& members, const Request& r) {
   // All or none. Every request is answered on this one thread, one at a time, and only requests and the claim
   // check (also this thread) change ownership: nothing can claim a device between the check and the claims.
+  // The check is the gate's own rule (free, or this participant's under this client id), so a device claimed
+  // under another client id of the same participant is refused here, not half-way through the claims.
   std::vector<std::string> taken, claimed;
   for (const DeviceLink* d : members) {
     std::lock_guard lock(d->mutex);
-    if (!d->gate.owner().empty() && !d->gate.owned_by(r.requester))
+    if (!d->gate.may_claim(r.client, r.requester))
       taken.push_back(d->session->name() + " by '" + d->gate.owner() + "'");
   }
   if (!taken.empty()) return {false, "none claimed: " + names_of(taken) + " claimed already"};
   for (DeviceLink* d : members) {
     const Answer a = claim(*d, r);
-    HAPTICD_DEMAND(a.accepted);  // free or the requester's, checked above on this thread
+    if (!a.accepted) {  // cannot happen after the check above; if it ever does, undo the claims: all or none
+      for (DeviceLink* c : members)
+        if (std::find(claimed.begin(), claimed.end(), c->session->name()) != claimed.end()) (void)release(*c, r);
+      return {false, "none claimed: " + d->session->name() + ": " + a.message};
+    }
     claimed.push_back(d->session->name());
   }
   return {true, "claimed " + names_of(claimed)};
@@ -147,17 +161,18 @@ RequestDispatcher::Answer RequestDispatcher::group_stop(const std::vector<Device
 }
 
 RequestDispatcher::Answer RequestDispatcher::group_recover(const std::vector<DeviceLink*>& members, const Request& r) {
-  // All or none: every device must be free or the requester's and in its safe mode.
+  // The requester's own stops of these devices are released (lockout-tagout: nobody else can); the recovery is
+  // all or none: every device must be the requester's to recover and in its safe mode.
   std::vector<std::string> refusals, recovered;
-  for (const DeviceLink* d : members) {
-    if (auto refused = refused_unless_owner(*d, r))
+  for (DeviceLink* d : members) {
+    if (auto refused = refused_recovery(*d, r))
       refusals.push_back(d->session->name() + " " + refused->message);
     else if (d->session->fault() == DeviceFault::none)
       refusals.push_back(d->session->name() + " is not in its safe mode");
   }
   if (!refusals.empty()) return {false, "none recovered: " + names_of(refusals)};
   for (DeviceLink* d : members) {
-    const Answer a = recover(*d, r);
+    const Answer a = forward(*d, DeviceRequest::Kind::recover, r);
     if (!a.accepted) return {false, "recovered " + names_of(recovered) + "; " + d->session->name() + ": " + a.message};
     recovered.push_back(d->session->name());
   }
@@ -251,11 +266,30 @@ RequestDispatcher::Answer RequestDispatcher::drive_operator(DeviceLink& d, const
 }
 
 RequestDispatcher::Answer RequestDispatcher::emergency_stop(DeviceLink& d, const Request& r) {
-  return forward(d, DeviceRequest::Kind::emergency_stop, r);  // anyone may stop a device
+  {  // anyone may stop a device; the stop holds until its requester releases it
+    std::lock_guard lock(d.mutex);
+    d.stops.add(Stopper{r.requester, std::string(r.client), r.info.publication_handle});
+  }
+  return forward(d, DeviceRequest::Kind::emergency_stop, r);
+}
+
+bool RequestDispatcher::writer_gone(dds_instance_handle_t writer) const {
+  return !PeerDirectory::matched(dds_.request.get(), writer);
+}
+
+std::optional<RequestDispatcher::Answer> RequestDispatcher::refused_recovery(DeviceLink& d, const Request& r) {
+  std::lock_guard lock(d.mutex);
+  const bool stopper =
+      d.stops.release(r.requester, r.client, [this](dds_instance_handle_t w) { return writer_gone(w); });
+  if (!d.stops.empty())
+    return Answer{false, std::string(stopper ? "its stop released, " : "") + "stopped by " + d.stops.holders() +
+                             ": only who stopped it can release its stop"};
+  if (stopper || d.gate.owner().empty() || d.gate.owned_by(r.requester)) return std::nullopt;
+  return Answer{false, "claimed by '" + d.gate.owner() + "'"};
 }
 
 RequestDispatcher::Answer RequestDispatcher::recover(DeviceLink& d, const Request& r) {
-  if (auto refused = refused_unless_owner(d, r)) return *refused;
+  if (auto refused = refused_recovery(d, r)) return *refused;
   return forward(d, DeviceRequest::Kind::recover, r);
 }
 
@@ -283,7 +317,14 @@ void RequestDispatcher::check_claims() {
       why = "left the domain";
     } else if (now - claimed_ns > claim_grace_ns_ && !dds_.peers.has_live_writer(dds_.command.get(), owner) &&
                !dds_.peers.has_live_writer(dds_.group_command.get(), owner)) {
-      why = "has no live command writer (its process died, froze or never had one)";
+      if (d.silent_since_ns == 0 || d.silent_claimed_ns != claimed_ns) {
+        d.silent_since_ns = now;  // the hold starts
+        d.silent_claimed_ns = claimed_ns;
+      }
+      if (now - d.silent_since_ns > claim_hold_ns_)
+        why = "has had no live command writer for the claim's hold (its process died, froze or never had one)";
+    } else {
+      d.silent_since_ns = 0;  // alive again (or still within the grace): the hold starts anew next time
     }
     if (why == nullptr) continue;
     std::string lost;

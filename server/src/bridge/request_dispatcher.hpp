@@ -2,8 +2,10 @@
 // The bridge's requests, on its receiver thread: each request is answered by the handler of its kind (claim,
 // release, switch scheme, set parameter, operator, E-stop, recover, describe; for a device group: claim all or
 // none, release, E-stop, recover all or none). The requester is the participant
-// of the request's writer, whatever client id the request declares; owner-only requests (release, switch, set,
-// recover) are accepted only from the claimant's participant, or on a free device. A request sent again (the same
+// of the request's writer, whatever client id the request declares; owner-only requests (release, switch, set)
+// are accepted only from the claimant's participant, or on a free device; anyone may stop a device, and a stop
+// latches until its requester recovers it (StopLatches); a fault without a latched stop is recovered by the owner
+// (or anyone on a free device). A request sent again (the same
 // client and request id from the same participant) is answered again and not applied twice (AnsweredRequests). The same
 // thread ends claims whose claimant's participant is gone, and counts the engines' missed deadlines.
 #include <atomic>
@@ -25,14 +27,15 @@ namespace hapticd::server {
 class RequestDispatcher {
  public:
   RequestDispatcher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, StatePublisher& publisher,
-                    double claim_grace_s);
+                    double claim_grace_s, double claim_hold_s);
 
   // Answers every request waiting on the reader.
   void handle_requests();
   // Ends the claims whose claimant is gone: its request writer no longer matched (a clean exit deletes it; a
   // vanished participant is removed when its lease runs out), or no command writer of its participant whose
-  // liveliness holds, once claim_grace_s have passed since the claim (a killed or frozen process stops
-  // asserting it: the command reader's lease, 0.5 s).
+  // liveliness holds for claim_hold_s on end, counted from claim_grace_s after the claim (a killed or frozen
+  // process stops asserting it: the command reader's lease, 0.5 s; a stall shorter than the hold keeps the
+  // claim - the engine's forces fade at its command deadline meanwhile).
   void check_claims();
   // Counts the DDS deadlines the devices' engines missed.
   void check_engine_deadlines();
@@ -67,6 +70,12 @@ class RequestDispatcher {
   // Whether the requester may drive the device (free, or claimed by the requester's participant); else the
   // refusal names the owner.
   std::optional<Answer> refused_unless_owner(const DeviceLink& d, const Request& r) const;
+  // Whether the requester may recover the device (docs/safety.md, "Who may recover a stopped device"): first the
+  // requester's own latched E-stops are released; with others' still latched, no; else a stopper, the owner,
+  // or anyone on a free device may. nullopt: it may; else the refusal.
+  std::optional<Answer> refused_recovery(DeviceLink& d, const Request& r);
+  // Whether the participant of a stop's request writer has left the domain.
+  [[nodiscard]] bool writer_gone(dds_instance_handle_t writer) const;
 
   // The device's part of a request (session/device_requests), once the bridge has checked the requester.
   Answer forward(DeviceLink& d, DeviceRequest::Kind kind, const Request& r);
@@ -85,6 +94,7 @@ class RequestDispatcher {
   EventSender& events_;
   StatePublisher& publisher_;
   std::int64_t claim_grace_ns_;
+  std::int64_t claim_hold_ns_;
   std::atomic<std::uint64_t> claims_ended_{0};
   std::unique_ptr<AnsweredRequests> answered_ = std::make_unique<AnsweredRequests>();  // about 90 kB
 };

@@ -44,12 +44,6 @@ class Writer {
     writer_ = Entity(check(dds_create_writer(parent, topic_.get(), qos.get(), nullptr), "cannot create a DDS writer"));
   }
   bool write(const T& sample) const noexcept { return dds_write(writer_.get(), &sample) == DDS_RETCODE_OK; }
-  // Writes, then unregisters the sample's instance: a writer of one-off messages (replies to ever new client
-  // ids) keeps no state per key.
-  bool write_once(const T& sample) const noexcept {
-    const bool written = dds_write(writer_.get(), &sample) == DDS_RETCODE_OK;
-    return dds_unregister_instance(writer_.get(), &sample) == DDS_RETCODE_OK && written;
-  }
   // With an explicit source timestamp (ns since the epoch, the wall clock).
   bool write(const T& sample, dds_time_t source_time) const noexcept {
     return dds_write_ts(writer_.get(), &sample, source_time) == DDS_RETCODE_OK;

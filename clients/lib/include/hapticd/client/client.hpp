@@ -97,6 +97,12 @@ class HAPTICD_API Client {
   void on_telemetry(std::function<void(const Telemetry&)> callback);
   // Reports that arrived before the callback was set are handed to it at once, on the caller's thread.
   void on_fault_report(std::function<void(const FaultReport&)> callback);
+  // A claim this client made ended without its release: the server handed the device on or freed it (the
+  // claimant seemed gone for longer than the server's claim hold, docs/safety.md). Told once per claim, on the
+  // receive thread, when a state names another owner after one that named this client. Claim again or stop.
+  void on_claim_lost(std::function<void(std::string_view device, std::string_view reason)> callback);
+  // Whether the newest claim of `device` (or of the group holding it) was lost so (reset by a new claim).
+  [[nodiscard]] bool claim_lost(std::string_view device) const;
 
   // ---- requests: the reply, or answered = false after the timeout. A request without a reply is sent again
   // (the same id) every 250 ms until the timeout; the server applies it once and answers each copy. ----
@@ -151,6 +157,8 @@ class HAPTICD_API Client {
   void reset_serial() noexcept;
 
  private:
+  // The devices of a group as its description names them (none before it arrived).
+  [[nodiscard]] std::vector<std::string> group_devices(std::string_view group) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

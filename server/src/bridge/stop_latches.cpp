@@ -1,0 +1,54 @@
+#include "bridge/stop_latches.hpp"
+
+namespace hapticd::server {
+
+bool StopLatches::matches(const Stopper& s, const PeerId& participant, std::string_view client,
+                          const std::function<bool(dds_instance_handle_t)>& writer_gone) const {
+  if (s.participant == participant) return true;
+  // Another participant under the stopper's id: only once the stopper has left (it cannot be two at once).
+  return !client.empty() && s.client == client && writer_gone(s.writer);
+}
+
+void StopLatches::add(const Stopper& who) {
+  for (std::size_t i = 0; i < count_; ++i)
+    if (stoppers_[i].participant == who.participant && stoppers_[i].client == who.client) {
+      stoppers_[i].writer = who.writer;
+      return;
+    }
+  if (count_ == kMax) {
+    overflowed_ = true;
+    return;
+  }
+  stoppers_[count_++] = who;
+}
+
+bool StopLatches::held_by(const PeerId& participant, std::string_view client,
+                          const std::function<bool(dds_instance_handle_t)>& writer_gone) const {
+  for (std::size_t i = 0; i < count_; ++i)
+    if (matches(stoppers_[i], participant, client, writer_gone)) return true;
+  return false;
+}
+
+bool StopLatches::release(const PeerId& participant, std::string_view client,
+                          const std::function<bool(dds_instance_handle_t)>& writer_gone) {
+  bool released = false;
+  for (std::size_t i = 0; i < count_;) {
+    if (matches(stoppers_[i], participant, client, writer_gone)) {
+      stoppers_[i] = stoppers_[--count_];
+      stoppers_[count_] = Stopper{};
+      released = true;
+    } else {
+      ++i;
+    }
+  }
+  return released;
+}
+
+std::string StopLatches::holders() const {
+  std::string out;
+  for (std::size_t i = 0; i < count_; ++i) out += (out.empty() ? "'" : ", '") + stoppers_[i].client + "'";
+  if (overflowed_) out += (out.empty() ? "" : ", ") + std::string("more stoppers than can be told apart");
+  return out;
+}
+
+}  // namespace hapticd::server
