@@ -3,6 +3,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "hapticd/demand.hpp"
+
 namespace hapticd::test_plugins {
 
 ParameterSchema PdController::parameter_schema() {
@@ -53,6 +55,11 @@ ReturnCode PdController::activate(const ControllerInput& current, const JointCom
   differentiator_.reset(current.device.joints.position);
   velocity_.setZero();
   return ReturnCode::ok;
+}
+
+RuntimeReply PdController::handle_request(std::string_view name, const std::vector<double>& values) {
+  HAPTICD_DEMAND(name != "break_invariant");  // fails on purpose for that request
+  return Controller::handle_request(name, values);
 }
 
 void PdController::deactivate() {

@@ -9,7 +9,7 @@ namespace hapticd::test_plugins {
 // Joint PD control towards the IK's joint target (or a fixed setpoint when the chain has no IK):
 // tau = kp (q_d - q) + kd (qd_d - qd), with qd differentiated from the positions (first-order filter) for
 // devices that do not report velocities. Fault injection: fault_at_cycle (a non-finite torque), throw_at_cycle
-// (an exception from update()), throw_in_configure.
+// (an exception from update()), throw_in_configure, the request break_invariant.
 class PdController final : public Controller {
  public:
   static ParameterSchema parameter_schema();
@@ -19,6 +19,9 @@ class PdController final : public Controller {
   // Not noexcept: throw_at_cycle tests that the server survives a plugin breaking the contract.
   ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) override;
   void deactivate() override;
+  // Fault injection: "break_invariant" fails an invariant check (HAPTICD_DEMAND) on the requesting thread - the
+  // server's handling of a broken invariant off the loop (docs/safety.md) is tested with it.
+  RuntimeReply handle_request(std::string_view name, const std::vector<double>& values) override;
 
  private:
   double kp_ = 0.0;

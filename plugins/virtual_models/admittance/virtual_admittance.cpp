@@ -104,6 +104,18 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
       .unit("rad/s")
       .greater_than(0.0)
       .default_value(5.0);
+  s.real("engine_max_acceleration_m_s2",
+         "an admittance-type engine's motion (MOTION commands) is followed with at most this acceleration and "
+         "max_velocity_m_s: a jump in what the engine sends becomes a bounded motion")
+      .unit("m/s^2")
+      .greater_than(0.0)
+      .maximum(1000.0)
+      .default_value(10.0);
+  s.real("engine_max_angular_acceleration_rad_s2", "the same for the orientation, with max_angular_velocity_rad_s")
+      .unit("rad/s^2")
+      .greater_than(0.0)
+      .maximum(10000.0)
+      .default_value(50.0);
   return s;
 }
 
@@ -116,6 +128,8 @@ void VirtualAdmittance::configure(const Parameters& p, const PluginContext& cont
   rotation_ = p.boolean("rotation");
   max_velocity_ = p.real("max_velocity_m_s");
   max_angular_velocity_ = p.real("max_angular_velocity_rad_s");
+  engine_max_acceleration_ = p.real("engine_max_acceleration_m_s2");
+  engine_max_angular_acceleration_ = p.real("engine_max_angular_acceleration_rad_s2");
   period_s_ = 1.0 / context.rate_hz;
   const auto& w = p.real_vector("walls");
   if (w.size() % 6 != 0 || w.size() / 6 > kMaxWalls) {
@@ -201,20 +215,59 @@ Eigen::Matrix<double, 6, 1> VirtualAdmittance::engine_wrench(const EngineInput& 
   return e.weight * w;
 }
 
-void VirtualAdmittance::follow_engine_motion(const EngineInput& e, std::int64_t now_ns) noexcept {
-  // An admittance-type engine: the virtual body is the engine's desired motion, extrapolated with its twist
-  // since it arrived. While the input fades, the body blends back to its own dynamics from where it is.
+namespace {
+
+// The velocity that heads for a target `error` away as fast as the limits allow and still stops there: along the
+// error, at most the speed from which the acceleration limit stops it in time, and no more than it covers in
+// one period (no overshoot).
+Eigen::Vector3d approach_velocity(const Eigen::Vector3d& error, double max_acceleration, double dt) noexcept {
+  const double distance = error.norm();
+  if (!(distance > 0.0)) return Eigen::Vector3d::Zero();
+  return std::min(std::sqrt(2.0 * max_acceleration * distance), distance / dt) * (error / distance);
+}
+
+}  // namespace
+
+void VirtualAdmittance::follow_engine_motion(const EngineInput& e, std::int64_t now_ns,
+                                             const BodyState& start) noexcept {
+  // An admittance-type engine: the virtual body follows the engine's desired motion, extrapolated with its twist
+  // since it arrived, from where the body was at the start of the cycle. It follows through a limiter - speed
+  // (max_velocity_m_s) and acceleration (engine_max_acceleration_m_s2) - so whatever the engine sends, a jump of
+  // its target included, the inner loop is given a motion the device can make (a jump passed straight on was
+  // chased at full torque into the speed limit's fault). While the input fades, the body blends back to its own
+  // dynamics from where it is.
+  const double dt = period_s_;
   const double since = std::max(0.0, static_cast<double>(now_ns - e.received_ns) * 1e-9);
   const Eigen::Vector3d desired = e.motion_pose.position + since * e.motion_twist.linear;
+  const Eigen::Vector3d wanted =
+      clamp_norm(clamp_norm(e.motion_twist.linear, max_velocity_) +
+                     approach_velocity(desired - start.position, engine_max_acceleration_, dt),
+                 max_velocity_);
+  const Eigen::Vector3d followed_velocity =
+      clamp_norm(start.velocity + clamp_norm(wanted - start.velocity, engine_max_acceleration_ * dt), max_velocity_);
+  const Eigen::Vector3d followed_position = start.position + dt * followed_velocity;
   const double a = e.weight;
-  position_ = (1.0 - a) * position_ + a * desired;
-  velocity_ = clamp_norm((1.0 - a) * velocity_ + a * e.motion_twist.linear, max_velocity_);
+  position_ = (1.0 - a) * position_ + a * followed_position;
+  velocity_ = clamp_norm((1.0 - a) * velocity_ + a * followed_velocity, max_velocity_);
   if (rotation_) {
     const double angle = e.motion_twist.angular.norm() * since;
     Eigen::Quaterniond q = e.motion_pose.orientation.normalized();
     if (angle > 0.0) q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, e.motion_twist.angular.normalized())) * q;
-    orientation_ = orientation_.slerp(a, q).normalized();
-    const Eigen::Vector3d body = orientation_.conjugate() * e.motion_twist.angular;
+    // The same limiter on the rotation: the error as a rotation vector in world axes.
+    const Eigen::AngleAxisd error(q * start.orientation.conjugate());
+    const Eigen::Vector3d error_vector = error.angle() * error.axis();
+    const Eigen::Vector3d start_world = start.orientation * start.body_angular_velocity;
+    const Eigen::Vector3d wanted_w =
+        clamp_norm(clamp_norm(e.motion_twist.angular, max_angular_velocity_) +
+                       approach_velocity(error_vector, engine_max_angular_acceleration_, dt),
+                   max_angular_velocity_);
+    const Eigen::Vector3d followed_w = clamp_norm(
+        start_world + clamp_norm(wanted_w - start_world, engine_max_angular_acceleration_ * dt), max_angular_velocity_);
+    Eigen::Quaterniond followed = start.orientation;
+    const double step = followed_w.norm() * dt;
+    if (step > 0.0) followed = (Eigen::Quaterniond(Eigen::AngleAxisd(step, followed_w.normalized())) * followed);
+    orientation_ = orientation_.slerp(a, followed.normalized()).normalized();
+    const Eigen::Vector3d body = orientation_.conjugate() * followed_w;
     body_angular_velocity_ = clamp_norm((1.0 - a) * body_angular_velocity_ + a * body, max_angular_velocity_);
   }
 }
@@ -297,6 +350,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
   take_tuning();  // run-time parameters, at a cycle boundary
   const Eigen::Vector3d world_angular = orientation_ * body_angular_velocity_;
   const EngineInput& e = input.engine;
+  const BodyState start{position_, velocity_, body_angular_velocity_, orientation_};
   // The port where the engine acts: the handle (motion-based) or the virtual body.
   Eigen::Matrix<double, 6, 1> port_twist;
   if (motion_based_) {
@@ -342,7 +396,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
     }
     angular_acceleration_world = orientation_ * wd;
   }
-  if (coupling_ && e.has_motion && e.weight > 0.0) follow_engine_motion(e, cycle.time_ns);
+  if (coupling_ && e.has_motion && e.weight > 0.0) follow_engine_motion(e, cycle.time_ns, start);
   Eigen::Vector3d commanded_acceleration = acceleration;
   if (c.output_saturated && limit_tracking_error(c)) {
     // On the limit: no acceleration away from the handle either (the inner loop gets a consistent target).

@@ -60,7 +60,12 @@ class VirtualAdmittance final : public VirtualModel {
   };
   static constexpr int kMaxWalls = 8;
 
-  void follow_engine_motion(const EngineInput& engine, std::int64_t now_ns) noexcept;
+  // The body's state at the start of a cycle, before its own dynamics: what an engine's motion is followed from.
+  struct BodyState {
+    Eigen::Vector3d position, velocity, body_angular_velocity;
+    Eigen::Quaterniond orientation;
+  };
+  void follow_engine_motion(const EngineInput& engine, std::int64_t now_ns, const BodyState& start) noexcept;
   // Coupling and engine wrench [force; torque] (world) on a body at (position, orientation) moving with
   // (velocity, angular velocity), scaled by the engine input's weight.
   Eigen::Matrix<double, 6, 1> engine_wrench(const EngineInput& engine, const Eigen::Vector3d& position,
@@ -90,6 +95,8 @@ class VirtualAdmittance final : public VirtualModel {
   bool coupling_ = false;
   double coupling_k_ = 2000.0, coupling_b_ = 20.0, coupling_kr_ = 20.0, coupling_br_ = 0.2;
   double max_velocity_ = 1.0, max_angular_velocity_ = 5.0;
+  // An admittance-type engine's motion is followed within these (and the speed limits above).
+  double engine_max_acceleration_ = 10.0, engine_max_angular_acceleration_ = 50.0;
   double max_tracking_error_ = 0.0, max_tracking_angle_ = 0.0;  // 0: no anti-windup limit
   // true when the translation was limited.
   bool limit_tracking_error(const ChainState& chain) noexcept;

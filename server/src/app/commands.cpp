@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <thread>
 
+#include "app/invariant_stop.hpp"
 #include "app/served_session.hpp"
 #include "app/session_monitor.hpp"
 #include "app/session_report.hpp"
@@ -101,6 +103,7 @@ int run_session(const RunOptions& options) {
   const bool lockstep = server.clock == ClockMode::lockstep;
   if (lockstep && server.duration_s <= 0.0)
     spdlog::warn("lockstep clock without a duration: the session runs as fast as possible until SIGINT/SIGTERM");
+  for (const std::string& w : s->config.warnings) spdlog::warn("safety: {}", w);
 
   // The stacks the threads still to come reserve (loop, recorder, bridge; Cyclone creates its own with smaller
   // stacks), and 8 MB of working memory: calibrated with ulimit -v (docs/safety.md).
@@ -113,6 +116,7 @@ int run_session(const RunOptions& options) {
   std::vector<DeviceSession*> sessions;
   for (const auto& d : s->sessions) sessions.push_back(d.get());
   const std::atomic<bool>& stop = install_stop_signal_handlers();
+  install_invariant_stop(stop_flag());  // a broken invariant off the loop: a safe stop, exit code 4 (no abort)
   std::unique_ptr<ServedSession> served;
   try {  // before any device is powered
     std::vector<GroupStage*> stages;
@@ -161,6 +165,12 @@ int run_session(const RunOptions& options) {
     spdlog::error("session failed: {} (no device was left powered)", e.what());
     return kExitRuntimeError;
   }
+  const std::optional<std::string> broken = invariant_failure();
+  if (broken)
+    spdlog::error(
+        "internal invariant failed: {}; this is a bug, please report it; every device was stopped through "
+        "its safe mode",
+        *broken);
   for (const auto& w : result.warnings) spdlog::warn("{}", w);
   for (const auto& e : result.plugin_errors) spdlog::error("{}", e);
   if (bridge != nullptr) {
@@ -220,6 +230,9 @@ int run_session(const RunOptions& options) {
       for (const SafetyEvent& e : served->monitor().safety_log(i))
         events.push_back({sessions[i]->name(), e.kind == SafetyEvent::Kind::fault ? "fault" : "recovery",
                           std::string(fault_code(e.fault)), e.cycle, static_cast<double>(e.time_ns) * 1e-9});
+    if (recorder->failed())  // the recording's own loss, in the file it concerns: device "", cycle = records kept
+      events.push_back({"", "recording_failed", "lost " + std::to_string(recorder->lost()) + " device-cycles",
+                        recorder->written(), result.loop_time_s});
     recorder->close(report_json(report), events);
     recording_counts();
   }
@@ -228,8 +241,9 @@ int run_session(const RunOptions& options) {
     const auto& c = view->counters();
     spdlog::info(
         "live view: {} viewer(s) connected, {} refused, {} messages sent, {} dropped (slow viewers), {} bad "
-        "requests",
-        c.connections.load(), c.refused.load(), c.sent.load(), c.dropped.load(), c.bad_requests.load());
+        "requests, {} disconnected (slow, not reading or idle)",
+        c.connections.load(), c.refused.load(), c.sent.load(), c.dropped.load(), c.bad_requests.load(),
+        c.disconnected.load());
   }
   if (recorder) {
     if (recorder->failed()) {
@@ -247,6 +261,12 @@ int run_session(const RunOptions& options) {
       spdlog::error("cannot write {}", options.stats_json);
       return kExitRuntimeError;
     }
+  }
+  if (broken) {
+    // The thread that failed is waiting in the handler: leave without the destructors that would join it.
+    spdlog::default_logger()->flush();
+    std::fflush(stdout);
+    std::_Exit(kExitRuntimeError);
   }
   if (any_device_faulted(report)) return kExitDeviceFault;
   if (!result.plugin_errors.empty() || served->monitor().plugin_errors() > 0) return kExitRuntimeError;

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <thread>
 
+#include "app/invariant_stop.hpp"
 #include "group/group_stage.hpp"
 
 namespace hapticd::server {
@@ -127,6 +128,9 @@ ExecutorResult ServedSession::run(const std::atomic<bool>& stop) {
         s.recorder_->finish();  // the summary and the close follow (close_recording)
         s.monitor_->poll();     // a failure at the end (the last chunk, the sync, the close) is announced too
       }
+      // After a broken invariant one of their threads is parked in the handler (app/invariant_stop): joining it
+      // would hang; the process ends with exit code 4 without them.
+      if (invariant_failure()) return;
       if (s.live_view_) s.live_view_->stop();
       if (s.bridge_) s.bridge_->stop();
     }

@@ -136,6 +136,12 @@ void Executor::loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_
   result.loop_time_s = static_cast<double>(clock.now_ns() - start_ns) * 1e-9;
 }
 
+namespace {
+std::atomic<int> g_loops_running{0};
+}  // namespace
+
+int Executor::loops_running() noexcept { return g_loops_running.load(std::memory_order_acquire); }
+
 ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std::function<void()>& monitor) {
   ExecutorResult result;
   if (!settings_.lockstep && settings_.lock_memory)
@@ -169,6 +175,9 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
         // thread that powers the devices, and the kernel's real-time throttling would then stall the loops).
         go.wait(false, std::memory_order_acquire);
         if (cancelled.load(std::memory_order_acquire)) return;
+        // A broken invariant here aborts at once: nothing else can take this loop's devices to their safe mode.
+        internal::abort_on_demand_failure_in_this_thread();
+        g_loops_running.fetch_add(1, std::memory_order_acq_rel);
         // "hapticd-loop", or "loop-<group>" for a group's own loop: found by name in ps, top and traces.
         name_this_thread(loops_[k]->name == "session" ? "hapticd-loop" : "loop-" + loops_[k]->name);
         if (!settings_.lockstep) minimise_timer_slack();
@@ -180,6 +189,7 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
           MonotonicClock clock;
           loop(*loops_[k], clock, stop_requested, result.loops[k]);
         }
+        g_loops_running.fetch_sub(1, std::memory_order_acq_rel);
         running.fetch_sub(1, std::memory_order_release);
       });
       if (settings_.lockstep) continue;

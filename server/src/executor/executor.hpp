@@ -96,6 +96,8 @@ class Executor {
   // down and deactivates. While the loop runs, the calling thread calls `monitor` every 20 ms (for logging:
   // the loop never logs).
   ExecutorResult run(const std::atomic<bool>& stop_requested, const std::function<void()>& monitor = {});
+  // Any thread: the loop threads of every executor in the process that have started and not yet ended.
+  [[nodiscard]] static int loops_running() noexcept;
 
   [[nodiscard]] std::int64_t period_ns() const noexcept { return period_ns_; }
   // Before run(). With several loops it is called by each loop's thread (concurrently in real time).

@@ -72,10 +72,10 @@ std::optional<Stage> stage_named(std::string_view stage) {
   return std::nullopt;
 }
 
-// The stage's plugin, or why there is none.
-std::variant<const PluginDescriptor*, RuntimeReply> plugin_of(const DeviceSession& device, Stage stage,
-                                                              std::string_view stage_text) {
-  if (const PluginDescriptor* plugin = device.stage_plugin(stage)) return plugin;
+// The stage's plugin, pinned to the scheme running now, or why there is none.
+std::variant<DeviceSession::StagePlugin, RuntimeReply> plugin_of(const DeviceSession& device, Stage stage,
+                                                                 std::string_view stage_text) {
+  if (const auto plugin = device.stage_plugin(stage)) return *plugin;
   if (device.chain().schemes.empty())
     return RuntimeReply{false, "device '" + device.name() + "' has no running scheme"};
   return RuntimeReply{false, "scheme '" + device.schemes().active_name() + "' has no " + std::string(stage_text)};
@@ -110,12 +110,12 @@ RuntimeReply plugin_command(DeviceSession& device, Stage stage, std::string_view
                             const std::vector<double>& values) {
   const auto plugin = plugin_of(device, stage, stage_text);
   if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
-  return device.plugin_request(stage, name, values);
+  return device.plugin_request(std::get<DeviceSession::StagePlugin>(plugin), name, values);
 }
 
 // A parameter of one of the plugin stages ("<stage>.<parameter>", the stage not "safety"), or why there is none.
 struct PluginParameter {
-  Stage stage;
+  DeviceSession::StagePlugin stage;
   std::string_view name;
   const PluginDescriptor& plugin;
 };
@@ -125,7 +125,8 @@ std::variant<PluginParameter, RuntimeReply> plugin_parameter(const DeviceSession
   if (!stage) return unknown_stage(stage_text);
   const auto plugin = plugin_of(device, *stage, stage_text);
   if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
-  return PluginParameter{*stage, name, *std::get<const PluginDescriptor*>(plugin)};
+  const auto& pinned = std::get<DeviceSession::StagePlugin>(plugin);
+  return PluginParameter{pinned, name, *pinned.descriptor};
 }
 
 // A parameter the schema declares is set generically (tunable ones only); other names are the plugin's own
@@ -189,7 +190,7 @@ ParameterSpec passivity_control_spec() {
 // and controller's, then the safety stage's.
 struct Listed {
   std::string_view stage_text;
-  std::optional<Stage> stage;  // none: the safety stage
+  std::optional<DeviceSession::StagePlugin> stage;  // none: the safety stage
   ParameterSpec spec;
 };
 std::vector<Listed> listed_parameters(const DeviceSession& device) {
@@ -197,10 +198,10 @@ std::vector<Listed> listed_parameters(const DeviceSession& device) {
   for (const auto& [stage, text] : {std::pair{Stage::device, std::string_view("device")},
                                     std::pair{Stage::virtual_model, std::string_view("virtual_model")},
                                     std::pair{Stage::controller, std::string_view("controller")}}) {
-    const PluginDescriptor* plugin = device.stage_plugin(stage);
-    if (plugin == nullptr) continue;
-    const ParameterSchema schema = plugin->parameter_schema();
-    for (const ParameterSpec& spec : schema.specs()) out.push_back({text, stage, spec});
+    const auto plugin = device.stage_plugin(stage);
+    if (!plugin) continue;
+    const ParameterSchema schema = plugin->descriptor->parameter_schema();
+    for (const ParameterSpec& spec : schema.specs()) out.push_back({text, plugin, spec});
   }
   out.push_back({"safety", std::nullopt, passivity_control_spec()});
   return out;

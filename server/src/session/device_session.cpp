@@ -1,6 +1,7 @@
 #include "session/device_session.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -102,7 +103,11 @@ ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
   }
 }
 
-void DeviceSession::service() { schemes_.service(); }
+void DeviceSession::service() {
+  // A request never reaches a plugin while it is deactivated; while one is served, the next round does it.
+  std::unique_lock lock(plugin_requests_, std::try_to_lock);
+  if (lock.owns_lock()) schemes_.service();
+}
 
 std::string DeviceSession::fault_text() const {
   const DeviceFault f = fault();
@@ -112,34 +117,46 @@ std::string DeviceSession::fault_text() const {
   return text;
 }
 
-const PluginDescriptor* DeviceSession::stage_plugin(Stage stage) const noexcept {
-  if (stage == Stage::device) return chain_.device.descriptor;
-  const SchemeChain* scheme = running_scheme();
-  if (scheme == nullptr) return nullptr;
-  if (stage == Stage::controller) return scheme->controller.descriptor;
-  return scheme->virtual_model ? scheme->virtual_model->descriptor : nullptr;
+std::optional<DeviceSession::StagePlugin> DeviceSession::stage_plugin(Stage stage) const noexcept {
+  if (stage == Stage::device) return StagePlugin{stage, 0, chain_.device.descriptor};
+  if (chain_.schemes.empty()) return std::nullopt;
+  const std::size_t index = schemes_.active_index();  // read once: the loop may switch right after
+  const SchemeChain& scheme = chain_.schemes[index];
+  if (stage == Stage::controller) return StagePlugin{stage, index, scheme.controller.descriptor};
+  if (!scheme.virtual_model) return std::nullopt;
+  return StagePlugin{stage, index, scheme.virtual_model->descriptor};
 }
 
 template <class F>
-decltype(auto) DeviceSession::with_stage_plugin(Stage stage, F&& f) {
-  HAPTICD_DEMAND(stage_plugin(stage) != nullptr);  // the caller checked that the stage has a plugin
-  if (stage == Stage::device) return f(chain_.device);
-  SchemeChain& scheme = *running_scheme();
-  if (stage == Stage::controller) return f(scheme.controller);
+decltype(auto) DeviceSession::with_stage_plugin(const StagePlugin& stage, F&& f) {
+  if (stage.stage == Stage::device) return f(chain_.device);
+  SchemeChain& scheme = chain_.schemes[stage.scheme];
+  if (stage.stage == Stage::controller) return f(scheme.controller);
+  // A scheme's stages are fixed at start-up: the one stage_plugin() found is there.
+  HAPTICD_DEMAND(scheme.virtual_model.has_value());
   return f(*scheme.virtual_model);
 }
 
-RuntimeReply DeviceSession::plugin_request(Stage stage, std::string_view name, const std::vector<double>& values) {
+RuntimeReply DeviceSession::plugin_request(const StagePlugin& stage, std::string_view name,
+                                           const std::vector<double>& values) {
   std::lock_guard lock(plugin_requests_);
-  return with_stage_plugin(stage, [&](auto& plugin) { return plugin->handle_request(name, values); });
+  return with_stage_plugin(stage, [&](auto& plugin) -> RuntimeReply {
+    try {  // a plugin's command that throws is refused with what it threw
+      return plugin->handle_request(name, values);
+    } catch (const std::exception& e) {
+      return {false, "'" + std::string(name) + "' failed in plugin '" + plugin.descriptor->name + "': " + e.what()};
+    } catch (...) {
+      return {false, "'" + std::string(name) + "' failed in plugin '" + plugin.descriptor->name + "'"};
+    }
+  });
 }
 
-Parameters DeviceSession::stage_parameters(Stage stage) {
+Parameters DeviceSession::stage_parameters(const StagePlugin& stage) {
   std::lock_guard lock(plugin_requests_);
   return with_stage_plugin(stage, [](auto& plugin) { return plugin.parameters; });
 }
 
-RuntimeReply DeviceSession::tune(Stage stage, const std::string& name, ParameterValue value) {
+RuntimeReply DeviceSession::tune(const StagePlugin& stage, const std::string& name, ParameterValue value) {
   std::lock_guard lock(plugin_requests_);
   return with_stage_plugin(stage, [&](auto& plugin) -> RuntimeReply {
     Parameters next = plugin.parameters;
@@ -512,7 +529,12 @@ void DeviceSession::raise_group_fault(DeviceFault fault, const CycleTime& cycle,
 
 void DeviceSession::deactivate() {
   chain_active_ = false;
-  schemes_.service(true);
+  {
+    // Waits for a request being served, but not for good: a request thread that is stuck (a broken invariant
+    // parks it) must not keep the device from being disabled.
+    std::unique_lock lock(plugin_requests_, std::chrono::seconds(2));
+    schemes_.service(true);
+  }
   disable_error_.clear();
   try {
     chain_.device->disable();

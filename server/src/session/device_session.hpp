@@ -182,17 +182,24 @@ class DeviceSession {
   }
   // Not real-time safe, not the loop thread (device_requests routes here): the plugin of one stage that takes
   // run-time requests - the device, or the running scheme's virtual model or controller (inverse kinematics
-  // takes none) - its descriptor (nullptr: the running scheme has no such stage, or there is no scheme), a
-  // command of the plugin's own, the values of its parameters in effect, and a run-time set of a tunable
-  // parameter already checked against the schema (the plugin's tune() may still refuse it). Only to a stage
-  // that has a plugin; requests to one device's plugins are handled one at a time.
+  // takes none). stage_plugin() looks once and pins what it saw: the loop may switch schemes while a request is
+  // served, and every scheme's plugins stay configured, so a request acts on the plugin it looked up (its
+  // command, the values of its parameters in effect, a run-time set of a tunable parameter already checked
+  // against the schema - the plugin's tune() may still refuse it), never on a stage that vanished in between.
+  // nullopt: the running scheme has no such stage, or there is no scheme. Requests to one device's plugins are
+  // handled one at a time, and never while service() deactivates a scheme.
   enum class Stage : std::uint8_t { device, virtual_model, controller };
-  [[nodiscard]] const PluginDescriptor* stage_plugin(Stage stage) const noexcept;
-  RuntimeReply plugin_request(Stage stage, std::string_view name, const std::vector<double>& values);
-  [[nodiscard]] Parameters stage_parameters(Stage stage);
-  RuntimeReply tune(Stage stage, const std::string& name, ParameterValue value);
+  struct StagePlugin {
+    Stage stage;
+    std::size_t scheme;  // the scheme's index (unused for the device)
+    const PluginDescriptor* descriptor;
+  };
+  [[nodiscard]] std::optional<StagePlugin> stage_plugin(Stage stage) const noexcept;
+  RuntimeReply plugin_request(const StagePlugin& stage, std::string_view name, const std::vector<double>& values);
+  [[nodiscard]] Parameters stage_parameters(const StagePlugin& stage);
+  RuntimeReply tune(const StagePlugin& stage, const std::string& name, ParameterValue value);
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
-  // (the executor's monitor does); deactivate() does it too.
+  // (the executor's monitor does; a round while a request is served is skipped); deactivate() does it too.
   void service();
   // The thread that calls service() and deactivate(): what the chain's plugins threw as they were deactivated
   // since the last call ("scheme 's', controller 'c': what"). They were taken out all the same.
@@ -212,9 +219,9 @@ class DeviceSession {
   [[nodiscard]] const SchemeChain* running_scheme() const noexcept {
     return chain_.schemes.empty() ? nullptr : &chain_.schemes[schemes_.active_index()];
   }
-  // f(PluginInstance<T>&) on the stage's plugin (which must exist).
+  // f(PluginInstance<T>&) on the pinned stage's plugin (stage_plugin() found it: schemes never lose a stage).
   template <class F>
-  decltype(auto) with_stage_plugin(Stage stage, F&& f);
+  decltype(auto) with_stage_plugin(const StagePlugin& stage, F&& f);
   // Phase (a)'s estimate; the chain restarts from the measured state when it (re)activates.
   void estimate(const CycleTime& cycle) noexcept;
   // Phase (c)'s work; plugins may throw despite the contract: caught by run_chain.
@@ -265,7 +272,10 @@ class DeviceSession {
   bool stopped_ = false;                    // loop thread: the safe stop has begun
   std::atomic<int> passivity_request_{-1};  // -1: none, else 0/1
   std::string disable_error_;
-  std::mutex plugin_requests_;  // one request to this device's plugins at a time (never the loop)
+  // One request to this device's plugins, or service(), at a time (never the loop). Timed: the monitor's
+  // service() skips a round while a request runs, and deactivate() does not wait for good on a request thread
+  // that is stuck (a broken invariant parks it: app/invariant_stop).
+  std::timed_mutex plugin_requests_;
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;
   bool measurement_valid_ = false;
