@@ -1,18 +1,16 @@
-// The live view's picture for docs/live-view.md: Debian's chromium, headless, opens tools/live_view/viewer.html on a
-// running session's live view, waits while it draws, and saves a PNG (through the DevTools protocol, with `ws`).
-// Not a test. Usage: node screenshot.mjs LIVE_VIEW_URL OUT.png [WAIT_S]
+// The live view's picture for docs/live-view.md: Debian's chromium, headless, opens the page a running session's
+// live view serves (tools/live_view/viewer.html, at http://ADDRESS:PORT/), waits while it draws, and saves a PNG
+// (through the DevTools protocol, with `ws`). Not a test. Usage: node screenshot.mjs LIVE_VIEW_URL OUT.png [WAIT_S]
 import { spawn } from "node:child_process";
 import { writeFileSync } from "node:fs";
-import { fileURLToPath } from "node:url";
 import { WebSocket } from "ws";
 
 const [url, out, waitText] = process.argv.slice(2);
-const page = new URL("../../tools/live_view/viewer.html", import.meta.url);
-page.searchParams.set("url", url);
+const page = url.replace(/^ws:/, "http:") + "/";  // the page from the server's own origin
 const port = 9300 + Math.floor(Math.random() * 500);
 const chromium = spawn("chromium", ["--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
   `--remote-debugging-port=${port}`, "--remote-debugging-address=127.0.0.1", "--window-size=1440,480",
-  fileURLToPath(page).replace(/^/, "file://") + page.search], { stdio: "ignore" });
+  page], { stdio: "ignore" });
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 try {
   let target;

@@ -7,6 +7,7 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 #include <deque>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <unordered_map>
@@ -37,7 +38,35 @@ bool offers(std::string_view header, std::string_view wanted) {
 
 std::string_view to_std(beast::string_view s) { return {s.data(), s.size()}; }
 
+// A viewer's text as a reply may quote it: a few words, never what it sent in full.
+std::string quoted(std::string_view text) {
+  constexpr std::size_t kMax = 40;
+  std::string out(text.substr(0, kMax));
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == '"' || c == '\\') c = '?';
+  return text.size() > kMax ? out + "..." : out;
+}
+
+// Whether a page's Origin ("scheme://host[:port]") is served from this machine.
+bool loopback_origin(std::string_view origin) {
+  const std::size_t scheme = origin.find("://");
+  if (scheme == std::string_view::npos) return false;
+  std::string_view host = origin.substr(scheme + 3);
+  if (host.substr(0, 5) == "[::1]") return host.size() == 5 || host[5] == ':';
+  host = host.substr(0, host.find(':'));
+  if (host == "localhost") return true;
+  return host.substr(0, 4) == "127." && host.find_first_not_of("0123456789.") == std::string_view::npos;
+}
+
 }  // namespace
+
+bool origin_allowed(std::string_view origin, const std::vector<std::string>& allowed) {
+  if (origin.empty()) return true;  // not a browser page: a program, which could claim any origin anyway
+  if (loopback_origin(origin)) return true;
+  return std::find(allowed.begin(), allowed.end(), origin) != allowed.end();
+}
+
+namespace {}  // namespace
 
 class Viewer;
 
@@ -63,6 +92,9 @@ struct FoxgloveServer::Impl {
   void accept();
   void tick();
   void remove(const Viewer* viewer);
+  // When every slot is taken: disconnects the viewer idle (subscribed to nothing) longest, past idle_grace; false
+  // if there is none.
+  bool evict_idle_viewer();
   [[nodiscard]] bool has_channel(std::uint32_t id) const {
     return std::any_of(channels.begin(), channels.end(), [&](const Channel& c) { return c.id == id; });
   }
@@ -74,6 +106,7 @@ class Viewer : public std::enable_shared_from_this<Viewer> {
   Viewer(FoxgloveServer::Impl& server, tcp::socket socket) : server_(server), ws_(std::move(socket)) {}
 
   void start() {
+    connected_at_ = std::chrono::steady_clock::now();
     beast::get_lowest_layer(ws_).expires_after(server_.options.handshake_timeout);
     http::async_read(beast::get_lowest_layer(ws_), buffer_, request_,
                      [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_request(ec); });
@@ -85,17 +118,46 @@ class Viewer : public std::enable_shared_from_this<Viewer> {
     beast::get_lowest_layer(ws_).close();
   }
 
-  // Queues a message; binary data is dropped (and counted) when the queue is full.
+  // Queues a message. Data (binary) is dropped and counted when the queue is full; a reply (text) that does not
+  // fit, or one past max_queued_replies, disconnects the viewer: it sends requests and does not read the answers.
   void send(std::shared_ptr<const std::string> data, bool binary) {
     if (!open_) return;
-    if (binary && queued_bytes_ + data->size() > server_.options.max_queued_bytes) {
+    const FoxgloveServerOptions& o = server_.options;
+    if (queued_bytes_ + data->size() > o.max_queued_bytes) {
+      if (!binary) return disconnect();
       server_.counters.dropped.fetch_add(1, std::memory_order_relaxed);
       return;
     }
+    if (!binary && queued_replies_ >= o.max_queued_replies) return disconnect();
+    if (queue_.empty()) last_progress_ = std::chrono::steady_clock::now();
     queued_bytes_ += data->size();
+    if (!binary) ++queued_replies_;
     queue_.push_back({std::move(data), binary});
     server_.counters.sent.fetch_add(1, std::memory_order_relaxed);
     if (queue_.size() == 1) write_next();
+  }
+
+  // Closes the connection; the failing read then removes the viewer (not here: publish may be iterating).
+  void disconnect() {
+    if (closing_) return;
+    closing_ = true;
+    open_ = false;
+    server_.counters.disconnected.fetch_add(1, std::memory_order_relaxed);
+    close();
+  }
+
+  // Too slow (nothing taken for slow_viewer_timeout while messages wait), or idle (no subscription
+  // idle_timeout after connecting): disconnected.
+  void check(std::chrono::steady_clock::time_point now) {
+    const FoxgloveServerOptions& o = server_.options;
+    if (!queue_.empty() && now - last_progress_ > o.slow_viewer_timeout) return disconnect();
+    if (subscriptions_.empty() && now - connected_at_ > o.idle_timeout) return disconnect();
+  }
+  // Subscribed to nothing since it connected this long ago (a candidate to give its slot to a new viewer).
+  [[nodiscard]] std::optional<std::chrono::steady_clock::duration> idle_for(
+      std::chrono::steady_clock::time_point now) const {
+    if (!subscriptions_.empty() || closing_) return std::nullopt;
+    return now - connected_at_;
   }
 
   // The subscriptions of this viewer on a channel (their ids), for publish.
@@ -117,6 +179,17 @@ class Viewer : public std::enable_shared_from_this<Viewer> {
 
   void on_request(beast::error_code ec) {
     if (ec) return server_.remove(this);
+    if (!origin_allowed(to_std(request_[http::field::origin]), server_.options.allowed_origins)) {
+      server_.counters.refused.fetch_add(1, std::memory_order_relaxed);
+      return refuse(http::status::forbidden,
+                    "a page from " + quoted(to_std(request_[http::field::origin])) +
+                        " may not watch this session: pages served from this machine may, and the origins listed "
+                        "in the session's live_view.allowed_origins\n");
+    }
+    if (!websocket::is_upgrade(request_) && request_.method() == http::verb::get && !server_.options.page.empty()) {
+      const std::string_view target = to_std(request_.target());
+      if (target == "/" || target.substr(0, 2) == "/?" || target.substr(0, 12) == "/viewer.html") return serve_page();
+    }
     if (!websocket::is_upgrade(request_) ||
         !offers(to_std(request_[http::field::sec_websocket_protocol]), kSubprotocol)) {
       server_.counters.refused.fetch_add(1, std::memory_order_relaxed);
@@ -134,10 +207,16 @@ class Viewer : public std::enable_shared_from_this<Viewer> {
     ws_.async_accept(request_, [self = shared_from_this()](beast::error_code e) { self->on_accepted(e); });
   }
 
-  void refuse(http::status status, std::string text) {
+  void serve_page() { respond(http::status::ok, "text/html; charset=utf-8", std::string(server_.options.page)); }
+
+  void refuse(http::status status, std::string text) { respond(status, "text/plain", std::move(text)); }
+
+  // A plain HTTP answer, then the connection closes.
+  void respond(http::status status, const char* content_type, std::string body) {
     auto response = std::make_shared<http::response<http::string_body>>(status, request_.version());
-    response->set(http::field::content_type, "text/plain");
-    response->body() = std::move(text);
+    response->set(http::field::content_type, content_type);
+    response->set(http::field::cache_control, "no-store");
+    response->body() = std::move(body);
     response->prepare_payload();
     response->keep_alive(false);
     http::async_write(beast::get_lowest_layer(ws_), *response,
@@ -185,7 +264,8 @@ class Viewer : public std::enable_shared_from_this<Viewer> {
       case ClientRequest::Kind::invalid:
         return reply_error(2, "request refused: " + r.error);
       case ClientRequest::Kind::unsupported:
-        return reply_error(1, "'" + r.op + "' is not offered by this server (it offers subscribe and unsubscribe)");
+        return reply_error(
+            1, "'" + quoted(r.op) + "' is not offered by this server (it offers subscribe and unsubscribe)");
       case ClientRequest::Kind::subscribe:
         for (const Subscription& s : r.subscriptions) {
           if (!server_.has_channel(s.channel))
@@ -209,11 +289,14 @@ class Viewer : public std::enable_shared_from_this<Viewer> {
     ws_.binary(next.binary);
     ws_.async_write(asio::buffer(*next.data), [self = shared_from_this()](beast::error_code ec, std::size_t) {
       self->queued_bytes_ -= self->queue_.front().data->size();
+      if (!self->queue_.front().binary) --self->queued_replies_;
       self->queue_.pop_front();
+      self->last_progress_ = std::chrono::steady_clock::now();
       if (ec) {
         self->open_ = false;
         self->queue_.clear();
         self->queued_bytes_ = 0;
+        self->queued_replies_ = 0;
         return self->server_.remove(self.get());
       }
       if (!self->queue_.empty()) self->write_next();
@@ -225,8 +308,11 @@ class Viewer : public std::enable_shared_from_this<Viewer> {
   beast::flat_buffer buffer_, in_;
   http::request<http::string_body> request_;
   bool open_ = false;
+  bool closing_ = false;
   std::deque<Outgoing> queue_;
   std::size_t queued_bytes_ = 0;
+  std::size_t queued_replies_ = 0;
+  std::chrono::steady_clock::time_point connected_at_, last_progress_;
   std::unordered_map<std::uint32_t, std::uint32_t> subscriptions_;  // subscription id -> channel
 };
 
@@ -236,7 +322,7 @@ void FoxgloveServer::Impl::accept() {
       if (!stopped) accept();
       return;
     }
-    if (static_cast<int>(viewers.size()) >= options.max_clients) {
+    if (static_cast<int>(viewers.size()) >= options.max_clients && !evict_idle_viewer()) {
       counters.refused.fetch_add(1, std::memory_order_relaxed);
       beast::error_code ignored;
       socket.shutdown(tcp::socket::shutdown_both, ignored);
@@ -250,6 +336,20 @@ void FoxgloveServer::Impl::accept() {
   });
 }
 
+bool FoxgloveServer::Impl::evict_idle_viewer() {
+  const auto now = std::chrono::steady_clock::now();
+  Viewer* longest = nullptr;
+  std::chrono::steady_clock::duration idle{};
+  for (const auto& v : viewers)
+    if (const auto d = v->idle_for(now); d && *d > options.idle_grace && *d > idle) {
+      idle = *d;
+      longest = v.get();
+    }
+  if (longest == nullptr) return false;
+  longest->disconnect();  // its slot is free once its read fails
+  return true;
+}
+
 void FoxgloveServer::Impl::remove(const Viewer* viewer) {
   const auto it = std::find_if(viewers.begin(), viewers.end(), [&](const auto& v) { return v.get() == viewer; });
   if (it != viewers.end()) viewers.erase(it);
@@ -258,7 +358,15 @@ void FoxgloveServer::Impl::remove(const Viewer* viewer) {
 
 void FoxgloveServer::Impl::tick() {
   if (stopped) return;
-  if (on_tick && !viewers.empty()) on_tick();
+  const auto checked = std::chrono::steady_clock::now();
+  for (const auto& v : viewers) v->check(checked);  // disconnects only: removal comes with the failed read
+  if (on_tick && !viewers.empty()) {
+    try {  // a tick that fails (memory) loses this tick's messages, not the next ticks
+      on_tick();
+    } catch (...) {
+      counters.dropped.fetch_add(1, std::memory_order_relaxed);
+    }
+  }
   // Fixed rate: the next tick from the planned time (a late one is not made up for).
   const auto now = std::chrono::steady_clock::now();
   next_tick += period;
@@ -306,7 +414,17 @@ void FoxgloveServer::start(std::chrono::nanoseconds period, std::function<void()
   s.next_tick = std::chrono::steady_clock::now();
   s.accept();
   s.tick();
-  s.thread = std::thread([&s] { s.io.run(); });
+  s.thread = std::thread([&s] {
+    // A handler that throws (memory) loses its viewer's message or request, never the thread: it runs on.
+    for (;;) {
+      try {
+        s.io.run();
+        return;
+      } catch (...) {
+        s.counters.bad_requests.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+  });
 }
 
 void FoxgloveServer::stop() {

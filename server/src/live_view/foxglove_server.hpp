@@ -3,8 +3,10 @@
 // to a limit, tells each the server info and the channels, keeps their subscriptions, and sends each message
 // published on a channel to whoever subscribed to it. One thread of its own runs every socket and calls the
 // owner's tick at a fixed period; publish() is called from that tick. A viewer that cannot keep up loses
-// messages (counted), never the server's memory or time; a malformed request is answered with an error status
-// and counted, and the viewer stays connected. Boost.Beast lives in this one file's implementation.
+// messages (counted), never the server's memory or time: everything queued for a viewer is bounded, and one
+// that stops taking what it is sent, or never subscribes, is disconnected. A malformed request is answered with
+// an error status (never echoing more than a few words of it) and counted. Browser pages connect only from the
+// allowed origins. Boost.Beast lives in this one file's implementation.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -22,9 +24,22 @@ struct FoxgloveServerOptions {
   std::string address = "127.0.0.1";
   int port = 8765;  // 0: any free port (port() tells)
   int max_clients = 4;
-  std::string name = "hapticd";             // the server info's name
-  std::size_t max_queued_bytes = 8u << 20;  // per viewer; above it its messages are dropped
+  std::string name = "hapticd";  // the server info's name
+  // Per viewer, everything queued for it (data and replies): above it data messages are dropped; a reply that
+  // does not fit, or a viewer that has not taken a message for slow_viewer_timeout, is disconnected.
+  std::size_t max_queued_bytes = 8u << 20;
+  std::size_t max_queued_replies = 32;  // status replies waiting: more means the viewer does not read them
+  std::chrono::milliseconds slow_viewer_timeout{3000};
+  // A viewer that has subscribed to nothing this long after its handshake is disconnected; and when every slot
+  // is taken, a new viewer takes the slot of the one idle longest (after idle_grace).
+  std::chrono::milliseconds idle_timeout{10000};
+  std::chrono::milliseconds idle_grace{1000};
   std::chrono::seconds handshake_timeout{5};
+  // Web pages that may connect (their Origin header): pages served from loopback always may, and these (e.g.
+  // "https://app.foxglove.dev"); a client without an Origin (a program, not a browser page) always may.
+  std::vector<std::string> allowed_origins;
+  // A page served to a plain HTTP GET of "/" (the live view's own viewer; empty: none).
+  std::string_view page;
 };
 
 struct FoxgloveServerCounters {
@@ -34,7 +49,12 @@ struct FoxgloveServerCounters {
   std::atomic<std::uint64_t> sent{0};         // messages queued for sending
   std::atomic<std::uint64_t> dropped{0};      // messages a slow viewer did not get
   std::atomic<std::uint64_t> bad_requests{0};
+  std::atomic<std::uint64_t> disconnected{0};  // viewers cut off: too slow, never reading, or idle
 };
+
+// Whether a browser page from `origin` (its Origin header; empty: not a page) may connect: loopback pages and
+// the listed ones.
+[[nodiscard]] bool origin_allowed(std::string_view origin, const std::vector<std::string>& allowed);
 
 class FoxgloveServer {
  public:

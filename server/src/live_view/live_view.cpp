@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "live_view/foxglove_schemas.hpp"
+#include "live_view/viewer_page.hpp"
 
 namespace hapticd::server::live_view {
 
@@ -36,6 +37,8 @@ LiveView::LiveView(const LiveViewSettings& settings, const std::vector<DeviceSes
   options.address = settings.address;
   options.port = settings.port;
   options.max_clients = settings.max_clients;
+  options.allowed_origins = settings.allowed_origins;
+  options.page = viewer_page();
   options.name = "hapticd: " + session_name;
   server_ = std::make_unique<FoxgloveServer>(options, channels_of(devices));
   const auto interval = static_cast<std::uint64_t>(std::max(1.0, std::round(loop_rate_hz / settings.rate_hz)));
