@@ -63,6 +63,14 @@ int export_recording(const std::string& recording, std::vector<std::string> devi
     if (devices.empty()) devices = recorded;
     const std::filesystem::path source(recording);
     const std::filesystem::path dir = out_dir.empty() ? source.parent_path() : std::filesystem::path(out_dir);
+    if (!out_dir.empty()) {
+      std::error_code ec;
+      std::filesystem::create_directories(dir, ec);
+      if (ec) {
+        fmt::print(stderr, "hapticctl export: cannot create the folder {}: {}\n", dir.string(), ec.message());
+        return 2;
+      }
+    }
     for (const std::string& d : devices) {
       const std::filesystem::path target = dir / (source.stem().string() + "." + d + ".csv");
       std::ofstream out(target);

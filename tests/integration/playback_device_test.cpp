@@ -4,9 +4,14 @@
 #include "playback_device.hpp"
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
+#include <sys/stat.h>
 #include <yaml-cpp/yaml.h>
 
 #include <atomic>
+#include <chrono>
+#include <fstream>
+#include <thread>
 
 #include "app/served_session.hpp"
 #include "config/yaml_reader.hpp"
@@ -151,6 +156,70 @@ TEST(PlaybackDevice, ConfigurationErrorsNameTheirKey) {
       EXPECT_NE(std::string(e.what()).find("cannot open /nonexistent/run.h5"), std::string::npos) << e.what();
     }
   }
+}
+
+// A copy of the recording whose dataset `path` of device "a" is replaced by `rows` x `width` doubles, written or
+// only declared (a small file declaring a large dataset).
+std::filesystem::path crafted(const std::string& name, const std::string& path, hsize_t rows, hsize_t width,
+                              bool written = true) {
+  const auto file = test::write_temp_file(name, "");
+  std::filesystem::copy_file(recording(), file, std::filesystem::copy_options::overwrite_existing);
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  EXPECT_GE(f, 0);
+  const std::string full = "/devices/a/" + path;
+  EXPECT_GE(H5Ldelete(f, full.c_str(), H5P_DEFAULT), 0);
+  const hsize_t dims[2] = {rows, width};
+  const hid_t space = H5Screate_simple(2, dims, nullptr);
+  const hid_t d = H5Dcreate2(f, full.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  EXPECT_GE(d, 0);
+  if (written) {
+    const std::vector<double> zeros(rows * width, 0.0);
+    EXPECT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, zeros.data()), 0);
+  }
+  H5Dclose(d);
+  H5Sclose(space);
+  H5Fclose(f);
+  return file;
+}
+
+// The configuration error a recording gives (the key and the message), or "accepted".
+std::string refusal_of(const std::filesystem::path& file) {
+  try {
+    const Parameters p = server::read_parameters(YAML::Load("{recording: " + file.string() + ", device: a}"),
+                                                 PlaybackDevice::parameter_schema(), "test.yaml", "parameters", 1);
+    PlaybackDevice d;
+    d.configure(p, PluginContext{});
+  } catch (const ParameterError& e) {
+    return e.key() + ": " + e.what();
+  }
+  return "accepted";
+}
+
+TEST(PlaybackDevice, AMalformedRecordingIsAnErrorNamingTheDatasetBeforeTheFirstCycle) {
+  // The third hardening round's crafted recordings: a 1-column sensor wrench (a crash of the whole server), a
+  // position 3 wide for 1 joint (replayed scrambled), a small file declaring a huge dataset (gigabytes taken),
+  // a FIFO (a hang).
+  const std::size_t rows = recorded_b().cycles;
+  const std::string narrow = refusal_of(crafted("narrow_wrench.h5", "wrench/sensor", rows, 1));
+  EXPECT_EQ(narrow.rfind("recording: ", 0), 0u) << narrow;
+  EXPECT_NE(narrow.find("/devices/a/wrench/sensor is 1 wide"), std::string::npos) << narrow;
+  const std::string wide = refusal_of(crafted("wide_position.h5", "joints/position", rows, 3));
+  EXPECT_NE(wide.find("/devices/a/joints/position is 3 wide; the recorded device has 1 joints, so it must be 1"),
+            std::string::npos)
+      << wide;
+  const auto before = std::chrono::steady_clock::now();
+  const auto huge_file = crafted("huge.h5", "joints/velocity", hsize_t{1} << 36, 1, /*written=*/false);
+  EXPECT_LT(std::filesystem::file_size(huge_file), std::filesystem::file_size(recording()) + (1u << 16));  // small
+  const std::string huge = refusal_of(huge_file);
+  EXPECT_NE(huge.find("joints/velocity declares 68719476736 x 1 values but the file stores"), std::string::npos)
+      << huge;
+  EXPECT_LT(std::chrono::steady_clock::now() - before, std::chrono::seconds(5));
+  const auto fifo = test::write_temp_file("fifo.h5", "");
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string pipe = refusal_of(fifo);  // (before: blocked in open() for good)
+  EXPECT_NE(pipe.find("not a regular file"), std::string::npos) << pipe;
+  std::filesystem::remove(fifo);
 }
 
 TEST(PlaybackDevice, ReadDoesNotAllocate) {

@@ -76,6 +76,20 @@ void PlaybackDevice::configure(const Parameters& p, const PluginContext& context
   if (r.cycles < 2)
     throw ParameterError("recording", file.string() + " holds " + std::to_string(r.cycles) + " cycles of '" + device +
                                           "': nothing to replay");
+  // Every dataset as wide as the device it describes (read() indexes them by joint and axis).
+  const auto joints = r.description.joints.size();
+  for (const auto& [path, width] :
+       {std::pair{kTime, std::size_t{1}}, std::pair{kPosition, joints}, std::pair{kVelocity, joints},
+        std::pair{kEffort, joints}, std::pair{kWrench, std::size_t{6}}}) {
+    const recording::Table& t = r.datasets.at(path);
+    if (t.width != width || t.values.size() != t.rows * t.width)
+      throw ParameterError("recording", file.string() + ":/devices/" + device + "/" + path + " is " +
+                                            std::to_string(t.width) + " wide; the recorded device has " +
+                                            std::to_string(joints) + " joints, so it must be " + std::to_string(width));
+  }
+  if (joints == 0 || joints > static_cast<std::size_t>(kMaxJoints))
+    throw ParameterError("recording", file.string() + ": device '" + device + "' has " + std::to_string(joints) +
+                                          " joints (1 to " + std::to_string(kMaxJoints) + " can be replayed)");
   description_ = r.description;
   dof_ = description_.dof();
   const std::string urdf = p.string("urdf");

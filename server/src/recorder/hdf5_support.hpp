@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -114,6 +115,11 @@ inline std::vector<double> read_numbers_attribute(hid_t object, const char* name
 // A hapticd recording opened to read; throws when the file does not open or is not one.
 inline Handle open_recording(const std::string& file) {
   quiet();
+  // A FIFO or a device would block or stream without end: regular files only.
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (ec || !std::filesystem::exists(status)) throw std::runtime_error("cannot open " + file + ": no such file");
+  if (!std::filesystem::is_regular_file(status)) throw std::runtime_error(file + ": not a regular file");
   errno = 0;  // what fail() reports is this call's
   Handle f(check(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open " + file));
   if (H5Aexists(f.get(), "format") <= 0 || read_string_attribute(f.get(), "format") != "hapticd-recording")

@@ -1,5 +1,6 @@
 #include "recorder/recording_file.hpp"
 
+#include <fcntl.h>
 #include <sys/resource.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
@@ -120,14 +121,19 @@ hid_t file_type(const char* t) {
 
 // Bytes the file may still grow by: the free space of its file system (for an unprivileged user) and the
 // process's file size limit (RLIMIT_FSIZE).
-std::uint64_t room_left(const std::filesystem::path& file, std::uint64_t file_size) {
-  std::uint64_t room = UINT64_MAX;
+// The free space of the file system, and what the file size limit (ulimit -f) still lets the file grow by.
+struct Room {
+  std::uint64_t disk = UINT64_MAX;
+  std::uint64_t limit = UINT64_MAX;
+};
+Room room_left(const std::filesystem::path& file, std::uint64_t file_size) {
+  Room room;
   struct statvfs fs {};
   const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
-  if (::statvfs(dir.c_str(), &fs) == 0) room = static_cast<std::uint64_t>(fs.f_bavail) * fs.f_frsize;
+  if (::statvfs(dir.c_str(), &fs) == 0) room.disk = static_cast<std::uint64_t>(fs.f_bavail) * fs.f_frsize;
   struct rlimit limit {};
   if (::getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-    room = std::min<std::uint64_t>(room, limit.rlim_cur > file_size ? limit.rlim_cur - file_size : 0);
+    room.limit = limit.rlim_cur > file_size ? limit.rlim_cur - file_size : 0;
   return room;
 }
 
@@ -269,6 +275,29 @@ struct RecordingFile::Impl {
   std::vector<Device> devices;
   std::size_t buffered = 0;
   bool closed = false;
+
+  // The file's blocks up to `end` (bytes) allocated now, its size unchanged (fallocate, FALLOC_FL_KEEP_SIZE):
+  // the writes up to there and the close cannot fail for want of space, whatever another process writes to the
+  // disk meanwhile (checking the free space alone left a race: a write failing half way leaves a file that does
+  // not open). full: the space is not there (the disk or the file size limit is full). A file system that
+  // cannot allocate ahead (unsupported) keeps the free-space check only.
+  enum class Reserve { done, full, unsupported };
+  Reserve reserve(std::uint64_t end) {
+    if (end <= reserved_end) return Reserve::done;
+    void* handle = nullptr;
+    if (H5Fget_vfd_handle(file.get(), access.get(), &handle) < 0 || handle == nullptr) return Reserve::unsupported;
+    const int fd = *static_cast<int*>(handle);
+    // Ahead by 4 MB: one call every few seconds, not every write; what is not there, at least `end`.
+    for (const std::uint64_t want : {end + (std::uint64_t{4} << 20), end}) {
+      if (::fallocate(fd, FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(want)) == 0) {
+        reserved_end = want;
+        return Reserve::done;
+      }
+      if (errno != ENOSPC && errno != EFBIG) return Reserve::unsupported;  // (EOPNOTSUPP: the free space tells)
+    }
+    return Reserve::full;
+  }
+  std::uint64_t reserved_end = 0;
 
   void drop_buffered() {
     for (Device& d : devices) {
@@ -421,11 +450,13 @@ void RecordingFile::write() {
     }
   hsize_t size = 0;
   if (H5Fget_filesize(m.file.get(), &size) >= 0) {
-    const std::uint64_t room = room_left(m.path, size);
-    if (room < need) {
+    const Room room = room_left(m.path, size);
+    // The file size limit is checked apart: an allocation ahead does not count against it, the writes do.
+    const Impl::Reserve reserved = room.limit < need ? Impl::Reserve::full : m.reserve(size + need);
+    if (reserved == Impl::Reserve::full || (reserved == Impl::Reserve::unsupported && room.disk < need)) {
       m.drop_buffered();
       throw std::runtime_error("cannot write the recording " + m.path.string() + ": the disk (or the file size " +
-                               "limit) is nearly full (" + std::to_string(room / 1024) +
+                               "limit) is nearly full (" + std::to_string(std::min(room.disk, room.limit) / 1024) +
                                " kB left): the file is complete up to here");
     }
   }

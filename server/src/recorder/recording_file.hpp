@@ -32,7 +32,7 @@ struct RecordingHeader {
 
 struct RecordingEvent {
   std::string device;
-  std::string kind;  // "fault", "recovery"
+  std::string kind;  // "fault", "recovery", "recording_failed" (device "": the recording itself)
   std::string code;  // the fault's code (e.g. "SAFETY_VELOCITY")
   std::uint64_t cycle = 0;
   double time_s = 0.0;
