@@ -18,7 +18,7 @@ rm -f "$out"/engine.csv
 
 live_view_port=${HAPTICD_LIVE_VIEW_PORT:-8765}
 echo "== hapticd --config config/sessions/demo.yaml --dds-domain $domain (11 s, real time)"
-echo "   live view: ws://127.0.0.1:$live_view_port (Foxglove or Lichtblick, Foxglove WebSocket; docs/live-view.md)"
+echo "   live view: http://127.0.0.1:$live_view_port/ in a browser, or ws://127.0.0.1:$live_view_port in Foxglove or Lichtblick (docs/live-view.md)"
 "$bin/hapticd" --config config/sessions/demo.yaml --dds-domain "$domain" --live-view "$live_view_port" \
   --record "$out/recording.h5" --stats-json "$out/stats.json" > "$out/server.log" 2>&1 &
 server=$!

@@ -3,6 +3,7 @@
 // a clean exit without a release, a kill before or after the first command, a freeze beyond the liveliness
 // lease - within 1 s. Real time on loopback, each test on a domain of its own, bounded in time; the killed and
 // frozen claimants are separate processes (hapticctl, the scene engine).
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -10,7 +11,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -51,11 +54,32 @@ std::optional<double> wait_for_owner(Client& watcher, const std::string& owner, 
 // A separate process, killed at the end of the test whatever happened.
 class Process {
  public:
-  explicit Process(std::vector<std::string> argv) {
+  // output: the file its standard output and error go to ("": the test's).
+  explicit Process(std::vector<std::string> argv, const std::string& output = "") {
     std::vector<char*> args;
     for (auto& a : argv) args.push_back(a.data());
     args.push_back(nullptr);
-    if (posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    if (!output.empty()) {
+      posix_spawn_file_actions_addopen(&actions, 1, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    }
+    if (posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
+  }
+  // Waits at most `limit_s` for it to exit; its exit code, or -1.
+  int wait_exit(double limit_s) {
+    const auto start = Clock::now();
+    while (pid_ > 0 && seconds_since(start) < limit_s) {
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return -1;
   }
   ~Process() {
     if (pid_ <= 0) return;
@@ -213,6 +237,47 @@ TEST(DdsOwnership, AClaimEndsWhenItsClaimantIsKilledOrFrozenBeyondTheHold) {
     measure("engine killed after its commands", engine, "scene", SIGKILL);
   }
   EXPECT_EQ(server.bridge().claims_ended(), 3u);
+  server.stop();
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(DdsOwnership, AnEngineWhoseClaimEndedIsToldAndClaimsAgainOrExits) {
+  // The client library tells an engine that its claim ended (a state names another owner after one that named
+  // it); the example engine claims again, or - another engine took the device meanwhile - exits 3 saying why.
+  constexpr double kHold = 0.5;
+  Server server(with_claim_hold(session_yaml(146, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"), kHold));
+  server.start();
+  Client watcher({"watcher", 146});
+  ASSERT_TRUE(watcher.wait_for_state("v3", std::chrono::seconds(20)));
+  const std::string log = testing::TempDir() + "scene_engine_146.txt";
+  {
+    Process engine({bin("hapticd-scene-engine"), "--domain", "146", "--device", "v3", "--id", "scene"}, log);
+    ASSERT_TRUE(wait_for_owner(watcher, "scene", 15.0));
+    engine.signal(SIGSTOP);  // beyond the hold: the claim ends
+    ASSERT_TRUE(wait_for_owner(watcher, "", kHold + 3.0)) << "the claim outlived the hold";
+    engine.signal(SIGCONT);
+    ASSERT_TRUE(wait_for_owner(watcher, "scene", 5.0)) << "the engine did not claim again: " << file_text(log);
+    const std::string said = file_text(log);
+    EXPECT_NE(said.find("the server ended the claim of 'v3'"), std::string::npos) << said;
+    EXPECT_NE(said.find("claimed 'v3' again"), std::string::npos) << said;
+  }
+  ASSERT_TRUE(wait_for_owner(watcher, "", kHold + 5.0));  // the killed engine's claim ends too
+  {
+    Process engine({bin("hapticd-scene-engine"), "--domain", "146", "--device", "v3", "--id", "scene"}, log);
+    ASSERT_TRUE(wait_for_owner(watcher, "scene", 15.0));
+    engine.signal(SIGSTOP);
+    ASSERT_TRUE(wait_for_owner(watcher, "", kHold + 3.0));
+    ASSERT_TRUE(watcher.claim("v3").accepted);  // another engine takes the device meanwhile
+    engine.signal(SIGCONT);
+    EXPECT_EQ(engine.wait_exit(10.0), 3) << file_text(log);
+    EXPECT_NE(file_text(log).find("cannot claim 'v3' again"), std::string::npos) << file_text(log);
+  }
   server.stop();
 }
 
