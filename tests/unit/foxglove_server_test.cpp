@@ -117,8 +117,11 @@ TEST(FoxgloveServer, AViewerThatNeverReadsAndFloodsUnknownOpsCostsTheServerNoMem
               sent, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
               cut_off ? "then disconnected" : "still connected", before, after);
   EXPECT_GT(sent, 100u);
-  // Each reply echoed the 60 kB op before: 100 requests queued 6 MB, these 5 s hundreds of MB.
+  // Each reply echoed the 60 kB op before: 100 requests queued 6 MB, these 5 s hundreds of MB. (AddressSanitizer
+  // keeps freed memory in its quarantine, 256 MB: the resident size says nothing there.)
+#if !defined(__SANITIZE_ADDRESS__)
   EXPECT_LT(after - before, 30.0);
+#endif
 }
 
 TEST(FoxgloveServer, ASubscriberThatStopsReadingIsDisconnected) {
