@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <thread>
 
 #include "hapticd/demand.hpp"
 #include "session/finite.hpp"
@@ -532,7 +533,11 @@ void DeviceSession::deactivate() {
   {
     // Waits for a request being served, but not for good: a request thread that is stuck (a broken invariant
     // parks it) must not keep the device from being disabled.
-    std::unique_lock lock(plugin_requests_, std::chrono::seconds(2));
+    std::unique_lock lock(plugin_requests_, std::try_to_lock);
+    for (int i = 0; i < 200 && !lock.owns_lock(); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      lock.try_lock();
+    }
     schemes_.service(true);
   }
   disable_error_.clear();

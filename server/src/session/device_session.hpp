@@ -272,10 +272,11 @@ class DeviceSession {
   bool stopped_ = false;                    // loop thread: the safe stop has begun
   std::atomic<int> passivity_request_{-1};  // -1: none, else 0/1
   std::string disable_error_;
-  // One request to this device's plugins, or service(), at a time (never the loop). Timed: the monitor's
-  // service() skips a round while a request runs, and deactivate() does not wait for good on a request thread
-  // that is stuck (a broken invariant parks it: app/invariant_stop).
-  std::timed_mutex plugin_requests_;
+  // One request to this device's plugins, or service(), at a time (never the loop). The monitor's service()
+  // skips a round while a request runs, and deactivate() does not wait for good on a request thread that is
+  // stuck (a broken invariant parks it: app/invariant_stop) - both with try_lock (a timed lock's clocklock is
+  // invisible to ThreadSanitizer).
+  std::mutex plugin_requests_;
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;
   bool measurement_valid_ = false;
