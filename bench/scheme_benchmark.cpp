@@ -11,14 +11,14 @@
 #include <memory>
 #include <string>
 
+#include "assembly/session_builder.hpp"
 #include "config/session_config.hpp"
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/model/dynamics.hpp"
 #include "hapticd/model/model_data.hpp"
-#include "plugins/plugin_loader.hpp"
+#include "loader/plugin_loader.hpp"
 #include "safety/render_guard.hpp"
-#include "session/session_builder.hpp"
 #include "session_rig.hpp"
 
 namespace {

@@ -7,11 +7,11 @@
 #include <chrono>
 #include <string>
 
+#include "assembly/session_impl.hpp"
 #include "hapticd/chain_state.hpp"
 #include "hapticd/model/dynamics.hpp"
 #include "hapticd/model/model_data.hpp"
 #include "hapticd/server/session.hpp"
-#include "session/session_impl.hpp"
 
 namespace hapticd::bench {
 

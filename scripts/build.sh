@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the dependencies (idempotent), builds hapticd with a CMake preset and, for the default and ci presets,
 # installs it (programs, libraries, the SDK, the Python package) to HAPTICD_PREFIX (default /usr/local; with
-# HAPTICD_INSTALL=0 nothing is installed). Debian's python3 finds the package there: python3 -c "import hapticd".
+# HAPTICD_INSTALL=0 nothing is installed). The Python package is built for one interpreter (Debian's python3
+# unless -DPython3_EXECUTABLE says otherwise, cmake/HapticdPython.cmake); after installing, this says plainly
+# whether the python3 first on your PATH imports it, and what to do when it does not.
 # Usage: scripts/build.sh [PRESET]   (default: "ci" when CI=true, else "default")
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,3 +25,23 @@ if [ ! -w "$prefix" ] && [ "$(id -u)" -ne 0 ]; then
 fi
 "${sudo_cmd[@]}" cmake --install "build/$preset" --prefix "$prefix" > "build/$preset/install.log"
 echo "build: installed to $prefix ($(wc -l < "build/$preset/install.log") files; build/$preset/install.log)"
+
+# Which Python: the package is built for one interpreter; say whether the user's python3 is that one.
+built_for=$("build/$preset/bin/hapticd-python" --which 2> /dev/null || true)
+[ -n "$built_for" ] && [ -d "build/$preset/python/hapticd" ] || exit 0
+if ! command -v python3 > /dev/null; then
+  echo "build: the Python package is built for $built_for (no python3 on your PATH); run Python scripts with hapticd-python"
+elif why=$(cd / && python3 -c "import hapticd" 2>&1); then
+  echo "build: your python3 ($(command -v python3)) imports the hapticd package"
+else
+  cat << EOF
+build: note - your python3 ($(command -v python3), $(python3 --version 2>&1)) cannot import the hapticd package:
+  ${why##*$'\n'}
+  The package is built for $built_for, which has NumPy, Matplotlib, h5py and pytest from Debian. Either
+  - run your scripts with hapticd-python (that interpreter, the package on its path): hapticd-python my_engine.py
+  - or use that interpreter directly: $built_for my_engine.py
+  - or build for yours (it needs NumPy; the tests also pytest and h5py):
+    cmake --preset $preset -DPython3_EXECUTABLE=$(command -v python3) && scripts/build.sh $preset
+  The programs (hapticd-plot-recording, hapticd-eval's report) name their interpreter themselves.
+EOF
+fi

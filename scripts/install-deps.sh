@@ -19,7 +19,7 @@ packages=(
   liborocos-kdl-dev
   libnlopt-dev
   rt-tests
-  clang-14 libclang-rt-14-dev clang-format-14
+  clang-14 libclang-rt-14-dev clang-format-14 lld
   python3 python3-matplotlib python3-dev python3-numpy python3-pytest pybind11-dev
   libfastrtps-dev fastddsgen
   libhdf5-dev python3-h5py

@@ -5,9 +5,11 @@
 #include <CLI/CLI.hpp>
 #include <array>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -15,7 +17,8 @@
 #include <thread>
 
 #include "hapticd/client/client.hpp"
-#include "recorder/recording_export.hpp"
+#include "hapticd/recording/recording_export.hpp"
+#include "hapticd/recording/recording_file.hpp"
 #include "state_recording.hpp"
 
 namespace {
@@ -75,13 +78,13 @@ int export_recording(const std::string& recording, std::vector<std::string> devi
       const std::filesystem::path target = dir / (source.stem().string() + "." + d + ".csv");
       std::ofstream out(target);
       if (!out) {
-        fmt::print(stderr, "cannot write {}\n", target.string());
+        fmt::print(stderr, "hapticctl export: cannot write {}: {}\n", target.string(), std::strerror(errno));
         return 2;
       }
       const std::size_t rows = hapticd::recording::export_csv(recording, d, out, exclude);
       out.close();
       if (!out) {
-        fmt::print(stderr, "cannot write {}\n", target.string());
+        fmt::print(stderr, "hapticctl export: cannot write {}: {}\n", target.string(), std::strerror(errno));
         return 2;
       }
       fmt::print("{}: {} cycles of '{}'\n", target.string(), rows, d);
@@ -166,12 +169,6 @@ bool run_for(double duration_s, const std::function<void()>& tick = {}) {
 // hapticctl record: every state the device publishes until the duration or Ctrl-C, in the recording format.
 int record_states(Client& client, const std::string& device, const std::string& file, double duration,
                   std::chrono::duration<double> wait) {
-  if (std::filesystem::path(file).extension() == ".csv") {
-    fmt::print(stderr,
-               "hapticctl record writes HDF5 (docs/recording.md): name the file .h5; then hapticctl export "
-               "FILE.h5 --csv\n");
-    return 2;
-  }
   const std::optional<hapticd::client::DeviceInfo> info = client.wait_for_device(device, wait);
   if (!info) {
     fmt::print(stderr, "no description of '{}'\n", device);
@@ -271,7 +268,10 @@ int run(int argc, char** argv) {
   auto* record = app.add_subcommand(
       "record", "record a device's published states to HDF5, the server's recording format (docs/recording.md)");
   record->add_option("device", device)->required();
-  record->add_option("file", file, "the recording (.h5; hapticctl export FILE --csv for CSV)")->required();
+  record->add_option("file", file, "the recording (.h5; hapticctl export FILE --csv for CSV)")
+      ->required()
+      ->check(CLI::Validator([](const std::string& f) { return hapticd::recording::recording_name_problem(f); },
+                             "FILE.h5"));
   record->add_option("--duration", duration, "seconds (default: until Ctrl-C)");
   auto* export_cmd = app.add_subcommand(
       "export", "a recording (hapticd --record, HDF5) as CSV: one file per device, FILE's name with .DEVICE.csv");

@@ -4,15 +4,18 @@
 #include <chrono>
 #include <limits>
 
-#include "recorder/recording_file.hpp"
+#include "hapticd/recording/recording_file.hpp"
 
 namespace hapticd::ctl {
+
+using recording::put;
+
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-server::RecordingHeader header_of(const client::DeviceInfo& d, std::vector<std::string>& schemes) {
-  server::RecordingDevice device;
+recording::RecordingHeader header_of(const client::DeviceInfo& d, std::vector<std::string>& schemes) {
+  recording::RecordingDevice device;
   device.name = d.device;
   DeviceDescription& desc = device.description;
   desc.model = d.device_plugin;
@@ -26,7 +29,7 @@ server::RecordingHeader header_of(const client::DeviceInfo& d, std::vector<std::
                            d.torque_continuous[j]});
   for (const client::SchemeInfo& s : d.schemes) device.schemes.push_back(s.name);
   schemes = device.schemes;
-  server::RecordingHeader h;
+  recording::RecordingHeader h;
   h.source = "hapticctl (DDS states)";
   h.rate_hz = d.rate_hz;
   h.devices.push_back(std::move(device));
@@ -36,12 +39,12 @@ server::RecordingHeader header_of(const client::DeviceInfo& d, std::vector<std::
 }  // namespace
 
 StateRecording::StateRecording(const std::filesystem::path& file, const client::DeviceInfo& device)
-    : file_(std::make_unique<server::RecordingFile>(file, header_of(device, schemes_))) {}
+    : file_(std::make_unique<recording::RecordingFile>(file, header_of(device, schemes_))) {}
 
 StateRecording::~StateRecording() = default;
 
 void StateRecording::add(const client::DeviceState& s) {
-  server::CycleRecord r;
+  recording::CycleRecord r;
   r.cycle = s.cycle;
   r.time_ns = s.loop_time_ns;
   r.device = 0;
@@ -50,7 +53,7 @@ void StateRecording::add(const client::DeviceState& s) {
   r.flags = s.flags;
   const auto scheme = std::find(schemes_.begin(), schemes_.end(), s.scheme.view());
   r.scheme = static_cast<std::uint16_t>(scheme == schemes_.end() ? 0 : scheme - schemes_.begin());
-  using server::put;
+  using recording::put;
   put(r.position, s.position, r.dof);
   put(r.velocity, s.velocity, r.dof);
   put(r.torque_command, s.torque, r.dof);
@@ -70,13 +73,13 @@ void StateRecording::add(const client::DeviceState& s) {
 }
 
 void StateRecording::write() {
-  std::vector<server::CycleRecord> batch;
+  std::vector<recording::CycleRecord> batch;
   {
     std::lock_guard lock(mutex_);
     batch.swap(pending_);
   }
   if (batch.empty()) return;
-  for (const server::CycleRecord& r : batch) file_->add(r);
+  for (const recording::CycleRecord& r : batch) file_->add(r);
   file_->write();
   written_ += batch.size();
   const auto now = std::chrono::steady_clock::now();

@@ -13,10 +13,10 @@
 
 #include "hapticd/client/types.hpp"
 
-namespace hapticd::server {
+namespace hapticd::recording {
 class RecordingFile;
 struct CycleRecord;
-}  // namespace hapticd::server
+}  // namespace hapticd::recording
 
 namespace hapticd::ctl {
 
@@ -38,9 +38,9 @@ class StateRecording {
 
  private:
   std::vector<std::string> schemes_;  // before file_: its constructor fills them
-  std::unique_ptr<server::RecordingFile> file_;
+  std::unique_ptr<recording::RecordingFile> file_;
   std::mutex mutex_;
-  std::vector<server::CycleRecord> pending_;
+  std::vector<recording::CycleRecord> pending_;
   std::uint64_t written_ = 0;
   std::chrono::steady_clock::time_point flushed_ = std::chrono::steady_clock::now();
 };

@@ -4,7 +4,7 @@ virtual masses from 0.5 to 8 kg, each a lockstep run (repeatable, faster than re
 matplotlib: the handle's path and the operator's force per mass, and the peak force (the inertia felt while the hand
 accelerates the handle) against the mass.
 
-    examples/python/mass_sweep.py [--out mass_sweep.png]"""
+    hapticd-python examples/python/mass_sweep.py [--out build/mass_sweep.png]"""
 import argparse
 import os
 
@@ -32,7 +32,7 @@ def pushed(mass_kg, seconds=1.5):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default="mass_sweep.png")
+    parser.add_argument("--out", default="build/mass_sweep.png")
     parser.add_argument("--masses", type=float, nargs="+", default=[0.5, 1.0, 2.0, 4.0, 8.0])
     args = parser.parse_args()
 
@@ -59,6 +59,7 @@ def main():
         ax.grid(True, alpha=0.3)
     ax_x.legend()
     fig.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     fig.savefig(args.out, dpi=110)
     print(f"wrote {args.out}")
 

@@ -3,7 +3,7 @@
 the server's virtual coupling (docs/python.md). Start a server with an engine-coupled session first:
 
     hapticd --config config/sessions/vishard3/dds-coupling.yaml &
-    examples/python/wall_engine.py --duration 10 --push 15
+    hapticd-python examples/python/wall_engine.py --duration 10 --push 15
 
 --push asks the simulated operator to push along +x (N) once the device is claimed."""
 import argparse

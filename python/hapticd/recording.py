@@ -31,9 +31,29 @@ def _texts(value: Any) -> List[str]:
     return [_text(v) for v in np.atleast_1d(value)]
 
 
+def _attribute(value: Any) -> Any:
+    """An HDF5 attribute as Python reads it best: text as str (h5py gives bytes), lists of text as lists of str,
+    single numbers as numbers, other arrays unchanged."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind in ("S", "O", "U"):
+            return _texts(value) if value.shape != () else _text(value)
+        if value.shape == ():
+            return value[()].item()
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def _attributes(attrs: Any) -> Dict[str, Any]:
+    return {k: _attribute(v) for k, v in attrs.items()}
+
+
 @dataclass
 class DeviceRecording:
-    """One device's cycles: ``dev["joints/position"]`` is an array with a row per cycle."""
+    """One device's cycles: ``dev["joints/position"]`` is an array with a row per cycle; ``attributes``: the
+    device's description (text as str, lists of text as lists of str)."""
 
     name: str
     attributes: Dict[str, Any]
@@ -97,7 +117,7 @@ def read(path: str) -> Recording:
             g = f["devices"][name]
             columns = _texts(g.attrs["columns"])
             data = {c: g[c][()] for c in columns}
-            devices[name] = DeviceRecording(name, dict(g.attrs), columns, data)
+            devices[name] = DeviceRecording(name, _attributes(g.attrs), columns, data)
         statistics: Dict[str, Any] = {}
         if "statistics" in f:
             statistics = json.loads(_text(f["statistics"][()]))
@@ -108,5 +128,5 @@ def read(path: str) -> Recording:
                 events.append({"device": _text(e["device"][k]), "kind": _text(e["kind"][k]),
                                "code": _text(e["code"][k]), "cycle": int(e["cycle"][k]),
                                "time_s": float(e["time_s"][k])})
-        return Recording(path, dict(f.attrs), _text(f["session"].attrs["path"]),
+        return Recording(path, _attributes(f.attrs), _text(f["session"].attrs["path"]),
                          _text(f["session/file"][()]), devices, statistics, events)

@@ -2,7 +2,6 @@
 export and the plot script on the same file."""
 import os
 import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -63,9 +62,34 @@ def test_a_file_that_is_not_a_recording_is_refused(tmp_path):
         hapticd.recording.read(str(other))
 
 
-def test_the_plot_script_draws_the_recording(recorded, tmp_path):
+def test_the_plot_program_draws_the_recording_whatever_python3_the_path_finds(recorded, tmp_path):
+    # hapticd-plot-recording names its interpreter and finds the package itself: no PYTHONPATH, and a PATH whose
+    # first python3 cannot import anything of ours.
     pytest.importorskip("matplotlib")
     png = tmp_path / "rec.png"
-    subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "plot_recording.py"), str(recorded), str(png)],
-                   check=True, timeout=120, env=dict(os.environ))
+    fake_bin = tmp_path / "fake-bin"
+    fake_bin.mkdir()
+    (fake_bin / "python3").write_text("#!/bin/sh\necho 'not this python3' >&2\nexit 1\n")
+    (fake_bin / "python3").chmod(0o755)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["PATH"] = f"{fake_bin}:{env.get('PATH', '')}"
+    subprocess.run([os.path.join(BIN, "hapticd-plot-recording"), str(recorded), str(png)],
+                   check=True, timeout=120, env=env)
     assert png.stat().st_size > 10000
+
+
+def test_attributes_read_as_text_not_bytes(recorded):
+    rec = hapticd.recording.read(str(recorded))
+    assert rec.attributes["format"] == "hapticd-recording"
+    assert rec.attributes["clock"] in ("lockstep", "realtime")
+    assert rec.attributes["devices"] == list(rec.devices)
+    dev = next(iter(rec.devices.values()))
+    assert dev.attributes["joint_names"] == dev.joint_names and all(isinstance(n, str) for n in dev.joint_names)
+    assert isinstance(dev.attributes["model"], str)
+
+
+def test_the_shipped_recording_reads():
+    # config/recordings/vishard3-sine.h5, which config/sessions/playback.yaml replays as shipped.
+    rec = hapticd.recording.read(os.path.join(ROOT, "config", "recordings", "vishard3-sine.h5"))
+    pose = rec.devices["vishard3"]["handle/pose"]
+    assert pose.shape[0] > 500 and np.ptp(pose[:, 0]) > 0.02  # the operator moved the handle

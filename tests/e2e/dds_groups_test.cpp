@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "../../examples/engines/bimanual.hpp"
+#include "../../clients/engines/bimanual.hpp"
 #include "app/served_session.hpp"
 #include "dds_server_rig.hpp"
 #include "hapticd/client/client.hpp"
@@ -440,7 +440,7 @@ std::string held_arm(const std::string& name, const std::string& base) {
   return test::sim_vishard3_held_yaml(name, base) + coupling_chain_yaml();
 }
 
-// The example bimanual engine (examples/engines/bimanual.hpp) over DDS: the ViSHaRD3 pair's operators lift the
+// The example bimanual engine (clients/engines/bimanual.hpp) over DDS: the ViSHaRD3 pair's operators lift the
 // engine's box 10 cm and turn it 30 degrees, as the shared_object group model's test does in-process.
 TEST(DdsGroups, TheBimanualEngineLetsTwoOperatorsLiftAndTurnItsBox) {
   const std::string arms = held_arm("left", "{xyz: [0, 0, 0]}") +

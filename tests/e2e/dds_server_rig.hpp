@@ -1,6 +1,6 @@
 #pragma once
 // The end-to-end rig over DDS: a server (a session served as `hapticd` serves it, in this process, its own DDS
-// participant) and the scene engine of examples/engines on the client library (a participant of its own), on a
+// participant) and the scene engine of clients/engines on the client library (a participant of its own), on a
 // test domain of their own with the loopback-only configuration. Lockstep runs wait for the engine's answer to
 // every state (dds.lockstep_sync), so they are repeatable; a recording listener on the loop thread captures what
 // the device renders in every cycle.
@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "../../examples/engines/scene.hpp"
+#include "../../clients/engines/scene.hpp"
 #include "app/served_session.hpp"
 #include "hapticd/client/client.hpp"
 #include "hapticd/dds/conversion.hpp"
@@ -143,7 +143,7 @@ class Server {
   ExecutorResult result_;
 };
 
-// The scene engine of examples/engines: answers every state with the proxy of the handle in the scene.
+// The scene engine of clients/engines: answers every state with the proxy of the handle in the scene.
 struct SceneEngine {
   SceneEngine(int domain, const std::string& id) : client({id, domain}) {}
   ~SceneEngine() { client.on_state({}); }  // before the members the callback uses are gone

@@ -63,7 +63,7 @@ if grep -q "engine_stale" clean.txt; then fail "a clean release showed the engin
 # Record, and watch while an engine dies: the watcher sees the engine's deadline missed.
 # hapticctl record writes the server's recording format (HDF5): the same export reads it.
 if ctl record vishard3 rec.csv --duration 0.1 2> csv-refused.txt; then fail "record to .csv was accepted"; fi
-grep -q "name the file .h5" csv-refused.txt || fail "record to .csv: $(cat csv-refused.txt)"
+grep -q "a recording is an HDF5 file, named .h5 or .hdf5; for CSV record to rec.h5, then hapticctl export it" csv-refused.txt || fail "record to .csv: $(cat csv-refused.txt)"
 ctl record vishard3 rec.h5 --duration 0.5 | tee record.txt
 "$bin/hapticctl" export rec.h5 --csv > /dev/null || fail "the client's recording does not export"
 [ "$(wc -l < rec.vishard3.csv)" -gt 100 ] || fail "recorded too few states"

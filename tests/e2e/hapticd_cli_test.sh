@@ -63,5 +63,24 @@ last=$(awk -F, 'NR == 1 { for (i = NF; i >= 1; --i) if ($i ~ /^joints\.torque_co
 [ "$last" = "0" ] && pass "SIGTERM: last torque command is 0" || fail "SIGTERM: last torque command is '$last'"
 grep -q "stops through its safe mode" "$work/term.log" && pass "SIGTERM: safe stop logged" || fail "SIGTERM: no safe stop in log"
 
-echo "$(( 12 - failures )) passed, $failures failed"
+# 6. --record refuses a file name that says other than HDF5 (it once wrote HDF5 into run.csv), and so does
+#    hapticctl record; nothing is written.
+out=$(timeout 30 "$hapticd" --config "$session" --clock lockstep --duration 0.1 --record "$work/run.csv" 2>&1); rc=$?
+if [ "$rc" -ne 0 ] && echo "$out" | grep -q "run.csv: a recording is an HDF5 file, named .h5 or .hdf5; for CSV record to" \
+  && [ ! -e "$work/run.csv" ]; then pass "--record run.csv refused: $out"
+else fail "--record run.csv: rc=$rc, $out, $(ls "$work")"; fi
+out=$(timeout 30 "$hapticctl" record some_device "$work/state.csv" --duration 1 2>&1); rc=$?
+[ "$rc" -ne 0 ] && echo "$out" | grep -q "a recording is an HDF5 file" && [ ! -e "$work/state.csv" ] \
+  && pass "hapticctl record state.csv refused" || fail "hapticctl record state.csv: rc=$rc, $out"
+
+# 7. --list-plugins: one column each for name, kind and version, however long a name (friction_identification
+#    pushed its row's columns out of line).
+"$hapticd" --list-plugins > "$work/plugins.txt" 2> /dev/null
+kind_columns=$(awk 'NR > 1 { match($0, / (device|virtual_model|inverse_kinematics|controller|group_model) /); print RSTART }' \
+  "$work/plugins.txt" | sort -u | wc -l)
+longest=$(awk 'NR > 1 { if (length($1) > n) n = length($1) } END { print n }' "$work/plugins.txt")
+[ "$kind_columns" -eq 1 ] && [ "$longest" -gt 20 ] && pass "--list-plugins aligned (longest name $longest)" \
+  || fail "--list-plugins: the kind starts in $kind_columns columns: $(cat "$work/plugins.txt")"
+
+echo "$(( 15 - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]

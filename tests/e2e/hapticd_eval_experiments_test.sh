@@ -1,15 +1,18 @@
 #!/usr/bin/env bash
 # hapticd-eval's experiments, short lockstep runs (--quick) of the full protocols through `all`: each writes its
-# JSON with the figures the analysis gives; one report (PNG, HTML) where python3 with matplotlib is installed.
+# JSON with the figures the analysis gives; one report (PNG, HTML), drawn by hapticd-eval-report on the
+# interpreter it names, whatever python3 the PATH finds first (here one that cannot run anything).
 set -euo pipefail
 eval_bin=$1
 work=$2
 rm -rf "$work" && mkdir -p "$work"
-# Debian's interpreter (the one python3-matplotlib installs into), also for the report hapticd-eval draws.
-py=/usr/bin/python3
-export HAPTICD_PYTHON=$py
+# The checks below read the JSON with the interpreter the Python tools are built for.
+py=$(head -n 1 "$(dirname "$eval_bin")/hapticd-eval-report" | sed 's/^#!//')
+mkdir -p "$work/fake-bin"
+printf '#!/bin/sh\necho "not this python3" >&2\nexit 1\n' > "$work/fake-bin/python3"
+chmod +x "$work/fake-bin/python3"
 
-timeout 200 "$eval_bin" all --quick --out "$work" > "$work/all.txt"
+PATH="$work/fake-bin:$PATH" timeout 200 "$eval_bin" all --quick --out "$work" > "$work/all.txt"
 cat "$work/all.txt"
 
 # On ViSHaRD3 the Jacobian inner loops run on the thesis's constant inertias (CONTROL-METHODS.md section 2).
@@ -157,16 +160,12 @@ assert j8["rms_error_percent"] is None and j8["worst_error_percent"] is None and
 print("uncompared joint ok")
 PY
 
-if "$py" -c "import matplotlib" 2> /dev/null; then
-  for f in report.html force-response.png backdrivability.png minimum-inertia.png force-gain.png tracking.png z-width.png \
-    transparency.png friction.png; do
-    [ -s "$work/$f" ] || { echo "missing $f"; exit 1; }
-  done
-  grep -q "data:image/png;base64" "$work/report.html"
-  echo "report ok"
-else
-  echo "python3-matplotlib not installed: the figures were not checked"
-fi
+for f in report.html force-response.png backdrivability.png minimum-inertia.png force-gain.png tracking.png z-width.png \
+  transparency.png friction.png; do
+  [ -s "$work/$f" ] || { echo "missing $f"; exit 1; }
+done
+grep -q "data:image/png;base64" "$work/report.html"
+echo "report ok"
 
 # --no-friction-compensation runs the admittance loops without the friction term.
 timeout 60 "$eval_bin" force-response --quick --schemes rac:10000:ff --frequencies 1 --no-friction-compensation \

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The attacks of issue 17 that need the real process: a stopped (SIGSTOP) real-time server, recordings onto a
-# full file system and /dev/full, config and model files that are no files or not physical, a system library
+# full file system and a file that cannot be created, config and model files that are no files or not physical, a system library
 # folder as plugin path, a plugin that throws as it leaves the loop, and too little address space. Each must end
 # with a clear message and its exit code, never an abort or a hang. Usage: hardening_test.sh HAPTICD SOURCE_DIR WORK_DIR
 set -uo pipefail
@@ -54,10 +54,10 @@ grep -q "device 'vishard3': ok" out.txt || fail "the identification's device did
 # Too little address space: a message and exit code 4 before any device is powered (Cyclone aborted before).
 expect 4 "not enough address space" -- bash -c "ulimit -v 60000; exec '$hapticd' --config '$session' --duration 1 --dds-domain 88"
 
-# Recordings: /dev/full, and a file system that fills up (a file size limit: writes fail with EFBIG).
+# Recordings: a file that cannot be created (/proc), and a file system that fills up (a file size limit: writes fail with EFBIG).
 # The recorder stops before the limit, while the file can still be closed whole: it opens, every dataset has the
 # same number of cycles (the export checks), and the summary says how many are in it.
-expect 4 "cannot create the recording /dev/full" -- "$hapticd" --config "$session" --clock lockstep --duration 1 --record /dev/full
+expect 4 "cannot create the recording /proc/run.h5" -- "$hapticd" --config "$session" --clock lockstep --duration 1 --record /proc/run.h5
 expect 5 "recording FAILED" -- bash -c "trap '' XFSZ; ulimit -f 2000; exec '$hapticd' --config '$session' --clock lockstep --duration 4 --record rec.h5"
 grep -q "lost" out.txt || fail "the lost cycles are not reported"
 in_file=$(sed -n 's/.*recording FAILED: .*; \([0-9]*\) device-cycles in rec.h5.*/\1/p' out.txt)

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <string>
 
+#include "assembly/session_impl.hpp"
 #include "hapticd/server/session.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
-#include "session/session_impl.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "app/served_session.hpp"
-#include "executor/loop_cycle.hpp"
+#include "cycle/loop_cycle.hpp"
 #include "hapticd/chain_state.hpp"
 #include "hapticd/model/kinematics.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
@@ -144,7 +144,7 @@ TEST(DeviceSession, ARecordedCycleDoesNotAllocate) {
   auto s = session_with(test::mass_spring_device_yaml("axis", ", position_noise_m: 1.0e-5"));
   const auto file = test::write_temp_file("alloc.h5", "");
   Recorder recorder(file, recording_header(s.impl().config, s.impl().device_pointers()), /*wait_when_full=*/false);
-  LoopCycle loop(s.impl().device_pointers(), &recorder);
+  LoopCycle loop(s.impl().device_pointers(), {}, &recorder);
   s.impl().devices[0]->activate();
   testing::AllocationGuard guard;
   for (std::uint64_t k = 0; k < 5000; ++k) loop.run_cycle(cycle_at(k), 1.0, 0, 0);

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <string>
 
+#include "assembly/session_impl.hpp"
 #include "hapticd/server/session.hpp"
-#include "session/session_impl.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {

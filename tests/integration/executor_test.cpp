@@ -26,7 +26,8 @@ std::string run_recorded(const std::string& yaml, const std::string& record_name
   auto s = test::build_test_session(yaml);
   const auto file = test::write_temp_file(record_name, "");
   Recorder recorder(file, recording_header(s.impl().config, s.impl().device_pointers()), /*wait_when_full=*/true);
-  Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), &recorder);
+  const LoopPlan loops = s.impl().loop_plan(&recorder);
+  Executor executor(s.impl().executor_settings(), loops.loops());
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop);
   recorder.close();
@@ -39,7 +40,8 @@ std::string run_recorded(const std::string& yaml, const std::string& record_name
 
 TEST(Executor, LockstepRunsTheDurationThenTheRamp) {
   auto s = test::build_test_session(lockstep_yaml(0.5, test::mass_spring_device_yaml("a")));
-  Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), nullptr);
+  const LoopPlan loops = s.impl().loop_plan();
+  Executor executor(s.impl().executor_settings(), loops.loops());
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop);
   EXPECT_EQ(r.statistics.cycles, 1000u + 200u);  // 0.5 s + 0.1 s ramp at 2 kHz
@@ -71,7 +73,8 @@ TEST(Executor, StopRequestTakesEveryDeviceThroughItsSafeModeThenEnds) {
       lockstep_yaml(0.0, test::mass_spring_device_yaml("a") + test::mass_spring_device_yaml("b")));
   const auto file = test::write_temp_file("stop.h5", "");
   Recorder recorder(file, recording_header(s.impl().config, s.impl().device_pointers()), true);
-  Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), &recorder);
+  const LoopPlan loops = s.impl().loop_plan(&recorder);
+  Executor executor(s.impl().executor_settings(), loops.loops());
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop, [&] {
     if (executor.live().cycles.load() >= 400) stop.store(true);  // once the devices move
@@ -103,7 +106,8 @@ TEST(Executor, RealtimeLoopAccountsForEveryPeriod) {
   auto s = test::build_test_session(
       "server: {clock: realtime, rate_hz: 2000, duration_s: 0.1, shutdown_ramp_s: 0.01}\ndevices:\n" +
       test::mass_spring_device_yaml("a"));
-  Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), nullptr);
+  const LoopPlan loops = s.impl().loop_plan();
+  Executor executor(s.impl().executor_settings(), loops.loops());
   std::atomic<bool> stop{false};
   const ExecutorResult r = executor.run(stop);
   // Every period is either run or counted as skipped, however loaded the machine is; the session lasts its

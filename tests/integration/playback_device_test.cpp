@@ -16,9 +16,9 @@
 #include "app/served_session.hpp"
 #include "config/yaml_reader.hpp"
 #include "executor/executor.hpp"
+#include "hapticd/recording/recording_reader.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "recorder/recorder.hpp"
-#include "recorder/recording_reader.hpp"
 #include "support/temp_file.hpp"
 #include "support/test_session.hpp"
 
@@ -33,7 +33,8 @@ const std::filesystem::path& recording() {
         test::mass_spring_device_yaml("a") + test::mass_spring_device_yaml("b", ", initial_position_m: 0.02"));
     const auto path = test::write_temp_file("playback_source.h5", "");
     server::Recorder recorder(path, server::recording_header(s.impl().config, s.impl().device_pointers()), true);
-    server::Executor executor(s.impl().executor_settings(), s.impl().device_pointers(), &recorder);
+    const server::LoopPlan loops = s.impl().loop_plan(&recorder);
+    server::Executor executor(s.impl().executor_settings(), loops.loops());
     std::atomic<bool> stop{false};
     (void)executor.run(stop);
     recorder.close();

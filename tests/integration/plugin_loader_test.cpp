@@ -1,5 +1,5 @@
 // Each plugin-loading failure has its own clear message; libraries outlive their objects.
-#include "plugins/plugin_loader.hpp"
+#include "loader/plugin_loader.hpp"
 
 #include <gtest/gtest.h>
 #include <link.h>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <set>
 
-#include "plugins/elf_exports.hpp"
+#include "loader/elf_exports.hpp"
 
 namespace hapticd::server {
 namespace {

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <functional>
 
+#include "assembly/session_builder.hpp"
 #include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "safety/safety_supervisor.hpp"
 #include "safety/thermal_limiter.hpp"
-#include "session/session_builder.hpp"
 #include "support/temp_file.hpp"
 #include "support/test_session.hpp"
 

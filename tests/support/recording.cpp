@@ -3,7 +3,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "recorder/recording_export.hpp"
+#include "hapticd/recording/recording_export.hpp"
 
 namespace hapticd::test {
 

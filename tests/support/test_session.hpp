@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "assembly/session_impl.hpp"
 #include "hapticd/server/session.hpp"
 #include "session/device_session.hpp"
-#include "session/session_impl.hpp"
 
 namespace hapticd::test {
 

@@ -10,10 +10,10 @@
 #include <random>
 #include <sstream>
 
+#include "assembly/session_builder.hpp"
 #include "config/config_error.hpp"
 #include "config/session_config.hpp"
-#include "plugins/plugin_loader.hpp"
-#include "session/session_builder.hpp"
+#include "loader/plugin_loader.hpp"
 #include "support/temp_file.hpp"
 
 namespace hapticd::server {

@@ -1,4 +1,4 @@
-// The dynamic force precision analysis (clients/eval/analysis/frequency_response) on synthetic signals with known
+// The dynamic force precision analysis (eval/analysis/frequency_response) on synthetic signals with known
 // answers: a sinusoid with an offset, noise-free harmonics and a phase; the distortion of a known harmonic; the
 // -3 dB bandwidth of a first-order low-pass and the resonance of a second-order system, from their exact
 // responses.

@@ -1,10 +1,10 @@
-#include "recorder/spsc_ring.hpp"
+#include "hapticd/realtime/spsc_ring.hpp"
 
 #include <gtest/gtest.h>
 
 #include <thread>
 
-namespace hapticd::server {
+namespace hapticd::realtime {
 namespace {
 
 TEST(SpscRing, FifoAndFullEmpty) {
@@ -44,4 +44,4 @@ TEST(SpscRing, HandsOffBetweenThreadsInOrder) {
 }
 
 }  // namespace
-}  // namespace hapticd::server
+}  // namespace hapticd::realtime

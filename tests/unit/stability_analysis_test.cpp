@@ -1,4 +1,4 @@
-// The stability analyses of hapticd-eval (clients/eval/analysis/stability) against known answers: the
+// The stability analyses of hapticd-eval (eval/analysis/stability) against known answers: the
 // oscillation measure on a limit cycle, a decaying ring-down and slow voluntary motion; the bisection on a
 // known boundary and on a sampled mass-spring-damper whose stability condition is analytic; the passivity of a
 // sampled wall against Colgate and Brown's condition b > K T / 2 + |B|, as a Z-width region.

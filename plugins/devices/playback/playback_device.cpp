@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "recorder/recording_reader.hpp"
+#include "hapticd/recording/recording_reader.hpp"
 
 namespace hapticd::playback {
 namespace {

@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <string_view>
 #include <thread>
 
 #include "app/invariant_stop.hpp"
@@ -14,6 +16,7 @@
 #include "app/session_report.hpp"
 #include "app/signals.hpp"
 #include "app/startup_checks.hpp"
+#include "assembly/session_builder.hpp"
 #include "bridge/cyclone_log.hpp"
 #include "bridge/dds_bridge.hpp"
 #include "config/config_error.hpp"
@@ -21,7 +24,6 @@
 #include "config/yaml_reader.hpp"
 #include "executor/executor.hpp"
 #include "recorder/recorder.hpp"
-#include "session/session_builder.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -286,9 +288,19 @@ int list_plugins(const std::string& config_file) {
   PluginLoader loader(PluginLoader::search_paths_for(configured));
   std::vector<std::string> problems;
   const auto handles = loader.list_all(&problems);
+  // Columns as wide as their longest entry (a plugin's name may be long: out-of-tree plugins prefix theirs).
+  std::size_t name_width = 4, kind_width = 4, version_width = 7;
+  for (const auto& h : handles) {
+    name_width = std::max(name_width, std::string_view(h.descriptor->name).size());
+    kind_width = std::max(kind_width, std::string_view(to_string(h.descriptor->kind)).size());
+    version_width = std::max(version_width, std::string_view(h.descriptor->version).size());
+  }
+  if (!handles.empty())
+    fmt::print("{:<{}}  {:<{}}  {:<{}}  {}  ({})\n", "name", name_width, "kind", kind_width, "version", version_width,
+               "summary", "library");
   for (const auto& h : handles)
-    fmt::print("{:<20} {:<18} {:<8} {}  ({})\n", h.descriptor->name, to_string(h.descriptor->kind),
-               h.descriptor->version, h.descriptor->summary, h.library->path.string());
+    fmt::print("{:<{}}  {:<{}}  {:<{}}  {}  ({})\n", h.descriptor->name, name_width, to_string(h.descriptor->kind),
+               kind_width, h.descriptor->version, version_width, h.descriptor->summary, h.library->path.string());
   for (const auto& p : problems) fmt::print(stderr, "warning: {}\n", p);
   if (handles.empty()) {
     std::string paths;

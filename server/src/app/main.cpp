@@ -10,6 +10,7 @@
 #include "app/commands.hpp"
 #include "config/config_error.hpp"
 #include "hapticd/api_version.hpp"
+#include "hapticd/recording/recording_file.hpp"
 
 namespace {
 
@@ -46,8 +47,10 @@ int run_command(int argc, char** argv) {
                  "devices.v3.virtual_model.parameters.mass_kg=[2,2,2] (a device entry by its name; the value is YAML)");
   app.add_option("--stats-json", run.stats_json, "write loop statistics (histograms, percentiles) to this JSON file");
   app.add_option(
-      "--record", run.record_file,
-      "record every cycle of every device to this HDF5 file (docs/recording.md; hapticctl export FILE --csv)");
+         "--record", run.record_file,
+         "record every cycle of every device to this HDF5 file, .h5 (docs/recording.md; hapticctl export FILE --csv)")
+      ->check(CLI::Validator([](const std::string& f) { return hapticd::recording::recording_name_problem(f); },
+                             "FILE.h5"));
   int live_view_port = 0;
   auto* live_view_opt =
       app.add_option("--live-view", live_view_port,

@@ -90,9 +90,10 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
   dds_cpus_ = dds_cpus_for(config.dds, options.realtime_setup, settings_, separate);
   if (!options.record_file.empty()) {
     recorder_ = std::make_unique<Recorder>(options.record_file, recording_header(config, devices), settings_.lockstep,
-                                           settings_.lockstep ? 1 : 1 + separate.size());
+                                           LoopPlan::count(separate, settings_.lockstep));
   }
-  executor_ = std::make_unique<Executor>(settings_, devices, recorder_.get(), stages, separate);
+  loops_ = std::make_unique<LoopPlan>(devices, stages, separate, settings_.lockstep, settings_.cpu, recorder_.get());
+  executor_ = std::make_unique<Executor>(settings_, loops_->loops());
   if (config.live_view.enabled)  // binds its port before the DDS interface starts
     live_view_ = std::make_unique<live_view::LiveView>(config.live_view, devices, config.server.rate_hz,
                                                        config.file.filename().string());
@@ -102,7 +103,8 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("DDS interface: ") + e.what());
     }
-    for (std::size_t d = 0; d < devices.size(); ++d) bridge_->set_loop_statistics(d, &executor_->live_of(devices[d]));
+    for (std::size_t d = 0; d < devices.size(); ++d)
+      bridge_->set_loop_statistics(d, &executor_->live(loops_->loop_of(devices[d])));
     set_cycle_listener(bridge_.get());
     bridge_->start();
   }

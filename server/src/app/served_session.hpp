@@ -14,6 +14,7 @@
 #include "app/session_monitor.hpp"
 #include "bridge/dds_bridge.hpp"
 #include "config/session_config.hpp"
+#include "cycle/loop_plan.hpp"
 #include "executor/executor.hpp"
 #include "live_view/live_view.hpp"
 #include "recorder/recorder.hpp"
@@ -63,6 +64,7 @@ class ServedSession {
   ExecutorSettings settings_;
   std::vector<int> dds_cpus_;
   std::unique_ptr<Recorder> recorder_;
+  std::unique_ptr<LoopPlan> loops_;  // which loop drives which device
   std::unique_ptr<Executor> executor_;
   std::unique_ptr<DdsBridge> bridge_;
   std::unique_ptr<live_view::LiveView> live_view_;

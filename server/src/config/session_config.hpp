@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "config/config_overrides.hpp"
-#include "group/repulsion.hpp"
+#include "config/repulsion_settings.hpp"
 #include "hapticd/dds/network.hpp"
 #include "hapticd/parameters.hpp"
 #include "hapticd/spatial.hpp"

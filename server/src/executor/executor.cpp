@@ -6,60 +6,24 @@
 #include <thread>
 
 #include "executor/realtime_setup.hpp"
-#include "group/group_stage.hpp"
 #include "hapticd/demand.hpp"
-#include "session/device_session.hpp"
 
 namespace hapticd::server {
 
-Executor::Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder,
-                   std::vector<GroupStage*> stages, const std::vector<SeparateLoop>& separate)
-    : settings_(settings),
-      sessions_(std::move(sessions)),
-      period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))) {
-  HAPTICD_DEMAND(period_ns_ > 0);        // the rate is validated with the session file (server.rate_hz)
-  std::vector<const SeparateLoop*> own;  // lockstep runs every loop on one thread
-  if (!settings_.lockstep)
-    for (const SeparateLoop& l : separate)
-      if (!l.devices.empty()) own.push_back(&l);
-  const auto loop_of = [&](const DeviceSession* d) -> std::size_t {  // 0: the session's, k + 1: own[k]
-    for (std::size_t k = 0; k < own.size(); ++k)
-      if (std::find(own[k]->devices.begin(), own[k]->devices.end(), d) != own[k]->devices.end()) return k + 1;
-    return 0;
-  };
-  struct Share {
-    std::vector<DeviceSession*> devices;
-    std::vector<std::uint16_t> record_ids;
-    std::vector<GroupStage*> stages;
-  };
-  std::vector<Share> shares(own.size() + 1);
-  for (std::size_t i = 0; i < sessions_.size(); ++i) {
-    Share& share = shares[loop_of(sessions_[i])];
-    share.devices.push_back(sessions_[i]);
-    share.record_ids.push_back(static_cast<std::uint16_t>(i));
+Executor::Executor(ExecutorSettings settings, const std::vector<ExecutorLoop>& loops)
+    : settings_(settings), period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))) {
+  HAPTICD_DEMAND(period_ns_ > 0);  // the rate is validated with the session file (server.rate_hz)
+  HAPTICD_DEMAND(!loops.empty());
+  for (const ExecutorLoop& l : loops) {
+    HAPTICD_DEMAND(l.work != nullptr);
+    loops_.push_back(std::make_unique<Loop>(l.name, l.cpu, *l.work));
   }
-  for (GroupStage* g : stages) shares[g->devices().empty() ? 0 : loop_of(g->devices().front())].stages.push_back(g);
-  for (std::size_t k = 0; k < shares.size(); ++k) {
-    if (k == 0 && shares[0].devices.empty() && !own.empty()) continue;  // every device is in a loop of its own
-    const std::size_t producer = loops_.size();
-    loops_.push_back(std::make_unique<Loop>(
-        k == 0 ? std::string("session") : own[k - 1]->name, k == 0 ? settings_.cpu : own[k - 1]->cpu,
-        LoopCycle(shares[k].devices, recorder, shares[k].stages, shares[k].record_ids, producer)));
-  }
-}
-
-const LiveLoopStatistics& Executor::live_of(const DeviceSession* device) const noexcept {
-  for (const auto& l : loops_) {
-    const auto& d = l->cycle.devices();
-    if (std::find(d.begin(), d.end(), device) != d.end()) return l->live;
-  }
-  return loops_.front()->live;
 }
 
 void Executor::loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_requested,
                     LoopResult& result) noexcept {
   CycleStatistics& stats = result.statistics;
-  LoopCycle& group = loop.cycle;
+  LoopWork& work = loop.work;
   LiveLoopStatistics& live = loop.live;
   const std::uint64_t run_cycles =
       settings_.duration_s > 0.0 ? static_cast<std::uint64_t>(std::llround(settings_.duration_s * settings_.rate_hz))
@@ -85,7 +49,7 @@ void Executor::loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_
     if (!ramping && !stopping && stop_requested.load(std::memory_order_relaxed)) {
       stopping = true;
       result.stop_requested = true;
-      for (DeviceSession* s : group.devices()) s->request_safe_stop();
+      work.request_safe_stop();
     }
     if (!ramping && !stopping && run_cycles > 0 && index >= run_cycles) {
       ramping = true;
@@ -96,9 +60,9 @@ void Executor::loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_
         ramping ? std::max(0.0, 1.0 - static_cast<double>(index - ramp_start + 1) / static_cast<double>(ramp_cycles))
                 : 1.0;
 
-    // One cycle in phases, each for every device before the next (docs/architecture.md, "One cycle").
-    group.run_cycle(CycleTime{deadline_ns - start_ns, period_ns_, index}, scale, consecutive_overruns,
-                    wake_ns - deadline_ns);
+    // One cycle of the loop's work (its devices in phases: docs/architecture.md, "One cycle").
+    work.run_cycle(CycleTime{deadline_ns - start_ns, period_ns_, index}, scale, consecutive_overruns,
+                   wake_ns - deadline_ns);
 
     const std::int64_t compute_end_ns = monotonic_now_ns();
     if (listener_ != nullptr) listener_->after_cycle(index, clock.is_virtual());
@@ -116,7 +80,7 @@ void Executor::loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_
       window_latency_ns = window_compute_ns = 0;
     }
 
-    const bool stopped = stopping && group.at_rest();
+    const bool stopped = stopping && work.at_rest();
     if ((ramping && index - ramp_start + 1 >= ramp_cycles) || stopped) {
       result.periods = index + 1;
       break;
@@ -154,7 +118,7 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
   for (std::size_t k = 0; k < loops_.size(); ++k) {
     result.loops[k].name = loops_[k]->name;
     result.loops[k].cpu = settings_.lockstep ? -1 : loops_[k]->cpu;
-    for (const DeviceSession* d : loops_[k]->cycle.devices()) result.loops[k].devices.push_back(d->name());
+    result.loops[k].devices = loops_[k]->work.device_names();
   }
 
   // The loop threads exist before any device is powered: a thread that cannot be created (no memory) ends the
@@ -205,7 +169,7 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
     throw;
   }
   // A device that cannot be enabled or homed is held in its safe state by its session; the others run.
-  for (DeviceSession* d : sessions_) d->activate();
+  for (const auto& l : loops_) l->work.activate();
   wall_start_ns = monotonic_now_ns();
   go.store(true, std::memory_order_release);
   go.notify_all();
@@ -230,16 +194,7 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
     result.loop_time_s = std::max(result.loop_time_s, l.loop_time_s);
     result.stop_requested = result.stop_requested || l.stop_requested;
   }
-  for (const auto& l : loops_)
-    for (GroupStage* g : l->cycle.stages())
-      if (std::string error = g->deactivate(); !error.empty())
-        result.plugin_errors.push_back("group '" + g->name() + "': " + error);
-  for (DeviceSession* s : sessions_) {
-    s->deactivate();  // whatever its plugins threw
-    if (!s->disable_error().empty())
-      result.warnings.push_back("device '" + s->name() + "': " + s->disable_error() + " (its drives may still be on)");
-    for (std::string& e : s->take_plugin_errors()) result.plugin_errors.push_back("device '" + s->name() + "': " + e);
-  }
+  for (const auto& l : loops_) l->work.deactivate(result.warnings, result.plugin_errors);
   return result;
 }
 

@@ -1,14 +1,13 @@
 #pragma once
 // The fixed-rate loops. Each runs on a thread of its own (SCHED_FIFO and locked memory when permitted), sleeps
-// to absolute deadlines on its clock, runs its devices each cycle in phases (all devices of a loop see the same
-// instant), hands records to the recorder, and keeps timing statistics. The session's loop drives every device
-// not in a group with a loop of its own (`groups[i].loop`); each such group runs on a loop thread of its own,
-// pinned to its CPU, at the same rate and on the same schedule. In lockstep every loop runs on one thread (the
-// virtual clock has no CPUs to spread over, and one thread keeps runs repeatable). When the duration is reached
-// each loop ramps its devices' torques linearly to zero over the shutdown ramp, then stops; when a stop is
-// requested (SIGINT/SIGTERM) every device takes an emergency stop - its safe mode, damping then zero torque - and
-// a loop stops once all its devices are at zero torque. Each cycle tells the devices the current run of
-// consecutive overruns of their loop (their watchdog).
+// to absolute deadlines on its clock, runs its LoopWork each cycle (executor/loop_work.hpp: what it drives is not
+// the executor's business) and keeps timing statistics. Every loop runs at the same rate on the same schedule,
+// each on the CPU it is given (in lockstep the caller gives one loop, cycle/LoopPlan: the virtual clock has no
+// CPUs to spread over, and one thread keeps runs repeatable). When the
+// duration is reached each loop ramps its torques linearly to zero over the shutdown ramp, then stops; when a stop
+// is requested (SIGINT/SIGTERM) the work takes an emergency stop - its safe modes, damping then zero torque - and a
+// loop stops once its work is at rest. Each cycle tells the work the current run of consecutive overruns of its
+// loop (the devices' watchdog).
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -18,12 +17,9 @@
 
 #include "executor/cycle_statistics.hpp"
 #include "executor/loop_clock.hpp"
-#include "executor/loop_cycle.hpp"
+#include "executor/loop_work.hpp"
 
 namespace hapticd::server {
-
-class DeviceSession;
-class Recorder;
 
 // Told by the loop thread after every cycle, once all devices have run (the DDS bridge: wake the publisher;
 // in lockstep, wait for the engine's answer). Real-time safe by contract in realtime mode.
@@ -44,11 +40,11 @@ struct ExecutorSettings {
   int cpu_dma_latency_us = -1;  // held while running (realtime only); -1: left alone
 };
 
-// A group whose devices run on a loop thread of their own (`groups[i].loop`).
-struct SeparateLoop {
-  std::string name;  // the group's
-  std::vector<DeviceSession*> devices;
-  int cpu = -1;  // -1: not pinned
+// One loop: its name ("session", or a group's), its CPU (-1: not pinned) and what it runs (outlives the executor).
+struct ExecutorLoop {
+  std::string name;
+  int cpu = -1;
+  LoopWork* work = nullptr;
 };
 
 // One loop's figures.
@@ -86,15 +82,12 @@ struct LiveLoopStatistics {
 
 class Executor {
  public:
-  // sessions: every device, in the session's order (their numbers in the recording); stages: the device groups'
-  // stages (phase (b) of each cycle), each run by the loop that holds its devices; separate: the groups with a
-  // loop of their own (ignored in lockstep). The recorder, if any, has a ring for every loop.
-  Executor(ExecutorSettings settings, std::vector<DeviceSession*> sessions, Recorder* recorder,
-           std::vector<GroupStage*> stages = {}, const std::vector<SeparateLoop>& separate = {});
+  // loops: at least one, each run on a thread of its own.
+  Executor(ExecutorSettings settings, const std::vector<ExecutorLoop>& loops);
 
-  // Activates the sessions, runs the loop until the duration has passed or stop_requested turns true, ramps
-  // down and deactivates. While the loop runs, the calling thread calls `monitor` every 20 ms (for logging:
-  // the loop never logs).
+  // Activates the loops' work, runs the loops until the duration has passed or stop_requested turns true, ramps
+  // down and deactivates. While the loops run, the calling thread calls `monitor` every 20 ms (for logging:
+  // the loops never log).
   ExecutorResult run(const std::atomic<bool>& stop_requested, const std::function<void()>& monitor = {});
   // Any thread: the loop threads of every executor in the process that have started and not yet ended.
   [[nodiscard]] static int loops_running() noexcept;
@@ -102,25 +95,23 @@ class Executor {
   [[nodiscard]] std::int64_t period_ns() const noexcept { return period_ns_; }
   // Before run(). With several loops it is called by each loop's thread (concurrently in real time).
   void set_cycle_listener(CycleListener* listener) noexcept { listener_ = listener; }
-  // The live figures of the first loop, and of the loop that drives `device`.
-  [[nodiscard]] const LiveLoopStatistics& live() const noexcept { return loops_.front()->live; }
-  [[nodiscard]] const LiveLoopStatistics& live_of(const DeviceSession* device) const noexcept;
+  // The live figures of loop k (in the order given).
+  [[nodiscard]] const LiveLoopStatistics& live(std::size_t k = 0) const noexcept { return loops_[k]->live; }
   [[nodiscard]] std::size_t loop_count() const noexcept { return loops_.size(); }
 
  private:
   struct Loop {
-    Loop(std::string loop_name, int loop_cpu, LoopCycle loop_cycle)
-        : name(std::move(loop_name)), cpu(loop_cpu), cycle(std::move(loop_cycle)) {}
+    Loop(std::string loop_name, int loop_cpu, LoopWork& loop_work)
+        : name(std::move(loop_name)), cpu(loop_cpu), work(loop_work) {}
     std::string name;
     int cpu;
-    LoopCycle cycle;  // the devices, and their cycle
+    LoopWork& work;
     LiveLoopStatistics live;
   };
   void loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_requested, LoopResult& result) noexcept;
 
   ExecutorSettings settings_;
-  std::vector<DeviceSession*> sessions_;
-  std::vector<std::unique_ptr<Loop>> loops_;  // the session's first (when it has devices), then the groups'
+  std::vector<std::unique_ptr<Loop>> loops_;
   CycleListener* listener_ = nullptr;
   std::int64_t period_ns_;
 };

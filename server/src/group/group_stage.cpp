@@ -1,7 +1,7 @@
 #include "group/group_stage.hpp"
 
 #include "hapticd/demand.hpp"
-#include "plugins/plugin_deactivation.hpp"
+#include "loader/plugin_deactivation.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server {

@@ -14,7 +14,7 @@
 #include "hapticd/cycle_time.hpp"
 #include "hapticd/group_model.hpp"
 #include "hapticd/realtime/latest_value.hpp"
-#include "plugins/plugin_loader.hpp"
+#include "loader/plugin_loader.hpp"
 #include "session/device_snapshot.hpp"
 
 namespace hapticd::server {

@@ -6,6 +6,7 @@
 // fixes its posture, as the ViSHaRD3's). Every pair of capsules within the distance adds its own. Real-time safe.
 #include <Eigen/Core>
 
+#include "config/repulsion_settings.hpp"
 #include "hapticd/joint_vector.hpp"
 
 namespace hapticd {
@@ -13,16 +14,6 @@ struct ChainState;
 }
 
 namespace hapticd::server {
-
-struct RepulsionSettings {
-  double distance_m = 0.0;  // 0: off
-  double stiffness_n_per_m = 1000.0;
-  double damping_n_s_per_m = 10.0;
-  double max_force_n = 20.0;  // on each handle
-  // Low-pass of the joint torques (first order, Hz; 0: none): the closest points of two nearly parallel links jump
-  // along their overlap as the links turn past parallel, and with them the lever of the force.
-  double filter_hz = 40.0;
-};
 
 // The force pushing the nearest points apart (N, along the clearance's normal): k (distance_m - d) - b d',
 // never pulling (>= 0), zero at or beyond distance_m. `clearance_rate`: d', m/s.

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "recorder/fill_record.hpp"
+
 namespace hapticd::server {
 namespace {
 
@@ -16,7 +18,8 @@ Recorder::Recorder(const std::filesystem::path& file, const RecordingHeader& hea
                    std::size_t producers)
     : wait_when_full_(wait_when_full), path_(file) {
   for (std::size_t k = 0; k < std::max<std::size_t>(1, producers); ++k)
-    rings_.push_back(std::make_unique<SpscRing<CycleRecord>>(1 << 13));
+    rings_.push_back(std::make_unique<realtime::SpscRing<CycleRecord>>(1 << 13));
+  scratch_.resize(rings_.size());
   file_ = std::make_unique<RecordingFile>(file, header);  // throws with the reason
   last_flush_ = std::chrono::steady_clock::now();
   writer_ = std::thread([this] { write_loop(); });
@@ -28,7 +31,7 @@ Recorder::~Recorder() {
 }
 
 void Recorder::record(std::size_t producer, const CycleRecord& r) noexcept {
-  SpscRing<CycleRecord>& ring = *rings_[producer];
+  realtime::SpscRing<CycleRecord>& ring = *rings_[producer];
   while (!ring.try_push(r)) {
     if (!wait_when_full_) {
       dropped_.fetch_add(1, std::memory_order_relaxed);
@@ -36,6 +39,13 @@ void Recorder::record(std::size_t producer, const CycleRecord& r) noexcept {
     }
     std::this_thread::yield();
   }
+}
+
+void Recorder::device_written(std::size_t producer, const DeviceSession& device, std::uint16_t index,
+                              const CycleTime& cycle, std::int64_t lateness_ns, std::int64_t compute_ns) noexcept {
+  CycleRecord& r = scratch_[producer];
+  fill_cycle_record(r, device, index, cycle, lateness_ns, compute_ns);
+  record(producer, r);
 }
 
 std::string Recorder::error() const {

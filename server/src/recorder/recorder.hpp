@@ -17,26 +17,37 @@
 #include <thread>
 #include <vector>
 
-#include "recorder/cycle_record.hpp"
-#include "recorder/recording_file.hpp"
-#include "recorder/spsc_ring.hpp"
+#include "cycle/device_cycle_sink.hpp"
+#include "hapticd/realtime/spsc_ring.hpp"
+#include "hapticd/recording/cycle_record.hpp"
+#include "hapticd/recording/recording_file.hpp"
 
 namespace hapticd::server {
 
-class Recorder {
+// The recording library's types, as the recorder speaks them.
+using recording::CycleRecord;
+using recording::RecordingDevice;
+using recording::RecordingEvent;
+using recording::RecordingFile;
+using recording::RecordingHeader;
+
+class Recorder final : public DeviceCycleSink {
  public:
   // Creates the file and writes the header (throws std::runtime_error if it cannot), starts the writer thread.
   // producers: the loop threads that record, each into a ring of its own.
   Recorder(const std::filesystem::path& file, const RecordingHeader& header, bool wait_when_full,
            std::size_t producers = 1);
-  ~Recorder();
+  ~Recorder() override;
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
 
   // Real-time safe (in real-time mode; in lockstep it may wait for the writer). Only `producer`'s loop thread
   // records into its ring (0 .. producers - 1).
   void record(std::size_t producer, const CycleRecord& record) noexcept;
-  [[nodiscard]] std::size_t producers() const noexcept { return rings_.size(); }
+  [[nodiscard]] std::size_t producers() const noexcept override { return rings_.size(); }
+  // The loop's hand-over (DeviceCycleSink): the device's record of the cycle, into `producer`'s ring.
+  void device_written(std::size_t producer, const DeviceSession& device, std::uint16_t index, const CycleTime& cycle,
+                      std::int64_t lateness_ns, std::int64_t compute_ns) noexcept override;
   // Not real-time safe. Writes what is queued and stops the writer; the file stays open for the summary.
   void finish();
   // After finish(): the session's statistics and safety events, then closes the file. A failure here fails the
@@ -58,7 +69,8 @@ class Recorder {
   void fail(const std::string& message, std::uint64_t records_lost);
 
   bool wait_when_full_;
-  std::vector<std::unique_ptr<SpscRing<CycleRecord>>> rings_;  // one per producer
+  std::vector<std::unique_ptr<realtime::SpscRing<CycleRecord>>> rings_;  // one per producer
+  std::vector<CycleRecord> scratch_;  // one per producer: a record is 1.6 kB, not for the loop's stack
   std::filesystem::path path_;
   std::unique_ptr<RecordingFile> file_;  // writer thread (then the caller of finish/close)
   std::uint64_t unflushed_ = 0;          // records written since the last flush

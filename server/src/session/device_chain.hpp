@@ -8,7 +8,7 @@
 
 #include "hapticd/model/robot_model.hpp"
 #include "hapticd/plugin.hpp"
-#include "plugins/plugin_loader.hpp"
+#include "loader/plugin_loader.hpp"
 #include "safety/safety_settings.hpp"
 
 namespace hapticd::server {

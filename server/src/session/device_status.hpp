@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "hapticd/realtime/latest_value.hpp"
-#include "recorder/spsc_ring.hpp"
+#include "hapticd/realtime/spsc_ring.hpp"
 #include "safety/device_fault.hpp"
 #include "safety/fault_history.hpp"
 #include "session/device_snapshot.hpp"
@@ -42,7 +42,7 @@ struct DeviceStatus {
   realtime::LatestValue<DeviceSnapshot> snapshots;       // the DDS publisher's
   realtime::LatestValue<DeviceSnapshot> view_snapshots;  // the live view's
   realtime::LatestValue<FaultReport> reports;
-  SpscRing<SafetyEvent> safety_events{256};
+  realtime::SpscRing<SafetyEvent> safety_events{256};
   std::atomic<std::uint64_t> lost_safety_events{0};
 };
 

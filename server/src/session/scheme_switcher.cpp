@@ -3,7 +3,7 @@
 #include <utility>
 
 #include "hapticd/demand.hpp"
-#include "plugins/plugin_deactivation.hpp"
+#include "loader/plugin_deactivation.hpp"
 
 namespace hapticd::server {
 

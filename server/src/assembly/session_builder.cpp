@@ -1,0 +1,240 @@
+#include "assembly/session_builder.hpp"
+
+#include <algorithm>
+
+#include "config/config_error.hpp"
+#include "config/yaml_reader.hpp"
+#include "hapticd/model/urdf_loader.hpp"
+
+namespace hapticd::server {
+namespace {
+
+// A plugin threw from configure() (other than a ParameterError, which is a mistake in the session file): the
+// device is isolated in its safe state and the others run (docs/safety.md).
+struct PluginConfigureError {
+  ConfigError error;
+};
+
+int line_from_origin(const std::string& origin, int fallback) {
+  const auto colon = origin.rfind(':');
+  if (colon == std::string::npos) return fallback;
+  try {
+    return std::stoi(origin.substr(colon + 1));
+  } catch (const std::exception&) {
+    return fallback;
+  }
+}
+
+template <class T, class Context>
+PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, const SessionConfig& config,
+                                     PluginLoader& loader, const Context& context) {
+  const std::string file = config.file.string();
+  PluginHandle handle;
+  try {
+    handle = loader.find(kind, pc.plugin, pc.library);
+  } catch (const PluginLoadError& e) {
+    throw ConfigError(file, pc.line, pc.key_path + ".plugin", e.what());
+  }
+  const ParameterSchema schema = handle.descriptor->parameter_schema();
+  const std::string parameters_path = pc.key_path + ".parameters";
+  const Parameters parameters = read_parameters(pc.parameters, schema, file, parameters_path, pc.line);
+
+  PluginInstance<T> instance;
+  try {
+    instance = create_plugin<T>(handle);
+  } catch (const PluginLoadError& e) {
+    throw ConfigError(file, pc.line, pc.key_path + ".plugin", e.what());
+  }
+  try {
+    instance->configure(parameters, context);
+  } catch (const ParameterError& e) {
+    throw ConfigError(file, line_from_origin(parameters.origin(e.key()), pc.line), parameters_path + "." + e.key(),
+                      e.what());
+  } catch (const std::exception& e) {
+    throw PluginConfigureError{ConfigError(file, pc.line, pc.key_path,
+                                           "plugin '" + pc.plugin + "' failed to configure: " + std::string(e.what()))};
+  } catch (...) {
+    throw PluginConfigureError{
+        ConfigError(file, pc.line, pc.key_path, "plugin '" + pc.plugin + "' failed to configure")};
+  }
+  instance.parameters = parameters;
+  return instance;
+}
+
+// The model with the collision geometry the session file gives (in its link frames), else the URDF's, else
+// capsules along the skeleton. Before the model is mounted: the capsules are in the URDF root's frame.
+model::RobotModel with_collision_of(const DeviceConfig& dc, const model::RobotModel& robot, const std::string& file) {
+  if (dc.collision.capsules.empty()) {
+    if (!robot.collision().empty() || dc.collision.skeleton_radius_m <= 0.0) return robot;
+    return robot.with_collision(model::skeleton_capsules(robot, dc.collision.skeleton_radius_m));
+  }
+  std::vector<model::Capsule> capsules;
+  for (const CapsuleConfig& c : dc.collision.capsules) {
+    const int frame = robot.frame_id(c.link);
+    if (frame < 0)
+      throw ConfigError(file, c.line, c.key_path + ".link",
+                        "device '" + dc.name + "': no link '" + c.link + "' in its robot model");
+    const model::Frame& f = robot.frame(frame);
+    capsules.push_back(model::Capsule{c.link, f.body, f.placement * c.from, f.placement * c.to, c.radius_m});
+  }
+  try {
+    return robot.with_collision(std::move(capsules));
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(file, dc.collision.capsules.front().line, dc.collision.capsules.front().key_path, e.what());
+  }
+}
+
+// The device's robot model, parsed once for the estimator and the whole chain, mounted at the device's base pose
+// (its poses, Jacobians and gravity in the world frame); checked against the device.
+std::shared_ptr<const model::RobotModel> robot_model_of(const DeviceConfig& dc, const DeviceDescription& description,
+                                                        const std::string& file) {
+  if (description.robot_model_file.empty()) return nullptr;
+  std::shared_ptr<const model::RobotModel> robot;
+  try {
+    const model::RobotModel own = model::load_robot_model(description.robot_model_file);
+    robot = std::make_shared<const model::RobotModel>(
+        with_collision_of(dc, own, file).with_base(to_isometry(description.base_pose)));
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw ConfigError(file, dc.device.line, dc.device.key_path,
+                      "device '" + dc.name + "': its robot model: " + e.what());
+  }
+  if (robot->dof() != description.dof())
+    throw ConfigError(file, dc.device.line, dc.device.key_path,
+                      "device '" + dc.name + "': its robot model " + description.robot_model_file + " has " +
+                          std::to_string(robot->dof()) + " joints, the device " + std::to_string(description.dof()));
+  return robot;
+}
+
+}  // namespace
+
+std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) noexcept {
+  std::uint64_t z = session_seed + 0x9e3779b97f4a7c15ULL * (device_index + 1);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+namespace {
+
+std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& config, PluginLoader& loader,
+                                                      std::vector<ConfigureFailure>* report) {
+  std::vector<std::unique_ptr<DeviceSession>> sessions;
+  for (std::size_t i = 0; i < config.devices.size(); ++i) {
+    const DeviceConfig& dc = config.devices[i];
+    PluginContext context;
+    context.device_name = dc.name;
+    context.rate_hz = config.server.rate_hz;
+    context.seed = device_seed(config.server.seed, i);
+    context.config_directory = config.file.parent_path();
+    context.base_pose = dc.base_pose;
+
+    DeviceChain chain;
+    try {
+      chain.device = load_and_configure<Device>(PluginKind::device, dc.device, config, loader, context);
+    } catch (const PluginConfigureError& e) {
+      // Without a configured device plugin there is nothing to drive: its drives stay unpowered.
+      if (report == nullptr) throw e.error;
+      report->push_back({dc.name, e.error, false});
+      continue;
+    }
+    chain.description = chain.device->description();
+    chain.description.base_pose = dc.base_pose;
+    context.device = &chain.description;
+    chain.robot_model = robot_model_of(dc, chain.description, config.file.string());
+    context.robot_model = chain.robot_model.get();
+    const auto build_scheme = [&](const std::string& name, const std::optional<PluginConfig>& virtual_model,
+                                  const std::optional<PluginConfig>& inverse_kinematics,
+                                  const PluginConfig& controller) {
+      SchemeChain scheme;
+      scheme.name = name;
+      if (virtual_model)
+        scheme.virtual_model =
+            load_and_configure<VirtualModel>(PluginKind::virtual_model, *virtual_model, config, loader, context);
+      if (inverse_kinematics)
+        scheme.inverse_kinematics = load_and_configure<InverseKinematics>(PluginKind::inverse_kinematics,
+                                                                          *inverse_kinematics, config, loader, context);
+      scheme.controller = load_and_configure<Controller>(PluginKind::controller, controller, config, loader, context);
+      chain.schemes.push_back(std::move(scheme));
+    };
+    try {
+      build_scheme(dc.scheme, dc.virtual_model, dc.inverse_kinematics, dc.controller);
+      for (const SchemeConfig& alt : dc.alternatives)
+        build_scheme(alt.name, alt.virtual_model, alt.inverse_kinematics, alt.controller);
+    } catch (const PluginConfigureError& e) {
+      // The device is powered but held in its safe state; its other plugins are dropped.
+      if (report == nullptr) throw e.error;
+      chain.schemes.clear();
+      chain.configure_error = e.error.what();
+      report->push_back({dc.name, e.error, true});
+    }
+    chain.switch_ramp_s = dc.switch_ramp_s;
+    chain.engine_deadline_s = dc.engine_deadline_s;
+    chain.engine_fade_s = dc.engine_fade_s;
+    chain.engine_ramp_in_s = dc.engine_ramp_in_s;
+    chain.safety = dc.safety;
+    chain.period_s = 1.0 / config.server.rate_hz;
+
+    try {
+      sessions.push_back(std::make_unique<DeviceSession>(dc.name, std::move(chain)));
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(config.file.string(), dc.device.line, dc.device.key_path, e.what());
+    }
+  }
+  if (report == nullptr) return sessions;
+  if (sessions.empty() ||
+      std::none_of(sessions.begin(), sessions.end(), [](const auto& d) { return d->fault() == DeviceFault::none; })) {
+    if (!report->empty()) throw report->front().error;  // nothing could run: fail the start
+  }
+  return sessions;
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader,
+                                                           std::vector<ConfigureFailure>* report) {
+  try {
+    return build_all(config, loader, report);
+  } catch (const ConfigError& e) {
+    throw_if_overridden(e, config.overrides);  // a plugin parameter an override set: the error names it
+    throw;
+  }
+}
+
+std::vector<std::unique_ptr<GroupStage>> build_group_stages(const SessionConfig& config,
+                                                            const std::vector<std::unique_ptr<DeviceSession>>& devices,
+                                                            PluginLoader& loader) {
+  std::vector<std::unique_ptr<GroupStage>> stages;
+  for (const GroupConfig& g : config.groups) {
+    std::vector<DeviceSession*> members;
+    for (const std::string& name : g.devices)
+      for (const auto& d : devices)
+        if (d->name() == name) members.push_back(d.get());
+    if (g.min_distance_m > 0.0 || g.repulsion.distance_m > 0.0)
+      for (const DeviceSession* d : members)
+        if (d->chain().robot_model == nullptr)
+          throw ConfigError(config.file.string(), g.line,
+                            g.key_path + (g.min_distance_m > 0.0 ? ".min_distance_m" : ".repulsion"),
+                            "group '" + g.name + "' checks distances, but device '" + d->name() +
+                                "' has no robot model (no collision geometry)");
+    GroupModelContext context;
+    context.group_name = g.name;
+    for (const DeviceSession* d : members) context.devices.push_back(d->name());
+    context.rate_hz = config.server.rate_hz;
+    context.config_directory = config.file.parent_path();
+    auto stage = std::make_unique<GroupStage>(g.name, std::move(members), g.min_distance_m, g.repulsion,
+                                              1.0 / config.server.rate_hz, g.own_loop);
+    if (g.model) {
+      try {
+        stage->set_model(load_and_configure<GroupModel>(PluginKind::group_model, *g.model, config, loader, context));
+      } catch (const PluginConfigureError& e) {
+        throw e.error;  // a group's model that cannot configure is the session's error (it holds several devices)
+      }
+    }
+    stages.push_back(std::move(stage));
+  }
+  return stages;
+}
+
+}  // namespace hapticd::server
