@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """The DDS round trip, side by side with ddsperf, in one run (docs/dds-interface.md).
 
 For each loop rate (1 kHz, 2 kHz): hapticd with the simulated ViSHaRD3 publishing its state every cycle and the

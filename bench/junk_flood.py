@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """The loop's timing under a flood of junk packets, against the same run without it (docs/measurements.md).
 
 The hardening issue's attack: UDP datagrams with an RTPS header and junk after it, at 10 000 per second, to the

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """The round trip of a Python engine against the C++ scene engine's, side by side in one run (docs/python.md).
 
 For each engine, alternately and --repeat times: hapticd with the simulated ViSHaRD3 coupled over DDS
@@ -14,7 +14,6 @@ import argparse
 import json
 import os
 import subprocess
-import sys
 import tempfile
 import time
 from statistics import median
@@ -37,10 +36,10 @@ def run(build, engine, seconds):
             command = [os.path.join(bin_dir, "hapticd-scene-engine"), "--domain", str(DOMAIN), "--duration",
                        str(seconds + 3)]
         else:
-            command = [sys.executable, os.path.join(ROOT, "examples", "python", "wall_engine.py"), "--domain",
-                       str(DOMAIN), "--duration", str(seconds + 3)]  # both answer until the server stops
-        env = dict(os.environ, PYTHONPATH=os.path.join(build, "python"))
-        engine_process = subprocess.Popen(PIN + command, stdout=subprocess.DEVNULL, env=env)
+            # the interpreter the package is built for, whatever python3 runs this script
+            command = [os.path.join(bin_dir, "hapticd-python"), os.path.join(ROOT, "examples", "python",
+                       "wall_engine.py"), "--domain", str(DOMAIN), "--duration", str(seconds + 3)]
+        engine_process = subprocess.Popen(PIN + command, stdout=subprocess.DEVNULL)  # both answer until the end
         server.wait(timeout=seconds + 30)
         engine_process.wait(timeout=30)
         report = json.load(open(stats))
