@@ -18,7 +18,5 @@ function(hapticd_add_plugin target)
   if(DEFINED HAPTICD_PLUGIN_SUBDIR)
     set_target_properties(${target} PROPERTIES
       LIBRARY_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/${HAPTICD_PLUGIN_SUBDIR}")
-    # In tree: every plugin is listed for the `demo` target (what the quick start's demo builds).
-    set_property(GLOBAL APPEND PROPERTY HAPTICD_PLUGIN_TARGETS ${target})
   endif()
 endfunction()

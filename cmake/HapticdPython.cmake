@@ -27,14 +27,9 @@ file(RELATIVE_PATH _install_rel "/prefix/${CMAKE_INSTALL_BINDIR}" "/prefix/${HAP
 set(HAPTICD_PYTHON_BUILD_REL "${_build_rel}" CACHE INTERNAL "")
 set(HAPTICD_PYTHON_INSTALL_REL "${_install_rel}" CACHE INTERNAL "")
 
-# hapticd_add_python_program(<name> <script>): <script> as the program <name> in the build tree's and the
-# installation's bin folder: its first line names HAPTICD_PYTHON, the next puts the package's folder on sys.path.
-function(hapticd_add_python_program name script)
-  get_filename_component(script "${script}" ABSOLUTE)
-  file(READ "${script}" text)
-  string(REGEX REPLACE "^#![^\n]*\n" "" text "${text}")
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${script}")
-  set(_preamble "import os as _os, sys as _sys  # noqa: E401 (written by the build: the hapticd package's folder)\n")
+# Writes the program <name> twice - into the build tree's bin folder and, to be installed, into generated/install -
+# with @HAPTICD_PACKAGE_REL@ in <content> replaced by the package's folder relative to the programs' folder there.
+function(hapticd_write_program name content)
   foreach(where build install)
     if(where STREQUAL "build")
       set(_out "${CMAKE_RUNTIME_OUTPUT_DIRECTORY}/${name}")
@@ -43,31 +38,32 @@ function(hapticd_add_python_program name script)
       set(_out "${PROJECT_BINARY_DIR}/generated/install/${name}")
       set(_rel "${HAPTICD_PYTHON_INSTALL_REL}")
     endif()
-    file(WRITE "${_out}"
-      "#!${HAPTICD_PYTHON}\n${_preamble}_sys.path.insert(0, _os.path.join(_os.path.dirname(_os.path.realpath(__file__)), \"${_rel}\"))\n${text}")
+    string(REPLACE "@HAPTICD_PACKAGE_REL@" "${_rel}" _text "${content}")
+    file(WRITE "${_out}" "${_text}")
     file(CHMOD "${_out}" PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE WORLD_READ
       WORLD_EXECUTE)
   endforeach()
   install(PROGRAMS "${PROJECT_BINARY_DIR}/generated/install/${name}" DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
 
+# hapticd_add_python_program(<name> <script>): <script> as the program <name>: its first line names HAPTICD_PYTHON,
+# the next puts the package's folder on sys.path.
+function(hapticd_add_python_program name script)
+  get_filename_component(script "${script}" ABSOLUTE)
+  file(READ "${script}" text)
+  string(REGEX REPLACE "^#![^\n]*\n" "" text "${text}")
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${script}")
+  hapticd_write_program(${name} "#!${HAPTICD_PYTHON}
+import os as _os, sys as _sys  # noqa: E401 (written by the build: the hapticd package's folder)
+_sys.path.insert(0, _os.path.join(_os.path.dirname(_os.path.realpath(__file__)), \"@HAPTICD_PACKAGE_REL@\"))
+${text}")
+endfunction()
+
 # hapticd-python: the interpreter above with the package's folder on PYTHONPATH, for the user's own scripts and the
 # examples (`hapticd-python examples/python/wall_engine.py`); `hapticd-python --which` names the interpreter.
-foreach(where build install)
-  if(where STREQUAL "build")
-    set(_out "${CMAKE_RUNTIME_OUTPUT_DIRECTORY}/hapticd-python")
-    set(_rel "${HAPTICD_PYTHON_BUILD_REL}")
-  else()
-    set(_out "${PROJECT_BINARY_DIR}/generated/install/hapticd-python")
-    set(_rel "${HAPTICD_PYTHON_INSTALL_REL}")
-  endif()
-  file(WRITE "${_out}" "#!/bin/sh
+hapticd_write_program(hapticd-python "#!/bin/sh
 # The Python interpreter the hapticd package was built for, with the package on its path (written by the build).
 if [ \"\${1:-}\" = --which ]; then echo '${HAPTICD_PYTHON}'; exit 0; fi
 here=\$(dirname \"\$(readlink -f \"\$0\")\")
-PYTHONPATH=\"\$here/${_rel}\${PYTHONPATH:+:\$PYTHONPATH}\" exec '${HAPTICD_PYTHON}' \"\$@\"
+PYTHONPATH=\"\$here/@HAPTICD_PACKAGE_REL@\${PYTHONPATH:+:\$PYTHONPATH}\" exec '${HAPTICD_PYTHON}' \"\$@\"
 ")
-  file(CHMOD "${_out}" PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE WORLD_READ
-    WORLD_EXECUTE)
-endforeach()
-install(PROGRAMS "${PROJECT_BINARY_DIR}/generated/install/hapticd-python" DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -34,12 +34,17 @@ if ! command -v python3 > /dev/null; then
 elif why=$(cd / && python3 -c "import hapticd" 2>&1); then
   echo "build: your python3 ($(command -v python3)) imports the hapticd package"
 else
+  direct="  - or use that interpreter directly: $built_for my_engine.py"
+  if ! (cd / && "$built_for" -c "import hapticd" > /dev/null 2>&1); then
+    package=$(find "$prefix/lib" -maxdepth 4 -type d -path '*-packages/hapticd' 2> /dev/null | head -n 1)
+    direct="  - or that interpreter with the package's folder: PYTHONPATH=$(dirname "${package:-$prefix/lib/python3/dist-packages/hapticd}") $built_for my_engine.py"
+  fi
   cat << EOF
 build: note - your python3 ($(command -v python3), $(python3 --version 2>&1)) cannot import the hapticd package:
   ${why##*$'\n'}
   The package is built for $built_for, which has NumPy, Matplotlib, h5py and pytest from Debian. Either
   - run your scripts with hapticd-python (that interpreter, the package on its path): hapticd-python my_engine.py
-  - or use that interpreter directly: $built_for my_engine.py
+$direct
   - or build for yours (it needs NumPy; the tests also pytest and h5py):
     cmake --preset $preset -DPython3_EXECUTABLE=$(command -v python3) && scripts/build.sh $preset
   The programs (hapticd-plot-recording, hapticd-eval's report) name their interpreter themselves.
