@@ -9,6 +9,7 @@
 
 namespace hapticd {
 
+RuntimeRequests::~RuntimeRequests() = default;
 Device::~Device() = default;
 Controller::~Controller() = default;
 InverseKinematics::~InverseKinematics() = default;
@@ -25,16 +26,11 @@ void refuse_tuning() {
 }
 }  // namespace
 
-void Device::tune(const Parameters&) { refuse_tuning(); }
-void Controller::tune(const Parameters&) { refuse_tuning(); }
-void VirtualModel::tune(const Parameters&) { refuse_tuning(); }
-RuntimeReply Device::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
+void RuntimeRequests::tune(const Parameters&) { refuse_tuning(); }
+RuntimeReply RuntimeRequests::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 bool Device::simulated_truth(SimulatedTruth&) const { return false; }
 Outcome Device::home() { return Outcome::success(); }
 Outcome Device::reset_fault() { return Outcome::success(); }
-RuntimeReply Controller::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
-RuntimeReply VirtualModel::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
-RuntimeReply GroupModel::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 
 std::string_view to_string(PluginKind kind) noexcept {
   switch (kind) {

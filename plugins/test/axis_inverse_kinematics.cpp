@@ -8,13 +8,12 @@ void AxisInverseKinematics::configure(const Parameters&, const PluginContext& co
   axes_ = context.device != nullptr ? std::min(3, context.device->dof()) : 0;
 }
 
-ReturnCode AxisInverseKinematics::activate(const InverseKinematicsInput&) noexcept { return ReturnCode::ok; }
+Outcome AxisInverseKinematics::activate(const InverseKinematicsInput&) { return Outcome::success(); }
 
-ReturnCode AxisInverseKinematics::update(const CycleTime&, const InverseKinematicsInput& in,
-                                         JointTarget& target) noexcept {
+Outcome AxisInverseKinematics::update(const CycleTime&, const InverseKinematicsInput& in, JointTarget& target) {
   if (!in.task.has_motion) {
     target.valid = false;
-    return ReturnCode::ok;
+    return Outcome::success();
   }
   for (int i = 0; i < axes_; ++i) {
     target.position[i] = in.task.pose.position[i];
@@ -22,7 +21,7 @@ ReturnCode AxisInverseKinematics::update(const CycleTime&, const InverseKinemati
     target.acceleration[i] = in.task.acceleration.linear[i];
   }
   target.valid = true;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::test_plugins

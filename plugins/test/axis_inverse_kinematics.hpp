@@ -10,8 +10,8 @@ class AxisInverseKinematics final : public InverseKinematics {
   static ParameterSchema parameter_schema() { return {}; }
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const InverseKinematicsInput& current) noexcept override;
-  ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) noexcept override;
+  Outcome activate(const InverseKinematicsInput& current) override;
+  Outcome update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) override;
   void deactivate() override {}
 
  private:

@@ -95,7 +95,7 @@ void MassSpringDevice::step(double dt) noexcept {
   position_m_ += velocity_m_s_ * dt;
 }
 
-Outcome MassSpringDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
+Outcome MassSpringDevice::read(const CycleTime& cycle, DeviceState& state) {
   if (!homed_) return Outcome::failure("not homed");
   if (fail_read_at_cycle_ >= 0 && cycle.index == static_cast<std::uint64_t>(fail_read_at_cycle_))
     read_fault_latched_ = true;
@@ -123,7 +123,7 @@ Outcome MassSpringDevice::read(const CycleTime& cycle, DeviceState& state) noexc
   return Outcome::success();
 }
 
-Outcome MassSpringDevice::write(const CycleTime& cycle, const JointCommand& command) noexcept {
+Outcome MassSpringDevice::write(const CycleTime& cycle, const JointCommand& command) {
   if (fail_write_at_cycle_ >= 0 && cycle.index >= static_cast<std::uint64_t>(fail_write_at_cycle_)) {
     force_n_ = 0.0;  // a failed write: the drive holds nothing
     return Outcome::failure("injected write failure (fail_write_at_cycle)");
@@ -145,7 +145,7 @@ Outcome MassSpringDevice::home() {
   return Outcome::success();
 }
 
-Outcome MassSpringDevice::reset_fault() noexcept {
+Outcome MassSpringDevice::reset_fault() {
   if (refuse_fault_reset_) return Outcome::failure("injected fault-reset failure (refuse_fault_reset)");
   read_fault_latched_ = false;
   return Outcome::success();

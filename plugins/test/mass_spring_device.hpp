@@ -16,11 +16,11 @@ class MassSpringDevice final : public Device {
   void configure(const Parameters& parameters, const PluginContext& context) override;
   [[nodiscard]] const DeviceDescription& description() const override { return description_; }
   Outcome enable() override;
-  Outcome read(const CycleTime& cycle, DeviceState& state) noexcept override;
-  Outcome write(const CycleTime& cycle, const JointCommand& command) noexcept override;
+  Outcome read(const CycleTime& cycle, DeviceState& state) override;
+  Outcome write(const CycleTime& cycle, const JointCommand& command) override;
   void disable() override;
   Outcome home() override;
-  Outcome reset_fault() noexcept override;
+  Outcome reset_fault() override;
 
  private:
   void step(double dt) noexcept;

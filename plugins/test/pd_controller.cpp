@@ -49,12 +49,12 @@ void PdController::configure(const Parameters& p, const PluginContext& context) 
   velocity_.setZero(dof_);
 }
 
-ReturnCode PdController::activate(const ControllerInput& current, const JointCommand&) {
+Outcome PdController::activate(const ControllerInput& current, const JointCommand&) {
   if (throw_in_activate_) throw std::runtime_error("injected exception in activate()");
   if (hold_at_activation_) hold_ = current.device.joints.position;
   differentiator_.reset(current.device.joints.position);
   velocity_.setZero();
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 RuntimeReply PdController::handle_request(std::string_view name, const std::vector<double>& values) {
@@ -66,7 +66,7 @@ void PdController::deactivate() {
   if (throw_in_deactivate_) throw std::runtime_error("injected deactivate failure (throw_in_deactivate)");
 }
 
-ReturnCode PdController::update(const CycleTime& cycle, const ControllerInput& in, JointCommand& command) {
+Outcome PdController::update(const CycleTime& cycle, const ControllerInput& in, JointCommand& command) {
   if (throw_at_cycle_ >= 0 && cycle.index == static_cast<std::uint64_t>(throw_at_cycle_))
     throw std::runtime_error("injected exception in update()");
   const JointVector& q = in.device.joints.position;
@@ -82,7 +82,7 @@ ReturnCode PdController::update(const CycleTime& cycle, const ControllerInput& i
   }
   if (fault_at_cycle_ >= 0 && cycle.index == static_cast<std::uint64_t>(fault_at_cycle_))
     command.torque_nm[0] = std::numeric_limits<double>::quiet_NaN();
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::test_plugins

@@ -15,9 +15,9 @@ class PdController final : public Controller {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) override;
+  Outcome activate(const ControllerInput& current, const JointCommand& last_command) override;
   // Not noexcept: throw_at_cycle tests that the server survives a plugin breaking the contract.
-  ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) override;
+  Outcome update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) override;
   void deactivate() override;
   // Fault injection: "break_invariant" fails an invariant check (HAPTICD_DEMAND) on the requesting thread - the
   // server's handling of a broken invariant off the loop (docs/safety.md) is tested with it.

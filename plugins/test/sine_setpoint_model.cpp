@@ -19,16 +19,16 @@ void SineSetpointModel::configure(const Parameters& p, const PluginContext&) {
   frequency_hz_ = p.real("frequency_hz");
 }
 
-ReturnCode SineSetpointModel::activate(const VirtualModelInput&) noexcept { return ReturnCode::ok; }
+Outcome SineSetpointModel::activate(const VirtualModelInput&) { return Outcome::success(); }
 
-ReturnCode SineSetpointModel::update(const CycleTime& cycle, const VirtualModelInput&, TaskTarget& target) noexcept {
+Outcome SineSetpointModel::update(const CycleTime& cycle, const VirtualModelInput&, TaskTarget& target) {
   const double w = 2.0 * std::numbers::pi * frequency_hz_;
   const double t = cycle.time_s();
   target.pose.position.x() = offset_m_ + amplitude_m_ * std::sin(w * t);
   target.twist.linear.x() = amplitude_m_ * w * std::cos(w * t);
   target.acceleration.linear.x() = -amplitude_m_ * w * w * std::sin(w * t);
   target.has_motion = true;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::test_plugins

@@ -3,7 +3,7 @@
     rec = hapticd.recording.read("run.h5")
     dev = rec.devices["vishard3"]
     plt.plot(dev.time_s, dev["handle/pose"][:, 0])     # handle x over time
-    dev.flag("LIMIT_ENGAGED")                            # one bool per cycle
+    dev.flag("limit_engaged")                            # one bool per cycle
     rec.statistics["cycles"], rec.events                  # the session's summary
 
 MATLAB reads the same file with ``h5read('run.h5', '/devices/vishard3/handle/pose')`` (rows and columns swapped).
@@ -84,8 +84,13 @@ class DeviceRecording:
         return _texts(self.attributes["schemes"])
 
     def flag(self, name: str) -> np.ndarray:
-        """Whether the state flag ``name`` (e.g. "ENGINE_ACTIVE") was set, per cycle."""
-        bit = self.flag_names.index(name)
+        """Whether the state flag ``name`` (e.g. "engine_active") was set, per cycle.
+
+        Recordings before plugin API 10 spell the names in capitals: either spelling finds the flag."""
+        names = [n.lower() for n in self.flag_names]
+        if name.lower() not in names:
+            raise KeyError(f"no state flag {name!r} (the recording has {', '.join(names)})")
+        bit = names.index(name.lower())
         return (self.data["flags"] & (1 << bit)) != 0
 
     def modes(self) -> List[str]:

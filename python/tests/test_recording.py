@@ -38,7 +38,7 @@ def test_every_quantity_of_every_cycle_is_recorded(recorded):
     # the velocity column is the server's estimate, not zeros (the old CSV's was on simulated devices)
     assert np.abs(dev["joints/velocity"]).max() > 0.0
     assert dev.modes()[n // 2] == "running" and dev.modes()[-1] in ("stopping", "safe", "running")
-    assert not dev.flag("FAULT").any()
+    assert not dev.flag("fault").any()
     assert rec.events == []
 
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The SDK as a plugin author gets it: install hapticd to a prefix, build examples/out_of_tree_plugin against
-# the installed package with find_package(hapticd), then have the installed server load the new plugin and run
+# The SDK as a plugin author gets it: install hapticd to a prefix, build examples/out_of_tree_plugin (one plugin
+# of each kind but inverse kinematics, and their GoogleTest tests) against the installed package with
+# find_package(hapticd), run those tests, then have the installed server list the plugins, load the controller and run
 # a lockstep session with it; then build examples/session_api against the same package and step an installed
 # session file in-process with the session API (the installed plugins found beside libhapticd_server.so); then
 # build examples/client_engine against the installed client library (hapticd::client) and have it render its
@@ -14,12 +15,19 @@ source "$src/tests/e2e/session_copy.sh"  # loose_watchdogs: why, there
 cmake --install "$build" --prefix "$prefix" > "$work/install.log"
 cmake -S "$src/examples/out_of_tree_plugin" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" > "$work/configure.log"
-cmake --build "$work/build" > "$work/build.log"
+cmake --build "$work/build" > "$work/build.log" || { cat "$work/build.log"; exit 1; }
 plugin_dir="$work/build"
-ls "$plugin_dir"/libexample_spring_wall.so > /dev/null
+ls "$plugin_dir"/libexample_plugins.so > /dev/null
+# The example plugins' own tests, built against the installed SDK's test helpers (hapticd::testing).
+ctest --test-dir "$work/build" --output-on-failure > "$work/ctest.log" || { cat "$work/ctest.log"; exit 1; }
+grep -q "100% tests passed" "$work/ctest.log" || { echo "FAIL: the example plugins' tests"; cat "$work/ctest.log"; exit 1; }
 
 export HAPTICD_PLUGIN_PATH="$plugin_dir"
-"$prefix/bin/hapticd" --list-plugins | grep -q "example_spring_wall .*controller" || { echo "FAIL: plugin not listed"; exit 1; }
+listed=$("$prefix/bin/hapticd" --list-plugins)
+for p in "example_spring_wall .*controller" "example_wall .*virtual_model" "example_point_mass .*virtual_model" \
+         "example_linear_axis .*device" "example_spring_link .*group_model"; do
+  echo "$listed" | grep -q "$p" || { echo "FAIL: plugin not listed: $p"; echo "$listed"; exit 1; }
+done
 "$prefix/bin/hapticd" --check-config "$src/examples/out_of_tree_plugin/session.yaml"
 "$prefix/bin/hapticd" --config "$src/examples/out_of_tree_plugin/session.yaml" --clock lockstep --duration 1 \
   --stats-json "$work/stats.json" --record "$work/run.h5" --log-level warn

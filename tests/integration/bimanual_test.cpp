@@ -143,15 +143,49 @@ TEST(Bimanual, AFailingGroupModelStopsItsGroupAndOnlyIt) {
     s.step(200);  // cycles 0..199: the model runs
     for (const char* d : {"a", "b", "c"}) EXPECT_EQ(s.device(d).fault, "") << failure << " " << d;
     s.step(1);  // cycle 200 fails
+    // The fault says why: the model's own reason (Outcome), or what the group stage saw.
+    const std::string why = failure == "error"   ? "the test model fails as told"
+                            : failure == "throw" ? "the group's model threw"
+                                                 : "the group's model answered a non-finite force";
     for (const char* d : {"a", "b"}) {
-      EXPECT_NE(s.device(d).fault.find("group's model"), std::string::npos)
-          << failure << " " << d << ": " << s.device(d).fault;
+      EXPECT_NE(s.device(d).fault.find(why), std::string::npos) << failure << " " << d << ": " << s.device(d).fault;
       EXPECT_EQ(s.device(d).faults, 1u) << failure;
     }
     s.step(100);
     EXPECT_EQ(s.device("c").fault, "") << failure;   // outside the group: runs on
     EXPECT_EQ(s.device("a").faults, 1u) << failure;  // the model is not run again while its hands are stopped
   }
+}
+
+TEST(Bimanual, TheGroupModelTakesRunTimeRequestsThroughItsDevices) {
+  Session s = test::build_test_session(
+      "server: {clock: lockstep}\ndevices:\n" + test::mass_spring_device_yaml("a") +
+      test::mass_spring_device_yaml("b") + test::mass_spring_device_yaml("c") +
+      "groups:\n  - name: pair\n    devices: [a, b]\n    model: {plugin: test_faulty_group_model, parameters: "
+      "{fail_at_cycle: 100000, force_n: 1.0}}\n");
+  const auto request = [&](const char* device, DeviceRequest::Kind kind, const char* name, std::vector<double> v) {
+    return s.request(device, {kind, name, std::move(v)});
+  };
+  s.step(10);
+  // A tunable parameter, set through one device and read through the other: one model.
+  const RuntimeReply set = request("a", DeviceRequest::Kind::set_parameter, "group_model.force_n", {2.5});
+  ASSERT_TRUE(set.accepted) << set.message;
+  const RuntimeReply got = request("b", DeviceRequest::Kind::get_parameter, "group_model.force_n", {});
+  ASSERT_TRUE(got.accepted) << got.message;
+  EXPECT_EQ(got.values, std::vector<double>{2.5});
+  const RuntimeReply fixed = request("a", DeviceRequest::Kind::set_parameter, "group_model.fail_at_cycle", {5});
+  EXPECT_FALSE(fixed.accepted);
+  EXPECT_NE(fixed.message.find("not tunable"), std::string::npos) << fixed.message;
+  // A device outside any group with a model says so.
+  const RuntimeReply none = request("c", DeviceRequest::Kind::set_parameter, "group_model.force_n", {1.0});
+  EXPECT_FALSE(none.accepted);
+  EXPECT_NE(none.message.find("no group with a model"), std::string::npos) << none.message;
+  // The model's own command: it fails at the next cycle, and its group stops.
+  const RuntimeReply command = request("b", DeviceRequest::Kind::set_parameter, "group_model.fail_now", {});
+  ASSERT_TRUE(command.accepted) << command.message;
+  s.step(1);
+  EXPECT_NE(s.device("a").fault.find("the test model fails as told"), std::string::npos) << s.device("a").fault;
+  EXPECT_EQ(s.device("c").fault, "");
 }
 
 TEST(Bimanual, AGroupModelIsCheckedInTheSessionFile) {

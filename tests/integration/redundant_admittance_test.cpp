@@ -8,6 +8,7 @@
 
 #include "hapticd/chain_state.hpp"
 #include "hapticd/model/redundancy.hpp"
+#include "hapticd/server/session.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_session.hpp"
 
@@ -217,6 +218,37 @@ TEST(RedundantSelfMotion, TheWristCriterionMovesTheDeviceNotJustItsTarget) {
   EXPECT_LT(std::abs(q9_end - kPi / 2), 0.5 * std::abs(q9_start - kPi / 2));
   EXPECT_LT(moved, 2e-3);
   EXPECT_LT(turned, 0.01);
+}
+
+TEST(RedundantSelfMotion, TheNullSpaceGainIsTunedAtRunTime) {
+  // The same device and criterion with null_space_gain 1 (the drives' stiction holds joint 9), then a run-time
+  // request "inverse_kinematics.null_space_gain" = 10 through the device: joint 9 now goes towards pi/2.
+  const Scheme scheme{"wrist", "{plugin: redundancy_ik, parameters: {task: full, inverse: pseudoinverse, wrist: 1.0}}",
+                      kSchemes[0].controller, 0.0};
+  auto s = test::build_test_session(vishard10_session(scheme, "[0, 0, 0]", "[0.0, 0.0, 0.0]"));
+  DeviceSession& d = *s.impl().devices[0];
+  d.activate();
+  for (std::uint64_t k = 0; k < 2000; ++k) d.cycle(cycle_at(k), 1.0);
+  const double q9_untuned = d.state().joints.position[8];
+  const RuntimeReply tuned =
+      s.request("v10", {DeviceRequest::Kind::set_parameter, "inverse_kinematics.null_space_gain", {10.0}});
+  ASSERT_TRUE(tuned.accepted) << tuned.message;
+  const RuntimeReply read =
+      s.request("v10", {DeviceRequest::Kind::get_parameter, "inverse_kinematics.null_space_gain", {}});
+  ASSERT_TRUE(read.accepted) << read.message;
+  EXPECT_EQ(read.values, std::vector<double>{10.0});
+  for (std::uint64_t k = 2000; k < 6000; ++k) d.cycle(cycle_at(k), 1.0);
+  ASSERT_EQ(d.fault(), DeviceFault::none);
+  const double q9_tuned = d.state().joints.position[8];
+  std::printf("null-space gain tuned at run time: q9 1.300 -> %.3f rad (gain 1, 1 s) -> %.3f rad (gain 10, 2 s)\n",
+              q9_untuned, q9_tuned);
+  EXPECT_LT(std::abs(q9_untuned - 1.3), 0.05);
+  EXPECT_LT(std::abs(q9_tuned - kPi / 2), 0.5 * std::abs(q9_untuned - kPi / 2));
+  // A parameter the plugin does not declare tunable is refused, and names the tunable ones.
+  const RuntimeReply fixed =
+      s.request("v10", {DeviceRequest::Kind::set_parameter, "inverse_kinematics.damping", {0.1}});
+  EXPECT_FALSE(fixed.accepted);
+  EXPECT_NE(fixed.message.find("null_space_damping"), std::string::npos) << fixed.message;
 }
 
 INSTANTIATE_TEST_SUITE_P(IkPlugins, RedundantAdmittance, ::testing::ValuesIn(kSchemes),

@@ -571,5 +571,31 @@ TEST(Safety, TheSupervisedCycleDoesNotAllocate) {
   EXPECT_GT(d.render_limited_cycles(), 0u);
 }
 
+TEST(Safety, TheRenderPortRecordsWhatTheModelAskedOfIt) {
+  // Plugin API 10: the port, not flags the model sets, tells the server that the wrench was limited and that the
+  // model renders the supervisor's force - each cycle afresh.
+  RenderGuard guard;
+  RenderLimits limits;
+  limits.max_force_n = 10.0;
+  guard.configure(5e-4, limits, false, 0.0, 0.0);
+  guard.begin_cycle(Eigen::Vector3d(1.0, 0.0, 0.0));
+  EXPECT_FALSE(guard.limit_applied());
+  EXPECT_FALSE(guard.safety_force_taken());
+  RenderGuard::Vector6 w = RenderGuard::Vector6::Zero();
+  w[0] = 50.0;
+  (void)guard.limit(w);
+  EXPECT_TRUE(guard.limit_applied());
+  EXPECT_TRUE(guard.limited_this_cycle());  // it changed the wrench: the state flag render_limited
+  EXPECT_EQ(guard.take_safety_force(), Eigen::Vector3d(1.0, 0.0, 0.0));
+  EXPECT_TRUE(guard.safety_force_taken());
+  guard.begin_cycle(Eigen::Vector3d::Zero());  // the next cycle: nothing asked yet
+  EXPECT_FALSE(guard.limit_applied());
+  EXPECT_FALSE(guard.limited_this_cycle());
+  EXPECT_FALSE(guard.safety_force_taken());
+  (void)guard.limit(RenderGuard::Vector6::Zero());  // within the limits: applied, nothing changed
+  EXPECT_TRUE(guard.limit_applied());
+  EXPECT_FALSE(guard.limited_this_cycle());
+}
+
 }  // namespace
 }  // namespace hapticd::server

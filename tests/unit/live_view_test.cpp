@@ -211,7 +211,7 @@ TEST_F(DeviceViewTest, StateCarriesJointsFlagsSchemeAndWritesNonFiniteAsNull) {
   EXPECT_EQ(s.get<std::string>("scheme"), "admittance");
   std::vector<std::string> flags;
   for (const auto& [k, f] : s.get_child("flags")) flags.push_back(f.data());
-  EXPECT_EQ(flags, (std::vector<std::string>{"TORQUE_SATURATED", "ENGINE_ACTIVE"}));
+  EXPECT_EQ(flags, (std::vector<std::string>{"torque_saturated", "engine_active"}));
   std::vector<std::string> names, positions, torques;
   for (const auto& [k, n] : s.get_child("joints.name")) names.push_back(n.data());
   for (const auto& [k, p] : s.get_child("joints.position")) positions.push_back(p.data());

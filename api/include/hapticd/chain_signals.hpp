@@ -38,11 +38,6 @@ struct TaskTarget {
   Wrench wrench;
   bool has_motion = false;
   bool has_wrench = false;
-  // What the virtual model did with the safety layer's render port this cycle (its answer to the server, which
-  // clears both before update()): the wrench went through RenderPort::limit (else the server limits it), and
-  // the environment force includes RenderPort::safety_force (else the supervisor applies it as J^T F torque).
-  bool wrench_limited = false;
-  bool includes_safety_force = false;
 };
 
 // Desired joint motion from the inverse kinematics.
@@ -77,8 +72,8 @@ struct VirtualModelInput {
   // anything has arrived; weight how fresh it is).
   const EngineInput& engine;
   // The safety layer's hold on what the model renders (render_port.hpp): a model that renders an engine passes
-  // the engine's wrench through engine_port() and its environment wrench through limit(), and says so in its
-  // TaskTarget.
+  // the engine's wrench through engine_port() and its environment wrench through limit(); the port records what
+  // it was asked.
   RenderPort& render;
 };
 

@@ -13,12 +13,13 @@ namespace hapticd {
 
 // A force-feedback device (hardware driver or simulation). Lifecycle:
 //   configure -> description -> enable -> [home] -> { read, write, [reset_fault] }* -> disable
-// read(), write() and reset_fault() are real-time: no allocation, lock or logging, and no exception - one that
-// escapes anyway is contained to this device (fault device_read / device_write, its safe mode). Every step
-// after configure() answers with an Outcome: an error carries its reason, which the device's fault shows.
-class HAPTICD_API Device {
+// read(), write() and reset_fault() are real-time: no allocation, lock or logging, no exception, and not declared
+// noexcept (return_code.hpp: the rule for exceptions; one that escapes anyway is contained to this device, fault
+// device_read / device_write, its safe mode). Every step after configure() answers with an Outcome: an error
+// carries its reason, which the device's fault shows.
+class HAPTICD_API Device : public RuntimeRequests {
  public:
-  virtual ~Device();
+  ~Device() override;
 
   // Not real-time safe. Validate parameters (ParameterError names the key), allocate, open connections.
   // Must not power the drives.
@@ -44,14 +45,6 @@ class HAPTICD_API Device {
   // Not real-time safe. Zero torque, brakes engaged, drives off. Called after the loop has stopped using the
   // device (also after an enable() that failed).
   virtual void disable() = 0;
-  // Not real-time safe, any server thread (runtime_request.hpp): a tunable parameter was set. `parameters` holds
-  // the value in effect of every parameter, the new one checked against the schema. Read the tunable ones as
-  // configure() does and hand them to the loop; throw ParameterError to refuse (the old values stay). The
-  // default refuses: a plugin that declares tunable parameters overrides it.
-  virtual void tune(const Parameters& parameters);
-  // Not real-time safe, any server thread (runtime_request.hpp): a command of the plugin's own (a name the
-  // schema does not declare); `values` its numbers. The default refuses.
-  virtual RuntimeReply handle_request(std::string_view name, const std::vector<double>& values);
   // Not real-time safe; the loop thread, or after the loop (tests, evaluations): a simulated device's true state
   // after the last read(). False for hardware (the default).
   virtual bool simulated_truth(SimulatedTruth& out) const;

@@ -3,8 +3,8 @@
 // sees the handles of all the group's devices at one instant and answers a force for each handle, which the
 // device renders with its environment (an admittance-type virtual model adds it to its environment wrench; other
 // schemes apply it through the handle's Jacobian). Bimanual coupling to a shared object is one.
-// Real-time methods (activate, update) must not throw, allocate, lock or log; as for the chain's plugins the
-// interface does not declare them noexcept (a plugin that throws anyway faults its group's devices only).
+// Real-time methods (activate, update) must not throw, allocate, lock or log, and are not declared noexcept
+// (return_code.hpp: the rule for exceptions; a model that throws anyway faults its group's devices only).
 #include <filesystem>
 #include <span>
 #include <string>
@@ -36,22 +36,19 @@ struct GroupModelContext {
   std::filesystem::path config_directory;  // folder of the session file
 };
 
-class HAPTICD_API GroupModel {
+class HAPTICD_API GroupModel : public RuntimeRequests {
  public:
-  virtual ~GroupModel();
+  ~GroupModel() override;
 
   // Not real-time safe. Validate parameters (ParameterError names the key) and allocate everything.
   virtual void configure(const Parameters& parameters, const GroupModelContext& context) = 0;
   // Real-time safe. Start from the hands where they are (at the group's first cycle).
-  virtual ReturnCode activate(std::span<const GroupHand> hands) = 0;
+  virtual Outcome activate(std::span<const GroupHand> hands) = 0;
   // Real-time safe: the force on each handle (world, at the handle point), one per hand.
-  virtual ReturnCode update(const CycleTime& cycle, std::span<const GroupHand> hands,
-                            std::span<Eigen::Vector3d> handle_force) = 0;
+  virtual Outcome update(const CycleTime& cycle, std::span<const GroupHand> hands,
+                         std::span<Eigen::Vector3d> handle_force) = 0;
   // Not real-time safe. Called after the loop has ended.
   virtual void deactivate() = 0;
-  // Not real-time safe, any server thread: a command of the plugin's own; `values` its numbers. The default
-  // refuses.
-  virtual RuntimeReply handle_request(std::string_view name, const std::vector<double>& values);
 };
 
 }  // namespace hapticd

@@ -7,8 +7,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
 #include "hapticd/api_version.hpp"
 #include "hapticd/controller.hpp"
@@ -44,10 +46,46 @@ struct PluginCatalog {
   std::size_t count;
 };
 
+namespace detail {
+// The rule for exceptions (return_code.hpp): T's real-time methods are not declared noexcept.
+template <class T>
+constexpr bool realtime_methods_not_noexcept() {
+  using std::declval;
+  using Cycle = const CycleTime&;
+  if constexpr (std::is_base_of_v<Device, T>) {
+    return !noexcept(declval<T&>().read(declval<Cycle>(), declval<DeviceState&>())) &&
+           !noexcept(declval<T&>().write(declval<Cycle>(), declval<const JointCommand&>())) &&
+           !noexcept(declval<T&>().reset_fault());
+  } else if constexpr (std::is_base_of_v<Controller, T>) {
+    using In = const ControllerInput&;
+    return !noexcept(declval<T&>().activate(declval<In>(), declval<const JointCommand&>())) &&
+           !noexcept(declval<T&>().update(declval<Cycle>(), declval<In>(), declval<JointCommand&>()));
+  } else if constexpr (std::is_base_of_v<InverseKinematics, T>) {
+    using In = const InverseKinematicsInput&;
+    return !noexcept(declval<T&>().activate(declval<In>())) &&
+           !noexcept(declval<T&>().update(declval<Cycle>(), declval<In>(), declval<JointTarget&>()));
+  } else if constexpr (std::is_base_of_v<GroupModel, T>) {
+    using Hands = std::span<const GroupHand>;
+    return !noexcept(declval<T&>().activate(declval<Hands>())) &&
+           !noexcept(declval<T&>().update(declval<Cycle>(), declval<Hands>(), declval<std::span<Eigen::Vector3d>>()));
+  } else if constexpr (std::is_base_of_v<VirtualModel, T>) {
+    using In = const VirtualModelInput&;
+    return !noexcept(declval<T&>().activate(declval<In>())) &&
+           !noexcept(declval<T&>().update(declval<Cycle>(), declval<In>(), declval<TaskTarget&>()));
+  } else {
+    return true;
+  }
+}
+}  // namespace detail
+
 // Descriptor of plugin class T, which derives from one of the five interfaces and has a static
 // `ParameterSchema parameter_schema()`.
 template <class T>
 PluginDescriptor describe_plugin(const char* name, const char* version, const char* summary) {
+  static_assert(detail::realtime_methods_not_noexcept<T>(),
+                "a plugin's real-time methods (read, write, reset_fault; activate, update) are not declared "
+                "noexcept, so that the server can contain an exception thrown despite the contract "
+                "(hapticd/return_code.hpp)");
   PluginDescriptor d{};
   d.name = name;
   d.version = version;

@@ -7,12 +7,13 @@
 //     the excess, up to a bound. Linear and angular parts are separate ports.
 //   - limit(): the limits on the rendered wrench (force and torque magnitude, and their rate of change) applied to
 //     everything the environment renders.
-//   - safety_force(): the supervisor's own force on the handle this cycle (workspace walls, speed damping), which
-//     an admittance-type model adds to its environment force after limit(), so its inner loop does not fight
-//     the walls.
-// The model answers in its output: TaskTarget::wrench_limited (it called limit(); otherwise the server limits
-// the task wrench) and TaskTarget::includes_safety_force (it added safety_force(); otherwise the supervisor
-// applies that force as J^T F torque). Real-time safe: no allocation.
+//   - take_safety_force(): the supervisor's own force on the handle this cycle (workspace walls, speed damping),
+//     which an admittance-type model adds to its environment force after limit(), so its inner loop does not
+//     fight the walls.
+// The port records what the model did with it, the server reads that after update(): a model that called
+// limit() this cycle has limited its wrench itself (otherwise the server limits TaskTarget::wrench), and one that
+// took the safety force renders it (otherwise the supervisor applies that force as J^T F torque). Call them only
+// for what you render. Real-time safe: no allocation.
 #include <Eigen/Core>
 
 namespace hapticd {
@@ -23,10 +24,10 @@ class RenderPort {
 
   // The engine's wrench at the coupling port, given the port's twist; returns the wrench to render.
   virtual Vector6 engine_port(const Vector6& wrench, const Vector6& port_twist) noexcept = 0;
-  // The environment wrench within the limits.
+  // The environment wrench within the limits; the port records that this cycle's wrench was limited.
   virtual Vector6 limit(const Vector6& wrench) noexcept = 0;
-  // The supervisor's force on the handle (world) this cycle.
-  [[nodiscard]] virtual Eigen::Vector3d safety_force() const noexcept = 0;
+  // The supervisor's force on the handle (world) this cycle; the port records that the model renders it.
+  [[nodiscard]] virtual Eigen::Vector3d take_safety_force() noexcept = 0;
 
  protected:
   ~RenderPort() = default;

@@ -1,7 +1,8 @@
 #pragma once
 // A device's mode and state flags as hapticd reports them, one definition for every place that carries them: the
-// DDS state (the IDL's MODE_* and FLAG_* constants have the same values, checked at compile time by the server's
-// bridge), the recording (its mode_names and flag_names attributes), the live view and the clients.
+// DDS state and the fault reports' cycle records (the IDL's MODE_* and FLAG_* constants have the same values,
+// checked at compile time by the server's bridge), the recording (its mode_names and flag_names attributes), the
+// live view and the clients.
 #include <array>
 #include <cstdint>
 
@@ -23,10 +24,11 @@ inline constexpr std::uint32_t render_limited = 1u << 8;      // the rendered wr
 inline constexpr std::uint32_t thermal_derating = 1u << 9;    // a joint's torque limit is below its peak
 inline constexpr std::uint32_t passivity_control = 1u << 10;  // the passivity controller on the engine port is on
 }  // namespace state_flag
-// Bit i's name (as hapticctl prints it and recordings store it).
+// Bit i's name, the one spelling everywhere: hapticctl, the client libraries (C++ and Python), recordings (their
+// flag_names attribute), the live view. The IDL's constant is FLAG_ and the name in capitals.
 inline constexpr std::array<const char*, 11> kStateFlagNames = {
-    "TORQUE_SATURATED", "ENGINE_ACTIVE", "ENGINE_STALE",  "ESTOP",          "FAULT",
-    "SWITCHING",        "SAFE_DAMPING",  "LIMIT_ENGAGED", "RENDER_LIMITED", "THERMAL_DERATING",
-    "PASSIVITY_CONTROL"};
+    "torque_saturated", "engine_active", "engine_stale",  "estop",          "fault",
+    "switching",        "safe_damping",  "limit_engaged", "render_limited", "thermal_derating",
+    "passivity_control"};
 
 }  // namespace hapticd

@@ -27,10 +27,7 @@ std::string_view to_string(Mode mode) noexcept {
 }
 
 std::vector<std::string> flag_names(std::uint32_t flags) {
-  static constexpr std::array<std::string_view, 11> kNames = {
-      "torque_saturated", "engine_active", "engine_stale",  "estop",          "fault",
-      "switching",        "safe_damping",  "limit_engaged", "render_limited", "thermal_derating",
-      "passivity_control"};
+  const auto& kNames = kStateFlagNames;
   std::vector<std::string> names;
   for (std::size_t bit = 0; bit < kNames.size(); ++bit)
     if ((flags & (1u << bit)) != 0) names.emplace_back(kNames[bit]);

@@ -126,8 +126,8 @@ void FrictionIdentification::configure(const Parameters& p, const PluginContext&
   previous_command_.setZero(dof_);
 }
 
-ReturnCode FrictionIdentification::activate(const ControllerInput& current, const JointCommand& last_command) noexcept {
-  if (current.chain.model == nullptr) return ReturnCode::error;
+Outcome FrictionIdentification::activate(const ControllerInput& current, const JointCommand& last_command) {
+  if (current.chain.model == nullptr) return Outcome::failure("friction identification needs the device's robot model");
   q_ref_ = current.device.joints.position;
   qd_ref_.setZero(dof_);
   qdd_ref_.setZero(dof_);
@@ -141,7 +141,7 @@ ReturnCode FrictionIdentification::activate(const ControllerInput& current, cons
   breakaway_count_.fill(0);
   joint_index_ = -1;
   next_joint(current.device.joints.position);
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 void FrictionIdentification::next_joint(const JointVector& q) noexcept {
@@ -185,8 +185,7 @@ void FrictionIdentification::advance_stroke(const JointVector& q) noexcept {
   start_move(centre_ + (move_ % 2 == 1 ? -0.5 : 0.5) * stroke_length(speed), speed);
 }
 
-ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const ControllerInput& in,
-                                          JointCommand& command) noexcept {
+Outcome FrictionIdentification::update(const CycleTime& /*cycle*/, const ControllerInput& in, JointCommand& command) {
   const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
   const JointVector& q = in.device.joints.position;
@@ -286,7 +285,7 @@ ReturnCode FrictionIdentification::update(const CycleTime& /*cycle*/, const Cont
   saturated_ = (command.torque_nm.cwiseAbs().array() > 0.9 * continuous_torque_.array()).any();
   command.torque_nm = limited;
   previous_command_ = command.torque_nm;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 void FrictionIdentification::deactivate() {

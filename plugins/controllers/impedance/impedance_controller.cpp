@@ -220,8 +220,9 @@ ImpedanceController::Vector6 ImpedanceController::force_error(const ControllerIn
   return error;
 }
 
-ReturnCode ImpedanceController::activate(const ControllerInput& current, const JointCommand& last_command) noexcept {
-  if (current.chain.model == nullptr) return ReturnCode::error;
+Outcome ImpedanceController::activate(const ControllerInput& current, const JointCommand& last_command) {
+  if (current.chain.model == nullptr)
+    return Outcome::failure("the impedance controller needs the device's robot model");
   error_rate_.reset(force_error(current));
   // The notches start in the steady state of the present gravity torque: no transient at activation.
   const JointVector start = gravity_compensation_
@@ -236,7 +237,7 @@ ReturnCode ImpedanceController::activate(const ControllerInput& current, const J
     adapt_cycles_ = 0;
     retuned_pending_ = false;
   }
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 void ImpedanceController::adapt(const CycleTime& cycle, const ControllerInput& in,
@@ -258,8 +259,7 @@ void ImpedanceController::adapt(const CycleTime& cycle, const ControllerInput& i
   bins.clear();
 }
 
-ReturnCode ImpedanceController::update(const CycleTime& cycle, const ControllerInput& in,
-                                       JointCommand& command) noexcept {
+Outcome ImpedanceController::update(const CycleTime& cycle, const ControllerInput& in, JointCommand& command) {
   if (gains_inbox_.take(gains_incoming_)) apply(gains_incoming_);  // run-time gains, at a cycle boundary
   const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
@@ -295,7 +295,7 @@ ReturnCode ImpedanceController::update(const CycleTime& cycle, const ControllerI
   for (int i = 0; i < notch_count_; ++i)
     command.torque_nm = notches_[static_cast<std::size_t>(i)].update(command.torque_nm);
   previous_command_ = command.torque_nm;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::controllers

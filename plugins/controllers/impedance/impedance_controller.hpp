@@ -30,8 +30,8 @@ class ImpedanceController final : public Controller {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept override;
-  ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept override;
+  Outcome activate(const ControllerInput& current, const JointCommand& last_command) override;
+  Outcome update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) override;
   void deactivate() override {}
   // The tunable gains (force_gain, force_derivative_gain, joint_torque_gain), taken at the next cycle.
   void tune(const Parameters& parameters) override;

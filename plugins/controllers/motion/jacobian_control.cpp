@@ -48,27 +48,28 @@ void JacobianControl::configure(const Parameters& p, const PluginContext& contex
   }
 }
 
-ReturnCode JacobianControl::activate(const ControllerInput& current, const JointCommand&) noexcept {
-  if (current.chain.model == nullptr) return ReturnCode::error;
-  if (!inertia_from_model_) return ReturnCode::ok;
+Outcome JacobianControl::activate(const ControllerInput& current, const JointCommand&) {
+  if (current.chain.model == nullptr) return Outcome::failure("Jacobian control needs the device's robot model");
+  if (!inertia_from_model_) return Outcome::success();
   const model::ModelData& d = *current.chain.data;
   if (kind_ == Kind::inverse) {
     joint_inertia_ = d.mass_matrix.diagonal();
-    return ReturnCode::ok;
+    return Outcome::success();
   }
   model::TaskMatrix lambda;
   const model::TaskJacobian j = d.frame_jacobian.topRows(law_.rows());
-  if (!model::operational_space_inertia(d, j, lambda)) return ReturnCode::error;  // singular at activation
+  if (!model::operational_space_inertia(d, j, lambda))
+    return Outcome::failure("the device is at a singular configuration: no operational-space inertia");
   task_mass_ = lambda.diagonal();
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
-ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerInput& in,
-                                   JointCommand& command) noexcept {
+Outcome JacobianControl::update(const CycleTime& /*cycle*/, const ControllerInput& in, JointCommand& command) {
   law_.take_tuned();  // run-time gains, at a cycle boundary
   const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
-  if (!in.task.has_motion) return ReturnCode::error;
+  if (!in.task.has_motion)
+    return Outcome::failure("no desired motion: the scheme needs an admittance-type virtual model");
   const int rows = law_.rows();
   const model::TaskJacobian j = d.frame_jacobian.topRows(rows);
   if (kind_ == Kind::inverse) {
@@ -87,7 +88,7 @@ ReturnCode JacobianControl::update(const CycleTime& /*cycle*/, const ControllerI
   command.torque_nm += d.gravity_torque;
   friction_.add(c, in.device.joints.velocity, rows, command.torque_nm);
   law_.add_wrench_compensation(c, command.torque_nm);
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::controllers

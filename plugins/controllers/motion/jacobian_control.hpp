@@ -21,8 +21,8 @@ class JacobianControl : public Controller {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept override;
-  ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept override;
+  Outcome activate(const ControllerInput& current, const JointCommand& last_command) override;
+  Outcome update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) override;
   void deactivate() override {}
   // The motion law's bandwidths and damping ratio, applied at the next cycle.
   void tune(const Parameters& parameters) override { law_.tune(parameters); }

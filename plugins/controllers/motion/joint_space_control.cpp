@@ -40,15 +40,15 @@ void JointSpaceControl::configure(const Parameters& p, const PluginContext& cont
   }
 }
 
-ReturnCode JointSpaceControl::activate(const ControllerInput& current, const JointCommand&) noexcept {
-  return current.chain.model != nullptr ? ReturnCode::ok : ReturnCode::error;
+Outcome JointSpaceControl::activate(const ControllerInput& current, const JointCommand&) {
+  return current.chain.model != nullptr ? Outcome::success()
+                                        : Outcome::failure("joint-space control needs the device's robot model");
 }
 
-ReturnCode JointSpaceControl::update(const CycleTime& /*cycle*/, const ControllerInput& in,
-                                     JointCommand& command) noexcept {
+Outcome JointSpaceControl::update(const CycleTime& /*cycle*/, const ControllerInput& in, JointCommand& command) {
   const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
-  if (!in.joints.valid) return ReturnCode::error;  // needs an inverse-kinematics plugin in the chain
+  if (!in.joints.valid) return Outcome::failure("no joint target: the scheme needs an inverse-kinematics plugin");
   const JointVector& q = in.device.joints.position;
   if (kind_ == Kind::computed_torque) {
     JointVector qdd = kp_ * (in.joints.position - q) + kd_ * (in.joints.velocity - in.device.joints.velocity);
@@ -61,7 +61,7 @@ ReturnCode JointSpaceControl::update(const CycleTime& /*cycle*/, const Controlle
                         joint_kd_ * (in.joints.velocity - in.device.joints.velocity) + d.gravity_torque;
   }
   if (wrench_compensation_) command.torque_nm -= model::operator_wrench_torques(c, rows_);
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::controllers

@@ -18,8 +18,8 @@ class JointSpaceControl : public Controller {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const ControllerInput& current, const JointCommand& last_command) noexcept override;
-  ReturnCode update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) noexcept override;
+  Outcome activate(const ControllerInput& current, const JointCommand& last_command) override;
+  Outcome update(const CycleTime& cycle, const ControllerInput& input, JointCommand& command) override;
   void deactivate() override {}
 
  private:

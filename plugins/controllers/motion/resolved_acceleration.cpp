@@ -17,16 +17,18 @@ void ResolvedAcceleration::configure(const Parameters& p, const PluginContext& c
   friction_.configure(p, context);
 }
 
-ReturnCode ResolvedAcceleration::activate(const ControllerInput& current, const JointCommand&) noexcept {
-  return current.chain.model != nullptr ? ReturnCode::ok : ReturnCode::error;
+Outcome ResolvedAcceleration::activate(const ControllerInput& current, const JointCommand&) {
+  return current.chain.model != nullptr
+             ? Outcome::success()
+             : Outcome::failure("resolved-acceleration control needs the device's robot model");
 }
 
-ReturnCode ResolvedAcceleration::update(const CycleTime& /*cycle*/, const ControllerInput& in,
-                                        JointCommand& command) noexcept {
+Outcome ResolvedAcceleration::update(const CycleTime& /*cycle*/, const ControllerInput& in, JointCommand& command) {
   law_.take_tuned();  // run-time gains, at a cycle boundary
   const ChainState& c = in.chain;
   const model::ModelData& d = *c.data;
-  if (!in.task.has_motion) return ReturnCode::error;
+  if (!in.task.has_motion)
+    return Outcome::failure("no desired motion: the scheme needs an admittance-type virtual model");
   const int rows = law_.rows();
   const model::Vector6d xdd = law_.acceleration(in.task, c) - d.frame_jacobian_dot_qd;
   // qdd = J^-1 (xdd - dJ qd) for square J; for redundant J the chain's redundancy resolution (its inverse, side
@@ -39,7 +41,7 @@ ReturnCode ResolvedAcceleration::update(const CycleTime& /*cycle*/, const Contro
   command.torque_nm += d.coriolis_torque + d.gravity_torque;
   friction_.add(c, in.device.joints.velocity, rows, command.torque_nm);
   law_.add_wrench_compensation(c, command.torque_nm);
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::controllers

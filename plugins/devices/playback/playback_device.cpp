@@ -141,7 +141,7 @@ std::size_t PlaybackDevice::row_at(double t) const noexcept {
   return after == times_.begin() ? 0 : static_cast<std::size_t>(after - times_.begin()) - 1;
 }
 
-Outcome PlaybackDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
+Outcome PlaybackDevice::read(const CycleTime& cycle, DeviceState& state) {
   if (first_ns_ < 0) first_ns_ = cycle.time_ns;
   double t = start_s_ + speed_ * static_cast<double>(cycle.time_ns - first_ns_) * 1e-9;
   const double length = duration_s();
@@ -173,7 +173,7 @@ Outcome PlaybackDevice::read(const CycleTime& cycle, DeviceState& state) noexcep
   return Outcome::success();
 }
 
-Outcome PlaybackDevice::write(const CycleTime&, const JointCommand& command) noexcept {
+Outcome PlaybackDevice::write(const CycleTime&, const JointCommand& command) {
   if (!command.torque_nm.allFinite()) return Outcome::failure("non-finite torque command");
   return Outcome::success();  // nothing to drive
 }

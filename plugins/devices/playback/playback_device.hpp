@@ -21,8 +21,8 @@ class PlaybackDevice final : public Device {
   void configure(const Parameters& parameters, const PluginContext& context) override;
   [[nodiscard]] const DeviceDescription& description() const override { return description_; }
   Outcome enable() override;
-  Outcome read(const CycleTime& cycle, DeviceState& state) noexcept override;
-  Outcome write(const CycleTime& cycle, const JointCommand& command) noexcept override;
+  Outcome read(const CycleTime& cycle, DeviceState& state) override;
+  Outcome write(const CycleTime& cycle, const JointCommand& command) override;
   void disable() override {}
 
   // The recording's length on its own clock [s] (last cycle's time minus the first's).

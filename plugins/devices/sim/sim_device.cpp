@@ -509,7 +509,7 @@ Outcome SimDevice::home() {
   return Outcome::success();
 }
 
-Outcome SimDevice::reset_fault() noexcept {
+Outcome SimDevice::reset_fault() {
   if (!enabled_) return Outcome::failure("drives not enabled");
   if (truth_.overspeed_joint < 0) return Outcome::success();
   for (int i = 0; i < chain_->dof(); ++i)
@@ -519,7 +519,7 @@ Outcome SimDevice::reset_fault() noexcept {
   return Outcome::success();
 }
 
-Outcome SimDevice::read(const CycleTime& cycle, DeviceState& state) noexcept {
+Outcome SimDevice::read(const CycleTime& cycle, DeviceState& state) {
   if (!enabled_) return Outcome::failure("drives not enabled");
   if (attachment_requests_.take(pending_)) attachment_.select(pending_);
   simulated_now_ns_.store(cycle.time_ns, std::memory_order_relaxed);
@@ -583,7 +583,7 @@ void SimDevice::read_accelerations(DeviceState& state) noexcept {
   }
 }
 
-Outcome SimDevice::write(const CycleTime& /*cycle*/, const JointCommand& command) noexcept {
+Outcome SimDevice::write(const CycleTime& /*cycle*/, const JointCommand& command) {
   if (!enabled_) return Outcome::failure("drives not enabled");
   if (command.torque_nm.size() != command_.size()) return Outcome::failure("a command for another number of joints");
   if (command_delay_ns_ == 0) {

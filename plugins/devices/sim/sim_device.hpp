@@ -41,10 +41,10 @@ class SimDevice final : public Device {
   Outcome enable() override;
   // With `homing`: the encoders' reference found; positions are absolute from now on.
   Outcome home() override;
-  Outcome read(const CycleTime& cycle, DeviceState& state) noexcept override;
-  Outcome write(const CycleTime& cycle, const JointCommand& command) noexcept override;
+  Outcome read(const CycleTime& cycle, DeviceState& state) override;
+  Outcome write(const CycleTime& cycle, const JointCommand& command) override;
   // Clears the speed monitor's latch once every joint is below its limit again.
-  Outcome reset_fault() noexcept override;
+  Outcome reset_fault() override;
   void disable() override;
   // "operator.push" {fx, fy, fz[, ramp_s = 0.5]}: the simulated operator takes the handle (if it was not
   // holding it) and ramps its voluntary force to that value; "operator.release": lets go of the handle;

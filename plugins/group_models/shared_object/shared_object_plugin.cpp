@@ -95,8 +95,8 @@ class SharedObjectModel final : public GroupModel {
     hands_ = context.devices.size();
   }
 
-  ReturnCode activate(std::span<const GroupHand> hands) override {
-    if (hands.size() != hands_) return ReturnCode::error;
+  Outcome activate(std::span<const GroupHand> hands) override {
+    if (hands.size() != hands_) return Outcome::failure("the group has another number of devices than configured");
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (const GroupHand& h : hands) centre += h.pose.position;
     centre /= static_cast<double>(hands.size());
@@ -110,12 +110,12 @@ class SharedObjectModel final : public GroupModel {
       grasp_[k] = pose.orientation.conjugate() * (hands[k].pose.position - centre);
     body_.reset(pose, std::span<const Eigen::Vector3d>(grasp_.data(), hands.size()));
     publish();
-    return ReturnCode::ok;
+    return Outcome::success();
   }
 
-  ReturnCode update(const CycleTime&, std::span<const GroupHand> hands,
-                    std::span<Eigen::Vector3d> handle_force) override {
-    if (hands.size() != hands_ || handle_force.size() != hands_) return ReturnCode::error;
+  Outcome update(const CycleTime&, std::span<const GroupHand> hands, std::span<Eigen::Vector3d> handle_force) override {
+    if (hands.size() != hands_ || handle_force.size() != hands_)
+      return Outcome::failure("the group has another number of devices than configured");
     for (std::size_t k = 0; k < hands_; ++k) {
       if (hands[k].running) {
         position_[k] = hands[k].pose.position;
@@ -128,7 +128,7 @@ class SharedObjectModel final : public GroupModel {
     body_.step(std::span<const Eigen::Vector3d>(position_.data(), hands_),
                std::span<const Eigen::Vector3d>(velocity_.data(), hands_), handle_force);
     publish();
-    return ReturnCode::ok;
+    return Outcome::success();
   }
 
   void deactivate() override {}

@@ -32,16 +32,16 @@ void NewtonIk::configure(const Parameters& p, const PluginContext& context) {
   qd_.setZero(model_->dof());
 }
 
-ReturnCode NewtonIk::activate(const InverseKinematicsInput& current) noexcept {
+Outcome NewtonIk::activate(const InverseKinematicsInput& current) {
   q_ = current.device.joints.position;
   qd_ = current.device.joints.velocity;
   acceleration_.reset(qd_);
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
-ReturnCode NewtonIk::update(const CycleTime& /*cycle*/, const InverseKinematicsInput& in,
-                            JointTarget& target) noexcept {
-  if (!in.task.has_motion) return ReturnCode::error;
+Outcome NewtonIk::update(const CycleTime& /*cycle*/, const InverseKinematicsInput& in, JointTarget& target) {
+  if (!in.task.has_motion)
+    return Outcome::failure("no desired motion: the scheme needs an admittance-type virtual model");
   Eigen::Isometry3d desired = Eigen::Isometry3d::Identity();
   desired.translation() = in.task.pose.position;
   desired.linear() = in.task.pose.orientation.toRotationMatrix();
@@ -62,7 +62,7 @@ ReturnCode NewtonIk::update(const CycleTime& /*cycle*/, const InverseKinematicsI
   target.velocity = qd_;
   target.acceleration = acceleration_.update(qd_);
   target.valid = true;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::ik

@@ -17,8 +17,8 @@ class NewtonIk final : public InverseKinematics {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const InverseKinematicsInput& current) noexcept override;
-  ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) noexcept override;
+  Outcome activate(const InverseKinematicsInput& current) override;
+  Outcome update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) override;
   void deactivate() override {}
 
  private:

@@ -49,14 +49,16 @@ ParameterSchema RedundancyIk::parameter_schema() {
   s.real("null_space_gain", "k of the null-space descent qd0 = -k W^-1 grad H")
       .minimum(0.0)
       .maximum(1000.0)
-      .default_value(1.0);
+      .default_value(1.0)
+      .tunable();
   s.real("null_space_damping",
          "d: the self-motion velocity relaxes towards qd0 at this rate (acceleration and "
          "torque level)")
       .unit("1/s")
       .minimum(0.0)
       .maximum(1000.0)
-      .default_value(20.0);
+      .default_value(20.0)
+      .tunable();
   s.real("manipulability", "weight of -sqrt(det(J J^T))").minimum(0.0).default_value(0.0);
   s.real("condition_number", "weight of the condition number of J").minimum(0.0).default_value(0.0);
   s.real("smallest_singular_value", "weight of -sigma_min(J)").minimum(0.0).default_value(0.0);
@@ -168,17 +170,26 @@ void RedundancyIk::configure(const Parameters& p, const PluginContext& context) 
   jacobian_.setZero(6, n);
 }
 
-ReturnCode RedundancyIk::activate(const InverseKinematicsInput& current) noexcept {
+void RedundancyIk::tune(const Parameters& p) {
+  gains_inbox_.publish({p.real("null_space_gain"), p.real("null_space_damping")});
+}
+
+Outcome RedundancyIk::activate(const InverseKinematicsInput& current) {
   q_ = current.device.joints.position;
   qd_ = current.device.joints.velocity;
   acceleration_.reset(qd_);
   gradient_.setZero(q_.size());
-  return q_.size() == model_->dof() ? ReturnCode::ok : ReturnCode::error;
+  return q_.size() == model_->dof() ? Outcome::success()
+                                    : Outcome::failure("the device's joints do not match the robot model");
 }
 
-ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsInput& in,
-                                JointTarget& target) noexcept {
-  if (!in.task.has_motion) return ReturnCode::error;
+Outcome RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsInput& in, JointTarget& target) {
+  if (NullSpaceGains g; gains_inbox_.take(g)) {  // run-time gains, at a cycle boundary
+    null_gain_ = g.gain;
+    null_damping_ = g.damping;
+  }
+  if (!in.task.has_motion)
+    return Outcome::failure("no desired motion: the scheme needs an admittance-type virtual model");
   const double dt = static_cast<double>(cycle.period_ns) * 1e-9;
   Eigen::Isometry3d desired = Eigen::Isometry3d::Identity();
   desired.translation() = in.task.pose.position;
@@ -232,7 +243,7 @@ ReturnCode RedundancyIk::update(const CycleTime& cycle, const InverseKinematicsI
   target.position = q_;
   target.velocity = qd_;
   target.valid = true;
-  return q_.allFinite() ? ReturnCode::ok : ReturnCode::error;
+  return q_.allFinite() ? Outcome::success() : Outcome::failure("the joint solution is not finite");
 }
 
 double RedundancyIk::add_clearance_term(const NeighbourClearance& neighbour) noexcept {

@@ -16,6 +16,7 @@
 #include "hapticd/model/model_data.hpp"
 #include "hapticd/model/redundancy.hpp"
 #include "hapticd/model/side_criteria.hpp"
+#include "hapticd/realtime/latest_value.hpp"
 #include "hapticd/signal/differentiator.hpp"
 
 namespace hapticd::ik {
@@ -25,9 +26,11 @@ class RedundancyIk final : public InverseKinematics, public RedundancyResolution
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const InverseKinematicsInput& current) noexcept override;
-  ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) noexcept override;
+  Outcome activate(const InverseKinematicsInput& current) override;
+  Outcome update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) override;
   void deactivate() override {}
+  // The tunable null-space gain and damping, taken at the next cycle.
+  void tune(const Parameters& parameters) override;
   RedundancyResolution* redundancy() noexcept override { return this; }
 
   JointVector task_acceleration(const DeviceState& device, const ChainState& chain,
@@ -49,12 +52,16 @@ class RedundancyIk final : public InverseKinematics, public RedundancyResolution
   int handle_ = -1;
   int rows_ = 3;
   Level level_ = Level::velocity;
-  double kp_ = 0.0, kd_ = 0.0;          // pose-error feedback of the integrated target
-  double null_gain_ = 0.0;              // k
-  double null_damping_ = 0.0;           // d [1/s]
-  model::GeneralizedInverse inverse_;   // at the joint target
-  model::GeneralizedInverse measured_;  // at the measured state (task_acceleration)
-  model::GeneralizedInverse dynamic_;   // inertia-weighted at the measured state (null_space_torque)
+  double kp_ = 0.0, kd_ = 0.0;  // pose-error feedback of the integrated target
+  double null_gain_ = 0.0;      // k
+  double null_damping_ = 0.0;   // d [1/s]
+  struct NullSpaceGains {
+    double gain = 0.0, damping = 0.0;
+  };
+  realtime::LatestValue<NullSpaceGains> gains_inbox_;  // tune() -> the loop, at a cycle boundary
+  model::GeneralizedInverse inverse_;                  // at the joint target
+  model::GeneralizedInverse measured_;                 // at the measured state (task_acceleration)
+  model::GeneralizedInverse dynamic_;                  // inertia-weighted at the measured state (null_space_torque)
   model::SideCriteria criteria_;
   JointVector q_, qd_, gradient_;
   double criterion_ = 0.0;

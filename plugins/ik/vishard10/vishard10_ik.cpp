@@ -261,9 +261,9 @@ void Vishard10Ik::reset(const JointVector& q) noexcept {
   clamped_ = 0;
 }
 
-ReturnCode Vishard10Ik::activate(const InverseKinematicsInput& current) noexcept {
+Outcome Vishard10Ik::activate(const InverseKinematicsInput& current) {
   const JointVector& measured = current.device.joints.position;
-  if (measured.size() != 10) return ReturnCode::error;
+  if (measured.size() != 10) return Outcome::failure("the ViSHaRD10 inverse kinematics needs a 10-joint device");
   reset(measured);
   model::forward_kinematics(*model_, *data_, measured);
   const Eigen::Isometry3d at = model::frame_pose(*model_, *data_, handle_);
@@ -272,15 +272,17 @@ ReturnCode Vishard10Ik::activate(const InverseKinematicsInput& current) noexcept
   pose.orientation = Eigen::Quaterniond(at.linear());
   const JointVector& q = solve(pose, Twist{}, 0.0);
   // An inverse function has one posture per pose: the device must stand in it (else the first target jumps).
-  if ((q - measured).cwiseAbs().maxCoeff() > activation_tolerance_) return ReturnCode::error;
+  if ((q - measured).cwiseAbs().maxCoeff() > activation_tolerance_)
+    return Outcome::failure("the measured joints are not a configuration of the analytic solution");
   previous_ = q;
   qd_.setZero(10);
   acceleration_.reset(qd_);
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
-ReturnCode Vishard10Ik::update(const CycleTime& cycle, const InverseKinematicsInput& in, JointTarget& target) noexcept {
-  if (!in.task.has_motion) return ReturnCode::error;
+Outcome Vishard10Ik::update(const CycleTime& cycle, const InverseKinematicsInput& in, JointTarget& target) {
+  if (!in.task.has_motion)
+    return Outcome::failure("no desired motion: the scheme needs an admittance-type virtual model");
   const double dt = static_cast<double>(cycle.period_ns) * 1e-9;
   const Eigen::Matrix3d to_base = world_to_base_.linear();
   Pose pose;
@@ -294,7 +296,7 @@ ReturnCode Vishard10Ik::update(const CycleTime& cycle, const InverseKinematicsIn
   target.velocity = qd_;
   target.acceleration = acceleration_.update(qd_);
   target.valid = true;
-  return q.allFinite() ? ReturnCode::ok : ReturnCode::error;
+  return q.allFinite() ? Outcome::success() : Outcome::failure("the joint solution is not finite");
 }
 
 }  // namespace hapticd::ik

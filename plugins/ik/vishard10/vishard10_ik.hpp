@@ -23,8 +23,8 @@ class Vishard10Ik final : public InverseKinematics {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const InverseKinematicsInput& current) noexcept override;
-  ReturnCode update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) noexcept override;
+  Outcome activate(const InverseKinematicsInput& current) override;
+  Outcome update(const CycleTime& cycle, const InverseKinematicsInput& input, JointTarget& target) override;
   void deactivate() override {}
 
   // For tests: the joint vector of a handle pose in the device's base frame (inverse functions only; pseudoinverse

@@ -321,8 +321,8 @@ bool VirtualAdmittance::limit_tracking_error(const ChainState& c) noexcept {
 
 void VirtualAdmittance::tune(const Parameters& parameters) { tunable_inbox_.publish(tunable_of(parameters)); }
 
-ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcept {
-  if (current.chain.model == nullptr) return ReturnCode::error;
+Outcome VirtualAdmittance::activate(const VirtualModelInput& current) {
+  if (current.chain.model == nullptr) return Outcome::failure("the virtual admittance needs the device's robot model");
   // Start where the handle is, moving as it moves: no jump in the desired motion.
   position_ = current.chain.handle_pose.position;
   workspace_centre_ = position_;
@@ -335,16 +335,15 @@ ReturnCode VirtualAdmittance::activate(const VirtualModelInput& current) noexcep
   orientation_ = current.chain.handle_pose.orientation.normalized();
   body_angular_velocity_ = rotation_ ? Eigen::Vector3d(orientation_.conjugate() * current.chain.handle_twist.angular)
                                      : Eigen::Vector3d::Zero();
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
-ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelInput& input,
-                                     TaskTarget& target) noexcept {
+Outcome VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) {
   return update(cycle, input, target, Eigen::Matrix<double, 6, 1>::Zero());
 }
 
-ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target,
-                                     const Eigen::Matrix<double, 6, 1>& scripted) noexcept {
+Outcome VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target,
+                                  const Eigen::Matrix<double, 6, 1>& scripted) {
   const ChainState& c = input.chain;
   const double dt = period_s_;
   take_tuning();  // run-time parameters, at a cycle boundary
@@ -370,11 +369,9 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
                                  : wall_force(position_, velocity_)),
       rotation_ ? Eigen::Vector3d(engine.tail<3>() + scripted.tail<3>()) : Eigen::Vector3d::Zero();
   rendered = input.render.limit(rendered);
-  target.wrench_limited = true;
   // The safety supervisor's walls and speed damping act on the virtual body too (after the limits: they are not
   // the environment's), so the inner loop follows them instead of fighting them.
-  rendered.head<3>() += input.render.safety_force();
-  target.includes_safety_force = true;
+  rendered.head<3>() += input.render.take_safety_force();
   const Eigen::Vector3d environment = rendered.head<3>();
   const Eigen::Vector3d force = c.operator_wrench.force + environment;
   const Eigen::Vector3d acceleration = (force - damping_.cwiseProduct(velocity_)).cwiseQuotient(mass_);
@@ -414,7 +411,7 @@ ReturnCode VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelI
   target.wrench.torque = rendered.tail<3>();
   target.has_motion = true;
   target.has_wrench = false;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::models

@@ -34,13 +34,13 @@ class VirtualAdmittance final : public VirtualModel {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const VirtualModelInput& current) noexcept override;
-  ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept override;
+  Outcome activate(const VirtualModelInput& current) override;
+  Outcome update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) override;
   // The same with a scripted wrench ([force; torque], world) added to the environment's: a test signal the
   // model renders as it renders its walls (through the limits, not through the engine port's passivity
   // controller, which would damp an active source away). The scripted_wrench model uses it.
-  ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target,
-                    const Eigen::Matrix<double, 6, 1>& scripted) noexcept;
+  Outcome update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target,
+                 const Eigen::Matrix<double, 6, 1>& scripted);
   void deactivate() override {}
   // The tunable parameters (masses, dampings, wall, coupling and workspace stiffness), taken at the next cycle.
   void tune(const Parameters& parameters) override;

@@ -61,13 +61,12 @@ void ScriptedWrenchModel::configure(const Parameters& p, const PluginContext& co
 
 void ScriptedWrenchModel::tune(const Parameters& parameters) { admittance_.tune(parameters); }
 
-ReturnCode ScriptedWrenchModel::activate(const VirtualModelInput& current) noexcept {
+Outcome ScriptedWrenchModel::activate(const VirtualModelInput& current) {
   started_ = false;
   return admittance_.activate(current);  // impedance display: places walls_relative at the handle
 }
 
-ReturnCode ScriptedWrenchModel::update(const CycleTime& cycle, const VirtualModelInput& input,
-                                       TaskTarget& target) noexcept {
+Outcome ScriptedWrenchModel::update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) {
   if (!started_) {
     started_ = true;
     start_ns_ = cycle.time_ns;
@@ -83,8 +82,7 @@ ReturnCode ScriptedWrenchModel::update(const CycleTime& cycle, const VirtualMode
   target.wrench.torque = rendered.tail<3>();
   target.has_wrench = true;
   target.has_motion = false;
-  target.wrench_limited = true;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::models

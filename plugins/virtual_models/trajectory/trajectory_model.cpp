@@ -47,13 +47,13 @@ void TrajectoryModel::configure(const Parameters& p, const PluginContext&) {
   path_.speed = p.real("path_speed_m_s");
 }
 
-ReturnCode TrajectoryModel::activate(const VirtualModelInput& current) noexcept {
+Outcome TrajectoryModel::activate(const VirtualModelInput& current) {
   start_ = current.chain.handle_pose;
   started_ = false;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
-ReturnCode TrajectoryModel::update(const CycleTime& cycle, const VirtualModelInput&, TaskTarget& target) noexcept {
+Outcome TrajectoryModel::update(const CycleTime& cycle, const VirtualModelInput&, TaskTarget& target) {
   if (!started_) {
     started_ = true;
     start_ns_ = cycle.time_ns;
@@ -68,7 +68,7 @@ ReturnCode TrajectoryModel::update(const CycleTime& cycle, const VirtualModelInp
   target.wrench = Wrench{};
   target.has_motion = true;
   target.has_wrench = false;
-  return ReturnCode::ok;
+  return Outcome::success();
 }
 
 }  // namespace hapticd::models

@@ -15,8 +15,8 @@ class TrajectoryModel final : public VirtualModel {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
-  ReturnCode activate(const VirtualModelInput& current) noexcept override;
-  ReturnCode update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) noexcept override;
+  Outcome activate(const VirtualModelInput& current) override;
+  Outcome update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) override;
   void deactivate() override {}
 
  private:

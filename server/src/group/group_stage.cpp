@@ -27,7 +27,14 @@ void GroupStage::run(const CycleTime& cycle) noexcept {
   if (model_.object) run_model(cycle);
 }
 
-void GroupStage::set_model(PluginInstance<GroupModel> model) { model_ = std::move(model); }
+void GroupStage::set_model(PluginInstance<GroupModel> model) {
+  model_ = std::move(model);
+  {
+    std::lock_guard lock(model_requests_.requests);
+    model_requests_.target.emplace(request_target(model_));
+  }
+  for (DeviceSession* d : devices_) d->set_group_model(&model_requests_);
+}
 
 void GroupStage::run_model(const CycleTime& cycle) noexcept {
   const std::size_t n = devices_.size();
@@ -40,17 +47,17 @@ void GroupStage::run_model(const CycleTime& cycle) noexcept {
   if (!model_active_ && !all_running) return;  // it starts (again) once every hand is there
   const std::span<const GroupHand> hands(hands_.data(), n);
   const std::span<Eigen::Vector3d> forces(model_forces_.data(), n);
-  ReturnCode rc = ReturnCode::error;
+  Outcome outcome;
   try {
     if (!model_active_) {
-      if (model_->activate(hands) != ReturnCode::ok) return fail_model(cycle, "the group's model refused to activate");
+      if (const Outcome o = model_->activate(hands); !o.ok()) return fail_model(cycle, o.reason);
       model_active_ = true;
     }
-    rc = model_->update(cycle, hands, forces);
+    outcome = model_->update(cycle, hands, forces);
   } catch (...) {
     return fail_model(cycle, "the group's model threw an exception");
   }
-  if (rc != ReturnCode::ok) return fail_model(cycle, "the group's model failed");
+  if (!outcome.ok()) return fail_model(cycle, outcome.reason);
   for (std::size_t k = 0; k < n; ++k)
     if (!model_forces_[k].allFinite()) return fail_model(cycle, "the group's model answered a non-finite force");
   for (std::size_t k = 0; k < n; ++k)
@@ -64,6 +71,10 @@ void GroupStage::fail_model(const CycleTime& cycle, const char* reason) noexcept
 }
 
 std::string GroupStage::deactivate() {
+  {
+    std::lock_guard lock(model_requests_.requests);  // waits for a request being served
+    model_requests_.target.reset();
+  }
   model_active_ = false;
   return deactivate_plugin(model_, "group model");
 }

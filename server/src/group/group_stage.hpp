@@ -15,6 +15,7 @@
 #include "hapticd/group_model.hpp"
 #include "hapticd/realtime/latest_value.hpp"
 #include "loader/plugin_loader.hpp"
+#include "loader/plugin_requests.hpp"
 #include "session/device_snapshot.hpp"
 
 namespace hapticd::server {
@@ -46,10 +47,11 @@ class GroupStage {
   // cycle all the group's devices run (again after a failure, once all are recovered); each cycle it answers a
   // force per handle, added to the device's group force. A model that fails, throws or answers a non-finite
   // force stops every device of the group (fault group_model).
+  // Its run-time requests come through each of the group's devices ("group_model.<name>").
   void set_model(PluginInstance<GroupModel> model);
   [[nodiscard]] GroupModel* model() noexcept { return model_.object.get(); }
-  // After the loop has ended. Returns what the group's model threw as it was deactivated, empty if nothing (the
-  // caller goes on to disable the devices).
+  // After the loop has ended (requests no longer reach the model). Returns what the group's model threw as it was
+  // deactivated, empty if nothing (the caller goes on to disable the devices).
   [[nodiscard]] std::string deactivate();
   // After phase (d), at the cycles the devices publish snapshots: the group's snapshot of them.
   void publish_snapshot(const CycleTime& cycle) noexcept;
@@ -72,6 +74,7 @@ class GroupStage {
   void run_model(const CycleTime& cycle) noexcept;
   void fail_model(const CycleTime& cycle, const char* reason) noexcept;
   PluginInstance<GroupModel> model_;
+  SharedPlugin model_requests_;  // the devices' way to the model's requests
   bool model_active_ = false;
   std::array<GroupHand, kMaxGroupDevices> hands_{};
   std::array<Eigen::Vector3d, kMaxGroupDevices> model_forces_{};

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "hapticd/joint_vector.hpp"
+#include "hapticd/state_flags.hpp"
 #include "safety/device_fault.hpp"
 #include "safety/safety_settings.hpp"
 
@@ -20,13 +21,8 @@ struct HistoryRecord {
   Eigen::Vector3d handle_velocity = Eigen::Vector3d::Zero();
   Eigen::Vector3d operator_force = Eigen::Vector3d::Zero();
   Eigen::Vector3d environment_force = Eigen::Vector3d::Zero();
-  std::uint32_t flags = 0;  // kRecord* below
+  std::uint32_t flags = 0;  // the safety layer's state flags of the cycle (hapticd/state_flags.hpp)
 };
-
-inline constexpr std::uint32_t kRecordTorqueSaturated = 1;
-inline constexpr std::uint32_t kRecordLimitEngaged = 2;   // velocity damping or a workspace wall acted
-inline constexpr std::uint32_t kRecordRenderLimited = 4;  // the rendered wrench was limited
-inline constexpr std::uint32_t kRecordThermalDerating = 8;
 
 struct FaultReport {
   DeviceFault fault = DeviceFault::none;

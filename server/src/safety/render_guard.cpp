@@ -69,6 +69,7 @@ RenderGuard::Vector6 RenderGuard::limit(const Vector6& wrench) noexcept {
       limit_vector(torque, last_.tail<3>(), scale_ * limits_.max_torque_nm, limits_.max_torque_rate_nm_per_s * dt_);
   last_ << force, torque;
   limited_this_cycle_ = limited_this_cycle_ || f || t;
+  limit_applied_ = true;
   return last_;
 }
 

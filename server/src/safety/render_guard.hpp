@@ -45,17 +45,27 @@ class RenderGuard final : public RenderPort {
   // Switches the passivity controller (the observer always runs). Loop thread only.
   void set_passivity_control(bool on) noexcept { passivity_control_ = on; }
 
-  // RenderPort. limit() counts the cycles it had to change something.
+  // RenderPort: each records that the model asked for it this cycle.
   Vector6 engine_port(const Vector6& wrench, const Vector6& port_twist) noexcept override;
   Vector6 limit(const Vector6& wrench) noexcept override;
-  [[nodiscard]] Eigen::Vector3d safety_force() const noexcept override { return safety_force_; }
+  [[nodiscard]] Eigen::Vector3d take_safety_force() noexcept override {
+    safety_force_taken_ = true;
+    return safety_force_;
+  }
 
   // The server: at the start of each cycle, with the supervisor's force before the model runs.
   void begin_cycle(const Eigen::Vector3d& safety_force) noexcept {
     limited_this_cycle_ = false;
+    limit_applied_ = false;
+    safety_force_taken_ = false;
     safety_force_ = safety_force;
   }
+  // This cycle's record, after the model's update(): limit() was called (the wrench is limited: the server need
+  // not), it changed something (the state flag render_limited), the model renders the safety force (the
+  // supervisor does not add it as J^T F).
+  [[nodiscard]] bool limit_applied() const noexcept { return limit_applied_; }
   [[nodiscard]] bool limited_this_cycle() const noexcept { return limited_this_cycle_; }
+  [[nodiscard]] bool safety_force_taken() const noexcept { return safety_force_taken_; }
 
   [[nodiscard]] bool passivity_control() const noexcept { return passivity_control_; }
   [[nodiscard]] double port_energy_j() const noexcept { return linear_.energy_j() + angular_.energy_j(); }
@@ -70,6 +80,8 @@ class RenderGuard final : public RenderPort {
   double scale_ = 1.0;
   Vector6 last_ = Vector6::Zero();
   bool limited_this_cycle_ = false;
+  bool limit_applied_ = false;
+  bool safety_force_taken_ = false;
   Eigen::Vector3d safety_force_ = Eigen::Vector3d::Zero();
 };
 

@@ -57,9 +57,9 @@ DeviceFault SafetySupervisor::begin_cycle(const JointVector& qd, const ChainStat
   return f;
 }
 
-void SafetySupervisor::limit(const JointVector& qd, const ChainState& chain, bool safety_force_rendered,
-                             JointVector& torque, bool& saturated) noexcept {
-  motion_.apply(qd, chain, handle_force_, safety_force_rendered, torque);
+void SafetySupervisor::limit(const JointVector& qd, const ChainState& chain, JointVector& torque,
+                             bool& saturated) noexcept {
+  motion_.apply(qd, chain, handle_force_, guard_.safety_force_taken(), torque);
   const JointVector& lim = thermal_.limit();
   saturated = false;
   for (int i = 0; i < torque.size(); ++i) {
@@ -71,9 +71,9 @@ void SafetySupervisor::limit(const JointVector& qd, const ChainState& chain, boo
 }
 
 std::uint32_t SafetySupervisor::flags() const noexcept {
-  return (saturated_ ? kRecordTorqueSaturated : 0u) | (motion_.engaged() ? kRecordLimitEngaged : 0u) |
-         (guard_.limited_this_cycle() ? kRecordRenderLimited : 0u) |
-         (thermal_.derating() ? kRecordThermalDerating : 0u);
+  using namespace state_flag;
+  return (saturated_ ? torque_saturated : 0u) | (motion_.engaged() ? limit_engaged : 0u) |
+         (guard_.limited_this_cycle() ? render_limited : 0u) | (thermal_.derating() ? thermal_derating : 0u);
 }
 
 void SafetySupervisor::enter_safe_mode(const JointVector& last, const JointVector* hold_posture,

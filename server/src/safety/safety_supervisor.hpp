@@ -35,17 +35,17 @@ class SafetySupervisor {
   // raise, or none) and the handle force of the walls and speed damping, with the group's force (the arms'
   // repulsion), offered to the model (RenderGuard). qd: the joint-velocity estimate.
   DeviceFault begin_cycle(const JointVector& qd, const ChainState& chain, const Eigen::Vector3d& group_force) noexcept;
-  // After the controller: joint velocity damping, the handle force unless the model rendered it
-  // (TaskTarget::includes_safety_force), then the thermal and peak torque limits; `saturated` tells whether the
-  // torque limit clamped.
-  void limit(const JointVector& qd, const ChainState& chain, bool safety_force_rendered, JointVector& torque,
-             bool& saturated) noexcept;
+  // After the controller: joint velocity damping, the handle force unless the model took it to render
+  // (RenderPort::take_safety_force this cycle), then the thermal and peak torque limits; `saturated` tells whether
+  // the torque limit clamped.
+  void limit(const JointVector& qd, const ChainState& chain, JointVector& torque, bool& saturated) noexcept;
   // The torque that was written: heats the thermal model.
   void written(const JointVector& torque) noexcept { thermal_.update(torque); }
   [[nodiscard]] bool overruns_exceeded(std::uint32_t consecutive) const noexcept {
     return settings_.max_consecutive_overruns > 0 && consecutive >= settings_.max_consecutive_overruns;
   }
-  // kRecord* flags of this cycle.
+  // This cycle's state flags of the safety layer (hapticd/state_flags.hpp: torque_saturated, limit_engaged,
+  // render_limited, thermal_derating).
   [[nodiscard]] std::uint32_t flags() const noexcept;
 
   // Safe mode: the clock starts now. safe_torque() gives the last torque written (`last`, when it can be

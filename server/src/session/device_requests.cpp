@@ -68,7 +68,9 @@ std::vector<double> numbers_of(const ParameterValue& value) {
 std::optional<Stage> stage_named(std::string_view stage) {
   if (stage == "device") return Stage::device;
   if (stage == "virtual_model") return Stage::virtual_model;
+  if (stage == "inverse_kinematics") return Stage::inverse_kinematics;
   if (stage == "controller") return Stage::controller;
+  if (stage == "group_model") return Stage::group_model;
   return std::nullopt;
 }
 
@@ -76,6 +78,8 @@ std::optional<Stage> stage_named(std::string_view stage) {
 std::variant<DeviceSession::StagePlugin, RuntimeReply> plugin_of(const DeviceSession& device, Stage stage,
                                                                  std::string_view stage_text) {
   if (const auto plugin = device.stage_plugin(stage)) return *plugin;
+  if (stage == Stage::group_model)
+    return RuntimeReply{false, "device '" + device.name() + "' is in no group with a model"};
   if (device.chain().schemes.empty())
     return RuntimeReply{false, "device '" + device.name() + "' has no running scheme"};
   return RuntimeReply{false, "scheme '" + device.schemes().active_name() + "' has no " + std::string(stage_text)};
@@ -93,7 +97,8 @@ std::variant<Target, RuntimeReply> target_of(std::string_view target) {
   return Target{target.substr(0, dot), target.substr(dot + 1)};
 }
 RuntimeReply unknown_stage(std::string_view stage) {
-  return {false, "unknown stage " + in_quotes(stage) + " (device, virtual_model, controller or safety)"};
+  return {false, "unknown stage " + in_quotes(stage) +
+                     " (device, virtual_model, inverse_kinematics, controller, group_model or safety)"};
 }
 
 RuntimeReply set_safety(DeviceSession& device, std::string_view name, const std::vector<double>& values) {
@@ -186,8 +191,8 @@ ParameterSpec passivity_control_spec() {
   return spec;
 }
 
-// Every parameter a describe request can name, in its order: the device's, the running scheme's virtual model's
-// and controller's, then the safety stage's.
+// Every parameter a describe request can name, in its order: the device's, the running scheme's virtual model's,
+// inverse kinematics' and controller's, the group model's, then the safety stage's.
 struct Listed {
   std::string_view stage_text;
   std::optional<DeviceSession::StagePlugin> stage;  // none: the safety stage
@@ -197,7 +202,9 @@ std::vector<Listed> listed_parameters(const DeviceSession& device) {
   std::vector<Listed> out;
   for (const auto& [stage, text] : {std::pair{Stage::device, std::string_view("device")},
                                     std::pair{Stage::virtual_model, std::string_view("virtual_model")},
-                                    std::pair{Stage::controller, std::string_view("controller")}}) {
+                                    std::pair{Stage::inverse_kinematics, std::string_view("inverse_kinematics")},
+                                    std::pair{Stage::controller, std::string_view("controller")},
+                                    std::pair{Stage::group_model, std::string_view("group_model")}}) {
     const auto plugin = device.stage_plugin(stage);
     if (!plugin) continue;
     const ParameterSchema schema = plugin->descriptor->parameter_schema();

@@ -86,21 +86,23 @@ void DeviceSession::activate() noexcept {
   blend_.cancel();
 }
 
-ReturnCode DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
+Outcome DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
   // Real-time methods must not throw; one that does anyway is refused like one that reports an error.
   try {
-    if (scheme.virtual_model && (*scheme.virtual_model)
-                                        ->activate(VirtualModelInput{state_, estimator_.state(), engine_.input(),
-                                                                     safety_.guard()}) != ReturnCode::ok)
-      return ReturnCode::error;
-    if (scheme.inverse_kinematics &&
-        (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, estimator_.state()}) !=
-            ReturnCode::ok)
-      return ReturnCode::error;
+    if (scheme.virtual_model) {
+      const Outcome o = (*scheme.virtual_model)
+                            ->activate(VirtualModelInput{state_, estimator_.state(), engine_.input(), safety_.guard()});
+      if (!o.ok()) return o;
+    }
+    if (scheme.inverse_kinematics) {
+      const Outcome o =
+          (*scheme.inverse_kinematics)->activate(InverseKinematicsInput{state_, task_, estimator_.state()});
+      if (!o.ok()) return o;
+    }
     return scheme.controller->activate(
         ControllerInput{state_, task_, joint_target_, estimator_.state(), redundancy_of(scheme)}, command_);
   } catch (...) {
-    return ReturnCode::error;
+    return Outcome::failure("a plugin threw an exception in activate()");
   }
 }
 
@@ -118,67 +120,69 @@ std::string DeviceSession::fault_text() const {
   return text;
 }
 
-std::optional<DeviceSession::StagePlugin> DeviceSession::stage_plugin(Stage stage) const noexcept {
+std::optional<DeviceSession::StagePlugin> DeviceSession::stage_plugin(Stage stage) const {
   if (stage == Stage::device) return StagePlugin{stage, 0, chain_.device.descriptor};
+  if (stage == Stage::group_model) {
+    if (group_model_ == nullptr) return std::nullopt;
+    std::lock_guard lock(group_model_->requests);
+    if (!group_model_->target) return std::nullopt;
+    return StagePlugin{stage, 0, &group_model_->target->descriptor};
+  }
   if (chain_.schemes.empty()) return std::nullopt;
   const std::size_t index = schemes_.active_index();  // read once: the loop may switch right after
   const SchemeChain& scheme = chain_.schemes[index];
   if (stage == Stage::controller) return StagePlugin{stage, index, scheme.controller.descriptor};
+  if (stage == Stage::inverse_kinematics) {
+    if (!scheme.inverse_kinematics) return std::nullopt;
+    return StagePlugin{stage, index, scheme.inverse_kinematics->descriptor};
+  }
   if (!scheme.virtual_model) return std::nullopt;
   return StagePlugin{stage, index, scheme.virtual_model->descriptor};
 }
 
 template <class F>
-decltype(auto) DeviceSession::with_stage_plugin(const StagePlugin& stage, F&& f) {
-  if (stage.stage == Stage::device) return f(chain_.device);
+RuntimeReply DeviceSession::with_stage_plugin(const StagePlugin& stage, F&& f) {
+  if (stage.stage == Stage::group_model) {  // the group's: its own lock, shared by the group's devices
+    std::lock_guard lock(group_model_->requests);
+    if (!group_model_->target) return {false, "the group's model has been deactivated"};
+    return f(*group_model_->target);
+  }
+  std::lock_guard lock(plugin_requests_);
+  if (stage.stage == Stage::device) return f(request_target(chain_.device));
   SchemeChain& scheme = chain_.schemes[stage.scheme];
-  if (stage.stage == Stage::controller) return f(scheme.controller);
+  if (stage.stage == Stage::controller) return f(request_target(scheme.controller));
   // A scheme's stages are fixed at start-up: the one stage_plugin() found is there.
+  if (stage.stage == Stage::inverse_kinematics) {
+    HAPTICD_DEMAND(scheme.inverse_kinematics.has_value());
+    return f(request_target(*scheme.inverse_kinematics));
+  }
   HAPTICD_DEMAND(scheme.virtual_model.has_value());
-  return f(*scheme.virtual_model);
+  return f(request_target(*scheme.virtual_model));
 }
 
 RuntimeReply DeviceSession::plugin_request(const StagePlugin& stage, std::string_view name,
                                            const std::vector<double>& values) {
-  std::lock_guard lock(plugin_requests_);
-  return with_stage_plugin(stage, [&](auto& plugin) -> RuntimeReply {
-    try {  // a plugin's command that throws is refused with what it threw
-      return plugin->handle_request(name, values);
-    } catch (const std::exception& e) {
-      return {false, "'" + std::string(name) + "' failed in plugin '" + plugin.descriptor->name + "': " + e.what()};
-    } catch (...) {
-      return {false, "'" + std::string(name) + "' failed in plugin '" + plugin.descriptor->name + "'"};
-    }
-  });
+  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return send_command(t, name, values); });
 }
 
 Parameters DeviceSession::stage_parameters(const StagePlugin& stage) {
-  std::lock_guard lock(plugin_requests_);
-  return with_stage_plugin(stage, [](auto& plugin) { return plugin.parameters; });
+  Parameters out;
+  with_stage_plugin(stage, [&](const PluginRequestTarget& t) {
+    out = t.parameters;
+    return RuntimeReply{true, ""};
+  });
+  return out;
 }
 
 RuntimeReply DeviceSession::tune(const StagePlugin& stage, const std::string& name, ParameterValue value) {
-  std::lock_guard lock(plugin_requests_);
-  return with_stage_plugin(stage, [&](auto& plugin) -> RuntimeReply {
-    Parameters next = plugin.parameters;
-    next.set(name, std::move(value), "run-time request");
-    try {
-      plugin->tune(next);
-    } catch (const std::exception& e) {
-      return {false, "'" + name + "' refused by plugin '" + plugin.descriptor->name + "': " + e.what()};
-    } catch (...) {
-      return {false, "'" + name + "' refused by plugin '" + plugin.descriptor->name + "'"};
-    }
-    plugin.parameters = std::move(next);
-    return {true, name + " = " + format_value(plugin.parameters.value(name))};
-  });
+  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return tune_parameter(t, name, value); });
 }
 
 void DeviceSession::switch_scheme_if_requested() noexcept {
   SchemeChain* wanted = schemes_.wanted();
   if (wanted == nullptr) return;
   const JointVector before = command_.torque_nm;
-  if (activate_scheme(*wanted) != ReturnCode::ok) {
+  if (!activate_scheme(*wanted).ok()) {
     schemes_.refused_switch();  // the old scheme runs on
     return;
   }
@@ -188,9 +192,9 @@ void DeviceSession::switch_scheme_if_requested() noexcept {
   safety_.restart_soft_start();
 }
 
-DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
+DeviceSession::ChainFault DeviceSession::chain_step(const CycleTime& cycle) {
   if (!chain_active_) {  // the first cycle, or the first after a recovery: activate from the measured state
-    if (activate_scheme(schemes_.active()) != ReturnCode::ok) return DeviceFault::activation;
+    if (const Outcome o = activate_scheme(schemes_.active()); !o.ok()) return {DeviceFault::activation, o.reason};
     schemes_.entered();
     chain_active_ = true;
     safety_.restart_soft_start();
@@ -200,18 +204,17 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
   // The supervisor's speed and workspace checks on the measured state, before the chain renders anything.
   if (const DeviceFault f = safety_.begin_cycle(state_.joints.velocity, estimator_.state(), group_force_);
       f != DeviceFault::none)
-    return f;
+    return {f};
   engine_.take(cycle);
   SchemeChain& scheme = schemes_.active();
   if (scheme.virtual_model) {
-    task_.wrench_limited = false;  // the model's answers about the render port, this cycle's
-    task_.includes_safety_force = false;
-    if ((*scheme.virtual_model)
-            ->update(cycle, VirtualModelInput{state_, estimator_.state(), engine_.input(), safety_.guard()}, task_) !=
-        ReturnCode::ok)
-      return DeviceFault::virtual_model;
-    if (!is_finite(task_)) return DeviceFault::non_finite_output;
-    if (task_.has_wrench && !task_.wrench_limited) {
+    if (const Outcome o =
+            (*scheme.virtual_model)
+                ->update(cycle, VirtualModelInput{state_, estimator_.state(), engine_.input(), safety_.guard()}, task_);
+        !o.ok())
+      return {DeviceFault::virtual_model, o.reason};
+    if (!is_finite(task_)) return {DeviceFault::non_finite_output, "the virtual model's target is not finite"};
+    if (task_.has_wrench && !safety_.guard().limit_applied()) {
       // A model that does not apply the rendered-wrench limits itself: the server applies them here.
       RenderGuard::Vector6 w;
       w << task_.wrench.force, task_.wrench.torque;
@@ -223,18 +226,20 @@ DeviceFault DeviceSession::chain_step(const CycleTime& cycle) {
     task_ = TaskTarget{};  // a scheme without a virtual model renders nothing (free space)
   }
   if (scheme.inverse_kinematics) {
-    if ((*scheme.inverse_kinematics)
-            ->update(cycle, InverseKinematicsInput{state_, task_, estimator_.state()}, joint_target_) != ReturnCode::ok)
-      return DeviceFault::inverse_kinematics;
-    if (!is_finite(joint_target_)) return DeviceFault::non_finite_output;
+    if (const Outcome o = (*scheme.inverse_kinematics)
+                              ->update(cycle, InverseKinematicsInput{state_, task_, estimator_.state()}, joint_target_);
+        !o.ok())
+      return {DeviceFault::inverse_kinematics, o.reason};
+    if (!is_finite(joint_target_))
+      return {DeviceFault::non_finite_output, "the inverse kinematics' joint target is not finite"};
   }
-  if (scheme.controller->update(
-          cycle, ControllerInput{state_, task_, joint_target_, estimator_.state(), redundancy_of(scheme)}, command_) !=
-      ReturnCode::ok)
-    return DeviceFault::controller;
-  if (!command_.torque_nm.allFinite()) return DeviceFault::non_finite_output;
+  if (const Outcome o = scheme.controller->update(
+          cycle, ControllerInput{state_, task_, joint_target_, estimator_.state(), redundancy_of(scheme)}, command_);
+      !o.ok())
+    return {DeviceFault::controller, o.reason};
+  if (!command_.torque_nm.allFinite()) return {DeviceFault::non_finite_output, "the controller's torque is not finite"};
   blend_.apply(command_.torque_nm);
-  return DeviceFault::none;
+  return {};
 }
 
 void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept {
@@ -270,9 +275,9 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.safe_damping = (s.fault != DeviceFault::none || stopped_) && !safety_.at_rest();
   s.stopping = s.stopping || stopped_;
   const std::uint32_t flags = safety_.flags();
-  s.limit_engaged = (flags & kRecordLimitEngaged) != 0;
-  s.render_limited = (flags & kRecordRenderLimited) != 0;
-  s.thermal_derating = (flags & kRecordThermalDerating) != 0;
+  s.limit_engaged = (flags & state_flag::limit_engaged) != 0;
+  s.render_limited = (flags & state_flag::render_limited) != 0;
+  s.thermal_derating = (flags & state_flag::thermal_derating) != 0;
   s.thermal_load = safety_.thermal().max_load();
   s.dissipated_j = safety_.guard().dissipated_j();
   s.passivity_control = safety_.guard().passivity_control();
@@ -337,14 +342,14 @@ void DeviceSession::estimate(const CycleTime& cycle) noexcept {
 
 void DeviceSession::run_chain(const CycleTime& cycle) noexcept {
   if (safe_path_) return;
-  DeviceFault chain_fault = DeviceFault::none;
+  ChainFault chain_fault;
   try {
     chain_fault = chain_step(cycle);
   } catch (...) {
-    chain_fault = DeviceFault::plugin_exception;
+    chain_fault = {DeviceFault::plugin_exception, "a plugin of the chain threw an exception in update()"};
   }
-  if (chain_fault == DeviceFault::none) return;
-  raise_fault(chain_fault, cycle);
+  if (chain_fault.fault == DeviceFault::none) return;
+  raise_fault(chain_fault.fault, cycle, chain_fault.reason);
   safe_path_ = true;
 }
 
@@ -353,13 +358,13 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
     safe_mode_step(cycle);
   } else {
     bool saturated = false;
-    safety_.limit(state_.joints.velocity, estimator_.state(), task_.includes_safety_force, command_.torque_nm,
-                  saturated);
+    safety_.limit(state_.joints.velocity, estimator_.state(), command_.torque_nm, saturated);
     estimator_.state().output_saturated = saturated;
     if (saturated) status_.saturated_cycles.fetch_add(1, std::memory_order_relaxed);
     const std::uint32_t flags = safety_.flags();
-    if ((flags & kRecordLimitEngaged) != 0) status_.limited_cycles.fetch_add(1, std::memory_order_relaxed);
-    if ((flags & kRecordRenderLimited) != 0) status_.render_limited_cycles.fetch_add(1, std::memory_order_relaxed);
+    if ((flags & state_flag::limit_engaged) != 0) status_.limited_cycles.fetch_add(1, std::memory_order_relaxed);
+    if ((flags & state_flag::render_limited) != 0)
+      status_.render_limited_cycles.fetch_add(1, std::memory_order_relaxed);
     const double scale = std::clamp(torque_scale, 0.0, 1.0);
     if (scale > 0.0) {
       command_.torque_nm *= scale;

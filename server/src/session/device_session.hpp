@@ -26,6 +26,7 @@
 #include "hapticd/realtime/latest_value.hpp"
 #include "hapticd/realtime/spsc_ring.hpp"
 #include "loader/plugin_loader.hpp"
+#include "loader/plugin_requests.hpp"
 #include "safety/device_fault.hpp"
 #include "safety/fault_history.hpp"
 #include "safety/safety_supervisor.hpp"
@@ -181,23 +182,27 @@ class DeviceSession {
     return status_.passivity_control.load(std::memory_order_acquire);
   }
   // Not real-time safe, not the loop thread (device_requests routes here): the plugin of one stage that takes
-  // run-time requests - the device, or the running scheme's virtual model or controller (inverse kinematics
-  // takes none). stage_plugin() looks once and pins what it saw: the loop may switch schemes while a request is
+  // run-time requests - the device, the running scheme's virtual model, inverse kinematics or controller, or the
+  // model of the device's group (shared with the group's other devices). stage_plugin() looks once and pins what
+  // it saw: the loop may switch schemes while a request is
   // served, and every scheme's plugins stay configured, so a request acts on the plugin it looked up (its
   // command, the values of its parameters in effect, a run-time set of a tunable parameter already checked
   // against the schema - the plugin's tune() may still refuse it), never on a stage that vanished in between.
   // nullopt: the running scheme has no such stage, or there is no scheme. Requests to one device's plugins are
-  // handled one at a time, and never while service() deactivates a scheme.
-  enum class Stage : std::uint8_t { device, virtual_model, controller };
+  // handled one at a time, and never while service() deactivates a scheme; requests to the group's model one at a
+  // time across the group.
+  enum class Stage : std::uint8_t { device, virtual_model, inverse_kinematics, controller, group_model };
   struct StagePlugin {
     Stage stage;
     std::size_t scheme;  // the scheme's index (unused for the device)
     const PluginDescriptor* descriptor;
   };
-  [[nodiscard]] std::optional<StagePlugin> stage_plugin(Stage stage) const noexcept;
+  [[nodiscard]] std::optional<StagePlugin> stage_plugin(Stage stage) const;
   RuntimeReply plugin_request(const StagePlugin& stage, std::string_view name, const std::vector<double>& values);
   [[nodiscard]] Parameters stage_parameters(const StagePlugin& stage);
   RuntimeReply tune(const StagePlugin& stage, const std::string& name, ParameterValue value);
+  // Before the loop runs (the group stage): the model of the device's group, which its requests reach.
+  void set_group_model(SharedPlugin* model) noexcept { group_model_ = model; }
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
   // (the executor's monitor does; a round while a request is served is skipped); deactivate() does it too.
   void service();
@@ -221,18 +226,23 @@ class DeviceSession {
   }
   // f(PluginInstance<T>&) on the pinned stage's plugin (stage_plugin() found it: schemes never lose a stage).
   template <class F>
-  decltype(auto) with_stage_plugin(const StagePlugin& stage, F&& f);
+  RuntimeReply with_stage_plugin(const StagePlugin& stage, F&& f);
   // Phase (a)'s estimate; the chain restarts from the measured state when it (re)activates.
   void estimate(const CycleTime& cycle) noexcept;
   // Phase (c)'s work; plugins may throw despite the contract: caught by run_chain.
-  DeviceFault chain_step(const CycleTime& cycle);
+  // A fault of the chain and why (a plugin's Outcome::reason, or the server's text; null: none given).
+  struct ChainFault {
+    DeviceFault fault = DeviceFault::none;
+    const char* reason = nullptr;
+  };
+  ChainFault chain_step(const CycleTime& cycle);
   // Phase (d) in the safe mode: damping (and gravity hold) while the measurement can be trusted, then zero.
   void safe_mode_step(const CycleTime& cycle) noexcept;
   void recover_if_requested(const CycleTime& cycle) noexcept;
   void record_history(const CycleTime& cycle) noexcept;
   void log_safety_event(SafetyEvent::Kind kind, DeviceFault fault, const CycleTime& cycle) noexcept;
   void relatch_emergency_stop(const CycleTime& cycle) noexcept;
-  ReturnCode activate_scheme(SchemeChain& scheme) noexcept;
+  Outcome activate_scheme(SchemeChain& scheme) noexcept;
   void switch_scheme_if_requested() noexcept;
   void publish_snapshot(const CycleTime& cycle, double torque_scale) noexcept;
 
@@ -277,6 +287,7 @@ class DeviceSession {
   // stuck (a broken invariant parks it: app/invariant_stop) - both with try_lock (a timed lock's clocklock is
   // invisible to ThreadSanitizer).
   std::mutex plugin_requests_;
+  SharedPlugin* group_model_ = nullptr;  // the group's model, if the device is in a group that has one
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;
   bool measurement_valid_ = false;

@@ -15,9 +15,13 @@ class PassThroughRenderPort final : public RenderPort {
     ++limit_calls;
     return wrench;
   }
-  [[nodiscard]] Eigen::Vector3d safety_force() const noexcept override { return Eigen::Vector3d::Zero(); }
+  [[nodiscard]] Eigen::Vector3d take_safety_force() noexcept override {
+    ++safety_force_takes;
+    return Eigen::Vector3d::Zero();
+  }
 
   int engine_port_calls = 0;
+  int safety_force_takes = 0;
   int limit_calls = 0;
 };
 

@@ -10,8 +10,9 @@ namespace hapticd::server {
 struct DeviceRequest {
   enum class Kind : std::uint8_t {
     switch_scheme,       // name: the scheme
-    set_parameter,       // name: "<stage>.<parameter>" - stage device, virtual_model, controller (the running
-                         // scheme's), or safety (passivity_control); values: the new value of a parameter the
+    set_parameter,       // name: "<stage>.<parameter>" - stage device, virtual_model, inverse_kinematics,
+                         // controller (the running scheme's), group_model (the device's group's), or safety
+                         // (passivity_control); values: the new value of a parameter the
                          // plugin's schema declares tunable, checked against it; a name the schema does not
                          // declare is a command of the plugin's own
     get_parameter,       // name: "<stage>.<parameter>", any parameter of the schema; the reply's values (and

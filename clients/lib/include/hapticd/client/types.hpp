@@ -12,6 +12,7 @@
 #include "hapticd/export.hpp"
 #include "hapticd/joint_vector.hpp"
 #include "hapticd/spatial.hpp"
+#include "hapticd/state_flags.hpp"
 
 namespace hapticd::client {
 
@@ -39,21 +40,23 @@ class HAPTICD_API Name {
 enum class Mode : std::uint8_t { starting, running, stopping, safe, off };
 [[nodiscard]] HAPTICD_API std::string_view to_string(Mode mode) noexcept;
 
-// DeviceState::flags, one bit each.
+// DeviceState::flags and FaultRecord::flags, one bit each: hapticd/state_flags.hpp (state_flag::*) defines them
+// for the server, the clients and recordings alike.
 enum Flag : std::uint32_t {
-  kTorqueSaturated = 1,  // the last command was clamped to the peak torque
-  kEngineActive = 2,     // fresh engine input is being applied
-  kEngineStale = 4,      // the owner's commands missed the deadline (fading out)
-  kEstop = 8,
-  kFault = 16,
-  kSwitching = 32,          // a scheme switch ramp is running
-  kSafeDamping = 64,        // safe mode (or stop), damping phase; zero torque after it
-  kLimitEngaged = 128,      // velocity damping or a workspace wall acted this cycle
-  kRenderLimited = 256,     // the rendered wrench was limited (magnitude, rate, soft start)
-  kThermalDerating = 512,   // a joint's torque limit is below its peak (thermal model)
-  kPassivityControl = 1024  // the passivity controller on the engine port is on
+  kTorqueSaturated = state_flag::torque_saturated,
+  kEngineActive = state_flag::engine_active,
+  kEngineStale = state_flag::engine_stale,
+  kEstop = state_flag::estop,
+  kFault = state_flag::fault,
+  kSwitching = state_flag::switching,
+  kSafeDamping = state_flag::safe_damping,
+  kLimitEngaged = state_flag::limit_engaged,
+  kRenderLimited = state_flag::render_limited,
+  kThermalDerating = state_flag::thermal_derating,
+  kPassivityControl = state_flag::passivity_control
 };
-// The names of the set flags ("torque_saturated", "engine_active", ...), lowest bit first.
+// The names of the set flags (hapticd::kStateFlagNames: "torque_saturated", "engine_active", ...), lowest bit
+// first; a bit without a name as "bit<i>".
 [[nodiscard]] HAPTICD_API std::vector<std::string> flag_names(std::uint32_t flags);
 
 // The loop's health: counts since the start, worst times over the last second.
@@ -181,7 +184,7 @@ struct CycleRecord {
   JointVector position, velocity, torque;  // torque: written
   Eigen::Vector3d handle_position = Eigen::Vector3d::Zero(), handle_velocity = Eigen::Vector3d::Zero();
   Eigen::Vector3d operator_force = Eigen::Vector3d::Zero(), environment_force = Eigen::Vector3d::Zero();
-  std::uint32_t flags = 0;  // 1 torque saturated, 2 limit engaged, 4 render limited, 8 thermal derating
+  std::uint32_t flags = 0;  // Flag bits the safety layer sets: torque saturated, limit engaged, render limited, thermal
 };
 
 // A fault and the cycles before it (oldest first).

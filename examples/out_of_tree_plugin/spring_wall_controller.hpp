@@ -1,6 +1,8 @@
 // Example plugin: joint PD tracking of the chain's joint target, plus a stiff one-sided virtual wall at
 // wall_position on the first joint. Shows the whole plugin contract: a parameter schema, configure() that
-// validates and reports a bad key by name, a real-time update() without allocation, and the library entry.
+// validates and reports a bad key by name, a real-time update() without allocation. (The library's entry, for
+// all the examples: plugins.cpp.)
+#pragma once
 #include <hapticd/plugin.hpp>
 
 namespace example {
@@ -29,12 +31,12 @@ class SpringWallController final : public hapticd::Controller {
       throw hapticd::ParameterError("wall_position", "the wall lies outside joint 1's range");
   }
 
-  hapticd::ReturnCode activate(const hapticd::ControllerInput&, const hapticd::JointCommand&) noexcept override {
-    return hapticd::ReturnCode::ok;
+  hapticd::Outcome activate(const hapticd::ControllerInput&, const hapticd::JointCommand&) override {
+    return hapticd::Outcome::success();
   }
 
-  hapticd::ReturnCode update(const hapticd::CycleTime&, const hapticd::ControllerInput& in,
-                             hapticd::JointCommand& out) noexcept override {
+  hapticd::Outcome update(const hapticd::CycleTime&, const hapticd::ControllerInput& in,
+                          hapticd::JointCommand& out) override {
     const auto& q = in.device.joints.position;
     const auto& qd = in.device.joints.velocity;
     for (int i = 0; i < dof_; ++i)
@@ -42,7 +44,7 @@ class SpringWallController final : public hapticd::Controller {
           in.joints.valid ? kp_ * (in.joints.position[i] - q[i]) + kd_ * (in.joints.velocity[i] - qd[i]) : 0.0;
     const double penetration = q[0] - wall_;
     if (penetration > 0.0) out.torque_nm[0] -= k_wall_ * penetration + d_wall_ * qd[0];
-    return hapticd::ReturnCode::ok;
+    return hapticd::Outcome::success();
   }
 
   void deactivate() override {}
@@ -53,6 +55,3 @@ class SpringWallController final : public hapticd::Controller {
 };
 
 }  // namespace example
-
-HAPTICD_PLUGIN_LIBRARY(hapticd::describe_plugin<example::SpringWallController>(
-    "example_spring_wall", "1.0.0", "example: joint PD plus a one-sided wall on joint 1"))
