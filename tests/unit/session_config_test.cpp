@@ -7,11 +7,12 @@
 #include "config/config_error.hpp"
 #include "loader/plugin_loader.hpp"
 #include "support/temp_file.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd::server {
 namespace {
 
-const std::string kHeader = "server:\n  plugin_paths: [" HAPTICD_TEST_PLUGIN_DIR "]\n";
+const std::string kHeader = "server:\n  plugin_paths: [" + hapticd::test::plugin_dir() + "]\n";
 
 const std::string kValidDevices = R"(devices:
   - name: axis
@@ -228,11 +229,11 @@ TEST(SessionConfig, LiveViewIsOffUnlessASectionTurnsItOn) {
 }
 
 TEST(SessionConfig, ShippedConfigsAreValid) {
-  for (const auto& entry : std::filesystem::directory_iterator(HAPTICD_SOURCE_DIR "/config/sessions")) {
+  for (const auto& entry : std::filesystem::directory_iterator(hapticd::test::source_dir() + "/config/sessions")) {
     if (entry.path().extension() != ".yaml") continue;
     SCOPED_TRACE(entry.path().string());
     SessionConfig config = load_session_config(entry.path());
-    config.server.plugin_paths.push_back(HAPTICD_TEST_PLUGIN_DIR);
+    config.server.plugin_paths.push_back(hapticd::test::plugin_dir());
     PluginLoader loader(config.server.plugin_paths);
     EXPECT_NO_THROW((void)build_sessions(config, loader));
   }
@@ -289,6 +290,30 @@ TEST(SessionConfig, ADocumentWithTooManyValuesIsRefusedBeforeItIsBuilt) {
     FAIL() << "an alias bomb was accepted";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("more than 100000 values"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SessionConfig, ADocumentThatContainsItselfIsRefusedBeforeItIsBuilt) {
+  // What the session loader's fuzzer found: an alias inside the value its anchor names. yaml-cpp builds the
+  // document as a cycle, and the duplicate-key check recursed until the stack overflowed.
+  const std::string cycle =
+      "devices:\n  - name: left\n    device: {plugin: sim}\n    virtual_model: &admittance\n      plugin: "
+      "admittance\n      inner: *admittance\n";
+  try {
+    (void)parse_session_config(cycle, "cycle.yaml");
+    FAIL() << "a document that contains itself was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("cycle.yaml:6"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("would contain itself"), std::string::npos) << e.what();
+  }
+  // Nesting deep enough to exhaust a walker's stack is refused too, with its line.
+  std::string deep = "devices: ";
+  for (int i = 0; i < 5000; ++i) deep += "[";
+  try {
+    (void)parse_session_config(deep + "\n", "deep.yaml");
+    FAIL() << "5000 nested lists were accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 64 deep"), std::string::npos) << e.what();
   }
 }
 

@@ -36,6 +36,13 @@ class NodeCounter final : public YAML::EventHandler {
   void OnDocumentEnd() override {}
   void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override { leaf(mark, anchor, 1); }
   void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+    // An alias inside the very value its anchor names would make the document a cycle (yaml-cpp builds it as
+    // one, and every walk of it recurses without end).
+    for (const Open& o : open_)
+      if (o.anchor == anchor)
+        throw ConfigError(file_, mark.is_null() ? 0 : mark.line + 1, "",
+                          "an alias inside the value its anchor names (the value would contain itself); refer to "
+                          "an anchor only after its value has ended");
     const auto found = sizes_.find(anchor);
     leaf(mark, 0, found == sizes_.end() ? 1 : found->second);
   }
@@ -67,6 +74,10 @@ class NodeCounter final : public YAML::EventHandler {
   }
   void open(const YAML::Mark& mark, YAML::anchor_t anchor) {
     add(mark, 1);
+    if (open_.size() >= kMaxYamlDepth)
+      throw ConfigError(file_, mark.is_null() ? 0 : mark.line + 1, "",
+                        "the session nests lists and mappings more than " + std::to_string(kMaxYamlDepth) +
+                            " deep; a session file nests far less");
     open_.push_back({anchor, count_ - 1});
   }
   void close() {
