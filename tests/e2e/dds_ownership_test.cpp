@@ -21,6 +21,7 @@
 #include "e2e/dds_server_rig.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
+#include "support/test_paths.hpp"
 
 extern char** environ;
 
@@ -96,7 +97,7 @@ class Process {
   pid_t pid_ = -1;
 };
 
-std::string bin(const char* name) { return std::string(HAPTICD_BIN_DIR) + "/" + name; }
+std::string bin(const char* name) { return hapticd::test::bin_dir() + "/" + name; }
 
 TEST(DdsOwnership, AnotherParticipantWritingUnderTheOwnersIdIsNotTheOwner) {
   // The attack: a second process writes commands under the owning engine's id with serials near 2^64 (60 N,

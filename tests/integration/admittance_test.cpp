@@ -10,6 +10,7 @@
 #include "hapticd/model/kinematics.hpp"
 #include "hapticd/model/urdf_loader.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
+#include "support/test_paths.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -272,8 +273,7 @@ class VirtualWall : public ::testing::TestWithParam<bool> {};
 
 TEST_P(VirtualWall, HoldsThePushingOperator) {
   // The handle's start position, from the model at the start pose.
-  const model::RobotModel robot =
-      model::load_robot_model(std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/vishard3.urdf");
+  const model::RobotModel robot = model::load_robot_model(hapticd::test::source_dir() + "/config/urdf/vishard3.urdf");
   model::ModelData data(robot);
   JointVector q0(3);
   q0 << -0.3, 1.6, 0.0;

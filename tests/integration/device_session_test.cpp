@@ -12,6 +12,7 @@
 #include "recorder/recorder.hpp"
 #include "support/handle_mass_urdf.hpp"
 #include "support/temp_file.hpp"
+#include "support/test_paths.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -185,7 +186,7 @@ TEST(DeviceSession, OperatorWrenchLeavesOutTheWeightOfWhatTheSensorCarries) {
   // A 0.5 kg handle beyond the sensor: the sensor reads its weight besides the 10 N push; the estimate of the
   // operator's wrench is the push alone (the model's carried mass times gravity subtracted).
   std::string yaml = kSimVishard3;
-  const std::string model = HAPTICD_SOURCE_DIR "/config/urdf/vishard3.urdf";
+  const std::string model = hapticd::test::source_dir() + "/config/urdf/vishard3.urdf";
   yaml.replace(yaml.find(model), model.size(), test::vishard3_urdf_with_handle_mass(0.5));
   auto s = session_with(yaml);
   DeviceSession& d = *s.impl().devices[0];

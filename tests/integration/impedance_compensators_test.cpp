@@ -12,6 +12,7 @@
 #include "hapticd/model/friction_model.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "joint_friction.hpp"
+#include "support/test_paths.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -165,16 +166,16 @@ TEST(AdaptiveFriction, ConvergesWhileTheJointsWarmUpAndNeverOverCompensates) {
 
 TEST(ImpedanceCompensators, EveryVariantUpdatesWithoutAllocating) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
-  const char* variants[] = {
+  const std::string variants[] = {
       "force_gain: 3, friction_compensation: true, stiction_compensation: true",
       "disturbance_observer: true, observer_nominal_inertia: 0.5",
       "joint_torque_gain: 2",
       // adaptive, with hand-overs to the worker and parameter updates inside the counted cycles
       "force_gain: 3, friction_compensation: true, adaptive_friction: true, adaptive_update_s: 0.1",
-      "force_gain: 3, notch_hz: 64, friction_compensation: true, friction_file: " HAPTICD_SOURCE_DIR
-      "/config/friction/vishard3.yaml",
+      "force_gain: 3, notch_hz: 64, friction_compensation: true, friction_file: " + hapticd::test::source_dir() +
+          "/config/friction/vishard3.yaml",
   };
-  for (const char* v : variants) {
+  for (const std::string& v : variants) {
     const std::string yaml = "server: {clock: lockstep, seed: 5}\ndevices:\n" +
                              test::sim_vishard3_device_yaml("v3", "sine", "[3.0, 2.0, 1.0]") +
                              "        joint_torque_sensors: true\n    controller:\n      plugin: impedance\n"

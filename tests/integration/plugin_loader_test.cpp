@@ -9,6 +9,7 @@
 #include <set>
 
 #include "loader/elf_exports.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -23,7 +24,7 @@ std::string load_error(PluginLoader& loader, const std::string& library) {
 }
 
 TEST(PluginLoader, FindsEveryKindInTheTestLibrary) {
-  PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+  PluginLoader loader({hapticd::test::plugin_dir()});
   EXPECT_EQ(loader.find(PluginKind::device, "test_mass_spring", std::nullopt).descriptor->kind, PluginKind::device);
   EXPECT_EQ(loader.find(PluginKind::controller, "test_pd", std::nullopt).descriptor->kind, PluginKind::controller);
   EXPECT_EQ(loader.find(PluginKind::virtual_model, "test_sine_setpoint", "hapticd_test_plugins").descriptor->kind,
@@ -33,10 +34,11 @@ TEST(PluginLoader, FindsEveryKindInTheTestLibrary) {
 }
 
 TEST(PluginLoader, MissingFile) {
-  PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+  PluginLoader loader({hapticd::test::plugin_dir()});
   EXPECT_NE(load_error(loader, "no_such_plugins")
                 .find("plugin library 'no_such_plugins' not found (looked for "
-                      "libno_such_plugins.so in: " HAPTICD_TEST_PLUGIN_DIR),
+                      "libno_such_plugins.so in: " +
+                      hapticd::test::plugin_dir()),
             std::string::npos);
   EXPECT_NE(load_error(loader, "/nowhere/libx.so").find("does not exist"), std::string::npos);
 }
@@ -54,7 +56,7 @@ TEST(PluginLoader, NotALoadableLibrary) {
 }
 
 TEST(PluginLoader, MissingSymbol) {
-  PluginLoader loader({HAPTICD_TEST_FIXTURE_DIR});
+  PluginLoader loader({hapticd::test::fixture_dir()});
   const std::string e = load_error(loader, "hapticd_fixture_not_a_plugin");
   EXPECT_NE(e.find("is not a hapticd plugin library: it exports no 'hapticd_plugin_api_version' symbol"),
             std::string::npos)
@@ -62,7 +64,7 @@ TEST(PluginLoader, MissingSymbol) {
 }
 
 TEST(PluginLoader, WrongApiVersion) {
-  PluginLoader loader({HAPTICD_TEST_FIXTURE_DIR});
+  PluginLoader loader({hapticd::test::fixture_dir()});
   const std::string e = load_error(loader, "hapticd_fixture_wrong_api");
   EXPECT_NE(e.find("was built against plugin API version " + std::to_string(kApiVersion + 1) +
                    ", this server uses version " + std::to_string(kApiVersion)),
@@ -71,7 +73,7 @@ TEST(PluginLoader, WrongApiVersion) {
 }
 
 TEST(PluginLoader, WrongKind) {
-  PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+  PluginLoader loader({hapticd::test::plugin_dir()});
   try {
     (void)loader.find(PluginKind::controller, "test_mass_spring", std::nullopt);
     FAIL();
@@ -82,7 +84,7 @@ TEST(PluginLoader, WrongKind) {
 }
 
 TEST(PluginLoader, UnknownNameListsTheAvailableOnes) {
-  PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+  PluginLoader loader({hapticd::test::plugin_dir()});
   try {
     (void)loader.find(PluginKind::controller, "no_such_controller", std::nullopt);
     FAIL();
@@ -95,7 +97,7 @@ TEST(PluginLoader, UnknownNameListsTheAvailableOnes) {
 }
 
 TEST(PluginLoader, ScanningReportsBrokenLibrariesButKeepsGoing) {
-  PluginLoader loader({HAPTICD_TEST_FIXTURE_DIR, HAPTICD_TEST_PLUGIN_DIR});
+  PluginLoader loader({hapticd::test::fixture_dir(), hapticd::test::plugin_dir()});
   std::vector<std::string> problems;
   const auto all = loader.list_all(&problems);
   std::set<std::string> names;
@@ -128,16 +130,16 @@ TEST(PluginLoader, ASystemLibraryFolderIsNotLoaded) {
 }
 
 TEST(PluginLoader, TheElfCheckFindsTheEntryPoint) {
-  EXPECT_TRUE(elf_exports_symbol(std::string(HAPTICD_TEST_PLUGIN_DIR) + "/libhapticd_test_plugins.so",
-                                 "hapticd_plugin_api_version"));
-  EXPECT_FALSE(elf_exports_symbol(std::string(HAPTICD_TEST_FIXTURE_DIR) + "/libhapticd_fixture_not_a_plugin.so",
+  EXPECT_TRUE(
+      elf_exports_symbol(hapticd::test::plugin_dir() + "/libhapticd_test_plugins.so", "hapticd_plugin_api_version"));
+  EXPECT_FALSE(elf_exports_symbol(hapticd::test::fixture_dir() + "/libhapticd_fixture_not_a_plugin.so",
                                   "hapticd_plugin_api_version"));
-  EXPECT_TRUE(elf_exports_symbol(std::string(HAPTICD_TEST_FIXTURE_DIR) + "/libhapticd_fixture_not_a_plugin.so",
+  EXPECT_TRUE(elf_exports_symbol(hapticd::test::fixture_dir() + "/libhapticd_fixture_not_a_plugin.so",
                                  "some_unrelated_function"));
   EXPECT_FALSE(elf_exports_symbol("/dev/zero", "x"));
   EXPECT_FALSE(elf_exports_symbol("/nonexistent.so", "x"));
   // Truncated and corrupted copies of a real library: never a crash, never a false yes.
-  std::ifstream in(std::string(HAPTICD_TEST_PLUGIN_DIR) + "/libhapticd_test_plugins.so", std::ios::binary);
+  std::ifstream in(hapticd::test::plugin_dir() + "/libhapticd_test_plugins.so", std::ios::binary);
   const std::string image((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string path = ::testing::TempDir() + "/libcut.so";
   std::uint64_t state = 1;
@@ -166,7 +168,7 @@ TEST(PluginLoader, EnvironmentPathIsSearched) {
 TEST(PluginLoader, ObjectsKeepTheirLibraryLoaded) {
   PluginInstance<Controller> controller;
   {
-    PluginLoader loader({HAPTICD_TEST_PLUGIN_DIR});
+    PluginLoader loader({hapticd::test::plugin_dir()});
     controller = create_plugin<Controller>(loader.find(PluginKind::controller, "test_pd", std::nullopt));
   }  // the loader is gone; the instance still holds the library
   ASSERT_TRUE(controller.library->library.is_loaded());

@@ -10,6 +10,7 @@
 #include "hapticd/model/redundancy.hpp"
 #include "hapticd/server/session.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
+#include "support/test_paths.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -29,7 +30,7 @@ constexpr const char* kPartitioned =
 
 struct Scheme {
   const char* name;               // test label
-  const char* ik;                 // the inverse_kinematics entry
+  std::string ik;                 // the inverse_kinematics entry
   const char* controller;         // the controller entry
   double tolerance;               // relative, on the rendered acceleration
   const char* initial = kFolded;  // initial joint positions
@@ -65,8 +66,8 @@ const Scheme kSchemes[] = {
     {"partitioned_wrist_pseudoinverse", "{plugin: vishard10_ik, parameters: {wrist: pseudoinverse}}",
      "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}", 0.12, kPartitioned},
     {"partitioned_lookup_table",
-     "{plugin: vishard10_ik, parameters: {scara: lookup_table, scara_table: " HAPTICD_SOURCE_DIR
-     "/config/scara/vishard10.table}}",
+     "{plugin: vishard10_ik, parameters: {scara: lookup_table, scara_table: " + hapticd::test::source_dir() +
+         "/config/scara/vishard10.table}}",
      "{plugin: computed_torque, parameters: {task: full, bandwidth_rad_s: 30}}", 0.12, kLookupTable},
 };
 

@@ -9,6 +9,7 @@
 
 #include "session/device_requests.hpp"
 #include "session/device_session.hpp"
+#include "support/test_paths.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -18,13 +19,13 @@ using test::cycle_at;
 
 // A shipped session file, in lockstep, with its relative model paths made absolute and `safety` added.
 std::string shipped_session(const std::string& file, const std::string& safety) {
-  std::ifstream in(std::string(HAPTICD_SOURCE_DIR) + "/config/sessions/" + file);
+  std::ifstream in(hapticd::test::source_dir() + "/config/sessions/" + file);
   std::stringstream text;
   text << in.rdbuf();
   std::string yaml = text.str();
   for (const std::string folder : {"urdf/", "friction/"}) {  // the session's relative paths, made absolute
     for (std::size_t at; (at = yaml.find("../../" + folder)) != std::string::npos;)
-      yaml.replace(at, 6 + folder.size(), std::string(HAPTICD_SOURCE_DIR) + "/config/" + folder);
+      yaml.replace(at, 6 + folder.size(), hapticd::test::source_dir() + "/config/" + folder);
   }
   for (std::size_t at; (at = yaml.find("clock: realtime")) != std::string::npos;)
     yaml.replace(at, 15, "clock: lockstep");

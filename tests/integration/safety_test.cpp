@@ -14,6 +14,7 @@
 #include "safety/safety_supervisor.hpp"
 #include "safety/thermal_limiter.hpp"
 #include "support/temp_file.hpp"
+#include "support/test_paths.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -511,7 +512,7 @@ TEST(Safety, APluginThatFailsToConfigureIsolatesItsDevice) {
                            test::mass_spring_device_yaml("broken", "", ", throw_in_configure: true") +
                            test::mass_spring_device_yaml("b");
   auto config = load_session_config(test::write_temp_file("isolate.yaml", yaml));
-  config.server.plugin_paths.push_back(HAPTICD_TEST_PLUGIN_DIR);
+  config.server.plugin_paths.push_back(hapticd::test::plugin_dir());
   PluginLoader loader(config.server.plugin_paths);
   // Checking a session: an error naming the file, line and key.
   try {
@@ -539,7 +540,7 @@ TEST(Safety, APluginThatFailsToConfigureIsolatesItsDevice) {
   const std::string all_broken = "server: {clock: lockstep}\ndevices:\n" +
                                  test::mass_spring_device_yaml("broken", "", ", throw_in_configure: true");
   auto config2 = load_session_config(test::write_temp_file("all_broken.yaml", all_broken));
-  config2.server.plugin_paths.push_back(HAPTICD_TEST_PLUGIN_DIR);
+  config2.server.plugin_paths.push_back(hapticd::test::plugin_dir());
   std::vector<ConfigureFailure> failures2;
   EXPECT_THROW((void)build_sessions(config2, loader, &failures2), ConfigError);
 }

@@ -8,11 +8,12 @@
 
 #include "hapticd/parameter_info.hpp"
 #include "hapticd/server/session.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd::server {
 namespace {
 
-const std::string kSessions = HAPTICD_SOURCE_DIR "/config/sessions/vishard3/";
+const std::string kSessions = hapticd::test::source_dir() + "/config/sessions/vishard3/";
 
 Session shipped(const std::string& file, std::vector<std::string> overrides = {}) {
   SessionOptions options;

@@ -19,6 +19,7 @@
 #include "hapticd/testing/allocation_guard.hpp"
 #include "partitioned_solution.hpp"
 #include "support/device_models.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd {
 namespace {
@@ -41,7 +42,7 @@ class Vishard10Ik : public ::testing::Test {
     robot_ = std::make_unique<model::RobotModel>(test::load_device_model("vishard10"));
     data_ = std::make_unique<model::ModelData>(*robot_);
     handle_ = robot_->require_frame("handle");
-    description_.robot_model_file = std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/vishard10.urdf";
+    description_.robot_model_file = hapticd::test::source_dir() + "/config/urdf/vishard10.urdf";
     description_.handle_frame = "handle";
     for (int i = 0; i < 10; ++i) description_.joints.push_back(JointDescription{"j", -1e9, 1e9, 10.0, 50.0, 20.0});
   }
@@ -166,7 +167,7 @@ TEST_F(Vishard10Ik, TheLookupTableReachesTheTipExactlyAndIsCyclic) {
   // The shipped table (config/scara/vishard10.table, made by hapticd-scara-lut): the tip is reached exactly
   // anywhere in its mesh (the elbow is interpolated, both pairs then follow exactly), and a closed path gives a
   // closed joint path.
-  const std::string table = std::string(HAPTICD_SOURCE_DIR) + "/config/scara/vishard10.table";
+  const std::string table = hapticd::test::source_dir() + "/config/scara/vishard10.table";
   auto ik = make({{"scara", std::string("lookup_table")}, {"scara_table", table}});
   const auto t = ik::vishard10::ScaraTable::load(table);
   EXPECT_GE(t.tip_speed, 1.0);  // the optimiser's figure for its workspace: the 1 m/s target

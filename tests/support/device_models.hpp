@@ -5,13 +5,14 @@
 
 #include "hapticd/model/robot_model.hpp"
 #include "hapticd/model/urdf_loader.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd::test {
 
 inline const char* const kDeviceModels[] = {"vishard3", "vishard6", "vishard10"};
 
 inline model::RobotModel load_device_model(const std::string& name) {
-  return model::load_robot_model(std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/" + name + ".urdf");
+  return model::load_robot_model(hapticd::test::source_dir() + "/config/urdf/" + name + ".urdf");
 }
 
 // Uniform in [-range, range] per joint.

@@ -8,10 +8,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "support/test_paths.hpp"
+
 namespace hapticd::test {
 
 inline std::string vishard3_urdf_with_handle_mass(double mass_kg) {
-  std::ifstream in(std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/vishard3.urdf");
+  std::ifstream in(hapticd::test::source_dir() + "/config/urdf/vishard3.urdf");
   std::stringstream text;
   text << in.rdbuf();
   std::string urdf = text.str();

@@ -7,6 +7,7 @@
 
 #include "config/yaml_reader.hpp"
 #include "sim_device.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd::test {
 
@@ -19,7 +20,7 @@ struct SimRig {
     context.device_name = "sim";
     context.rate_hz = rate_hz;
     context.seed = seed;
-    context.config_directory = std::string(HAPTICD_SOURCE_DIR) + "/config/sessions";
+    context.config_directory = hapticd::test::source_dir() + "/config/sessions";
     device.configure(p, context);
     period_ns = static_cast<std::int64_t>(1e9 / rate_hz);
     state.joints.resize(device.description().dof());

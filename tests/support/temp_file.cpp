@@ -4,6 +4,8 @@
 
 #include <fstream>
 
+#include "support/test_paths.hpp"
+
 namespace hapticd::test {
 
 std::filesystem::path write_temp_file(const std::string& name, const std::string& text) {
@@ -17,7 +19,7 @@ std::filesystem::path write_temp_file(const std::string& name, const std::string
 }
 
 std::string test_session_yaml(const std::string& server_yaml, const std::string& device_yaml) {
-  return "server:\n  plugin_paths: [" HAPTICD_TEST_PLUGIN_DIR "]\n" + server_yaml + "devices:\n" + device_yaml;
+  return "server:\n  plugin_paths: [" + hapticd::test::plugin_dir() + "]\n" + server_yaml + "devices:\n" + device_yaml;
 }
 
 }  // namespace hapticd::test

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hapticd/testing/allocation_guard.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd::test {
 
@@ -24,7 +25,8 @@ std::string sim_vishard3_entry(const std::string& name) {
     device:
       plugin: sim
       parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/vishard3.urdf
+        urdf: )" +
+         hapticd::test::source_dir() + R"(/config/urdf/vishard3.urdf
         initial_position: [-0.3, 1.6, 0.0]
         passive_gimbal: true
 )";
@@ -70,8 +72,8 @@ std::string sim_wrench_step_device_yaml(const std::string& name, const std::stri
     device:
       plugin: sim
       parameters:
-        urdf: )" HAPTICD_SOURCE_DIR R"(/config/urdf/)" +
-         model + R"(.urdf
+        urdf: )" +
+         hapticd::test::source_dir() + R"(/config/urdf/)" + model + R"(.urdf
         initial_position: )" +
          initial + R"(
         attachment: wrench
@@ -87,7 +89,7 @@ std::string sim_wrench_step_device_yaml(const std::string& name, const std::stri
 }
 
 server::Session build_test_session(const std::string& yaml) {
-  return server::Session::from_yaml(yaml, {{}, {HAPTICD_TEST_PLUGIN_DIR}}, "session.yaml");
+  return server::Session::from_yaml(yaml, {{}, {hapticd::test::plugin_dir()}}, "session.yaml");
 }
 
 std::string flow_mapping(const std::string& base, const std::string& overrides) {

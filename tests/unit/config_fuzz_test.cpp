@@ -15,6 +15,7 @@
 #include "config/session_config.hpp"
 #include "loader/plugin_loader.hpp"
 #include "support/temp_file.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -24,13 +25,13 @@ std::vector<std::string> seed_files() {
   for (const char* name : {"config/sessions/demo.yaml", "config/sessions/vishard3/admittance-wall.yaml",
                            "config/sessions/vishard3/impedance-friction-compensation.yaml",
                            "config/sessions/vishard3/scheme-switching.yaml"}) {
-    std::ifstream in(std::string(HAPTICD_SOURCE_DIR) + "/" + name);
+    std::ifstream in(hapticd::test::source_dir() + "/" + name);
     std::stringstream ss;
     ss << in.rdbuf();
     // Paths relative to the session's folder, made absolute (the mutants live in a temporary folder).
     std::string t = ss.str();
     for (const std::string rel : {"../../urdf/", "../urdf/", "../../friction/"}) {
-      const std::string abs = std::string(HAPTICD_SOURCE_DIR) + "/config/" + rel.substr(rel.rfind("../") + 3);
+      const std::string abs = hapticd::test::source_dir() + "/config/" + rel.substr(rel.rfind("../") + 3);
       for (std::size_t at = t.find(rel); at != std::string::npos; at = t.find(rel, at + abs.size()))
         t.replace(at, rel.size(), abs);
     }
@@ -115,7 +116,7 @@ TEST(ConfigFuzz, EveryMutatedSessionLoadsOrFailsWithALocatedConfigError) {
   const auto seeds = seed_files();
   for (const auto& s : seeds) ASSERT_FALSE(s.empty());
   std::mt19937_64 rng(20261123);
-  PluginLoader loader(PluginLoader::search_paths_for({HAPTICD_TEST_PLUGIN_DIR}));
+  PluginLoader loader(PluginLoader::search_paths_for({hapticd::test::plugin_dir()}));
   int loaded = 0, built = 0, rejected = 0;
   const auto file = test::write_temp_file("fuzz.yaml", "");
   for (int i = 0; i < 3000; ++i) {
@@ -129,7 +130,7 @@ TEST(ConfigFuzz, EveryMutatedSessionLoadsOrFailsWithALocatedConfigError) {
       ++loaded;
       // Building loads and configures plugins: every 7th input (it is slower).
       if (i % 7 == 0) {
-        config.server.plugin_paths.push_back(HAPTICD_TEST_PLUGIN_DIR);
+        config.server.plugin_paths.push_back(hapticd::test::plugin_dir());
         PluginLoader session_loader(PluginLoader::search_paths_for(config.server.plugin_paths));
         std::vector<ConfigureFailure> failures;
         (void)build_sessions(config, session_loader, &failures);

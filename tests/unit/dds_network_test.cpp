@@ -8,6 +8,7 @@
 #include "hapticd/dds/network.hpp"
 #include "hapticd/dds/participant.hpp"
 #include "hapticd/server/session.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd::dds {
 namespace {
@@ -67,7 +68,7 @@ TEST(DdsNetwork, TheSessionFilesNetworkIsCheckedWithFileLineAndKey) {
       "  domain_id: 3\n";
   const auto error = [&](const std::string& network) {
     try {
-      (void)server::Session::from_yaml(head + network, {{}, {HAPTICD_TEST_PLUGIN_DIR}}, "lab.yaml");
+      (void)server::Session::from_yaml(head + network, {{}, {hapticd::test::plugin_dir()}}, "lab.yaml");
     } catch (const std::runtime_error& e) {
       return std::string(e.what());
     }
@@ -80,7 +81,7 @@ TEST(DdsNetwork, TheSessionFilesNetworkIsCheckedWithFileLineAndKey) {
   EXPECT_NE(typo.find("did you mean 'peers'"), std::string::npos) << typo;
   EXPECT_NE(error("  network: {interfaces: [eth1]}\n").find("nothing could be discovered"), std::string::npos);
   EXPECT_NE(error("  network: {interfaces: eth1, peers: [a]}\n").find("dds.network.interfaces"), std::string::npos);
-  const std::string both = error("  cyclone_config: " HAPTICD_SOURCE_DIR
+  const std::string both = error("  cyclone_config: " + hapticd::test::source_dir() +
                                  "/config/dds/cyclonedds-loopback.xml\n  network: {interfaces: [eth1], peers: [a]}\n");
   EXPECT_NE(both.find("not both"), std::string::npos) << both;
 }

@@ -14,6 +14,7 @@
 #include "live_view/device_view.hpp"
 #include "live_view/foxglove_protocol.hpp"
 #include "live_view/foxglove_schemas.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd::server::live_view {
 namespace {
@@ -111,7 +112,7 @@ class DeviceViewTest : public ::testing::Test {
  protected:
   DeviceViewTest()
       : model_(std::make_shared<const model::RobotModel>(
-            model::load_robot_model(std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/vishard3.urdf"))) {
+            model::load_robot_model(hapticd::test::source_dir() + "/config/urdf/vishard3.urdf"))) {
     description_.model = "vishard3";
     for (const auto& b : model_->bodies()) description_.joints.push_back({b.joint_name});
     snapshot_.cycle = 400;

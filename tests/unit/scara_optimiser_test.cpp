@@ -9,12 +9,13 @@
 
 #include "hapticd/model/urdf_loader.hpp"
 #include "support/temp_file.hpp"
+#include "support/test_paths.hpp"
 
 namespace hapticd {
 namespace {
 
 struct Rig {
-  model::RobotModel robot = model::load_robot_model(std::string(HAPTICD_SOURCE_DIR) + "/config/urdf/vishard10.urdf");
+  model::RobotModel robot = model::load_robot_model(hapticd::test::source_dir() + "/config/urdf/vishard10.urdf");
   ik::vishard10::Geometry geometry = ik::vishard10::Geometry::from(robot, robot.require_frame("handle"));
   std::array<double, 4> speed{};
   Rig() {
