@@ -8,14 +8,21 @@ for real, with the command's --set overrides (hapticd --check-config: it loads a
 unless an override names a recording (.h5) that an earlier command of the docs would have made. Synopsis lines (placeholders in capitals,
 [optional] parts, a|b alternatives, ...) say what may be written, not a command: they are counted and skipped.
 
+A line whose comment says `# makes FILE` made a file the docs show (a figure's or a table's data): it is run for
+real, writing into a temporary folder instead, and what it makes is compared with the committed FILE - numbers
+within a relative 1e-6, text equal, paths of the machine it ran on ignored - so the docs' figures are what
+their commands make today.
+
 Usage: docs_commands_test.py SOURCE_DIR BIN_DIR
 """
+import json
 import os
 import pathlib
 import re
 import shlex
 import subprocess
 import sys
+import tempfile
 
 PROGRAMS = ("hapticd", "hapticctl", "hapticd-eval", "hapticd-scene-engine", "hapticd-admittance-engine",
             "hapticd-bimanual-engine")
@@ -23,7 +30,7 @@ MIN_CHECKED = 20  # fewer: the extraction broke, not the docs
 
 
 def command_lines(path):
-    """(line number, command) of every line in a ```sh block, continuations joined, comments dropped."""
+    """(line number, command, comment) of every line in a ```sh block, continuations joined."""
     lines = path.read_text().splitlines()
     in_sh = in_block = False
     i = 0
@@ -37,10 +44,46 @@ def command_lines(path):
             while line.rstrip().endswith("\\") and i + 1 < len(lines):
                 i += 1
                 line = line.rstrip()[:-1] + " " + lines[i].strip()
+            comment = re.search(r"\s+#\s(.*)$", line)
             text = re.sub(r"\s+#\s.*$", "", line).strip().rstrip("&").strip()
             if text:
-                yield number, text
+                yield number, text, comment.group(1).strip() if comment else ""
         i += 1
+
+
+def same_data(made, committed, where=""):
+    """Differences between two JSON values: numbers within a relative 1e-6; "urdf" paths are the machine's."""
+    if isinstance(committed, dict) and isinstance(made, dict):
+        out = []
+        for key in sorted(set(committed) | set(made)):
+            if key == "urdf":
+                continue
+            if key not in made or key not in committed:
+                out.append(f"{where}.{key}: only in {'the committed file' if key in committed else 'the new one'}")
+            else:
+                out += same_data(made[key], committed[key], f"{where}.{key}")
+        return out
+    if isinstance(committed, list) and isinstance(made, list):
+        if len(made) != len(committed):
+            return [f"{where}: {len(made)} elements, committed {len(committed)}"]
+        return [d for k, (m, c) in enumerate(zip(made, committed)) for d in same_data(m, c, f"{where}[{k}]")]
+    if isinstance(committed, (int, float)) and isinstance(made, (int, float)) and not isinstance(committed, bool):
+        return [] if abs(made - committed) <= 1e-6 * max(1.0, abs(committed)) else [f"{where}: {made}, committed {committed}"]
+    return [] if made == committed else [f"{where}: {made!r}, committed {committed!r}"]
+
+
+def remake(bin_dir, source, words, target, scratch):
+    """Runs the command for real with `target` (a committed file) written into `scratch`; the differences."""
+    made = scratch / pathlib.Path(target).name
+    args = [str(made) if w == target else w for w in words]
+    if str(made) not in args:
+        return [f"the command does not write {target}"]
+    run = subprocess.run([str(bin_dir / args[0])] + args[1:], cwd=source, capture_output=True, text=True, timeout=120)
+    if run.returncode != 0 or not made.exists():
+        return [f"exit {run.returncode}: {(run.stderr or run.stdout).strip()[-400:]}"]
+    if made.suffix == ".json":
+        return same_data(json.loads(made.read_text()), json.loads((source / target).read_text()))
+    return [] if made.read_bytes() == (source / target).read_bytes() else ["the file differs"]
 
 
 def is_synopsis(args):
@@ -51,9 +94,10 @@ def is_synopsis(args):
 def main():
     source, bin_dir = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
     files = [source / "README.md"] + sorted((source / "docs").glob("*.md"))
-    checked, synopses, failures = 0, 0, []
+    checked, synopses, remade, failures = 0, 0, 0, []
+    scratch = pathlib.Path(tempfile.mkdtemp(prefix="hapticd-docs-"))
     for path in files:
-        for number, text in command_lines(path):
+        for number, text, comment in command_lines(path):
             try:
                 words = shlex.split(text)
             except ValueError as e:
@@ -88,7 +132,17 @@ def main():
                     continue
             checked += 1
             print(f"ok {where}: {text}")
-    print(f"{checked} example commands parse, {synopses} synopsis lines skipped, {len(failures)} failed")
+            makes = re.fullmatch(r"makes (\S+)", comment)
+            if makes:
+                differences = remake(bin_dir, source, words, makes.group(1), scratch)
+                if differences:
+                    failures.append(f"{where}: {makes.group(1)} is not what its command makes now:\n    " +
+                                    "\n    ".join(differences[:10]))
+                else:
+                    remade += 1
+                    print(f"ok {where}: makes {makes.group(1)} as committed")
+    print(f"{checked} example commands parse, {remade} made their docs' files again, {synopses} synopsis lines "
+          f"skipped, {len(failures)} failed")
     for f in failures:
         print("FAIL", f)
     if checked < MIN_CHECKED:
