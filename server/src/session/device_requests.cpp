@@ -176,8 +176,9 @@ RuntimeReply get_parameter(DeviceSession& device, std::string_view target_text) 
   if (schema.find(name) == nullptr)
     return {false, "plugin '" + std::string(p.plugin.name) + "' has no parameter " + in_quotes(name) + " (" +
                        listed(schema.names()) + ")"};
-  const Parameters parameters = device.stage_parameters(p.stage);
-  const ParameterValue& value = parameters.value(name);
+  const std::optional<Parameters> parameters = device.stage_parameters(p.stage);
+  if (!parameters) return {false, "plugin '" + std::string(p.plugin.name) + "' has been deactivated"};
+  const ParameterValue& value = parameters->value(name);
   return {true, std::string(name) + " = " + format_value(value), numbers_of(value)};
 }
 
@@ -224,8 +225,12 @@ RuntimeReply describe(DeviceSession& device, const Listed& p, std::size_t count)
   info.minimum = p.spec.minimum;
   info.maximum = p.spec.maximum;
   info.minimum_exclusive = p.spec.minimum_exclusive;
-  const ParameterValue value =
-      p.stage ? device.stage_parameters(*p.stage).value(p.spec.name) : ParameterValue{device.passivity_control()};
+  ParameterValue value{device.passivity_control()};
+  if (p.stage) {
+    const std::optional<Parameters> parameters = device.stage_parameters(*p.stage);
+    if (!parameters) return {false, "plugin '" + std::string(p.stage->descriptor->name) + "' has been deactivated"};
+    value = parameters->value(p.spec.name);
+  }
   info.value_text = format_value(value);
   info.value = numbers_of(value);
   return encode_parameter_info(info, count);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 
 #include "hapticd/demand.hpp"
 #include "session/finite.hpp"
@@ -141,10 +142,11 @@ std::optional<DeviceSession::StagePlugin> DeviceSession::stage_plugin(Stage stag
 }
 
 template <class F>
-RuntimeReply DeviceSession::with_stage_plugin(const StagePlugin& stage, F&& f) {
+auto DeviceSession::with_stage_plugin(const StagePlugin& stage, F&& f)
+    -> std::optional<std::invoke_result_t<F, const PluginRequestTarget&>> {
   if (stage.stage == Stage::group_model) {  // the group's: its own lock, shared by the group's devices
     std::lock_guard lock(group_model_->requests);
-    if (!group_model_->target) return {false, "the group's model has been deactivated"};
+    if (!group_model_->target) return std::nullopt;  // deactivated since stage_plugin() found it
     return f(*group_model_->target);
   }
   std::lock_guard lock(plugin_requests_);
@@ -160,22 +162,23 @@ RuntimeReply DeviceSession::with_stage_plugin(const StagePlugin& stage, F&& f) {
   return f(request_target(*scheme.virtual_model));
 }
 
+namespace {
+RuntimeReply gone() { return {false, "the group's model has been deactivated"}; }
+}  // namespace
+
 RuntimeReply DeviceSession::plugin_request(const StagePlugin& stage, std::string_view name,
                                            const std::vector<double>& values) {
-  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return send_command(t, name, values); });
+  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return send_command(t, name, values); })
+      .value_or(gone());
 }
 
-Parameters DeviceSession::stage_parameters(const StagePlugin& stage) {
-  Parameters out;
-  with_stage_plugin(stage, [&](const PluginRequestTarget& t) {
-    out = t.parameters;
-    return RuntimeReply{true, ""};
-  });
-  return out;
+std::optional<Parameters> DeviceSession::stage_parameters(const StagePlugin& stage) {
+  return with_stage_plugin(stage, [](const PluginRequestTarget& t) { return t.parameters; });
 }
 
 RuntimeReply DeviceSession::tune(const StagePlugin& stage, const std::string& name, ParameterValue value) {
-  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return tune_parameter(t, name, value); });
+  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return tune_parameter(t, name, value); })
+      .value_or(gone());
 }
 
 void DeviceSession::switch_scheme_if_requested() noexcept {

@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "hapticd/chain_state.hpp"
@@ -199,7 +200,8 @@ class DeviceSession {
   };
   [[nodiscard]] std::optional<StagePlugin> stage_plugin(Stage stage) const;
   RuntimeReply plugin_request(const StagePlugin& stage, std::string_view name, const std::vector<double>& values);
-  [[nodiscard]] Parameters stage_parameters(const StagePlugin& stage);
+  // The values in effect; nullopt when the plugin left in between (a group's model deactivated at the end).
+  [[nodiscard]] std::optional<Parameters> stage_parameters(const StagePlugin& stage);
   RuntimeReply tune(const StagePlugin& stage, const std::string& name, ParameterValue value);
   // Before the loop runs (the group stage): the model of the device's group, which its requests reach.
   void set_group_model(SharedPlugin* model) noexcept { group_model_ = model; }
@@ -226,7 +228,9 @@ class DeviceSession {
   }
   // f(PluginInstance<T>&) on the pinned stage's plugin (stage_plugin() found it: schemes never lose a stage).
   template <class F>
-  RuntimeReply with_stage_plugin(const StagePlugin& stage, F&& f);
+  // f(the stage's PluginRequestTarget) under the request lock; nullopt when the plugin has gone.
+  auto with_stage_plugin(const StagePlugin& stage, F&& f)
+      -> std::optional<std::invoke_result_t<F, const PluginRequestTarget&>>;
   // Phase (a)'s estimate; the chain restarts from the measured state when it (re)activates.
   void estimate(const CycleTime& cycle) noexcept;
   // Phase (c)'s work; plugins may throw despite the contract: caught by run_chain.
