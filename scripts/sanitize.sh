@@ -8,9 +8,11 @@
 #     the device groups' snapshots, requests and group commands; requests racing a scheme switch), groups on loop
 #     threads of their own (with the recorder's rings), the bridge's round-trip probe and the scheme switching
 #     (loop and monitor threads);
-#   fuzz (libFuzzer with ASan + UBSan, Debian's clang-14): the DDS engine-command validation and the session
-#     loader, each for a fixed number of inputs from a fixed seed (FUZZ_RUNS scales them; findings are written to
-#     build/fuzz/findings and fail the run).
+#   fuzz (libFuzzer with ASan + UBSan): the DDS engine-command validation and the session loader, each for a fixed
+#     number of inputs from a fixed seed (FUZZ_RUNS scales them; findings are written to build/fuzz/findings and
+#     fail the run).
+# All three build with Debian's clang-14 at -O1 and line tables only; the fuzzers are built in the asan build
+# (its libraries carry libFuzzer's coverage instrumentation too), so the server is compiled twice, not three times.
 # Only these targets are built, to keep CI short on small machines.
 # Usage: scripts/sanitize.sh [asan|tsan|fuzz]...   (default: all three)
 set -euo pipefail
@@ -21,15 +23,15 @@ unset HAPTICD_DDS_NETWORK HAPTICD_DDS_CONFIG  # the tests bind to the loopback i
 export TSAN_OPTIONS="${TSAN_OPTIONS:-} suppressions=$PWD/tests/tsan.supp halt_on_error=1"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-} halt_on_error=1 print_stacktrace=1"
 fuzz() {
-  cmake --preset fuzz > /dev/null
-  cmake --build --preset fuzz --target engine_command_fuzzer session_config_fuzzer
+  cmake --preset asan > /dev/null
+  cmake --build --preset asan --target engine_command_fuzzer session_config_fuzzer
   local out=build/fuzz/findings scale=${FUZZ_RUNS:-1}
   mkdir -p "$out" build/fuzz/corpus/engine_command build/fuzz/corpus/session_config
   for f in config/sessions/*.yaml config/sessions/*/*.yaml; do cp "$f" "build/fuzz/corpus/session_config/${f//\//_}"; done
   # -runs bounds the work (deterministic from -seed on a fresh corpus); -max_total_time only guards the time.
-  build/fuzz/bin/engine_command_fuzzer -seed=1 -runs=$((400000 * scale)) -max_total_time=300 -max_len=4096 \
+  build/asan/bin/engine_command_fuzzer -seed=1 -runs=$((400000 * scale)) -max_total_time=300 -max_len=4096 \
     -artifact_prefix="$out/engine_command-" build/fuzz/corpus/engine_command
-  build/fuzz/bin/session_config_fuzzer -seed=1 -runs=$((20000 * scale)) -max_total_time=300 -max_len=8192 \
+  build/asan/bin/session_config_fuzzer -seed=1 -runs=$((20000 * scale)) -max_total_time=300 -max_len=8192 \
     -artifact_prefix="$out/session_config-" build/fuzz/corpus/session_config
 }
 
