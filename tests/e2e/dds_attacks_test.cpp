@@ -72,7 +72,7 @@ TEST(DdsAttacks, ParameterReadsDuringSchemeSwitchesAreAnsweredNeverAnAbort) {
               answer.message.find("has no virtual_model") != std::string::npos)
       << answer.message;
   EXPECT_GE(switches.load(), 2);  // 118 in a normal build; 5 under ThreadSanitizer
-  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
 }
 
 TEST(DdsAttacks, AMotionCommandWhoseTargetJumpsIsFollowedWithinTheLimits) {
@@ -102,8 +102,8 @@ TEST(DdsAttacks, AMotionCommandWhoseTargetJumpsIsFollowedWithinTheLimits) {
   const double travelled = x[x.size() - 600].x() - x.front().x();  // before the shutdown ramp
   std::printf("motion jump of 250 mm: travelled %.1f mm, fastest %.3f m/s, peak joint torque %.1f N m, fault %s\n",
               1e3 * travelled, fastest, server.recording().peak_torque(),
-              std::string(to_string(server.device().fault())).c_str());
-  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+              std::string(to_string(server.device().status().fault())).c_str());
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
   EXPECT_NEAR(travelled, 0.25, 0.01);
   EXPECT_LT(fastest, 1.1);                            // the virtual speed limit, 1 m/s, and a little tracking
   EXPECT_LT(server.recording().peak_torque(), 40.0);  // the drives' peak is 54 N m: never at it

@@ -51,7 +51,7 @@ TEST(DdsEngine, TheEnginesWallStopsThePushingOperator) {
   // the peak stays within twice that.
   EXPECT_LT(furthest, 0.030 + 0.0105);
   EXPECT_NEAR(settled, 0.035, 0.001);
-  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
   EXPECT_GT(server.bridge().commands_accepted(0), 4000u);
   EXPECT_EQ(server.bridge().commands_rejected(0), 0u);
   // In lockstep the loop waits for each answer: every command is applied in the cycle after its state's.
@@ -152,7 +152,7 @@ TEST(DdsEngine, AKilledEngineFadesToZeroWithinTheDeadline) {
   RecordProperty("fade_ms", std::to_string(fade_ms));
   EXPECT_LE(fade_ms, 20.5);
   EXPECT_LE(largest_step, 10.0 / 40.0 + 1e-9);
-  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
 }
 
 TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
@@ -240,7 +240,7 @@ TEST(DdsEngine, BadSamplesAreRejectedCountedAndNeverApplied) {
   EXPECT_EQ(n(RejectReason::not_owner), 1u);
   EXPECT_EQ(server.bridge().unknown_device_commands(), 1u);
   EXPECT_EQ(server.bridge().commands_accepted(0), 1u);
-  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
   // Events: the rejections (the first of each reason) and the mode change at the end of the session.
   const auto saw = [&](const std::string& event) {
     for (int i = 0; i < 200; ++i) {
@@ -314,7 +314,7 @@ TEST(DdsEngine, AReconnectingEngineStartsWithoutAJump) {
   // bound 3 % of the force plus 0.5 N. Under a sanitizer the engine's answers arrive in bursts (the proxy jumps
   // between them): there the rendered-force rate limit (4000 N/s: 2 N per period) is what bounds the change.
   EXPECT_LT(largest_step, kSanitized ? 2.0 + 1e-9 : 0.03 * largest + 0.5);
-  EXPECT_EQ(server.device().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
 }
 
 TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest) {
@@ -400,8 +400,8 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   EXPECT_EQ(safe->mode, client::Mode::safe);
   EXPECT_EQ(safe->fault, "emergency_stop");
   std::this_thread::sleep_for(std::chrono::milliseconds(800));
-  EXPECT_EQ(server.device().fault(), DeviceFault::emergency_stop);
-  EXPECT_EQ(server.device().recoveries(), 0u);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::emergency_stop);
+  EXPECT_EQ(server.device().status().recoveries(), 0u);
 
   // On request it recovers and runs again: the first running state after a safe one (at most ~10 s of states).
   const auto running_again = [&](std::uint64_t after, bool was_safe) {
@@ -440,9 +440,9 @@ TEST(DdsEngine, AnEmergencyStopIsReportedWithItsHistoryAndRecoveredOnlyOnRequest
   EXPECT_LT(after_s, 1.0);
   server.stop();
   server.join();
-  EXPECT_EQ(server.device().fault(), DeviceFault::none);
-  EXPECT_EQ(server.device().recoveries(), 2u);
-  EXPECT_EQ(server.device().faults_raised(), 2u);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device().status().recoveries(), 2u);
+  EXPECT_EQ(server.device().status().faults_raised(), 2u);
   EXPECT_EQ(server.monitor().reports(), 2u);
 }
 
@@ -504,7 +504,7 @@ TEST(DdsEngine, TheLoopSideOfTheBridgeDoesNotAllocate) {
   std::size_t allocations = 0;
   for (std::uint64_t k = 1; k < 2000; ++k) {
     ++e.sequence;
-    d.publish_engine_input(e);  // the bridge's receive side, not the loop: not counted
+    d.requests().engine_input(e);  // the bridge's receive side, not the loop: not counted
     allocations += testing::count_allocations([&] {
       d.cycle(test::cycle_at(k), 1.0);
       bridge.after_cycle(k, false);

@@ -221,8 +221,8 @@ TEST(DdsGroups, AGroupClaimAfterADeviceClaimUnderAnotherIdOfTheSameParticipantIs
   EXPECT_TRUE(again.accepted) << again.message;
   EXPECT_EQ(server.bridge().owner(1), "client-a");
   // The devices ran on throughout.
-  EXPECT_EQ(server.device(0).fault(), DeviceFault::none);
-  EXPECT_EQ(server.device(1).fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(0).status().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(1).status().fault(), DeviceFault::none);
 }
 
 TEST(DdsGroups, AStopLatchesUntilItsStopperReleasesItForDeviceAndGroupRequestsAlike) {
@@ -236,8 +236,9 @@ TEST(DdsGroups, AStopLatchesUntilItsStopperReleasesItForDeviceAndGroupRequestsAl
   ASSERT_TRUE(watcher.wait_for_state("third", 10s).has_value());
   const auto stopped = operator_console.request("third", hapticd_msg_REQUEST_ESTOP, "operator");
   ASSERT_TRUE(stopped.accepted) << stopped.message;
-  for (int i = 0; i < 300 && server.device(2).fault() == DeviceFault::none; ++i) std::this_thread::sleep_for(10ms);
-  ASSERT_EQ(server.device(2).fault(), DeviceFault::emergency_stop);
+  for (int i = 0; i < 300 && server.device(2).status().fault() == DeviceFault::none; ++i)
+    std::this_thread::sleep_for(10ms);
+  ASSERT_EQ(server.device(2).status().fault(), DeviceFault::emergency_stop);
   std::this_thread::sleep_for(1300ms);  // the safe mode at zero torque: a recovery could be carried out now
   // Another participant, under any id (the operator's too while the operator is there), recovers nothing.
   for (const char* id : {"engine", "operator"}) {
@@ -250,8 +251,9 @@ TEST(DdsGroups, AStopLatchesUntilItsStopperReleasesItForDeviceAndGroupRequestsAl
   EXPECT_FALSE(every.accepted) << every.message;
   EXPECT_NE(every.message.find("none recovered"), std::string::npos) << every.message;
   std::this_thread::sleep_for(300ms);
-  EXPECT_EQ(server.device(2).fault(), DeviceFault::emergency_stop) << "another participant undid the operator's stop";
-  EXPECT_EQ(server.device(2).recoveries(), 0u);
+  EXPECT_EQ(server.device(2).status().fault(), DeviceFault::emergency_stop)
+      << "another participant undid the operator's stop";
+  EXPECT_EQ(server.device(2).status().recoveries(), 0u);
   // Two stoppers: each releases its own stop (lockout-tagout); the device recovers once none holds it.
   ASSERT_TRUE(other.request("third", hapticd_msg_REQUEST_ESTOP, "supervisor").accepted);
   const auto first = operator_console.request("third", hapticd_msg_REQUEST_RECOVER, "operator");
@@ -260,12 +262,14 @@ TEST(DdsGroups, AStopLatchesUntilItsStopperReleasesItForDeviceAndGroupRequestsAl
   std::this_thread::sleep_for(1300ms);
   const auto last = other.request("third", hapticd_msg_REQUEST_RECOVER, "supervisor");
   EXPECT_TRUE(last.accepted) << last.message;
-  for (int i = 0; i < 1000 && server.device(2).fault() != DeviceFault::none; ++i) std::this_thread::sleep_for(10ms);
-  EXPECT_EQ(server.device(2).fault(), DeviceFault::none);
+  for (int i = 0; i < 1000 && server.device(2).status().fault() != DeviceFault::none; ++i)
+    std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(server.device(2).status().fault(), DeviceFault::none);
   // A group stop through "*" latches every device under its stopper: a group recovery by another is refused,
   // the stopper's is all or none.
   ASSERT_TRUE(operator_console.request("*", hapticd_msg_REQUEST_GROUP_ESTOP, "operator").accepted);
-  for (int i = 0; i < 300 && server.device(0).fault() == DeviceFault::none; ++i) std::this_thread::sleep_for(10ms);
+  for (int i = 0; i < 300 && server.device(0).status().fault() == DeviceFault::none; ++i)
+    std::this_thread::sleep_for(10ms);
   std::this_thread::sleep_for(1300ms);
   EXPECT_FALSE(other.request("hands", hapticd_msg_REQUEST_GROUP_RECOVER, "engine").accepted);
   EXPECT_FALSE(other.request("left", hapticd_msg_REQUEST_RECOVER, "engine").accepted);
@@ -273,13 +277,13 @@ TEST(DdsGroups, AStopLatchesUntilItsStopperReleasesItForDeviceAndGroupRequestsAl
   EXPECT_TRUE(group.accepted) << group.message;
   const auto rest = operator_console.request("third", hapticd_msg_REQUEST_RECOVER, "operator");
   EXPECT_TRUE(rest.accepted) << rest.message;
-  for (int i = 0;
-       i < 1000 && (server.device(0).fault() != DeviceFault::none || server.device(2).fault() != DeviceFault::none);
+  for (int i = 0; i < 1000 && (server.device(0).status().fault() != DeviceFault::none ||
+                               server.device(2).status().fault() != DeviceFault::none);
        ++i)
     std::this_thread::sleep_for(10ms);
-  EXPECT_EQ(server.device(0).fault(), DeviceFault::none);
-  EXPECT_EQ(server.device(1).fault(), DeviceFault::none);
-  EXPECT_EQ(server.device(2).fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(0).status().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(1).status().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(2).status().fault(), DeviceFault::none);
 }
 
 TEST(DdsGroups, AGroupEStopStopsTheGroupAndOnlyItAndARecoveryIsAllOrNone) {
@@ -304,7 +308,7 @@ TEST(DdsGroups, AGroupEStopStopsTheGroupAndOnlyItAndARecoveryIsAllOrNone) {
   EXPECT_EQ(mode_of("right"), client::Mode::safe);
   std::this_thread::sleep_for(200ms);
   EXPECT_EQ(owner.latest_state("third")->mode, client::Mode::running);
-  EXPECT_EQ(server.device(2).fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(2).status().fault(), DeviceFault::none);
   // The stop holds until its stopper releases it: neither the owner nor a bystander recovers the group.
   Client bystander({"bystander", 83});
   for (Client* c : {&owner, &bystander}) {
@@ -314,26 +318,26 @@ TEST(DdsGroups, AGroupEStopStopsTheGroupAndOnlyItAndARecoveryIsAllOrNone) {
     EXPECT_NE(refused.message.find("stopped by 'other'"), std::string::npos) << refused.message;
   }
   std::this_thread::sleep_for(1300ms);  // both at zero torque: damping 0.5 s, gravity held 0.2 s, released 0.5 s
-  EXPECT_NE(server.device(0).fault(), DeviceFault::none);
+  EXPECT_NE(server.device(0).status().fault(), DeviceFault::none);
   const client::Reply recovered = other.recover_group("hands", 5s);
   EXPECT_TRUE(recovered.accepted) << recovered.message;
   // At most 10 s: under ThreadSanitizer with other tests beside it, the bridge's threads can lag by seconds.
-  for (int i = 0;
-       i < 1000 && (server.device(0).fault() != DeviceFault::none || server.device(1).fault() != DeviceFault::none);
+  for (int i = 0; i < 1000 && (server.device(0).status().fault() != DeviceFault::none ||
+                               server.device(1).status().fault() != DeviceFault::none);
        ++i)
     std::this_thread::sleep_for(10ms);
-  EXPECT_EQ(server.device(0).fault(), DeviceFault::none);
-  EXPECT_EQ(server.device(1).fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(0).status().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(1).status().fault(), DeviceFault::none);
   // "*": every device of the server, the one outside the group too.
   EXPECT_TRUE(other.emergency_stop_group("*", 5s).accepted);
   const auto all_stopped = [&] {  // (each at the next cycle its loop reads the request: not necessarily the same)
     for (std::size_t d = 0; d < 3; ++d)
-      if (server.device(d).fault() == DeviceFault::none) return false;
+      if (server.device(d).status().fault() == DeviceFault::none) return false;
     return true;
   };
   for (int i = 0; i < 300 && !all_stopped(); ++i) std::this_thread::sleep_for(10ms);
-  for (std::size_t d = 0; d < 3; ++d) EXPECT_EQ(server.device(d).fault(), DeviceFault::emergency_stop) << d;
-  for (int i = 0; i < 300 && !server.device(2).at_rest(); ++i) std::this_thread::sleep_for(10ms);
+  for (std::size_t d = 0; d < 3; ++d) EXPECT_EQ(server.device(d).status().fault(), DeviceFault::emergency_stop) << d;
+  for (int i = 0; i < 300 && !server.device(2).status().at_rest(); ++i) std::this_thread::sleep_for(10ms);
 }
 
 // One engine per arm, each answering its arm's every state with the proxy of a wall 3 cm ahead of the handle's
@@ -485,8 +489,8 @@ TEST(DdsGroups, TheBimanualEngineLetsTwoOperatorsLiftAndTurnItsBox) {
   // Held still after a rigid turn: little squeeze left (0.7 N measured; the engine couples the box to the measured
   // handles, the server its proxies to the virtual bodies, which the handles follow within a fraction of a mm).
   EXPECT_LT(std::abs(end.internal_force_n), 1.5);
-  EXPECT_EQ(server.device(0).fault(), DeviceFault::none);
-  EXPECT_EQ(server.device(1).fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(0).status().fault(), DeviceFault::none);
+  EXPECT_EQ(server.device(1).status().fault(), DeviceFault::none);
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
 #include "hapticd_msg.h"
+#include "support/sanitizers.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server::e2e {
@@ -66,11 +67,7 @@ class RecordingListener final : public CycleListener {
 
 // Under a sanitizer the real-time loop runs several times slower than its period: the overrun watchdog (a
 // device fault after 10 consecutive overruns) is off there, these runs look for races, not for timing.
-#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
+using hapticd::test::kSanitized;
 
 // The loop watchdogs of the real-time tests here, which test the DDS path, not the machine: loosened as in
 // tests/e2e/session_copy.sh (why: there) - a shared CI machine runs the loop late now and then, for over 0.1 s

@@ -56,7 +56,7 @@ Trace run(server::Session& s, int cycles) {
   Trace trace;
   for (int k = 0; k < cycles; ++k) {
     d.cycle(cycle_at(static_cast<std::uint64_t>(k)), 1.0);
-    EXPECT_EQ(d.fault(), DeviceFault::none) << "cycle " << k;
+    EXPECT_EQ(d.status().fault(), DeviceFault::none) << "cycle " << k;
     trace.t.push_back(k * 5e-4);
     trace.x.push_back(d.chain_state().handle_pose.position);
     static thread_local Eigen::Quaterniond start;
@@ -234,7 +234,7 @@ double mean_lag(const std::string& controller, bool compensated) {
   int n = 0;
   for (int k = 0; k < 1200; ++k) {
     d.cycle(cycle_at(static_cast<std::uint64_t>(k)), 1.0);
-    EXPECT_EQ(d.fault(), DeviceFault::none) << controller << " cycle " << k;
+    EXPECT_EQ(d.status().fault(), DeviceFault::none) << controller << " cycle " << k;
     if (k >= 900) {  // 0.45 .. 0.6 s: steady speed
       sum += (d.task().pose.position - d.chain_state().handle_pose.position).norm();
       ++n;
@@ -325,7 +325,7 @@ TEST(AdmittanceDisplay, ChainUpdatesDoNotAllocate) {
     auto s = test::build_test_session(admittance_session("[5, 0, 0]", 4.0, 10.0, "resolved_acceleration",
                                                          std::string(", friction_compensation: ") + friction));
     EXPECT_EQ(test::allocations_over_cycles(*s.impl().devices[0], 1000), 0u) << "friction compensation " << friction;
-    EXPECT_EQ(s.impl().devices[0]->fault(), DeviceFault::none);
+    EXPECT_EQ(s.impl().devices[0]->status().fault(), DeviceFault::none);
   }
 }
 

@@ -79,7 +79,7 @@ TEST(DeviceGroups, BelowTheHardMinimumBothDevicesOfThePairStopAndOthersRunOn) {
   EXPECT_GE(before_trip, 0.03);
   EXPECT_LT(guard.latest_distance(), 0.03);
   EXPECT_EQ(guard.trips(), 1u);
-  EXPECT_EQ(s.impl().device("left").fault(), DeviceFault::collision);
+  EXPECT_EQ(s.impl().device("left").status().fault(), DeviceFault::collision);
   // The third device is not in the group: it runs on.
   s.step(200);
   EXPECT_TRUE(s.device("alone").fault.empty()) << s.device("alone").fault;

@@ -68,7 +68,7 @@ TEST(DeviceLifecycle, ARefusedFaultResetKeepsTheDeviceSafeAndSaysWhy) {
   const DeviceView v = s.device("a");
   EXPECT_TRUE(contains(v.fault, "device read failed: injected fault-reset failure")) << v.fault;
   EXPECT_EQ(v.recoveries, 0u);
-  EXPECT_EQ(s.impl().devices[0]->refused_recoveries(), 1u);
+  EXPECT_EQ(s.impl().devices[0]->status().refused_recoveries(), 1u);
   EXPECT_EQ(v.command.torque_nm[0], 0.0);
   EXPECT_EQ(s.device("b").fault, "");
 }

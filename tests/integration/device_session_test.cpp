@@ -31,7 +31,7 @@ TEST(DeviceSession, NonFiniteControllerOutputPutsTheDeviceInItsSafeModeDampingTh
   DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 100; ++k) d.cycle(cycle_at(k), 1.0);
-  EXPECT_EQ(d.fault(), DeviceFault::none);
+  EXPECT_EQ(d.status().fault(), DeviceFault::none);
   EXPECT_NE(d.command().torque_nm[0], 0.0);
   int damping_cycles = 0;
   for (std::uint64_t k = 100; k < 1300; ++k) {
@@ -43,11 +43,11 @@ TEST(DeviceSession, NonFiniteControllerOutputPutsTheDeviceInItsSafeModeDampingTh
       if (k >= 140) {
         ASSERT_NEAR(tau, -d.safety().settings().safe_damping_gain * v, 1e-12) << "cycle " << k;
       }
-      ASSERT_FALSE(d.at_rest()) << "cycle " << k;
+      ASSERT_FALSE(d.status().at_rest()) << "cycle " << k;
       if (tau != 0.0) ++damping_cycles;
     } else {
       ASSERT_EQ(tau, 0.0) << "cycle " << k;
-      ASSERT_TRUE(d.at_rest());
+      ASSERT_TRUE(d.status().at_rest());
       // The effort read at cycle k is the force held since cycle k-1.
       if (k > 1100) {
         ASSERT_EQ(d.state().joints.effort[0], 0.0) << "the device applies force after the safe mode, cycle " << k;
@@ -55,8 +55,8 @@ TEST(DeviceSession, NonFiniteControllerOutputPutsTheDeviceInItsSafeModeDampingTh
     }
   }
   EXPECT_GT(damping_cycles, 900);  // the axis was moving: the damping acted
-  EXPECT_EQ(d.fault(), DeviceFault::non_finite_output);
-  EXPECT_EQ(d.fault_cycle(), 100u);
+  EXPECT_EQ(d.status().fault(), DeviceFault::non_finite_output);
+  EXPECT_EQ(d.status().fault_cycle(), 100u);
   d.deactivate();
 }
 
@@ -65,8 +65,8 @@ TEST(DeviceSession, ReadFailureIsAFault) {
   DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 20; ++k) d.cycle(cycle_at(k), 1.0);
-  EXPECT_EQ(d.fault(), DeviceFault::device_read);
-  EXPECT_EQ(d.fault_cycle(), 10u);
+  EXPECT_EQ(d.status().fault(), DeviceFault::device_read);
+  EXPECT_EQ(d.status().fault_cycle(), 10u);
   EXPECT_EQ(d.command().torque_nm[0], 0.0);
 }
 
@@ -79,8 +79,8 @@ TEST(DeviceSession, TorqueIsClampedToThePeak) {
     d.cycle(cycle_at(k), 1.0);
     ASSERT_LE(std::abs(d.command().torque_nm[0]), 5.0);
   }
-  EXPECT_GT(d.saturated_cycles(), 0u);
-  EXPECT_EQ(d.fault(), DeviceFault::none);
+  EXPECT_GT(d.status().saturated_cycles(), 0u);
+  EXPECT_EQ(d.status().fault(), DeviceFault::none);
 }
 
 TEST(DeviceSession, FaultOfOneDeviceLeavesTheOtherUndisturbed) {
@@ -97,8 +97,8 @@ TEST(DeviceSession, FaultOfOneDeviceLeavesTheOtherUndisturbed) {
               together.impl().devices[1]->state().joints.position[0])
         << k;
   }
-  EXPECT_EQ(together.impl().devices[0]->fault(), DeviceFault::non_finite_output);
-  EXPECT_EQ(together.impl().devices[1]->fault(), DeviceFault::none);
+  EXPECT_EQ(together.impl().devices[0]->status().fault(), DeviceFault::non_finite_output);
+  EXPECT_EQ(together.impl().devices[1]->status().fault(), DeviceFault::none);
 }
 
 TEST(DeviceSession, CycleOfTheWholeChainDoesNotAllocate) {
@@ -109,7 +109,7 @@ TEST(DeviceSession, CycleOfTheWholeChainDoesNotAllocate) {
   testing::AllocationGuard guard;
   for (std::uint64_t k = 0; k < 5000; ++k) d.cycle(cycle_at(k), k < 4000 ? 1.0 : 0.5);
   EXPECT_EQ(guard.allocations(), 0u);
-  EXPECT_EQ(d.fault(), DeviceFault::none);
+  EXPECT_EQ(d.status().fault(), DeviceFault::none);
 }
 
 TEST(DeviceSession, SnapshotsForTheDdsInterfaceAndTheLiveViewDoNotAllocate) {
@@ -124,17 +124,17 @@ TEST(DeviceSession, SnapshotsForTheDdsInterfaceAndTheLiveViewDoNotAllocate) {
   testing::AllocationGuard guard;
   for (std::uint64_t k = 0; k < 5000; ++k) d.cycle(cycle_at(k), 1.0);
   EXPECT_EQ(guard.allocations(), 0u);
-  ASSERT_TRUE(d.take_view_snapshot(view));
-  ASSERT_TRUE(d.take_snapshot(dds));
-  EXPECT_EQ(view.cycle, 4998u);              // the newest multiple of 3 below 5000
-  EXPECT_EQ(dds.cycle, 4998u);               // ... and of 2
-  EXPECT_FALSE(d.take_view_snapshot(view));  // taken once
+  ASSERT_TRUE(d.status().take_view_snapshot(view));
+  ASSERT_TRUE(d.status().take_snapshot(dds));
+  EXPECT_EQ(view.cycle, 4998u);                       // the newest multiple of 3 below 5000
+  EXPECT_EQ(dds.cycle, 4998u);                        // ... and of 2
+  EXPECT_FALSE(d.status().take_view_snapshot(view));  // taken once
   d.cycle(cycle_at(5000), 1.0);
-  EXPECT_FALSE(d.take_view_snapshot(view));  // 5000 is not the view's
-  ASSERT_TRUE(d.take_snapshot(dds));
+  EXPECT_FALSE(d.status().take_view_snapshot(view));  // 5000 is not the view's
+  ASSERT_TRUE(d.status().take_snapshot(dds));
   EXPECT_EQ(dds.cycle, 5000u);
   d.cycle(cycle_at(5001), 1.0);
-  ASSERT_TRUE(d.take_view_snapshot(view));
+  ASSERT_TRUE(d.status().take_view_snapshot(view));
   EXPECT_EQ(view.cycle, 5001u);
 }
 
@@ -167,7 +167,7 @@ TEST(DeviceSession, SharesTheModelTermsOfEveryCycleWithTheChain) {
   DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 400; ++k) d.cycle(cycle_at(k), 1.0);
-  ASSERT_EQ(d.fault(), DeviceFault::none);
+  ASSERT_EQ(d.status().fault(), DeviceFault::none);
   const ChainState& c = d.chain_state();
   ASSERT_NE(c.model, nullptr);
   ASSERT_NE(c.data, nullptr);
@@ -192,7 +192,7 @@ TEST(DeviceSession, OperatorWrenchLeavesOutTheWeightOfWhatTheSensorCarries) {
   DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 400; ++k) d.cycle(cycle_at(k), 1.0);
-  ASSERT_EQ(d.fault(), DeviceFault::none);
+  ASSERT_EQ(d.status().fault(), DeviceFault::none);
   const ChainState& c = d.chain_state();
   // The sensor reads the weight (its frame is the handle's).
   EXPECT_NEAR((c.handle_pose.orientation * d.state().sensor_wrench.force).z(), -0.5 * 9.81, 0.3);
@@ -204,7 +204,7 @@ TEST(DeviceSession, CycleWithModelTermsDoesNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting is off under sanitizers";
   auto s = session_with(kSimVishard3);
   EXPECT_EQ(test::allocations_over_cycles(*s.impl().devices[0], 2000), 0u);
-  EXPECT_EQ(s.impl().devices[0]->fault(), DeviceFault::none);
+  EXPECT_EQ(s.impl().devices[0]->status().fault(), DeviceFault::none);
 }
 
 }  // namespace

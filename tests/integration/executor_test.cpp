@@ -83,8 +83,8 @@ TEST(Executor, StopRequestTakesEveryDeviceThroughItsSafeModeThenEnds) {
   EXPECT_TRUE(r.stop_requested);
   ASSERT_GE(r.statistics.cycles, 1401u);
   for (const auto& d : s.impl().devices) {
-    EXPECT_EQ(d->fault(), DeviceFault::none);  // a requested stop is not a fault
-    EXPECT_TRUE(d->at_rest());
+    EXPECT_EQ(d->status().fault(), DeviceFault::none);  // a requested stop is not a fault
+    EXPECT_TRUE(d->status().at_rest());
     EXPECT_EQ(d->command().torque_nm[0], 0.0);
   }
   // Device a's velocity and torque columns: over the last 1001 cycles - after the 20 ms (40 cycles) in which

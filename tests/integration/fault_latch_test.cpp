@@ -18,7 +18,7 @@ std::string vishard3_session(const std::string& safety = "") {
 std::vector<SafetyEvent> drain(DeviceSession& d) {
   std::vector<SafetyEvent> events;
   SafetyEvent e;
-  while (d.take_safety_event(e)) events.push_back(e);
+  while (d.status().take_safety_event(e)) events.push_back(e);
   return events;
 }
 
@@ -29,17 +29,17 @@ TEST(FaultLatch, AStopAfterARecoveryRequestCancelsIt) {
   DeviceSession& d = *s.impl().devices[0];
   d.activate();
   for (std::uint64_t k = 0; k < 6000; ++k) {
-    if (k == 2000) d.request_emergency_stop();  // A
+    if (k == 2000) d.requests().emergency_stop();  // A
     if (k == 2300) {
-      EXPECT_TRUE(d.request_recovery().accepted);  // A
+      EXPECT_TRUE(d.requests().recover().accepted);  // A
     }
-    if (k == 2600) d.request_emergency_stop();  // B
+    if (k == 2600) d.requests().emergency_stop();  // B
     d.cycle(cycle_at(k), 1.0);
     d.service();
   }
-  EXPECT_EQ(d.fault(), DeviceFault::emergency_stop);
-  EXPECT_EQ(d.recoveries(), 0u);
-  EXPECT_EQ(d.faults_raised(), 2u);
+  EXPECT_EQ(d.status().fault(), DeviceFault::emergency_stop);
+  EXPECT_EQ(d.status().recoveries(), 0u);
+  EXPECT_EQ(d.status().faults_raised(), 2u);
   const auto events = drain(d);
   ASSERT_EQ(events.size(), 2u);
   EXPECT_EQ(events[0].kind, SafetyEvent::Kind::fault);
@@ -49,7 +49,7 @@ TEST(FaultLatch, AStopAfterARecoveryRequestCancelsIt) {
   EXPECT_EQ(events[1].cycle, 2600u);
   // A fault report for each stop.
   FaultReport report;
-  ASSERT_TRUE(d.take_fault_report(report));
+  ASSERT_TRUE(d.status().take_fault_report(report));
   EXPECT_EQ(report.serial, 2u);
   EXPECT_EQ(report.cycle, 2600u);
   d.deactivate();
@@ -61,25 +61,25 @@ TEST(FaultLatch, OnlyARequestAfterTheLastStopRecovers) {
   d.activate();
   std::uint64_t recovered_at = 0;
   for (std::uint64_t k = 0; k < 8000; ++k) {
-    if (k == 2000) d.request_emergency_stop();
+    if (k == 2000) d.requests().emergency_stop();
     if (k == 2100) {
-      EXPECT_TRUE(d.request_recovery().accepted);
+      EXPECT_TRUE(d.requests().recover().accepted);
     }
-    if (k == 2200) d.request_emergency_stop();
-    if (k == 2300) d.request_emergency_stop();  // a third stop, still before the new request
+    if (k == 2200) d.requests().emergency_stop();
+    if (k == 2300) d.requests().emergency_stop();  // a third stop, still before the new request
     if (k == 5000) {
-      EXPECT_TRUE(d.request_recovery().accepted);
+      EXPECT_TRUE(d.requests().recover().accepted);
     }
     d.cycle(cycle_at(k), 1.0);
     d.service();
     if (k >= 2000 && k < 5000) {
-      ASSERT_NE(d.fault(), DeviceFault::none) << "recovered at cycle " << k << " on a voided request";
+      ASSERT_NE(d.status().fault(), DeviceFault::none) << "recovered at cycle " << k << " on a voided request";
     }
-    if (recovered_at == 0 && k >= 5000 && d.fault() == DeviceFault::none) recovered_at = k;
+    if (recovered_at == 0 && k >= 5000 && d.status().fault() == DeviceFault::none) recovered_at = k;
   }
   EXPECT_EQ(recovered_at, 5000u);  // the safe mode had long settled: at once
-  EXPECT_EQ(d.faults_raised(), 3u);
-  EXPECT_EQ(d.recoveries(), 1u);
+  EXPECT_EQ(d.status().faults_raised(), 3u);
+  EXPECT_EQ(d.status().recoveries(), 1u);
   const auto events = drain(d);
   ASSERT_EQ(events.size(), 4u);
   EXPECT_EQ(events[3].kind, SafetyEvent::Kind::recovery);
@@ -99,11 +99,11 @@ TEST(FaultLatch, AStallOfTheLoopIsAFault) {
     d.cycle(cycle_at(k), 1.0, 0, late_ns);
     d.service();
     if (k == 1000) {
-      EXPECT_EQ(d.fault(), DeviceFault::none) << "4 ms late is within max_stall_s";
+      EXPECT_EQ(d.status().fault(), DeviceFault::none) << "4 ms late is within max_stall_s";
     }
   }
-  EXPECT_EQ(d.fault(), DeviceFault::loop_stall);
-  EXPECT_EQ(d.fault_cycle(), 2000u);
+  EXPECT_EQ(d.status().fault(), DeviceFault::loop_stall);
+  EXPECT_EQ(d.status().fault_cycle(), 2000u);
   EXPECT_EQ(fault_code(DeviceFault::loop_stall), "loop_stall");
   d.deactivate();
 }

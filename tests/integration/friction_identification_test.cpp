@@ -42,7 +42,7 @@ model::FrictionFile identify(const std::string& yaml, const std::string& output,
     d.activate();
     for (std::uint64_t k = 0; k < static_cast<std::uint64_t>(2000 * seconds); ++k) {
       d.cycle(cycle_at(k), 1.0);
-      if (d.fault() != DeviceFault::none) ADD_FAILURE() << "fault at cycle " << k;
+      if (d.status().fault() != DeviceFault::none) ADD_FAILURE() << "fault at cycle " << k;
     }
     d.deactivate();  // writes the file
   }

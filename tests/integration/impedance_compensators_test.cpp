@@ -36,7 +36,7 @@ double breakaway_force(const std::string& controller_parameters) {
   const Eigen::Vector3d start = d.chain_state().handle_pose.position;
   for (std::uint64_t k = 1; k < 20000; ++k) {
     d.cycle(cycle_at(k), 1.0);
-    EXPECT_EQ(d.fault(), DeviceFault::none);
+    EXPECT_EQ(d.status().fault(), DeviceFault::none);
     if ((d.chain_state().handle_pose.position - start).norm() > 0.002) return 4.0 * static_cast<double>(k) * 5e-4;
   }
   return 1e9;
@@ -120,7 +120,7 @@ TEST(AdaptiveFriction, ConvergesWhileTheJointsWarmUpAndNeverOverCompensates) {
     d.activate();
     for (std::uint64_t k = 0; k < 240000; ++k) {
       d.cycle(cycle_at(k), 1.0);
-      ASSERT_EQ(d.fault(), DeviceFault::none) << "cycle " << k;
+      ASSERT_EQ(d.status().fault(), DeviceFault::none) << "cycle " << k;
     }
   }  // the controller (and its worker) ends here: the log is complete
   const std::vector<RetuneRow> rows = read_retune_log(log);
@@ -183,7 +183,7 @@ TEST(ImpedanceCompensators, EveryVariantUpdatesWithoutAllocating) {
                              v + "}\n";
     auto s = test::build_test_session(yaml);
     EXPECT_EQ(test::allocations_over_cycles(*s.impl().devices[0], 2000), 0u) << v;
-    EXPECT_EQ(s.impl().devices[0]->fault(), DeviceFault::none) << v;
+    EXPECT_EQ(s.impl().devices[0]->status().fault(), DeviceFault::none) << v;
   }
 }
 

@@ -39,7 +39,7 @@ double rms_operator_force(const std::string& controller, const std::string& devi
   int n = 0;
   for (std::uint64_t k = 0; k < 4000; ++k) {
     d.cycle(cycle_at(k), 1.0);
-    if (d.fault() != DeviceFault::none) return 1e9;  // a fault counts as the worst outcome
+    if (d.status().fault() != DeviceFault::none) return 1e9;  // a fault counts as the worst outcome
     if (k >= 2000) {
       sum += d.chain_state().operator_wrench.force.squaredNorm();
       ++n;

@@ -96,8 +96,8 @@ Trace run(server::Session& s, int cycles) {
   Eigen::Quaterniond start = Eigen::Quaterniond::Identity();
   for (int k = 0; k < cycles; ++k) {
     d.cycle(cycle_at(static_cast<std::uint64_t>(k)), 1.0);
-    EXPECT_EQ(d.fault(), DeviceFault::none) << "cycle " << k << ": " << to_string(d.fault());
-    if (d.fault() != DeviceFault::none) break;
+    EXPECT_EQ(d.status().fault(), DeviceFault::none) << "cycle " << k << ": " << to_string(d.status().fault());
+    if (d.status().fault() != DeviceFault::none) break;
     if (k == 0) start = d.chain_state().handle_pose.orientation;
     trace.t.push_back(k * 5e-4);
     trace.x.push_back(d.chain_state().handle_pose.position);
@@ -177,12 +177,12 @@ TEST(RedundantSelfMotion, NeedsItsNullSpaceDamping) {
     model::GeneralizedInverse pinv;
     pinv.configure(model::InverseKind::pseudoinverse, 10, JointVector::Ones(10));
     double largest = 0.0;  // of the self-motion speed |(I - J^+ J) qd|
-    for (std::uint64_t k = 0; k < 2000 && d.fault() == DeviceFault::none; ++k) {
+    for (std::uint64_t k = 0; k < 2000 && d.status().fault() == DeviceFault::none; ++k) {
       d.cycle(cycle_at(k), 1.0);
       pinv.compute(d.chain_state().data->frame_jacobian);
       largest = std::max(largest, (pinv.null_space_projector() * d.state().joints.velocity).norm());
     }
-    return std::make_pair(largest, d.fault());
+    return std::make_pair(largest, d.status().fault());
   };
   const auto [damped, damped_fault] = self_motion("20");
   const auto [free, free_fault] = self_motion("0");
@@ -209,7 +209,7 @@ TEST(RedundantSelfMotion, TheWristCriterionMovesTheDeviceNotJustItsTarget) {
   const double q9_start = d.state().joints.position[8];
   const Pose start = d.chain_state().handle_pose;
   for (std::uint64_t k = 1; k < 4000; ++k) d.cycle(cycle_at(k), 1.0);
-  ASSERT_EQ(d.fault(), DeviceFault::none);
+  ASSERT_EQ(d.status().fault(), DeviceFault::none);
   const double q9_end = d.state().joints.position[8];
   const Pose& end = d.chain_state().handle_pose;
   const double moved = (end.position - start.position).norm();
@@ -239,7 +239,7 @@ TEST(RedundantSelfMotion, TheNullSpaceGainIsTunedAtRunTime) {
   ASSERT_TRUE(read.accepted) << read.message;
   EXPECT_EQ(read.values, std::vector<double>{10.0});
   for (std::uint64_t k = 2000; k < 6000; ++k) d.cycle(cycle_at(k), 1.0);
-  ASSERT_EQ(d.fault(), DeviceFault::none);
+  ASSERT_EQ(d.status().fault(), DeviceFault::none);
   const double q9_tuned = d.state().joints.position[8];
   std::printf("null-space gain tuned at run time: q9 1.300 -> %.3f rad (gain 1, 1 s) -> %.3f rad (gain 10, 2 s)\n",
               q9_untuned, q9_tuned);

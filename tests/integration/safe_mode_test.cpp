@@ -56,15 +56,15 @@ SafeModeRun stop_hold_and_recover(const std::string& yaml) {
   std::uint64_t recovered_at = 0;
   for (std::uint64_t k = 0; k < end; ++k) {
     if (k == stop) {
-      d.request_emergency_stop();
-      EXPECT_TRUE(apply_request(d, {DeviceRequest::Kind::drive_operator, "release", {}}).accepted);
+      d.requests().emergency_stop();
+      EXPECT_TRUE(d.requests().apply({DeviceRequest::Kind::drive_operator, "release", {}}).accepted);
     }
     if (k == recover) {
-      EXPECT_TRUE(d.request_recovery().accepted);
+      EXPECT_TRUE(d.requests().recover().accepted);
     }
     d.cycle(cycle_at(k), 1.0);
     d.service();
-    const bool have_snapshot = d.take_snapshot(snapshot);
+    const bool have_snapshot = d.status().take_snapshot(snapshot);
     const JointVector& torque = d.command().torque_nm;
     if (k > 0) {
       const double step = (torque - previous).cwiseAbs().maxCoeff();
@@ -73,21 +73,21 @@ SafeModeRun stop_hold_and_recover(const std::string& yaml) {
         r.largest_recovery_step_nm = std::max(r.largest_recovery_step_nm, step);
     }
     previous = torque;
-    if (recovered_at == 0 && k > recover && d.fault() == DeviceFault::none) recovered_at = k;
+    if (recovered_at == 0 && k > recover && d.status().fault() == DeviceFault::none) recovered_at = k;
     const Eigen::Vector3d x = d.chain_state().handle_pose.position;
     if (k == stop) {
       at_stop = x;
       if (have_snapshot) published_at_stop = snapshot.handle_pose.position;
     }
     if (k > stop && k < recover) {
-      EXPECT_EQ(d.fault(), DeviceFault::emergency_stop);
+      EXPECT_EQ(d.status().fault(), DeviceFault::emergency_stop);
       r.largest_sag_m = std::max(r.largest_sag_m, (x - at_stop).norm());
       if (have_snapshot)
         r.published_sag_m = std::max(r.published_sag_m, (snapshot.handle_pose.position - published_at_stop).norm());
     }
   }
-  r.final_fault = d.fault();
-  r.recoveries = d.recoveries();
+  r.final_fault = d.status().fault();
+  r.recoveries = d.status().recoveries();
   d.deactivate();
   return r;
 }

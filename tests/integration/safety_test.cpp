@@ -75,19 +75,19 @@ Outcome drive(const std::string& first_device, std::uint64_t cycles,
     r.position.push_back(d.chain_state().handle_pose.position);
     r.velocity.push_back(d.chain_state().handle_twist.linear);
     r.bystander.push_back(b.state().joints.position[0]);
-    if (d.fault() != DeviceFault::none && r.fault == DeviceFault::none) {
-      r.fault = d.fault();
-      r.fault_cycle = d.fault_cycle();
+    if (d.status().fault() != DeviceFault::none && r.fault == DeviceFault::none) {
+      r.fault = d.status().fault();
+      r.fault_cycle = d.status().fault_cycle();
     }
-    if (r.fault != DeviceFault::none && r.at_rest_cycle == 0 && d.at_rest()) r.at_rest_cycle = k;
-    if (!r.has_report) r.has_report = d.take_fault_report(*r.report);
+    if (r.fault != DeviceFault::none && r.at_rest_cycle == 0 && d.status().at_rest()) r.at_rest_cycle = k;
+    if (!r.has_report) r.has_report = d.status().take_fault_report(*r.report);
     d.service();
   }
-  EXPECT_EQ(b.fault(), DeviceFault::none);
-  r.limited_cycles = d.limited_cycles();
-  r.final_fault = d.fault();
-  r.recoveries = d.recoveries();
-  r.render_limited_cycles = d.render_limited_cycles();
+  EXPECT_EQ(b.status().fault(), DeviceFault::none);
+  r.limited_cycles = d.status().limited_cycles();
+  r.final_fault = d.status().fault();
+  r.recoveries = d.status().recoveries();
+  r.render_limited_cycles = d.status().render_limited_cycles();
   return r;
 }
 
@@ -184,7 +184,7 @@ std::function<void(DeviceSession&, std::uint64_t)> engine(
     if (k == 0) return;  // the chain state is known from cycle 0 on
     EngineInput e = input(d, k);
     e.sequence = k;
-    d.publish_engine_input(e);
+    d.requests().engine_input(e);
   };
 }
 
@@ -214,7 +214,7 @@ TEST(Safety, RenderedForceAndItsRateAreLimited) {
       e.has_wrench = true;
       e.wrench.force = Eigen::Vector3d(0.0, 200.0, 0.0);
       e.sequence = k;
-      d.publish_engine_input(e);
+      d.requests().engine_input(e);
     }
     d.cycle(cycle_at(k), 1.0);
     const double f = d.task().wrench.force.norm();
@@ -233,7 +233,7 @@ void cycle_with_engine_wrench(DeviceSession& d, std::uint64_t k, const Eigen::Ve
   e.has_wrench = true;
   e.wrench.force = force;
   e.sequence = k + 1;
-  d.publish_engine_input(e);
+  d.requests().engine_input(e);
   d.cycle(cycle_at(k), 1.0);
 }
 
@@ -279,10 +279,10 @@ TEST(Safety, SoftStartRampsTheRenderedForceAgainAfterASchemeSwitch) {
   std::vector<double> force;
   for (std::uint64_t k = 0; k < 2400; ++k) {
     if (k == 1000) {
-      EXPECT_TRUE(d.schemes().request("damped"));
+      EXPECT_TRUE(d.requests().switch_scheme("damped"));
     }
     if (k == 1800) {
-      EXPECT_TRUE(d.schemes().request("default"));
+      EXPECT_TRUE(d.requests().switch_scheme("default"));
     }
     cycle_with_engine_wrench(d, k, Eigen::Vector3d(0.0, 20.0, 0.0));
     force.push_back(d.task().wrench.force.norm());
@@ -290,7 +290,7 @@ TEST(Safety, SoftStartRampsTheRenderedForceAgainAfterASchemeSwitch) {
   }
   EXPECT_EQ(d.schemes().active_name(), "default");
   EXPECT_EQ(d.schemes().switches(), 2u);
-  EXPECT_EQ(d.fault(), DeviceFault::none);
+  EXPECT_EQ(d.status().fault(), DeviceFault::none);
   for (const std::uint64_t at : {std::uint64_t{1000}, std::uint64_t{1800}}) {
     EXPECT_NEAR(force[at - 1], 20.0, 1e-9);  // in full before the switch
     double largest_rise = 0.0;
@@ -433,14 +433,14 @@ TEST(Safety, EmergencyStopFadesDampsAndRecoversOnlyOnRequest) {
   // E-stop at 1 s; a recovery asked at 1.1 s (it waits for zero torque), then the chain restarts softly.
   const Outcome r = drive(sim_device(kNoPush, ""), 6000, [&](DeviceSession& d, std::uint64_t k) {
     if (k == 1) {
-      EXPECT_FALSE(d.request_recovery().accepted);  // nothing to recover from
+      EXPECT_FALSE(d.requests().recover().accepted);  // nothing to recover from
     }
-    if (k == 2000) d.request_emergency_stop();
+    if (k == 2000) d.requests().emergency_stop();
     if (k == 2200) {
-      EXPECT_TRUE(d.request_recovery().accepted);
+      EXPECT_TRUE(d.requests().recover().accepted);
     }
     if (k == 2300) {
-      EXPECT_EQ(d.fault(), DeviceFault::emergency_stop) << "recovered before the safe mode ended";
+      EXPECT_EQ(d.status().fault(), DeviceFault::emergency_stop) << "recovered before the safe mode ended";
     }
   });
   ASSERT_EQ(r.fault, DeviceFault::emergency_stop);
@@ -485,13 +485,13 @@ TEST(Safety, PassivityControllerDissipatesWhatASampledStiffWallGenerates) {
         e.has_wrench = true;
         e.wrench.force = held;
         e.sequence = k;
-        d.publish_engine_input(e);
+        d.requests().engine_input(e);
       }
       d.cycle(cycle_at(k), 1.0);
       lowest_energy = std::min(lowest_energy, d.safety().guard().port_energy_j());
-      ASSERT_EQ(d.fault(), DeviceFault::none) << "cycle " << k;
+      ASSERT_EQ(d.status().fault(), DeviceFault::none) << "cycle " << k;
     }
-    dissipated = d.dissipated_j();
+    dissipated = d.status().dissipated_j();
   };
   double low_off = 0.0, dis_off = 0.0, low_on = 0.0, dis_on = 0.0;
   measure("passivity_control: false, ", low_off, dis_off);
@@ -528,13 +528,13 @@ TEST(Safety, APluginThatFailsToConfigureIsolatesItsDevice) {
   ASSERT_EQ(failures.size(), 1u);
   EXPECT_EQ(failures[0].device, "broken");
   ASSERT_EQ(devices.size(), 2u);
-  EXPECT_EQ(devices[0]->fault(), DeviceFault::configure);
-  EXPECT_FALSE(devices[0]->request_recovery().accepted);
+  EXPECT_EQ(devices[0]->status().fault(), DeviceFault::configure);
+  EXPECT_FALSE(devices[0]->requests().recover().accepted);
   for (auto& d : devices) d->activate();
   for (std::uint64_t k = 0; k < 1000; ++k)
     for (auto& d : devices) d->cycle(cycle_at(k), 1.0);
   EXPECT_EQ(devices[0]->command().torque_nm[0], 0.0);
-  EXPECT_EQ(devices[1]->fault(), DeviceFault::none);
+  EXPECT_EQ(devices[1]->status().fault(), DeviceFault::none);
   EXPECT_NE(devices[1]->command().torque_nm[0], 0.0);
   // Every device failing: the start fails.
   const std::string all_broken = "server: {clock: lockstep}\ndevices:\n" +
@@ -560,16 +560,16 @@ TEST(Safety, TheSupervisedCycleDoesNotAllocate) {
   EngineInput e;
   e.has_wrench = true;
   e.wrench.force = Eigen::Vector3d(-20.0, 0.0, 0.0);
-  d.publish_engine_input(e);
+  d.requests().engine_input(e);
   EXPECT_EQ(test::allocations_over_cycles(d, 3000), 0u);
-  d.request_emergency_stop();
+  d.requests().emergency_stop();
   std::size_t n = testing::count_allocations([&] {
     for (std::uint64_t k = 3001; k < 5000; ++k) d.cycle(cycle_at(k), 1.0);
   });
   EXPECT_EQ(n, 0u);
-  EXPECT_EQ(d.fault(), DeviceFault::emergency_stop);  // not an earlier fault: the limits ran all along
-  EXPECT_GT(d.limited_cycles(), 1000u);
-  EXPECT_GT(d.render_limited_cycles(), 0u);
+  EXPECT_EQ(d.status().fault(), DeviceFault::emergency_stop);  // not an earlier fault: the limits ran all along
+  EXPECT_GT(d.status().limited_cycles(), 1000u);
+  EXPECT_GT(d.status().render_limited_cycles(), 0u);
 }
 
 TEST(Safety, TheRenderPortRecordsWhatTheModelAskedOfIt) {

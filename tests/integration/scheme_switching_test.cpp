@@ -50,14 +50,14 @@ SwitchSteps run_switches(double ramp_s) {
   constexpr std::uint64_t kToImpedance = 3000, kBack = 5000;  // 1.5 s and 2.5 s
   for (std::uint64_t k = 0; k < 6000; ++k) {
     if (k == kToImpedance) {
-      EXPECT_TRUE(d.schemes().request("impedance"));
+      EXPECT_TRUE(d.requests().switch_scheme("impedance"));
     }
     if (k == kBack) {
-      EXPECT_TRUE(d.schemes().request("admittance"));
+      EXPECT_TRUE(d.requests().switch_scheme("admittance"));
     }
     d.cycle(cycle_at(k), 1.0);
     d.service();  // the non-loop side: deactivates the scheme that was left
-    EXPECT_EQ(d.fault(), DeviceFault::none) << "cycle " << k;
+    EXPECT_EQ(d.status().fault(), DeviceFault::none) << "cycle " << k;
     const JointVector& t = d.command().torque_nm;
     if (k > 0) {
       const double step = (t - previous).cwiseAbs().maxCoeff();
@@ -99,7 +99,7 @@ TEST(SchemeSwitching, UnknownSchemeIsRefusedAndTheLoopKeepsRunning) {
   DeviceSession& d = *s.impl().devices[0];
   d.activate();
   d.cycle(cycle_at(0), 1.0);
-  EXPECT_FALSE(d.schemes().request("no_such_scheme"));
+  EXPECT_FALSE(d.requests().switch_scheme("no_such_scheme"));
   d.cycle(cycle_at(1), 1.0);
   EXPECT_EQ(d.schemes().active_name(), "admittance");
 }
@@ -111,8 +111,8 @@ TEST(SchemeSwitching, SwitchingIsAllocationFree) {
   d.cycle(cycle_at(0), 1.0);
   std::size_t allocations = 0;
   for (std::uint64_t k = 1; k < 2000; ++k) {
-    if (k == 500) d.schemes().request("impedance");
-    if (k == 1500) d.schemes().request("admittance");
+    if (k == 500) d.requests().switch_scheme("impedance");
+    if (k == 1500) d.requests().switch_scheme("admittance");
     if (k == 1000) d.service();  // off the counted cycles: deactivation may allocate
     allocations += testing::count_allocations([&] { d.cycle(cycle_at(k), 1.0); });
   }

@@ -45,10 +45,10 @@ Eigen::Vector3d run(const std::string& push_n, const Eigen::Vector3d& offset, Pu
   for (std::uint64_t k = 1; k < 6000; ++k) {
     if (publish(k)) {
       ++e.sequence;
-      d.publish_engine_input(e);
+      d.requests().engine_input(e);
     }
     d.cycle(cycle_at(k), 1.0);
-    EXPECT_EQ(d.fault(), DeviceFault::none);
+    EXPECT_EQ(d.status().fault(), DeviceFault::none);
   }
   return d.chain_state().handle_pose.position - start;
 }
@@ -87,14 +87,14 @@ TEST(VirtualCoupling, RunTimeParametersTakeEffectAtTheNextCycle) {
     auto s = test::build_test_session(coupling_session("[8.0, 0.0, 0.0]"));
     DeviceSession& d = *s.impl().devices[0];
     if (mass != nullptr) {
-      EXPECT_TRUE(apply_request(d, {DeviceRequest::Kind::set_parameter, "virtual_model.mass_kg", *mass}).accepted);
+      EXPECT_TRUE(d.requests().apply({DeviceRequest::Kind::set_parameter, "virtual_model.mass_kg", *mass}).accepted);
     }
     EXPECT_FALSE(
-        apply_request(d, {DeviceRequest::Kind::set_parameter, "virtual_model.mass_kg", {1.0, -1.0, 1.0}}).accepted);
+        d.requests().apply({DeviceRequest::Kind::set_parameter, "virtual_model.mass_kg", {1.0, -1.0, 1.0}}).accepted);
     EXPECT_FALSE(
-        apply_request(d, {DeviceRequest::Kind::set_parameter, "virtual_model.no_such_parameter", {1.0}}).accepted);
+        d.requests().apply({DeviceRequest::Kind::set_parameter, "virtual_model.no_such_parameter", {1.0}}).accepted);
     EXPECT_FALSE(
-        apply_request(d, {DeviceRequest::Kind::set_parameter, "controller.mass_kg", {1.0, 1.0, 1.0}}).accepted);
+        d.requests().apply({DeviceRequest::Kind::set_parameter, "controller.mass_kg", {1.0, 1.0, 1.0}}).accepted);
     d.activate();
     for (std::uint64_t k = 0; k <= 200; ++k) d.cycle(cycle_at(k), 1.0);
     return d.task().twist.linear.x();
@@ -118,7 +118,7 @@ TEST(VirtualCoupling, CoupledUpdatesDoNotAllocate) {
   e.proxy_pose = d.chain_state().handle_pose;
   std::size_t allocations = 0;
   for (std::uint64_t k = 1; k < 2000; ++k) {
-    if (k < 1000) d.publish_engine_input(e);  // the publisher side is not the loop: not counted below
+    if (k < 1000) d.requests().engine_input(e);  // the publisher side is not the loop: not counted below
     allocations += testing::count_allocations([&] { d.cycle(cycle_at(k), 1.0); });
   }
   EXPECT_EQ(allocations, 0u);

@@ -144,7 +144,7 @@ TEST(BridgeMessages, AFaultReportKeepsItsCyclesUpToTheMessagesCapacity) {
 TEST(BridgeMessages, TheDescriptionSaysWhatTheDeviceDescribes) {
   Session s = test::build_test_session("server: {clock: lockstep}\ndevices:\n" + test::mass_spring_device_yaml("axis") +
                                        "    base_pose: {xyz: [0.5, -0.25, 0.125], rpy: [0, 0, 3.141592653589793]}\n");
-  const hapticd_msg_DeviceDescription m = description_message(test::device_of(s), 2000.0, std::nullopt);
+  const hapticd_msg_DeviceDescription m = description_message(test::device_of(s).requests(), 2000.0, std::nullopt);
   EXPECT_STREQ(m.base_frame, "world");
   EXPECT_DOUBLE_EQ(m.base_pose.position[0], 0.5);
   EXPECT_DOUBLE_EQ(m.base_pose.position[1], -0.25);

@@ -18,6 +18,8 @@
 #include <string>
 #include <thread>
 
+#include "support/sanitizers.hpp"
+
 namespace hapticd::server::live_view {
 namespace {
 
@@ -96,11 +98,7 @@ TEST(FoxgloveServer, AViewerThatNeverReadsAndFloodsUnknownOpsCostsTheServerNoMem
   // serves them about twenty times slower (219 in 5 s under ThreadSanitizer here), so there the
   // flood lasts 5 s, whatever it sent by then.
   constexpr std::size_t kRequests = 1000;
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-  constexpr bool kSanitized = true;
-#else
-  constexpr bool kSanitized = false;
-#endif
+  using hapticd::test::kSanitized;
   const auto start = std::chrono::steady_clock::now();
   std::atomic<bool> done{false};
   std::atomic<bool> limit_hit{false};
@@ -138,9 +136,9 @@ TEST(FoxgloveServer, AViewerThatNeverReadsAndFloodsUnknownOpsCostsTheServerNoMem
   EXPECT_FALSE(limit_hit.load()) << "a write blocked for 30 s: the server stopped reading and did not disconnect";
   // Each reply echoed the 60 kB op before: the thousand requests queued 60 MB. (AddressSanitizer keeps freed memory
   // in its quarantine, 256 MB: the resident size says nothing there.)
-#if !defined(__SANITIZE_ADDRESS__)
-  EXPECT_LT(after - before, 30.0);
-#endif
+  if (!hapticd::test::kAddressSanitizer) {
+    EXPECT_LT(after - before, 30.0);
+  }
 }
 
 TEST(FoxgloveServer, ASubscriberThatStopsReadingIsDisconnected) {

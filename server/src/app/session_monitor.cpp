@@ -54,13 +54,13 @@ void SessionMonitor::poll() {
   }
   for (std::size_t i = 0; i < devices_.size(); ++i) {
     DeviceSession& d = *devices_[i];
-    if (d.take_fault_report(*report_)) {
+    if (d.status().take_fault_report(*report_)) {
       ++reports_;
       log_fault_report(d, *report_);
       if (bridge_ != nullptr) bridge_->publish_fault_report(i, *report_);
     }
     SafetyEvent e;
-    while (d.take_safety_event(e)) {
+    while (d.status().take_safety_event(e)) {
       if (e.kind == SafetyEvent::Kind::recovery)
         spdlog::info("device '{}' recovered from {} on request at cycle {}", d.name(), fault_code(e.fault), e.cycle);
       Log& log = logs_[i];
@@ -70,10 +70,10 @@ void SessionMonitor::poll() {
         ++log.not_kept;
       }
     }
-    const DeviceFault f = d.fault();
+    const DeviceFault f = d.status().fault();
     if (f == reported_[i]) continue;
     if (f == DeviceFault::configure || f == DeviceFault::device_enable || f == DeviceFault::device_homing) {
-      spdlog::error("device '{}' is in its safe state: {}", d.name(), d.fault_text());
+      spdlog::error("device '{}' is in its safe state: {}", d.name(), d.status().fault_text());
     }
     reported_[i] = f;
   }

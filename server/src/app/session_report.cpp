@@ -47,7 +47,7 @@ std::vector<std::string> quoted(const std::vector<std::string>& names) {
 
 bool any_device_faulted(const SessionReport& r) {
   for (const auto& d : *r.sessions)
-    if (d->faults_raised() > 0 || d->fault() != DeviceFault::none) return true;
+    if (d->status().faults_raised() > 0 || d->status().fault() != DeviceFault::none) return true;
   return false;
 }
 
@@ -95,8 +95,9 @@ std::string report_json(const SessionReport& r) {
     out += fmt::format(
         "{}\n    {{\"name\": \"{}\", \"fault\": \"{}\", \"fault_cycle\": {}, \"faults\": {}, \"recoveries\": {}, "
         "\"saturated_cycles\": {}, \"safety_events\": {}}}",
-        i ? "," : "", d.name(), d.fault() == DeviceFault::none ? "none" : json_text(d.fault_text()), d.fault_cycle(),
-        d.faults_raised(), d.recoveries(), d.saturated_cycles(), events_json(r, i));
+        i ? "," : "", d.name(), d.status().fault() == DeviceFault::none ? "none" : json_text(d.status().fault_text()),
+        d.status().fault_cycle(), d.status().faults_raised(), d.status().recoveries(), d.status().saturated_cycles(),
+        events_json(r, i));
   }
   out += "\n  ]\n}\n";
   return out;
@@ -128,24 +129,26 @@ std::vector<std::string> report_lines(const SessionReport& r) {
   }
   for (std::size_t i = 0; i < r.sessions->size(); ++i) {
     const DeviceSession& d = *(*r.sessions)[i];
-    const std::string saturated =
-        d.saturated_cycles() ? fmt::format(", torque saturated in {} cycles", d.saturated_cycles()) : std::string();
-    if (d.faults_raised() == 0 && d.fault() == DeviceFault::none) {
+    const std::string saturated = d.status().saturated_cycles()
+                                      ? fmt::format(", torque saturated in {} cycles", d.status().saturated_cycles())
+                                      : std::string();
+    if (d.status().faults_raised() == 0 && d.status().fault() == DeviceFault::none) {
       lines.push_back(fmt::format("device '{}': ok{}", d.name(), saturated));
       continue;
     }
-    lines.push_back(fmt::format("device '{}': {} fault{}, {} recover{}; {}{}", d.name(), d.faults_raised(),
-                                d.faults_raised() == 1 ? "" : "s", d.recoveries(), d.recoveries() == 1 ? "y" : "ies",
-                                d.fault() == DeviceFault::none
+    lines.push_back(fmt::format("device '{}': {} fault{}, {} recover{}; {}{}", d.name(), d.status().faults_raised(),
+                                d.status().faults_raised() == 1 ? "" : "s", d.status().recoveries(),
+                                d.status().recoveries() == 1 ? "y" : "ies",
+                                d.status().fault() == DeviceFault::none
                                     ? std::string("running at the end")
-                                    : fmt::format("in its safe mode at the end ({})", fault_code(d.fault())),
+                                    : fmt::format("in its safe mode at the end ({})", fault_code(d.status().fault())),
                                 saturated));
     if (r.monitor == nullptr) continue;
     for (const SafetyEvent& e : r.monitor->safety_log(i))
       lines.push_back(fmt::format("  {} {} at cycle {} ({:.3f} s): {}",
                                   e.kind == SafetyEvent::Kind::fault ? "FAULT" : "recovered from", fault_code(e.fault),
                                   e.cycle, static_cast<double>(e.time_ns) * 1e-9, to_string(e.fault)));
-    if (const std::uint64_t more = r.monitor->safety_events_not_kept(i) + d.lost_safety_events(); more > 0)
+    if (const std::uint64_t more = r.monitor->safety_events_not_kept(i) + d.status().lost_safety_events(); more > 0)
       lines.push_back(fmt::format("  ... and {} more faults and recoveries not kept", more));
   }
   if (r.stages == nullptr) return lines;

@@ -129,28 +129,28 @@ DeviceView Session::device(std::string_view name) const {
   v.task = d.task();
   v.command = d.command();
   v.scheme = d.schemes().active_name();
-  v.fault = d.fault_text();
-  v.at_rest = d.at_rest();
+  v.fault = d.status().fault_text();
+  v.at_rest = d.status().at_rest();
   v.engine_weight = d.engine_weight();
-  v.faults = d.faults_raised();
-  v.recoveries = d.recoveries();
+  v.faults = d.status().faults_raised();
+  v.recoveries = d.status().recoveries();
   v.scheme_switches = d.schemes().switches();
   v.refused_switches = d.schemes().refused();
-  v.saturated_cycles = d.saturated_cycles();
-  v.limited_cycles = d.limited_cycles();
-  v.render_limited_cycles = d.render_limited_cycles();
-  v.thermal_load = d.thermal_load();
-  v.dissipated_j = d.dissipated_j();
+  v.saturated_cycles = d.status().saturated_cycles();
+  v.limited_cycles = d.status().limited_cycles();
+  v.render_limited_cycles = d.status().render_limited_cycles();
+  v.thermal_load = d.status().thermal_load();
+  v.dissipated_j = d.status().dissipated_j();
   if (SimulatedTruth truth; d.chain().device->simulated_truth(truth)) v.truth = truth;
   return v;
 }
 
 void Session::set_engine_input(std::string_view device, const EngineInput& input) {
-  impl_->device(device).publish_engine_input(input);
+  impl_->device(device).requests().engine_input(input);
 }
 
 RuntimeReply Session::request(std::string_view device, const DeviceRequest& request) {
-  return apply_request(impl_->device(device), request);
+  return impl_->device(device).requests().apply(request);
 }
 
 SessionStatistics Session::statistics() const {

@@ -183,8 +183,8 @@ std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& confi
     }
   }
   if (report == nullptr) return sessions;
-  if (sessions.empty() ||
-      std::none_of(sessions.begin(), sessions.end(), [](const auto& d) { return d->fault() == DeviceFault::none; })) {
+  if (sessions.empty() || std::none_of(sessions.begin(), sessions.end(),
+                                       [](const auto& d) { return d->status().fault() == DeviceFault::none; })) {
     if (!report->empty()) throw report->front().error;  // nothing could run: fail the start
   }
   return sessions;

@@ -5,7 +5,7 @@
 
 #include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
-#include "session/device_session.hpp"
+#include "session/device_requests.hpp"
 
 namespace hapticd::server {
 
@@ -58,7 +58,7 @@ void CommandIntake::take_group_commands() {
     for (std::size_t k = 0; k < count; ++k) {
       DeviceLink& d = links_[group->members[k]];
       // Each in the group's order, for the device it names: otherwise malformed, never applied.
-      if (dds::text_of(g.commands[k].device) != d.session->name()) {
+      if (dds::text_of(g.commands[k].device) != d.device->name()) {
         links_.count_unknown_command();
         continue;
       }
@@ -87,7 +87,7 @@ void CommandIntake::admit(DeviceLink& d, const hapticd_msg_EngineCommand& c, con
     return;
   }
   const std::int64_t state_written_ns = d.round_trip.command_accepted(c.serial, c.state_serial);
-  d.session->publish_engine_input(dds::to_engine_input(c));
+  d.device->engine_input(dds::to_engine_input(c));
   d.round_trip.command_handed_over(state_written_ns, monotonic_now_ns());
   if (c.state_serial > 0) {
     if (c.state_serial > d.answered.load(std::memory_order_relaxed))

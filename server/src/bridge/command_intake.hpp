@@ -1,7 +1,7 @@
 #pragma once
 // The bridge's command path, on Cyclone's receive threads (a listener: no thread wake-up between a command's
 // arrival and its hand-over to the loop): who wrote it (PeerDirectory), whether its device accepts it
-// (CommandGate: owner, order, freshness, content), the hand-over (DeviceSession::publish_engine_input,
+// (CommandGate: owner, order, freshness, content), the hand-over (DeviceRequests::engine_input,
 // lock-free), the round-trip probe and the lockstep hand-shake. Rejections are counted by the gate and announced
 // (the first, then every 100th per reason). Command writers' liveliness changes go to the PeerDirectory and
 // wake the receiver, which checks the claims.

@@ -52,8 +52,7 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
   // Cyclone's threads (receive, timed events, ...) start with the participant and inherit this thread's CPUs.
   const std::optional<cpu_set_t> previous = set_cpus(cpus_);
   std::vector<std::string> partitions = {"", dds::target_partition("*")};  // the default one, and every device's
-  for (std::size_t i = 0; i < links_.size(); ++i)
-    partitions.push_back(dds::target_partition(links_[i].session->name()));
+  for (std::size_t i = 0; i < links_.size(); ++i) partitions.push_back(dds::target_partition(links_[i].device->name()));
   for (const GroupLink& g : links_.groups()) partitions.push_back(dds::target_partition(g.name));
   dds_ = std::make_unique<DdsEndpoints>(settings, dds::CommandTiming{deadline, 0.5}, links_.command_filter(),
                                         links_.request_filter(), links_.group_command_filter(), partitions);

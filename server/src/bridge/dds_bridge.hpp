@@ -3,7 +3,7 @@
 //   publisher thread  StatePublisher: woken by the loop after each cycle (futex, no lock), takes the devices'
 //                     snapshots (lock-free LatestValue), writes the states and the events they reveal;
 //   Cyclone's receive CommandIntake: a listener that validates every engine command (CommandGate, PeerDirectory)
-//   threads           and hands an accepted one to the loop (DeviceSession::publish_engine_input, lock-free);
+//   threads           and hands an accepted one to the loop (DeviceRequests::engine_input, lock-free);
 //   receiver thread   RequestDispatcher: answers requests, ends claims whose claimant is gone, counts missed
 //                     deadlines; and writes telemetry;
 //   loop thread       LockstepSync: in lockstep, after_cycle() waits (wall time, bounded) until the owning engine

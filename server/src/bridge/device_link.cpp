@@ -20,7 +20,10 @@ dds::CommandBounds bounds_of(const DdsSettings& settings, const Pose& base) {
 }  // namespace
 
 DeviceLink::DeviceLink(std::size_t i, DeviceSession* s, const DdsSettings& settings)
-    : index(i), session(s), gate(bounds_of(settings, s->description().base_pose), settings.max_sample_age_s) {}
+    : index(i),
+      device(&s->requests()),
+      status(&s->status()),
+      gate(bounds_of(settings, s->description().base_pose), settings.max_sample_age_s) {}
 
 DeviceLinks::DeviceLinks(const std::vector<DeviceSession*>& sessions, const std::vector<GroupStage*>& stages,
                          const DdsSettings& settings) {
@@ -29,7 +32,7 @@ DeviceLinks::DeviceLinks(const std::vector<DeviceSession*>& sessions, const std:
     GroupLink group{g->name(), g, {}, 0};
     for (const DeviceSession* member : g->devices())
       for (const auto& l : links_)
-        if (l->session == member) group.members.push_back(l->index);
+        if (l->status == &member->status()) group.members.push_back(l->index);
     groups_.push_back(std::move(group));
   }
 }
@@ -42,7 +45,7 @@ GroupLink* DeviceLinks::find_group(std::string_view group) noexcept {
 
 DeviceLink* DeviceLinks::find(std::string_view device) noexcept {
   for (auto& l : links_)
-    if (l->session->name() == device) return l.get();
+    if (l->device->name() == device) return l.get();
   return nullptr;
 }
 

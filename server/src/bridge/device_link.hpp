@@ -1,5 +1,5 @@
 #pragma once
-// What the bridge's parts share about one device (docs/architecture.md, "The DDS bridge"): its session, who
+// What the bridge's parts share about one device (docs/architecture.md, "The DDS bridge"): its faces, who
 // owns it (the command gate and the claim, under one lock), the lockstep hand-shake and the counters. Each part
 // keeps the rest of its per-device state itself. DeviceLinks is the list, fixed once the bridge is built: it also
 // holds the readers' topic filters (only samples for these devices are stored) and what they dropped.
@@ -21,7 +21,9 @@
 
 namespace hapticd::server {
 
+class DeviceRequests;
 class DeviceSession;
+class DeviceStatus;
 class GroupStage;
 
 // A device group as the bridge sees it: its stage (the group snapshots) and its devices' places in DeviceLinks.
@@ -36,7 +38,11 @@ struct DeviceLink {
   DeviceLink(std::size_t index, DeviceSession* s, const DdsSettings& settings);
 
   std::size_t index;  // in the session (and the bridge's lists)
-  DeviceSession* session;
+  // The device's faces for the threads other than its loop (session/device_session.hpp): what the bridge may ask
+  // of it (and its name, description and schemes), and what its loop tells the bridge (the state snapshots and
+  // fault reports, whose outlets the state publisher alone takes).
+  DeviceRequests* device;
+  DeviceStatus* status;
   // Ownership: the gate (owner, order, freshness; counters) and the claim, changed by the command listener and
   // the request dispatcher, read by the others.
   mutable std::mutex mutex;

@@ -1,14 +1,14 @@
 #include "bridge/event_sender.hpp"
 
 #include "hapticd/dds/conversion.hpp"
-#include "session/device_session.hpp"
+#include "session/device_requests.hpp"
 
 namespace hapticd::server {
 
 void EventSender::send(const DeviceLink& device, hapticd_msg_EventKind kind, std::string_view code,
                        std::string_view message) {
   hapticd_msg_Event e{};
-  dds::set_text(e.device, device.session->name());
+  dds::set_text(e.device, device.device->name());
   e.serial = serial_.fetch_add(1) + 1;
   e.loop_time_ns = device.loop_time_ns.load(std::memory_order_relaxed);
   e.kind = kind;

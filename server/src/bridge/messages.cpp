@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "hapticd/dds/conversion.hpp"
-#include "session/device_session.hpp"
+#include "session/device_requests.hpp"
 #include "session/state_flags.hpp"
 
 namespace hapticd::server {
@@ -59,7 +59,7 @@ hapticd_msg_DeviceState state_message(const DeviceSnapshot& s, const StateLabels
   return m;
 }
 
-hapticd_msg_DeviceDescription description_message(const DeviceSession& s, double rate_hz,
+hapticd_msg_DeviceDescription description_message(const DeviceRequests& s, double rate_hz,
                                                   const std::optional<Pose>& start_pose) {
   const DeviceDescription& desc = s.description();
   hapticd_msg_DeviceDescription m{};

@@ -15,7 +15,7 @@
 
 namespace hapticd::server {
 
-class DeviceSession;
+class DeviceRequests;
 
 [[nodiscard]] hapticd_msg_DeviceMode mode_of(const DeviceSnapshot& s) noexcept;
 [[nodiscard]] std::uint32_t flags_of(const DeviceSnapshot& s) noexcept;
@@ -31,7 +31,7 @@ struct StateLabels {
 [[nodiscard]] hapticd_msg_DeviceState state_message(const DeviceSnapshot& s, const StateLabels& labels) noexcept;
 
 // The description of a session's device; start_pose once the loop has run (else all zeros: not known yet).
-[[nodiscard]] hapticd_msg_DeviceDescription description_message(const DeviceSession& session, double rate_hz,
+[[nodiscard]] hapticd_msg_DeviceDescription description_message(const DeviceRequests& device, double rate_hz,
                                                                 const std::optional<Pose>& start_pose);
 
 // A fault report into `m` (about 100 kB: the caller owns it, off the stack).

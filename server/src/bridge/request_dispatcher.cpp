@@ -5,7 +5,7 @@
 #include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/demand.hpp"
-#include "session/device_session.hpp"
+#include "session/device_requests.hpp"
 
 namespace hapticd::server {
 
@@ -128,18 +128,17 @@ RequestDispatcher::Answer RequestDispatcher::group_claim(const std::vector<Devic
   std::vector<std::string> taken, claimed;
   for (const DeviceLink* d : members) {
     std::lock_guard lock(d->mutex);
-    if (!d->gate.may_claim(r.client, r.requester))
-      taken.push_back(d->session->name() + " by '" + d->gate.owner() + "'");
+    if (!d->gate.may_claim(r.client, r.requester)) taken.push_back(d->device->name() + " by '" + d->gate.owner() + "'");
   }
   if (!taken.empty()) return {false, "none claimed: " + names_of(taken) + " claimed already"};
   for (DeviceLink* d : members) {
     const Answer a = claim(*d, r);
     if (!a.accepted) {  // cannot happen after the check above; if it ever does, undo the claims: all or none
       for (DeviceLink* c : members)
-        if (std::find(claimed.begin(), claimed.end(), c->session->name()) != claimed.end()) (void)release(*c, r);
-      return {false, "none claimed: " + d->session->name() + ": " + a.message};
+        if (std::find(claimed.begin(), claimed.end(), c->device->name()) != claimed.end()) (void)release(*c, r);
+      return {false, "none claimed: " + d->device->name() + ": " + a.message};
     }
-    claimed.push_back(d->session->name());
+    claimed.push_back(d->device->name());
   }
   return {true, "claimed " + names_of(claimed)};
 }
@@ -147,7 +146,7 @@ RequestDispatcher::Answer RequestDispatcher::group_claim(const std::vector<Devic
 RequestDispatcher::Answer RequestDispatcher::group_release(const std::vector<DeviceLink*>& members, const Request& r) {
   std::vector<std::string> released;
   for (DeviceLink* d : members)
-    if (release(*d, r).accepted) released.push_back(d->session->name());
+    if (release(*d, r).accepted) released.push_back(d->device->name());
   if (released.empty()) return {false, "not the owner of any of its devices"};
   return {true, "released " + names_of(released)};
 }
@@ -155,7 +154,7 @@ RequestDispatcher::Answer RequestDispatcher::group_release(const std::vector<Dev
 RequestDispatcher::Answer RequestDispatcher::group_stop(const std::vector<DeviceLink*>& members, const Request& r) {
   std::vector<std::string> stopped;  // anyone may stop a device
   for (DeviceLink* d : members)
-    if (emergency_stop(*d, r).accepted) stopped.push_back(d->session->name());
+    if (emergency_stop(*d, r).accepted) stopped.push_back(d->device->name());
   if (stopped.size() != members.size()) return {false, "stopped only " + names_of(stopped)};
   return {true, "stopped " + names_of(stopped)};
 }
@@ -166,15 +165,15 @@ RequestDispatcher::Answer RequestDispatcher::group_recover(const std::vector<Dev
   std::vector<std::string> refusals, recovered;
   for (DeviceLink* d : members) {
     if (auto refused = refused_recovery(*d, r))
-      refusals.push_back(d->session->name() + " " + refused->message);
-    else if (d->session->fault() == DeviceFault::none)
-      refusals.push_back(d->session->name() + " is not in its safe mode");
+      refusals.push_back(d->device->name() + " " + refused->message);
+    else if (d->device->status().fault() == DeviceFault::none)
+      refusals.push_back(d->device->name() + " is not in its safe mode");
   }
   if (!refusals.empty()) return {false, "none recovered: " + names_of(refusals)};
   for (DeviceLink* d : members) {
     const Answer a = forward(*d, DeviceRequest::Kind::recover, r);
-    if (!a.accepted) return {false, "recovered " + names_of(recovered) + "; " + d->session->name() + ": " + a.message};
-    recovered.push_back(d->session->name());
+    if (!a.accepted) return {false, "recovered " + names_of(recovered) + "; " + d->device->name() + ": " + a.message};
+    recovered.push_back(d->device->name());
   }
   return {true, "recovering " + names_of(recovered)};
 }
@@ -235,14 +234,14 @@ RequestDispatcher::Answer RequestDispatcher::release(DeviceLink& d, const Reques
     released = d.gate.release(r.requester);
   }
   if (!released) return {false, "not the owner"};
-  d.session->end_engine_input();  // a clean release: the forces fade, the engine is not stale
+  d.device->end_engine_input();  // a clean release: the forces fade, the engine is not stale
   d.synced.store(false, std::memory_order_release);
   events_.send(d, hapticd_msg_EVENT_OWNER, "", std::string(r.client) + " released the device");
   return {true, "released"};
 }
 
 RequestDispatcher::Answer RequestDispatcher::forward(DeviceLink& d, DeviceRequest::Kind kind, const Request& r) {
-  RuntimeReply rr = apply_request(*d.session, DeviceRequest{kind, std::string(r.name), r.values});
+  RuntimeReply rr = d.device->apply(DeviceRequest{kind, std::string(r.name), r.values});
   return {rr.accepted, std::move(rr.message), std::move(rr.values)};
 }
 

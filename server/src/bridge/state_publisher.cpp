@@ -4,7 +4,7 @@
 
 #include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
-#include "session/device_session.hpp"
+#include "session/device_requests.hpp"
 
 namespace hapticd::server {
 
@@ -22,7 +22,7 @@ StatePublisher::StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSende
   for (std::size_t i = 0; i < links.groups().size(); ++i)
     group_messages_.push_back(std::make_unique<hapticd_msg_GroupState>());
   for (std::size_t i = 0; i < links.size(); ++i)
-    for (const SchemeChain& s : links[i].session->chain().schemes) published_[i].scheme_names.push_back(s.name);
+    for (const SchemeChain& s : links[i].device->chain().schemes) published_[i].scheme_names.push_back(s.name);
 }
 
 hapticd_msg_LoopSummary StatePublisher::loop_summary(std::size_t device) const noexcept {
@@ -41,7 +41,7 @@ void StatePublisher::publish_states() {
   for (std::size_t i = 0; i < links_.size(); ++i) {
     DeviceLink& d = links_[i];
     Published& p = published_[i];
-    if (!d.session->take_snapshot(p.snapshot)) {
+    if (!d.status->take_snapshot(p.snapshot)) {
       // Nothing new (the loop waits, e.g. for the first engine in lockstep): repeat the last state now and
       // then, for readers that matched after it was written.
       if (d.states.load(std::memory_order_relaxed) > 0 && monotonic_now_ns() - p.last_write_ns > 10'000'000) {
@@ -81,7 +81,7 @@ void StatePublisher::publish_states() {
 }
 
 StateLabels StatePublisher::labels_of(std::size_t device, const DeviceSnapshot& s, const std::string& owner) const {
-  const DeviceSession& session = *links_[device].session;
+  const DeviceRequests& session = *links_[device].device;
   return StateLabels{session.name(), s.cycle / snapshot_interval_ + 1, session.schemes().active_name(), owner,
                      loop_summary(device)};
 }
@@ -127,7 +127,7 @@ void StatePublisher::publish_group_description(const GroupLink& group) {
   m.data_model_version = hapticd_msg_VERSION;
   m.device_count = static_cast<std::int32_t>(group.members.size());
   for (std::size_t k = 0; k < group.members.size(); ++k)
-    dds::set_text(m.devices[k].text, links_[group.members[k]].session->name());
+    dds::set_text(m.devices[k].text, links_[group.members[k]].device->name());
   m.min_distance_m = group.stage->min_distance_m();
   m.repulsion_distance_m = group.stage->repulsion_distance_m();
   m.own_loop = group.stage->own_loop();
@@ -140,11 +140,11 @@ void StatePublisher::publish_description(std::size_t device) {
     std::lock_guard lock(description_mutex_);
     start = published_[device].start_pose;
   }
-  (void)dds_.description.write(description_message(*links_[device].session, rate_hz_, start));
+  (void)dds_.description.write(description_message(*links_[device].device, rate_hz_, start));
 }
 
 void StatePublisher::publish_fault_report(std::size_t device, const FaultReport& report) {
-  const DeviceSession& s = *links_[device].session;
+  const DeviceRequests& s = *links_[device].device;
   auto m = std::make_unique<hapticd_msg_FaultReport>();  // 100 kB: not on the stack
   fill_fault_report(*m, s.name(), s.description().dof(), report);
   (void)dds_.fault_report.write(*m);
@@ -154,7 +154,7 @@ void StatePublisher::publish_telemetry() {
   for (std::size_t i = 0; i < links_.size(); ++i) {
     const DeviceLink& d = links_[i];
     hapticd_msg_Telemetry t{};
-    dds::set_text(t.device, d.session->name());
+    dds::set_text(t.device, d.device->name());
     t.wall_time_ns = dds::wall_clock_ns();
     t.loop = loop_summary(i);
     t.states_published = d.states.load(std::memory_order_relaxed);
@@ -166,14 +166,14 @@ void StatePublisher::publish_telemetry() {
     }
     t.requests = d.requests.load(std::memory_order_relaxed);
     t.deadline_misses = d.deadline_misses.load(std::memory_order_relaxed);
-    t.scheme_switches = d.session->schemes().switches();
-    t.saturated_cycles = d.session->saturated_cycles();
-    t.limited_cycles = d.session->limited_cycles();
-    t.render_limited_cycles = d.session->render_limited_cycles();
-    t.faults = d.session->faults_raised();
-    t.recoveries = d.session->recoveries();
-    t.thermal_load = d.session->thermal_load();
-    t.dissipated_j = d.session->dissipated_j();
+    t.scheme_switches = d.device->schemes().switches();
+    t.saturated_cycles = d.device->status().saturated_cycles();
+    t.limited_cycles = d.device->status().limited_cycles();
+    t.render_limited_cycles = d.device->status().render_limited_cycles();
+    t.faults = d.device->status().faults_raised();
+    t.recoveries = d.device->status().recoveries();
+    t.thermal_load = d.device->status().thermal_load();
+    t.dissipated_j = d.device->status().dissipated_j();
     (void)dds_.telemetry.write(t);
   }
 }

@@ -50,11 +50,11 @@ void LoopCycle::activate() {
 }
 
 void LoopCycle::request_safe_stop() noexcept {
-  for (DeviceSession* d : devices_) d->request_safe_stop();
+  for (DeviceSession* d : devices_) d->requests().safe_stop();
 }
 
 bool LoopCycle::at_rest() const noexcept {
-  return std::all_of(devices_.begin(), devices_.end(), [](const DeviceSession* s) { return s->at_rest(); });
+  return std::all_of(devices_.begin(), devices_.end(), [](const DeviceSession* s) { return s->status().at_rest(); });
 }
 
 void LoopCycle::deactivate(std::vector<std::string>& warnings, std::vector<std::string>& plugin_errors) {

@@ -94,8 +94,8 @@ double CollisionGuard::repel(const ChainState& a, const ChainState& b, const mod
 }
 
 void CollisionGuard::trip(const CycleTime& cycle) noexcept {
-  const bool first_running = first_.fault() == DeviceFault::none;
-  const bool second_running = second_.fault() == DeviceFault::none;
+  const bool first_running = first_.status().fault() == DeviceFault::none;
+  const bool second_running = second_.status().fault() == DeviceFault::none;
   if (!first_running && !second_running) return;
   const char* reason =
       texts_[static_cast<std::size_t>(clearance_.capsule_first * second_count_ + clearance_.capsule_second)].c_str();

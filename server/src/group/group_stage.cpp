@@ -33,7 +33,7 @@ void GroupStage::set_model(PluginInstance<GroupModel> model) {
     std::lock_guard lock(model_requests_.requests);
     model_requests_.target.emplace(request_target(model_));
   }
-  for (DeviceSession* d : devices_) d->set_group_model(&model_requests_);
+  for (DeviceSession* d : devices_) d->requests().set_group_model(&model_requests_);
 }
 
 void GroupStage::run_model(const CycleTime& cycle) noexcept {
@@ -41,7 +41,8 @@ void GroupStage::run_model(const CycleTime& cycle) noexcept {
   bool all_running = true;
   for (std::size_t k = 0; k < n; ++k) {
     const ChainState& c = devices_[k]->chain_state();
-    hands_[k] = GroupHand{c.handle_pose, c.handle_twist, c.operator_wrench, devices_[k]->fault() == DeviceFault::none};
+    hands_[k] =
+        GroupHand{c.handle_pose, c.handle_twist, c.operator_wrench, devices_[k]->status().fault() == DeviceFault::none};
     all_running = all_running && hands_[k].running;
   }
   if (!model_active_ && !all_running) return;  // it starts (again) once every hand is there
@@ -67,7 +68,7 @@ void GroupStage::run_model(const CycleTime& cycle) noexcept {
 void GroupStage::fail_model(const CycleTime& cycle, const char* reason) noexcept {
   model_active_ = false;
   for (DeviceSession* d : devices_)
-    if (d->fault() == DeviceFault::none) d->raise_group_fault(DeviceFault::group_model, cycle, reason);
+    if (d->status().fault() == DeviceFault::none) d->raise_group_fault(DeviceFault::group_model, cycle, reason);
 }
 
 std::string GroupStage::deactivate() {

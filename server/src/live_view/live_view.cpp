@@ -46,7 +46,7 @@ LiveView::LiveView(const LiveViewSettings& settings, const std::vector<DeviceSes
   for (DeviceSession* d : devices) {
     std::vector<std::string> schemes;
     for (const SchemeChain& s : d->chain().schemes) schemes.push_back(s.name);
-    sources_.push_back(Source{d,
+    sources_.push_back(Source{&d->status(),
                               DeviceView(d->name(), d->description(), d->chain().robot_model, std::move(schemes),
                                          DeviceViewSettings{settings.force_scale_m_per_n}),
                               DeviceSnapshot{}});
@@ -71,7 +71,7 @@ std::string LiveView::url() const {
 void LiveView::tick() {
   for (std::size_t d = 0; d < sources_.size(); ++d) {
     Source& s = sources_[d];
-    if (!s.session->take_view_snapshot(s.snapshot)) continue;
+    if (!s.status->take_view_snapshot(s.snapshot)) continue;
     if (!s.seen) {
       s.epoch_offset_ns = wall_now_ns() - s.snapshot.time_ns;
       s.seen = true;

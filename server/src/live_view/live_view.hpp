@@ -39,7 +39,7 @@ class LiveView {
   void tick();
 
   struct Source {
-    DeviceSession* session;
+    DeviceStatus* status;  // the device's face for other threads: the live view takes its view snapshots
     DeviceView view;
     DeviceSnapshot snapshot;
     std::int64_t epoch_offset_ns = 0;  // wall clock minus loop clock, set at the first snapshot

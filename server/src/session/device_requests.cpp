@@ -5,13 +5,13 @@
 #include <string_view>
 #include <variant>
 
+#include "hapticd/demand.hpp"
 #include "hapticd/parameter_info.hpp"
-#include "session/device_session.hpp"
 
 namespace hapticd::server {
 namespace {
 
-using Stage = DeviceSession::Stage;
+using Stage = DeviceRequests::Stage;
 
 std::string in_quotes(std::string_view name) { return "'" + std::string(name) + "'"; }
 
@@ -75,8 +75,8 @@ std::optional<Stage> stage_named(std::string_view stage) {
 }
 
 // The stage's plugin, pinned to the scheme running now, or why there is none.
-std::variant<DeviceSession::StagePlugin, RuntimeReply> plugin_of(const DeviceSession& device, Stage stage,
-                                                                 std::string_view stage_text) {
+std::variant<DeviceRequests::StagePlugin, RuntimeReply> plugin_of(const DeviceRequests& device, Stage stage,
+                                                                  std::string_view stage_text) {
   if (const auto plugin = device.stage_plugin(stage)) return *plugin;
   if (stage == Stage::group_model)
     return RuntimeReply{false, "device '" + device.name() + "' is in no group with a model"};
@@ -101,42 +101,42 @@ RuntimeReply unknown_stage(std::string_view stage) {
                      " (device, virtual_model, inverse_kinematics, controller, group_model or safety)"};
 }
 
-RuntimeReply set_safety(DeviceSession& device, std::string_view name, const std::vector<double>& values) {
+RuntimeReply set_safety(DeviceRequests& device, std::string_view name, const std::vector<double>& values) {
   if (name == "passivity_control") {
     if (values.size() != 1 || (values[0] != 0.0 && values[0] != 1.0)) return {false, "passivity_control takes 0 or 1"};
-    device.request_passivity_control(values[0] == 1.0);
+    device.passivity_control(values[0] == 1.0);
     return {true, values[0] == 1.0 ? "passivity controller on" : "passivity controller off"};
   }
-  if (name == "recover") return device.request_recovery();  // the older spelling of a recover request
+  if (name == "recover") return device.recover();  // the older spelling of a recover request
   return {false, "unknown safety parameter " + in_quotes(name) + " (passivity_control)"};
 }
 
-RuntimeReply plugin_command(DeviceSession& device, Stage stage, std::string_view stage_text, std::string_view name,
+RuntimeReply plugin_command(DeviceRequests& device, Stage stage, std::string_view stage_text, std::string_view name,
                             const std::vector<double>& values) {
   const auto plugin = plugin_of(device, stage, stage_text);
   if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
-  return device.plugin_request(std::get<DeviceSession::StagePlugin>(plugin), name, values);
+  return device.plugin_request(std::get<DeviceRequests::StagePlugin>(plugin), name, values);
 }
 
 // A parameter of one of the plugin stages ("<stage>.<parameter>", the stage not "safety"), or why there is none.
 struct PluginParameter {
-  DeviceSession::StagePlugin stage;
+  DeviceRequests::StagePlugin stage;
   std::string_view name;
   const PluginDescriptor& plugin;
 };
-std::variant<PluginParameter, RuntimeReply> plugin_parameter(const DeviceSession& device, std::string_view stage_text,
+std::variant<PluginParameter, RuntimeReply> plugin_parameter(const DeviceRequests& device, std::string_view stage_text,
                                                              std::string_view name) {
   const std::optional<Stage> stage = stage_named(stage_text);
   if (!stage) return unknown_stage(stage_text);
   const auto plugin = plugin_of(device, *stage, stage_text);
   if (const auto* refused = std::get_if<RuntimeReply>(&plugin)) return *refused;
-  const auto& pinned = std::get<DeviceSession::StagePlugin>(plugin);
+  const auto& pinned = std::get<DeviceRequests::StagePlugin>(plugin);
   return PluginParameter{pinned, name, *pinned.descriptor};
 }
 
 // A parameter the schema declares is set generically (tunable ones only); other names are the plugin's own
 // commands (handle_request).
-RuntimeReply set_parameter(DeviceSession& device, std::string_view target_text, const std::vector<double>& values) {
+RuntimeReply set_parameter(DeviceRequests& device, std::string_view target_text, const std::vector<double>& values) {
   const auto target = target_of(target_text);
   if (const auto* refused = std::get_if<RuntimeReply>(&target)) return *refused;
   const auto [stage_text, name] = std::get<Target>(target);
@@ -159,14 +159,14 @@ RuntimeReply set_parameter(DeviceSession& device, std::string_view target_text, 
 }
 
 // Any parameter the schema declares, tunable or not: the value in effect.
-RuntimeReply get_parameter(DeviceSession& device, std::string_view target_text) {
+RuntimeReply get_parameter(DeviceRequests& device, std::string_view target_text) {
   const auto target = target_of(target_text);
   if (const auto* refused = std::get_if<RuntimeReply>(&target)) return *refused;
   const auto [stage_text, name] = std::get<Target>(target);
   if (stage_text == "safety") {
     if (name != "passivity_control")
       return {false, "unknown safety parameter " + in_quotes(name) + " (passivity_control)"};
-    const bool on = device.passivity_control();
+    const bool on = device.status().passivity_control();
     return {true, "passivity_control = " + std::string(on ? "true" : "false"), {on ? 1.0 : 0.0}};
   }
   const auto found = plugin_parameter(device, stage_text, name);
@@ -196,10 +196,10 @@ ParameterSpec passivity_control_spec() {
 // inverse kinematics' and controller's, the group model's, then the safety stage's.
 struct Listed {
   std::string_view stage_text;
-  std::optional<DeviceSession::StagePlugin> stage;  // none: the safety stage
+  std::optional<DeviceRequests::StagePlugin> stage;  // none: the safety stage
   ParameterSpec spec;
 };
-std::vector<Listed> listed_parameters(const DeviceSession& device) {
+std::vector<Listed> listed_parameters(const DeviceRequests& device) {
   std::vector<Listed> out;
   for (const auto& [stage, text] : {std::pair{Stage::device, std::string_view("device")},
                                     std::pair{Stage::virtual_model, std::string_view("virtual_model")},
@@ -215,7 +215,7 @@ std::vector<Listed> listed_parameters(const DeviceSession& device) {
   return out;
 }
 
-RuntimeReply describe(DeviceSession& device, const Listed& p, std::size_t count) {
+RuntimeReply describe(DeviceRequests& device, const Listed& p, std::size_t count) {
   ParameterInfo info;
   info.name = std::string(p.stage_text) + "." + p.spec.name;
   info.type = p.spec.type;
@@ -225,7 +225,7 @@ RuntimeReply describe(DeviceSession& device, const Listed& p, std::size_t count)
   info.minimum = p.spec.minimum;
   info.maximum = p.spec.maximum;
   info.minimum_exclusive = p.spec.minimum_exclusive;
-  ParameterValue value{device.passivity_control()};
+  ParameterValue value{device.status().passivity_control()};
   if (p.stage) {
     const std::optional<Parameters> parameters = device.stage_parameters(*p.stage);
     if (!parameters) return {false, "plugin '" + std::string(p.stage->descriptor->name) + "' has been deactivated"};
@@ -238,7 +238,7 @@ RuntimeReply describe(DeviceSession& device, const Listed& p, std::size_t count)
 
 // A parameter's declaration and value in effect: by name ("<stage>.<parameter>"), or with no name the K-th of
 // the device's list (values: {K}).
-RuntimeReply describe_parameter(DeviceSession& device, std::string_view target, const std::vector<double>& values) {
+RuntimeReply describe_parameter(DeviceRequests& device, std::string_view target, const std::vector<double>& values) {
   const std::vector<Listed> listed = listed_parameters(device);
   if (target.empty()) {
     if (values.size() != 1 || !(values[0] >= 0.0) || values[0] != std::floor(values[0]))
@@ -258,10 +258,83 @@ RuntimeReply describe_parameter(DeviceSession& device, std::string_view target, 
 
 }  // namespace
 
-RuntimeReply apply_request(DeviceSession& device, const DeviceRequest& request) {
+std::optional<DeviceRequests::StagePlugin> DeviceRequests::stage_plugin(Stage stage) const {
+  if (stage == Stage::device) return StagePlugin{stage, 0, chain_.device.descriptor};
+  if (stage == Stage::group_model) {
+    if (group_model_ == nullptr) return std::nullopt;
+    std::lock_guard lock(group_model_->requests);
+    if (!group_model_->target) return std::nullopt;
+    return StagePlugin{stage, 0, &group_model_->target->descriptor};
+  }
+  if (chain_.schemes.empty()) return std::nullopt;
+  const std::size_t index = schemes_.active_index();  // read once: the loop may switch right after
+  const SchemeChain& scheme = chain_.schemes[index];
+  if (stage == Stage::controller) return StagePlugin{stage, index, scheme.controller.descriptor};
+  if (stage == Stage::inverse_kinematics) {
+    if (!scheme.inverse_kinematics) return std::nullopt;
+    return StagePlugin{stage, index, scheme.inverse_kinematics->descriptor};
+  }
+  if (!scheme.virtual_model) return std::nullopt;
+  return StagePlugin{stage, index, scheme.virtual_model->descriptor};
+}
+
+template <class F>
+auto DeviceRequests::with_stage_plugin(const StagePlugin& stage, F&& f)
+    -> std::optional<std::invoke_result_t<F, const PluginRequestTarget&>> {
+  if (stage.stage == Stage::group_model) {  // the group's: its own lock, shared by the group's devices
+    std::lock_guard lock(group_model_->requests);
+    if (!group_model_->target) return std::nullopt;  // deactivated since stage_plugin() found it
+    return f(*group_model_->target);
+  }
+  std::lock_guard lock(plugin_requests_);
+  if (stage.stage == Stage::device) return f(request_target(chain_.device));
+  SchemeChain& scheme = chain_.schemes[stage.scheme];
+  if (stage.stage == Stage::controller) return f(request_target(scheme.controller));
+  // A scheme's stages are fixed at start-up: the one stage_plugin() found is there.
+  if (stage.stage == Stage::inverse_kinematics) {
+    HAPTICD_DEMAND(scheme.inverse_kinematics.has_value());
+    return f(request_target(*scheme.inverse_kinematics));
+  }
+  HAPTICD_DEMAND(scheme.virtual_model.has_value());
+  return f(request_target(*scheme.virtual_model));
+}
+
+namespace {
+RuntimeReply gone() { return {false, "the group's model has been deactivated"}; }
+}  // namespace
+
+RuntimeReply DeviceRequests::plugin_request(const StagePlugin& stage, std::string_view name,
+                                            const std::vector<double>& values) {
+  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return send_command(t, name, values); })
+      .value_or(gone());
+}
+
+std::optional<Parameters> DeviceRequests::stage_parameters(const StagePlugin& stage) {
+  return with_stage_plugin(stage, [](const PluginRequestTarget& t) { return t.parameters; });
+}
+
+RuntimeReply DeviceRequests::tune(const StagePlugin& stage, const std::string& name, ParameterValue value) {
+  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return tune_parameter(t, name, value); })
+      .value_or(gone());
+}
+
+RuntimeReply DeviceRequests::recover() {
+  const DeviceFault f = status_.fault();
+  if (f == DeviceFault::none) return {false, "device '" + name_ + "' is not in its safe mode"};
+  if (f == DeviceFault::configure)
+    return {false,
+            "device '" + name_ + "' never configured (" + chain_.configure_error + "); fix the session and restart"};
+  if (f == DeviceFault::device_enable || f == DeviceFault::device_homing)
+    return {false, "device '" + name_ + "' never ran: " + status_.fault_text() + "; fix the device and restart"};
+  recovery_for_epoch_.store(stop_epoch_.load(std::memory_order_acquire) + 1, std::memory_order_release);
+  return {true, "device '" + name_ + "' recovers once its safe mode has settled (unless it is stopped again first)"};
+}
+
+RuntimeReply DeviceRequests::apply(const DeviceRequest& request) {
+  DeviceRequests& device = *this;
   switch (request.kind) {
     case DeviceRequest::Kind::switch_scheme:
-      if (!device.schemes().request(request.name)) {
+      if (!device.switch_scheme(request.name)) {
         std::vector<std::string> names;
         for (const SchemeChain& sc : device.chain().schemes) names.push_back(sc.name);
         return {false, "no scheme named " + in_quotes(request.name) + " (schemes: " + listed(names) + ")"};
@@ -276,10 +349,10 @@ RuntimeReply apply_request(DeviceSession& device, const DeviceRequest& request) 
     case DeviceRequest::Kind::drive_operator:
       return plugin_command(device, Stage::device, "device", "operator." + request.name, request.values);
     case DeviceRequest::Kind::emergency_stop:
-      device.request_emergency_stop();
+      device.emergency_stop();
       return {true, "emergency stop"};
     case DeviceRequest::Kind::recover:
-      return device.request_recovery();
+      return device.recover();
   }
   return {false, "unknown request"};
 }

@@ -49,19 +49,20 @@ DeviceSession::DeviceSession(std::string name, DeviceChain chain)
       estimator_(description_, chain_.robot_model, chain_.period_s),
       engine_(EngineTiming{chain_.engine_deadline_s, chain_.engine_fade_s, chain_.engine_ramp_in_s}),
       schemes_(chain_.schemes),
+      requests_(name_, chain_, status_, schemes_, engine_),
       blend_(std::llround(chain_.switch_ramp_s / chain_.period_s)) {
   const int dof = description_.dof();
   state_.joints.resize(dof);
   if (!chain_.configure_error.empty()) {
-    status_.fault.store(DeviceFault::configure);
-    status_.faults.store(1);
+    status_.fault_.store(DeviceFault::configure);
+    status_.faults_.store(1);
   }
   joint_target_.resize(dof);
   command_.torque_nm.setZero(dof);
   last_written_.setZero(dof);
   // Everything sized and set up for the loop's period here, before the first cycle: nothing lazily on the loop.
   safety_.configure(chain_.safety, description_, chain_.period_s);
-  status_.passivity_control.store(safety_.guard().passivity_control(), std::memory_order_release);
+  status_.passivity_control_.store(safety_.guard().passivity_control(), std::memory_order_release);
 }
 
 void DeviceSession::activate() noexcept {
@@ -109,76 +110,8 @@ Outcome DeviceSession::activate_scheme(SchemeChain& scheme) noexcept {
 
 void DeviceSession::service() {
   // A request never reaches a plugin while it is deactivated; while one is served, the next round does it.
-  std::unique_lock lock(plugin_requests_, std::try_to_lock);
+  std::unique_lock lock(requests_.plugin_requests_, std::try_to_lock);
   if (lock.owns_lock()) schemes_.service();
-}
-
-std::string DeviceSession::fault_text() const {
-  const DeviceFault f = fault();
-  if (f == DeviceFault::none) return {};
-  std::string text(to_string(f));
-  if (const char* reason = fault_reason()) text += std::string(": ") + reason;
-  return text;
-}
-
-std::optional<DeviceSession::StagePlugin> DeviceSession::stage_plugin(Stage stage) const {
-  if (stage == Stage::device) return StagePlugin{stage, 0, chain_.device.descriptor};
-  if (stage == Stage::group_model) {
-    if (group_model_ == nullptr) return std::nullopt;
-    std::lock_guard lock(group_model_->requests);
-    if (!group_model_->target) return std::nullopt;
-    return StagePlugin{stage, 0, &group_model_->target->descriptor};
-  }
-  if (chain_.schemes.empty()) return std::nullopt;
-  const std::size_t index = schemes_.active_index();  // read once: the loop may switch right after
-  const SchemeChain& scheme = chain_.schemes[index];
-  if (stage == Stage::controller) return StagePlugin{stage, index, scheme.controller.descriptor};
-  if (stage == Stage::inverse_kinematics) {
-    if (!scheme.inverse_kinematics) return std::nullopt;
-    return StagePlugin{stage, index, scheme.inverse_kinematics->descriptor};
-  }
-  if (!scheme.virtual_model) return std::nullopt;
-  return StagePlugin{stage, index, scheme.virtual_model->descriptor};
-}
-
-template <class F>
-auto DeviceSession::with_stage_plugin(const StagePlugin& stage, F&& f)
-    -> std::optional<std::invoke_result_t<F, const PluginRequestTarget&>> {
-  if (stage.stage == Stage::group_model) {  // the group's: its own lock, shared by the group's devices
-    std::lock_guard lock(group_model_->requests);
-    if (!group_model_->target) return std::nullopt;  // deactivated since stage_plugin() found it
-    return f(*group_model_->target);
-  }
-  std::lock_guard lock(plugin_requests_);
-  if (stage.stage == Stage::device) return f(request_target(chain_.device));
-  SchemeChain& scheme = chain_.schemes[stage.scheme];
-  if (stage.stage == Stage::controller) return f(request_target(scheme.controller));
-  // A scheme's stages are fixed at start-up: the one stage_plugin() found is there.
-  if (stage.stage == Stage::inverse_kinematics) {
-    HAPTICD_DEMAND(scheme.inverse_kinematics.has_value());
-    return f(request_target(*scheme.inverse_kinematics));
-  }
-  HAPTICD_DEMAND(scheme.virtual_model.has_value());
-  return f(request_target(*scheme.virtual_model));
-}
-
-namespace {
-RuntimeReply gone() { return {false, "the group's model has been deactivated"}; }
-}  // namespace
-
-RuntimeReply DeviceSession::plugin_request(const StagePlugin& stage, std::string_view name,
-                                           const std::vector<double>& values) {
-  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return send_command(t, name, values); })
-      .value_or(gone());
-}
-
-std::optional<Parameters> DeviceSession::stage_parameters(const StagePlugin& stage) {
-  return with_stage_plugin(stage, [](const PluginRequestTarget& t) { return t.parameters; });
-}
-
-RuntimeReply DeviceSession::tune(const StagePlugin& stage, const std::string& name, ParameterValue value) {
-  return with_stage_plugin(stage, [&](const PluginRequestTarget& t) { return tune_parameter(t, name, value); })
-      .value_or(gone());
 }
 
 void DeviceSession::switch_scheme_if_requested() noexcept {
@@ -260,9 +193,9 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.position = state_.joints.position;
   s.velocity = state_.joints.velocity;
   s.torque = command_.torque_nm;
-  s.fault = fault();
-  s.fault_reason = status_.fault_reason.load(std::memory_order_relaxed);
-  s.faults = status_.faults.load(std::memory_order_relaxed);
+  s.fault = status_.fault();
+  s.fault_reason = status_.fault_reason_.load(std::memory_order_relaxed);
+  s.faults = status_.faults_.load(std::memory_order_relaxed);
   s.estop = s.fault == DeviceFault::emergency_stop;
   s.stopping = torque_scale < 1.0;
   s.saturated = estimator_.state().output_saturated;
@@ -284,15 +217,15 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.thermal_load = safety_.thermal().max_load();
   s.dissipated_j = safety_.guard().dissipated_j();
   s.passivity_control = safety_.guard().passivity_control();
-  if (publish) status_.snapshots.publish(s);
-  if (view) status_.view_snapshots.publish(s);
+  if (publish) status_.snapshots_.publish(s);
+  if (view) status_.view_snapshots_.publish(s);
 }
 
 void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns,
                                       std::int64_t lateness_ns) noexcept {
-  if (const int p = passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0) {
+  if (const int p = requests_.passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0) {
     safety_.guard().set_passivity_control(p == 1);
-    status_.passivity_control.store(p == 1, std::memory_order_release);
+    status_.passivity_control_.store(p == 1, std::memory_order_release);
   }
   Outcome read = Outcome::failure("read() threw an exception");
   try {
@@ -300,29 +233,31 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
   } catch (...) {
   }
   // The watchdogs and requests that stop the device.
-  if (const std::uint64_t estops = estop_requests_.load(std::memory_order_acquire); estops != estops_handled_) {
+  if (const std::uint64_t estops = requests_.estop_requests_.load(std::memory_order_acquire);
+      estops != estops_handled_) {
     estops_handled_ = estops;
-    if (fault() == DeviceFault::none && !stopped_) {
+    if (status_.fault() == DeviceFault::none && !stopped_) {
       raise_fault(DeviceFault::emergency_stop, cycle);
     } else {
       relatch_emergency_stop(cycle);  // already safe: the stop is logged and voids any pending recovery
     }
   }
-  if (fault() == DeviceFault::none && !stopped_ && safety_.overruns_exceeded(consecutive_overruns))
+  if (status_.fault() == DeviceFault::none && !stopped_ && safety_.overruns_exceeded(consecutive_overruns))
     raise_fault(DeviceFault::loop_overrun, cycle);
-  if (fault() == DeviceFault::none && !stopped_ && safety_.stalled(lateness_ns))
+  if (status_.fault() == DeviceFault::none && !stopped_ && safety_.stalled(lateness_ns))
     raise_fault(DeviceFault::loop_stall, cycle);
-  if (fault() == DeviceFault::none && !stopped_ && safe_stop_requested_.load(std::memory_order_acquire)) {
+  if (status_.fault() == DeviceFault::none && !stopped_ &&
+      requests_.safe_stop_requested_.load(std::memory_order_acquire)) {
     stopped_ = true;
     leave_chain();
     safety_.enter_safe_mode(last_written_, estimator_.has_model() ? &state_.joints.position : nullptr,
                             true);  // stopping: no hold
-    status_.at_rest.store(false, std::memory_order_release);
+    status_.at_rest_.store(false, std::memory_order_release);
   }
   // The measurement: a running device faults on a read error, a non-finite value or a saturated sensor; in the
   // safe mode it is estimated as long as its positions can be trusted (an arm that sags is seen).
   measurement_valid_ = read.ok() && state_.joints.position.allFinite();
-  if (fault() == DeviceFault::none && !stopped_) {
+  if (status_.fault() == DeviceFault::none && !stopped_) {
     if (!read.ok()) {
       raise_fault(DeviceFault::device_read, cycle, read.reason);
     } else if (!is_finite(state_)) {
@@ -332,7 +267,7 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
       raise_fault(DeviceFault::sensor_saturation, cycle);
     }
   }
-  safe_path_ = fault() != DeviceFault::none || stopped_;
+  safe_path_ = status_.fault() != DeviceFault::none || stopped_;
   if (measurement_valid_) estimate(cycle);
   estimator_.state().neighbour = NeighbourClearance{};  // the group stage, next, finds this cycle's
   group_force_.setZero();
@@ -363,11 +298,11 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
     bool saturated = false;
     safety_.limit(state_.joints.velocity, estimator_.state(), command_.torque_nm, saturated);
     estimator_.state().output_saturated = saturated;
-    if (saturated) status_.saturated_cycles.fetch_add(1, std::memory_order_relaxed);
+    if (saturated) status_.saturated_cycles_.fetch_add(1, std::memory_order_relaxed);
     const std::uint32_t flags = safety_.flags();
-    if ((flags & state_flag::limit_engaged) != 0) status_.limited_cycles.fetch_add(1, std::memory_order_relaxed);
+    if ((flags & state_flag::limit_engaged) != 0) status_.limited_cycles_.fetch_add(1, std::memory_order_relaxed);
     if ((flags & state_flag::render_limited) != 0)
-      status_.render_limited_cycles.fetch_add(1, std::memory_order_relaxed);
+      status_.render_limited_cycles_.fetch_add(1, std::memory_order_relaxed);
     const double scale = std::clamp(torque_scale, 0.0, 1.0);
     if (scale > 0.0) {
       command_.torque_nm *= scale;
@@ -382,8 +317,8 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
     if (written.ok()) {
       last_written_ = command_.torque_nm;
       safety_.written(command_.torque_nm);
-      status_.dissipated_j.store(safety_.guard().dissipated_j(), std::memory_order_relaxed);
-      status_.thermal_load.store(safety_.thermal().max_load(), std::memory_order_relaxed);
+      status_.dissipated_j_.store(safety_.guard().dissipated_j(), std::memory_order_relaxed);
+      status_.thermal_load_.store(safety_.thermal().max_load(), std::memory_order_relaxed);
     } else {
       last_written_.setZero();  // unknown what the drive holds: do not fade from it
       raise_fault(DeviceFault::device_write, cycle, written.reason);
@@ -402,7 +337,7 @@ void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
   const bool valid =
       measurement_valid_ && state_.joints.velocity.allFinite() && (gravity == nullptr || gravity->allFinite());
   safety_.safe_torque(state_.joints.position, state_.joints.velocity, valid, gravity, command_.torque_nm);
-  status_.at_rest.store(safety_.at_rest(), std::memory_order_release);
+  status_.at_rest_.store(safety_.at_rest(), std::memory_order_release);
   try {
     (void)chain_.device->write(cycle, command_);
   } catch (...) {
@@ -413,13 +348,13 @@ void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
 
 void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
   if (stopped_ || !safety_.settled()) return;
-  std::uint64_t wanted = recovery_for_epoch_.load(std::memory_order_acquire);
-  // Only a request made after the last stop: a stop since then (stop_epoch_ moved on) voids it.
-  if (wanted == 0 || wanted != stop_epoch_.load(std::memory_order_acquire) + 1) return;
-  if (estop_requests_.load(std::memory_order_acquire) != estops_handled_) return;  // a stop not handled yet
+  std::uint64_t wanted = requests_.recovery_for_epoch_.load(std::memory_order_acquire);
+  // Only a request made after the last stop: a stop since then (requests_.stop_epoch_ moved on) voids it.
+  if (wanted == 0 || wanted != requests_.stop_epoch_.load(std::memory_order_acquire) + 1) return;
+  if (requests_.estop_requests_.load(std::memory_order_acquire) != estops_handled_) return;  // a stop not handled yet
   // The scheme that ran must have been deactivated off the loop (service()) before it activates again.
   if (!schemes_.active_idle()) return;
-  if (!recovery_for_epoch_.compare_exchange_strong(wanted, 0, std::memory_order_acq_rel)) return;
+  if (!requests_.recovery_for_epoch_.compare_exchange_strong(wanted, 0, std::memory_order_acq_rel)) return;
   // The drives' latched fault is cleared first; if it cannot be, the device stays safe and says why (the
   // request is used up: a new one tries again).
   Outcome reset = Outcome::failure("reset_fault() threw an exception");
@@ -428,11 +363,11 @@ void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
   } catch (...) {
   }
   if (!reset.ok()) {
-    status_.fault_reason.store(reason_or_null(reset.reason), std::memory_order_relaxed);
-    status_.refused_recoveries.fetch_add(1, std::memory_order_relaxed);
+    status_.fault_reason_.store(reason_or_null(reset.reason), std::memory_order_relaxed);
+    status_.refused_recoveries_.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  status_.fault_reason.store(nullptr, std::memory_order_relaxed);
+  status_.fault_reason_.store(nullptr, std::memory_order_relaxed);
   chain_active_ = false;  // the next cycle activates the chain from the measured state, with a soft start
   // Whatever the safe mode holds (gravity, damping) fades out against the chain's first commands: no step.
   if (last_written_.isZero(0.0)) {
@@ -441,21 +376,9 @@ void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
     blend_.begin(last_written_);
   }
   engine_.restart();  // engine input ramps in again
-  status_.recoveries.fetch_add(1, std::memory_order_relaxed);
-  log_safety_event(SafetyEvent::Kind::recovery, fault(), cycle);
-  status_.fault.store(DeviceFault::none, std::memory_order_release);
-}
-
-RuntimeReply DeviceSession::request_recovery() {
-  const DeviceFault f = fault();
-  if (f == DeviceFault::none) return {false, "device '" + name_ + "' is not in its safe mode"};
-  if (f == DeviceFault::configure)
-    return {false,
-            "device '" + name_ + "' never configured (" + chain_.configure_error + "); fix the session and restart"};
-  if (f == DeviceFault::device_enable || f == DeviceFault::device_homing)
-    return {false, "device '" + name_ + "' never ran: " + fault_text() + "; fix the device and restart"};
-  recovery_for_epoch_.store(stop_epoch_.load(std::memory_order_acquire) + 1, std::memory_order_release);
-  return {true, "device '" + name_ + "' recovers once its safe mode has settled (unless it is stopped again first)"};
+  status_.recoveries_.fetch_add(1, std::memory_order_relaxed);
+  log_safety_event(SafetyEvent::Kind::recovery, status_.fault(), cycle);
+  status_.fault_.store(DeviceFault::none, std::memory_order_release);
 }
 
 void DeviceSession::record_history(const CycleTime& cycle) noexcept {
@@ -481,8 +404,8 @@ void DeviceSession::leave_chain() noexcept {
 }
 
 void DeviceSession::log_safety_event(SafetyEvent::Kind kind, DeviceFault fault, const CycleTime& cycle) noexcept {
-  if (!status_.safety_events.try_push(SafetyEvent{kind, fault, cycle.index, cycle.time_ns}))
-    status_.lost_safety_events.fetch_add(1, std::memory_order_relaxed);
+  if (!status_.safety_events_.try_push(SafetyEvent{kind, fault, cycle.index, cycle.time_ns}))
+    status_.lost_safety_events_.fetch_add(1, std::memory_order_relaxed);
 }
 
 void DeviceSession::publish_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept {
@@ -492,17 +415,17 @@ void DeviceSession::publish_fault(DeviceFault fault, const CycleTime& cycle, con
   if (reason != nullptr) {
     for (std::size_t i = 0; i + 1 < report_.reason.size() && reason[i] != '\0'; ++i) report_.reason[i] = reason[i];
   }
-  status_.fault_reason.store(reason_or_null(reason), std::memory_order_relaxed);
-  report_.serial = status_.faults.load(std::memory_order_relaxed) + 1;
+  status_.fault_reason_.store(reason_or_null(reason), std::memory_order_relaxed);
+  report_.serial = status_.faults_.load(std::memory_order_relaxed) + 1;
   report_.cycle = cycle.index;
   report_.time_ns = cycle.time_ns;
   safety_.history().copy_to(report_);
-  status_.reports.publish(report_);
-  status_.fault_cycle.store(cycle.index, std::memory_order_relaxed);
-  status_.faults.store(report_.serial, std::memory_order_relaxed);
+  status_.reports_.publish(report_);
+  status_.fault_cycle_.store(cycle.index, std::memory_order_relaxed);
+  status_.faults_.store(report_.serial, std::memory_order_relaxed);
   log_safety_event(SafetyEvent::Kind::fault, fault, cycle);
-  stop_epoch_.fetch_add(1, std::memory_order_acq_rel);  // voids a recovery asked before this fault
-  status_.fault.store(fault, std::memory_order_release);
+  requests_.stop_epoch_.fetch_add(1, std::memory_order_acq_rel);  // voids a recovery asked before this fault
+  status_.fault_.store(fault, std::memory_order_release);
 }
 
 void DeviceSession::relatch_emergency_stop(const CycleTime& cycle) noexcept {
@@ -511,10 +434,10 @@ void DeviceSession::relatch_emergency_stop(const CycleTime& cycle) noexcept {
 }
 
 void DeviceSession::hold_before_start(DeviceFault fault, const char* reason) noexcept {
-  if (status_.fault.load(std::memory_order_relaxed) != DeviceFault::none) return;  // a configure error came first
-  status_.fault_reason.store(reason_or_null(reason), std::memory_order_relaxed);
-  status_.faults.store(1, std::memory_order_relaxed);
-  status_.fault.store(fault, std::memory_order_release);
+  if (status_.fault_.load(std::memory_order_relaxed) != DeviceFault::none) return;  // a configure error came first
+  status_.fault_reason_.store(reason_or_null(reason), std::memory_order_relaxed);
+  status_.faults_.store(1, std::memory_order_relaxed);
+  status_.fault_.store(fault, std::memory_order_release);
 }
 
 void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept {
@@ -523,7 +446,7 @@ void DeviceSession::raise_fault(DeviceFault fault, const CycleTime& cycle, const
   // The last torque that reached the drives fades out, unless the measurement cannot be trusted (then the
   // damping cannot run either, and the safe mode is zero torque at once).
   safety_.enter_safe_mode(last_written_, estimator_.has_model() ? &state_.joints.position : nullptr);
-  status_.at_rest.store(safety_.at_rest(), std::memory_order_release);
+  status_.at_rest_.store(safety_.at_rest(), std::memory_order_release);
 }
 
 void DeviceSession::offer_neighbour(const NeighbourClearance& neighbour) noexcept {
@@ -532,7 +455,7 @@ void DeviceSession::offer_neighbour(const NeighbourClearance& neighbour) noexcep
 }
 
 void DeviceSession::raise_group_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept {
-  if (status_.fault.load(std::memory_order_relaxed) != DeviceFault::none) return;
+  if (status_.fault_.load(std::memory_order_relaxed) != DeviceFault::none) return;
   raise_fault(fault, cycle, reason);
 }
 
@@ -541,7 +464,7 @@ void DeviceSession::deactivate() {
   {
     // Waits for a request being served, but not for good: a request thread that is stuck (a broken invariant
     // parks it) must not keep the device from being disabled.
-    std::unique_lock lock(plugin_requests_, std::try_to_lock);
+    std::unique_lock lock(requests_.plugin_requests_, std::try_to_lock);
     for (int i = 0; i < 200 && !lock.owns_lock(); ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
       lock.try_lock();

@@ -11,6 +11,12 @@
 // and whatever torque difference remains between the old command and the new scheme's first one fades out
 // linearly over switch_ramp_s. A scheme that fails to activate is not switched to (the old one keeps
 // running; the rejection is counted). The old scheme's plugins are deactivated off the loop by service().
+//
+// Three faces, one per kind of thread (docs/architecture.md, "Threads and hand-offs"): this class's own methods
+// are the loop's (activate, the cycle's phases, the group stage's calls, deactivate) and the monitor's (service);
+// status() is what the loop tells the other threads (DeviceStatus: fault, counters, snapshots, reports; read-only
+// but for its outlets); requests() is everything another thread may ask of the device (DeviceRequests: stops,
+// recovery, engine input, schemes, plugin requests). A consumer holds the face it needs, not the session.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -33,6 +39,7 @@
 #include "safety/safety_supervisor.hpp"
 #include "session/chain_state_estimator.hpp"
 #include "session/device_chain.hpp"
+#include "session/device_requests.hpp"
 #include "session/device_snapshot.hpp"
 #include "session/device_status.hpp"
 #include "session/engine_input_port.hpp"
@@ -81,23 +88,14 @@ class DeviceSession {
   [[nodiscard]] const std::string& name() const noexcept { return name_; }
   [[nodiscard]] const DeviceDescription& description() const noexcept { return description_; }
   [[nodiscard]] const DeviceChain& chain() const noexcept { return chain_; }
-  // Readable from any thread.
-  [[nodiscard]] DeviceFault fault() const noexcept { return status_.fault.load(std::memory_order_acquire); }
-  // Any thread: the device's reason for the fault (or for a refused fault reset), nullptr if it gave none.
-  [[nodiscard]] const char* fault_reason() const noexcept {
-    return status_.fault_reason.load(std::memory_order_relaxed);
-  }
-  // Any thread: the fault as a sentence with the device's reason ("device read failed: joint 2 ..."); "" if none.
-  [[nodiscard]] std::string fault_text() const;
-  [[nodiscard]] std::uint64_t refused_recoveries() const noexcept {
-    return status_.refused_recoveries.load(std::memory_order_relaxed);
-  }
-  [[nodiscard]] std::uint64_t fault_cycle() const noexcept {
-    return status_.fault_cycle.load(std::memory_order_relaxed);
-  }
-  [[nodiscard]] std::uint64_t saturated_cycles() const noexcept {
-    return status_.saturated_cycles.load(std::memory_order_relaxed);
-  }
+  // The device's other threads (docs/architecture.md, "Threads and hand-offs"): what the loop tells them (any
+  // thread reads; each take_* outlet has one reader), and what they may ask of it (any thread but the loop).
+  [[nodiscard]] const DeviceStatus& status() const noexcept { return status_; }
+  [[nodiscard]] DeviceStatus& status() noexcept { return status_; }
+  [[nodiscard]] DeviceRequests& requests() noexcept { return requests_; }
+  // Any thread: the scheme running, the switches made or refused (a switch is asked through requests()).
+  [[nodiscard]] const SchemeSwitcher& schemes() const noexcept { return schemes_; }
+
   // Loop thread only (or after the loop has stopped).
   [[nodiscard]] const DeviceState& state() const noexcept { return state_; }
   [[nodiscard]] const JointCommand& command() const noexcept { return command_; }
@@ -105,36 +103,15 @@ class DeviceSession {
   [[nodiscard]] const ChainState& chain_state() const noexcept { return estimator_.state(); }
   [[nodiscard]] double engine_weight() const noexcept { return engine_.input().weight; }
 
-  // Any thread: the control schemes - request another, the one running, the switches made or refused.
-  [[nodiscard]] SchemeSwitcher& schemes() noexcept { return schemes_; }
-  [[nodiscard]] const SchemeSwitcher& schemes() const noexcept { return schemes_; }
-  // Any thread (the DDS interface): the rendering engine's newest input; the loop picks it up at the next cycle
-  // and stamps it with that cycle's time.
-  void publish_engine_input(const EngineInput& input) { engine_.publish(input); }
-  // Any thread: the engine released the device; its input fades out without the engine counting as stale.
-  void end_engine_input() noexcept { engine_.end(); }
-  // Any thread: the newest snapshot the loop published (see set_snapshot_interval); false if none since the
-  // last take. One reader at a time.
-  bool take_snapshot(DeviceSnapshot& out) noexcept { return status_.snapshots.take(out); }
   // Before activate(): the loop publishes a snapshot every `cycles` cycles (0: never, the default).
   void set_snapshot_interval(std::uint64_t cycles) noexcept { snapshot_interval_ = cycles; }
-  // The live view's snapshots (its own hand-off, at its own interval: the two readers never take each other's).
-  bool take_view_snapshot(DeviceSnapshot& out) noexcept { return status_.view_snapshots.take(out); }
+  // Before activate(): the live view's snapshots at their own interval.
   void set_view_interval(std::uint64_t cycles) noexcept { view_interval_ = cycles; }
   // Before activate(): build the snapshot every cycle (the recorder reads it), publishing still at the interval.
   void set_snapshot_every_cycle(bool on) noexcept { snapshot_every_cycle_ = on; }
   // Loop thread: the snapshot built at the newest published cycle (a group's stage gathers its devices'), or
   // of this cycle with set_snapshot_every_cycle.
   [[nodiscard]] const DeviceSnapshot& published_snapshot() const noexcept { return snapshot_; }
-  // Loop thread: the engine input in effect this cycle.
-  // Any thread: emergency stop. The loop puts the device in its safe state at the next cycle (fault
-  // emergency_stop); the session keeps running for the other devices. A stop latches: it cancels every
-  // recovery requested before it, and a stop while the device is already safe is a fault of its own (report,
-  // log, exit code).
-  void request_emergency_stop() noexcept {
-    stop_epoch_.fetch_add(1, std::memory_order_acq_rel);  // first: a recovery asked before this stop is void
-    estop_requests_.fetch_add(1, std::memory_order_acq_rel);
-  }
   // The loop thread, in the group stage (phase (b)): a fault the device's group found (two arms closer than the
   // group's hard minimum). The device enters its safe mode this cycle; ignored when it is there already.
   void raise_group_fault(DeviceFault fault, const CycleTime& cycle, const char* reason) noexcept;
@@ -144,67 +121,8 @@ class DeviceSession {
   // The loop thread, in the group stage: a force on the handle (world, N) from the group this cycle (the arms'
   // repulsion), rendered with the safety supervisor's own.
   void add_group_force(const Eigen::Vector3d& force) noexcept { group_force_ += force; }
-  // Any thread: the server is stopping (SIGINT/SIGTERM): the device goes through its safe mode - damping,
-  // then zero torque - without a fault. at_rest() tells when it is done.
-  void request_safe_stop() noexcept { safe_stop_requested_.store(true, std::memory_order_release); }
-  [[nodiscard]] bool safe_stopping() const noexcept { return safe_stop_requested_.load(std::memory_order_relaxed); }
-  // Any thread: leave the safe mode. Refused when there is no fault or the device never configured; otherwise
-  // the loop recovers once the safe mode has settled (the last torque faded out, damping done): the chain
-  // activates again from the measured state with a soft start. Only a request made after the last stop counts.
-  RuntimeReply request_recovery();
-  // Any thread (the monitor): the next fault or recovery from the device's log, oldest first; false if none.
-  // One reader. The loop counts what did not fit (lost_safety_events).
-  bool take_safety_event(SafetyEvent& out) noexcept { return status_.safety_events.try_pop(out); }
-  [[nodiscard]] std::uint64_t lost_safety_events() const noexcept {
-    return status_.lost_safety_events.load(std::memory_order_relaxed);
-  }
-  // Any thread: the safe mode has reached zero torque (or there is no fault).
-  [[nodiscard]] bool at_rest() const noexcept { return status_.at_rest.load(std::memory_order_acquire); }
-  // Any thread: the newest fault report (the fault and the cycles before it); false if none since the last take.
-  // One reader at a time.
-  bool take_fault_report(FaultReport& out) noexcept { return status_.reports.take(out); }
-  [[nodiscard]] std::uint64_t faults_raised() const noexcept { return status_.faults.load(std::memory_order_relaxed); }
-  [[nodiscard]] std::uint64_t recoveries() const noexcept { return status_.recoveries.load(std::memory_order_relaxed); }
-  // Any thread: counters and gauges of the safety supervisor.
-  [[nodiscard]] std::uint64_t limited_cycles() const noexcept {
-    return status_.limited_cycles.load(std::memory_order_relaxed);
-  }
-  [[nodiscard]] std::uint64_t render_limited_cycles() const noexcept {
-    return status_.render_limited_cycles.load(std::memory_order_relaxed);
-  }
-  [[nodiscard]] double dissipated_j() const noexcept { return status_.dissipated_j.load(std::memory_order_relaxed); }
-  [[nodiscard]] double thermal_load() const noexcept { return status_.thermal_load.load(std::memory_order_relaxed); }
   // Loop thread only (tests): the supervisor.
   [[nodiscard]] const SafetySupervisor& safety() const noexcept { return safety_; }
-  // Any thread: the passivity controller on or off from the next cycle (the safety stage's run-time switch).
-  void request_passivity_control(bool on) noexcept { passivity_request_.store(on ? 1 : 0, std::memory_order_release); }
-  // Any thread: the passivity controller is on (as of the last cycle).
-  [[nodiscard]] bool passivity_control() const noexcept {
-    return status_.passivity_control.load(std::memory_order_acquire);
-  }
-  // Not real-time safe, not the loop thread (device_requests routes here): the plugin of one stage that takes
-  // run-time requests - the device, the running scheme's virtual model, inverse kinematics or controller, or the
-  // model of the device's group (shared with the group's other devices). stage_plugin() looks once and pins what
-  // it saw: the loop may switch schemes while a request is
-  // served, and every scheme's plugins stay configured, so a request acts on the plugin it looked up (its
-  // command, the values of its parameters in effect, a run-time set of a tunable parameter already checked
-  // against the schema - the plugin's tune() may still refuse it), never on a stage that vanished in between.
-  // nullopt: the running scheme has no such stage, or there is no scheme. Requests to one device's plugins are
-  // handled one at a time, and never while service() deactivates a scheme; requests to the group's model one at a
-  // time across the group.
-  enum class Stage : std::uint8_t { device, virtual_model, inverse_kinematics, controller, group_model };
-  struct StagePlugin {
-    Stage stage;
-    std::size_t scheme;  // the scheme's index (unused for the device)
-    const PluginDescriptor* descriptor;
-  };
-  [[nodiscard]] std::optional<StagePlugin> stage_plugin(Stage stage) const;
-  RuntimeReply plugin_request(const StagePlugin& stage, std::string_view name, const std::vector<double>& values);
-  // The values in effect; nullopt when the plugin left in between (a group's model deactivated at the end).
-  [[nodiscard]] std::optional<Parameters> stage_parameters(const StagePlugin& stage);
-  RuntimeReply tune(const StagePlugin& stage, const std::string& name, ParameterValue value);
-  // Before the loop runs (the group stage): the model of the device's group, which its requests reach.
-  void set_group_model(SharedPlugin* model) noexcept { group_model_ = model; }
   // Not real-time safe, not the loop thread: deactivates schemes the loop has left. Call it now and then
   // (the executor's monitor does; a round while a request is served is skipped); deactivate() does it too.
   void service();
@@ -223,14 +141,6 @@ class DeviceSession {
   void hold_before_start(DeviceFault fault, const char* reason) noexcept;
   void leave_chain() noexcept;
   [[nodiscard]] SchemeChain* running_scheme() noexcept { return chain_.schemes.empty() ? nullptr : &schemes_.active(); }
-  [[nodiscard]] const SchemeChain* running_scheme() const noexcept {
-    return chain_.schemes.empty() ? nullptr : &chain_.schemes[schemes_.active_index()];
-  }
-  // f(PluginInstance<T>&) on the pinned stage's plugin (stage_plugin() found it: schemes never lose a stage).
-  template <class F>
-  // f(the stage's PluginRequestTarget) under the request lock; nullopt when the plugin has gone.
-  auto with_stage_plugin(const StagePlugin& stage, F&& f)
-      -> std::optional<std::invoke_result_t<F, const PluginRequestTarget&>>;
   // Phase (a)'s estimate; the chain restarts from the measured state when it (re)activates.
   void estimate(const CycleTime& cycle) noexcept;
   // Phase (c)'s work; plugins may throw despite the contract: caught by run_chain.
@@ -265,33 +175,20 @@ class DeviceSession {
   bool chain_active_ = false;
 
   SchemeSwitcher schemes_;
+  DeviceRequests requests_;  // what the other threads ask of the loop
   DeviceSnapshot snapshot_;
   std::uint64_t snapshot_interval_ = 0;
   std::uint64_t view_interval_ = 0;
   bool snapshot_every_cycle_ = false;
-  // E-stops and recoveries (any thread -> loop). Every stop (an E-stop request, a fault the loop raises)
-  // increments stop_epoch_; a recovery request records the epoch it was made in (+1, 0: none) and is carried
-  // out only while no stop has come since.
-  std::atomic<std::uint64_t> stop_epoch_{0};
-  std::atomic<std::uint64_t> estop_requests_{0};
-  std::uint64_t estops_handled_ = 0;  // loop thread
-  std::atomic<std::uint64_t> recovery_for_epoch_{0};
+  std::uint64_t estops_handled_ = 0;  // loop thread: the E-stop requests seen
   // After a scheme switch or a recovery: the torque the drives held fades out against the chain's commands.
   TorqueBlend blend_;
 
   // Safety.
   SafetySupervisor safety_;
   FaultReport report_;
-  std::atomic<bool> safe_stop_requested_{false};
-  bool stopped_ = false;                    // loop thread: the safe stop has begun
-  std::atomic<int> passivity_request_{-1};  // -1: none, else 0/1
+  bool stopped_ = false;  // loop thread: the safe stop has begun
   std::string disable_error_;
-  // One request to this device's plugins, or service(), at a time (never the loop). The monitor's service()
-  // skips a round while a request runs, and deactivate() does not wait for good on a request thread that is
-  // stuck (a broken invariant parks it: app/invariant_stop) - both with try_lock (a timed lock's clocklock is
-  // invisible to ThreadSanitizer).
-  std::mutex plugin_requests_;
-  SharedPlugin* group_model_ = nullptr;  // the group's model, if the device is in a group that has one
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;
   bool measurement_valid_ = false;
