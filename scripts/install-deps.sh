@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package hapticd needs to build, test, benchmark and plot, and the live view test's
+# Installs every Debian 12 package hapticd needs to build, test, benchmark and plot (chromium, headless: the live
+# view's picture in the docs), and the live view test's
 # client from the npm registry (tests/live_view: @foxglove/ws-protocol and ws, pinned by its package-lock.json).
 # Idempotent: packages already present are not reinstalled, and apt is not touched when nothing is missing.
 # Works as root or through sudo. Nothing else is ever downloaded: the build uses only these packages.
@@ -24,6 +25,7 @@ packages=(
   libfastrtps-dev fastddsgen
   libhdf5-dev python3-h5py
   iproute2
+  chromium
 )
 
 missing=()

@@ -11,7 +11,10 @@ unless an override names a recording (.h5) that an earlier command of the docs w
 A line whose comment says `# makes FILE` made a file the docs show (a figure's or a table's data): it is run for
 real, writing into a temporary folder instead, and what it makes is compared with the committed FILE - numbers
 within a relative 1e-6, text equal, paths of the machine it ran on ignored - so the docs' figures are what
-their commands make today.
+their commands make today. A picture (PNG) cannot come out the same twice (it is of a session running in real
+time): its command must make a PNG of the committed picture's size with something drawn in it. Such a command
+may be a project script run by `node` (tests/live_view/picture.mjs), which finds the programs in BIN_DIR through
+HAPTICD_BIN_DIR; node lines without "# makes" are not run.
 
 Usage: docs_commands_test.py SOURCE_DIR BIN_DIR
 """
@@ -20,6 +23,8 @@ import os
 import pathlib
 import re
 import shlex
+import shutil
+import struct
 import subprocess
 import sys
 import tempfile
@@ -72,15 +77,33 @@ def same_data(made, committed, where=""):
     return [] if made == committed else [f"{where}: {made!r}, committed {committed!r}"]
 
 
+def png_differences(made, committed):
+    """A PNG of the committed one's size whose pixels are not all alike (a page that drew nothing is one colour and
+    compresses to a few kB)."""
+    data, reference = made.read_bytes(), committed.read_bytes()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        return ["not a PNG"]
+    size, committed_size = struct.unpack(">II", data[16:24]), struct.unpack(">II", reference[16:24])
+    if size != committed_size:
+        return [f"{size[0]}x{size[1]} pixels, committed {committed_size[0]}x{committed_size[1]}"]
+    if len(data) < len(reference) // 2:  # the page left unconnected: 19 kB against 69
+        return [f"{len(data)} bytes against the committed {len(reference)}: nothing drawn?"]
+    return []
+
+
 def remake(bin_dir, source, words, target, scratch):
     """Runs the command for real with `target` (a committed file) written into `scratch`; the differences."""
     made = scratch / pathlib.Path(target).name
     args = [str(made) if w == target else w for w in words]
     if str(made) not in args:
         return [f"the command does not write {target}"]
-    run = subprocess.run([str(bin_dir / args[0])] + args[1:], cwd=source, capture_output=True, text=True, timeout=120)
+    program = [shutil.which("node") or "node"] if args[0] == "node" else [str(bin_dir / args[0])]
+    run = subprocess.run(program + args[1:], cwd=source, capture_output=True, text=True, timeout=120,
+                         env=dict(os.environ, HAPTICD_BIN_DIR=str(bin_dir)))
     if run.returncode != 0 or not made.exists():
         return [f"exit {run.returncode}: {(run.stderr or run.stdout).strip()[-400:]}"]
+    if made.suffix == ".png":
+        return png_differences(made, source / target)
     if made.suffix == ".json":
         return same_data(json.loads(made.read_text()), json.loads((source / target).read_text()))
     return [] if made.read_bytes() == (source / target).read_bytes() else ["the file differs"]
@@ -107,6 +130,17 @@ def main():
             while words and re.fullmatch(r"[A-Z_][A-Z0-9_]*=\S*", words[0]):
                 key, value = words.pop(0).split("=", 1)
                 env_vars[key] = value
+            if words and words[0] == "node" and re.fullmatch(r"makes (\S+)", comment):
+                where = f"{path.relative_to(source)}:{number}"
+                target = re.fullmatch(r"makes (\S+)", comment).group(1)
+                differences = remake(bin_dir, source, words, target, scratch)
+                if differences:
+                    failures.append(f"{where}: {target} is not what its command makes now:\n    " +
+                                    "\n    ".join(differences[:10]))
+                else:
+                    remade += 1
+                    print(f"ok {where}: makes {target} as committed")
+                continue
             if not words or words[0] not in PROGRAMS:
                 continue
             if is_synopsis(words):
