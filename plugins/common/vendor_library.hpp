@@ -13,11 +13,11 @@
 namespace hapticd::plugins {
 
 struct VendorLibrarySearch {
-  std::string vendor;               // for messages: "Force Dimension SDK"
-  std::vector<std::string> names;   // file names to try, in order: "libdrd.so.3", "libdrd.so", "libdhd.so"
-  std::string path;                 // the session's: a file or a folder ("" none)
-  std::string environment;          // a variable naming the SDK's folder ("" none)
-  std::vector<std::string> subdirs; // below the variable's folder: "lib", "lib/release/lin-x86_64-gcc"
+  std::string vendor;                // for messages: "Force Dimension SDK"
+  std::vector<std::string> names;    // file names to try, in order: "libdrd.so.3", "libdrd.so", "libdhd.so"
+  std::string path;                  // the session's: a file or a folder ("" none)
+  std::string environment;           // a variable naming the SDK's folder ("" none)
+  std::vector<std::string> subdirs;  // below the variable's folder: "lib", "lib/release/lin-x86_64-gcc"
 };
 
 // Thrown when the library cannot be found or lacks a function: names the vendor, every place tried and why.
