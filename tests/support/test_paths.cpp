@@ -14,7 +14,10 @@ const std::string& fixture_dir() {
   static const std::string dir = HAPTICD_TEST_FIXTURE_DIR;
   return dir;
 }
-
+const std::string& standin_dir() {
+  static const std::string dir = HAPTICD_TEST_STANDIN_DIR;
+  return dir;
+}
 const std::string& bin_dir() {
   static const std::string dir = HAPTICD_BIN_DIR;
   return dir;

@@ -9,6 +9,7 @@ namespace hapticd::test {
 const std::string& source_dir();   // the repository
 const std::string& plugin_dir();   // the plugins of this build
 const std::string& fixture_dir();  // libraries that are deliberately not valid plugins
+const std::string& standin_dir();  // the vendors' SDK stand-ins, one folder per vendor (tests/standins)
 const std::string& bin_dir();      // the programs of this build (hapticctl, the engines)
 
 }  // namespace hapticd::test
