@@ -109,6 +109,16 @@ def remake(bin_dir, source, words, target, scratch):
     return [] if made.read_bytes() == (source / target).read_bytes() else ["the file differs"]
 
 
+def check_remade(bin_dir, source, words, target, scratch, where, failures):
+    """Remakes `target` with its command; 1 when it came out as committed, else 0 with the failure recorded."""
+    differences = remake(bin_dir, source, words, target, scratch)
+    if differences:
+        failures.append(f"{where}: {target} is not what its command makes now:\n    " + "\n    ".join(differences[:10]))
+        return 0
+    print(f"ok {where}: makes {target} as committed")
+    return 1
+
+
 def is_synopsis(args):
     return any(re.search(r"[\[\]|]|\.\.\.", a) or re.fullmatch(r"[A-Z][A-Z0-9_.=]*(\.[a-z0-9]+)?", a)
                for a in args[1:])
@@ -130,16 +140,10 @@ def main():
             while words and re.fullmatch(r"[A-Z_][A-Z0-9_]*=\S*", words[0]):
                 key, value = words.pop(0).split("=", 1)
                 env_vars[key] = value
-            if words and words[0] == "node" and re.fullmatch(r"makes (\S+)", comment):
-                where = f"{path.relative_to(source)}:{number}"
-                target = re.fullmatch(r"makes (\S+)", comment).group(1)
-                differences = remake(bin_dir, source, words, target, scratch)
-                if differences:
-                    failures.append(f"{where}: {target} is not what its command makes now:\n    " +
-                                    "\n    ".join(differences[:10]))
-                else:
-                    remade += 1
-                    print(f"ok {where}: makes {target} as committed")
+            makes = re.fullmatch(r"makes (\S+)", comment)
+            if words and words[0] == "node" and makes:
+                remade += check_remade(bin_dir, source, words, makes.group(1), scratch,
+                                       f"{path.relative_to(source)}:{number}", failures)
                 continue
             if not words or words[0] not in PROGRAMS:
                 continue
@@ -166,15 +170,8 @@ def main():
                     continue
             checked += 1
             print(f"ok {where}: {text}")
-            makes = re.fullmatch(r"makes (\S+)", comment)
             if makes:
-                differences = remake(bin_dir, source, words, makes.group(1), scratch)
-                if differences:
-                    failures.append(f"{where}: {makes.group(1)} is not what its command makes now:\n    " +
-                                    "\n    ".join(differences[:10]))
-                else:
-                    remade += 1
-                    print(f"ok {where}: makes {makes.group(1)} as committed")
+                remade += check_remade(bin_dir, source, words, makes.group(1), scratch, where, failures)
     print(f"{checked} example commands parse, {remade} made their docs' files again, {synopses} synopsis lines "
           f"skipped, {len(failures)} failed")
     for f in failures:
