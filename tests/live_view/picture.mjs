@@ -50,17 +50,16 @@ const chromium = spawn("chromium", ["--headless", "--no-sandbox", "--disable-gpu
   `--remote-debugging-port=${port}`, "--remote-debugging-address=127.0.0.1", "--window-size=1440,480",
   url.replace(/^ws:/, "http:") + "/?url=" + encodeURIComponent(url)], { stdio: "ignore" });
 let status = 0;
-const noChromium = new Promise((_, reject) => chromium.on("error", (e) => reject(new Error(`chromium: ${e.message}`))));
-noChromium.catch(() => {});
+let chromiumError = null;  // chromium missing or not startable: said instead of waiting for a page
+chromium.on("error", (e) => { chromiumError = e; });
 try {
-  await Promise.race([noChromium, sleep(0)]);
   let target;
   for (let i = 0; i < 50 && !target; ++i) {
     await sleep(200);
     try {
       target = (await (await fetch(`http://127.0.0.1:${port}/json`)).json()).find((t) => t.type === "page");
     } catch {}
-    await Promise.race([noChromium, sleep(0)]);
+    if (chromiumError) throw new Error(`chromium: ${chromiumError.message}`);
   }
   if (!target) throw new Error("chromium did not open the page in 10 s");
   await sleep(1000 * waitS);
