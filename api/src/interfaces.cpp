@@ -31,6 +31,7 @@ RuntimeReply RuntimeRequests::handle_request(std::string_view name, const std::v
 bool Device::simulated_truth(SimulatedTruth&) const { return false; }
 Outcome Device::home() { return Outcome::success(); }
 Outcome Device::reset_fault() { return Outcome::success(); }
+Outcome Device::brake(bool) { return Outcome::success(); }
 
 std::string_view to_string(PluginKind kind) noexcept {
   switch (kind) {

@@ -5,6 +5,7 @@
 // All members are fixed-size: copying or filling them never allocates.
 #include <cstdint>
 
+#include "hapticd/handle.hpp"
 #include "hapticd/joint_vector.hpp"
 #include "hapticd/spatial.hpp"
 
@@ -27,6 +28,9 @@ struct DeviceState {
   // The force/torque sensor reached its range this sample (a reading at the range is not a measurement): the
   // server faults the device (sensor_saturation).
   bool sensor_saturated = false;
+  // A handle device's sample (hapticd/handle.hpp; base frame): the plugin fills it, the server the axes in
+  // `joints` from it. Buttons and gripper of any device.
+  HandleState handle;
 };
 
 // What the virtual model asks of the chain. Admittance-type models fill the motion (desired pose, twist and

@@ -30,6 +30,8 @@ struct ChainState {
   // [linear; angular]), frame_jacobian_dot_qd, mass_matrix (+ mass_llt), coriolis_torque, gravity_torque.
   const model::ModelData* data = nullptr;
   int handle_frame = -1;
+  // The handle's pose and twist are known: from the robot model, or reported by a handle device (model null).
+  bool has_handle = false;
   Pose handle_pose;                  // world
   Twist handle_twist;                // world, at the handle point
   Wrench operator_wrench;            // world, at the handle point: the wrench the operator applies TO the handle

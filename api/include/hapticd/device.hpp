@@ -42,6 +42,10 @@ class HAPTICD_API Device : public RuntimeRequests {
   // torque written): clear a latched fault of the drives (a CiA 402 fault reset, a speed monitor's latch) so the
   // chain can run again. An error keeps the device in its safe mode with the reason. The default does nothing.
   virtual Outcome reset_fault();
+  // Real-time safe; the loop: the safe mode has brought the device to rest with zero torque (on = true: engage
+  // the device's brakes, capabilities.brakes), or a recovery is about to run the chain again (false: release
+  // them). The default does nothing.
+  virtual Outcome brake(bool on);
   // Not real-time safe. Zero torque, brakes engaged, drives off. Called after the loop has stopped using the
   // device (also after an enable() that failed).
   virtual void disable() = 0;

@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "hapticd/handle.hpp"
 #include "hapticd/spatial.hpp"
 
 namespace hapticd {
@@ -26,6 +27,10 @@ struct DeviceCapabilities {
 // vectors): the server copies what the loop needs into fixed-size storage.
 struct DeviceDescription {
   std::string model;  // e.g. "vishard3", "test_mass_spring"
+  // Joints (a serial chain the server models from robot_model_file) or the handle (the vendor's SDK does the
+  // kinematics: `handle` says what it offers, and the server sets `joints` to the handle's axes, hapticd/handle.hpp).
+  DeviceInterface interface = DeviceInterface::joints;
+  HandleDescription handle;  // interface == handle
   std::vector<JointDescription> joints;
   std::string handle_frame;      // name of the handle (end-effector) frame in the robot model, if any
   std::string sensor_frame;      // name of the force/torque sensor frame, if any

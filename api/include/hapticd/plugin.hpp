@@ -33,6 +33,10 @@ struct PluginDescriptor {
   const char* version;  // the plugin's own version
   const char* summary;  // one line for listings
   ParameterSchema (*parameter_schema)();
+  // The device interfaces a chain plugin can drive (hapticd/handle.hpp): a plugin class says so with
+  // `static constexpr DeviceInterfaces kDeviceInterfaces`; without it, inverse kinematics and controllers drive
+  // joints, virtual models and group models either. The server refuses a chain that does not fit its device.
+  DeviceInterfaces device_interfaces;
   // Exactly the factory matching kind is set.
   std::unique_ptr<Device> (*create_device)();
   std::unique_ptr<Controller> (*create_controller)();
@@ -55,7 +59,7 @@ constexpr bool realtime_methods_not_noexcept() {
   if constexpr (std::is_base_of_v<Device, T>) {
     return !noexcept(declval<T&>().read(declval<Cycle>(), declval<DeviceState&>())) &&
            !noexcept(declval<T&>().write(declval<Cycle>(), declval<const JointCommand&>())) &&
-           !noexcept(declval<T&>().reset_fault());
+           !noexcept(declval<T&>().reset_fault()) && !noexcept(declval<T&>().brake(true));
   } else if constexpr (std::is_base_of_v<Controller, T>) {
     using In = const ControllerInput&;
     return !noexcept(declval<T&>().activate(declval<In>(), declval<const JointCommand&>())) &&
@@ -91,6 +95,13 @@ PluginDescriptor describe_plugin(const char* name, const char* version, const ch
   d.version = version;
   d.summary = summary;
   d.parameter_schema = &T::parameter_schema;
+  if constexpr (requires { T::kDeviceInterfaces; }) {
+    d.device_interfaces = T::kDeviceInterfaces;
+  } else if constexpr (std::is_base_of_v<Controller, T> || std::is_base_of_v<InverseKinematics, T>) {
+    d.device_interfaces = kJointsOnly;
+  } else {
+    d.device_interfaces = kEitherInterface;
+  }
   if constexpr (std::is_base_of_v<Device, T>) {
     d.kind = PluginKind::device;
     d.create_device = []() -> std::unique_ptr<Device> { return std::make_unique<T>(); };

@@ -120,10 +120,24 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
 }
 
 void VirtualAdmittance::configure(const Parameters& p, const PluginContext& context) {
-  if (context.device == nullptr || context.device->robot_model_file.empty() || !context.device->reports_wrench) {
+  if (context.device != nullptr && context.device->interface == DeviceInterface::handle &&
+      !context.device->reports_wrench) {
+    // Admittance display moves a virtual body with the operator's force; such a device cannot measure it.
+    throw ParameterError("mass_kg", "device '" + context.device_name + "' (" + context.device->model +
+                                        ") is a handle device without a force/torque sensor: the virtual "
+                                        "admittance has no operator force to move with; render in impedance "
+                                        "display (scripted_wrench with display: impedance, an engine's wrench)");
+  }
+  if (context.device == nullptr ||
+      (context.device->robot_model_file.empty() && context.device->interface != DeviceInterface::handle) ||
+      !context.device->reports_wrench) {
     throw ParameterError("mass_kg",
                          "the virtual admittance needs a device with a robot model and a force/torque sensor");
   }
+  configure_environment(p, context);
+}
+
+void VirtualAdmittance::configure_environment(const Parameters& p, const PluginContext& context) {
   apply(tunable_of(p));
   rotation_ = p.boolean("rotation");
   max_velocity_ = p.real("max_velocity_m_s");
@@ -322,7 +336,8 @@ bool VirtualAdmittance::limit_tracking_error(const ChainState& c) noexcept {
 void VirtualAdmittance::tune(const Parameters& parameters) { tunable_inbox_.publish(tunable_of(parameters)); }
 
 Outcome VirtualAdmittance::activate(const VirtualModelInput& current) {
-  if (current.chain.model == nullptr) return Outcome::failure("the virtual admittance needs the device's robot model");
+  if (!current.chain.has_handle)
+    return Outcome::failure("the virtual admittance needs the handle's pose: a robot model or a handle device");
   // Start where the handle is, moving as it moves: no jump in the desired motion.
   position_ = current.chain.handle_pose.position;
   workspace_centre_ = position_;

@@ -34,6 +34,9 @@ class VirtualAdmittance final : public VirtualModel {
   static ParameterSchema parameter_schema();
 
   void configure(const Parameters& parameters, const PluginContext& context) override;
+  // configure() without the check that the device measures the operator's force: the walls, the workspace spring
+  // and the coupling rendered on the measured handle motion (impedance display; the scripted_wrench model).
+  void configure_environment(const Parameters& parameters, const PluginContext& context);
   Outcome activate(const VirtualModelInput& current) override;
   Outcome update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) override;
   // The same with a scripted wrench ([force; torque], world) added to the environment's: a test signal the

@@ -56,7 +56,11 @@ void ScriptedWrenchModel::configure(const Parameters& p, const PluginContext& co
     throw ParameterError(settings.signal == WrenchScript::Signal::steps ? "step_levels" : "signal", e.what());
   }
   admittance_display_ = p.string("display") == "admittance";
-  admittance_.configure(p, context);  // impedance display: its walls
+  if (admittance_display_) {
+    admittance_.configure(p, context);
+  } else {
+    admittance_.configure_environment(p, context);  // impedance display: its walls, on the measured motion
+  }
 }
 
 void ScriptedWrenchModel::tune(const Parameters& parameters) { admittance_.tune(parameters); }

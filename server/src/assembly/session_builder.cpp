@@ -25,6 +25,21 @@ int line_from_origin(const std::string& origin, int fallback) {
   }
 }
 
+// A chain plugin for the other kind of device (a joint controller on a handle, a handle's on joints): the key
+// of the plugin and why.
+void check_interface(PluginKind kind, const PluginConfig& pc, const std::string& file, const PluginHandle& handle,
+                     const PluginContext& context) {
+  if (kind == PluginKind::device || context.device == nullptr ||
+      supports(handle.descriptor->device_interfaces, context.device->interface))
+    return;
+  const bool on_handle = context.device->interface == DeviceInterface::handle;
+  throw ConfigError(file, pc.line, pc.key_path + ".plugin",
+                    "device '" + context.device_name + "' is a " + (on_handle ? "handle" : "joint") + " device (" +
+                        context.device->model + "); " + std::string(to_string(kind)) + " '" + pc.plugin + "' drives " +
+                        (on_handle ? "joints" : "handle devices") + " only" +
+                        (on_handle ? ": a handle device takes its force directly (controller: handle_force)" : ""));
+}
+
 template <class T, class Context>
 PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, const SessionConfig& config,
                                      PluginLoader& loader, const Context& context) {
@@ -35,6 +50,7 @@ PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, co
   } catch (const PluginLoadError& e) {
     throw ConfigError(file, pc.line, pc.key_path + ".plugin", e.what());
   }
+  if constexpr (requires { context.device; }) check_interface(kind, pc, file, handle, context);
   const ParameterSchema schema = handle.descriptor->parameter_schema();
   const std::string parameters_path = pc.key_path + ".parameters";
   const Parameters parameters = read_parameters(pc.parameters, schema, file, parameters_path, pc.line);
@@ -107,6 +123,46 @@ std::shared_ptr<const model::RobotModel> robot_model_of(const DeviceConfig& dc, 
   return robot;
 }
 
+// A handle device (hapticd/handle.hpp): no robot model; its joints are the handle's axes, with velocities it
+// reports.
+void prepare_handle_device(const DeviceConfig& dc, DeviceChain& chain, const std::string& file) {
+  DeviceDescription& d = chain.description;
+  if (!d.robot_model_file.empty())
+    throw ConfigError(file, dc.device.line, dc.device.key_path,
+                      "device '" + dc.name + "' is a handle device and names a robot model; a handle device has none");
+  if (!(d.handle.max_force_n > 0.0) || (d.handle.actuated_torque && !(d.handle.max_torque_nm > 0.0)) ||
+      (d.handle.actuated_gripper && !(d.handle.max_gripper_force_n > 0.0)))
+    throw ConfigError(file, dc.device.line, dc.device.key_path,
+                      "device '" + dc.name + "' is a handle device without force limits for its actuated axes");
+  d.joints = handle_axes(d.handle);
+  d.reports_joint_velocity = true;
+}
+
+// A handle device's safety box is the device's own workspace unless the session gives one.
+void default_handle_workspace(DeviceChain& chain) {
+  const DeviceDescription& d = chain.description;
+  if (d.interface != DeviceInterface::handle) return;
+  SafetySettings& safety = chain.safety;
+  bool box = true;
+  for (std::size_t i = 0; i < 3; ++i) box = box && safety.workspace_min_m[i] < safety.workspace_max_m[i];
+  if (!box) {
+    // The device's box, in the world: the box around its corners turned by the base pose.
+    const Eigen::Isometry3d base = to_isometry(d.base_pose);
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = Eigen::Vector3d::Constant(-1e9);
+    for (int c = 0; c < 8; ++c) {
+      Eigen::Vector3d corner;
+      for (int i = 0; i < 3; ++i) corner[i] = (c >> i) & 1 ? d.handle.workspace_max[i] : d.handle.workspace_min[i];
+      const Eigen::Vector3d w = base * corner;
+      lo = lo.cwiseMin(w);
+      hi = hi.cwiseMax(w);
+    }
+    for (std::size_t i = 0; i < 3; ++i) {
+      safety.workspace_min_m[i] = lo[static_cast<int>(i)];
+      safety.workspace_max_m[i] = hi[static_cast<int>(i)];
+    }
+  }
+}
+
 }  // namespace
 
 std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) noexcept {
@@ -141,12 +197,17 @@ std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& confi
     }
     chain.description = chain.device->description();
     chain.description.base_pose = dc.base_pose;
+    if (chain.description.interface == DeviceInterface::handle) prepare_handle_device(dc, chain, config.file.string());
     context.device = &chain.description;
     chain.robot_model = robot_model_of(dc, chain.description, config.file.string());
     context.robot_model = chain.robot_model.get();
     const auto build_scheme = [&](const std::string& name, const std::optional<PluginConfig>& virtual_model,
                                   const std::optional<PluginConfig>& inverse_kinematics,
                                   const PluginConfig& controller) {
+      if (inverse_kinematics && chain.description.interface == DeviceInterface::handle)
+        throw ConfigError(config.file.string(), inverse_kinematics->line, inverse_kinematics->key_path,
+                          "device '" + dc.name + "' is a handle device (" + chain.description.model +
+                              "): its kinematics are the vendor's; inverse kinematics needs joints");
       SchemeChain scheme;
       scheme.name = name;
       if (virtual_model)
@@ -174,6 +235,7 @@ std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& confi
     chain.engine_fade_s = dc.engine_fade_s;
     chain.engine_ramp_in_s = dc.engine_ramp_in_s;
     chain.safety = dc.safety;
+    default_handle_workspace(chain);
     chain.period_s = 1.0 / config.server.rate_hz;
 
     try {

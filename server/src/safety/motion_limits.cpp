@@ -6,8 +6,11 @@
 
 namespace hapticd::server {
 
-void MotionLimits::configure(const SafetySettings& settings, const JointVector& velocity_max) {
+void MotionLimits::configure(const SafetySettings& settings, const JointVector& velocity_max, bool handle_axes,
+                             const Eigen::Matrix3d& base_rotation) {
   s_ = settings;
+  handle_axes_ = handle_axes;
+  base_rotation_ = base_rotation;
   damping_from_ = velocity_max * settings.joint_damping_from;
   fault_at_ = velocity_max * settings.joint_fault_at;
   for (int i = 0; i < 3; ++i) {
@@ -19,7 +22,11 @@ void MotionLimits::configure(const SafetySettings& settings, const JointVector& 
 
 void MotionLimits::add_handle_force(const ChainState& chain, const Eigen::Vector3d& force,
                                     JointVector& torque) const noexcept {
-  torque.noalias() += chain.data->frame_jacobian.topRows<3>().transpose() * force;
+  if (handle_axes_) {
+    torque.head<3>().noalias() += base_rotation_.transpose() * force;
+  } else {
+    torque.noalias() += chain.data->frame_jacobian.topRows<3>().transpose() * force;
+  }
 }
 
 DeviceFault MotionLimits::check(const JointVector& qd, const ChainState& chain,
@@ -31,7 +38,7 @@ DeviceFault MotionLimits::check(const JointVector& qd, const ChainState& chain,
     if (speed > fault_at_[i]) return DeviceFault::joint_velocity;
     engaged_ = engaged_ || speed > damping_from_[i];
   }
-  if (chain.data == nullptr) return DeviceFault::none;  // no robot model: joint limits only
+  if (!chain.has_handle) return DeviceFault::none;  // no robot model, no handle: joint limits only
 
   const Eigen::Vector3d& v = chain.handle_twist.linear;
   const double speed = v.norm();
@@ -71,7 +78,8 @@ void MotionLimits::apply(const JointVector& qd, const ChainState& chain, const E
     if (speed > damping_from_[i])
       torque[i] -= s_.joint_damping_gain * (speed - damping_from_[i]) * std::copysign(1.0, qd[i]);
   }
-  if (chain.data != nullptr && !force_taken && !handle_force.isZero()) add_handle_force(chain, handle_force, torque);
+  if ((chain.data != nullptr || handle_axes_) && !force_taken && !handle_force.isZero())
+    add_handle_force(chain, handle_force, torque);
 }
 
 }  // namespace hapticd::server

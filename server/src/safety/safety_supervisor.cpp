@@ -20,7 +20,8 @@ void SafetySupervisor::configure(const SafetySettings& settings, const DeviceDes
     velocity_max[i] = j.velocity_max;
   }
   thermal_.configure(peak_, continuous_, settings.thermal_time_constant_s, settings.thermal_derate_from, period_s);
-  motion_.configure(settings, velocity_max);
+  motion_.configure(settings, velocity_max, description.interface == DeviceInterface::handle,
+                    to_isometry(description.base_pose).linear());
   guard_.configure(period_s,
                    RenderLimits{settings.max_force_n, settings.max_torque_nm, settings.max_force_rate_n_per_s,
                                 settings.max_torque_rate_nm_per_s},

@@ -12,7 +12,11 @@ namespace hapticd::server {
 
 ChainStateEstimator::ChainStateEstimator(const DeviceDescription& description,
                                          std::shared_ptr<const model::RobotModel> robot, double period_s)
-    : measures_velocity_(description.reports_joint_velocity), robot_(std::move(robot)) {
+    : measures_velocity_(description.reports_joint_velocity),
+      handle_device_(description.interface == DeviceInterface::handle),
+      handle_(description.handle),
+      base_(to_isometry(description.base_pose)),
+      robot_(std::move(robot)) {
   differentiator_.configure(period_s, kVelocityFilterHz);
   if (robot_ == nullptr) return;
   model_data_ = std::make_unique<model::ModelData>(*robot_);
@@ -26,6 +30,19 @@ ChainStateEstimator::ChainStateEstimator(const DeviceDescription& description,
 void ChainStateEstimator::estimate(DeviceState& measured, std::int64_t time_ns, std::int64_t period_ns,
                                    bool restart) noexcept {
   ChainState& c = state_;
+  if (handle_device_) {
+    // The axes from the handle (base frame); the handle in the world for the chain.
+    const HandleState& h = measured.handle;
+    handle_to_axes(handle_, h, measured.joints.position, measured.joints.velocity);
+    c.handle_pose.position = base_ * h.pose.position;
+    c.handle_pose.orientation = Eigen::Quaterniond(base_.linear()) * h.pose.orientation.normalized();
+    c.handle_twist.linear = base_.linear() * h.twist.linear;
+    c.handle_twist.angular = base_.linear() * h.twist.angular;
+    c.has_handle = true;
+    differentiated_ns_ = time_ns;
+    ready_ = true;
+    return;
+  }
   JointVector& qd = measured.joints.velocity;  // a device that measures velocity: its measurement stays
   if (measures_velocity_) {
     // nothing to estimate
@@ -47,6 +64,7 @@ void ChainStateEstimator::estimate(DeviceState& measured, std::int64_t time_ns, 
   const model::Vector6d twist = d.frame_jacobian * qd;
   c.handle_twist.linear = twist.head<3>();
   c.handle_twist.angular = twist.tail<3>();
+  c.has_handle = true;
   if (sensor_frame_ >= 0) {
     // The sensor's wrench, turned into the world, less the weight of what the sensor carries (the model's
     // links beyond the sensor frame: handle, gimbal), moved to the handle point. The carried mass's inertial

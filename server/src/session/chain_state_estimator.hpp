@@ -4,7 +4,8 @@
 // chain sees) (the device's own measurement, or
 // filtered encoder differences over the time that really passed) and, when the device names a robot model, the
 // model terms of the cycle (forward kinematics, Jacobian, mass matrix, Coriolis and gravity terms), the handle's
-// pose and twist, and the operator's wrench from the force/torque sensor moved to the handle.
+// pose and twist, and the operator's wrench from the force/torque sensor moved to the handle. A handle device
+// (hapticd/handle.hpp) has no model: its axes are filled from the handle it reports, turned into the world.
 #include <cstdint>
 #include <memory>
 
@@ -45,6 +46,9 @@ class ChainStateEstimator {
 
  private:
   bool measures_velocity_;
+  bool handle_device_;
+  HandleDescription handle_;
+  Eigen::Isometry3d base_;
   std::shared_ptr<const model::RobotModel> robot_;
   std::unique_ptr<model::ModelData> model_data_;
   int sensor_frame_ = -1;

@@ -343,6 +343,14 @@ void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
   } catch (...) {
   }
   last_written_ = command_.torque_nm;
+  if (safety_.at_rest() && !braked_) {
+    // At rest with zero torque: the device's brakes hold it (a handle device's, a joint device's holding brakes);
+    // a device that cannot brake now (unplugged) is asked again next cycle.
+    try {
+      braked_ = chain_.device->brake(true).ok();
+    } catch (...) {
+    }
+  }
   recover_if_requested(cycle);
 }
 
@@ -366,6 +374,19 @@ void DeviceSession::recover_if_requested(const CycleTime& cycle) noexcept {
     status_.fault_reason_.store(reason_or_null(reset.reason), std::memory_order_relaxed);
     status_.refused_recoveries_.fetch_add(1, std::memory_order_relaxed);
     return;
+  }
+  if (braked_) {
+    Outcome released = Outcome::failure("brake(false) threw an exception");
+    try {
+      released = chain_.device->brake(false);
+    } catch (...) {
+    }
+    if (!released.ok()) {
+      status_.fault_reason_.store(reason_or_null(released.reason), std::memory_order_relaxed);
+      status_.refused_recoveries_.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    braked_ = false;
   }
   status_.fault_reason_.store(nullptr, std::memory_order_relaxed);
   chain_active_ = false;  // the next cycle activates the chain from the measured state, with a soft start

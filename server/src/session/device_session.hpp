@@ -188,6 +188,7 @@ class DeviceSession {
   SafetySupervisor safety_;
   FaultReport report_;
   bool stopped_ = false;  // loop thread: the safe stop has begun
+  bool braked_ = false;   // loop thread: brake(true) was called at rest in the safe mode
   std::string disable_error_;
   // This cycle (phase (a) -> (c) -> (d)): the safe-mode step instead of the chain; the measurement can be trusted.
   bool safe_path_ = false;

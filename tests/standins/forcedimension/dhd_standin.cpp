@@ -7,7 +7,8 @@
 // Behind the functions: up to 4 devices, each a handle with mass and damping in a box-shaped workspace with stiff
 // walls, a simulated hand pushing it with a constant force, buttons and a gripper; and a control interface for the
 // tests (standin_dhd_*): the devices (from the variable HAPTICD_DHD_STANDIN, "omega.6:10001,omega.7:10002", or
-// standin_dhd_setup), a fixed physics step (lockstep) or the wall clock, faults on cue (unplugged, one failing
+// standin_dhd_setup), a fixed physics step (lockstep: standin_dhd_set_step or HAPTICD_DHD_STANDIN_STEP) or the
+// wall clock, faults on cue (unplugged, one failing
 // force call, uncalibrated), and a log of the lifecycle calls.
 #include <algorithm>
 #include <array>
@@ -110,6 +111,8 @@ void setup_from(const char* spec) {
   }
   set_up = true;
   current = -1;
+  // A lockstep run of the server: each force call advances the physics by this much (seconds).
+  if (const char* step = std::getenv("HAPTICD_DHD_STANDIN_STEP"); step != nullptr) fixed_step_s = std::atof(step);
 }
 
 // The device an ID names (-1: the default), or nullptr with the error set.
@@ -358,9 +361,9 @@ STANDIN_API int drdStop(bool /*keep_forces*/, char id) {
 
 STANDIN_API void standin_dhd_setup(const char* spec) {
   std::lock_guard lock(mutex);
+  fixed_step_s = 0.0;
   setup_from(spec);
   call_log.clear();
-  fixed_step_s = 0.0;
   last_error = kNoError;
 }
 STANDIN_API void standin_dhd_set_step(double seconds) {

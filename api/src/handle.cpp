@@ -1,0 +1,45 @@
+#include "hapticd/handle.hpp"
+
+#include <Eigen/Geometry>
+
+#include "hapticd/device_description.hpp"
+
+namespace hapticd {
+
+const char* to_string(DeviceInterface i) noexcept { return i == DeviceInterface::handle ? "handle" : "joints"; }
+
+std::vector<JointDescription> handle_axes(const HandleDescription& h) {
+  std::vector<JointDescription> axes;
+  const double continuous = h.continuous_force_n > 0.0 ? h.continuous_force_n : h.max_force_n;
+  const char* names[] = {"x", "y", "z"};
+  for (int i = 0; i < 3; ++i)
+    axes.push_back({names[i], h.workspace_min[i], h.workspace_max[i], h.max_speed_m_s, h.max_force_n, continuous});
+  if (h.actuated_torque) {
+    const char* rotation[] = {"rx", "ry", "rz"};
+    for (const char* n : rotation) axes.push_back({n, -1e9, 1e9, h.max_angular_speed_rad_s, h.max_torque_nm, 0.0});
+  }
+  if (h.actuated_gripper) axes.push_back({"gripper", -1e9, 1e9, 1e9, h.max_gripper_force_n, 0.0});
+  return axes;
+}
+
+void handle_to_axes(const HandleDescription& h, const HandleState& s, JointVector& position,
+                    JointVector& velocity) noexcept {
+  const int n = h.axes();
+  position.resize(n);
+  velocity.resize(n);
+  position.head<3>() = s.pose.position;
+  velocity.head<3>() = s.twist.linear;
+  int next = 3;
+  if (h.actuated_torque) {
+    const Eigen::AngleAxisd r(s.pose.orientation.normalized());
+    position.segment<3>(next) = r.angle() * r.axis();
+    velocity.segment<3>(next) = s.twist.angular;
+    next += 3;
+  }
+  if (h.actuated_gripper) {
+    position[next] = s.gripper;
+    velocity[next] = s.gripper_rate;
+  }
+}
+
+}  // namespace hapticd

@@ -1,0 +1,231 @@
+// The forcedimension plugin and the handle-device chain, against the project's stand-in for Force Dimension's SDK
+// (tests/standins/forcedimension), in lockstep: the stand-in's handle advances one loop period per force call, a
+// simulated hand pushes it. The plugin loads the stand-in by path, as it would load the vendor's libdrd.so; the
+// test loads the same file to set the scene, so both see the same devices.
+#include <dlfcn.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "config/config_error.hpp"
+#include "hapticd/server/session.hpp"
+#include "hapticd/testing/allocation_guard.hpp"
+#include "support/test_paths.hpp"
+#include "support/test_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+// The stand-in's controls (its test functions, not the vendor's).
+struct StandIn {
+  void* handle = nullptr;
+  void (*setup)(const char*) = nullptr;
+  void (*set_step)(double) = nullptr;
+  bool (*fault)(int, const char*) = nullptr;
+  bool (*hand)(int, double, double, double, unsigned) = nullptr;
+  bool (*force)(int, double*, double*, double*) = nullptr;
+  const char* (*call_log)() = nullptr;
+
+  static std::string path() { return test::standin_dir() + "/forcedimension/libdrd.so"; }
+  StandIn() {
+    handle = dlopen(path().c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (handle == nullptr) return;
+    setup = reinterpret_cast<decltype(setup)>(dlsym(handle, "standin_dhd_setup"));
+    set_step = reinterpret_cast<decltype(set_step)>(dlsym(handle, "standin_dhd_set_step"));
+    fault = reinterpret_cast<decltype(fault)>(dlsym(handle, "standin_dhd_fault"));
+    hand = reinterpret_cast<decltype(hand)>(dlsym(handle, "standin_dhd_hand"));
+    force = reinterpret_cast<decltype(force)>(dlsym(handle, "standin_dhd_force"));
+    call_log = reinterpret_cast<decltype(call_log)>(dlsym(handle, "standin_dhd_call_log"));
+  }
+  ~StandIn() {
+    if (handle != nullptr) dlclose(handle);
+  }
+  StandIn(const StandIn&) = delete;
+  StandIn& operator=(const StandIn&) = delete;
+  [[nodiscard]] Eigen::Vector3d written(int index) const {
+    Eigen::Vector3d f;
+    force(index, &f.x(), &f.y(), &f.z());
+    return f;
+  }
+};
+
+class ForceDimension : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_NE(standin_.handle, nullptr) << dlerror();
+    standin_.setup("omega.6:10001,omega.7:10002");
+    standin_.set_step(0.0005);  // one loop period per force call: lockstep
+  }
+
+  // A lockstep session of one device entry per `devices` text (each "- name: ..." with its chain).
+  static std::string session(const std::string& devices) {
+    return "server: {rate_hz: 2000, clock: lockstep, seed: 3}\ndevices:\n" + devices;
+  }
+  static std::string omega(const std::string& name, const std::string& device_parameters, const std::string& chain) {
+    return "  - name: " + name +
+           "\n    device:\n      plugin: forcedimension\n      parameters: {sdk_path: " + StandIn::path() +
+           (device_parameters.empty() ? "" : ", " + device_parameters) + "}\n" + chain;
+  }
+  // Impedance display of a wall 5 mm ahead of the start along +x (its free side -x), 2000 N/m.
+  static std::string wall_chain() {
+    return "    virtual_model:\n      plugin: scripted_wrench\n"
+           "      parameters: {display: impedance, force_n: [0, 0, 0], walls: [0.005, 0, 0, -1, 0, 0],\n"
+           "                   wall_stiffness_n_per_m: 2000, wall_damping_n_s_per_m: 5}\n"
+           "    controller: {plugin: handle_force}\n";
+  }
+
+  StandIn standin_;
+};
+
+TEST_F(ForceDimension, AWallInImpedanceDisplayHoldsTheHandAndTheButtonsArrive) {
+  Session s = test::build_test_session(session(omega("left", "index: 0", wall_chain())));
+  standin_.hand(0, 2.0, 0.0, 0.0, 0x1);  // the hand pushes 2 N along +x, its button held
+  s.step(4000);                          // 2 s
+  const DeviceView v = s.device("left");
+  ASSERT_EQ(v.fault, "");
+  // The wall at 5 mm balances the 2 N push: 1 mm deep at 2000 N/m, still (the handle's own damping, the wall's).
+  EXPECT_NEAR(v.handle_pose.position.x(), 0.006, 3e-4);
+  EXPECT_NEAR(standin_.written(0).x(), -2.0, 0.05);
+  EXPECT_LT(v.handle_twist.linear.norm(), 1e-3);
+  // A handle device's axes are the handle's: x, y, z of an omega.6 (its orientation sensed, not actuated).
+  ASSERT_EQ(v.state.joints.position.size(), 3);
+  EXPECT_DOUBLE_EQ(v.state.joints.position.x(), v.state.handle.pose.position.x());
+  EXPECT_DOUBLE_EQ(v.command.torque_nm.x(), standin_.written(0).x());
+  EXPECT_EQ(v.state.handle.buttons, 0x1u);
+}
+
+TEST_F(ForceDimension, TwoDevicesOpenBySerialNumberAndTheGripperIsAnAxis) {
+  Session s = test::build_test_session(
+      session(omega("left", "serial: 10001", wall_chain()) + omega("right", "serial: 10002", wall_chain())));
+  standin_.hand(1, 2.0, 0.0, 0.0, 0);
+  s.step(2000);
+  EXPECT_EQ(s.device("left").fault, "");
+  const DeviceView right = s.device("right");
+  EXPECT_EQ(right.fault, "");
+  EXPECT_EQ(right.state.joints.position.size(), 4);               // x, y, z, gripper (omega.7)
+  EXPECT_NEAR(right.state.joints.position[3], 0.3, 1e-12);        // the stand-in's gripper opening
+  EXPECT_GT(right.handle_pose.position.x(), 0.005);               // the one pushed is at its wall
+  EXPECT_LT(s.device("left").handle_pose.position.norm(), 1e-9);  // the other did not move
+}
+
+TEST_F(ForceDimension, ChainStagesThatNeedJointsAreConfigErrorsNamingTheirKey) {
+  const std::string ik = "    inverse_kinematics: {plugin: newton_ik}\n    controller: {plugin: handle_force}\n";
+  try {
+    (void)test::build_test_session(session(omega("left", "", ik)));
+    FAIL() << "inverse kinematics on a handle device was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("inverse_kinematics"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("handle device"), std::string::npos) << e.what();
+  }
+  const std::string joint_controller = "    controller: {plugin: impedance}\n";
+  try {
+    (void)test::build_test_session(session(omega("left", "", joint_controller)));
+    FAIL() << "a joint controller on a handle device was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("controller.plugin"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("handle_force"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(ForceDimension, AnUncalibratedDeviceIsRefusedUnlessTheSessionAsksToCalibrateIt) {
+  standin_.fault(0, "uncalibrated");
+  try {
+    (void)test::build_test_session(session(omega("left", "", wall_chain())));
+    FAIL() << "an uncalibrated device was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("not calibrated"), std::string::npos) << e.what();
+  }
+  Session s = test::build_test_session(session(omega("left", "calibrate: true", wall_chain())));
+  s.step(10);
+  EXPECT_EQ(s.device("left").fault, "");
+  EXPECT_NE(std::string(standin_.call_log()).find("drdAutoInit(0)"), std::string::npos) << standin_.call_log();
+}
+
+TEST_F(ForceDimension, AnUnpluggedDeviceFaultsWithTheVendorsTextAndIsBrakedAtRest) {
+  Session s = test::build_test_session(session(omega("left", "", wall_chain())));
+  s.step(1000);
+  standin_.fault(0, "unplug");
+  s.step(10);
+  const DeviceView v = s.device("left");
+  EXPECT_NE(v.fault.find("communication error"), std::string::npos) << v.fault;  // the SDK's own words
+  standin_.fault(0, "replug");
+  s.step(2000);  // the safe mode's damping phase ends: at rest, the brakes engage
+  EXPECT_TRUE(s.device("left").at_rest);
+  const std::string log = standin_.call_log();
+  EXPECT_NE(log.find("dhdSetBrakes(on)"), std::string::npos) << log;
+}
+
+TEST_F(ForceDimension, AnEmergencyStopZeroesTheForceBrakesAndRecoversOnRequest) {
+  Session s = test::build_test_session(session(omega("left", "", wall_chain())));
+  standin_.hand(0, 2.0, 0.0, 0.0, 0);
+  s.step(2000);
+  ASSERT_NEAR(standin_.written(0).x(), -2.0, 0.1);
+  ASSERT_TRUE(s.request("left", {DeviceRequest::Kind::emergency_stop, "", {}}).accepted);
+  standin_.hand(0, 0.0, 0.0, 0.0, 0);
+  s.step(2000);
+  EXPECT_EQ(standin_.written(0).norm(), 0.0);
+  EXPECT_TRUE(s.device("left").at_rest);
+  std::string log = standin_.call_log();
+  EXPECT_NE(log.find("dhdSetBrakes(on)"), std::string::npos) << log;
+  ASSERT_TRUE(s.request("left", {DeviceRequest::Kind::recover, "", {}}).accepted);
+  s.step(100);
+  EXPECT_EQ(s.device("left").fault, "");
+  log = standin_.call_log();
+  EXPECT_NE(log.rfind("dhdSetBrakes(off)"), std::string::npos);
+  EXPECT_GT(log.rfind("dhdSetBrakes(off)"), log.rfind("dhdSetBrakes(on)")) << log;  // released to run again
+  // Disabled at the end: forces off, brakes on.
+}
+
+TEST_F(ForceDimension, TheSafetyWorkspaceIsTheDevicesOwnAndPushesBack) {
+  // No wall of the model: the hand pushes the handle towards the end of the omega's box (x 55 mm); the safety
+  // layer's walls (3000 N/m) take it from there.
+  const std::string free_space = "    controller: {plugin: handle_force}\n";
+  Session s = test::build_test_session(
+      session(omega("left", "", free_space) + "    safety: {speed_damping_from_m_s: 0.2, max_speed_m_s: 3}\n"));
+  standin_.hand(0, 3.0, 0.0, 0.0, 0);
+  s.step(6000);
+  const DeviceView v = s.device("left");
+  EXPECT_EQ(v.fault, "");
+  EXPECT_NEAR(v.handle_pose.position.x(), 0.055 + 3.0 / 3000.0, 3e-4);
+  EXPECT_NEAR(standin_.written(0).x(), -3.0, 0.1);
+}
+
+TEST_F(ForceDimension, AMotionSourceRunsThroughATaskSpacePositionLoop) {
+  // An admittance-type model (the desired motion: a 10 mm step along x after 0.5 s) on a device that takes forces:
+  // the controller's position loop (3000 N/m, 20 N s/m) tracks it.
+  const std::string trajectory =
+      "    virtual_model:\n      plugin: trajectory\n"
+      "      parameters: {path: step, path_m: [0.01, 0, 0], path_start_s: 0.5}\n"
+      "    controller: {plugin: handle_force, parameters: {stiffness_n_per_m: 3000, damping_n_s_per_m: 20}}\n";
+  Session s = test::build_test_session(session(omega("left", "", trajectory)));
+  s.step(4000);
+  EXPECT_EQ(s.device("left").fault, "");
+  EXPECT_NEAR(s.device("left").handle_pose.position.x(), 0.01, 1e-4);
+  standin_.hand(0, 1.0, 0.0, 0.0, 0);  // a hand against the loop: held 1 N / 3000 N/m off
+  s.step(4000);
+  const DeviceView v = s.device("left");
+  EXPECT_EQ(v.fault, "");
+  EXPECT_NEAR(v.handle_pose.position.x(), 0.01 + 1.0 / 3000.0, 5e-5);
+}
+
+TEST_F(ForceDimension, AdmittanceDisplayWithoutAForceSensorIsAConfigErrorSayingWhy) {
+  const std::string admittance =
+      "    virtual_model: {plugin: admittance, parameters: {mass_kg: [1, 1, 1]}}\n"
+      "    controller: {plugin: handle_force}\n";
+  try {
+    (void)test::build_test_session(session(omega("left", "", admittance)));
+    FAIL() << "admittance display without an operator force was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("virtual_model.parameters.mass_kg"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no operator force"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(ForceDimension, TheCycleAllocatesNothing) {
+  Session s = test::build_test_session(session(omega("left", "", wall_chain())));
+  standin_.hand(0, 2.0, 0.0, 0.0, 0);
+  EXPECT_EQ(test::allocations_over_cycles(test::device_of(s), 2000), 0u);
+}
+
+}  // namespace
+}  // namespace hapticd::server
