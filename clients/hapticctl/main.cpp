@@ -48,6 +48,8 @@ void print_state(const hapticd::client::DeviceState& s) {
       s.pose.position[0], s.pose.position[1], s.pose.position[2], s.operator_wrench.force[0],
       s.operator_wrench.force[1], s.operator_wrench.force[2], s.environment_wrench.force[0],
       s.environment_wrench.force[1], s.environment_wrench.force[2], flags_text(s.flags));
+  // A handle device's buttons and gripper (docs/devices.md), when there are any to show.
+  if (s.buttons != 0 || s.gripper != 0.0) fmt::print("  buttons {:#x} gripper {:.3f} rad\n", s.buttons, s.gripper);
 }
 
 // "vishard3 event mode: safe", and the message when it says more than the code.

@@ -60,6 +60,8 @@ void StateRecording::add(const client::DeviceState& s) {
   std::fill(r.torque_measured, r.torque_measured + r.dof, kNaN);
   put(r.handle_pose, s.pose);
   put(r.handle_twist, s.twist.linear, s.twist.angular);
+  r.buttons = s.buttons;
+  r.gripper = s.gripper;
   put(r.operator_wrench, s.operator_wrench.force, s.operator_wrench.torque);
   put(r.environment_wrench, s.environment_wrench.force, s.environment_wrench.torque);
   std::fill(std::begin(r.sensor_wrench), std::end(r.sensor_wrench), kNaN);

@@ -108,6 +108,11 @@ void bind_types(py::module_& m) {
       .def_readonly("schemes", &DeviceInfo::schemes)
       .def_readonly("command_deadline_s", &DeviceInfo::command_deadline_s)
       .def_readonly("command_fade_s", &DeviceInfo::command_fade_s)
+      .def_readonly("handle_device", &DeviceInfo::handle_device,
+                    "a handle device: its joints are the handle's axes (docs/devices.md)")
+      .def_readonly("handle_dof", &DeviceInfo::handle_dof, "3 or 6 (orientation sensed); 0 for a joint device")
+      .def_readonly("has_gripper", &DeviceInfo::has_gripper)
+      .def_readonly("button_count", &DeviceInfo::button_count)
       .def("__repr__", [](const DeviceInfo& d) {
         return "DeviceInfo('" + d.device + "', " + d.device_plugin + ", " + std::to_string(d.dof) + " joints)";
       });
@@ -130,6 +135,8 @@ void bind_types(py::module_& m) {
           "velocity", [](const DeviceState& s) { return joint_array(s.velocity); }, "joints")
       .def_property_readonly(
           "torque", [](const DeviceState& s) { return joint_array(s.torque); }, "commanded")
+      .def_readonly("buttons", &DeviceState::buttons, "the handle's buttons, bit i: button i pressed")
+      .def_readonly("gripper", &DeviceState::gripper, "the gripper's opening (rad), 0 without one")
       .def_readonly("mode", &DeviceState::mode)
       .def_readonly("flags", &DeviceState::flags)
       .def_property_readonly("flag_names", [](const DeviceState& s) { return flag_names(s.flags); })

@@ -117,6 +117,11 @@ void bind_views(py::module_& m) {
       .def_readonly("handle_pose", &DeviceView::handle_pose)
       .def_readonly("handle_twist", &DeviceView::handle_twist)
       .def_readonly("operator_wrench", &DeviceView::operator_wrench)
+      .def_property_readonly(
+          "buttons", [](const DeviceView& v) { return v.state.handle.buttons; },
+          "the handle's buttons, bit i: button i pressed")
+      .def_property_readonly(
+          "gripper", [](const DeviceView& v) { return v.state.handle.gripper; }, "the gripper's opening (rad)")
       .def_property_readonly("target_pose", [](const DeviceView& v) { return v.task.pose; })
       .def_property_readonly("target_twist", [](const DeviceView& v) { return v.task.twist; })
       .def_property_readonly("target_wrench", [](const DeviceView& v) { return v.task.wrench; })

@@ -1,4 +1,6 @@
 """The in-process session API from Python: lockstep runs, NumPy views, engine input, requests, errors."""
+import os
+
 import numpy as np
 import pytest
 
@@ -117,3 +119,20 @@ def test_bad_values_raise_value_errors_and_a_stopped_session_cannot_step():
     s.stop()
     with pytest.raises(hapticd.SessionError):
         s.step(1)
+
+
+@pytest.mark.skipif("HAPTICD_STANDIN_DIR" not in os.environ, reason="the vendors' SDK stand-ins are not built")
+def test_a_handle_device_reports_its_buttons_and_gripper(monkeypatch):
+    # A Force Dimension omega.7 on the project's stand-in of the vendor's SDK (docs/devices.md), found through the
+    # vendor's own variable; its buttons held (mask 5), its gripper at the stand-in's 0.3 rad.
+    monkeypatch.setenv("FORCEDIM_SDK", os.path.join(os.environ["HAPTICD_STANDIN_DIR"], "forcedimension"))
+    monkeypatch.setenv("HAPTICD_DHD_STANDIN", "omega.7:10002")
+    monkeypatch.setenv("HAPTICD_DHD_STANDIN_BUTTONS", "5")
+    monkeypatch.setenv("HAPTICD_DHD_STANDIN_STEP", "0.0005")
+    with hapticd.Session.from_file(session_path("forcedimension", "omega-wall.yaml")) as s:
+        s.step(100)
+        v = s.device("omega")
+        assert v.fault == ""
+        assert v.buttons == 5
+        assert v.gripper == pytest.approx(0.3)
+        assert v.joint_position.shape == (4,)  # x, y, z and the gripper: a handle device's axes

@@ -62,6 +62,8 @@ const std::vector<Column>& columns() {
        HAPTICD_JOINTS(torque_measured)},
       {{"handle/pose", "f64", 7, "m, quaternion", "handle pose, world: x y z qw qx qy qz"}, HAPTICD_ARRAY(handle_pose)},
       {{"handle/twist", "f64", 6, "m/s, rad/s", "handle twist, world: vx vy vz wx wy wz"}, HAPTICD_ARRAY(handle_twist)},
+      {{"handle/buttons", "u32", 1, "", "the handle's buttons, bit i: button i pressed"}, HAPTICD_SCALAR(buttons)},
+      {{"handle/gripper", "f64", 1, "rad", "the gripper's opening (0 without one)"}, HAPTICD_SCALAR(gripper)},
       {{"wrench/operator", "f64", 6, "N, N m", "the operator's wrench on the handle, world"},
        HAPTICD_ARRAY(operator_wrench)},
       {{"wrench/environment", "f64", 6, "N, N m", "the wrench the virtual model rendered, world"},
@@ -365,6 +367,7 @@ RecordingFile::RecordingFile(const std::filesystem::path& file, const RecordingH
     numbers_attribute(g.get(), "torque_peak", peak, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE);
     numbers_attribute(g.get(), "torque_continuous", continuous, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE);
     string_attribute(g.get(), "handle_frame", desc.handle_frame);
+    string_attribute(g.get(), "interface", to_string(desc.interface));
     string_attribute(g.get(), "sensor_frame", desc.sensor_frame);
     // Absolute: a relative path is the server's working directory's, which a reader does not know.
     string_attribute(g.get(), "robot_model_file",

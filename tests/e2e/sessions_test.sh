@@ -2,9 +2,13 @@
 # Every shipped session file checks out, every per-scheme session runs, and the demo session (simulated ViSHaRD3 with the simulated
 # operator) runs in lockstep, twice with identical recordings, without a device fault; its recording replayed by
 # the playback device through the same scheme (config/sessions/playback.yaml) reproduces it bit for bit.
-# Usage: sessions_test.sh HAPTICD SOURCE_DIR WORK_DIR
+# The sessions of the commercial devices run on the project's stand-ins of the vendors' SDKs, found as a user's
+# SDK is: through the vendor's own variable (FORCEDIM_SDK), each force call one loop period in lockstep.
+# Usage: sessions_test.sh HAPTICD SOURCE_DIR WORK_DIR STANDIN_DIR
 set -u
-hapticd=$1; src=$2; work=$3
+hapticd=$1; src=$2; work=$3; standins=$4
+export FORCEDIM_SDK="$standins/forcedimension" HAPTICD_DHD_STANDIN="omega.6:10001,omega.7:10002"
+export HAPTICD_DHD_STANDIN_STEP=0.0005
 rm -rf "$work"; mkdir -p "$work"
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }

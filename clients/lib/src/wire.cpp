@@ -70,6 +70,10 @@ DeviceInfo from_msg(const hapticd_msg_DeviceDescription& in) {
         {std::string(text_of(in.schemes[k].text)), std::string(text_of(in.scheme_virtual_model[k].text))});
   d.command_deadline_s = in.command_deadline_s;
   d.command_fade_s = in.command_fade_s;
+  d.handle_device = in.handle_device;
+  d.handle_dof = bounded(in.handle_dof, 6);
+  d.has_gripper = in.has_gripper;
+  d.button_count = bounded(in.button_count, 32);
   return d;
 }
 
@@ -87,6 +91,8 @@ void from_msg(const hapticd_msg_DeviceState& in, DeviceState& out) noexcept {
   joints(in.position, out.dof, out.position);
   joints(in.velocity, out.dof, out.velocity);
   joints(in.torque, out.dof, out.torque);
+  out.buttons = in.buttons;
+  out.gripper = in.gripper;
   out.mode = mode(in.mode);
   out.flags = in.flags;
   out.fault.assign(text_of(in.fault));

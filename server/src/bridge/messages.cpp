@@ -49,6 +49,8 @@ hapticd_msg_DeviceState state_message(const DeviceSnapshot& s, const StateLabels
     m.velocity[i] = i < s.velocity.size() ? s.velocity[i] : 0.0;
     m.torque[i] = i < s.torque.size() ? s.torque[i] : 0.0;
   }
+  m.buttons = s.buttons;
+  m.gripper = s.gripper;
   m.mode = mode_of(s);
   m.flags = flags_of(s);
   dds::set_text(m.fault, s.fault == DeviceFault::none ? std::string_view() : fault_code(s.fault));
@@ -97,6 +99,10 @@ hapticd_msg_DeviceDescription description_message(const DeviceRequests& s, doubl
   }
   m.command_deadline_s = s.chain().engine_deadline_s;
   m.command_fade_s = s.chain().engine_fade_s;
+  m.handle_device = desc.interface == DeviceInterface::handle;
+  m.handle_dof = m.handle_device ? desc.handle.degrees_of_freedom() : 0;
+  m.has_gripper = m.handle_device && desc.handle.has_gripper;
+  m.button_count = m.handle_device ? desc.handle.buttons : 0;
   return m;
 }
 

@@ -26,6 +26,8 @@ void fill_cycle_record(recording::CycleRecord& r, const DeviceSession& session, 
   put(r.torque_measured, state.joints.effort, r.dof);
   put(r.handle_pose, s.handle_pose);
   put(r.handle_twist, s.handle_twist.linear, s.handle_twist.angular);
+  r.buttons = s.buttons;
+  r.gripper = s.gripper;
   put(r.operator_wrench, s.operator_wrench.force, s.operator_wrench.torque);
   put(r.environment_wrench, s.environment_wrench.force, s.environment_wrench.torque);
   put(r.sensor_wrench, state.sensor_wrench.force, state.sensor_wrench.torque);

@@ -193,6 +193,8 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   s.position = state_.joints.position;
   s.velocity = state_.joints.velocity;
   s.torque = command_.torque_nm;
+  s.buttons = state_.handle.buttons;
+  s.gripper = state_.handle.gripper;
   s.fault = status_.fault();
   s.fault_reason = status_.fault_reason_.load(std::memory_order_relaxed);
   s.faults = status_.faults_.load(std::memory_order_relaxed);

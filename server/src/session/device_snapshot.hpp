@@ -19,6 +19,8 @@ struct DeviceSnapshot {
   Wrench environment_wrench;               // what the virtual model renders (walls, engine)
   Pose target_pose;                        // the chain's desired pose
   JointVector position, velocity, torque;  // torque: commanded
+  std::uint32_t buttons = 0;               // the handle's buttons (bit i: button i)
+  double gripper = 0.0;                    // the gripper's opening (rad)
   DeviceFault fault{};
   const char* fault_reason = nullptr;  // the device's reason (static text of the plugin), nullptr if none
   std::uint64_t faults = 0;            // faults raised so far (a stop while already safe counts too)

@@ -8,7 +8,7 @@
 // walls, a simulated hand pushing it with a constant force, buttons and a gripper; and a control interface for the
 // tests (standin_dhd_*): the devices (from the variable HAPTICD_DHD_STANDIN, "omega.6:10001,omega.7:10002", or
 // standin_dhd_setup), a fixed physics step (lockstep: standin_dhd_set_step or HAPTICD_DHD_STANDIN_STEP) or the
-// wall clock, faults on cue (unplugged, one failing
+// wall clock, buttons held (standin_dhd_hand or HAPTICD_DHD_STANDIN_BUTTONS), faults on cue (unplugged, one failing
 // force call, uncalibrated), and a log of the lifecycle calls.
 #include <algorithm>
 #include <array>
@@ -111,6 +111,9 @@ void setup_from(const char* spec) {
   }
   set_up = true;
   current = -1;
+  // Buttons held on every device from the start (a run of the server has no test to press them).
+  if (const char* held = std::getenv("HAPTICD_DHD_STANDIN_BUTTONS"); held != nullptr)
+    for (Device& d : devices) d.buttons = static_cast<unsigned>(std::strtoul(held, nullptr, 0));
   // A lockstep run of the server: each force call advances the physics by this much (seconds).
   if (const char* step = std::getenv("HAPTICD_DHD_STANDIN_STEP"); step != nullptr) fixed_step_s = std::atof(step);
 }

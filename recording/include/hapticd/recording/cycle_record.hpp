@@ -24,6 +24,8 @@ struct CycleRecord {
   double torque_measured[kMaxJoints] = {};  // the device's effort (joint torque sensors, else its drive torque)
   double handle_pose[7] = {};
   double handle_twist[6] = {};
+  std::uint32_t buttons = 0;          // the handle's buttons (bit i: button i pressed)
+  double gripper = 0.0;               // the gripper's opening (rad; 0 without one)
   double operator_wrench[6] = {};     // the operator's wrench on the handle
   double environment_wrench[6] = {};  // what the virtual model rendered
   double sensor_wrench[6] = {};       // the force/torque sensor's reading, sensor frame (zero without a sensor)

@@ -93,6 +93,11 @@ struct DeviceInfo {
   std::vector<SchemeInfo> schemes;
   double command_deadline_s = 0.0;  // engine commands must arrive at least this often
   double command_fade_s = 0.0;      // after a missed deadline the engine's forces fade to zero over this time
+  // A handle device (docs/devices.md): its joints are the handle's axes (x, y, z; rx, ry, rz; gripper).
+  bool handle_device = false;
+  int handle_dof = 0;  // 3 or 6 (orientation sensed); 0 for a joint device
+  bool has_gripper = false;
+  int button_count = 0;
 };
 
 // One published state of a device (world frame; wrenches and twists at the handle point).
@@ -108,6 +113,8 @@ struct DeviceState {
   Pose target_pose;           // the chain's desired pose (admittance schemes)
   int dof = 0;
   JointVector position, velocity, torque;  // torque: commanded
+  std::uint32_t buttons = 0;               // the handle's buttons, bit i: button i pressed
+  double gripper = 0.0;                    // the gripper's opening (rad), 0 without one
   Mode mode = Mode::starting;
   std::uint32_t flags = 0;  // Flag bits
   Name fault;               // "" when none
