@@ -1,6 +1,5 @@
 #include "handle_force.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 
 #include "hapticd/chain_state.hpp"

@@ -146,13 +146,15 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
 }
 
 const char* ForceDimensionDevice::failure(const char* what) noexcept {
-  if (error_[0] == '\0') std::snprintf(error_.data(), error_.size(), "%s: %s", what, dhd_->last_error());
-  return error_.data();
+  std::array<char, 256>& text = errors_[static_cast<std::size_t>(error_)];
+  if (text[0] == '\0') std::snprintf(text.data(), text.size(), "%s: %s", what, dhd_->last_error());
+  return text.data();
 }
 
 Outcome ForceDimensionDevice::enable() {
   if (!open_) return Outcome::failure("the Force Dimension device is not open");
-  error_[0] = '\0';
+  errors_[static_cast<std::size_t>(error_)][0] = '\0';
+  gripper_read_ = false;
   if (dhd_->set_gravity_compensation(device_gravity_ ? 1 : 0, id_) < 0)
     return Outcome::failure(failure("gravity compensation"));
   if (dhd_->enable_force(1, id_) < 0) return Outcome::failure(failure("enabling forces"));
@@ -181,7 +183,11 @@ Outcome ForceDimensionDevice::read(const CycleTime& cycle, DeviceState& state) {
   if (description_.handle.has_gripper) {
     const double before = h.gripper;
     if (dhd_->get_gripper_angle_rad(&h.gripper, id_) < 0) return Outcome::failure(failure("reading the gripper"));
-    h.gripper_rate = cycle.period_ns > 0 ? (h.gripper - before) / (static_cast<double>(cycle.period_ns) * 1e-9) : 0.0;
+    // The first sample has nothing to differentiate against: rate zero, not a jump from zero.
+    h.gripper_rate = gripper_read_ && cycle.period_ns > 0
+                         ? (h.gripper - before) / (static_cast<double>(cycle.period_ns) * 1e-9)
+                         : 0.0;
+    gripper_read_ = true;
   }
   return Outcome::success();
 }
@@ -204,7 +210,9 @@ Outcome ForceDimensionDevice::brake(bool on) {
 }
 
 Outcome ForceDimensionDevice::reset_fault() {
-  error_[0] = '\0';  // a recovery: the next failure says its own reason
+  // A recovery: the next failure says its own reason, in the other buffer.
+  error_ = 1 - error_;
+  errors_[static_cast<std::size_t>(error_)][0] = '\0';
   return Outcome::success();
 }
 

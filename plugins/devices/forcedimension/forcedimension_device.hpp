@@ -34,8 +34,8 @@ class ForceDimensionDevice final : public Device {
   void disable() override;
 
  private:
-  // The SDK's text of its last error, kept for the fault (the first since the last reset: a reason the other
-  // threads may be reading is never overwritten).
+  // The SDK's text of its last error, kept for the fault: the first since the last enable or recovery. Two
+  // buffers in turn, so a recovery never rewrites the text of the fault another thread may still be reading.
   const char* failure(const char* what) noexcept;
   void close_device() noexcept;
 
@@ -45,7 +45,9 @@ class ForceDimensionDevice final : public Device {
   bool open_ = false;
   bool device_gravity_ = true;
   DeviceDescription description_;
-  std::array<char, 256> error_{};
+  std::array<std::array<char, 256>, 2> errors_{};
+  int error_ = 0;              // the buffer in use
+  bool gripper_read_ = false;  // a gripper sample since enable: its rate can be differentiated
 };
 
 }  // namespace hapticd::plugins::forcedimension
