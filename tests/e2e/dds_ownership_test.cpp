@@ -9,6 +9,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -292,6 +293,57 @@ TEST(DdsOwnership, AnEngineWhoseClaimEndedIsToldAndClaimsAgainOrExits) {
     EXPECT_NE(file_text(log).find("cannot claim 'v3' again"), std::string::npos) << file_text(log);
   }
   server.stop();
+}
+
+TEST(DdsOwnership, AClaimLostBeforeAnyStateNamedTheClaimantIsStillToldToIt) {
+  // Found as a flaky run of the test above under a loaded machine: the engine was stopped right after its claim
+  // was accepted, before its receive thread had taken a state naming it the owner; the client library told a
+  // loss only after such a state, so the resumed engine never learned that its claim had ended and rendered on
+  // with its commands rejected. Made certain here: a stand-in server on a domain of its own answers the claim,
+  // announces it and then its end in owner events, and never publishes a state at all.
+  constexpr int kDomain = 147;
+  const dds::Participant server(dds::ParticipantOptions{kDomain, {}, {}});
+  dds::Reader<hapticd_msg_ControlRequest> requests(server, {}, nullptr, {dds::target_partition("v3")});
+  const dds::Writer<hapticd_msg_ControlReply> replies(server);
+  const dds::Writer<hapticd_msg_Event> events(server);
+  Client engine(client::ClientOptions("engine", kDomain));
+  const auto owner_event = [&](const std::string& owner, std::uint64_t serial) {
+    hapticd_msg_Event e{};
+    dds::set_text(e.device, "v3");
+    e.serial = serial;
+    e.kind = hapticd_msg_EVENT_OWNER;
+    dds::set_text(e.code, owner);
+    dds::set_text(e.message, owner.empty() ? "the claim's hold ran out" : owner + " claimed the device");
+    ASSERT_TRUE(events.write(e));
+  };
+  std::atomic<bool> answered{false};
+  std::thread stand_in([&] {
+    const auto start = Clock::now();
+    while (!answered.load() && seconds_since(start) < 10.0) {
+      requests.take([&](const hapticd_msg_ControlRequest& r, const dds_sample_info_t&) {
+        if (r.kind != hapticd_msg_REQUEST_CLAIM || answered.load()) return;
+        owner_event(std::string(dds::text_of(r.client)), 1);  // as the server: the event, then the reply
+        hapticd_msg_ControlReply a{};
+        dds::set_text(a.device, "v3");
+        dds::set_text(a.client, dds::text_of(r.client));
+        a.request_id = r.request_id;
+        a.accepted = true;
+        dds::set_text(a.message, "claimed");
+        (void)replies.write(a);
+        answered.store(true);
+      });
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  });
+  const client::Reply claim = engine.claim("v3", std::chrono::seconds(8));
+  stand_in.join();
+  ASSERT_TRUE(claim.accepted) << claim.message;
+  EXPECT_FALSE(engine.claim_lost("v3"));
+  owner_event("", 2);  // the hold ran out
+  const auto start = Clock::now();
+  while (!engine.claim_lost("v3") && seconds_since(start) < 5.0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_TRUE(engine.claim_lost("v3")) << "the engine was not told that its claim ended";
 }
 
 TEST(DdsOwnership, AnEngineFrozenShorterThanTheHoldKeepsItsClaimAndRendersAgain) {

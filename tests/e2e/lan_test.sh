@@ -113,7 +113,11 @@ read -r answered_secure cycles_secure misses_secure rejected_secure < "$work/sta
 run loss-5 50 || exit 1
 run loss-20 200 || exit 1
 read -r answered20 cycles20 misses20 rejected20 < "$work/stats-loss-20.json.row"
-[ "$answered20" -lt "$answered" ] || fail "20 % loss answered as many cycles as none ($answered20 vs $answered)"
+# Compared as shares of each run's cycles: the runs' lengths differ by the time discovery and the claim take, so
+# counts alone do not compare (a long lossy run once answered more cycles than a short clean one). 20 % loss each
+# way answers about 60 % of the cycles against 99.5 % (docs/deployment.md); 90 % of the clean share is a wide margin.
+[ $((answered20 * cycles * 10)) -lt $((answered * cycles20 * 9)) ] ||
+  fail "20 % loss answered nearly as large a share of cycles as none ($answered20 of $cycles20 vs $answered of $cycles)"
 # Loss removes round trips but never 100 in a row: no deadline is missed, nothing fades, nothing is rejected.
 for run in secure loss-5 loss-20; do
   read -r a c m r < "$work/stats-$run.json.row"

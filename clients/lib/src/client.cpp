@@ -123,39 +123,47 @@ struct Client::Impl {
     });
   }
 
-  // The claims this client holds, watched in the states (fixed capacity: no allocation on the receive thread).
+  // The claims this client holds, watched in the states and in the owner events (fixed capacity: no allocation
+  // on the receive thread). Each stream comes in order from one writer, but the two are not ordered against each
+  // other (a state taken before the claim may arrive after the event that announced it), so each has its own
+  // "confirmed": a stream tells a loss only after it named this client. The events are reliable: an engine
+  // stopped before it saw a state naming it still learns, once it runs again, that it had the claim and lost it.
   struct ClaimWatch {
     Name device;
     bool active = false;
-    bool confirmed = false;  // a state named this client as the owner
+    bool confirmed_by_state = false;  // a state named this client as the owner
+    bool confirmed_by_event = false;  // an owner event did
     bool lost = false;
   };
   static constexpr std::size_t kWatchedClaims = 16;
   std::array<ClaimWatch, kWatchedClaims> claims{};
-  // Under `mutex`: a state of a watched device that names another owner after one that named us: lost (once).
-  const ClaimWatch* watch_claim(const DeviceState& s) {
+  // Under `mutex`: a device's owner as a state or an owner event names it. Another owner after this client in the
+  // same stream: lost (once).
+  const ClaimWatch* watch_owner(std::string_view device, std::string_view owner, bool from_event) {
     for (ClaimWatch& w : claims) {
-      if (!w.active || !(w.device == s.device.view())) continue;
-      if (s.owner == options.client_id) {
-        w.confirmed = true;
-      } else if (w.confirmed && !w.lost) {
+      if (!w.active || !(w.device == device)) continue;
+      bool& confirmed = from_event ? w.confirmed_by_event : w.confirmed_by_state;
+      if (owner == options.client_id) {
+        confirmed = true;
+      } else if (confirmed && !w.lost) {
         w.lost = true;
         return &w;
       }
     }
     return nullptr;
   }
+  const ClaimWatch* watch_claim(const DeviceState& s) { return watch_owner(s.device.view(), s.owner.view(), false); }
   void watch(std::string_view device, bool on) {
     std::lock_guard lock(mutex);
     ClaimWatch* free = nullptr;
     for (ClaimWatch& w : claims) {
       if (w.active && w.device == device) {
-        w = on ? ClaimWatch{Name(device), true, false, false} : ClaimWatch{};
+        w = on ? ClaimWatch{Name(device), true} : ClaimWatch{};
         return;
       }
       if (!w.active && free == nullptr) free = &w;
     }
-    if (on && free != nullptr) *free = ClaimWatch{Name(device), true, false, false};
+    if (on && free != nullptr) *free = ClaimWatch{Name(device), true};
   }
 
   // The client's thread: descriptions, replies, events, telemetry, fault reports.
@@ -193,6 +201,17 @@ struct Client::Impl {
       });
       event.take([&](const hapticd_msg_Event& e, const dds_sample_info_t&) {
         const Event value = wire::from_msg(e);
+        if (value.kind == EventKind::owner) {
+          const ClaimWatch* lost = nullptr;
+          {
+            std::lock_guard lock(mutex);
+            lost = watch_owner(value.device, value.code, true);
+          }
+          std::lock_guard lock(callback_mutex);
+          if (lost != nullptr && claim_lost_callback)
+            claim_lost_callback(value.device, value.code.empty() ? "the server freed the device"
+                                                                 : "the server handed the device to another owner");
+        }
         std::function<void(const Event&)> f;
         {
           std::lock_guard lock(callback_mutex);
@@ -489,11 +508,12 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
 
 Reply Client::claim(std::string_view device, Timeout timeout) {
   (void)impl_->command_writer(device);  // made (and matched) while the claim is on its way
+  impl_->watch(device, true);           // before the request: the event announcing the claim may come before the reply
   Reply r = request(device, RequestKind::claim, {}, {}, timeout);
-  if (r.accepted) {
+  if (r.accepted)
     reset_serial();
-    impl_->watch(device, true);
-  }
+  else
+    impl_->watch(device, false);
   return r;
 }
 Reply Client::release(std::string_view device, Timeout timeout) {
@@ -565,11 +585,13 @@ Reply Client::operator_command(std::string_view device, std::string_view command
 
 Reply Client::claim_group(std::string_view group, Timeout timeout) {
   (void)impl_->group_command_writer(group);
+  const std::vector<std::string> devices = group_devices(group);
+  for (const std::string& d : devices) impl_->watch(d, true);  // before the request, as for claim()
   Reply r = request(group, RequestKind::group_claim, {}, {}, timeout);
-  if (r.accepted) {
+  if (r.accepted)
     reset_serial();
-    for (const std::string& d : group_devices(group)) impl_->watch(d, true);
-  }
+  else
+    for (const std::string& d : devices) impl_->watch(d, false);
   return r;
 }
 Reply Client::release_group(std::string_view group, Timeout timeout) {
