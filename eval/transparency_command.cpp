@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
@@ -49,15 +50,17 @@ PointIndices indices_at(DeviceModel& device, const Eigen::Vector3d& p, const mod
     r.mass[a] = 1.0 / d.dot(lambda_inv * d);
     r.friction[a] = 0.0;
     if (friction == nullptr) continue;
-    // Joint rates that move the handle along d (least squares), each joint's sliding friction at its rate
-    // against it, mapped to the handle: F = J^+T tau; the part along d resists the motion.
-    const Eigen::VectorXd qd = in.jacobian.completeOrthogonalDecomposition().solve(speed * d);
+    // Joint rates that move the handle along d (the least-norm ones), each joint's sliding friction at its rate
+    // against it, mapped to the handle: F = J^+T tau; the part along d resists the motion. J (3 x n) has full
+    // row rank at every reached pose (its condition is bounded), so J^+ = J^T (J J^T)^-1: a 3 x 3 solve.
+    const Eigen::LDLT<Eigen::Matrix3d> jjt((in.jacobian * in.jacobian.transpose()).eval());
+    const Eigen::VectorXd qd = in.jacobian.transpose() * jjt.solve(speed * d);
     Eigen::VectorXd tau(qd.size());
     for (Eigen::Index j = 0; j < qd.size(); ++j) {
       const auto& m = friction->joints[static_cast<std::size_t>(j)];
       tau[j] = std::copysign(m.sliding(std::abs(qd[j])), qd[j]);
     }
-    const Eigen::Vector3d force = in.jacobian.transpose().completeOrthogonalDecomposition().solve(tau);
+    const Eigen::Vector3d force = jjt.solve(in.jacobian * tau);
     r.friction[a] = force.dot(d);
   }
   return r;
