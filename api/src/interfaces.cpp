@@ -32,6 +32,7 @@ bool Device::simulated_truth(SimulatedTruth&) const { return false; }
 Outcome Device::home() { return Outcome::success(); }
 Outcome Device::reset_fault() { return Outcome::success(); }
 Outcome Device::brake(bool) { return Outcome::success(); }
+DeviceClock* Device::clock() noexcept { return nullptr; }
 
 std::string_view to_string(PluginKind kind) noexcept {
   switch (kind) {

@@ -1,7 +1,9 @@
 #include "mass_spring_device.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <ctime>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -38,6 +40,15 @@ ParameterSchema MassSpringDevice::parameter_schema() {
       .unit("N")
       .minimum(0.0)
       .default_value(0.0);
+  s.real("tick_hz", "a clock of its own (server.clock: device): ticks at this rate from enable() on; 0: none")
+      .unit("Hz")
+      .minimum(0.0)
+      .maximum(20000.0)
+      .default_value(0.0);
+  s.integer("ticks_before_pause", "fault injection: the clock stops ticking after this many ticks; -1 never")
+      .minimum(-1)
+      .default_value(-1);
+  s.real("tick_pause_s", "... and starts again after this long; 0: never").unit("s").minimum(0.0).default_value(0.0);
   return s;
 }
 
@@ -56,6 +67,9 @@ void MassSpringDevice::configure(const Parameters& p, const PluginContext& conte
   fail_enable_ = p.boolean("fail_enable");
   throw_in_disable_ = p.boolean("throw_in_disable");
   fail_homing_ = p.boolean("fail_homing");
+  tick_hz_ = p.real("tick_hz");
+  ticks_before_pause_ = p.integer("ticks_before_pause");
+  tick_pause_s_ = p.real("tick_pause_s");
   period_s_ = 1.0 / context.rate_hz;
   // Semi-implicit Euler is stable for w dt < 2; keep a wide margin so the test device is also accurate.
   const double natural_hz = std::sqrt(stiffness_n_per_m_ / mass_kg_) / (2.0 * std::numbers::pi);
@@ -85,7 +99,30 @@ Outcome MassSpringDevice::enable() {
   velocity_m_s_ = 0.0;
   force_n_ = 0.0;
   simulated_ns_ = 0;
+  if (tick_hz_ > 0.0 && !ticking_.exchange(true)) {
+    ticker_ = std::thread([this] {
+      const auto period = static_cast<std::int64_t>(std::llround(1e9 / tick_hz_));
+      std::int64_t next = realtime::TickSignal::now_ns(), ticked = 0;
+      while (ticking_.load(std::memory_order_relaxed)) {
+        if (ticks_before_pause_ >= 0 && ticked == ticks_before_pause_) {
+          if (tick_pause_s_ <= 0.0) break;  // stopped for good
+          next += static_cast<std::int64_t>(tick_pause_s_ * 1e9);
+        }
+        next += period;
+        timespec ts{static_cast<time_t>(next / 1'000'000'000), static_cast<long>(next % 1'000'000'000)};
+        while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+        }
+        ticks_.tick(next);
+        ++ticked;
+      }
+    });
+  }
   return Outcome::success();
+}
+
+void MassSpringDevice::stop_ticking() noexcept {
+  ticking_.store(false);
+  if (ticker_.joinable()) ticker_.join();
 }
 
 void MassSpringDevice::step(double dt) noexcept {
@@ -135,6 +172,7 @@ Outcome MassSpringDevice::write(const CycleTime& cycle, const JointCommand& comm
 }
 
 void MassSpringDevice::disable() {
+  stop_ticking();
   force_n_ = 0.0;
   if (throw_in_disable_) throw std::runtime_error("injected disable failure (throw_in_disable)");
 }

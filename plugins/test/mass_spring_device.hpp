@@ -1,14 +1,19 @@
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <random>
+#include <thread>
 
 #include "hapticd/device.hpp"
+#include "hapticd/realtime/tick_signal.hpp"
 
 namespace hapticd::test_plugins {
 
 // A 1-DOF mass on a spring with viscous damping: m xdd = -k x - c xd + u, u the commanded force saturated at
 // force_limit_n. Integrated (semi-implicit Euler) in substeps up to each cycle's time; optional encoder
-// quantisation and seeded Gaussian position noise; optional injected read failure for fault tests.
+// quantisation and seeded Gaussian position noise; optional injected read failure for fault tests. With tick_hz it
+// has a clock of its own (as an SDK that owns the servo loop): a thread ticks at that rate from enable() to
+// disable(), and can stop ticking after a number of ticks (a device that stops calling back) and start again.
 class MassSpringDevice final : public Device {
  public:
   static ParameterSchema parameter_schema();
@@ -21,8 +26,11 @@ class MassSpringDevice final : public Device {
   void disable() override;
   Outcome home() override;
   Outcome reset_fault() override;
+  DeviceClock* clock() noexcept override { return tick_hz_ > 0.0 ? &ticks_ : nullptr; }
+  ~MassSpringDevice() override { stop_ticking(); }
 
  private:
+  void stop_ticking() noexcept;
   void step(double dt) noexcept;
 
   DeviceDescription description_;
@@ -39,6 +47,12 @@ class MassSpringDevice final : public Device {
   bool refuse_fault_reset_ = false, fail_enable_ = false, fail_homing_ = false, throw_in_disable_ = false;
   bool read_fault_latched_ = false, homed_ = true;
   double period_s_ = 0.0005;
+  double tick_hz_ = 0.0;
+  std::int64_t ticks_before_pause_ = -1;
+  double tick_pause_s_ = 0.0;
+  realtime::TickSignal ticks_;
+  std::thread ticker_;
+  std::atomic<bool> ticking_{false};
 
   double position_m_ = 0.0;
   double velocity_m_s_ = 0.0;

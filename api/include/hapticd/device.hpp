@@ -1,6 +1,7 @@
 #pragma once
 #include "hapticd/chain_signals.hpp"
 #include "hapticd/cycle_time.hpp"
+#include "hapticd/device_clock.hpp"
 #include "hapticd/device_description.hpp"
 #include "hapticd/export.hpp"
 #include "hapticd/parameters.hpp"
@@ -49,6 +50,10 @@ class HAPTICD_API Device : public RuntimeRequests {
   // Not real-time safe. Zero torque, brakes engaged, drives off. Called after the loop has stopped using the
   // device (also after an enable() that failed).
   virtual void disable() = 0;
+  // Not real-time safe; after configure(). A device whose SDK or service owns the servo loop (it calls back at its
+  // own rate, or answers one state per message) returns its clock: with `server.clock: device` its loop runs one
+  // cycle per tick (device_clock.hpp; realtime/tick_signal.hpp is one). Null (the default): the loop's own clock.
+  [[nodiscard]] virtual DeviceClock* clock() noexcept;
   // Not real-time safe; the loop thread, or after the loop (tests, evaluations): a simulated device's true state
   // after the last read(). False for hardware (the default).
   virtual bool simulated_truth(SimulatedTruth& out) const;

@@ -44,8 +44,7 @@ std::optional<LoadedSession> load(const std::string& file, const std::vector<std
     s.config = load_session_config(file, sets);
     if (overrides != nullptr) {
       if (overrides->duration_s) s.config.server.duration_s = *overrides->duration_s;
-      if (overrides->clock)
-        s.config.server.clock = *overrides->clock == "lockstep" ? ClockMode::lockstep : ClockMode::realtime;
+      if (overrides->clock) s.config.server.clock = clock_mode(*overrides->clock);
       if (overrides->dds_domain) {
         s.config.dds.enabled = true;
         s.config.dds.domain_id = *overrides->dds_domain;
@@ -78,7 +77,7 @@ int check_config(const std::string& file, const std::vector<std::string>& sets) 
   const auto s = load(file, sets, nullptr);
   if (!s) return kExitConfigError;
   fmt::print("{}: ok ({} device{}, {} Hz, {} clock)\n", file, s->sessions.size(), s->sessions.size() == 1 ? "" : "s",
-             s->config.server.rate_hz, s->config.server.clock == ClockMode::lockstep ? "lockstep" : "realtime");
+             s->config.server.rate_hz, clock_name(s->config.server.clock));
   for (const auto& d : s->sessions) {
     const DeviceChain& c = d->chain();
     for (std::size_t k = 0; k < c.schemes.size(); ++k) {
@@ -154,7 +153,7 @@ int run_session(const RunOptions& options) {
                   f.error.what());
 
   spdlog::info("session {}: {} device(s) at {} Hz, {} clock{}", options.config_file, sessions.size(), server.rate_hz,
-               lockstep ? "lockstep" : "realtime",
+               clock_name(server.clock),
                server.duration_s > 0 ? fmt::format(", {} s", server.duration_s) : std::string(", until stopped"));
 
   ExecutorResult result;
@@ -333,8 +332,7 @@ int describe_config(const std::string& config_file) {
   if (!config_file.empty()) {
     // The file's own values first (validated as a session would be), then what every key means.
     const SessionConfig c = load_session_config(config_file);
-    fmt::print("{}: {} Hz, {} clock, duration {}; DDS {}\n", config_file, c.server.rate_hz,
-               c.server.clock == ClockMode::lockstep ? "lockstep" : "realtime",
+    fmt::print("{}: {} Hz, {} clock, duration {}; DDS {}\n", config_file, c.server.rate_hz, clock_name(c.server.clock),
                c.server.duration_s > 0 ? fmt::format("{} s", c.server.duration_s) : std::string("until stopped"),
                c.dds.enabled ? fmt::format("on domain {}", c.dds.domain_id) : std::string("off"));
     for (const DeviceConfig& d : c.devices) {

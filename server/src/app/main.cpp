@@ -40,8 +40,8 @@ int run_command(int argc, char** argv) {
                                   "print the settings of a session file's server, dds and live_view sections");
   auto* duration_opt = app.add_option("--duration", duration, "run for this many seconds (overrides server.duration_s)")
                            ->check(CLI::NonNegativeNumber);
-  auto* clock_opt = app.add_option("--clock", clock, "realtime or lockstep (overrides server.clock)")
-                        ->check(CLI::IsMember({"realtime", "lockstep"}));
+  auto* clock_opt = app.add_option("--clock", clock, "realtime, lockstep or device (overrides server.clock)")
+                        ->check(CLI::IsMember({"realtime", "lockstep", "device"}));
   app.add_option("--set", run.sets,
                  "override a key of the session file before it is validated, e.g. --set server.seed=7 --set "
                  "devices.v3.virtual_model.parameters.mass_kg=[2,2,2] (a device entry by its name; the value is YAML)");

@@ -1,11 +1,13 @@
 #include "app/served_session.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "app/invariant_stop.hpp"
+#include "assembly/session_builder.hpp"
 #include "group/group_stage.hpp"
 
 namespace hapticd::server {
@@ -92,7 +94,10 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
     recorder_ = std::make_unique<Recorder>(options.record_file, recording_header(config, devices), settings_.lockstep,
                                            LoopPlan::count(separate, settings_.lockstep));
   }
-  loops_ = std::make_unique<LoopPlan>(devices, stages, separate, settings_.lockstep, settings_.cpu, recorder_.get());
+  const ClockDevice clock = clock_device(config, devices);
+  if (clock.device != nullptr) settings_.device_clock_stall_ns = std::llround(clock.stall_s * 1e9);
+  loops_ = std::make_unique<LoopPlan>(devices, stages, separate, settings_.lockstep, settings_.cpu, recorder_.get(),
+                                      clock.device);
   executor_ = std::make_unique<Executor>(settings_, loops_->loops());
   if (config.live_view.enabled)  // binds its port before the DDS interface starts
     live_view_ = std::make_unique<live_view::LiveView>(config.live_view, devices, config.server.rate_hz,

@@ -53,9 +53,8 @@ bool any_device_faulted(const SessionReport& r) {
 
 std::string report_json(const SessionReport& r) {
   const CycleStatistics& s = r.result->statistics;
-  const bool lockstep = r.config->server.clock == ClockMode::lockstep;
   std::string out = "{\n";
-  out += fmt::format("  \"clock\": \"{}\",\n  \"rate_hz\": {},\n", lockstep ? "lockstep" : "realtime",
+  out += fmt::format("  \"clock\": \"{}\",\n  \"rate_hz\": {},\n", clock_name(r.config->server.clock),
                      r.config->server.rate_hz);
   out += fmt::format(
       "  \"cycles\": {},\n  \"overruns\": {},\n  \"max_consecutive_overruns\": {},\n  \"skipped_cycles\": {},\n",
@@ -110,7 +109,7 @@ std::vector<std::string> report_lines(const SessionReport& r) {
       r.result->loops.size() > 1 ? fmt::format(" over {} loops", r.result->loops.size()) : std::string();
   lines.push_back(fmt::format("{} cycles{} in {:.3f} s loop time ({:.3f} s wall), {} overruns, {} skipped", s.cycles,
                               loops, r.result->loop_time_s, r.result->wall_time_s, s.overruns, s.skipped_cycles));
-  if (r.config->server.clock == ClockMode::realtime)
+  if (r.config->server.clock != ClockMode::lockstep)
     lines.push_back("wake-up latency: " + histogram_summary(s.wakeup_latency));
   lines.push_back("compute time:    " + histogram_summary(s.compute_time));
   if (r.result->loops.size() > 1) {
@@ -122,7 +121,7 @@ std::vector<std::string> report_lines(const SessionReport& r) {
                                   l.cpu >= 0 ? fmt::format("CPU {}", l.cpu) : std::string("not pinned"),
                                   fmt::join(l.devices, ", "), l.statistics.cycles, l.statistics.overruns, share,
                                   l.statistics.skipped_cycles));
-      if (r.config->server.clock == ClockMode::realtime)
+      if (r.config->server.clock != ClockMode::lockstep)
         lines.push_back("  wake-up latency: " + histogram_summary(l.statistics.wakeup_latency));
       lines.push_back("  compute time:    " + histogram_summary(l.statistics.compute_time));
     }

@@ -54,11 +54,14 @@ ExecutorSettings Session::Impl::executor_settings() const {
   s.shutdown_ramp_s = config.server.shutdown_ramp_s;
   s.realtime_priority = 0;
   s.lock_memory = false;
+  if (const ClockDevice clock = clock_device(config, device_pointers()); clock.device != nullptr)
+    s.device_clock_stall_ns = std::llround(clock.stall_s * 1e9);
   return s;
 }
 
 LoopPlan Session::Impl::loop_plan(DeviceCycleSink* sink) const {
-  return LoopPlan(device_pointers(), stage_pointers(), {}, config.server.clock == ClockMode::lockstep, -1, sink);
+  return LoopPlan(device_pointers(), stage_pointers(), {}, config.server.clock == ClockMode::lockstep, -1, sink,
+                  clock_device(config, device_pointers()).device);
 }
 
 Session Session::from_file(const std::filesystem::path& file, const SessionOptions& options) {

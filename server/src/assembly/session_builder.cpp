@@ -254,10 +254,58 @@ std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& confi
 
 }  // namespace
 
+ClockDevice clock_device(const SessionConfig& config, const std::vector<DeviceSession*>& devices) {
+  const ServerSettings& server = config.server;
+  if (server.clock != ClockMode::device) return {};
+  const std::string file = config.file.string();
+  const auto can_clock = [](const DeviceSession* d) { return d->chain().device->clock() != nullptr; };
+  const auto config_of = [&](const DeviceSession* d) -> const DeviceConfig& {
+    for (const DeviceConfig& dc : config.devices)
+      if (dc.name == d->name()) return dc;
+    return config.devices.front();  // every built device has its entry
+  };
+  DeviceSession* found = nullptr;
+  if (!server.clock_device.empty()) {
+    for (DeviceSession* d : devices)
+      if (d->name() == server.clock_device) found = d;
+    if (found == nullptr)
+      throw ConfigError(file, server.clock_line, "server.clock_device",
+                        "no device '" + server.clock_device + "' runs in this session");
+    if (!can_clock(found))
+      throw ConfigError(file, server.clock_line, "server.clock_device",
+                        "device '" + server.clock_device + "' (plugin '" + config_of(found).device.plugin +
+                            "') has no clock of its own: only a device whose SDK or service owns the servo loop can "
+                            "clock the session (clock: realtime runs it on the server's clock)");
+  } else {
+    for (DeviceSession* d : devices) {
+      if (!can_clock(d)) continue;
+      if (found != nullptr)
+        throw ConfigError(file, server.clock_line, "server.clock",
+                          "devices '" + found->name() + "' and '" + d->name() +
+                              "' can both clock the session: name one in server.clock_device");
+      found = d;
+    }
+    if (found == nullptr)
+      throw ConfigError(file, server.clock_line, "server.clock",
+                        "clock: device, but no device of the session has a clock of its own (only a device whose SDK "
+                        "or service owns the servo loop has; clock: realtime runs the session on the server's clock)");
+  }
+  if (config_of(found).safety.max_stall_s <= 0.0)
+    throw ConfigError(file, server.clock_line, "server.clock",
+                      "device '" + found->name() +
+                          "' clocks the session, so its stall watchdog must be on (safety.max_stall_s above 0): a "
+                          "device that stops ticking stops the loop");
+  return {found, config_of(found).safety.max_stall_s};
+}
+
 std::vector<std::unique_ptr<DeviceSession>> build_sessions(const SessionConfig& config, PluginLoader& loader,
                                                            std::vector<ConfigureFailure>* report) {
   try {
-    return build_all(config, loader, report);
+    std::vector<std::unique_ptr<DeviceSession>> sessions = build_all(config, loader, report);
+    std::vector<DeviceSession*> built;
+    for (const auto& d : sessions) built.push_back(d.get());
+    (void)clock_device(config, built);  // checked before anything is powered
+    return sessions;
   } catch (const ConfigError& e) {
     throw_if_overridden(e, config.overrides);  // a plugin parameter an override set: the error names it
     throw;

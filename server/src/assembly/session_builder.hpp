@@ -33,6 +33,16 @@ std::vector<std::unique_ptr<GroupStage>> build_group_stages(const SessionConfig&
                                                             const std::vector<std::unique_ptr<DeviceSession>>& devices,
                                                             PluginLoader& loader);
 
+// clock: device - the device whose ticks clock the loop: `server.clock_device`, else the one device that can
+// (Device::clock()). A ConfigError at server.clock or server.clock_device when no device can, when the named one is
+// not in the session or cannot, or when its stall watchdog is off (a device that stops ticking must stop the loop
+// of a device a person holds). None for the other clocks.
+struct ClockDevice {
+  DeviceSession* device = nullptr;
+  double stall_s = 0.0;  // its safety.max_stall_s: a tick this late is a stall
+};
+ClockDevice clock_device(const SessionConfig& config, const std::vector<DeviceSession*>& devices);
+
 // Per-device seed derived from the session seed (splitmix64), so devices get independent random streams.
 std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) noexcept;
 

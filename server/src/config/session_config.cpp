@@ -104,7 +104,12 @@ ServerSettings read_server(const YAML::Node& node, const std::string& file, cons
 
   const Parameters p = read_parameters(node, server_settings_schema(), file, "server", line_of(node), {"plugin_paths"});
   settings.rate_hz = p.real("rate_hz");
-  settings.clock = p.string("clock") == "lockstep" ? ClockMode::lockstep : ClockMode::realtime;
+  settings.clock = clock_mode(p.string("clock"));
+  settings.clock_device = p.string("clock_device");
+  if (const YAML::Node c = node["clock"]; c.IsDefined()) settings.clock_line = line_of(c);
+  if (!settings.clock_device.empty() && settings.clock != ClockMode::device)
+    throw ConfigError(file, line_of(node["clock_device"]), "server.clock_device",
+                      "names the device that clocks the loop, which only `clock: device` uses");
   settings.duration_s = p.real("duration_s");
   settings.seed = static_cast<std::uint64_t>(p.integer("seed"));
   settings.realtime_priority = static_cast<int>(p.integer("realtime_priority"));
@@ -590,9 +595,14 @@ ParameterSchema dds_settings_schema() {
 ParameterSchema server_settings_schema() {
   ParameterSchema s;
   s.real("rate_hz", "control loop rate").unit("Hz").minimum(100.0).maximum(20000.0).default_value(2000.0);
-  s.string("clock", "realtime: absolute deadlines on the monotonic clock; lockstep: virtual clock, as fast as possible")
-      .choices({"realtime", "lockstep"})
+  s.string("clock",
+           "realtime: absolute deadlines on the monotonic clock; lockstep: virtual clock, as fast as possible; device: "
+           "one cycle per tick of a device whose SDK owns the servo loop (OpenHaptics' scheduler, a service's states)")
+      .choices({"realtime", "lockstep", "device"})
       .default_value(std::string("realtime"));
+  s.string("clock_device",
+           "clock: device - the device whose ticks clock the session's loop; empty: the one device that can")
+      .default_value(std::string());
   s.real("duration_s", "session length; 0 runs until SIGINT/SIGTERM").unit("s").minimum(0.0).default_value(0.0);
   s.integer("seed", "seed of every random process (simulated noise), per device derived from it")
       .minimum(0)
@@ -711,5 +721,21 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
 }
 
 }  // namespace
+
+const char* clock_name(ClockMode mode) noexcept {
+  switch (mode) {
+    case ClockMode::lockstep:
+      return "lockstep";
+    case ClockMode::device:
+      return "device";
+    case ClockMode::realtime:
+      break;
+  }
+  return "realtime";
+}
+
+ClockMode clock_mode(const std::string& name) {
+  return name == "lockstep" ? ClockMode::lockstep : name == "device" ? ClockMode::device : ClockMode::realtime;
+}
 
 }  // namespace hapticd::server

@@ -18,12 +18,18 @@
 
 namespace hapticd::server {
 
-enum class ClockMode { realtime, lockstep };
+// realtime: the loops sleep to absolute deadlines on the monotonic clock; lockstep: a virtual clock, as fast as
+// possible; device: the session's loop runs one cycle per tick of a device whose SDK owns the servo loop.
+enum class ClockMode { realtime, lockstep, device };
+[[nodiscard]] const char* clock_name(ClockMode mode) noexcept;
+[[nodiscard]] ClockMode clock_mode(const std::string& name);  // one of the names above (validated before)
 
 struct ServerSettings {
   double rate_hz = 2000.0;
   ClockMode clock = ClockMode::realtime;
-  double duration_s = 0.0;  // 0: until SIGINT/SIGTERM
+  std::string clock_device;  // clock: device - the device whose ticks clock the loop ("": the one that can)
+  int clock_line = 0;        // where `clock` stands in the file (0: not given)
+  double duration_s = 0.0;   // 0: until SIGINT/SIGTERM
   std::uint64_t seed = 1;
   int realtime_priority = 80;  // SCHED_FIFO priority; 0: do not ask
   bool lock_memory = true;

@@ -8,7 +8,8 @@
 namespace hapticd::server {
 
 LoopPlan::LoopPlan(const std::vector<DeviceSession*>& devices, const std::vector<GroupStage*>& stages,
-                   const std::vector<SeparateLoop>& separate, bool lockstep, int session_cpu, DeviceCycleSink* sink) {
+                   const std::vector<SeparateLoop>& separate, bool lockstep, int session_cpu, DeviceCycleSink* sink,
+                   const DeviceSession* clock_device) {
   std::vector<const SeparateLoop*> own;  // lockstep runs every device on one loop
   if (!lockstep)
     for (const SeparateLoop& l : separate)
@@ -34,8 +35,12 @@ LoopPlan::LoopPlan(const std::vector<DeviceSession*>& devices, const std::vector
     if (k == 0 && shares[0].devices.empty() && !own.empty()) continue;  // every device is in a loop of its own
     const std::size_t producer = cycles_.size();
     cycles_.push_back(std::make_unique<LoopCycle>(shares[k].devices, shares[k].stages, sink, producer, shares[k].ids));
+    const auto& mine = shares[k].devices;
+    DeviceClock* clock = nullptr;
+    if (clock_device != nullptr && !lockstep && std::find(mine.begin(), mine.end(), clock_device) != mine.end())
+      clock = clock_device->chain().device->clock();
     loops_.push_back(ExecutorLoop{k == 0 ? std::string("session") : own[k - 1]->name,
-                                  k == 0 ? session_cpu : own[k - 1]->cpu, cycles_.back().get()});
+                                  k == 0 ? session_cpu : own[k - 1]->cpu, cycles_.back().get(), clock});
   }
 }
 

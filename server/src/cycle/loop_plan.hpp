@@ -29,9 +29,10 @@ class LoopPlan {
   // devices: every device, in the session's order (their numbers in the recording); stages: the device groups'
   // stages, each run by the loop that holds its devices; separate: the groups with a loop of their own (ignored in
   // lockstep); session_cpu: the session's loop's CPU (-1: not pinned); sink: the recorder (null: none), with a
-  // producer for every loop.
+  // producer for every loop; clock_device: for `clock: device`, the device whose ticks clock the loop it is in.
   LoopPlan(const std::vector<DeviceSession*>& devices, const std::vector<GroupStage*>& stages,
-           const std::vector<SeparateLoop>& separate, bool lockstep, int session_cpu, DeviceCycleSink* sink = nullptr);
+           const std::vector<SeparateLoop>& separate, bool lockstep, int session_cpu, DeviceCycleSink* sink = nullptr,
+           const DeviceSession* clock_device = nullptr);
 
   // The loops for the executor: the session's first (when it has devices), then the groups'.
   [[nodiscard]] const std::vector<ExecutorLoop>& loops() const noexcept { return loops_; }

@@ -16,7 +16,7 @@ Executor::Executor(ExecutorSettings settings, const std::vector<ExecutorLoop>& l
   HAPTICD_DEMAND(!loops.empty());
   for (const ExecutorLoop& l : loops) {
     HAPTICD_DEMAND(l.work != nullptr);
-    loops_.push_back(std::make_unique<Loop>(l.name, l.cpu, *l.work));
+    loops_.push_back(std::make_unique<Loop>(l.name, l.cpu, *l.work, l.device_clock));
   }
 }
 
@@ -40,9 +40,17 @@ void Executor::loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_
   const auto window_cycles = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(settings_.rate_hz)));
   std::int64_t window_latency_ns = 0, window_compute_ns = 0;
 
-  for (;;) {
-    clock.sleep_until(deadline_ns);
-    const auto index = static_cast<std::uint64_t>((deadline_ns - start_ns) / period_ns_);
+  std::uint64_t index = 0;
+  for (bool first = true;; first = false) {
+    // Due at the deadline; on a device's clock, at the device's tick (its time is the cycle's).
+    std::uint64_t missed = 0;
+    deadline_ns = clock.wait_for_cycle(deadline_ns, missed);
+    if (clock.follows_device()) {
+      index = first ? 0 : index + 1 + missed;
+      stats.skipped_cycles += missed;
+    } else {
+      index = static_cast<std::uint64_t>((deadline_ns - start_ns) / period_ns_);
+    }
     const std::int64_t wake_ns = clock.now_ns();
     const std::int64_t compute_start_ns = monotonic_now_ns();
 
@@ -87,13 +95,13 @@ void Executor::loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_
     }
 
     deadline_ns = next_deadline_ns;
-    if (overrun) {
+    if (overrun && !clock.follows_device()) {  // a device's ticks say themselves which periods went by
       // Behind by more than a period: keep the absolute schedule but skip the deadlines already missed.
       const std::int64_t behind_ns = clock.now_ns() - deadline_ns;
       if (behind_ns > period_ns_) {
-        const std::int64_t missed = behind_ns / period_ns_;
-        deadline_ns += missed * period_ns_;
-        stats.skipped_cycles += static_cast<std::uint64_t>(missed);
+        const std::int64_t passed = behind_ns / period_ns_;
+        deadline_ns += passed * period_ns_;
+        stats.skipped_cycles += static_cast<std::uint64_t>(passed);
       }
     }
   }
@@ -148,6 +156,10 @@ ExecutorResult Executor::run(const std::atomic<bool>& stop_requested, const std:
         if (!settings_.lockstep && settings_.lock_memory) prefault_stack();
         if (settings_.lockstep) {
           VirtualClock clock;
+          loop(*loops_[k], clock, stop_requested, result.loops[k]);
+        } else if (loops_[k]->device_clock != nullptr) {
+          DeviceTickClock clock(*loops_[k]->device_clock, settings_.device_clock_stall_ns,
+                                settings_.device_clock_first_tick_ns);
           loop(*loops_[k], clock, stop_requested, result.loops[k]);
         } else {
           MonotonicClock clock;

@@ -7,7 +7,8 @@
 // duration is reached each loop ramps its torques linearly to zero over the shutdown ramp, then stops; when a stop
 // is requested (SIGINT/SIGTERM) the work takes an emergency stop - its safe modes, damping then zero torque - and a
 // loop stops once its work is at rest. Each cycle tells the work the current run of consecutive overruns of its
-// loop (the devices' watchdog).
+// loop (the devices' watchdog). A loop may take its clock from a device whose SDK owns the servo loop
+// (`server.clock: device`, executor/loop_clock.hpp): one cycle per tick, the same statistics and watchdogs.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -38,13 +39,19 @@ struct ExecutorSettings {
   bool lock_memory = false;
   int cpu = -1;
   int cpu_dma_latency_us = -1;  // held while running (realtime only); -1: left alone
+  // A loop on a device's clock (ExecutorLoop::device_clock): a tick this late is a stall (the cycle runs then, and
+  // the loop runs on its own clock until the device ticks again); the first tick may take longer.
+  std::int64_t device_clock_stall_ns = 20'000'000;
+  std::int64_t device_clock_first_tick_ns = 1'000'000'000;
 };
 
-// One loop: its name ("session", or a group's), its CPU (-1: not pinned) and what it runs (outlives the executor).
+// One loop: its name ("session", or a group's), its CPU (-1: not pinned), what it runs (outlives the executor)
+// and, for `server.clock: device`, the clock of the device it runs on (null: its own; ignored in lockstep).
 struct ExecutorLoop {
   std::string name;
   int cpu = -1;
   LoopWork* work = nullptr;
+  DeviceClock* device_clock = nullptr;
 };
 
 // One loop's figures.
@@ -101,11 +108,12 @@ class Executor {
 
  private:
   struct Loop {
-    Loop(std::string loop_name, int loop_cpu, LoopWork& loop_work)
-        : name(std::move(loop_name)), cpu(loop_cpu), work(loop_work) {}
+    Loop(std::string loop_name, int loop_cpu, LoopWork& loop_work, DeviceClock* clock)
+        : name(std::move(loop_name)), cpu(loop_cpu), work(loop_work), device_clock(clock) {}
     std::string name;
     int cpu;
     LoopWork& work;
+    DeviceClock* device_clock;
     LiveLoopStatistics live;
   };
   void loop(Loop& loop, LoopClock& clock, const std::atomic<bool>& stop_requested, LoopResult& result) noexcept;
