@@ -18,12 +18,13 @@ std::vector<std::string> candidates(const VendorLibrarySearch& s) {
   const auto in_folder = [&](const fs::path& folder) {
     for (const std::string& n : s.names) out.push_back((folder / n).string());
   };
-  if (!s.path.empty()) {
+  if (!s.path.empty()) {  // the session's choice is the only place: never another library than the one named
     std::error_code ec;
     if (fs::is_directory(s.path, ec))
       in_folder(s.path);
     else
       out.push_back(s.path);
+    return out;
   }
   if (!s.environment.empty()) {
     if (const char* root = std::getenv(s.environment.c_str()); root != nullptr && root[0] != '\0') {

@@ -3,9 +3,10 @@
 // devices (Force Dimension's libdhd/libdrd, 3D Systems' libHD) find it where the session or the machine says, take
 // the functions they need by name, and say plainly what is missing. Not real-time: configure() only.
 //
-// Where it looks, in order: the session's path (a file, or a folder holding one of the names), the folders of an
-// environment variable (the vendor's own, e.g. FORCEDIM_SDK, and its lib/ and lib/release/lin-x86_64-gcc/
-// subfolders), then the dynamic loader's own search (LD_LIBRARY_PATH, ld.so.conf, the system folders).
+// Where it looks: the session's path when it gives one (a file, or a folder holding one of the names; only there,
+// so a wrong path is an error, never another library), else the folders of an environment variable (the vendor's
+// own, e.g. FORCEDIM_SDK, and its lib/ and lib/release/lin-x86_64-gcc/ subfolders), then the dynamic loader's own
+// search (LD_LIBRARY_PATH, ld.so.conf, the system folders).
 #include <stdexcept>
 #include <string>
 #include <vector>

@@ -3,12 +3,14 @@
 # operator) runs in lockstep, twice with identical recordings, without a device fault; its recording replayed by
 # the playback device through the same scheme (config/sessions/playback.yaml) reproduces it bit for bit.
 # The sessions of the commercial devices run on the project's stand-ins of the vendors' SDKs, found as a user's
-# SDK is: through the vendor's own variable (FORCEDIM_SDK), each force call one loop period in lockstep.
+# SDK is: through the vendor's own variable (FORCEDIM_SDK, OH_SDK_BASE); the DHD stand-in steps one loop period per
+# force call in lockstep, the HD stand-in's scheduler runs in real time.
 # Usage: sessions_test.sh HAPTICD SOURCE_DIR WORK_DIR STANDIN_DIR
 set -u
 hapticd=$1; src=$2; work=$3; standins=$4
 export FORCEDIM_SDK="$standins/forcedimension" HAPTICD_DHD_STANDIN="omega.6:10001,omega.7:10002"
 export HAPTICD_DHD_STANDIN_STEP=0.0005
+export OH_SDK_BASE="$standins/openhaptics" HAPTICD_HD_STANDIN="Default Device=Touch:220-10001,Right Device=Touch X:330-10002"
 rm -rf "$work"; mkdir -p "$work"
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }

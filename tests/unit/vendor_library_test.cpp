@@ -55,7 +55,6 @@ TEST(VendorLibrary, FindsTheLibraryBelowTheVendorsVariable) {
 TEST(VendorLibrary, AMissingLibraryNamesTheVendorAndEveryPlaceTried) {
   VendorLibrarySearch s = fixture_search();
   s.names = {"libno_such_vendor_sdk.so"};
-  s.path = "/nonexistent/sdk";
   ::setenv("HAPTICD_TEST_EXAMPLE_SDK", "/nonexistent/root", 1);
   try {
     const VendorLibrary library(s);
@@ -63,10 +62,25 @@ TEST(VendorLibrary, AMissingLibraryNamesTheVendorAndEveryPlaceTried) {
   } catch (const VendorLibraryError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("the Example SDK library was not found"), std::string::npos) << what;
-    EXPECT_NE(what.find("/nonexistent/sdk"), std::string::npos) << what;
     EXPECT_NE(what.find("$HAPTICD_TEST_EXAMPLE_SDK"), std::string::npos) << what;
     EXPECT_NE(what.find("/nonexistent/root/lib/libno_such_vendor_sdk.so"), std::string::npos) << what;
     EXPECT_NE(what.find("docs/devices.md"), std::string::npos) << what;
+  }
+  ::unsetenv("HAPTICD_TEST_EXAMPLE_SDK");
+}
+
+TEST(VendorLibrary, ASessionsPathIsTheOnlyPlaceTriedWhenGiven) {
+  // A wrong sdk_path is an error, never another library found elsewhere: here the fixture library is in the folder of
+  // the vendor's variable, and still not taken.
+  VendorLibrarySearch s = fixture_search();
+  s.path = "/nonexistent/sdk";
+  ::setenv("HAPTICD_TEST_EXAMPLE_SDK", test::fixture_dir().c_str(), 1);
+  try {
+    const VendorLibrary library(s);
+    FAIL() << "loaded " << library.file();
+  } catch (const VendorLibraryError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("/nonexistent/sdk"), std::string::npos) << what;
   }
   ::unsetenv("HAPTICD_TEST_EXAMPLE_SDK");
 }

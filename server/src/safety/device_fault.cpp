@@ -91,7 +91,7 @@ std::string_view to_string(DeviceFault fault) noexcept {
     case DeviceFault::loop_overrun:
       return "too many consecutive loop overruns";
     case DeviceFault::loop_stall:
-      return "the loop stalled (woke far too late for a cycle)";
+      return "the loop stalled (it woke far too late for a cycle, or the device that clocks it stopped ticking)";
     case DeviceFault::emergency_stop:
       return "emergency stop";
     case DeviceFault::collision:

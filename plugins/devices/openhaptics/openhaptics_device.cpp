@@ -1,0 +1,293 @@
+#include "openhaptics_device.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+namespace hapticd::plugins::openhaptics {
+namespace {
+
+// The HD scheduler is one per process, shared by every device: started by the first enable(), stopped by the
+// last disable().
+std::mutex scheduler_mutex;
+int scheduler_users = 0;
+
+HDCallbackCode servo_callback(void* self) { return static_cast<OpenHapticsDevice*>(self)->servo(); }
+
+}  // namespace
+
+ParameterSchema OpenHapticsDevice::parameter_schema() {
+  ParameterSchema s;
+  s.string("sdk_path", "the SDK's libHD.so, or its folder; empty: OH_SDK_BASE, then the library path")
+      .default_value("");
+  s.string("device_name", "the device's configured name (Touch Setup), e.g. \"Default Device\"; empty: the default")
+      .default_value("");
+  s.real("max_force_n", "the largest force to command; 0: the device's nominal peak force")
+      .unit("N")
+      .minimum(0.0)
+      .default_value(0.0);
+  s.real("command_wait_us",
+         "when the device clocks the loop: how long the servo callback waits for the loop's force of its tick; 0: 80 "
+         "% of the period")
+      .unit("us")
+      .minimum(0.0)
+      .maximum(10000.0)
+      .default_value(0.0);
+  s.integer("hold_ticks", "ticks a late force is held before the callback writes zero")
+      .minimum(0)
+      .maximum(10)
+      .default_value(2);
+  return s;
+}
+
+OpenHapticsDevice::~OpenHapticsDevice() { close_device(); }
+
+void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& context) {
+  VendorLibrarySearch search;
+  search.vendor = "OpenHaptics";
+  search.names = {"libHD.so", "libHD.so.3.4", "libHD.so.3.0"};
+  search.path = p.string("sdk_path");
+  search.environment = "OH_SDK_BASE";
+  search.subdirs = {"lib", "lib64"};
+  try {
+    library_ = std::make_unique<VendorLibrary>(search);
+    hd_ = std::make_unique<HdApi>(*library_);
+  } catch (const VendorLibraryError& e) {
+    throw std::runtime_error(e.what());
+  }
+  const std::string name = p.string("device_name");
+  handle_ = hd_->init_device(name.empty() ? nullptr : name.c_str());
+  if (const HDErrorInfo e = hd_->get_error(); handle_ == kInvalidHandle || e.errorCode != kSuccess) {
+    handle_ = kInvalidHandle;
+    throw std::runtime_error("cannot open the OpenHaptics device " +
+                             (name.empty() ? "(the default)" : "'" + name + "'") + ": " + hd_->text_of(e.errorCode) +
+                             " (internal code " + std::to_string(e.internalErrorCode) + ")");
+  }
+  hd_->make_current_device(handle_);
+  const char* model_text = hd_->get_string(kDeviceModelType);
+  const std::string model = model_text != nullptr ? model_text : "unknown";
+
+  // Calibration: an update the SDK makes itself (nothing moves); the inkwell needs the user.
+  const HDenum calibration = hd_->check_calibration();
+  if (calibration == kCalibrationNeedsManualInput) {
+    close_device();
+    throw std::runtime_error("the " + model +
+                             " needs calibrating (the SDK: HD_CALIBRATION_NEEDS_MANUAL_INPUT): put the stylus into "
+                             "the inkwell, or calibrate it with Touch Diagnostic, then start again");
+  }
+  if (calibration == kCalibrationNeedsUpdate) {
+    int styles = 0;
+    hd_->get_integerv(kCalibrationStyle, &styles);
+    const int style = (styles & kCalibrationAuto)           ? kCalibrationAuto
+                      : (styles & kCalibrationEncoderReset) ? kCalibrationEncoderReset
+                                                            : kCalibrationInkwell;
+    hd_->update_calibration(static_cast<HDenum>(style));
+    if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess) {
+      close_device();
+      throw std::runtime_error("the " + model + " could not update its calibration: " + hd_->text_of(e.errorCode));
+    }
+  }
+
+  period_ns_ = static_cast<std::int64_t>(std::llround(1e9 / context.rate_hz));
+  hd_->set_scheduler_rate(static_cast<unsigned long>(std::lround(context.rate_hz)));
+  if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess) {
+    close_device();
+    throw std::runtime_error("the HD scheduler cannot run at the session's rate of " + std::to_string(context.rate_hz) +
+                             " Hz (" + hd_->text_of(e.errorCode) +
+                             "): set server.rate_hz to one it supports, e.g. 1000");
+  }
+  const double wait_us = p.real("command_wait_us");
+  command_wait_ns_ = wait_us > 0.0 ? static_cast<std::int64_t>(wait_us * 1e3) : period_ns_ * 8 / 10;
+  hold_ticks_ = static_cast<int>(p.integer("hold_ticks"));
+
+  int input_dof = 0, output_dof = 0;
+  hd_->get_integerv(kInputDof, &input_dof);
+  hd_->get_integerv(kOutputDof, &output_dof);
+  double workspace[6] = {0, 0, 0, 0, 0, 0}, max_force = 0, continuous = 0, stiffness = 0, damping = 0;
+  hd_->get_doublev(kUsableWorkspaceDimensions, workspace);
+  hd_->get_doublev(kNominalMaxForce, &max_force);
+  hd_->get_doublev(kNominalMaxContinuousForce, &continuous);
+  hd_->get_doublev(kNominalMaxStiffness, &stiffness);
+  hd_->get_doublev(kNominalMaxDamping, &damping);
+  const char* serial_text = hd_->get_string(kDeviceSerialNumber);
+
+  DeviceDescription& d = description_;
+  d.model = "openhaptics " + model + (serial_text != nullptr ? std::string(" ") + serial_text : std::string());
+  d.interface = DeviceInterface::handle;
+  HandleDescription& h = d.handle;
+  h.senses_orientation = input_dof >= 6;
+  h.actuated_torque = false;  // 3-DOF force output; a 6-DOF output device's torques are not driven
+  h.buttons = 2;
+  const Eigen::Vector3d lo(workspace[0], workspace[1], workspace[2]), hi(workspace[3], workspace[4], workspace[5]);
+  if ((hi - lo).minCoeff() > 0.0) {
+    h.workspace_min = lo * 1e-3;
+    h.workspace_max = hi * 1e-3;
+  } else {
+    h.workspace_min = Eigen::Vector3d::Constant(-0.08);
+    h.workspace_max = Eigen::Vector3d::Constant(0.08);
+  }
+  if (!(max_force > 0.0)) {
+    close_device();
+    throw std::runtime_error("the " + model + " reports no nominal force (HD_NOMINAL_MAX_FORCE)");
+  }
+  const double asked = p.real("max_force_n");
+  if (asked > max_force)
+    throw ParameterError("max_force_n", "above the " + model + "'s nominal " + std::to_string(max_force));
+  h.max_force_n = asked > 0.0 ? asked : max_force;
+  h.continuous_force_n = continuous > 0.0 ? std::min(continuous, h.max_force_n) : 0.0;
+  h.recommended_stiffness_n_per_m = stiffness * 1e3;  // N/mm
+  h.recommended_damping_n_s_per_m = damping * 1e3;    // N s/mm
+  (void)output_dof;
+}
+
+const char* OpenHapticsDevice::failure(const char* what, HDerror code, int internal) noexcept {
+  std::array<char, 256>& text = errors_[static_cast<std::size_t>(error_)];
+  if (text[0] == '\0')
+    std::snprintf(text.data(), text.size(), "%s: %s (HD error 0x%04x, internal %d)", what, hd_->text_of(code), code,
+                  internal);
+  return text.data();
+}
+
+Outcome OpenHapticsDevice::enable() {
+  if (handle_ == kInvalidHandle) return Outcome::failure("the OpenHaptics device is not open");
+  errors_[static_cast<std::size_t>(error_)][0] = '\0';
+  have_sample_ = false;
+  applied_ = HdCommand{};
+  missed_ = 0;
+  end_error_ = HDErrorInfo{kSuccess, 0, 0};
+  hd_->make_current_device(handle_);
+  hd_->enable(kForceOutput);
+  if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess)
+    return Outcome::failure(failure("enabling forces", e.errorCode, e.internalErrorCode));
+  ended_.store(false);
+  running_.store(true);
+  callback_ = hd_->schedule_asynchronous(&servo_callback, this, kMaxSchedulerPriority);
+  if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess) {
+    running_.store(false);
+    return Outcome::failure(failure("scheduling the servo callback", e.errorCode, e.internalErrorCode));
+  }
+  scheduled_ = true;
+  {
+    std::lock_guard lock(scheduler_mutex);
+    if (scheduler_users++ == 0) hd_->start_scheduler();
+  }
+  if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess)
+    return Outcome::failure(failure("starting the HD scheduler", e.errorCode, e.internalErrorCode));
+  // The first sample before the first cycle (the loop may not run on the device's clock).
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  while (samples_made_.load() == 0 && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  if (samples_made_.load() == 0) return Outcome::failure("the HD scheduler did not call the servo callback within 1 s");
+  return Outcome::success();
+}
+
+HDCallbackCode OpenHapticsDevice::servo() noexcept {
+  if (!running_.load(std::memory_order_acquire)) {  // the end: one frame with no force, then done
+    const double zero[3] = {0, 0, 0};
+    hd_->begin_frame(handle_);
+    hd_->set_doublev(kCurrentForce, zero);
+    hd_->end_frame(handle_);
+    ended_.store(true, std::memory_order_release);
+    return kCallbackDone;
+  }
+  HdSample s;
+  hd_->begin_frame(handle_);
+  hd_->get_doublev(kCurrentPosition, s.position_mm.data());
+  hd_->get_doublev(kCurrentVelocity, s.velocity_mm_s.data());
+  hd_->get_doublev(kCurrentTransform, s.transform.data());
+  hd_->get_doublev(kCurrentAngularVelocity, s.angular_velocity.data());
+  hd_->get_integerv(kCurrentButtons, &s.buttons);
+  HDErrorInfo e = hd_->get_error();
+  if (e.errorCode == kSuccess) e = end_error_;
+  s.error = e.errorCode;
+  s.internal_error = e.internalErrorCode;
+  samples_.publish(s);
+  samples_made_.fetch_add(1, std::memory_order_release);
+  clock_.ticks.tick();
+
+  // The force: on the device's clock, the loop's answer to this tick (bounded wait); else the newest.
+  if (clock_.clocks_loop.load(std::memory_order_relaxed))
+    (void)realtime::TickSignal::wait_while(command_count_, commands_seen_,
+                                           realtime::TickSignal::now_ns() + command_wait_ns_);
+  commands_seen_ = command_count_.load(std::memory_order_acquire);
+  if (HdCommand c; commands_.take(c)) {
+    applied_ = c;
+    missed_ = 0;
+  } else if (clock_.clocks_loop.load(std::memory_order_relaxed)) {
+    late_.fetch_add(1, std::memory_order_relaxed);
+    if (++missed_ > hold_ticks_) applied_ = HdCommand{};  // the loop is gone: no force
+  }
+  hd_->set_doublev(kCurrentForce, applied_.force_n.data());
+  hd_->end_frame(handle_);
+  end_error_ = hd_->get_error();  // told with the next sample
+  return kCallbackContinue;
+}
+
+Outcome OpenHapticsDevice::read(const CycleTime& cycle, DeviceState& state) {
+  if (samples_.take(sample_)) have_sample_ = true;
+  if (!have_sample_) return Outcome::failure("no sample from the HD scheduler yet");
+  if (sample_.error != kSuccess)
+    return Outcome::failure(failure("the servo frame", sample_.error, sample_.internal_error));
+  HandleState& h = state.handle;
+  state.timestamp_ns = cycle.time_ns;
+  h.pose.position = Eigen::Vector3d(sample_.position_mm[0], sample_.position_mm[1], sample_.position_mm[2]) * 1e-3;
+  h.twist.linear = Eigen::Vector3d(sample_.velocity_mm_s[0], sample_.velocity_mm_s[1], sample_.velocity_mm_s[2]) * 1e-3;
+  if (description_.handle.senses_orientation) {
+    Eigen::Matrix3d r;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) r(i, j) = sample_.transform[static_cast<std::size_t>(j * 4 + i)];
+    h.pose.orientation = Eigen::Quaterniond(r).normalized();
+    h.twist.angular =
+        Eigen::Vector3d(sample_.angular_velocity[0], sample_.angular_velocity[1], sample_.angular_velocity[2]);
+  }
+  h.buttons = static_cast<std::uint32_t>(sample_.buttons);
+  return Outcome::success();
+}
+
+Outcome OpenHapticsDevice::write(const CycleTime&, const JointCommand& command) {
+  const JointVector& e = command.torque_nm;
+  if (e.size() != description_.handle.axes()) return Outcome::failure("the command does not match the device's axes");
+  HdCommand c;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!std::isfinite(e[i])) return Outcome::failure("a non-finite force");
+    c.force_n[i] = e[i];
+  }
+  commands_.publish(c);
+  command_count_.fetch_add(1, std::memory_order_release);
+  realtime::TickSignal::wake(command_count_);
+  return Outcome::success();
+}
+
+Outcome OpenHapticsDevice::reset_fault() {
+  // A recovery: the next failure says its own reason, in the other buffer.
+  error_ = 1 - error_;
+  errors_[static_cast<std::size_t>(error_)][0] = '\0';
+  return Outcome::success();
+}
+
+void OpenHapticsDevice::disable() { close_device(); }
+
+void OpenHapticsDevice::close_device() noexcept {
+  if (!hd_ || handle_ == kInvalidHandle) return;
+  running_.store(false, std::memory_order_release);
+  if (scheduled_) {
+    // The callback's last frame writes no force (on the scheduler's thread, where frames belong); 0.1 s at most.
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
+    while (!ended_.load(std::memory_order_acquire) && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    hd_->unschedule(callback_);
+    scheduled_ = false;
+    std::lock_guard lock(scheduler_mutex);
+    if (--scheduler_users == 0) hd_->stop_scheduler();
+  }
+  hd_->make_current_device(handle_);
+  hd_->disable(kForceOutput);
+  hd_->disable_device(handle_);
+  (void)hd_->get_error();
+  handle_ = kInvalidHandle;
+}
+
+}  // namespace hapticd::plugins::openhaptics

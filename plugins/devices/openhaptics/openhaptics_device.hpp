@@ -1,0 +1,113 @@
+#pragma once
+// 3D Systems' Touch and Touch X (and the PHANTOM devices of the same API) through OpenHaptics' HD API, loaded at
+// run time ("openhaptics", docs/devices.md). A handle device (hapticd/handle.hpp) whose SDK owns the servo loop:
+// the HD scheduler calls a callback at its rate, which reads the handle in a frame (hdBeginFrame .. hdEndFrame),
+// hands the sample to the loop and ticks the device's clock (`server.clock: device`), then writes the force.
+//   configure: load libHD from `sdk_path`, OH_SDK_BASE or the library path; open the device by its configured
+//              name (hdInitDevice; "" the default device); update a calibration that needs only an update,
+//              refuse one that needs the user (the inkwell) with the vendor's word; set the scheduler's rate to
+//              the session's; describe it from the device's own figures (workspace, nominal force, stiffness).
+//   enable:    forces on, the callback scheduled, the scheduler started (once for every device of the process);
+//              the first sample awaited (1 s).
+//   read:      the newest sample of the callback (hold when none came since; a frame's SDK error is a fault with
+//              the vendor's text).
+//   write:     the force for the callback. When the device clocks the loop, the callback waits for the loop's
+//              force of its own tick (bounded: `command_wait_us`); a late one is held for `hold_ticks` ticks, then
+//              the callback writes zero.
+//   disable:   the callback ends, zero force, forces off, the scheduler stopped (by the last device), closed.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "hapticd/device.hpp"
+#include "hapticd/realtime/latest_value.hpp"
+#include "hapticd/realtime/tick_signal.hpp"
+#include "hd_api.hpp"
+#include "vendor_library.hpp"
+
+namespace hapticd::plugins::openhaptics {
+
+// One frame of the callback, for the loop.
+struct HdSample {
+  std::array<double, 3> position_mm{};
+  std::array<double, 3> velocity_mm_s{};
+  std::array<double, 16> transform{};  // column-major, translation in mm
+  std::array<double, 3> angular_velocity{};
+  int buttons = 0;
+  HDerror error = kSuccess;  // an error of this frame (or of the previous frame's end)
+  int internal_error = 0;
+};
+
+// The loop's force for the callback.
+struct HdCommand {
+  std::array<double, 3> force_n{};
+};
+
+class OpenHapticsDevice final : public Device {
+ public:
+  static ParameterSchema parameter_schema();
+
+  ~OpenHapticsDevice() override;
+  void configure(const Parameters& parameters, const PluginContext& context) override;
+  [[nodiscard]] const DeviceDescription& description() const override { return description_; }
+  Outcome enable() override;
+  Outcome read(const CycleTime& cycle, DeviceState& state) override;
+  Outcome write(const CycleTime& cycle, const JointCommand& command) override;
+  Outcome reset_fault() override;
+  void disable() override;
+  DeviceClock* clock() noexcept override { return &clock_; }
+
+  // The HD scheduler's thread, once per tick.
+  HDCallbackCode servo() noexcept;
+  // Ticks of the servo callback and the ticks whose force was the loop's late one or zero (tests, docs).
+  [[nodiscard]] std::uint64_t late_commands() const noexcept { return late_.load(std::memory_order_relaxed); }
+
+ private:
+  // The device's ticks; knows whether the loop waits on them (then the callback waits for the loop's force).
+  class Clock final : public DeviceClock {
+   public:
+    DeviceTick wait_for_tick(std::int64_t until_ns) noexcept override {
+      clocks_loop.store(true, std::memory_order_relaxed);
+      return ticks.wait_for_tick(until_ns);
+    }
+    realtime::TickSignal ticks;
+    std::atomic<bool> clocks_loop{false};
+  };
+
+  const char* failure(const char* what, HDerror code, int internal) noexcept;
+  void close_device() noexcept;
+
+  std::unique_ptr<VendorLibrary> library_;
+  std::unique_ptr<HdApi> hd_;
+  HHD handle_ = kInvalidHandle;
+  DeviceDescription description_;
+  std::int64_t period_ns_ = 1'000'000;
+  std::int64_t command_wait_ns_ = 0;
+  int hold_ticks_ = 2;
+
+  // Callback <-> loop.
+  Clock clock_;
+  std::atomic<bool> running_{false};  // the callback continues while set
+  std::atomic<bool> ended_{false};    // the callback wrote its last frame
+  HDSchedulerHandle callback_ = 0;
+  bool scheduled_ = false;
+  realtime::LatestValue<HdSample> samples_;      // callback -> loop
+  realtime::LatestValue<HdCommand> commands_;    // loop -> callback
+  std::atomic<std::uint32_t> command_count_{0};  // futex word: the loop's forces so far
+  std::uint32_t commands_seen_ = 0;              // the callback's
+  HdCommand applied_;                            // the callback's: the force it writes
+  int missed_ = 0;                               // the callback's: ticks since the loop's last force
+  HDErrorInfo end_error_{kSuccess, 0, 0};        // the callback's: the previous frame's end, for the next sample
+  std::atomic<std::uint64_t> late_{0};
+  std::atomic<std::uint64_t> samples_made_{0};
+
+  // Loop.
+  HdSample sample_;
+  bool have_sample_ = false;
+  std::array<std::array<char, 256>, 2> errors_{};
+  int error_ = 0;
+};
+
+}  // namespace hapticd::plugins::openhaptics
