@@ -4,7 +4,8 @@
 # the playback device through the same scheme (config/sessions/playback.yaml) reproduces it bit for bit.
 # The sessions of the commercial devices run on the project's stand-ins of the vendors' SDKs, found as a user's
 # SDK is: through the vendor's own variable (FORCEDIM_SDK, OH_SDK_BASE); the DHD stand-in steps one loop period per
-# force call in lockstep, the HD stand-in's scheduler runs in real time.
+# force call in lockstep, the HD stand-in's scheduler runs in real time; the Haply session speaks to the Inverse
+# Service stand-in, a process on 127.0.0.1.
 # Usage: sessions_test.sh HAPTICD SOURCE_DIR WORK_DIR STANDIN_DIR
 set -u
 hapticd=$1; src=$2; work=$3; standins=$4
@@ -12,12 +13,19 @@ export FORCEDIM_SDK="$standins/forcedimension" HAPTICD_DHD_STANDIN="omega.6:1000
 export HAPTICD_DHD_STANDIN_STEP=0.0005
 export OH_SDK_BASE="$standins/openhaptics" HAPTICD_HD_STANDIN="Default Device=Touch:220-10001,Right Device=Touch X:330-10002"
 rm -rf "$work"; mkdir -p "$work"
+# Haply's Inverse Service: the stand-in as a process on a port of this test's own (the sessions' URL is set to it).
+haply_port=18101
+"$standins/haply/hapticd-standin-inverse-service" $haply_port > "$work/inverse-service.log" 2>&1 &
+haply_service=$!
+trap 'kill $haply_service 2> /dev/null' EXIT
+for _ in $(seq 50); do grep -q "stand-in on" "$work/inverse-service.log" && break; sleep 0.1; done
+haply_flags() { case "$1" in */haply/*) echo "--set devices.inverse3.device.parameters.url=ws://127.0.0.1:$haply_port" ;; esac; }
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 pass() { echo "ok: $*"; }
 
 for session in $(find "$src/config/sessions" -name "*.yaml" | sort); do  # as shipped, playback.yaml too
-  if out=$(timeout 30 "$hapticd" --check-config "$session" 2>&1); then pass "check-config ${session#$src/config/sessions/}"
+  if out=$(timeout 30 "$hapticd" --check-config "$session" $(haply_flags "$session") 2>&1); then pass "check-config ${session#$src/config/sessions/}"
   else fail "check-config ${session#$src/config/sessions/}: $out"; fi
 done
 
@@ -28,7 +36,8 @@ done
 dds_flags() { grep -q "^dds:" "$1" && echo "--dds-domain 68"; }
 for session in $(find "$src/config/sessions" -mindepth 2 -name "*.yaml" ! -name "identify-*" | sort); do
   name=${session#$src/config/sessions/}
-  out=$(timeout 60 "$hapticd" --config "$session" --clock lockstep --duration 1 $(dds_flags "$session") 2>&1)
+  out=$(timeout 60 "$hapticd" --config "$session" --clock lockstep --duration 1 $(dds_flags "$session") \
+    $(haply_flags "$session") 2>&1)
   # Every device of the session: no fault within the second (a multi-device session reports each), and no group
   # whose hard minimum tripped.
   fault_cycles=$(echo "$out" | grep -oE "FAULT at cycle [0-9]+" | grep -oE "[0-9]+$" || true)

@@ -36,6 +36,11 @@ ParameterSchema OpenHapticsDevice::parameter_schema() {
       .minimum(0.0)
       .maximum(10000.0)
       .default_value(0.0);
+  s.real("max_sample_age_s", "a sample older than this is a fault (the scheduler stopped calling)")
+      .unit("s")
+      .greater_than(0.0)
+      .maximum(1.0)
+      .default_value(0.05);
   s.integer("hold_ticks", "ticks a late force is held before the callback writes zero")
       .minimum(0)
       .maximum(10)
@@ -102,6 +107,7 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
   const double wait_us = p.real("command_wait_us");
   command_wait_ns_ = wait_us > 0.0 ? static_cast<std::int64_t>(wait_us * 1e3) : period_ns_ * 8 / 10;
   hold_ticks_ = static_cast<int>(p.integer("hold_ticks"));
+  max_sample_age_ns_ = static_cast<std::int64_t>(p.real("max_sample_age_s") * 1e9);
 
   int input_dof = 0, output_dof = 0;
   hd_->get_integerv(kInputDof, &input_dof);
@@ -204,6 +210,7 @@ HDCallbackCode OpenHapticsDevice::servo() noexcept {
   if (e.errorCode == kSuccess) e = end_error_;
   s.error = e.errorCode;
   s.internal_error = e.internalErrorCode;
+  s.time_ns = realtime::TickSignal::now_ns();
   samples_.publish(s);
   samples_made_.fetch_add(1, std::memory_order_release);
   clock_.ticks.tick();
@@ -231,6 +238,8 @@ Outcome OpenHapticsDevice::read(const CycleTime& cycle, DeviceState& state) {
   if (!have_sample_) return Outcome::failure("no sample from the HD scheduler yet");
   if (sample_.error != kSuccess)
     return Outcome::failure(failure("the servo frame", sample_.error, sample_.internal_error));
+  if (realtime::TickSignal::now_ns() - sample_.time_ns > max_sample_age_ns_)
+    return Outcome::failure("no sample from the HD scheduler within max_sample_age_s (it stopped calling)");
   HandleState& h = state.handle;
   state.timestamp_ns = cycle.time_ns;
   h.pose.position = Eigen::Vector3d(sample_.position_mm[0], sample_.position_mm[1], sample_.position_mm[2]) * 1e-3;

@@ -9,8 +9,8 @@
 //              the session's; describe it from the device's own figures (workspace, nominal force, stiffness).
 //   enable:    forces on, the callback scheduled, the scheduler started (once for every device of the process);
 //              the first sample awaited (1 s).
-//   read:      the newest sample of the callback (hold when none came since; a frame's SDK error is a fault with
-//              the vendor's text).
+//   read:      the newest sample of the callback (hold when none came since; one older than `max_sample_age_s` -
+//              a scheduler that stopped calling - and a frame's SDK error are faults with the vendor's text).
 //   write:     the force for the callback. When the device clocks the loop, the callback waits for the loop's
 //              force of its own tick (bounded: `command_wait_us`); a late one is held for `hold_ticks` ticks, then
 //              the callback writes zero.
@@ -31,6 +31,7 @@ namespace hapticd::plugins::openhaptics {
 
 // One frame of the callback, for the loop.
 struct HdSample {
+  std::int64_t time_ns = 0;  // CLOCK_MONOTONIC, when the callback took it
   std::array<double, 3> position_mm{};
   std::array<double, 3> velocity_mm_s{};
   std::array<double, 16> transform{};  // column-major, translation in mm
@@ -86,6 +87,7 @@ class OpenHapticsDevice final : public Device {
   std::int64_t period_ns_ = 1'000'000;
   std::int64_t command_wait_ns_ = 0;
   int hold_ticks_ = 2;
+  std::int64_t max_sample_age_ns_ = 50'000'000;
 
   // Callback <-> loop.
   Clock clock_;

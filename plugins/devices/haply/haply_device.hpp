@@ -1,0 +1,94 @@
+#pragma once
+// Haply's Inverse3 (with a VerseGrip) through Haply's Inverse Service ("haply", docs/devices.md): a local service
+// that speaks JSON over a WebSocket (the simulation channel, ws://127.0.0.1:10001 by default) and answers each
+// message with one state message. A handle device (hapticd/handle.hpp) whose service paces the exchange: an I/O
+// thread sends the force at the session's rate, receives the state that answers it, hands it to the loop and ticks
+// the device's clock (`server.clock: device`).
+//   configure: connect, read the service's inventory, pick the Inverse3 (`device_id`, else the first) and a
+//              VerseGrip (`grip`), refuse one that is not ready or not calibrated with the service's word.
+//   enable:    the I/O thread starts (its first message registers the session's profile, as Haply's clients do);
+//              the first state awaited (1 s).
+//   read:      the newest state (a state older than `max_sample_age_s`, a connection that failed, a message that
+//              is not the service's: a fault that says so).
+//   write:     the force for the next message. On the device's clock the I/O thread waits for the loop's force of
+//              its tick (bounded: `command_wait_us`); a late one is held for `hold_ticks` ticks, then zero is sent.
+//   disable:   zero force sent, the connection closed.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "hapticd/device.hpp"
+#include "hapticd/realtime/latest_value.hpp"
+#include "hapticd/realtime/tick_signal.hpp"
+#include "inverse_service_client.hpp"
+#include "json_reader.hpp"
+
+namespace hapticd::plugins::haply {
+
+// One state of the service, for the loop.
+struct HaplySample {
+  std::int64_t received_ns = 0;  // CLOCK_MONOTONIC
+  std::array<double, 3> position{}, velocity{};
+  std::array<double, 4> orientation{1, 0, 0, 0};  // the grip's, w x y z
+  std::uint32_t buttons = 0;
+  const char* error = nullptr;  // the connection failed or the message was not the service's (static text)
+};
+
+struct HaplyCommand {
+  std::array<double, 3> force_n{};
+};
+
+class HaplyDevice final : public Device {
+ public:
+  static ParameterSchema parameter_schema();
+
+  ~HaplyDevice() override;
+  void configure(const Parameters& parameters, const PluginContext& context) override;
+  [[nodiscard]] const DeviceDescription& description() const override { return description_; }
+  Outcome enable() override;
+  Outcome read(const CycleTime& cycle, DeviceState& state) override;
+  Outcome write(const CycleTime& cycle, const JointCommand& command) override;
+  void disable() override;
+  DeviceClock* clock() noexcept override { return &clock_; }
+
+ private:
+  class Clock final : public DeviceClock {
+   public:
+    DeviceTick wait_for_tick(std::int64_t until_ns) noexcept override {
+      clocks_loop.store(true, std::memory_order_relaxed);
+      return ticks.wait_for_tick(until_ns);
+    }
+    realtime::TickSignal ticks;
+    std::atomic<bool> clocks_loop{false};
+  };
+
+  void run() noexcept;  // the I/O thread
+  bool take_state(std::string_view text, HaplySample& sample) noexcept;
+  void stop() noexcept;
+
+  std::unique_ptr<InverseServiceClient> client_;
+  JsonReader json_;
+  std::string device_id_, grip_id_;
+  std::string grip_kind_;  // "wireless_verse_grip" or "verse_grip"
+  DeviceDescription description_;
+  std::int64_t period_ns_ = 1'000'000;
+  std::int64_t command_wait_ns_ = 0;
+  std::int64_t max_sample_age_ns_ = 50'000'000;
+  int hold_ticks_ = 2;
+
+  Clock clock_;
+  std::thread io_;
+  std::atomic<bool> running_{false};
+  std::atomic<bool> io_done_{true};
+  realtime::LatestValue<HaplySample> samples_;
+  realtime::LatestValue<HaplyCommand> commands_;
+  std::atomic<std::uint32_t> command_count_{0};
+  std::atomic<std::uint64_t> states_{0};
+  HaplySample sample_;
+  bool have_sample_ = false;
+};
+
+}  // namespace hapticd::plugins::haply

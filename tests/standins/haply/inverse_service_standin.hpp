@@ -1,0 +1,48 @@
+#pragma once
+// A stand-in for Haply's Inverse Service, built by the project for its tests from the service's published
+// simulation-channel protocol (docs.haply.co, Inverse Service 3.x: on connecting, an inventory of every device with
+// config, state and status; then exactly one state message for each message received; set_cursor_force under a
+// device's "commands"). Loopback only (127.0.0.1). Behind it: an Inverse3 cursor with mass and damping in a
+// walled box, a simulated hand pushing it, and a wireless VerseGrip with orientation and buttons; and controls for
+// the tests: the hand, a pause (the service answers nothing), a dropped connection. None of Haply's code.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace hapticd::standins {
+
+class InverseServiceStandIn {
+ public:
+  struct Options {
+    int port = 0;  // 0: any free port (port() tells)
+    std::string device_id = "049D";
+    std::string grip_id = "61548";  // "": no VerseGrip
+    bool calibrated = true;
+  };
+  explicit InverseServiceStandIn(Options options);
+  ~InverseServiceStandIn();
+  InverseServiceStandIn(const InverseServiceStandIn&) = delete;
+  InverseServiceStandIn& operator=(const InverseServiceStandIn&) = delete;
+
+  [[nodiscard]] int port() const noexcept;
+  [[nodiscard]] std::string url() const;
+  // The hand pushes the cursor with this force [N]; the grip's buttons a, b, c as bits 0, 1, 2.
+  void hand(double fx, double fy, double fz, unsigned buttons);
+  // Answers nothing for this long (a service that stopped).
+  void pause(double seconds);
+  // Closes the connection now.
+  void drop();
+  struct Cursor {
+    std::array<double, 3> position{}, force{};  // m, N: the last force commanded
+  };
+  [[nodiscard]] Cursor cursor() const;
+  [[nodiscard]] std::uint64_t messages() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hapticd::standins
