@@ -11,6 +11,7 @@ namespace hapticd {
 
 RuntimeRequests::~RuntimeRequests() = default;
 Device::~Device() = default;
+DeviceUnavailable::~DeviceUnavailable() = default;
 Controller::~Controller() = default;
 InverseKinematics::~InverseKinematics() = default;
 RedundancyResolution::~RedundancyResolution() = default;

@@ -1,4 +1,6 @@
 #pragma once
+#include <stdexcept>
+
 #include "hapticd/chain_signals.hpp"
 #include "hapticd/cycle_time.hpp"
 #include "hapticd/device_clock.hpp"
@@ -11,6 +13,16 @@
 #include "hapticd/simulated_truth.hpp"
 
 namespace hapticd {
+
+// Thrown by a device's configure() when the device is not there - its vendor's library or service cannot be found
+// or reached, no device answers to the name, index or serial number - rather than the session being wrong: the
+// server says so and exits with code 4 before anything is powered (a ParameterError or another exception: a
+// configuration error, code 2). Key-type exception with a key function: one typeinfo across plugins.
+class HAPTICD_API DeviceUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+  ~DeviceUnavailable() override;
+};
 
 // A force-feedback device (hardware driver or simulation). Lifecycle:
 //   configure -> description -> enable -> [home] -> { read, write, [reset_fault] }* -> disable

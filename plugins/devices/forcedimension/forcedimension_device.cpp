@@ -80,7 +80,7 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
     library_ = std::make_unique<VendorLibrary>(search);
     dhd_ = std::make_unique<DhdApi>(*library_);
   } catch (const VendorLibraryError& e) {
-    throw std::runtime_error(e.what());
+    throw DeviceUnavailable(e.what());
   }
   const long long serial = p.integer("serial");
   const int opened =
@@ -88,8 +88,8 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
   if (opened < 0) {
     const std::string which =
         serial > 0 ? "serial number " + std::to_string(serial) : "index " + std::to_string(p.integer("index"));
-    throw std::runtime_error("no Force Dimension device with " + which + " (" +
-                             std::to_string(dhd_->get_device_count()) + " connected): " + dhd_->last_error());
+    throw DeviceUnavailable("no Force Dimension device with " + which + " (" +
+                            std::to_string(dhd_->get_device_count()) + " connected): " + dhd_->last_error());
   }
   id_ = static_cast<char>(opened);
   open_ = true;

@@ -87,7 +87,7 @@ void HaplyDevice::configure(const Parameters& p, const PluginContext& context) {
   if (std::string why = InverseServiceClient::check_url(url); !why.empty()) throw std::runtime_error(why);
   client_ = std::make_unique<InverseServiceClient>(url);
   const double timeout = p.real("connect_timeout_s");
-  if (std::string why = client_->connect(timeout); !why.empty()) throw std::runtime_error(why);
+  if (std::string why = client_->connect(timeout); !why.empty()) throw DeviceUnavailable(why);
   std::string_view text;
   if (!client_->receive(text, timeout))
     throw std::runtime_error("the Inverse Service at " + client_->url() +
@@ -98,9 +98,9 @@ void HaplyDevice::configure(const Parameters& p, const PluginContext& context) {
   const std::string wanted = p.string("device_id");
   const JsonReader::Value device = device_entry(root, "inverse3", wanted);
   if (!device)
-    throw std::runtime_error(wanted.empty() ? "the Inverse Service at " + client_->url() + " reports no Inverse3"
-                                            : "the Inverse Service reports no Inverse3 '" + wanted + "' (" +
-                                                  std::to_string(root["inverse3"].size()) + " connected)");
+    throw DeviceUnavailable(wanted.empty() ? "the Inverse Service at " + client_->url() + " reports no Inverse3"
+                                           : "the Inverse Service reports no Inverse3 '" + wanted + "' (" +
+                                                 std::to_string(root["inverse3"].size()) + " connected)");
   device_id_ = std::string(device["device_id"].string().value_or(""));
   const JsonReader::Value status = device["status"];
   if (status["ready"].boolean() == false)

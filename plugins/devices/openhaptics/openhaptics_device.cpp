@@ -61,15 +61,15 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
     library_ = std::make_unique<VendorLibrary>(search);
     hd_ = std::make_unique<HdApi>(*library_);
   } catch (const VendorLibraryError& e) {
-    throw std::runtime_error(e.what());
+    throw DeviceUnavailable(e.what());
   }
   const std::string name = p.string("device_name");
   handle_ = hd_->init_device(name.empty() ? nullptr : name.c_str());
   if (const HDErrorInfo e = hd_->get_error(); handle_ == kInvalidHandle || e.errorCode != kSuccess) {
     handle_ = kInvalidHandle;
-    throw std::runtime_error("cannot open the OpenHaptics device " +
-                             (name.empty() ? "(the default)" : "'" + name + "'") + ": " + hd_->text_of(e.errorCode) +
-                             " (internal code " + std::to_string(e.internalErrorCode) + ")");
+    throw DeviceUnavailable("cannot open the OpenHaptics device " +
+                            (name.empty() ? "(the default)" : "'" + name + "'") + ": " + hd_->text_of(e.errorCode) +
+                            " (internal code " + std::to_string(e.internalErrorCode) + ")");
   }
   hd_->make_current_device(handle_);
   const char* model_text = hd_->get_string(kDeviceModelType);

@@ -37,8 +37,10 @@ struct LoadedSession {
 };
 
 // Config errors are printed once, here, without a log prefix: they are for the user to fix.
+// A device that is not there (DeviceUnavailable: its vendor's library or service missing, no device answering):
+// exit code 4, nothing powered; `exit_code` says which.
 std::optional<LoadedSession> load(const std::string& file, const std::vector<std::string>& sets,
-                                  const RunOptions* overrides) {
+                                  const RunOptions* overrides, int* exit_code = nullptr) {
   LoadedSession s;
   try {
     s.config = load_session_config(file, sets);
@@ -56,7 +58,8 @@ std::optional<LoadedSession> load(const std::string& file, const std::vector<std
     s.stages = build_group_stages(s.config, s.sessions, *s.loader);
     return s;
   } catch (const ConfigError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    fmt::print(stderr, "error: {}{}\n", e.what(), e.device_unavailable() ? "; no device was powered" : "");
+    if (exit_code != nullptr) *exit_code = e.device_unavailable() ? kExitRuntimeError : kExitConfigError;
   }
   return std::nullopt;
 }
@@ -74,8 +77,9 @@ void print_schema(const ParameterSchema& schema, int indent = 2) {
 }  // namespace
 
 int check_config(const std::string& file, const std::vector<std::string>& sets) {
-  const auto s = load(file, sets, nullptr);
-  if (!s) return kExitConfigError;
+  int code = kExitConfigError;
+  const auto s = load(file, sets, nullptr, &code);
+  if (!s) return code;
   fmt::print("{}: ok ({} device{}, {} Hz, {} clock)\n", file, s->sessions.size(), s->sessions.size() == 1 ? "" : "s",
              s->config.server.rate_hz, clock_name(s->config.server.clock));
   for (const auto& d : s->sessions) {
@@ -98,8 +102,9 @@ int check_config(const std::string& file, const std::vector<std::string>& sets) 
 }
 
 int run_session(const RunOptions& options) {
-  auto s = load(options.config_file, options.sets, &options);
-  if (!s) return kExitConfigError;
+  int code = kExitConfigError;
+  auto s = load(options.config_file, options.sets, &options, &code);
+  if (!s) return code;
   const ServerSettings& server = s->config.server;
   const bool lockstep = server.clock == ClockMode::lockstep;
   if (lockstep && server.duration_s <= 0.0)

@@ -66,6 +66,9 @@ PluginInstance<T> load_and_configure(PluginKind kind, const PluginConfig& pc, co
   } catch (const ParameterError& e) {
     throw ConfigError(file, line_from_origin(parameters.origin(e.key()), pc.line), parameters_path + "." + e.key(),
                       e.what());
+  } catch (const DeviceUnavailable& e) {
+    throw PluginConfigureError{ConfigError(file, pc.line, pc.key_path, "device unavailable: " + std::string(e.what()))
+                                   .set_device_unavailable()};
   } catch (const std::exception& e) {
     throw PluginConfigureError{ConfigError(file, pc.line, pc.key_path,
                                            "plugin '" + pc.plugin + "' failed to configure: " + std::string(e.what()))};

@@ -14,12 +14,19 @@ class ConfigError : public std::runtime_error {
   [[nodiscard]] int line() const noexcept { return line_; }
   [[nodiscard]] const std::string& key() const noexcept { return key_; }
   [[nodiscard]] const std::string& message() const noexcept { return message_; }
+  // Not a mistake of the session's: a device, its vendor's library or service is not there (DeviceUnavailable).
+  [[nodiscard]] bool device_unavailable() const noexcept { return device_unavailable_; }
+  ConfigError& set_device_unavailable() noexcept {
+    device_unavailable_ = true;
+    return *this;
+  }
 
  private:
   std::string file_;
   int line_;
   std::string key_;
   std::string message_;
+  bool device_unavailable_ = false;
 };
 
 }  // namespace hapticd::server

@@ -120,7 +120,7 @@ struct InverseServiceStandIn::Impl {
       {
         std::lock_guard lock(mutex);
         const Clock::time_point now = Clock::now();
-        double dt = std::chrono::duration<double>(now - last).count();
+        double dt = options.step_s > 0.0 ? options.step_s : std::chrono::duration<double>(now - last).count();
         last = now;
         for (; dt > 1e-9; dt -= 0.0002) step(std::min(dt, 0.0002));  // the physics in 0.2 ms steps
       }

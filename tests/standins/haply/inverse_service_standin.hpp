@@ -20,6 +20,9 @@ class InverseServiceStandIn {
     std::string device_id = "049D";
     std::string grip_id = "61548";  // "": no VerseGrip
     bool calibrated = true;
+    // Each message advances the physics by this much (a service in step with its client, so a loaded test machine
+    // does not change the run); 0: by the time since the previous message.
+    double step_s = 0.001;
   };
   explicit InverseServiceStandIn(Options options);
   ~InverseServiceStandIn();
