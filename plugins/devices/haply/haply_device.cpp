@@ -272,7 +272,8 @@ Outcome HaplyDevice::write(const CycleTime&, const JointCommand& command) {
   }
   commands_.publish(c);
   command_count_.fetch_add(1, std::memory_order_release);
-  realtime::TickSignal::wake(command_count_);
+  // Only a callback that waits for the loop's force needs waking (on the device's clock): no system call else.
+  if (clock_.clocks_loop.load(std::memory_order_relaxed)) realtime::TickSignal::wake(command_count_);
   return Outcome::success();
 }
 
