@@ -74,15 +74,7 @@ class ForceDimension : public ::testing::Test {
            "    controller: {plugin: handle_force}\n";
   }
 
-  // The config error a session gives ("" when it builds).
-  static std::string config_error(const std::string& yaml) {
-    try {
-      (void)test::build_test_session(yaml);
-      return "";
-    } catch (const ConfigError& e) {
-      return e.what();
-    }
-  }
+  static std::string config_error(const std::string& yaml) { return test::config_error_of(yaml); }
 
   StandIn standin_;
 };

@@ -83,27 +83,9 @@ class OpenHaptics : public ::testing::Test {
            "                   wall_stiffness_n_per_m: 1000, wall_damping_n_s_per_m: 2}\n"
            "    controller: {plugin: handle_force}\n";
   }
-  static std::string config_error(const std::string& yaml) {
-    try {
-      (void)test::build_test_session(yaml);
-      return "";
-    } catch (const ConfigError& e) {
-      return e.what();
-    }
-  }
-  // Runs the session on its clock; `at_cycle` is called once on the test's thread when the loop has run that many
-  // cycles (the monitor's 20 ms rounds: give or take 40 cycles).
+  static std::string config_error(const std::string& yaml) { return test::config_error_of(yaml); }
   static ExecutorResult run(Session& s, std::uint64_t at_cycle = 0, const std::function<void()>& at = {}) {
-    const LoopPlan loops = s.impl().loop_plan();
-    Executor executor(s.impl().executor_settings(), loops.loops());
-    std::atomic<bool> stop{false};
-    bool done = !at;
-    return executor.run(stop, [&] {
-      if (!done && executor.live().cycles.load() >= at_cycle) {
-        done = true;
-        at();
-      }
-    });
+    return test::run_session(s, at_cycle, at);
   }
 
   StandIn standin_;

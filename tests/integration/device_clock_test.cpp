@@ -31,24 +31,14 @@ struct ClockedRun {
 };
 
 ClockedRun run(Session& s) {
-  const LoopPlan loops = s.impl().loop_plan();
-  Executor executor(s.impl().executor_settings(), loops.loops());
-  std::atomic<bool> stop{false};
   ClockedRun r;
-  r.result = executor.run(stop);
+  r.result = test::run_session(s);
   const auto* ticks = dynamic_cast<const realtime::TickSignal*>(s.impl().devices[0]->chain().device->clock());
   if (ticks != nullptr) r.ticks = ticks->ticks();
   return r;
 }
 
-std::string config_error(const std::string& yaml) {
-  try {
-    (void)test::build_test_session(yaml);
-    return "";
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-}
+std::string config_error(const std::string& yaml) { return test::config_error_of(yaml); }
 
 TEST(DeviceClock, TheLoopRunsOneCycleAtEachTickOfTheDevice) {
   // Device a ticks at 1 kHz; b has no clock and runs in the same loop, on a's ticks. The duration and the ramp are

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "config/config_error.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
 #include "support/test_paths.hpp"
 
@@ -90,6 +91,28 @@ std::string sim_wrench_step_device_yaml(const std::string& name, const std::stri
 
 server::Session build_test_session(const std::string& yaml) {
   return server::Session::from_yaml(yaml, {{}, {hapticd::test::plugin_dir()}}, "session.yaml");
+}
+
+std::string config_error_of(const std::string& yaml) {
+  try {
+    (void)build_test_session(yaml);
+    return "";
+  } catch (const server::ConfigError& e) {
+    return e.what();
+  }
+}
+
+server::ExecutorResult run_session(server::Session& s, std::uint64_t at_cycle, const std::function<void()>& at) {
+  const server::LoopPlan loops = s.impl().loop_plan();
+  server::Executor executor(s.impl().executor_settings(), loops.loops());
+  const std::atomic<bool> stop{false};
+  bool done = !at;
+  return executor.run(stop, [&] {
+    if (!done && executor.live().cycles.load() >= at_cycle) {
+      done = true;
+      at();
+    }
+  });
 }
 
 std::string flow_mapping(const std::string& base, const std::string& overrides) {

@@ -1,10 +1,12 @@
 #pragma once
 // Builds device sessions from session-file text, with the test plugins on the search path.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "assembly/session_impl.hpp"
+#include "executor/executor.hpp"
 #include "hapticd/server/session.hpp"
 #include "session/device_session.hpp"
 
@@ -26,6 +28,15 @@ std::size_t allocations_over_cycles(server::DeviceSession& device, std::uint64_t
 // yaml: a whole session file (the public session API, hapticd/server/session.hpp); the test plugins are found
 // first.
 server::Session build_test_session(const std::string& yaml);
+
+// The configuration error building `yaml` gives (its text), "" when it builds.
+std::string config_error_of(const std::string& yaml);
+
+// Runs a built session on its own clock - real time or a device's; lockstep as fast as it goes - as hapticd does
+// (its executor and loops); `at` is called once on the calling thread when the loop has run `at_cycle` cycles (the
+// executor's monitor: rounds of 20 ms).
+server::ExecutorResult run_session(server::Session& s, std::uint64_t at_cycle = 0,
+                                   const std::function<void()>& at = {});
 
 // A device entry of the 1-DOF test chain (mass-spring, sine setpoint, axis IK, PD), with extra parameters.
 // The flow mapping "{...}" of `base`'s entries ("a: 1, b: [2, 3]") with `overrides`' entries (", b: 4", the

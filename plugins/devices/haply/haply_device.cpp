@@ -65,18 +65,7 @@ ParameterSchema HaplyDevice::parameter_schema() {
       .greater_than(0.0)
       .maximum(30.0)
       .default_value(2.0);
-  s.real("max_sample_age_s", "a state older than this is a fault (the service stopped answering)")
-      .unit("s")
-      .greater_than(0.0)
-      .maximum(1.0)
-      .default_value(0.05);
-  s.real("command_wait_us",
-         "on the device's clock: how long the I/O thread waits for the loop's force of its tick; 0: 80 % of the period")
-      .unit("us")
-      .minimum(0.0)
-      .maximum(10000.0)
-      .default_value(0.0);
-  s.integer("hold_ticks", "ticks a late force is held before zero is sent").minimum(0).maximum(10).default_value(2);
+  ServoHandoff<HaplySample, HaplyCommand>::add_parameters(s);
   return s;
 }
 
@@ -126,11 +115,7 @@ void HaplyDevice::configure(const Parameters& p, const PluginContext& context) {
       throw ParameterError("grip", "the Inverse Service reports no VerseGrip '" + grip + "'");
   }
 
-  period_ns_ = static_cast<std::int64_t>(std::llround(1e9 / context.rate_hz));
-  const double wait_us = p.real("command_wait_us");
-  command_wait_ns_ = wait_us > 0.0 ? static_cast<std::int64_t>(wait_us * 1e3) : period_ns_ * 8 / 10;
-  max_sample_age_ns_ = static_cast<std::int64_t>(p.real("max_sample_age_s") * 1e9);
-  hold_ticks_ = static_cast<int>(p.integer("hold_ticks"));
+  handoff_.configure(p, context.rate_hz);
 
   DeviceDescription& d = description_;
   d.model = "haply inverse3 " + device_id_ + (grip_id_.empty() ? "" : " with " + grip_kind_ + " " + grip_id_);
@@ -183,24 +168,23 @@ Outcome HaplyDevice::enable() {
   if (!client_) return Outcome::failure("the Inverse Service is not connected");
   if (running_.exchange(true)) return Outcome::success();
   have_sample_ = false;
+  handoff_.reset();
   io_done_.store(false);
-  const std::uint64_t before = states_.load();
+  const std::uint64_t before = handoff_.samples();
   io_ = std::thread([this] {
     run();
     io_done_.store(true);
   });
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-  while (states_.load() == before && std::chrono::steady_clock::now() < until)
+  while (handoff_.samples() == before && std::chrono::steady_clock::now() < until)
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  if (states_.load() == before) return Outcome::failure("the Inverse Service answered no message within 1 s");
+  if (handoff_.samples() == before) return Outcome::failure("the Inverse Service answered no message within 1 s");
   return Outcome::success();
 }
 
 void HaplyDevice::run() noexcept {
   char message[512];
   HaplyCommand applied;
-  std::uint32_t seen = command_count_.load();
-  int missed = 0;
   bool first = true;
   std::int64_t next_send = now_ns();
   while (running_.load(std::memory_order_acquire)) {
@@ -214,41 +198,28 @@ void HaplyDevice::run() noexcept {
     first = false;
     // Paced at the session's rate: the service answers as fast as it is asked.
     sleep_until(next_send);
-    next_send = std::max(next_send + period_ns_, now_ns() - period_ns_);
+    next_send = std::max(next_send + handoff_.period_ns(), now_ns() - handoff_.period_ns());
     HaplySample s;
     std::string_view text;
     if (!client_->send(std::string_view(message, static_cast<std::size_t>(n))) || !client_->receive(text)) {
       if (!running_.load()) break;
       s.error = "the connection to the Inverse Service failed (the service stopped or closed it)";
       s.received_ns = now_ns();
-      samples_.publish(s);
-      states_.fetch_add(1);
-      clock_.ticks.tick();
+      handoff_.publish(s, s.received_ns);
       break;
     }
     s.received_ns = now_ns();
     (void)take_state(text, s);
-    samples_.publish(s);
-    states_.fetch_add(1, std::memory_order_release);
-    clock_.ticks.tick(s.received_ns);
-    // The loop's force: on the device's clock, its answer to this state (bounded wait); else the newest.
-    if (clock_.clocks_loop.load(std::memory_order_relaxed))
-      (void)realtime::TickSignal::wait_while(command_count_, seen, now_ns() + command_wait_ns_);
-    seen = command_count_.load(std::memory_order_acquire);
-    if (HaplyCommand c; commands_.take(c)) {
-      applied = c;
-      missed = 0;
-    } else if (clock_.clocks_loop.load(std::memory_order_relaxed) && ++missed > hold_ticks_) {
-      applied = HaplyCommand{};  // the loop is gone: no force
-    }
+    handoff_.publish(s, s.received_ns);
+    handoff_.next_command(applied);  // on the device's clock: the loop's answer to this state
   }
 }
 
 Outcome HaplyDevice::read(const CycleTime& cycle, DeviceState& state) {
-  if (samples_.take(sample_)) have_sample_ = true;
+  if (handoff_.take(sample_)) have_sample_ = true;
   if (!have_sample_) return Outcome::failure("no state from the Inverse Service yet");
   if (sample_.error != nullptr) return Outcome::failure(sample_.error);
-  if (now_ns() - sample_.received_ns > max_sample_age_ns_)
+  if (now_ns() - sample_.received_ns > handoff_.max_sample_age_ns())
     return Outcome::failure("no state from the Inverse Service within max_sample_age_s (it stopped answering)");
   HandleState& h = state.handle;
   state.timestamp_ns = cycle.time_ns;
@@ -270,10 +241,7 @@ Outcome HaplyDevice::write(const CycleTime&, const JointCommand& command) {
     if (!std::isfinite(e[i])) return Outcome::failure("a non-finite force");
     c.force_n[i] = e[i];
   }
-  commands_.publish(c);
-  command_count_.fetch_add(1, std::memory_order_release);
-  // Only a callback that waits for the loop's force needs waking (on the device's clock): no system call else.
-  if (clock_.clocks_loop.load(std::memory_order_relaxed)) realtime::TickSignal::wake(command_count_);
+  handoff_.command(c);
   return Outcome::success();
 }
 

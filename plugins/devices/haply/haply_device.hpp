@@ -21,10 +21,9 @@
 #include <thread>
 
 #include "hapticd/device.hpp"
-#include "hapticd/realtime/latest_value.hpp"
-#include "hapticd/realtime/tick_signal.hpp"
 #include "inverse_service_client.hpp"
 #include "json_reader.hpp"
+#include "servo_handoff.hpp"
 
 namespace hapticd::plugins::haply {
 
@@ -52,19 +51,9 @@ class HaplyDevice final : public Device {
   Outcome read(const CycleTime& cycle, DeviceState& state) override;
   Outcome write(const CycleTime& cycle, const JointCommand& command) override;
   void disable() override;
-  DeviceClock* clock() noexcept override { return &clock_; }
+  DeviceClock* clock() noexcept override { return handoff_.clock(); }
 
  private:
-  class Clock final : public DeviceClock {
-   public:
-    DeviceTick wait_for_tick(std::int64_t until_ns) noexcept override {
-      clocks_loop.store(true, std::memory_order_relaxed);
-      return ticks.wait_for_tick(until_ns);
-    }
-    realtime::TickSignal ticks;
-    std::atomic<bool> clocks_loop{false};
-  };
-
   void run() noexcept;  // the I/O thread
   bool take_state(std::string_view text, HaplySample& sample) noexcept;
   void stop() noexcept;
@@ -74,19 +63,11 @@ class HaplyDevice final : public Device {
   std::string device_id_, grip_id_;
   std::string grip_kind_;  // "wireless_verse_grip" or "verse_grip"
   DeviceDescription description_;
-  std::int64_t period_ns_ = 1'000'000;
-  std::int64_t command_wait_ns_ = 0;
-  std::int64_t max_sample_age_ns_ = 50'000'000;
-  int hold_ticks_ = 2;
 
-  Clock clock_;
+  ServoHandoff<HaplySample, HaplyCommand> handoff_;
   std::thread io_;
   std::atomic<bool> running_{false};
   std::atomic<bool> io_done_{true};
-  realtime::LatestValue<HaplySample> samples_;
-  realtime::LatestValue<HaplyCommand> commands_;
-  std::atomic<std::uint32_t> command_count_{0};
-  std::atomic<std::uint64_t> states_{0};
   HaplySample sample_;
   bool have_sample_ = false;
 };

@@ -29,22 +29,7 @@ ParameterSchema OpenHapticsDevice::parameter_schema() {
       .unit("N")
       .minimum(0.0)
       .default_value(0.0);
-  s.real("command_wait_us",
-         "when the device clocks the loop: how long the servo callback waits for the loop's force of its tick; 0: 80 "
-         "% of the period")
-      .unit("us")
-      .minimum(0.0)
-      .maximum(10000.0)
-      .default_value(0.0);
-  s.real("max_sample_age_s", "a sample older than this is a fault (the scheduler stopped calling)")
-      .unit("s")
-      .greater_than(0.0)
-      .maximum(1.0)
-      .default_value(0.05);
-  s.integer("hold_ticks", "ticks a late force is held before the callback writes zero")
-      .minimum(0)
-      .maximum(10)
-      .default_value(2);
+  ServoHandoff<HdSample, HdCommand>::add_parameters(s);
   return s;
 }
 
@@ -96,7 +81,7 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
     }
   }
 
-  period_ns_ = static_cast<std::int64_t>(std::llround(1e9 / context.rate_hz));
+  handoff_.configure(p, context.rate_hz);
   hd_->set_scheduler_rate(static_cast<unsigned long>(std::lround(context.rate_hz)));
   if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess) {
     close_device();
@@ -104,10 +89,6 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
                              " Hz (" + hd_->text_of(e.errorCode) +
                              "): set server.rate_hz to one it supports, e.g. 1000");
   }
-  const double wait_us = p.real("command_wait_us");
-  command_wait_ns_ = wait_us > 0.0 ? static_cast<std::int64_t>(wait_us * 1e3) : period_ns_ * 8 / 10;
-  hold_ticks_ = static_cast<int>(p.integer("hold_ticks"));
-  max_sample_age_ns_ = static_cast<std::int64_t>(p.real("max_sample_age_s") * 1e9);
 
   int input_dof = 0, output_dof = 0;
   hd_->get_integerv(kInputDof, &input_dof);
@@ -162,7 +143,7 @@ Outcome OpenHapticsDevice::enable() {
   errors_[static_cast<std::size_t>(error_)][0] = '\0';
   have_sample_ = false;
   applied_ = HdCommand{};
-  missed_ = 0;
+  handoff_.reset();
   end_error_ = HDErrorInfo{kSuccess, 0, 0};
   hd_->make_current_device(handle_);
   hd_->enable(kForceOutput);
@@ -184,9 +165,11 @@ Outcome OpenHapticsDevice::enable() {
     return Outcome::failure(failure("starting the HD scheduler", e.errorCode, e.internalErrorCode));
   // The first sample before the first cycle (the loop may not run on the device's clock).
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-  while (samples_made_.load() == 0 && std::chrono::steady_clock::now() < until)
+  const std::uint64_t before = handoff_.samples();
+  while (handoff_.samples() == before && std::chrono::steady_clock::now() < until)
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  if (samples_made_.load() == 0) return Outcome::failure("the HD scheduler did not call the servo callback within 1 s");
+  if (handoff_.samples() == before)
+    return Outcome::failure("the HD scheduler did not call the servo callback within 1 s");
   return Outcome::success();
 }
 
@@ -211,22 +194,8 @@ HDCallbackCode OpenHapticsDevice::servo() noexcept {
   s.error = e.errorCode;
   s.internal_error = e.internalErrorCode;
   s.time_ns = realtime::TickSignal::now_ns();
-  samples_.publish(s);
-  samples_made_.fetch_add(1, std::memory_order_release);
-  clock_.ticks.tick();
-
-  // The force: on the device's clock, the loop's answer to this tick (bounded wait); else the newest.
-  if (clock_.clocks_loop.load(std::memory_order_relaxed))
-    (void)realtime::TickSignal::wait_while(command_count_, commands_seen_,
-                                           realtime::TickSignal::now_ns() + command_wait_ns_);
-  commands_seen_ = command_count_.load(std::memory_order_acquire);
-  if (HdCommand c; commands_.take(c)) {
-    applied_ = c;
-    missed_ = 0;
-  } else if (clock_.clocks_loop.load(std::memory_order_relaxed)) {
-    late_.fetch_add(1, std::memory_order_relaxed);
-    if (++missed_ > hold_ticks_) applied_ = HdCommand{};  // the loop is gone: no force
-  }
+  handoff_.publish(s, s.time_ns);
+  handoff_.next_command(applied_);  // on the device's clock: the loop's answer to this tick
   hd_->set_doublev(kCurrentForce, applied_.force_n.data());
   hd_->end_frame(handle_);
   end_error_ = hd_->get_error();  // told with the next sample
@@ -234,11 +203,11 @@ HDCallbackCode OpenHapticsDevice::servo() noexcept {
 }
 
 Outcome OpenHapticsDevice::read(const CycleTime& cycle, DeviceState& state) {
-  if (samples_.take(sample_)) have_sample_ = true;
+  if (handoff_.take(sample_)) have_sample_ = true;
   if (!have_sample_) return Outcome::failure("no sample from the HD scheduler yet");
   if (sample_.error != kSuccess)
     return Outcome::failure(failure("the servo frame", sample_.error, sample_.internal_error));
-  if (realtime::TickSignal::now_ns() - sample_.time_ns > max_sample_age_ns_)
+  if (realtime::TickSignal::now_ns() - sample_.time_ns > handoff_.max_sample_age_ns())
     return Outcome::failure("no sample from the HD scheduler within max_sample_age_s (it stopped calling)");
   HandleState& h = state.handle;
   state.timestamp_ns = cycle.time_ns;
@@ -264,10 +233,7 @@ Outcome OpenHapticsDevice::write(const CycleTime&, const JointCommand& command) 
     if (!std::isfinite(e[i])) return Outcome::failure("a non-finite force");
     c.force_n[i] = e[i];
   }
-  commands_.publish(c);
-  command_count_.fetch_add(1, std::memory_order_release);
-  // Only a callback that waits for the loop's force needs waking (on the device's clock): no system call else.
-  if (clock_.clocks_loop.load(std::memory_order_relaxed)) realtime::TickSignal::wake(command_count_);
+  handoff_.command(c);
   return Outcome::success();
 }
 

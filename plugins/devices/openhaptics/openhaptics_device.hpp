@@ -22,9 +22,8 @@
 #include <string>
 
 #include "hapticd/device.hpp"
-#include "hapticd/realtime/latest_value.hpp"
-#include "hapticd/realtime/tick_signal.hpp"
 #include "hd_api.hpp"
+#include "servo_handoff.hpp"
 #include "vendor_library.hpp"
 
 namespace hapticd::plugins::openhaptics {
@@ -58,25 +57,12 @@ class OpenHapticsDevice final : public Device {
   Outcome write(const CycleTime& cycle, const JointCommand& command) override;
   Outcome reset_fault() override;
   void disable() override;
-  DeviceClock* clock() noexcept override { return &clock_; }
+  DeviceClock* clock() noexcept override { return handoff_.clock(); }
 
   // The HD scheduler's thread, once per tick.
   HDCallbackCode servo() noexcept;
-  // Ticks of the servo callback and the ticks whose force was the loop's late one or zero (tests, docs).
-  [[nodiscard]] std::uint64_t late_commands() const noexcept { return late_.load(std::memory_order_relaxed); }
 
  private:
-  // The device's ticks; knows whether the loop waits on them (then the callback waits for the loop's force).
-  class Clock final : public DeviceClock {
-   public:
-    DeviceTick wait_for_tick(std::int64_t until_ns) noexcept override {
-      clocks_loop.store(true, std::memory_order_relaxed);
-      return ticks.wait_for_tick(until_ns);
-    }
-    realtime::TickSignal ticks;
-    std::atomic<bool> clocks_loop{false};
-  };
-
   const char* failure(const char* what, HDerror code, int internal) noexcept;
   void close_device() noexcept;
 
@@ -84,26 +70,15 @@ class OpenHapticsDevice final : public Device {
   std::unique_ptr<HdApi> hd_;
   HHD handle_ = kInvalidHandle;
   DeviceDescription description_;
-  std::int64_t period_ns_ = 1'000'000;
-  std::int64_t command_wait_ns_ = 0;
-  int hold_ticks_ = 2;
-  std::int64_t max_sample_age_ns_ = 50'000'000;
 
   // Callback <-> loop.
-  Clock clock_;
+  ServoHandoff<HdSample, HdCommand> handoff_;
   std::atomic<bool> running_{false};  // the callback continues while set
   std::atomic<bool> ended_{false};    // the callback wrote its last frame
   HDSchedulerHandle callback_ = 0;
   bool scheduled_ = false;
-  realtime::LatestValue<HdSample> samples_;      // callback -> loop
-  realtime::LatestValue<HdCommand> commands_;    // loop -> callback
-  std::atomic<std::uint32_t> command_count_{0};  // futex word: the loop's forces so far
-  std::uint32_t commands_seen_ = 0;              // the callback's
-  HdCommand applied_;                            // the callback's: the force it writes
-  int missed_ = 0;                               // the callback's: ticks since the loop's last force
-  HDErrorInfo end_error_{kSuccess, 0, 0};        // the callback's: the previous frame's end, for the next sample
-  std::atomic<std::uint64_t> late_{0};
-  std::atomic<std::uint64_t> samples_made_{0};
+  HdCommand applied_;                      // the callback's: the force it writes
+  HDErrorInfo end_error_{kSuccess, 0, 0};  // the callback's: the previous frame's end, for the next sample
 
   // Loop.
   HdSample sample_;
