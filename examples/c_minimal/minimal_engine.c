@@ -39,8 +39,11 @@ static int request(dds_entity_t writer, dds_entity_t replies, const char* device
   copy_name(r.client, client);
   r.request_id = id;
   r.kind = kind;
-  if (dds_write(writer, &r) != DDS_RETCODE_OK) return 0;
-  for (int tries = 0; tries < 200; ++tries) { /* up to 2 s */
+  /* Sent again with the same id every 0.2 s without a reply, for up to 5 s: the server answers a repeated request
+     again and applies it once (the first may reach it before discovery lets it answer us, or be lost on a loaded
+     machine). */
+  for (int tries = 0; tries < 500; ++tries) {
+    if (tries % 20 == 0 && dds_write(writer, &r) != DDS_RETCODE_OK) return 0;
     hapticd_msg_ControlReply reply;
     void* samples[1] = {&reply};
     dds_sample_info_t info;
