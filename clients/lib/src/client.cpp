@@ -115,10 +115,7 @@ struct Client::Impl {
       }
       if (waiters.load(std::memory_order_acquire) > 0) changed.notify_all();
       std::lock_guard lock(callback_mutex);
-      if (lost != nullptr && claim_lost_callback)
-        claim_lost_callback(state_scratch.device.view(), state_scratch.owner.view().empty()
-                                                             ? "the server freed the device"
-                                                             : "the server handed the device to another owner");
+      if (lost != nullptr) tell_claim_lost(state_scratch.device.view(), state_scratch.owner.view());
       if (state_callback) state_callback(state_scratch);
     });
   }
@@ -153,6 +150,12 @@ struct Client::Impl {
     return nullptr;
   }
   const ClaimWatch* watch_claim(const DeviceState& s) { return watch_owner(s.device.view(), s.owner.view(), false); }
+  // Under `callback_mutex`: the claim of `device` is lost; `owner` is who holds it now ("" nobody).
+  void tell_claim_lost(std::string_view device, std::string_view owner) {
+    if (claim_lost_callback)
+      claim_lost_callback(
+          device, owner.empty() ? "the server freed the device" : "the server handed the device to another owner");
+  }
   void watch(std::string_view device, bool on) {
     std::lock_guard lock(mutex);
     ClaimWatch* free = nullptr;
@@ -208,9 +211,7 @@ struct Client::Impl {
             lost = watch_owner(value.device, value.code, true);
           }
           std::lock_guard lock(callback_mutex);
-          if (lost != nullptr && claim_lost_callback)
-            claim_lost_callback(value.device, value.code.empty() ? "the server freed the device"
-                                                                 : "the server handed the device to another owner");
+          if (lost != nullptr) tell_claim_lost(value.device, value.code);
         }
         std::function<void(const Event&)> f;
         {
