@@ -151,6 +151,43 @@ TEST_F(ForceDimension, AnUnpluggedDeviceFaultsWithTheVendorsTextAndIsBrakedAtRes
   EXPECT_NE(log.find("dhdSetBrakes(on)"), std::string::npos) << log;
 }
 
+TEST_F(ForceDimension, AnUnpluggedDeviceFaultsInItsCycleAndItsNeighbourRunsOn) {
+  Session s = test::build_test_session(
+      session(omega("left", "serial: 10001", wall_chain()) + omega("right", "serial: 10002", wall_chain())));
+  standin_.hand(0, 2.0, 0.0, 0.0, 0);
+  standin_.hand(1, 2.0, 0.0, 0.0, 0);
+  s.step(2000);
+  standin_.fault(0, "unplug");
+  s.step(1);  // the cycle that meets the unplugged device faults it
+  EXPECT_NE(s.device("left").fault.find("communication error"), std::string::npos) << s.device("left").fault;
+  s.step(2000);
+  EXPECT_EQ(s.device("right").fault, "");
+  EXPECT_NEAR(standin_.written(1).x(), -2.0, 0.1);  // the right one still holds its hand at the wall
+}
+
+TEST_F(ForceDimension, TheRenderedForceIsCappedAndItsRateLimited) {
+  // A scripted 10 N step on a device whose safety caps the rendered force at 4 N and its rate at 400 N/s: the
+  // force written climbs at most 0.2 N a period (2 kHz) and stops at 4 N.
+  const std::string chain =
+      "    virtual_model:\n      plugin: scripted_wrench\n"
+      "      parameters: {display: impedance, signal: constant, force_n: [10, 0, 0]}\n"
+      "    controller: {plugin: handle_force}\n"
+      "    safety: {max_force_n: 4, max_force_rate_n_per_s: 400, soft_start_s: 0}\n";
+  Session s = test::build_test_session(session(omega("left", "", chain)));
+  standin_.hand(0, -4.0, 0.0, 0.0, 0);  // the hand holds the handle against the capped force
+  double previous = 0.0, largest_step = 0.0;
+  for (int i = 0; i < 40; ++i) {  // 20 ms: the rate limit alone would reach 8 N, the cap stops it at 4 N
+    s.step(1);
+    const double now = standin_.written(0).x();
+    largest_step = std::max(largest_step, std::abs(now - previous));
+    previous = now;
+  }
+  EXPECT_LE(largest_step, 400.0 / 2000.0 + 1e-9);
+  s.step(200);
+  EXPECT_NEAR(standin_.written(0).x(), 4.0, 1e-6);
+  EXPECT_EQ(s.device("left").fault, "");
+}
+
 TEST_F(ForceDimension, AnEmergencyStopZeroesTheForceBrakesAndRecoversOnRequest) {
   Session s = test::build_test_session(session(omega("left", "", wall_chain())));
   standin_.hand(0, 2.0, 0.0, 0.0, 0);

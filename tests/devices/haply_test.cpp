@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <string>
+#include <thread>
 
 #include "config/config_error.hpp"
 #include "executor/executor.hpp"
@@ -71,6 +73,27 @@ TEST_F(Haply, TheServicesAnswersClockTheLoopAndItsWallHoldsTheHand) {
               0.0, 1e-6);
 }
 
+TEST_F(Haply, TheLifecycleRunsInTheServicesOrder) {
+  // Connect and take the inventory (configure), the first message registers the session's profile with a zero
+  // force (enable: no force from the loop yet), the loop's forces, then a zero force and the WebSocket closed.
+  InverseServiceStandIn service({});
+  service.hand(1.0, 0.0, 0.0, 0);
+  {
+    Session s = test::build_test_session(session("clock: device, duration_s: 0.3", inverse3("right", service.url())));
+    (void)run(s);
+  }
+  std::string log;
+  for (int i = 0; i < 100 && log.find("close") == std::string::npos; ++i) {  // the service's thread logs it
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    log = service.call_log();
+  }
+  EXPECT_EQ(log.rfind("connect\ninventory\nsession profile\nset_cursor_force zero\n", 0), 0u) << log;
+  EXPECT_NE(log.find("\nset_cursor_force\n"), std::string::npos) << log;
+  const std::string end = "set_cursor_force zero\nclose\n";
+  ASSERT_GE(log.size(), end.size()) << log;
+  EXPECT_EQ(log.substr(log.size() - end.size()), end) << log;
+}
+
 TEST_F(Haply, ADroppedConnectionIsAFaultThatSaysSo) {
   InverseServiceStandIn service({});
   Session s = test::build_test_session(session("clock: device, duration_s: 0.6", inverse3("right", service.url())));
@@ -78,6 +101,16 @@ TEST_F(Haply, ADroppedConnectionIsAFaultThatSaysSo) {
   (void)run(s, 200, [&] { service.drop(); });
   const DeviceView v = s.device("right");
   EXPECT_NE(v.fault.find("the connection to the Inverse Service failed"), std::string::npos) << v.fault;
+}
+
+TEST_F(Haply, AnInverse3ThatDisappearsFromTheServiceIsAFaultThatSaysSo) {
+  InverseServiceStandIn service({});
+  Session s = test::build_test_session(session("clock: device, duration_s: 0.6", inverse3("right", service.url())));
+  service.hand(1.0, 0.0, 0.0, 0);
+  (void)run(s, 200, [&] { service.unplug(); });
+  const DeviceView v = s.device("right");
+  EXPECT_NE(v.fault.find("no longer has the Inverse3 (unplugged?)"), std::string::npos) << v.fault;
+  EXPECT_EQ(v.faults, 1u);
 }
 
 TEST_F(Haply, ASilentServiceIsALoopStallOnItsClockAndAStaleStateOnTheServers) {

@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 
 #include "config/config_error.hpp"
 #include "executor/executor.hpp"
@@ -30,6 +32,9 @@ struct StandIn {
   void (*fail_next_frame)(int, unsigned) = nullptr;
   void (*state)(int, double*, double*) = nullptr;
   const char* (*call_log)() = nullptr;
+  void (*unplug)(int, bool) = nullptr;
+  void (*linkage)(int, const double*) = nullptr;
+  void (*torque)(int, double*) = nullptr;
 
   static std::string path() { return test::standin_dir() + "/openhaptics/libHD.so"; }
   StandIn() {
@@ -41,6 +46,9 @@ struct StandIn {
     fail_next_frame = reinterpret_cast<decltype(fail_next_frame)>(dlsym(handle, "standin_hd_fail_next_frame"));
     state = reinterpret_cast<decltype(state)>(dlsym(handle, "standin_hd_state"));
     call_log = reinterpret_cast<decltype(call_log)>(dlsym(handle, "standin_hd_call_log"));
+    unplug = reinterpret_cast<decltype(unplug)>(dlsym(handle, "standin_hd_unplug"));
+    linkage = reinterpret_cast<decltype(linkage)>(dlsym(handle, "standin_hd_linkage"));
+    torque = reinterpret_cast<decltype(torque)>(dlsym(handle, "standin_hd_torque"));
   }
   ~StandIn() {
     if (handle != nullptr) dlclose(handle);
@@ -135,6 +143,63 @@ TEST_F(OpenHaptics, AFramesSdkErrorIsAFaultWithTheVendorsText) {
   const DeviceView v = s.device("left");
   EXPECT_NE(v.fault.find("device fault (HD error 0x0300"), std::string::npos) << v.fault;
   EXPECT_TRUE(v.at_rest);
+}
+
+TEST_F(OpenHaptics, AnUnpluggedTouchFaultsWithEachErrorOnTheStackAndTheOtherRunsOn) {
+  // Two devices on one scheduler, the left clocking the loop; the right is unplugged mid-session: its frames fail
+  // (a device fault and a communication error at the frame's start: two errors on the HD stack, both told).
+  const std::string devices = touch("left", "") + touch("right", "device_name: Right");
+  Session s = test::build_test_session(session("clock: device, clock_device: left, duration_s: 0.6", devices));
+  standin_.hand(0, 1.0, 0.0, 0.0, 0);
+  standin_.hand(1, 1.0, 0.0, 0.0, 0);
+  // The left stylus 0.25 s after the unplugging, from a thread of the test (the stand-in's state is locked).
+  StandIn::Stylus left{};
+  left.position.fill(std::nan(""));
+  std::thread later;
+  (void)run(s, 200, [&] {
+    standin_.unplug(1, true);
+    later = std::thread([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(250));
+      left = standin_.stylus(0);
+    });
+  });
+  if (later.joinable()) later.join();
+  const DeviceView right = s.device("right");
+  EXPECT_NE(right.fault.find("the servo frame: communication error (device not found or not answering) (HD error "
+                             "0x0302, internal -28); device fault (HD error 0x0300, internal 0)"),
+            std::string::npos)
+      << right.fault;
+  EXPECT_EQ(right.faults, 1u);
+  // The left device is not touched by its neighbour's fault: it holds its wall on.
+  EXPECT_EQ(s.device("left").fault, "");
+  EXPECT_NEAR(left.position.x(), 0.006, 0.0005);
+}
+
+TEST_F(OpenHaptics, TheLinkagesJointAndGimbalAnglesAreInTheDeviceState) {
+  const double angles[6] = {0.11, -0.22, 0.33, 1.1, -1.2, 1.3};
+  standin_.linkage(0, angles);
+  Session s = test::build_test_session(session("clock: device, duration_s: 0.2", touch("left", "")));
+  (void)run(s);
+  const DeviceView seen = s.device("left");  // the last sample read
+  ASSERT_EQ(seen.state.handle.linkage_count, 6);
+  for (int i = 0; i < 6; ++i) EXPECT_DOUBLE_EQ(seen.state.handle.linkage[static_cast<std::size_t>(i)], angles[i]) << i;
+}
+
+TEST_F(OpenHaptics, APhantomWithSixDofOutputTakesTorquesInTheVendorsUnits) {
+  standin_.setup("Default Device=PHANTOM Premium 6DOF:P6-1");
+  const std::string chain =
+      "    virtual_model:\n      plugin: scripted_wrench\n"
+      "      parameters: {display: impedance, signal: constant, force_n: [0, 0, 0], torque_nm: [0, 0, 0.05]}\n"
+      "    controller: {plugin: handle_force}\n";
+  Session s = test::build_test_session(session("clock: device, duration_s: 0.5", touch("left", "", chain)));
+  const HandleDescription& h = s.impl().devices[0]->description().handle;
+  EXPECT_TRUE(h.actuated_torque);
+  EXPECT_DOUBLE_EQ(h.max_torque_nm, 0.17);  // HD_NOMINAL_MAX_TORQUE_FORCE, 170 mN m
+  Eigen::Vector3d written = Eigen::Vector3d::Constant(std::nan(""));
+  (void)run(s, 400, [&] { standin_.torque(0, written.data()); });
+  EXPECT_NEAR(written.z(), 50.0, 1.0);  // 0.05 N m in mN m, after the soft start
+  EXPECT_NEAR(written.x(), 0.0, 1e-9);
+  EXPECT_EQ(s.device("left").fault, "");
 }
 
 TEST_F(OpenHaptics, ASchedulerThatStopsCallingIsALoopStall) {

@@ -13,13 +13,26 @@ export FORCEDIM_SDK="$standins/forcedimension" HAPTICD_DHD_STANDIN="omega.6:1000
 export HAPTICD_DHD_STANDIN_STEP=0.0005
 export OH_SDK_BASE="$standins/openhaptics" HAPTICD_HD_STANDIN="Default Device=Touch:220-10001,Right Device=Touch X:330-10002"
 rm -rf "$work"; mkdir -p "$work"
-# Haply's Inverse Service: the stand-in as a process on a port of this test's own (the sessions' URL is set to it).
+# Haply's Inverse Service: the stand-in as a process on a port of this test's own (the sessions' URL is set to it);
+# the pair session's two Inverse3s (ids 0A1B and 0C2D) each on a stand-in of its own (one device per stand-in).
 haply_port=18101
-"$standins/haply/hapticd-standin-inverse-service" $haply_port > "$work/inverse-service.log" 2>&1 &
-haply_service=$!
-trap 'kill $haply_service 2> /dev/null' EXIT
-for _ in $(seq 50); do grep -q "stand-in on" "$work/inverse-service.log" && break; sleep 0.1; done
-haply_flags() { case "$1" in */haply/*) echo "--set devices.inverse3.device.parameters.url=ws://127.0.0.1:$haply_port" ;; esac; }
+haply_services=""
+for spec in "18101" "18102 0 0 0 0 0A1B" "18103 0 0 0 0 0C2D"; do
+  set -- $spec
+  "$standins/haply/hapticd-standin-inverse-service" "$@" > "$work/inverse-service-$1.log" 2>&1 &
+  haply_services="$haply_services $!"
+done
+trap 'kill $haply_services 2> /dev/null' EXIT
+for port in 18101 18102 18103; do
+  for _ in $(seq 50); do grep -q "stand-in on" "$work/inverse-service-$port.log" && break; sleep 0.1; done
+done
+haply_flags() {
+  case "$1" in
+    */haply/inverse3-pair.yaml) echo "--set devices.left.device.parameters.url=ws://127.0.0.1:18102" \
+                                     "--set devices.right.device.parameters.url=ws://127.0.0.1:18103" ;;
+    */haply/*) echo "--set devices.inverse3.device.parameters.url=ws://127.0.0.1:$haply_port" ;;
+  esac
+}
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 pass() { echo "ok: $*"; }

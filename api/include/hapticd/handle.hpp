@@ -9,6 +9,7 @@
 // so that the joint-space parts of the chain (the command's limits, the safe mode's damping, the history and the
 // recordings) apply to them unchanged, and a command's `torque_nm` is the handle's force, torque and gripper force
 // on those axes. The device plugin fills only DeviceState::handle; the server fills the axes from it.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -67,6 +68,10 @@ struct HandleState {
   std::uint32_t buttons = 0;  // bit i: button i pressed
   double gripper = 0.0;       // opening [rad] (has_gripper)
   double gripper_rate = 0.0;  // [rad/s]
+  // The device's own linkage as its SDK reports it, for information (the session API; the server does not model
+  // it): a Touch's three joint angles then its three gimbal angles [rad]. The first `linkage_count` are valid.
+  std::array<double, 6> linkage{};
+  int linkage_count = 0;
 };
 
 // The axes a handle device runs with, named and limited from its description (the server sets them as the

@@ -265,8 +265,11 @@ void HaplyDevice::stop() noexcept {
                                 "{\"inverse3\":[{\"device_id\":\"%s\",\"commands\":{\"set_cursor_force\":{\"vector\":{"
                                 "\"x\":0,\"y\":0,\"z\":0}}}}]}",
                                 device_id_.c_str());
-    if (n > 0 && static_cast<std::size_t>(n) < sizeof message)
-      (void)client_->send(std::string_view(message, static_cast<std::size_t>(n)));
+    if (n > 0 && static_cast<std::size_t>(n) < sizeof message &&
+        client_->send(std::string_view(message, static_cast<std::size_t>(n)))) {
+      client_->close_gracefully(0.1);  // the service answers the force with a state, then the close
+      return;
+    }
   }
   if (client_) client_->close();
 }

@@ -101,4 +101,14 @@ void InverseServiceClient::close() noexcept {
   if (impl_ && impl_->fd >= 0) (void)::shutdown(impl_->fd, SHUT_RDWR);
 }
 
+void InverseServiceClient::close_gracefully(double timeout_s) noexcept {
+  if (!impl_ || impl_->fd < 0) return;
+  if (impl_->ws.is_open()) {
+    set_timeout(impl_->fd, timeout_s);
+    beast::error_code ec;
+    impl_->ws.close(websocket::close_code::normal, ec);  // reads (and drops) what is still in flight
+  }
+  close();
+}
+
 }  // namespace hapticd::plugins::haply

@@ -30,6 +30,9 @@ class InverseServiceClient {
   bool receive(std::string_view& text, double timeout_s = 0.0) noexcept;
   // Any thread: ends the connection (a receive that waits returns false).
   void close() noexcept;
+  // Ends the connection as a WebSocket client should: a close frame, the service's reply awaited (at most
+  // `timeout_s`), then the socket shut. Only from the thread that sends and receives, with no receive waiting.
+  void close_gracefully(double timeout_s) noexcept;
   [[nodiscard]] const std::string& error() const noexcept { return error_; }
   [[nodiscard]] const std::string& url() const noexcept { return url_; }
 

@@ -1,5 +1,6 @@
 #include "openhaptics_device.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,14 @@ int scheduler_users = 0;
 HDCallbackCode servo_callback(void* self) { return static_cast<OpenHapticsDevice*>(self)->servo(); }
 
 }  // namespace
+
+void HdErrors::drain(const HdApi& hd) noexcept {
+  for (int i = 0; i < 16; ++i) {
+    const HDErrorInfo e = hd.get_error();
+    if (e.errorCode == kSuccess) return;
+    add(e);
+  }
+}
 
 ParameterSchema OpenHapticsDevice::parameter_schema() {
   ParameterSchema s;
@@ -106,8 +115,18 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
   d.interface = DeviceInterface::handle;
   HandleDescription& h = d.handle;
   h.senses_orientation = input_dof >= 6;
-  h.actuated_torque = false;  // 3-DOF force output; a 6-DOF output device's torques are not driven
   h.buttons = 2;
+  if (output_dof >= 6) {  // a PHANTOM with 6-DOF output: torques about the handle, Cartesian (HD_CURRENT_TORQUE)
+    double max_torque_mnm = 0, torque_stiffness = 0, torque_damping = 0;
+    hd_->get_doublev(kNominalMaxTorqueForce, &max_torque_mnm);
+    hd_->get_doublev(kNominalMaxTorqueStiffness, &torque_stiffness);
+    hd_->get_doublev(kNominalMaxTorqueDamping, &torque_damping);
+    (void)hd_->get_error();  // a figure the device does not report stays 0
+    h.actuated_torque = max_torque_mnm > 0.0;
+    h.max_torque_nm = max_torque_mnm * 1e-3;
+    h.recommended_rotational_stiffness_nm_per_rad = torque_stiffness * 1e-3;
+    h.recommended_rotational_damping_nm_s_per_rad = torque_damping * 1e-3;
+  }
   const Eigen::Vector3d lo(workspace[0], workspace[1], workspace[2]), hi(workspace[3], workspace[4], workspace[5]);
   if ((hi - lo).minCoeff() > 0.0) {
     h.workspace_min = lo * 1e-3;
@@ -127,11 +146,29 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
   h.continuous_force_n = continuous > 0.0 ? std::min(continuous, h.max_force_n) : 0.0;
   h.recommended_stiffness_n_per_m = stiffness * 1e3;  // N/mm
   h.recommended_damping_n_s_per_m = damping * 1e3;    // N s/mm
-  (void)output_dof;
+}
+
+const char* OpenHapticsDevice::failure(const char* what, const HdErrors& errors) noexcept {
+  // Each error the stack held, in the order the SDK gave them (the newest first): "the servo frame: device fault
+  // (HD error 0x0300, internal 42); communication error ... (HD error 0x0302, internal 0)".
+  std::array<char, 384>& text = errors_[static_cast<std::size_t>(error_)];
+  if (text[0] != '\0') return text.data();
+  int used = std::snprintf(text.data(), text.size(), "%s: ", what);
+  const int shown = std::min(errors.count, static_cast<int>(errors.first.size()));
+  for (int i = 0; i < shown && used > 0 && used < static_cast<int>(text.size()); ++i) {
+    const HDErrorInfo& e = errors.first[static_cast<std::size_t>(i)];
+    used += std::snprintf(text.data() + used, text.size() - static_cast<std::size_t>(used),
+                          "%s%s (HD error 0x%04x, internal %d)", i > 0 ? "; " : "", hd_->text_of(e.errorCode),
+                          e.errorCode, e.internalErrorCode);
+  }
+  if (errors.count > shown && used > 0 && used < static_cast<int>(text.size()))
+    std::snprintf(text.data() + used, text.size() - static_cast<std::size_t>(used), "; %d more on the stack",
+                  errors.count - shown);
+  return text.data();
 }
 
 const char* OpenHapticsDevice::failure(const char* what, HDerror code, int internal) noexcept {
-  std::array<char, 256>& text = errors_[static_cast<std::size_t>(error_)];
+  std::array<char, 384>& text = errors_[static_cast<std::size_t>(error_)];
   if (text[0] == '\0')
     std::snprintf(text.data(), text.size(), "%s: %s (HD error 0x%04x, internal %d)", what, hd_->text_of(code), code,
                   internal);
@@ -144,7 +181,7 @@ Outcome OpenHapticsDevice::enable() {
   have_sample_ = false;
   applied_ = HdCommand{};
   handoff_.reset();
-  end_error_ = HDErrorInfo{kSuccess, 0, 0};
+  end_errors_ = HdErrors{};
   hd_->make_current_device(handle_);
   hd_->enable(kForceOutput);
   if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess)
@@ -178,6 +215,7 @@ HDCallbackCode OpenHapticsDevice::servo() noexcept {
     const double zero[3] = {0, 0, 0};
     hd_->begin_frame(handle_);
     hd_->set_doublev(kCurrentForce, zero);
+    if (description_.handle.actuated_torque) hd_->set_doublev(kCurrentTorque, zero);
     hd_->end_frame(handle_);
     ended_.store(true, std::memory_order_release);
     return kCallbackDone;
@@ -188,25 +226,26 @@ HDCallbackCode OpenHapticsDevice::servo() noexcept {
   hd_->get_doublev(kCurrentVelocity, s.velocity_mm_s.data());
   hd_->get_doublev(kCurrentTransform, s.transform.data());
   hd_->get_doublev(kCurrentAngularVelocity, s.angular_velocity.data());
+  hd_->get_doublev(kCurrentJointAngles, s.joint_angles.data());
+  hd_->get_doublev(kCurrentGimbalAngles, s.gimbal_angles.data());
   hd_->get_integerv(kCurrentButtons, &s.buttons);
-  HDErrorInfo e = hd_->get_error();
-  if (e.errorCode == kSuccess) e = end_error_;
-  s.error = e.errorCode;
-  s.internal_error = e.internalErrorCode;
+  s.errors = end_errors_;  // the previous frame's end first
+  s.errors.drain(*hd_);
   s.time_ns = realtime::TickSignal::now_ns();
   handoff_.publish(s, s.time_ns);
   handoff_.next_command(applied_);  // on the device's clock: the loop's answer to this tick
   hd_->set_doublev(kCurrentForce, applied_.force_n.data());
+  if (description_.handle.actuated_torque) hd_->set_doublev(kCurrentTorque, applied_.torque_mnm.data());
   hd_->end_frame(handle_);
-  end_error_ = hd_->get_error();  // told with the next sample
+  end_errors_ = HdErrors{};  // told with the next sample
+  end_errors_.drain(*hd_);
   return kCallbackContinue;
 }
 
 Outcome OpenHapticsDevice::read(const CycleTime& cycle, DeviceState& state) {
   if (handoff_.take(sample_)) have_sample_ = true;
   if (!have_sample_) return Outcome::failure("no sample from the HD scheduler yet");
-  if (sample_.error != kSuccess)
-    return Outcome::failure(failure("the servo frame", sample_.error, sample_.internal_error));
+  if (sample_.errors.count > 0) return Outcome::failure(failure("the servo frame", sample_.errors));
   if (realtime::TickSignal::now_ns() - sample_.time_ns > handoff_.max_sample_age_ns())
     return Outcome::failure("no sample from the HD scheduler within max_sample_age_s (it stopped calling)");
   HandleState& h = state.handle;
@@ -222,6 +261,11 @@ Outcome OpenHapticsDevice::read(const CycleTime& cycle, DeviceState& state) {
         Eigen::Vector3d(sample_.angular_velocity[0], sample_.angular_velocity[1], sample_.angular_velocity[2]);
   }
   h.buttons = static_cast<std::uint32_t>(sample_.buttons);
+  for (std::size_t i = 0; i < 3; ++i) {
+    h.linkage[i] = sample_.joint_angles[i];
+    h.linkage[3 + i] = sample_.gimbal_angles[i];
+  }
+  h.linkage_count = 6;
   return Outcome::success();
 }
 
@@ -232,6 +276,12 @@ Outcome OpenHapticsDevice::write(const CycleTime&, const JointCommand& command) 
   for (std::size_t i = 0; i < 3; ++i) {
     if (!std::isfinite(e[i])) return Outcome::failure("a non-finite force");
     c.force_n[i] = e[i];
+  }
+  if (description_.handle.actuated_torque) {
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!std::isfinite(e[3 + i])) return Outcome::failure("a non-finite torque");
+      c.torque_mnm[i] = e[3 + i] * 1e3;
+    }
   }
   handoff_.command(c);
   return Outcome::success();

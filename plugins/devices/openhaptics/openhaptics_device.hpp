@@ -10,8 +10,10 @@
 //   enable:    forces on, the callback scheduled, the scheduler started (once for every device of the process);
 //              the first sample awaited (1 s).
 //   read:      the newest sample of the callback (hold when none came since; one older than `max_sample_age_s` -
-//              a scheduler that stopped calling - and a frame's SDK error are faults with the vendor's text).
-//   write:     the force for the callback. When the device clocks the loop, the callback waits for the loop's
+//              a scheduler that stopped calling - and a frame's SDK errors are faults with the vendor's text of
+//              each error on the HD error stack); the joint and gimbal angles as the handle's linkage.
+//   write:     the force (and the torque, where the device has 6-DOF output) for the callback. When the device clocks
+//   the loop, the callback waits for the loop's
 //              force of its own tick (bounded: `command_wait_us`); a late one is held for `hold_ticks` ticks, then
 //              the callback writes zero.
 //   disable:   the callback ends, zero force, forces off, the scheduler stopped (by the last device), closed.
@@ -28,6 +30,18 @@
 
 namespace hapticd::plugins::openhaptics {
 
+// The HD error stack as a frame left it: the first errors popped (the newest first) and how many there were.
+struct HdErrors {
+  std::array<HDErrorInfo, 3> first{};
+  int count = 0;
+  void add(const HDErrorInfo& e) noexcept {
+    if (count < static_cast<int>(first.size())) first[static_cast<std::size_t>(count)] = e;
+    ++count;
+  }
+  // Pops the stack (at most 16: a bounded frame) into this.
+  void drain(const HdApi& hd) noexcept;
+};
+
 // One frame of the callback, for the loop.
 struct HdSample {
   std::int64_t time_ns = 0;  // CLOCK_MONOTONIC, when the callback took it
@@ -35,14 +49,16 @@ struct HdSample {
   std::array<double, 3> velocity_mm_s{};
   std::array<double, 16> transform{};  // column-major, translation in mm
   std::array<double, 3> angular_velocity{};
+  std::array<double, 3> joint_angles{};   // rad
+  std::array<double, 3> gimbal_angles{};  // rad
   int buttons = 0;
-  HDerror error = kSuccess;  // an error of this frame (or of the previous frame's end)
-  int internal_error = 0;
+  HdErrors errors;  // the stack after this frame's reads (and the previous frame's end)
 };
 
-// The loop's force for the callback.
+// The loop's force (and torque, on a device with 6-DOF output) for the callback.
 struct HdCommand {
   std::array<double, 3> force_n{};
+  std::array<double, 3> torque_mnm{};
 };
 
 class OpenHapticsDevice final : public Device {
@@ -64,6 +80,7 @@ class OpenHapticsDevice final : public Device {
 
  private:
   const char* failure(const char* what, HDerror code, int internal) noexcept;
+  const char* failure(const char* what, const HdErrors& errors) noexcept;
   void close_device() noexcept;
 
   std::unique_ptr<VendorLibrary> library_;
@@ -77,13 +94,13 @@ class OpenHapticsDevice final : public Device {
   std::atomic<bool> ended_{false};    // the callback wrote its last frame
   HDSchedulerHandle callback_ = 0;
   bool scheduled_ = false;
-  HdCommand applied_;                      // the callback's: the force it writes
-  HDErrorInfo end_error_{kSuccess, 0, 0};  // the callback's: the previous frame's end, for the next sample
+  HdCommand applied_;    // the callback's: the force it writes
+  HdErrors end_errors_;  // the callback's: the previous frame's end, for the next sample
 
   // Loop.
   HdSample sample_;
   bool have_sample_ = false;
-  std::array<std::array<char, 256>, 2> errors_{};
+  std::array<std::array<char, 384>, 2> errors_{};
   int error_ = 0;
 };
 

@@ -56,6 +56,15 @@ class VirtualAdmittance final : public VirtualModel {
   // the scripted_wrench model renders them on the measured handle motion in impedance display.
   [[nodiscard]] Eigen::Vector3d wall_force(const Eigen::Vector3d& position,
                                            const Eigen::Vector3d& velocity) const noexcept;
+  // With `coupling`, the rendering engine's coupling and wrench [force; torque] (world) on a body at (position,
+  // orientation) moving with (velocity, angular velocity), scaled by the engine input's weight (zero without
+  // `coupling`, without input, or for a motion command); the scripted_wrench model renders it on the measured
+  // handle in impedance display.
+  [[nodiscard]] Eigen::Matrix<double, 6, 1> engine_wrench(const EngineInput& engine, const Eigen::Vector3d& position,
+                                                          const Eigen::Quaterniond& orientation,
+                                                          const Eigen::Vector3d& velocity,
+                                                          const Eigen::Vector3d& angular_velocity) const noexcept;
+  [[nodiscard]] bool takes_engine_input() const noexcept { return coupling_; }
 
  private:
   struct Wall {
@@ -69,11 +78,6 @@ class VirtualAdmittance final : public VirtualModel {
     Eigen::Quaterniond orientation;
   };
   void follow_engine_motion(const EngineInput& engine, std::int64_t now_ns, const BodyState& start) noexcept;
-  // Coupling and engine wrench [force; torque] (world) on a body at (position, orientation) moving with
-  // (velocity, angular velocity), scaled by the engine input's weight.
-  Eigen::Matrix<double, 6, 1> engine_wrench(const EngineInput& engine, const Eigen::Vector3d& position,
-                                            const Eigen::Quaterniond& orientation, const Eigen::Vector3d& velocity,
-                                            const Eigen::Vector3d& angular_velocity) const noexcept;
 
   // The parameters tune() may change.
   struct Tunable {

@@ -77,11 +77,24 @@ Outcome ScriptedWrenchModel::update(const CycleTime& cycle, const VirtualModelIn
   }
   const WrenchScript::Vector6 script = script_.at(1e-9 * static_cast<double>(cycle.time_ns - start_ns_));
   if (admittance_display_) return admittance_.update(cycle, input, target, script);
-  // Impedance display: the walls act on the measured handle motion (the chain's one velocity estimate).
+  // Impedance display: the walls and the engine act on the measured handle motion (the chain's one velocity
+  // estimate); the handle is the body an engine's proxy is computed from (the state's target pose).
   admittance_.take_tuning();
+  const ChainState& c = input.chain;
   WrenchScript::Vector6 environment = script;
-  environment.head<3>() += admittance_.wall_force(input.chain.handle_pose.position, input.chain.handle_twist.linear);
+  environment.head<3>() += admittance_.wall_force(c.handle_pose.position, c.handle_twist.linear);
+  if (admittance_.takes_engine_input()) {
+    WrenchScript::Vector6 port_twist;
+    port_twist << c.handle_twist.linear, c.handle_twist.angular;
+    // The safety layer's passivity observer and controller on the engine's port, the handle.
+    environment += input.render.engine_port(
+        admittance_.engine_wrench(input.engine, c.handle_pose.position, c.handle_pose.orientation,
+                                  c.handle_twist.linear, c.handle_twist.angular),
+        port_twist);
+  }
   const WrenchScript::Vector6 rendered = input.render.limit(environment);
+  target.pose = c.handle_pose;
+  target.twist = c.handle_twist;
   target.wrench.force = rendered.head<3>();
   target.wrench.torque = rendered.tail<3>();
   target.has_wrench = true;

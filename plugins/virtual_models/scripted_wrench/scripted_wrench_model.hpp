@@ -4,7 +4,9 @@
 // suite's force experiments (the thesis's dynamic force precision, docs/evaluation.md).
 //   display: impedance   the script is the wrench the device displays (TaskTarget::wrench), plus the walls and the
 //                        workspace spring of the admittance parameters on the measured handle motion (the
-//                        evaluation suite's Z-width walls); the other admittance parameters are not used
+//                        evaluation suite's Z-width walls) and, with `coupling: true`, the rendering engine's
+//                        coupling to its proxy and its wrench (an engine's motion commands are not rendered:
+//                        there is no virtual body to move); the other admittance parameters are not used
 //   display: admittance  a virtual admittance (every parameter of the `admittance` model) renders the script as
 //                        the environment's wrench on its virtual body: M xdd + D xd = F_operator + F_script
 // In both the script is the wrench the environment applies to the operator; it passes the rendered-wrench

@@ -8,7 +8,8 @@
 // walls, a simulated hand pushing it with a constant force, buttons and a gripper; and a control interface for the
 // tests (standin_dhd_*): the devices (from the variable HAPTICD_DHD_STANDIN, "omega.6:10001,omega.7:10002", or
 // standin_dhd_setup), a fixed physics step (lockstep: standin_dhd_set_step or HAPTICD_DHD_STANDIN_STEP) or the
-// wall clock, buttons held (standin_dhd_hand or HAPTICD_DHD_STANDIN_BUTTONS), faults on cue (unplugged, one failing
+// wall clock, buttons held and the hand's push (standin_dhd_hand, or HAPTICD_DHD_STANDIN_BUTTONS and
+// HAPTICD_DHD_STANDIN_HAND "fx,fy,fz" for a run of the server), faults on cue (unplugged, one failing
 // force call, uncalibrated), and a log of the lifecycle calls.
 #include <algorithm>
 #include <array>
@@ -20,6 +21,8 @@
 #include <mutex>
 #include <string>
 #include <vector>
+
+#include "hand_trigger.hpp"
 
 #define STANDIN_API extern "C" __attribute__((visibility("default")))
 
@@ -114,6 +117,12 @@ void setup_from(const char* spec) {
   // Buttons held on every device from the start (a run of the server has no test to press them).
   if (const char* held = std::getenv("HAPTICD_DHD_STANDIN_BUTTONS"); held != nullptr)
     for (Device& d : devices) d.buttons = static_cast<unsigned>(std::strtoul(held, nullptr, 0));
+  // A run of the server has no test to push either: the hand's force on every device, "fx,fy,fz" (N).
+  if (const char* hand = std::getenv("HAPTICD_DHD_STANDIN_HAND"); hand != nullptr) {
+    std::array<double, 3> f{0, 0, 0};
+    if (std::sscanf(hand, "%lf,%lf,%lf", &f[0], &f[1], &f[2]) == 3)
+      for (Device& d : devices) d.hand = f;
+  }
   // A lockstep run of the server: each force call advances the physics by this much (seconds).
   if (const char* step = std::getenv("HAPTICD_DHD_STANDIN_STEP"); step != nullptr) fixed_step_s = std::atof(step);
 }
@@ -134,14 +143,17 @@ Device* device(char id) {
   return &d;
 }
 
+hapticd::standins::HandTrigger hand_trigger;
+
 // The handle's motion under the last force, the hand and the walls, over dt (semi-implicit Euler).
 void step(Device& d, double dt) {
+  const bool pushing = hand_trigger.pushing();
   for (int i = 0; i < 3; ++i) {
     double wall = 0.0;
     if (d.p[i] > d.half_extent_m) wall = -d.wall_stiffness * (d.p[i] - d.half_extent_m);
     if (d.p[i] < -d.half_extent_m) wall = -d.wall_stiffness * (d.p[i] + d.half_extent_m);
     const double applied = d.force_on ? d.f[i] : 0.0;
-    const double a = (applied + d.hand[i] + wall - d.damping * d.v[i]) / d.mass_kg;
+    const double a = (applied + (pushing ? d.hand[i] : 0.0) + wall - d.damping * d.v[i]) / d.mass_kg;
     d.v[i] = d.brakes ? 0.0 : d.v[i] + a * dt;
     d.p[i] += d.v[i] * dt;
   }

@@ -11,6 +11,8 @@
 #include <mutex>
 #include <thread>
 
+#include "hand_trigger.hpp"
+
 namespace hapticd::standins {
 
 namespace net = boost::asio;
@@ -30,17 +32,31 @@ struct InverseServiceStandIn::Impl {
   std::array<double, 3> lo{-0.15, -0.25, 0.0}, hi{0.15, 0.0, 0.3};
   double mass_kg = 0.2, damping = 1.0, wall_stiffness = 3000.0;
   unsigned buttons = 0;
+  bool unplugged = false;
   Clock::time_point pause_until{};
   Clock::time_point last{};
   std::atomic<std::uint64_t> messages{0};
   std::atomic<int> socket_fd{-1};
+  std::string call_log;  // the lifecycle as the service saw it (under mutex)
+
+  // Logs an event, a repeat of the last one once (a run of forces is one line).
+  void log(const std::string& event) {
+    std::lock_guard lock(mutex);
+    const std::string line = event + "\n";
+    if (call_log.size() >= line.size() && call_log.compare(call_log.size() - line.size(), line.size(), line) == 0)
+      return;
+    call_log += line;
+  }
+
+  HandTrigger hand_trigger;
 
   void step(double dt) {
+    const bool pushing = hand_trigger.pushing();
     for (std::size_t i = 0; i < 3; ++i) {
       double wall = 0.0;
       if (p[i] > hi[i]) wall = -wall_stiffness * (p[i] - hi[i]);
       if (p[i] < lo[i]) wall = -wall_stiffness * (p[i] - lo[i]);
-      const double a = (f[i] + hand[i] + wall - damping * v[i]) / mass_kg;
+      const double a = (f[i] + (pushing ? hand[i] : 0.0) + wall - damping * v[i]) / mass_kg;
       v[i] += a * dt;
       p[i] += v[i] * dt;
     }
@@ -58,6 +74,10 @@ struct InverseServiceStandIn::Impl {
                   options.calibrated ? "true" : "false");
     std::string out = "{";
     if (inventory) out += "\"session_id\":7,";
+    if (unplugged) {
+      out += "\"inverse3\":[]}";
+      return out;
+    }
     out += "\"inverse3\":[{\"device_id\":\"" + options.device_id + "\",";
     if (inventory)
       out +=
@@ -79,13 +99,21 @@ struct InverseServiceStandIn::Impl {
     return out;
   }
 
-  // The force a message commands (set_cursor_force of our device), if it has one.
+  // The force a message commands (set_cursor_force of our device), if it has one; the message in the log.
   void take_command(const std::string& text) {
+    if (text.find("\"session\":{\"configure\":{\"profile\"") != std::string::npos) log("session profile");
     const std::size_t at = text.find("\"set_cursor_force\"");
-    if (at == std::string::npos || text.find("\"" + options.device_id + "\"") == std::string::npos) return;
+    if (at == std::string::npos || text.find("\"" + options.device_id + "\"") == std::string::npos) {
+      log("other message");
+      return;
+    }
     double x = 0, y = 0, z = 0;
     const char* vector = std::strstr(text.c_str() + at, "\"vector\"");
-    if (vector == nullptr || std::sscanf(vector, "\"vector\":{\"x\":%lf,\"y\":%lf,\"z\":%lf", &x, &y, &z) != 3) return;
+    if (vector == nullptr || std::sscanf(vector, "\"vector\":{\"x\":%lf,\"y\":%lf,\"z\":%lf", &x, &y, &z) != 3) {
+      log("malformed set_cursor_force");
+      return;
+    }
+    log(x == 0.0 && y == 0.0 && z == 0.0 ? "set_cursor_force zero" : "set_cursor_force");
     std::lock_guard lock(mutex);
     f = {x, y, z};
   }
@@ -96,12 +124,14 @@ struct InverseServiceStandIn::Impl {
     beast::error_code ec;
     ws.accept(ec);
     if (ec) return;
+    log("connect");
     ws.text(true);
     {
       std::lock_guard lock(mutex);
       last = Clock::now();
     }
     ws.write(net::buffer(state_json(true)), ec);
+    log("inventory");
     beast::flat_buffer buffer;
     while (!ec && !stopping.load()) {
       buffer.clear();
@@ -127,6 +157,7 @@ struct InverseServiceStandIn::Impl {
       messages.fetch_add(1);
       ws.write(net::buffer(state_json(false)), ec);
     }
+    log(ec == websocket::error::closed ? "close" : "connection lost");
     socket_fd.store(-1);
   }
 };
@@ -173,6 +204,11 @@ void InverseServiceStandIn::pause(double seconds) {
       Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
+void InverseServiceStandIn::unplug() {
+  std::lock_guard lock(impl_->mutex);
+  impl_->unplugged = true;
+}
+
 void InverseServiceStandIn::drop() {
   if (const int fd = impl_->socket_fd.load(); fd >= 0) (void)::shutdown(fd, SHUT_RDWR);
 }
@@ -183,5 +219,10 @@ InverseServiceStandIn::Cursor InverseServiceStandIn::cursor() const {
 }
 
 std::uint64_t InverseServiceStandIn::messages() const noexcept { return impl_->messages.load(); }
+
+std::string InverseServiceStandIn::call_log() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->call_log;
+}
 
 }  // namespace hapticd::standins

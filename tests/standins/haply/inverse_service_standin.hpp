@@ -37,11 +37,17 @@ class InverseServiceStandIn {
   void pause(double seconds);
   // Closes the connection now.
   void drop();
+  // The Inverse3 is unplugged: the service's states no longer list it (the connection stays).
+  void unplug();
   struct Cursor {
     std::array<double, 3> position{}, force{};  // m, N: the last force commanded
   };
   [[nodiscard]] Cursor cursor() const;
   [[nodiscard]] std::uint64_t messages() const noexcept;
+  // The lifecycle as the service saw it, one event per line, a run of the same event once: "connect",
+  // "inventory", "session profile", "set_cursor_force" (or "... zero"), "close" (the client closed the WebSocket)
+  // or "connection lost".
+  [[nodiscard]] std::string call_log() const;
 
  private:
   struct Impl;

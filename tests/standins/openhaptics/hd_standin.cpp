@@ -8,19 +8,24 @@
 // device's physics under the force of its last frame and calls every scheduled callback (highest priority first),
 // as the vendor's does. A control interface for the tests (standin_hd_*): the devices (from the variable
 // HAPTICD_HD_STANDIN, "Default Device=Touch:220-10001,Right=Touch X:330-10002", a name's trailing "!update" or
-// "!manual" for a calibration it needs), the hand, a pause of the scheduler (a device that stops calling), an
-// error in the next frame, the last force written, the number of ticks and a log of the lifecycle calls.
+// "!manual" for a calibration it needs), the hand (HAPTICD_HD_STANDIN_HAND "fx,fy,fz" and
+// HAPTICD_HD_STANDIN_BUTTONS for a run of the server), a pause of the scheduler (a device that stops calling), an
+// error in the next frame, a device unplugged, the linkage's angles, a PHANTOM Premium 6DOF with torque output, the
+// last force written, the number of ticks and a log of the lifecycle calls.
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "hand_trigger.hpp"
 
 #define STANDIN_API extern "C" __attribute__((visibility("default")))
 
@@ -47,7 +52,9 @@ constexpr HDenum kCurrentButtons = 0x2000, kCurrentPosition = 0x2050, kCurrentVe
                  kDeviceVendor = 0x2503, kDeviceSerialNumber = 0x2504, kUsableWorkspaceDimensions = 0x2551,
                  kInputDof = 0x2553, kOutputDof = 0x2554, kCalibrationStyle = 0x2555, kUpdateRate = 0x2600,
                  kNominalMaxStiffness = 0x2602, kNominalMaxForce = 0x2603, kNominalMaxContinuousForce = 0x2604,
-                 kNominalMaxDamping = 0x2609, kCurrentForce = 0x2700, kForceOutput = 0x4000;
+                 kNominalMaxDamping = 0x2609, kNominalMaxTorqueStiffness = 0x2620, kNominalMaxTorqueDamping = 0x2621,
+                 kNominalMaxTorqueForce = 0x2622, kCurrentForce = 0x2700, kCurrentTorque = 0x2701,
+                 kCurrentJointAngles = 0x2100, kCurrentGimbalAngles = 0x2150, kForceOutput = 0x4000;
 constexpr HDenum kCalibrationOk = 0x5000, kCalibrationNeedsUpdate = 0x5001, kCalibrationNeedsManualInput = 0x5002;
 constexpr int kCalibrationEncoderReset = 1 << 0, kCalibrationInkwell = 1 << 2;
 constexpr HDCallbackCode kCallbackDone = 0;
@@ -55,10 +62,14 @@ constexpr HDCallbackCode kCallbackDone = 0;
 struct Device {
   std::string name = "Default Device", model = "Touch", serial = "220-10001";
   HDenum calibration = kCalibrationOk;
-  bool open = false, force_output = false, in_frame = false;
+  bool open = false, force_output = false, in_frame = false, unplugged = false;
+  bool torque_output = false;  // a PHANTOM Premium 6DOF: torques in mN m (HD_CURRENT_TORQUE)
+  double max_torque_mnm = 0.0;
   double mass_kg = 0.045, damping = 0.4, wall_stiffness = 2000.0, max_force_n = 3.3;
   std::array<double, 3> lo{-0.08, -0.06, -0.035}, hi{0.08, 0.06, 0.035};  // m (the Touch's usable box)
   std::array<double, 3> p{0, 0, 0}, v{0, 0, 0}, f{0, 0, 0}, hand{0, 0, 0};
+  std::array<double, 3> t{0, 0, 0};                                // the torque last written [mN m]
+  std::array<double, 6> linkage{0.1, 0.2, 0.3, -0.4, -0.5, -0.6};  // joint, then gimbal angles [rad]
   int buttons = 0;
   HDerror fail_next_frame = kSuccess;
 };
@@ -121,6 +132,11 @@ void setup_from(const char* spec) {
       const std::size_t colon = rest.find(':');
       d.model = rest.substr(0, colon);
       if (colon != std::string::npos) d.serial = rest.substr(colon + 1);
+      if (d.model == "PHANTOM Premium 6DOF") {
+        d.torque_output = true;
+        d.max_torque_mnm = 170.0;
+        d.max_force_n = 8.5;
+      }
       if (d.model == "Touch X") {
         d.max_force_n = 7.9;
         d.lo = {-0.08, -0.06, -0.05};
@@ -130,6 +146,15 @@ void setup_from(const char* spec) {
     }
     start = comma + 1;
   }
+  // A run of the server has no test to push or press: the hand's force "fx,fy,fz" (N) and the buttons held, on
+  // every device.
+  if (const char* hand = std::getenv("HAPTICD_HD_STANDIN_HAND"); hand != nullptr) {
+    std::array<double, 3> f{0, 0, 0};
+    if (std::sscanf(hand, "%lf,%lf,%lf", &f[0], &f[1], &f[2]) == 3)
+      for (Device& d : devices) d.hand = f;
+  }
+  if (const char* held = std::getenv("HAPTICD_HD_STANDIN_BUTTONS"); held != nullptr)
+    for (Device& d : devices) d.buttons = static_cast<int>(std::strtol(held, nullptr, 0));
   set_up = true;
 }
 
@@ -141,14 +166,17 @@ Device* current_device() {
   return &devices[static_cast<std::size_t>(current)];
 }
 
+hapticd::standins::HandTrigger hand_trigger;
+
 // The stylus under the last frame's force, the hand and the walls, over dt (semi-implicit Euler).
 void step(Device& d, double dt) {
+  const bool pushing = hand_trigger.pushing();
   for (std::size_t i = 0; i < 3; ++i) {
     double wall = 0.0;
     if (d.p[i] > d.hi[i]) wall = -d.wall_stiffness * (d.p[i] - d.hi[i]);
     if (d.p[i] < d.lo[i]) wall = -d.wall_stiffness * (d.p[i] - d.lo[i]);
     const double applied = d.force_output ? d.f[i] : 0.0;
-    const double a = (applied + d.hand[i] + wall - d.damping * d.v[i]) / d.mass_kg;
+    const double a = (applied + (pushing ? d.hand[i] : 0.0) + wall - d.damping * d.v[i]) / d.mass_kg;
     d.v[i] += a * dt;
     d.p[i] += d.v[i] * dt;
   }
@@ -231,6 +259,10 @@ STANDIN_API void hdBeginFrame(HHD h) {
   if (devices[h].in_frame) return raise(kIllegalBegin);
   devices[h].in_frame = true;
   current = static_cast<int>(h);
+  if (devices[h].unplugged) {  // two errors on the stack: the device's fault, then the communication's
+    raise(kDeviceFault);
+    raise(kCommError, -28);
+  }
 }
 STANDIN_API void hdEndFrame(HHD h) {
   std::lock_guard lock(mutex);
@@ -254,7 +286,7 @@ STANDIN_API void hdGetIntegerv(HDenum what, int* out) {
       *out = 6;
       return;
     case kOutputDof:
-      *out = 3;
+      *out = d->torque_output ? 6 : 3;
       return;
     case kCalibrationStyle:
       *out = kCalibrationEncoderReset | kCalibrationInkwell;
@@ -305,6 +337,18 @@ STANDIN_API void hdGetDoublev(HDenum what, double* out) {
     case kCurrentForce:
       for (std::size_t i = 0; i < 3; ++i) out[i] = d->f[i];
       return;
+    case kCurrentJointAngles:
+      for (std::size_t i = 0; i < 3; ++i) out[i] = d->linkage[i];
+      return;
+    case kCurrentGimbalAngles:
+      for (std::size_t i = 0; i < 3; ++i) out[i] = d->linkage[3 + i];
+      return;
+    case kNominalMaxTorqueForce:
+    case kNominalMaxTorqueStiffness:
+    case kNominalMaxTorqueDamping:
+      if (!d->torque_output) return raise(kInvalidEnum);
+      *out = what == kNominalMaxTorqueForce ? d->max_torque_mnm : what == kNominalMaxTorqueStiffness ? 500.0 : 2.0;
+      return;
     default:
       raise(kInvalidEnum);
   }
@@ -329,8 +373,13 @@ STANDIN_API void hdSetDoublev(HDenum what, const double* in) {
   std::lock_guard lock(mutex);
   Device* d = current_device();
   if (d == nullptr) return;
-  if (what != kCurrentForce) return raise(kInvalidEnum);
+  if (what != kCurrentForce && !(what == kCurrentTorque && d->torque_output)) return raise(kInvalidEnum);
   if (!d->in_frame) return raise(kInvalidOperation);  // forces are set inside a frame
+  if (d->unplugged) return;
+  if (what == kCurrentTorque) {
+    for (std::size_t i = 0; i < 3; ++i) d->t[i] = std::clamp(in[i], -d->max_torque_mnm, d->max_torque_mnm);
+    return;
+  }
   for (std::size_t i = 0; i < 3; ++i) {
     d->f[i] = std::clamp(in[i], -d->max_force_n, d->max_force_n);
     if (std::abs(in[i]) > d->max_force_n) raise(kExceededMaxForce);
@@ -456,6 +505,25 @@ STANDIN_API void standin_hd_fail_next_frame(int index, unsigned int code) {
   std::lock_guard lock(mutex);
   if (index >= 0 && index < static_cast<int>(devices.size()))
     devices[static_cast<std::size_t>(index)].fail_next_frame = code;
+}
+// Device `index` is unplugged (true: every frame then fails with a communication error and a device fault, and no
+// force reaches it) or plugged in again.
+STANDIN_API void standin_hd_unplug(int index, bool unplugged) {
+  std::lock_guard lock(mutex);
+  if (index >= 0 && index < static_cast<int>(devices.size()))
+    devices[static_cast<std::size_t>(index)].unplugged = unplugged;
+}
+// The linkage's angles of device `index`: three joint angles, then three gimbal angles [rad].
+STANDIN_API void standin_hd_linkage(int index, const double* angles) {
+  std::lock_guard lock(mutex);
+  if (index >= 0 && index < static_cast<int>(devices.size()))
+    for (std::size_t i = 0; i < 6; ++i) devices[static_cast<std::size_t>(index)].linkage[i] = angles[i];
+}
+// The torque last written to device `index` [mN m] (a PHANTOM Premium 6DOF).
+STANDIN_API void standin_hd_torque(int index, double* torque) {
+  std::lock_guard lock(mutex);
+  if (index >= 0 && index < static_cast<int>(devices.size()))
+    for (std::size_t i = 0; i < 3; ++i) torque[i] = devices[static_cast<std::size_t>(index)].t[i];
 }
 // The stylus's position [m] and the force last written [N] of device `index`.
 STANDIN_API void standin_hd_state(int index, double* position, double* force) {
