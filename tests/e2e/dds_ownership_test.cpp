@@ -22,6 +22,7 @@
 #include "e2e/dds_server_rig.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
+#include "support/child_process.hpp"
 #include "support/test_paths.hpp"
 
 extern char** environ;
@@ -33,6 +34,7 @@ using client::Client;
 using e2e::SceneEngine;
 using e2e::Server;
 using e2e::session_yaml;
+using test::Process;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -54,50 +56,6 @@ std::optional<double> wait_for_owner(Client& watcher, const std::string& owner, 
 }
 
 // A separate process, killed at the end of the test whatever happened.
-class Process {
- public:
-  // output: the file its standard output and error go to ("": the test's).
-  explicit Process(std::vector<std::string> argv, const std::string& output = "") {
-    std::vector<char*> args;
-    for (auto& a : argv) args.push_back(a.data());
-    args.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    if (!output.empty()) {
-      posix_spawn_file_actions_addopen(&actions, 1, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    }
-    if (posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ) != 0) pid_ = -1;
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  // Waits at most `limit_s` for it to exit; its exit code, or -1.
-  int wait_exit(double limit_s) {
-    const auto start = Clock::now();
-    while (pid_ > 0 && seconds_since(start) < limit_s) {
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return -1;
-  }
-  ~Process() {
-    if (pid_ <= 0) return;
-    (void)kill(pid_, SIGCONT);
-    (void)kill(pid_, SIGKILL);
-    (void)waitpid(pid_, nullptr, 0);
-  }
-  Process(const Process&) = delete;
-  Process& operator=(const Process&) = delete;
-  [[nodiscard]] bool started() const noexcept { return pid_ > 0; }
-  void signal(int sig) const { (void)kill(pid_, sig); }
-
- private:
-  pid_t pid_ = -1;
-};
-
 std::string bin(const char* name) { return hapticd::test::bin_dir() + "/" + name; }
 
 TEST(DdsOwnership, AnotherParticipantWritingUnderTheOwnersIdIsNotTheOwner) {

@@ -54,6 +54,18 @@ if err=$("$work/session_api/step_session" "$session" 1 devices.vishard3.virtual_
 fi
 echo "$err" | grep -q "override 'devices.vishard3.virtual_model.parameters.mass_kg=-1'" || { echo "FAIL: $err"; exit 1; }
 
+# The C API from the installed package through pkg-config: the plain-C engine compiles, links and runs (its version
+# check and a client made and ended; no server needed for that).
+PKG_CONFIG_PATH="$prefix/lib/pkgconfig:$prefix/lib/$(gcc -print-multiarch)/pkgconfig" \
+  cc -std=c11 -Wall -Wextra -Werror "$src/examples/c_api/wall_engine.c" -o "$work/c_wall_engine" \
+  $(PKG_CONFIG_PATH="$prefix/lib/pkgconfig:$prefix/lib/$(gcc -print-multiarch)/pkgconfig" \
+    pkg-config --cflags --libs hapticd-client) -Wl,-rpath,"$prefix/lib" || { echo "FAIL: the C API through pkg-config"; exit 1; }
+code=0
+out=$("$work/c_wall_engine" --domain 90 --device nobody --wait 0.2 --duration 0 2>&1 < /dev/null) || code=$?
+[ "$code" -eq 1 ] && echo "$out" | grep -q "no state from 'nobody'" ||
+  { echo "FAIL: the pkg-config-built C engine ($code): $out"; exit 1; }
+echo "ok: the C API from the installed package (pkg-config hapticd-client)"
+
 # A rendering engine on the installed client library, against the installed server over DDS (real time, 4 s).
 cmake -S "$src/examples/client_engine" -B "$work/client_engine" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" > "$work/client_engine_configure.log"

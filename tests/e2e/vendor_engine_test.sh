@@ -15,7 +15,7 @@ source "$src/tests/e2e/session_copy.sh"
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 pids=""
-trap 'kill -9 $pids 2> /dev/null' EXIT
+trap 'kill $pids 2> /dev/null' EXIT
 export HAPTICD_STANDIN_HAND_WHEN="$work/push"  # the stand-ins' hands push while this file exists
 ctl() { timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 "$@"; }
 

@@ -1,0 +1,544 @@
+// The C API (hapticd/client.h) over the C++ client library: each function checks its arguments, calls the
+// library, converts its values, and turns every exception into a status and the thread's message. Nothing of
+// C++ leaves this file through the interface.
+#include <cmath>
+#include <cstring>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include "c_values.hpp"
+#include "command_sender.hpp"
+#include "hapticd/client.h"
+#include "hapticd/client/client.hpp"
+
+struct hapticd_client {
+  explicit hapticd_client(hapticd::client::ClientOptions options) : client(std::move(options)), sender(client) {}
+  hapticd::client::Client client;
+  hapticd::client_c::CommandSender sender;  // after the client: stopped before it
+  std::mutex events_mutex;
+  std::deque<hapticd::client::Event> pending_events;  // taken from the library, not yet handed out
+};
+
+namespace {
+
+using hapticd::client_c::copy_text;
+using hapticd::client_c::from_c;
+using hapticd::client_c::to_c;
+namespace client = hapticd::client;
+
+thread_local std::string last_error;
+
+hapticd_status fail(hapticd_status status, std::string_view message) noexcept {
+  try {
+    last_error.assign(message);
+  } catch (...) {
+    last_error.clear();  // no memory for the message: the status still says what
+  }
+  return status;
+}
+
+// Runs f, turning any exception into a status (never across the C interface).
+template <class F>
+hapticd_status guarded(F&& f) noexcept {
+  try {
+    return f();
+  } catch (const std::bad_alloc&) {
+    return fail(HAPTICD_ERROR_INTERNAL, "out of memory");
+  } catch (const std::exception& e) {
+    return fail(HAPTICD_ERROR_INTERNAL, e.what());
+  } catch (...) {
+    return fail(HAPTICD_ERROR_INTERNAL, "an unknown error");
+  }
+}
+
+// A name argument: 1..31 characters. Empty view when it is not one (the caller fails with the message).
+std::string_view name_of(const char* text) noexcept {
+  if (text == nullptr) return {};
+  const std::size_t n = strnlen(text, HAPTICD_NAME_SIZE);
+  return n == 0 || n >= HAPTICD_NAME_SIZE ? std::string_view{} : std::string_view(text, n);
+}
+
+hapticd_status bad_name(const char* what, const char* text) noexcept {
+  if (text == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, std::string(what) + " is NULL");
+  return fail(HAPTICD_ERROR_INVALID_ARGUMENT, std::string(what) + " must have 1 to 31 characters");
+}
+
+bool valid_timeout(double t) noexcept { return std::isfinite(t) && t >= 0.0; }
+
+client::Timeout timeout_of(double seconds) noexcept { return client::Timeout(seconds); }
+
+hapticd_status reply_status(const client::Reply& r, hapticd_reply* out) noexcept {
+  if (out != nullptr) to_c(r, *out);
+  if (!r.answered) return fail(HAPTICD_ERROR_TIMEOUT, "no reply within the timeout");
+  if (!r.accepted) return fail(HAPTICD_ERROR_REFUSED, r.message);
+  return HAPTICD_OK;
+}
+
+// The common checks of a request on a named device or group, then the request.
+template <class F>
+hapticd_status request(hapticd_client* c, const char* target, const char* what, double timeout_s, hapticd_reply* reply,
+                       F&& f) noexcept {
+  if (c == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client is NULL");
+  const std::string_view name = name_of(target);
+  if (name.empty()) return bad_name(what, target);
+  if (!valid_timeout(timeout_s)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
+  return guarded([&] { return reply_status(f(name, timeout_of(timeout_s)), reply); });
+}
+
+std::vector<double> values_of(const double* values, std::int32_t count) {
+  return count > 0 ? std::vector<double>(values, values + count) : std::vector<double>{};
+}
+
+bool valid_values(const double* values, std::int32_t count) noexcept {
+  return count >= 0 && count <= HAPTICD_MAX_VALUES && (count == 0 || values != nullptr);
+}
+
+hapticd_status handed_over(hapticd::client_c::CommandSender::Result r) noexcept {
+  using Result = hapticd::client_c::CommandSender::Result;
+  switch (r) {
+    case Result::handed_over:
+      return HAPTICD_OK;
+    case Result::no_slot:
+      return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "a client commands at most 16 devices and groups");
+    case Result::previous_write_failed:
+      return fail(HAPTICD_ERROR_DDS, "the previous command to this target could not be written (not permitted?)");
+  }
+  return HAPTICD_ERROR_INTERNAL;
+}
+
+}  // namespace
+
+extern "C" {
+
+int hapticd_api_version(void) { return HAPTICD_C_API_VERSION; }
+
+const char* hapticd_last_error(void) { return last_error.c_str(); }
+
+const char* hapticd_status_name(hapticd_status status) {
+  switch (status) {
+    case HAPTICD_OK:
+      return "HAPTICD_OK";
+    case HAPTICD_ERROR_INVALID_ARGUMENT:
+      return "HAPTICD_ERROR_INVALID_ARGUMENT";
+    case HAPTICD_ERROR_NOT_FOUND:
+      return "HAPTICD_ERROR_NOT_FOUND";
+    case HAPTICD_ERROR_TIMEOUT:
+      return "HAPTICD_ERROR_TIMEOUT";
+    case HAPTICD_ERROR_REFUSED:
+      return "HAPTICD_ERROR_REFUSED";
+    case HAPTICD_ERROR_DDS:
+      return "HAPTICD_ERROR_DDS";
+    case HAPTICD_ERROR_INTERNAL:
+      return "HAPTICD_ERROR_INTERNAL";
+  }
+  return "an unknown status";
+}
+
+hapticd_status hapticd_client_create(const hapticd_client_options* options, hapticd_client** out) {
+  if (out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "out is NULL");
+  *out = nullptr;
+  if (options == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the options are NULL");
+  const std::string_view id = name_of(options->client_id);
+  if (id.empty()) return bad_name("the client id", options->client_id);
+  if (options->domain_id < 0 || options->domain_id > 230)
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the DDS domain must be 0 to 230");
+  if (!(options->command_deadline_s >= 0.0) || !std::isfinite(options->command_deadline_s))
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the command deadline must be finite and >= 0");
+  return guarded([&] {
+    client::ClientOptions o{std::string(id), options->domain_id};
+    if (options->cyclone_config != nullptr) o.cyclone_config = options->cyclone_config;
+    if (options->network != nullptr) o.network = options->network;
+    if (options->command_deadline_s > 0.0) o.command_deadline_s = options->command_deadline_s;
+    try {
+      *out = new hapticd_client(std::move(o));
+    } catch (const std::invalid_argument& e) {  // the network or configuration text
+      return fail(HAPTICD_ERROR_INVALID_ARGUMENT, e.what());
+    } catch (const std::runtime_error& e) {  // the participant could not be made
+      return fail(HAPTICD_ERROR_DDS, e.what());
+    }
+    return HAPTICD_OK;
+  });
+}
+
+void hapticd_client_destroy(hapticd_client* client) {
+  try {
+    delete client;
+  } catch (...) {  // a destructor that throws is the library's bug; never across C
+  }
+}
+
+// ---- devices ----
+
+hapticd_status hapticd_list_devices(hapticd_client* c, hapticd_device_info* out, int32_t capacity, int32_t* count) {
+  if (c == nullptr || count == nullptr || capacity < 0 || (capacity > 0 && out == nullptr))
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client, count or out is NULL (or capacity < 0)");
+  return guarded([&] {
+    const auto devices = c->client.devices();
+    *count = static_cast<int32_t>(devices.size());
+    for (std::size_t i = 0; i < devices.size() && i < static_cast<std::size_t>(capacity); ++i) to_c(devices[i], out[i]);
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_wait_for_device(hapticd_client* c, const char* device, double timeout_s, int32_t started,
+                                       hapticd_device_info* out) {
+  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
+  const std::string_view name = name_of(device);
+  if (name.empty()) return bad_name("the device", device);
+  if (!valid_timeout(timeout_s)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
+  return guarded([&] {
+    const auto info = c->client.wait_for_device(name, timeout_of(timeout_s), started != 0);
+    if (!info) return fail(HAPTICD_ERROR_TIMEOUT, "no description of '" + std::string(name) + "' within the timeout");
+    to_c(*info, *out);
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_latest_state(hapticd_client* c, const char* device, hapticd_device_state* out) {
+  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
+  const std::string_view name = name_of(device);
+  if (name.empty()) return bad_name("the device", device);
+  return guarded([&] {
+    const auto state = c->client.latest_state(name);
+    if (!state) return fail(HAPTICD_ERROR_NOT_FOUND, "no state of that device yet");
+    to_c(*state, *out);
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_wait_for_state(hapticd_client* c, const char* device, double timeout_s, uint64_t after,
+                                      hapticd_device_state* out) {
+  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
+  const std::string_view name = name_of(device);
+  if (name.empty()) return bad_name("the device", device);
+  if (!valid_timeout(timeout_s)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
+  return guarded([&] {
+    const auto state = c->client.wait_for_state(name, timeout_of(timeout_s), after);
+    if (!state) return fail(HAPTICD_ERROR_TIMEOUT, "no state of '" + std::string(name) + "' within the timeout");
+    to_c(*state, *out);
+    return HAPTICD_OK;
+  });
+}
+
+// ---- groups ----
+
+hapticd_status hapticd_list_groups(hapticd_client* c, hapticd_group_info* out, int32_t capacity, int32_t* count) {
+  if (c == nullptr || count == nullptr || capacity < 0 || (capacity > 0 && out == nullptr))
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client, count or out is NULL (or capacity < 0)");
+  return guarded([&] {
+    const auto groups = c->client.groups();
+    *count = static_cast<int32_t>(groups.size());
+    for (std::size_t i = 0; i < groups.size() && i < static_cast<std::size_t>(capacity); ++i) to_c(groups[i], out[i]);
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_wait_for_group(hapticd_client* c, const char* group, double timeout_s, hapticd_group_info* out) {
+  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
+  const std::string_view name = name_of(group);
+  if (name.empty()) return bad_name("the group", group);
+  if (!valid_timeout(timeout_s)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
+  return guarded([&] {
+    const auto info = c->client.wait_for_group(name, timeout_of(timeout_s));
+    if (!info) return fail(HAPTICD_ERROR_TIMEOUT, "no description of group '" + std::string(name) + "'");
+    to_c(*info, *out);
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_latest_group_state(hapticd_client* c, const char* group, hapticd_group_state* out) {
+  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
+  const std::string_view name = name_of(group);
+  if (name.empty()) return bad_name("the group", group);
+  return guarded([&] {
+    const auto state = c->client.latest_group_state(name);
+    if (!state) return fail(HAPTICD_ERROR_NOT_FOUND, "no state of that group yet");
+    to_c(*state, *out);
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_wait_for_group_state(hapticd_client* c, const char* group, double timeout_s, uint64_t after,
+                                            hapticd_group_state* out) {
+  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
+  const std::string_view name = name_of(group);
+  if (name.empty()) return bad_name("the group", group);
+  if (!valid_timeout(timeout_s)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
+  return guarded([&] {
+    const auto state = c->client.wait_for_group_state(name, timeout_of(timeout_s), after);
+    if (!state) return fail(HAPTICD_ERROR_TIMEOUT, "no state of group '" + std::string(name) + "' within the timeout");
+    to_c(*state, *out);
+    return HAPTICD_OK;
+  });
+}
+
+// ---- events, telemetry, fault reports ----
+
+hapticd_status hapticd_take_events(hapticd_client* c, hapticd_event* out, int32_t capacity, int32_t* count) {
+  if (c == nullptr || count == nullptr || capacity < 0 || (capacity > 0 && out == nullptr))
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client, count or out is NULL (or capacity < 0)");
+  return guarded([&] {
+    std::lock_guard lock(c->events_mutex);
+    for (auto& e : c->client.take_events()) c->pending_events.push_back(std::move(e));
+    while (c->pending_events.size() > 1024) c->pending_events.pop_front();  // the library's bound
+    int32_t n = 0;
+    while (n < capacity && !c->pending_events.empty()) {
+      to_c(c->pending_events.front(), out[n++]);
+      c->pending_events.pop_front();
+    }
+    *count = n;
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_latest_telemetry(hapticd_client* c, const char* device, hapticd_telemetry* out) {
+  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
+  const std::string_view name = name_of(device);
+  if (name.empty()) return bad_name("the device", device);
+  return guarded([&] {
+    const auto t = c->client.latest_telemetry(name);
+    if (!t) return fail(HAPTICD_ERROR_NOT_FOUND, "no telemetry of that device yet");
+    to_c(*t, *out);
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_latest_fault_report(hapticd_client* c, const char* device, hapticd_fault_report* out) {
+  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
+  const std::string_view name = name_of(device);
+  if (name.empty()) return bad_name("the device", device);
+  return guarded([&] {
+    const auto r = c->client.latest_fault_report(name);
+    if (!r) return fail(HAPTICD_ERROR_NOT_FOUND, "no fault report of that device");
+    to_c(*r, *out);
+    return HAPTICD_OK;
+  });
+}
+
+// ---- callbacks ----
+
+hapticd_status hapticd_on_state(hapticd_client* c, hapticd_state_callback callback, void* user) {
+  if (c == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client is NULL");
+  return guarded([&] {
+    if (callback == nullptr) {
+      c->client.on_state({});
+    } else {
+      c->client.on_state([callback, user](const client::DeviceState& s) {
+        hapticd_device_state state;  // on the receive thread's stack: no allocation per state
+        to_c(s, state);
+        callback(&state, user);
+      });
+    }
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_on_event(hapticd_client* c, hapticd_event_callback callback, void* user) {
+  if (c == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client is NULL");
+  return guarded([&] {
+    if (callback == nullptr) {
+      c->client.on_event({});
+    } else {
+      c->client.on_event([callback, user](const client::Event& e) {
+        hapticd_event event;
+        to_c(e, event);
+        callback(&event, user);
+      });
+    }
+    return HAPTICD_OK;
+  });
+}
+
+hapticd_status hapticd_on_claim_lost(hapticd_client* c, hapticd_claim_lost_callback callback, void* user) {
+  if (c == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client is NULL");
+  return guarded([&] {
+    if (callback == nullptr) {
+      c->client.on_claim_lost({});
+    } else {
+      c->client.on_claim_lost([callback, user](std::string_view device, std::string_view reason) {
+        char d[HAPTICD_NAME_SIZE];
+        char r[HAPTICD_MESSAGE_SIZE];
+        copy_text(d, device);
+        copy_text(r, reason);
+        callback(d, r, user);
+      });
+    }
+    return HAPTICD_OK;
+  });
+}
+
+int32_t hapticd_claim_lost(hapticd_client* c, const char* device) {
+  const std::string_view name = name_of(device);
+  if (c == nullptr || name.empty()) return 0;
+  try {
+    return c->client.claim_lost(name) ? 1 : 0;
+  } catch (...) {
+    return 0;
+  }
+}
+
+// ---- requests ----
+
+hapticd_status hapticd_claim(hapticd_client* c, const char* device, double timeout_s, hapticd_reply* reply) {
+  return request(c, device, "the device", timeout_s, reply,
+                 [&](std::string_view d, client::Timeout t) { return c->client.claim(d, t); });
+}
+
+hapticd_status hapticd_release(hapticd_client* c, const char* device, double timeout_s, hapticd_reply* reply) {
+  return request(c, device, "the device", timeout_s, reply,
+                 [&](std::string_view d, client::Timeout t) { return c->client.release(d, t); });
+}
+
+hapticd_status hapticd_switch_scheme(hapticd_client* c, const char* device, const char* scheme, double timeout_s,
+                                     hapticd_reply* reply) {
+  const std::string_view s = name_of(scheme);
+  if (s.empty()) return bad_name("the scheme", scheme);
+  return request(c, device, "the device", timeout_s, reply,
+                 [&](std::string_view d, client::Timeout t) { return c->client.switch_scheme(d, s, t); });
+}
+
+hapticd_status hapticd_set_parameter(hapticd_client* c, const char* device, const char* parameter, const double* values,
+                                     int32_t value_count, double timeout_s, hapticd_reply* reply) {
+  if (parameter == nullptr || *parameter == '\0')
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the parameter is NULL or empty");
+  if (!valid_values(values, value_count))
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "values: 0 to 16, and not NULL when there are some");
+  return request(c, device, "the device", timeout_s, reply, [&](std::string_view d, client::Timeout t) {
+    return c->client.set_parameter(d, parameter, values_of(values, value_count), t);
+  });
+}
+
+hapticd_status hapticd_get_parameter(hapticd_client* c, const char* device, const char* parameter, double timeout_s,
+                                     hapticd_reply* reply) {
+  if (parameter == nullptr || *parameter == '\0')
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the parameter is NULL or empty");
+  return request(c, device, "the device", timeout_s, reply,
+                 [&](std::string_view d, client::Timeout t) { return c->client.get_parameter(d, parameter, t); });
+}
+
+hapticd_status hapticd_describe_parameter(hapticd_client* c, const char* device, const char* parameter,
+                                          double timeout_s, hapticd_parameter_info* out, hapticd_reply* reply) {
+  if (parameter == nullptr || *parameter == '\0' || out == nullptr)
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the parameter or out is NULL (or the parameter empty)");
+  return request(c, device, "the device", timeout_s, reply, [&](std::string_view d, client::Timeout t) {
+    auto answer = c->client.describe_parameter(d, parameter, t);
+    if (answer.info) to_c(*answer.info, *out);
+    return answer.reply;
+  });
+}
+
+hapticd_status hapticd_emergency_stop(hapticd_client* c, const char* device, double timeout_s, hapticd_reply* reply) {
+  return request(c, device, "the device", timeout_s, reply,
+                 [&](std::string_view d, client::Timeout t) { return c->client.emergency_stop(d, t); });
+}
+
+hapticd_status hapticd_recover(hapticd_client* c, const char* device, double timeout_s, hapticd_reply* reply) {
+  return request(c, device, "the device", timeout_s, reply,
+                 [&](std::string_view d, client::Timeout t) { return c->client.recover(d, t); });
+}
+
+hapticd_status hapticd_operator_command(hapticd_client* c, const char* device, const char* command,
+                                        const double* values, int32_t value_count, double timeout_s,
+                                        hapticd_reply* reply) {
+  const std::string_view name = name_of(command);
+  if (name.empty()) return bad_name("the operator command", command);
+  if (!valid_values(values, value_count))
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "values: 0 to 16, and not NULL when there are some");
+  return request(c, device, "the device", timeout_s, reply, [&](std::string_view d, client::Timeout t) {
+    return c->client.operator_command(d, name, values_of(values, value_count), t);
+  });
+}
+
+hapticd_status hapticd_claim_group(hapticd_client* c, const char* group, double timeout_s, hapticd_reply* reply) {
+  return request(c, group, "the group", timeout_s, reply,
+                 [&](std::string_view g, client::Timeout t) { return c->client.claim_group(g, t); });
+}
+
+hapticd_status hapticd_release_group(hapticd_client* c, const char* group, double timeout_s, hapticd_reply* reply) {
+  return request(c, group, "the group", timeout_s, reply,
+                 [&](std::string_view g, client::Timeout t) { return c->client.release_group(g, t); });
+}
+
+hapticd_status hapticd_emergency_stop_group(hapticd_client* c, const char* group, double timeout_s,
+                                            hapticd_reply* reply) {
+  return request(c, group, "the group", timeout_s, reply,
+                 [&](std::string_view g, client::Timeout t) { return c->client.emergency_stop_group(g, t); });
+}
+
+hapticd_status hapticd_recover_group(hapticd_client* c, const char* group, double timeout_s, hapticd_reply* reply) {
+  return request(c, group, "the group", timeout_s, reply,
+                 [&](std::string_view g, client::Timeout t) { return c->client.recover_group(g, t); });
+}
+
+// ---- engine commands (no allocation: fixed-size values, handed to the sender thread) ----
+
+hapticd_status hapticd_send(hapticd_client* c, const char* device, const hapticd_command* command) {
+  if (c == nullptr || command == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or command is NULL");
+  const std::string_view name = name_of(device);
+  if (name.empty()) return bad_name("the device", device);
+  client::EngineCommand cmd;
+  if (!from_c(*command, cmd)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "an unknown command kind");
+  return handed_over(c->sender.send(name, cmd));
+}
+
+hapticd_status hapticd_send_coupling(hapticd_client* c, const char* device, const hapticd_pose* proxy,
+                                     const hapticd_twist* proxy_twist, uint64_t state_serial) {
+  if (c == nullptr || proxy == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or proxy is NULL");
+  const std::string_view name = name_of(device);
+  if (name.empty()) return bad_name("the device", device);
+  const hapticd::Twist twist = proxy_twist != nullptr ? from_c(*proxy_twist) : hapticd::Twist{};
+  return handed_over(c->sender.send(name, client::EngineCommand::coupling(from_c(*proxy), twist, state_serial)));
+}
+
+hapticd_status hapticd_send_wrench(hapticd_client* c, const char* device, const hapticd_wrench* wrench,
+                                   const hapticd_local_model* local_model, uint64_t state_serial) {
+  if (c == nullptr || wrench == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or wrench is NULL");
+  const std::string_view name = name_of(device);
+  if (name.empty()) return bad_name("the device", device);
+  hapticd_command command{};
+  command.kind = HAPTICD_COMMAND_WRENCH;
+  command.state_serial = state_serial;
+  command.wrench = *wrench;
+  command.pose.orientation.w = 1.0;
+  if (local_model != nullptr) {
+    command.has_local_model = 1;
+    command.local_model = *local_model;
+  }
+  client::EngineCommand cmd;
+  (void)from_c(command, cmd);
+  return handed_over(c->sender.send(name, cmd));
+}
+
+hapticd_status hapticd_send_motion(hapticd_client* c, const char* device, const hapticd_pose* pose,
+                                   const hapticd_twist* twist, uint64_t state_serial) {
+  if (c == nullptr || pose == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or pose is NULL");
+  const std::string_view name = name_of(device);
+  if (name.empty()) return bad_name("the device", device);
+  const hapticd::Twist t = twist != nullptr ? from_c(*twist) : hapticd::Twist{};
+  return handed_over(c->sender.send(name, client::EngineCommand::motion(from_c(*pose), t, state_serial)));
+}
+
+hapticd_status hapticd_send_group(hapticd_client* c, const char* group, const hapticd_command* commands,
+                                  int32_t count) {
+  if (c == nullptr || commands == nullptr)
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or commands is NULL");
+  const std::string_view name = name_of(group);
+  if (name.empty()) return bad_name("the group", group);
+  if (count < 1 || count > HAPTICD_MAX_GROUP_DEVICES)
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "a group command has 1 to 8 device commands");
+  std::array<client::DeviceCommand, HAPTICD_MAX_GROUP_DEVICES> list{};
+  for (int32_t i = 0; i < count; ++i) {
+    const hapticd_command& in = commands[i];
+    const std::string_view device = name_of(in.device);
+    if (device.empty()) return bad_name("a command's device", in.device);
+    list[static_cast<std::size_t>(i)].device = device;
+    if (!from_c(in, list[static_cast<std::size_t>(i)].command))
+      return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "an unknown command kind");
+  }
+  return handed_over(c->sender.send_group(name, list, count));
+}
+
+}  // extern "C"

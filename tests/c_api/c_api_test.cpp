@@ -1,0 +1,196 @@
+// The C API (hapticd/client.h) from C++: its error paths (every bad argument a status and a message, per
+// thread; nothing aborts), and against a server process on loopback (DDS domain 149, real time; a process of its
+// own, as an engine meets it - a reader in this process would take each command through Cyclone's local delivery,
+// which allocates): discovery, states, a claim and its refusal to another client, parameters, and the per-cycle
+// calls - the latest state and a command - allocating nothing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "hapticd/client.h"
+#include "hapticd/testing/allocation_guard.hpp"
+#include "support/child_process.hpp"
+#include "support/test_paths.hpp"
+
+namespace hapticd {
+namespace {
+
+constexpr int kDomain = 149;
+
+hapticd_client* make(const char* id, int domain = kDomain) {
+  hapticd_client_options o{id, domain, nullptr, nullptr, 0.0};
+  hapticd_client* c = nullptr;
+  EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_OK) << hapticd_last_error();
+  return c;
+}
+
+TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
+  EXPECT_EQ(hapticd_api_version(), HAPTICD_C_API_VERSION);
+  hapticd_client* c = nullptr;
+  EXPECT_EQ(hapticd_client_create(nullptr, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
+  hapticd_client_options o{"", kDomain, nullptr, nullptr, 0.0};
+  EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(hapticd_last_error()).find("the client id must have 1 to 31 characters"), std::string::npos);
+  EXPECT_EQ(c, nullptr);
+  o.client_id = "an-id-that-is-longer-than-thirty-one-characters";
+  EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
+  o.client_id = "c-api";
+  o.domain_id = 231;
+  EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
+  o.domain_id = kDomain;
+  o.command_deadline_s = std::nan("");
+  EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
+  o.command_deadline_s = 0.0;
+  o.network = "interfaces=;bogus";  // the library refuses the network text, and says why
+  EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_STRNE(hapticd_last_error(), "");
+  o.network = nullptr;
+
+  c = make("c-api-errors");
+  ASSERT_NE(c, nullptr);
+  hapticd_device_state state;
+  hapticd_reply reply;
+  EXPECT_EQ(hapticd_latest_state(c, nullptr, &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_latest_state(c, "vishard3", nullptr), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_latest_state(nullptr, "vishard3", &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_latest_state(c, "nobody", &state), HAPTICD_ERROR_NOT_FOUND);
+  EXPECT_EQ(hapticd_wait_for_state(c, "nobody", 0.1, 0, &state), HAPTICD_ERROR_TIMEOUT);
+  EXPECT_EQ(hapticd_wait_for_state(c, "vishard3", -1.0, 0, &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_wait_for_state(c, "vishard3", INFINITY, 0, &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  // Nobody drives "nobody": the request goes unanswered.
+  EXPECT_EQ(hapticd_claim(c, "nobody", 0.3, &reply), HAPTICD_ERROR_TIMEOUT);
+  EXPECT_EQ(reply.answered, 0);
+  const double values[17] = {};
+  EXPECT_EQ(hapticd_set_parameter(c, "vishard3", "virtual_model.mass_kg", values, 17, 0.1, &reply),
+            HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_set_parameter(c, "vishard3", "virtual_model.mass_kg", nullptr, 3, 0.1, &reply),
+            HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_get_parameter(c, "vishard3", nullptr, 0.1, &reply), HAPTICD_ERROR_INVALID_ARGUMENT);
+  hapticd_command command{};
+  command.kind = 7;
+  EXPECT_EQ(hapticd_send(c, "vishard3", &command), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(hapticd_last_error()).find("unknown command kind"), std::string::npos);
+  EXPECT_EQ(hapticd_send_group(c, "g", &command, 0), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_send_group(c, "g", &command, 9), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_send_coupling(c, "vishard3", nullptr, nullptr, 0), HAPTICD_ERROR_INVALID_ARGUMENT);
+  int32_t count = -1;
+  EXPECT_EQ(hapticd_list_devices(c, nullptr, 4, &count), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_list_devices(c, nullptr, 0, &count), HAPTICD_OK);
+  EXPECT_EQ(count, 0);
+  hapticd_event events[4];
+  EXPECT_EQ(hapticd_take_events(c, events, -1, &count), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_claim_lost(c, nullptr), 0);
+  EXPECT_STREQ(hapticd_status_name(HAPTICD_ERROR_TIMEOUT), "HAPTICD_ERROR_TIMEOUT");
+  EXPECT_STREQ(hapticd_status_name(static_cast<hapticd_status>(99)), "an unknown status");
+
+  // The message is the calling thread's own.
+  EXPECT_EQ(hapticd_latest_state(c, "", &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  std::string other = "unset";
+  std::thread([&] { other = hapticd_last_error(); }).join();
+  EXPECT_EQ(other, "");
+  EXPECT_NE(std::string(hapticd_last_error()).find("the device must have 1 to 31 characters"), std::string::npos);
+  hapticd_client_destroy(c);
+  hapticd_client_destroy(nullptr);
+}
+
+TEST(CApi, AnEngineDiscoversClaimsAndAnswersStatesWithoutAllocating) {
+  const std::string log = ::testing::TempDir() + "c_api_server.txt";
+  test::Process server(
+      {test::bin_dir() + "/hapticd", "--config", test::source_dir() + "/config/sessions/vishard3/dds-coupling.yaml",
+       "--dds-domain", std::to_string(kDomain), "--duration", "30", "--set", "server.realtime_priority=0", "--set",
+       "server.lock_memory=false", "--set", "devices.vishard3.safety.max_stall_s=1.0", "--set",
+       "devices.vishard3.safety.max_consecutive_overruns=2000"},
+      log);
+  ASSERT_TRUE(server.started());
+  hapticd_client* c = make("c-api-engine");
+  hapticd_client* other = make("c-api-other");
+  ASSERT_NE(c, nullptr);
+  ASSERT_NE(other, nullptr);
+  hapticd_device_info info;
+  ASSERT_EQ(hapticd_wait_for_device(c, "vishard3", 20.0, 1, &info), HAPTICD_OK) << hapticd_last_error();
+  EXPECT_STREQ(info.device, "vishard3");
+  EXPECT_EQ(info.dof, 3);
+  EXPECT_EQ(info.has_start_pose, 1);
+  EXPECT_EQ(info.simulated, 1);
+  EXPECT_GT(info.scheme_count, 0);
+  int32_t count = 0;
+  hapticd_device_info listed[2];
+  ASSERT_EQ(hapticd_list_devices(c, listed, 2, &count), HAPTICD_OK);
+  EXPECT_EQ(count, 1);
+  hapticd_device_state state;
+  ASSERT_EQ(hapticd_wait_for_state(c, "vishard3", 10.0, 0, &state), HAPTICD_OK) << hapticd_last_error();
+  EXPECT_STREQ(state.device, "vishard3");
+  EXPECT_EQ(state.dof, 3);
+  EXPECT_NEAR(state.pose.position.x, info.start_pose.position.x, 0.01);
+
+  hapticd_reply reply;
+  ASSERT_EQ(hapticd_claim(c, "vishard3", 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
+  EXPECT_EQ(reply.accepted, 1);
+  EXPECT_EQ(hapticd_claim(other, "vishard3", 5.0, &reply), HAPTICD_ERROR_REFUSED);
+  EXPECT_EQ(reply.answered, 1);
+  EXPECT_NE(std::string(hapticd_last_error()).find("c-api-engine"), std::string::npos) << hapticd_last_error();
+
+  const double stiffness = 2500.0;
+  ASSERT_EQ(
+      hapticd_set_parameter(c, "vishard3", "virtual_model.coupling_stiffness_n_per_m", &stiffness, 1, 5.0, &reply),
+      HAPTICD_OK)
+      << hapticd_last_error();
+  ASSERT_EQ(hapticd_get_parameter(c, "vishard3", "virtual_model.coupling_stiffness_n_per_m", 5.0, &reply), HAPTICD_OK);
+  ASSERT_EQ(reply.value_count, 1);
+  EXPECT_EQ(reply.values[0], 2500.0);
+  hapticd_parameter_info parameter;
+  ASSERT_EQ(
+      hapticd_describe_parameter(c, "vishard3", "virtual_model.coupling_stiffness_n_per_m", 5.0, &parameter, &reply),
+      HAPTICD_OK);
+  EXPECT_STREQ(parameter.unit, "N/m");
+  EXPECT_EQ(parameter.tunable, 1);
+  EXPECT_EQ(parameter.type, HAPTICD_PARAMETER_REAL);
+  EXPECT_EQ(hapticd_get_parameter(c, "vishard3", "virtual_model.no_such_parameter", 5.0, &reply),
+            HAPTICD_ERROR_REFUSED);
+
+  // The per-cycle calls: the newest state, and a coupling command answering it.
+  ASSERT_EQ(hapticd_wait_for_state(c, "vishard3", 5.0, state.serial, &state), HAPTICD_OK);
+  const hapticd_twist still{};
+  if (hapticd::testing::AllocationGuard::available()) {
+    std::size_t reading = 0, sending = 0;
+    for (int i = 0; i < 200; ++i) {
+      reading += hapticd::testing::count_allocations(
+          [&] { ASSERT_EQ(hapticd_latest_state(c, "vishard3", &state), HAPTICD_OK); });
+      sending += hapticd::testing::count_allocations(
+          [&] { ASSERT_EQ(hapticd_send_coupling(c, "vishard3", &state.pose, &still, state.serial), HAPTICD_OK); });
+    }
+    EXPECT_EQ(reading, 0u);
+    EXPECT_EQ(sending, 0u);
+  }
+  // The server took the commands: the state says the engine is active.
+  bool active = false;
+  for (int i = 0; i < 200 && !active; ++i) {
+    ASSERT_EQ(hapticd_latest_state(c, "vishard3", &state), HAPTICD_OK);
+    ASSERT_EQ(hapticd_send_coupling(c, "vishard3", &state.pose, &still, state.serial), HAPTICD_OK);
+    active = (state.flags & HAPTICD_FLAG_ENGINE_ACTIVE) != 0;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_TRUE(active);
+  EXPECT_STREQ(state.owner, "c-api-engine");
+  hapticd_telemetry telemetry{};
+  for (int i = 0; i < 60 && !(hapticd_latest_telemetry(c, "vishard3", &telemetry) == HAPTICD_OK &&
+                              telemetry.commands_accepted > 0);
+       ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_GT(telemetry.commands_accepted, 0u);
+  EXPECT_EQ(hapticd_release(c, "vishard3", 5.0, &reply), HAPTICD_OK);
+  hapticd_event events[64];
+  int32_t taken = 0;
+  ASSERT_EQ(hapticd_take_events(c, events, 64, &taken), HAPTICD_OK);
+  bool owner_event = false;
+  for (int i = 0; i < taken; ++i) owner_event |= events[i].kind == HAPTICD_EVENT_OWNER;
+  EXPECT_TRUE(owner_event);
+  hapticd_client_destroy(other);
+  hapticd_client_destroy(c);
+}
+
+}  // namespace
+}  // namespace hapticd

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# A rendering engine in plain C on the C API (examples/c_api/wall_engine.c, hapticd-c-wall-engine) against the
+# server over DDS on loopback (domain DOMAIN): it claims the simulated ViSHaRD3 of the shipped dds-coupling
+# session. Stopped (SIGSTOP) beyond the server's claim hold (0.5 s), it loses its claim: resumed, its claim-lost
+# callback tells it and it claims again. Then the simulated operator pushes 15 N into its wall 2 cm ahead, and the
+# handle comes to rest at the wall (through the 3000 N/m coupling about 5 mm past it).
+# Usage: c_api_engine_test.sh BIN_DIR SOURCE_DIR WORK_DIR DOMAIN
+set -u
+bin=$1 src=$2 work=$3 domain=$4
+rm -rf "$work"; mkdir -p "$work"; cd "$work"
+source "$src/tests/e2e/session_copy.sh"
+fail() { echo "FAIL: $*"; echo "--- engine"; cat engine.log; echo "--- server"; tail -5 server.log; exit 1; }
+timeout 60 "$bin/hapticd" --config "$src/config/sessions/vishard3/dds-coupling.yaml" --dds-domain "$domain" \
+  --duration 16 --log-level info --set server.realtime_priority=0 --set server.lock_memory=false \
+  --set dds.claim_hold_s=0.5 $(loose_watchdogs vishard3) > server.log 2>&1 &
+server=$!
+"$bin/hapticd-c-wall-engine" --domain "$domain" --device vishard3 --duration 10 > engine.log 2>&1 &
+engine=$!  # the engine itself (not under timeout: it is stopped and resumed; its --duration bounds it)
+trap 'kill -CONT $engine 2> /dev/null; kill $server $engine 2> /dev/null' EXIT
+for _ in $(seq 200); do grep -q "claimed 'vishard3'" engine.log && break; sleep 0.1; done
+grep -q "claimed 'vishard3'" engine.log || fail "the C engine did not claim"
+sleep 0.5
+kill -STOP "$engine"
+sleep 2.5  # beyond the command writer's 0.5 s lease and the 0.5 s hold: the server ends the claim
+kill -CONT "$engine"
+for _ in $(seq 100); do grep -q "claimed 'vishard3' again" engine.log && break; sleep 0.1; done
+grep -q "the server ended the claim of 'vishard3'" engine.log || fail "the claim's loss was not told"
+grep -q "claimed 'vishard3' again" engine.log || fail "the engine did not claim again"
+echo "ok: the C engine was told of its lost claim and claimed again"
+timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 operator vishard3 push 15 0 0 0.2 > push.log 2>&1 ||
+  fail "the operator's push: $(cat push.log)"
+wait "$engine" || fail "the C engine exited with $?"
+past=$(sed -n 's/.*handle \([-0-9.]*\) m past the start.*/\1/p' engine.log)
+grep "answered" engine.log
+awk -v x="$past" 'BEGIN { exit !(x > 0.015 && x < 0.03) }' || fail "the wall did not hold: $past m"
+echo "ok: the C engine's wall holds the 15 N push ($past m past the start)"
+wait "$server" || fail "the server exited with $?"
+trap - EXIT
+echo "2 passed, 0 failed"
