@@ -26,6 +26,7 @@ packages=(
   libhdf5-dev python3-h5py
   iproute2
   chromium
+  mono-mcs mono-runtime
 )
 
 missing=()

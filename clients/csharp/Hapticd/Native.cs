@@ -1,0 +1,292 @@
+// hapticd's C API (hapticd/client.h) for C#: the P/Invoke declarations and the C structs, field for field
+// (blittable: fixed-size buffers, no marshalled strings), so a state is read and a command sent without a
+// managed allocation. The c_api_abi test holds the C layouts; this assembly's test holds these to the same file.
+using System;
+using System.Runtime.InteropServices;
+
+namespace Hapticd
+{
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Vec3 { public double x, y, z; public Vec3(double x, double y, double z) { this.x = x; this.y = y; this.z = z; } }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Quat { public double w, x, y, z; public static readonly Quat Identity = new Quat { w = 1 }; }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Pose { public Vec3 position; public Quat orientation; }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Twist { public Vec3 linear, angular; }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Wrench { public Vec3 force, torque; }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct LoopSummary { public double rate_hz; public ulong cycles, overruns; public double latency_max_us, compute_max_us; }
+
+    public enum Status { Ok = 0, InvalidArgument = 1, NotFound = 2, Timeout = 3, Refused = 4, Dds = 5, Internal = 6 }
+    public enum Mode { Starting = 0, Running = 1, Stopping = 2, Safe = 3, Off = 4 }
+    public enum CommandKind { Wrench = 0, Coupling = 1, Motion = 2 }
+    public enum EventKind { Fault = 0, Estop = 1, Mode = 2, Scheme = 3, Owner = 4, EngineStale = 5, EngineRejected = 6, Recovered = 7, Recording = 8 }
+
+    [Flags]
+    public enum StateFlags : uint
+    {
+        TorqueSaturated = 1u << 0, EngineActive = 1u << 1, EngineStale = 1u << 2, Estop = 1u << 3, Fault = 1u << 4,
+        Switching = 1u << 5, SafeDamping = 1u << 6, LimitEngaged = 1u << 7, RenderLimited = 1u << 8,
+        ThermalDerating = 1u << 9, PassivityControl = 1u << 10
+    }
+
+    public static class Limits
+    {
+        public const int NameSize = 32, MessageSize = 256, MaxJoints = 10, MaxValues = 16, MaxGroupDevices = 8,
+                         MaxSchemes = 16, MaxFaultRecords = 64, RejectReasons = 8;
+    }
+
+    // hapticd_device_state
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct DeviceState
+    {
+        public fixed byte device[32];
+        public ulong serial, cycle;
+        public long loop_time_ns;
+        public Pose pose;
+        public Twist twist;
+        public Wrench operator_wrench, environment_wrench;
+        public Pose target_pose;
+        public int dof;
+        public fixed double position[10];
+        public fixed double velocity[10];
+        public fixed double torque[10];
+        public uint buttons;
+        public double gripper;
+        public int mode;
+        public uint flags;
+        public fixed byte fault[32];
+        public fixed byte scheme[32];
+        public fixed byte owner[32];
+        public ulong engine_serial;
+        public LoopSummary loop;
+
+        public string Device { get { fixed (byte* p = device) return Text.Of(p, 32); } }
+        public string Fault { get { fixed (byte* p = fault) return Text.Of(p, 32); } }
+        public string Owner { get { fixed (byte* p = owner) return Text.Of(p, 32); } }
+        public string Scheme { get { fixed (byte* p = scheme) return Text.Of(p, 32); } }
+        public StateFlags Flags { get { return (StateFlags)flags; } }
+    }
+
+    // hapticd_scheme_info
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct SchemeInfo { public fixed byte name[32]; public fixed byte virtual_model[32]; }
+
+    // hapticd_device_info
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct DeviceInfo
+    {
+        public fixed byte device[32];
+        public int version;
+        public fixed byte device_plugin[32];
+        public int simulated;
+        public double rate_hz;
+        public int dof;
+        public fixed byte joint_names[10 * 32];
+        public fixed double position_min[10];
+        public fixed double position_max[10];
+        public fixed double velocity_max[10];
+        public fixed double torque_peak[10];
+        public fixed double torque_continuous[10];
+        public fixed byte base_frame[32];
+        public Pose base_pose;
+        public fixed byte handle_frame[32];
+        public int has_start_pose;
+        public Pose start_pose;
+        public double workspace_radius;
+        public Vec3 workspace_min, workspace_max;
+        public int scheme_count;
+        public fixed byte schemes[16 * 64];
+        public double command_deadline_s, command_fade_s;
+        public int handle_device, handle_dof, has_gripper, button_count;
+
+        public string Device { get { fixed (byte* p = device) return Text.Of(p, 32); } }
+        public string DevicePlugin { get { fixed (byte* p = device_plugin) return Text.Of(p, 32); } }
+        public string JointName(int i) { fixed (byte* p = joint_names) return Text.Of(p + 32 * i, 32); }
+        public string SchemeName(int i) { fixed (byte* p = schemes) return Text.Of(p + 64 * i, 32); }
+    }
+
+    // hapticd_reply
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct Reply
+    {
+        public int answered, accepted;
+        public fixed byte message[256];
+        public int value_count;
+        public fixed double values[16];
+
+        public string Message { get { fixed (byte* p = message) return Text.Of(p, 256); } }
+        public double Value(int i) { fixed (double* v = values) return v[i]; }
+    }
+
+    // hapticd_event
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct Event
+    {
+        public fixed byte device[32];
+        public ulong serial;
+        public long loop_time_ns;
+        public int kind;
+        public fixed byte code[32];
+        public fixed byte message[256];
+
+        public string Device { get { fixed (byte* p = device) return Text.Of(p, 32); } }
+        public string Code { get { fixed (byte* p = code) return Text.Of(p, 32); } }
+        public string Message { get { fixed (byte* p = message) return Text.Of(p, 256); } }
+        public EventKind Kind { get { return (EventKind)kind; } }
+    }
+
+    // hapticd_telemetry
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct Telemetry
+    {
+        public fixed byte device[32];
+        public long wall_time_ns;
+        public LoopSummary loop;
+        public ulong states_published, commands_received, commands_accepted;
+        public fixed ulong rejected[8];
+        public ulong requests, deadline_misses, scheme_switches;
+        public ulong saturated_cycles, limited_cycles, render_limited_cycles;
+        public ulong faults, recoveries;
+        public double thermal_load, dissipated_j;
+    }
+
+    // hapticd_parameter_info
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct ParameterInfo
+    {
+        public fixed byte name[64];
+        public int type;
+        public fixed byte unit[32];
+        public fixed byte description[256];
+        public int tunable, has_minimum, has_maximum, minimum_exclusive;
+        public double minimum, maximum;
+        public fixed byte value_text[256];
+        public int value_count;
+        public fixed double values[16];
+
+        public string Unit { get { fixed (byte* p = unit) return Text.Of(p, 32); } }
+        public string ValueText { get { fixed (byte* p = value_text) return Text.Of(p, 256); } }
+    }
+
+    // hapticd_local_model
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct LocalModel
+    {
+        public Pose anchor;
+        public fixed double stiffness[6];
+        public fixed double damping[6];
+    }
+
+    // hapticd_command
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct Command
+    {
+        public fixed byte device[32];  // a group command's device
+        public int kind;
+        public ulong state_serial;
+        public Wrench wrench;
+        public int has_local_model;
+        public LocalModel local_model;
+        public Pose pose;
+        public Twist twist;
+
+        public static Command Coupling(Pose proxy, Twist proxyTwist, ulong stateSerial)
+        {
+            return new Command { kind = (int)CommandKind.Coupling, pose = proxy, twist = proxyTwist, state_serial = stateSerial };
+        }
+        public static Command Force(Wrench wrench, ulong stateSerial)
+        {
+            var c = new Command { kind = (int)CommandKind.Wrench, wrench = wrench, state_serial = stateSerial };
+            c.pose.orientation = Quat.Identity;
+            return c;
+        }
+        public static Command Motion(Pose pose, Twist twist, ulong stateSerial)
+        {
+            return new Command { kind = (int)CommandKind.Motion, pose = pose, twist = twist, state_serial = stateSerial };
+        }
+    }
+
+    // hapticd_client_options
+    [StructLayout(LayoutKind.Sequential)]
+    public struct ClientOptions
+    {
+        public IntPtr client_id;
+        public int domain_id;
+        public IntPtr cyclone_config;
+        public IntPtr network;
+        public double command_deadline_s;
+    }
+
+    static unsafe class Text
+    {
+        // A zero-terminated UTF-8 text of at most `size` bytes.
+        public static string Of(byte* p, int size)
+        {
+            int n = 0;
+            while (n < size && p[n] != 0) ++n;
+            return System.Text.Encoding.UTF8.GetString(p, n);
+        }
+        // A name as the C API takes it: UTF-8, zero-terminated (made once, kept: no per-cycle garbage).
+        public static byte[] Name(string text)
+        {
+            var bytes = System.Text.Encoding.UTF8.GetBytes(text ?? "");
+            var z = new byte[bytes.Length + 1];
+            Buffer.BlockCopy(bytes, 0, z, 0, bytes.Length);
+            return z;
+        }
+    }
+
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    unsafe delegate void StateCallback(DeviceState* state, IntPtr user);
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    delegate void ClaimLostCallback(IntPtr device, IntPtr reason, IntPtr user);
+
+    // The C functions. Names are zero-terminated UTF-8 byte arrays (blittable: pinned, not copied).
+    static unsafe class Native
+    {
+        const string Lib = "hapticd_c";
+        [DllImport(Lib)] public static extern int hapticd_api_version();
+        [DllImport(Lib)] public static extern IntPtr hapticd_last_error();
+        [DllImport(Lib)] public static extern Status hapticd_client_create(ref ClientOptions options, out ClientHandle client);
+        [DllImport(Lib)] public static extern void hapticd_client_destroy(IntPtr client);
+        [DllImport(Lib)] public static extern Status hapticd_list_devices(ClientHandle c, [Out] DeviceInfo[] output, int capacity, out int count);
+        [DllImport(Lib)] public static extern Status hapticd_wait_for_device(ClientHandle c, byte[] device, double timeout, int started, out DeviceInfo info);
+        [DllImport(Lib)] public static extern Status hapticd_latest_state(ClientHandle c, byte[] device, out DeviceState state);
+        [DllImport(Lib)] public static extern Status hapticd_wait_for_state(ClientHandle c, byte[] device, double timeout, ulong after, out DeviceState state);
+        [DllImport(Lib)] public static extern Status hapticd_take_events(ClientHandle c, [Out] Event[] output, int capacity, out int count);
+        [DllImport(Lib)] public static extern Status hapticd_latest_telemetry(ClientHandle c, byte[] device, out Telemetry telemetry);
+        [DllImport(Lib)] public static extern Status hapticd_on_state(ClientHandle c, StateCallback callback, IntPtr user);
+        [DllImport(Lib)] public static extern Status hapticd_on_claim_lost(ClientHandle c, ClaimLostCallback callback, IntPtr user);
+        [DllImport(Lib)] public static extern int hapticd_claim_lost(ClientHandle c, byte[] device);
+        [DllImport(Lib)] public static extern Status hapticd_claim(ClientHandle c, byte[] device, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_release(ClientHandle c, byte[] device, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_switch_scheme(ClientHandle c, byte[] device, byte[] scheme, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_set_parameter(ClientHandle c, byte[] device, byte[] parameter, double[] values, int count, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_get_parameter(ClientHandle c, byte[] device, byte[] parameter, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_describe_parameter(ClientHandle c, byte[] device, byte[] parameter, double timeout, out ParameterInfo info, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_emergency_stop(ClientHandle c, byte[] device, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_recover(ClientHandle c, byte[] device, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_operator_command(ClientHandle c, byte[] device, byte[] command, double[] values, int count, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_claim_group(ClientHandle c, byte[] group, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_release_group(ClientHandle c, byte[] group, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_send(ClientHandle c, byte[] device, ref Command command);
+        [DllImport(Lib)] public static extern Status hapticd_send_coupling(ClientHandle c, byte[] device, ref Pose proxy, ref Twist twist, ulong serial);
+        [DllImport(Lib)] public static extern Status hapticd_send_group(ClientHandle c, byte[] group, [In] Command[] commands, int count);
+    }
+
+    // The C client's handle: destroyed once, when disposed or finalised.
+    public sealed class ClientHandle : SafeHandle
+    {
+        public ClientHandle() : base(IntPtr.Zero, true) { }
+        public override bool IsInvalid { get { return handle == IntPtr.Zero; } }
+        protected override bool ReleaseHandle() { Native.hapticd_client_destroy(handle); return true; }
+    }
+}

@@ -1,0 +1,163 @@
+// The C# bindings (clients/csharp) on Debian's Mono, against the C API's library:
+//   layout FILE                     every struct's size and the per-cycle structs' field offsets match the C API's
+//                                   committed layout (clients/c/abi/hapticd_c.layout)
+//   errors DOMAIN                   every error path is a HapticdException with the C API's status and message
+//   engine DOMAIN DEVICE SECONDS N  a wall engine (Hapticd.Engine) 2 cm ahead of the handle; the simulated operator
+//                                   pushes N newtons; a claim the server ends is taken again; the per-cycle calls
+//                                   make no managed garbage; prints where the handle rests
+// Exit code 0 when every check of the mode holds (each failure is printed).
+using System;
+using System.Collections.Generic;
+using System.IO;
+using System.Runtime.InteropServices;
+using System.Threading;
+using Hapticd;
+
+static class CSharpClientTest
+{
+    static int failures = 0;
+    static void Check(bool ok, string what)
+    {
+        Console.WriteLine((ok ? "ok: " : "FAIL: ") + what);
+        if (!ok) ++failures;
+    }
+    static Status StatusOf(Action a)
+    {
+        try { a(); return Status.Ok; }
+        catch (HapticdException e) { return e.Status; }
+    }
+
+    static int Main(string[] args)
+    {
+        switch (args.Length > 0 ? args[0] : "")
+        {
+            case "layout": Layout(args[1]); break;
+            case "errors": Errors(int.Parse(args[1])); break;
+            case "engine": RunEngine(int.Parse(args[1]), args[2], double.Parse(args[3]), double.Parse(args[4])); break;
+            default: Console.Error.WriteLine("usage: layout FILE | errors DOMAIN | engine DOMAIN DEVICE SECONDS N"); return 2;
+        }
+        Console.WriteLine(failures == 0 ? "all checks passed" : failures + " failures");
+        return failures == 0 ? 0 : 1;
+    }
+
+    static void Layout(string file)
+    {
+        var types = new Dictionary<string, Type> {
+            {"hapticd_vec3", typeof(Vec3)}, {"hapticd_quat", typeof(Quat)}, {"hapticd_pose", typeof(Pose)},
+            {"hapticd_twist", typeof(Twist)}, {"hapticd_wrench", typeof(Wrench)}, {"hapticd_loop_summary", typeof(LoopSummary)},
+            {"hapticd_device_state", typeof(DeviceState)}, {"hapticd_scheme_info", typeof(SchemeInfo)},
+            {"hapticd_device_info", typeof(DeviceInfo)}, {"hapticd_event", typeof(Event)}, {"hapticd_telemetry", typeof(Telemetry)},
+            {"hapticd_reply", typeof(Reply)}, {"hapticd_parameter_info", typeof(ParameterInfo)},
+            {"hapticd_local_model", typeof(LocalModel)}, {"hapticd_command", typeof(Command)},
+            {"hapticd_client_options", typeof(ClientOptions)} };
+        int checkedCount = 0;
+        foreach (var line in File.ReadAllLines(file))
+        {
+            var f = line.Split(' ');
+            if (f[0] == "sizeof" && types.ContainsKey(f[1]))
+            {
+                int size = Marshal.SizeOf(types[f[1]]);
+                Check(size == int.Parse(f[2]), f[1] + ": " + size + " bytes, C " + f[2]);
+                ++checkedCount;
+            }
+            else if (f[0] == "offsetof")
+            {
+                var parts = f[1].Split('.');
+                if (!types.ContainsKey(parts[0])) continue;
+                long offset = Marshal.OffsetOf(types[parts[0]], parts[1]).ToInt64();
+                Check(offset == long.Parse(f[2]), f[1] + " at " + offset + ", C " + f[2]);
+                ++checkedCount;
+            }
+        }
+        Check(checkedCount > 40, checkedCount + " sizes and offsets compared");
+        Check(Client.ApiVersion == 1, "the library's API version is the bindings' (1)");
+    }
+
+    static void Errors(int domain)
+    {
+        Check(StatusOf(() => new Client("", domain)) == Status.InvalidArgument && Client.LastError.Contains("client id"),
+              "an empty client id: InvalidArgument, '" + Client.LastError + "'");
+        Check(StatusOf(() => new Client("an-id-that-is-longer-than-thirty-one-characters", domain)) == Status.InvalidArgument,
+              "a client id of 47 characters: InvalidArgument");
+        Check(StatusOf(() => new Client("cs", 231)) == Status.InvalidArgument, "domain 231: InvalidArgument");
+        Check(StatusOf(() => new Client("cs", domain, "interfaces=;bogus")) == Status.InvalidArgument, "a bad network text: InvalidArgument");
+        using (var c = new Client("cs-errors", domain))
+        {
+            Check(StatusOf(() => c.WaitForState("nobody", 0.1)) == Status.Timeout, "no state of 'nobody': Timeout");
+            Check(StatusOf(() => c.WaitForState("nobody", -1)) == Status.InvalidArgument, "a negative timeout: InvalidArgument");
+            Check(StatusOf(() => c.WaitForState("", 0.1)) == Status.InvalidArgument, "an empty device name: InvalidArgument");
+            Check(StatusOf(() => c.Claim("nobody", 0.3)) == Status.Timeout, "a claim nobody answers: Timeout");
+            Check(StatusOf(() => c.SetParameter("nobody", "virtual_model.mass_kg", new double[17], 0.1)) == Status.InvalidArgument,
+                  "17 values: InvalidArgument");
+            DeviceState s;
+            Check(!c.TryLatestState(new DeviceName("nobody"), out s), "no latest state of 'nobody': false");
+            var bad = new Command { kind = 7 };
+            Check(StatusOf(() => c.Send(new DeviceName("nobody"), ref bad)) == Status.InvalidArgument && Client.LastError.Contains("unknown command kind"),
+                  "an unknown command kind: InvalidArgument");
+            Check(StatusOf(() => c.SendGroup(new DeviceName("g"), new Command[9], 9)) == Status.InvalidArgument, "a group command of 9: InvalidArgument");
+            Check(c.Devices().Length == 0, "no devices on an empty domain");
+        }
+        var disposed = new Client("cs-disposed", domain);
+        disposed.Dispose();
+        Check(StatusOf(() => { try { disposed.WaitForState("x", 0.1); } catch (ObjectDisposedException) { throw new HapticdException(Status.InvalidArgument, "disposed"); } }) == Status.InvalidArgument,
+              "a disposed client: ObjectDisposedException, never a crash");
+    }
+
+    static double wallX;
+
+    static void RunEngine(int domain, string device, double seconds, double pushN)
+    {
+        using (var client = new Client("cs-wall-engine", domain))
+        {
+            var first = client.WaitForState(device, 20.0);
+            double startX = first.pose.position.x;
+            wallX = startX + 0.02;
+            var engine = new Engine(client, device, (ref DeviceState s, ref Command c) => {
+                var proxy = s.pose;
+                if (proxy.position.x > wallX) proxy.position.x = wallX;
+                c = Command.Coupling(proxy, new Twist(), s.serial);
+            });
+            engine.Start();
+            Console.WriteLine("cs-wall-engine: claimed '" + device + "'; a wall at x = " + wallX.ToString("+0.0000;-0.0000") + " m");
+            if (pushN != 0) client.OperatorCommand(device, "push", new double[] { pushN, 0, 0, 0.2 });
+
+            // The per-cycle calls from this thread: no managed garbage.
+            var name = new DeviceName(device);
+            DeviceState state;
+            var still = new Twist();
+            client.TryLatestState(name, out state);
+            long before = GC.GetAllocatedBytesForCurrentThread();
+            for (int i = 0; i < 2000; ++i)
+            {
+                client.TryLatestState(name, out state);
+                var proxy = state.pose;
+                if (proxy.position.x > wallX) proxy.position.x = wallX;
+                client.SendCoupling(name, ref proxy, ref still, state.serial);
+            }
+            long garbage = GC.GetAllocatedBytesForCurrentThread() - before;
+            Check(garbage == 0, "2000 state reads and commands made " + garbage + " bytes of managed garbage");
+
+            var end = DateTime.UtcNow.AddSeconds(seconds);
+            while (DateTime.UtcNow < end)
+            {
+                Thread.Sleep(50);
+                if (engine.ClaimLost)
+                {
+                    Console.WriteLine("cs-wall-engine: the server ended the claim of '" + device + "'");
+                    string why;
+                    bool again = engine.Reclaim(out why);
+                    Console.WriteLine(again ? "cs-wall-engine: claimed '" + device + "' again" : "cs-wall-engine: cannot claim again: " + why);
+                    Check(again, "claimed again after the loss");
+                }
+            }
+            DeviceState last;
+            client.TryLatestState(name, out last);
+            long answered = engine.Answered;
+            engine.Stop();
+            Check(engine.RenderErrors == 0, "the render function never threw");
+            Check(answered > 0, "answered " + answered + " states");
+            Console.WriteLine("cs-wall-engine: answered " + answered + " states; handle " +
+                              (last.pose.position.x - startX).ToString("0.0000") + " m past the start, the wall at 0.0200 m");
+        }
+    }
+}
