@@ -7,7 +7,8 @@
 #     liveliness callbacks, the loop's lock-free hand-offs; the ownership tests with their claimant processes;
 #     the device groups' snapshots, requests and group commands; requests racing a scheme switch), groups on loop
 #     threads of their own (with the recorder's rings), the bridge's round-trip probe and the scheme switching
-#     (loop and monitor threads), the loop on a device's clock (a ticking thread, the loop waiting on its ticks);
+#     (loop and monitor threads), the loop on a device's clock (a ticking thread, the loop waiting on its ticks),
+#     the C API (its commands handed to the sender thread, against a server process);
 #   fuzz (libFuzzer with ASan + UBSan): the DDS engine-command validation and the session loader, each for a fixed
 #     number of inputs from a fixed seed (FUZZ_RUNS scales them; findings are written to build/fuzz/findings and
 #     fail the run).
@@ -41,8 +42,8 @@ for preset in "${presets[@]}"; do
                    playback_device_test)
           tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession|FoxgloveServer|PlaybackDevice)\.' ;;
     tsan) targets=(dds_engine_test dds_ownership_test dds_groups_test dds_attacks_test separate_loops_test hapticctl
-                   hapticd-scene-engine scheme_switching_test round_trip_probe_test device_clock_test)
-          tests='^(DdsEngine|DdsOwnership|DdsGroups|DdsAttacks|SeparateLoops|SchemeSwitching|RoundTripProbe|DeviceClock)\.' ;;
+                   hapticd-scene-engine scheme_switching_test round_trip_probe_test device_clock_test c_api_test hapticd)
+          tests='^(DdsEngine|DdsOwnership|DdsGroups|DdsAttacks|SeparateLoops|SchemeSwitching|RoundTripProbe|DeviceClock|CApi)\.' ;;
     fuzz) fuzz ; continue ;;
     *) echo "unknown preset '$preset' (asan, tsan, fuzz)" >&2; exit 2 ;;
   esac

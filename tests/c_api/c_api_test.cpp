@@ -1,8 +1,8 @@
 // The C API (hapticd/client.h) from C++: its error paths (every bad argument a status and a message, per
-// thread; nothing aborts), and against a server process on loopback (DDS domain 149, real time; a process of its
-// own, as an engine meets it - a reader in this process would take each command through Cyclone's local delivery,
-// which allocates): discovery, states, a claim and its refusal to another client, parameters, and the per-cycle
-// calls - the latest state and a command - allocating nothing.
+// thread; nothing aborts; DDS domain 150, empty), and against a server process on loopback (DDS domain 149, real time;
+// a process of its own, as an engine meets it - a reader in this process would take each command through Cyclone's
+// local delivery, which allocates): discovery, states, a claim and its refusal to another client, parameters, and the
+// per-cycle calls - the latest state and a command - allocating nothing.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,7 +18,8 @@
 namespace hapticd {
 namespace {
 
-constexpr int kDomain = 149;
+constexpr int kDomain = 149;       // the server's
+constexpr int kEmptyDomain = 150;  // nobody's: the error paths (ctest runs the two tests at once)
 
 hapticd_client* make(const char* id, int domain = kDomain) {
   hapticd_client_options o{id, domain, nullptr, nullptr, 0.0};
@@ -31,7 +32,7 @@ TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
   EXPECT_EQ(hapticd_api_version(), HAPTICD_C_API_VERSION);
   hapticd_client* c = nullptr;
   EXPECT_EQ(hapticd_client_create(nullptr, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
-  hapticd_client_options o{"", kDomain, nullptr, nullptr, 0.0};
+  hapticd_client_options o{"", kEmptyDomain, nullptr, nullptr, 0.0};
   EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(hapticd_last_error()).find("the client id must have 1 to 31 characters"), std::string::npos);
   EXPECT_EQ(c, nullptr);
@@ -40,7 +41,7 @@ TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
   o.client_id = "c-api";
   o.domain_id = 231;
   EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
-  o.domain_id = kDomain;
+  o.domain_id = kEmptyDomain;
   o.command_deadline_s = std::nan("");
   EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
   o.command_deadline_s = 0.0;
@@ -49,7 +50,7 @@ TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
   EXPECT_STRNE(hapticd_last_error(), "");
   o.network = nullptr;
 
-  c = make("c-api-errors");
+  c = make("c-api-errors", kEmptyDomain);
   ASSERT_NE(c, nullptr);
   hapticd_device_state state;
   hapticd_reply reply;

@@ -66,6 +66,43 @@ out=$("$work/c_wall_engine" --domain 90 --device nobody --wait 0.2 --duration 0 
   { echo "FAIL: the pkg-config-built C engine ($code): $out"; exit 1; }
 echo "ok: the C API from the installed package (pkg-config hapticd-client)"
 
+# The engine guides' code (docs/unreal.md: a link on the C++ client library; docs/godot.md: one on the C API),
+# extracted as written and built against the installed package: each, asked for a device nobody serves, says so.
+python3 "$src/tests/docs/guide_code.py" "$work/guides" "$src/docs/unreal.md" "$src/docs/godot.md"
+cat > "$work/guides/unreal/main.cpp" << 'CPP'
+#include <cstdio>
+#include "HapticLink.h"
+int main() {
+  HapticLink link("nobody", 90);
+  std::string error;
+  const bool started = link.Start(0.2, error);
+  std::printf("%s\n", error.c_str());
+  return !started && error == "no state from nobody" ? 0 : 1;
+}
+CPP
+cat > "$work/guides/unreal/CMakeLists.txt" << 'CMAKE'
+cmake_minimum_required(VERSION 3.22)
+project(unreal_guide LANGUAGES CXX)
+find_package(hapticd 0.1 REQUIRED)
+add_executable(unreal_guide main.cpp)
+target_link_libraries(unreal_guide PRIVATE hapticd::client)
+target_compile_features(unreal_guide PRIVATE cxx_std_20)
+target_compile_options(unreal_guide PRIVATE -Wall -Wextra -Werror)
+CMAKE
+cmake -S "$work/guides/unreal" -B "$work/guides/unreal/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" > "$work/guides/unreal.log" && cmake --build "$work/guides/unreal/build" >> "$work/guides/unreal.log" ||
+  { cat "$work/guides/unreal.log"; echo "FAIL: the Unreal guide's link does not build"; exit 1; }
+"$work/guides/unreal/build/unreal_guide" || { echo "FAIL: the Unreal guide's link"; exit 1; }
+cat > "$work/guides/godot/main.c" << 'C'
+#include "haptic_link.h"
+int main(void) { return haptic_link_start("nobody", 90, 0.2) == 0 ? 0 : 1; }
+C
+cc -std=c11 -Wall -Wextra -Werror -I"$work/guides/godot" "$work/guides/godot/haptic_link.c" "$work/guides/godot/main.c" \
+  -o "$work/guides/godot_guide" $(PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --cflags --libs hapticd-client) \
+  -Wl,-rpath,"$prefix/lib" || { echo "FAIL: the Godot guide's link does not build"; exit 1; }
+"$work/guides/godot_guide" || { echo "FAIL: the Godot guide's link"; exit 1; }
+echo "ok: the Unreal and Godot guides' code builds against the installed package and runs"
+
 # A rendering engine on the installed client library, against the installed server over DDS (real time, 4 s).
 cmake -S "$src/examples/client_engine" -B "$work/client_engine" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" > "$work/client_engine_configure.log"
