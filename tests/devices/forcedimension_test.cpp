@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "config/config_error.hpp"
 #include "hapticd/server/session.hpp"
@@ -149,6 +150,38 @@ TEST_F(ForceDimension, AnUnpluggedDeviceFaultsWithTheVendorsTextAndIsBrakedAtRes
   EXPECT_TRUE(s.device("left").at_rest);
   const std::string log = standin_.call_log();
   EXPECT_NE(log.find("dhdSetBrakes(on)"), std::string::npos) << log;
+}
+
+TEST_F(ForceDimension, TheLifecycleRunsInTheVendorsOrder) {
+  // Open and check the calibration (configure); the gravity compensation, forces on and the brakes released
+  // (enable); cycles; at the end forces off, the brakes engaged and the device closed.
+  {
+    Session s = test::build_test_session(session(omega("left", "", wall_chain())));
+    s.step(100);
+  }
+  const std::string log = standin_.call_log();
+  const std::vector<std::string> order = {"dhdOpen(0)",
+                                          "drdIsInitialized(0)",
+                                          "dhdSetGravityCompensation(on)(0)",
+                                          "dhdEnableForce(on)(0)",
+                                          "dhdSetBrakes(off)(0)",
+                                          "dhdEnableForce(off)(0)",
+                                          "dhdSetBrakes(on)(0)",
+                                          "dhdClose(0)"};
+  std::size_t at = 0;
+  for (const std::string& call : order) {
+    const std::size_t found = log.find(call + "\n", at);
+    ASSERT_NE(found, std::string::npos) << call << " missing after position " << at << " in:\n" << log;
+    at = found + call.size();
+  }
+}
+
+TEST_F(ForceDimension, ADeviceThatIsNotThereIsSaidSoBeforeAnythingIsPowered) {
+  std::string e = config_error(session(omega("left", "serial: 99999", wall_chain())));
+  EXPECT_NE(e.find("no Force Dimension device with serial number 99999 (2 connected)"), std::string::npos) << e;
+  e = config_error(session(omega("left", "index: 5", wall_chain())));
+  EXPECT_NE(e.find("no Force Dimension device with index 5"), std::string::npos) << e;
+  EXPECT_EQ(std::string(standin_.call_log()).find("dhdEnableForce(on)"), std::string::npos) << standin_.call_log();
 }
 
 TEST_F(ForceDimension, AnUnpluggedDeviceFaultsInItsCycleAndItsNeighbourRunsOn) {

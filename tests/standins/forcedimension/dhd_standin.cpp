@@ -355,6 +355,7 @@ STANDIN_API int drdOpenID(char id) {
 STANDIN_API bool drdIsInitialized(char id) {
   std::lock_guard lock(mutex);
   Device* d = device(id);
+  log_call("drdIsInitialized", id);
   return d != nullptr && d->calibrated;
 }
 STANDIN_API int drdAutoInit(char id) {
