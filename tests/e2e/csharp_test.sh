@@ -34,14 +34,7 @@ server=$!
 mono test.exe engine "$domain" vishard3 10 0 > engine.log 2>&1 &  # bounded by its own 10 s
 engine=$!
 trap 'kill -CONT $engine 2> /dev/null; kill $server $engine 2> /dev/null' EXIT
-for _ in $(seq 300); do grep -q "claimed 'vishard3'" engine.log && break; sleep 0.1; done
-grep -q "claimed 'vishard3'" engine.log || fail "the C# engine did not claim"
-sleep 1
-kill -STOP "$engine"
-sleep 2.5  # beyond the command writer's 0.5 s lease and the 0.5 s hold: the server ends the claim
-kill -CONT "$engine"
-for _ in $(seq 100); do grep -q "claimed 'vishard3' again" engine.log && break; sleep 0.1; done
-grep -q "claimed 'vishard3' again" engine.log || fail "the C# engine was not told of its lost claim, or did not claim again"
+why=$(freeze_beyond_claim_hold "$engine" engine.log vishard3) || fail "$why"
 echo "ok: the C# engine was told of its lost claim and claimed again"
 timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 operator vishard3 push 15 0 0 0.2 > push.log 2>&1 ||
   fail "the operator's push: $(cat push.log)"

@@ -14,3 +14,19 @@ session_copy() {
 loose_watchdogs() {
   echo "--set devices.$1.safety.max_consecutive_overruns=2000 --set devices.$1.safety.max_stall_s=1.0"
 }
+# freeze_beyond_claim_hold PID LOG DEVICE: waits (20 s at most) until the engine PID says in LOG that it claimed
+# DEVICE, stops it (SIGSTOP) for 2.5 s - beyond its command writer's 0.5 s lease and a 0.5 s claim hold
+# (dds.claim_hold_s=0.5): the server ends the claim - resumes it, and waits (10 s at most) for it to say it claimed
+# again. Returns 1 with the reason on standard output when a step did not happen.
+freeze_beyond_claim_hold() {
+  local pid=$1 log=$2 device=$3
+  for _ in $(seq 200); do grep -q "claimed '$device'" "$log" && break; sleep 0.1; done
+  grep -q "claimed '$device'" "$log" || { echo "the engine did not claim"; return 1; }
+  sleep 0.5
+  kill -STOP "$pid"
+  sleep 2.5
+  kill -CONT "$pid"
+  for _ in $(seq 100); do grep -q "claimed '$device' again" "$log" && break; sleep 0.1; done
+  grep -q "the server ended the claim of '$device'" "$log" || { echo "the claim's loss was not told"; return 1; }
+  grep -q "claimed '$device' again" "$log" || { echo "the engine did not claim again"; return 1; }
+}

@@ -96,6 +96,27 @@ bool valid_values(const double* values, std::int32_t count) noexcept {
   return count >= 0 && count <= HAPTICD_MAX_VALUES && (count == 0 || values != nullptr);
 }
 
+// One thing of a named device or group into `out`: the arguments checked (the timeout when `timed`), then
+// `get(name)`, an optional; nothing is `missing` (HAPTICD_ERROR_TIMEOUT or HAPTICD_ERROR_NOT_FOUND), said with
+// `thing`. The success path allocates nothing (hapticd_latest_state relies on it).
+template <class Out, class Get>
+hapticd_status fetch(hapticd_client* c, const char* target, const char* what, bool timed, double timeout_s, Out* out,
+                     const char* thing, hapticd_status missing, Get&& get) noexcept {
+  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
+  const std::string_view name = name_of(target);
+  if (name.empty()) return bad_name(what, target);
+  if (timed && !valid_timeout(timeout_s))
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
+  return guarded([&] {
+    const auto value = get(name);
+    if (!value)
+      return fail(missing, std::string("no ") + thing + " of '" + std::string(name) + "'" +
+                               (missing == HAPTICD_ERROR_TIMEOUT ? " within the timeout" : " yet"));
+    to_c(*value, *out);
+    return HAPTICD_OK;
+  });
+}
+
 hapticd_status handed_over(hapticd::client_c::CommandSender::Result r) noexcept {
   using Result = hapticd::client_c::CommandSender::Result;
   switch (r) {
@@ -185,42 +206,19 @@ hapticd_status hapticd_list_devices(hapticd_client* c, hapticd_device_info* out,
 
 hapticd_status hapticd_wait_for_device(hapticd_client* c, const char* device, double timeout_s, int32_t started,
                                        hapticd_device_info* out) {
-  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
-  const std::string_view name = name_of(device);
-  if (name.empty()) return bad_name("the device", device);
-  if (!valid_timeout(timeout_s)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
-  return guarded([&] {
-    const auto info = c->client.wait_for_device(name, timeout_of(timeout_s), started != 0);
-    if (!info) return fail(HAPTICD_ERROR_TIMEOUT, "no description of '" + std::string(name) + "' within the timeout");
-    to_c(*info, *out);
-    return HAPTICD_OK;
-  });
+  return fetch(c, device, "the device", true, timeout_s, out, "description", HAPTICD_ERROR_TIMEOUT,
+               [&](std::string_view d) { return c->client.wait_for_device(d, timeout_of(timeout_s), started != 0); });
 }
 
 hapticd_status hapticd_latest_state(hapticd_client* c, const char* device, hapticd_device_state* out) {
-  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
-  const std::string_view name = name_of(device);
-  if (name.empty()) return bad_name("the device", device);
-  return guarded([&] {
-    const auto state = c->client.latest_state(name);
-    if (!state) return fail(HAPTICD_ERROR_NOT_FOUND, "no state of that device yet");
-    to_c(*state, *out);
-    return HAPTICD_OK;
-  });
+  return fetch(c, device, "the device", false, 0.0, out, "state", HAPTICD_ERROR_NOT_FOUND,
+               [&](std::string_view d) { return c->client.latest_state(d); });
 }
 
 hapticd_status hapticd_wait_for_state(hapticd_client* c, const char* device, double timeout_s, uint64_t after,
                                       hapticd_device_state* out) {
-  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
-  const std::string_view name = name_of(device);
-  if (name.empty()) return bad_name("the device", device);
-  if (!valid_timeout(timeout_s)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
-  return guarded([&] {
-    const auto state = c->client.wait_for_state(name, timeout_of(timeout_s), after);
-    if (!state) return fail(HAPTICD_ERROR_TIMEOUT, "no state of '" + std::string(name) + "' within the timeout");
-    to_c(*state, *out);
-    return HAPTICD_OK;
-  });
+  return fetch(c, device, "the device", true, timeout_s, out, "state", HAPTICD_ERROR_TIMEOUT,
+               [&](std::string_view d) { return c->client.wait_for_state(d, timeout_of(timeout_s), after); });
 }
 
 // ---- groups ----
@@ -237,42 +235,19 @@ hapticd_status hapticd_list_groups(hapticd_client* c, hapticd_group_info* out, i
 }
 
 hapticd_status hapticd_wait_for_group(hapticd_client* c, const char* group, double timeout_s, hapticd_group_info* out) {
-  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
-  const std::string_view name = name_of(group);
-  if (name.empty()) return bad_name("the group", group);
-  if (!valid_timeout(timeout_s)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
-  return guarded([&] {
-    const auto info = c->client.wait_for_group(name, timeout_of(timeout_s));
-    if (!info) return fail(HAPTICD_ERROR_TIMEOUT, "no description of group '" + std::string(name) + "'");
-    to_c(*info, *out);
-    return HAPTICD_OK;
-  });
+  return fetch(c, group, "the group", true, timeout_s, out, "group description", HAPTICD_ERROR_TIMEOUT,
+               [&](std::string_view g) { return c->client.wait_for_group(g, timeout_of(timeout_s)); });
 }
 
 hapticd_status hapticd_latest_group_state(hapticd_client* c, const char* group, hapticd_group_state* out) {
-  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
-  const std::string_view name = name_of(group);
-  if (name.empty()) return bad_name("the group", group);
-  return guarded([&] {
-    const auto state = c->client.latest_group_state(name);
-    if (!state) return fail(HAPTICD_ERROR_NOT_FOUND, "no state of that group yet");
-    to_c(*state, *out);
-    return HAPTICD_OK;
-  });
+  return fetch(c, group, "the group", false, 0.0, out, "group state", HAPTICD_ERROR_NOT_FOUND,
+               [&](std::string_view g) { return c->client.latest_group_state(g); });
 }
 
 hapticd_status hapticd_wait_for_group_state(hapticd_client* c, const char* group, double timeout_s, uint64_t after,
                                             hapticd_group_state* out) {
-  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
-  const std::string_view name = name_of(group);
-  if (name.empty()) return bad_name("the group", group);
-  if (!valid_timeout(timeout_s)) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the timeout must be finite and >= 0");
-  return guarded([&] {
-    const auto state = c->client.wait_for_group_state(name, timeout_of(timeout_s), after);
-    if (!state) return fail(HAPTICD_ERROR_TIMEOUT, "no state of group '" + std::string(name) + "' within the timeout");
-    to_c(*state, *out);
-    return HAPTICD_OK;
-  });
+  return fetch(c, group, "the group", true, timeout_s, out, "group state", HAPTICD_ERROR_TIMEOUT,
+               [&](std::string_view g) { return c->client.wait_for_group_state(g, timeout_of(timeout_s), after); });
 }
 
 // ---- events, telemetry, fault reports ----
@@ -295,27 +270,13 @@ hapticd_status hapticd_take_events(hapticd_client* c, hapticd_event* out, int32_
 }
 
 hapticd_status hapticd_latest_telemetry(hapticd_client* c, const char* device, hapticd_telemetry* out) {
-  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
-  const std::string_view name = name_of(device);
-  if (name.empty()) return bad_name("the device", device);
-  return guarded([&] {
-    const auto t = c->client.latest_telemetry(name);
-    if (!t) return fail(HAPTICD_ERROR_NOT_FOUND, "no telemetry of that device yet");
-    to_c(*t, *out);
-    return HAPTICD_OK;
-  });
+  return fetch(c, device, "the device", false, 0.0, out, "telemetry", HAPTICD_ERROR_NOT_FOUND,
+               [&](std::string_view d) { return c->client.latest_telemetry(d); });
 }
 
 hapticd_status hapticd_latest_fault_report(hapticd_client* c, const char* device, hapticd_fault_report* out) {
-  if (c == nullptr || out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or out is NULL");
-  const std::string_view name = name_of(device);
-  if (name.empty()) return bad_name("the device", device);
-  return guarded([&] {
-    const auto r = c->client.latest_fault_report(name);
-    if (!r) return fail(HAPTICD_ERROR_NOT_FOUND, "no fault report of that device");
-    to_c(*r, *out);
-    return HAPTICD_OK;
-  });
+  return fetch(c, device, "the device", false, 0.0, out, "fault report", HAPTICD_ERROR_NOT_FOUND,
+               [&](std::string_view d) { return c->client.latest_fault_report(d); });
 }
 
 // ---- callbacks ----
