@@ -14,7 +14,7 @@ session_copy "$src/config/sessions/vishard3/dds-coupling.yaml" "$src" session.ya
 timeout 60 "$bin/hapticd" --config session.yaml --dds-domain "$domain" \
   --duration 16 > server.log 2>&1 &
 server=$!
-trap 'kill -9 $server 2>/dev/null || true; kill -9 ${engine:-} 2>/dev/null || true' EXIT
+trap 'kill $server 2>/dev/null || true; kill -9 ${engine:-} 2>/dev/null || true' EXIT  # TERM: timeout passes it on
 
 ctl list | tee list.txt
 grep -q "^vishard3 .*3 joints" list.txt || fail "hapticctl list does not show the device"
@@ -116,7 +116,7 @@ sed -e "s|\.\./\.\./urdf/|$src/config/urdf/|" \
     "$src/config/sessions/dual-arm/vishard3-pair.yaml" > pair.yaml  # session_copy, for the devices only
 timeout 60 "$bin/hapticd" --config pair.yaml --dds-domain "$domain" --duration 20 > server.log 2>&1 &
 server=$!
-trap 'kill -9 $server 2>/dev/null || true; kill -9 ${holder:-} 2>/dev/null || true' EXIT
+trap 'kill $server 2>/dev/null || true; kill -9 ${holder:-} 2>/dev/null || true' EXIT
 ctl groups | tee groups.txt
 grep -q "^table .*devices: left, right; hard minimum 0.03 m, repulsion from 0.1 m" groups.txt ||
   fail "hapticctl groups does not show the pair's group"
@@ -135,7 +135,7 @@ if ctl --id bystander recover --group table > recover.txt; then fail "another cl
 grep -q "none recovered.*stopped by 'hapticctl'" recover.txt || fail "the refused group recovery does not say why: $(cat recover.txt)"
 ctl estop --all | tee all.txt || fail "estop --all refused"
 grep -q "accepted: stopped left, right" all.txt || fail "estop --all did not stop every device"
-kill -9 "$holder" 2>/dev/null || true
+kill "$holder" 2>/dev/null || true  # TERM: timeout passes it on to hapticctl
 kill -INT "$server"
 wait "$server" || true
 trap - EXIT

@@ -30,7 +30,7 @@ echo "ok: the server's recording holds the buttons and the gripper"
 timeout 60 "$bin/hapticd" --config "$session" --dds-domain "$domain" --duration 8 --log-level warn \
   --set server.realtime_priority=0 --set server.lock_memory=false $(loose_watchdogs omega) > server.log 2>&1 &
 server=$!
-trap 'kill -9 $server 2>/dev/null || true' EXIT
+trap 'kill $server 2>/dev/null || true' EXIT  # TERM: timeout passes it on (-9 would orphan the server)
 ctl() { timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 "$@"; }
 ctl list | tee list.txt
 grep -q "^omega " list.txt || fail "hapticctl list does not show the device"
