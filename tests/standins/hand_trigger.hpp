@@ -5,6 +5,8 @@
 // file is looked at every 50th call (a step of the physics), so the check costs nothing a test would notice.
 #include <sys/stat.h>
 
+#include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -29,5 +31,15 @@ class HandTrigger {
   bool read_ = false, pushing_ = true;
   std::string path_;
 };
+
+// The hand's force "fx,fy,fz" (N) from the environment variable `name` into `force`; false (force untouched)
+// when the variable is not set or not three numbers.
+inline bool hand_from_environment(const char* name, std::array<double, 3>& force) {
+  const char* text = std::getenv(name);
+  std::array<double, 3> f{0, 0, 0};
+  if (text == nullptr || std::sscanf(text, "%lf,%lf,%lf", &f[0], &f[1], &f[2]) != 3) return false;
+  force = f;
+  return true;
+}
 
 }  // namespace hapticd::standins

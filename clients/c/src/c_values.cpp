@@ -5,6 +5,15 @@
 namespace hapticd::client_c {
 namespace {
 
+// The C enums mirror the library's by value (converted with a cast below): held here.
+static_assert(static_cast<int>(client::Mode::off) == HAPTICD_MODE_OFF &&
+              static_cast<int>(client::Mode::safe) == HAPTICD_MODE_SAFE);
+static_assert(static_cast<int>(client::EventKind::fault) == HAPTICD_EVENT_FAULT &&
+              static_cast<int>(client::EventKind::owner) == HAPTICD_EVENT_OWNER &&
+              static_cast<int>(client::EventKind::recording) == HAPTICD_EVENT_RECORDING);
+static_assert(client::kMaxGroupDevices == HAPTICD_MAX_GROUP_DEVICES && client::kMaxValues == HAPTICD_MAX_VALUES &&
+              client::kRejectReasons == HAPTICD_REJECT_REASONS && kMaxJoints == HAPTICD_MAX_JOINTS);
+
 hapticd_vec3 vec3(const Eigen::Vector3d& v) noexcept { return hapticd_vec3{v.x(), v.y(), v.z()}; }
 Eigen::Vector3d vec3(const hapticd_vec3& v) noexcept { return {v.x, v.y, v.z}; }
 

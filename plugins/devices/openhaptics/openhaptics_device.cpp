@@ -20,6 +20,12 @@ HDCallbackCode servo_callback(void* self) { return static_cast<OpenHapticsDevice
 
 }  // namespace
 
+HdErrors HdErrors::of(const HdApi& hd) noexcept {
+  HdErrors errors;
+  errors.drain(hd);
+  return errors;
+}
+
 void HdErrors::drain(const HdApi& hd) noexcept {
   for (int i = 0; i < 16; ++i) {
     const HDErrorInfo e = hd.get_error();
@@ -121,7 +127,7 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
     hd_->get_doublev(kNominalMaxTorqueForce, &max_torque_mnm);
     hd_->get_doublev(kNominalMaxTorqueStiffness, &torque_stiffness);
     hd_->get_doublev(kNominalMaxTorqueDamping, &torque_damping);
-    (void)hd_->get_error();  // a figure the device does not report stays 0
+    (void)HdErrors::of(*hd_);  // a figure the device does not report stays 0 (each one left an error)
     h.actuated_torque = max_torque_mnm > 0.0;
     h.max_torque_nm = max_torque_mnm * 1e-3;
     h.recommended_rotational_stiffness_nm_per_rad = torque_stiffness * 1e-3;
@@ -150,7 +156,8 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
 
 const char* OpenHapticsDevice::failure(const char* what, const HdErrors& errors) noexcept {
   // Each error the stack held, in the order the SDK gave them (the newest first): "the servo frame: device fault
-  // (HD error 0x0300, internal 42); communication error ... (HD error 0x0302, internal 0)".
+  // (HD error 0x0300, internal 42); communication error ... (HD error 0x0302, internal 0)". The first failure since
+  // the last recovery is the one told.
   std::array<char, 384>& text = errors_[static_cast<std::size_t>(error_)];
   if (text[0] != '\0') return text.data();
   int used = std::snprintf(text.data(), text.size(), "%s: ", what);
@@ -167,14 +174,6 @@ const char* OpenHapticsDevice::failure(const char* what, const HdErrors& errors)
   return text.data();
 }
 
-const char* OpenHapticsDevice::failure(const char* what, HDerror code, int internal) noexcept {
-  std::array<char, 384>& text = errors_[static_cast<std::size_t>(error_)];
-  if (text[0] == '\0')
-    std::snprintf(text.data(), text.size(), "%s: %s (HD error 0x%04x, internal %d)", what, hd_->text_of(code), code,
-                  internal);
-  return text.data();
-}
-
 Outcome OpenHapticsDevice::enable() {
   if (handle_ == kInvalidHandle) return Outcome::failure("the OpenHaptics device is not open");
   errors_[static_cast<std::size_t>(error_)][0] = '\0';
@@ -183,23 +182,23 @@ Outcome OpenHapticsDevice::enable() {
   handoff_.reset();
   end_errors_ = HdErrors{};
   hd_->make_current_device(handle_);
+  (void)HdErrors::of(*hd_);  // nothing of configure's queries may be told as this start's, or a frame's, error
   hd_->enable(kForceOutput);
-  if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess)
-    return Outcome::failure(failure("enabling forces", e.errorCode, e.internalErrorCode));
+  if (const HdErrors e = HdErrors::of(*hd_); e.count > 0) return Outcome::failure(failure("enabling forces", e));
   ended_.store(false);
   running_.store(true);
   callback_ = hd_->schedule_asynchronous(&servo_callback, this, kMaxSchedulerPriority);
-  if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess) {
+  if (const HdErrors e = HdErrors::of(*hd_); e.count > 0) {
     running_.store(false);
-    return Outcome::failure(failure("scheduling the servo callback", e.errorCode, e.internalErrorCode));
+    return Outcome::failure(failure("scheduling the servo callback", e));
   }
   scheduled_ = true;
   {
     std::lock_guard lock(scheduler_mutex);
     if (scheduler_users++ == 0) hd_->start_scheduler();
   }
-  if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess)
-    return Outcome::failure(failure("starting the HD scheduler", e.errorCode, e.internalErrorCode));
+  if (const HdErrors e = HdErrors::of(*hd_); e.count > 0)
+    return Outcome::failure(failure("starting the HD scheduler", e));
   // The first sample before the first cycle (the loop may not run on the device's clock).
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
   const std::uint64_t before = handoff_.samples();
@@ -312,7 +311,7 @@ void OpenHapticsDevice::close_device() noexcept {
   hd_->make_current_device(handle_);
   hd_->disable(kForceOutput);
   hd_->disable_device(handle_);
-  (void)hd_->get_error();
+  (void)HdErrors::of(*hd_);
   handle_ = kInvalidHandle;
 }
 

@@ -12,10 +12,9 @@
 //   read:      the newest sample of the callback (hold when none came since; one older than `max_sample_age_s` -
 //              a scheduler that stopped calling - and a frame's SDK errors are faults with the vendor's text of
 //              each error on the HD error stack); the joint and gimbal angles as the handle's linkage.
-//   write:     the force (and the torque, where the device has 6-DOF output) for the callback. When the device clocks
-//   the loop, the callback waits for the loop's
-//              force of its own tick (bounded: `command_wait_us`); a late one is held for `hold_ticks` ticks, then
-//              the callback writes zero.
+//   write:     the force (and the torque, where the device has 6-DOF output) for the callback. When the device
+//              clocks the loop, the callback waits for the loop's force of its own tick (bounded:
+//              `command_wait_us`); a late one is held for `hold_ticks` ticks, then the callback writes zero.
 //   disable:   the callback ends, zero force, forces off, the scheduler stopped (by the last device), closed.
 #include <array>
 #include <atomic>
@@ -40,6 +39,8 @@ struct HdErrors {
   }
   // Pops the stack (at most 16: a bounded frame) into this.
   void drain(const HdApi& hd) noexcept;
+  // The stack as it is now, popped.
+  [[nodiscard]] static HdErrors of(const HdApi& hd) noexcept;
 };
 
 // One frame of the callback, for the loop.
@@ -79,7 +80,6 @@ class OpenHapticsDevice final : public Device {
   HDCallbackCode servo() noexcept;
 
  private:
-  const char* failure(const char* what, HDerror code, int internal) noexcept;
   const char* failure(const char* what, const HdErrors& errors) noexcept;
   void close_device() noexcept;
 

@@ -118,11 +118,8 @@ void setup_from(const char* spec) {
   if (const char* held = std::getenv("HAPTICD_DHD_STANDIN_BUTTONS"); held != nullptr)
     for (Device& d : devices) d.buttons = static_cast<unsigned>(std::strtoul(held, nullptr, 0));
   // A run of the server has no test to push either: the hand's force on every device, "fx,fy,fz" (N).
-  if (const char* hand = std::getenv("HAPTICD_DHD_STANDIN_HAND"); hand != nullptr) {
-    std::array<double, 3> f{0, 0, 0};
-    if (std::sscanf(hand, "%lf,%lf,%lf", &f[0], &f[1], &f[2]) == 3)
-      for (Device& d : devices) d.hand = f;
-  }
+  if (std::array<double, 3> f{}; hapticd::standins::hand_from_environment("HAPTICD_DHD_STANDIN_HAND", f))
+    for (Device& d : devices) d.hand = f;
   // A lockstep run of the server: each force call advances the physics by this much (seconds).
   if (const char* step = std::getenv("HAPTICD_DHD_STANDIN_STEP"); step != nullptr) fixed_step_s = std::atof(step);
 }

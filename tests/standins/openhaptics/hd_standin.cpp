@@ -148,11 +148,8 @@ void setup_from(const char* spec) {
   }
   // A run of the server has no test to push or press: the hand's force "fx,fy,fz" (N) and the buttons held, on
   // every device.
-  if (const char* hand = std::getenv("HAPTICD_HD_STANDIN_HAND"); hand != nullptr) {
-    std::array<double, 3> f{0, 0, 0};
-    if (std::sscanf(hand, "%lf,%lf,%lf", &f[0], &f[1], &f[2]) == 3)
-      for (Device& d : devices) d.hand = f;
-  }
+  if (std::array<double, 3> f{}; hapticd::standins::hand_from_environment("HAPTICD_HD_STANDIN_HAND", f))
+    for (Device& d : devices) d.hand = f;
   if (const char* held = std::getenv("HAPTICD_HD_STANDIN_BUTTONS"); held != nullptr)
     for (Device& d : devices) d.buttons = static_cast<int>(std::strtol(held, nullptr, 0));
   set_up = true;
@@ -344,11 +341,11 @@ STANDIN_API void hdGetDoublev(HDenum what, double* out) {
       for (std::size_t i = 0; i < 3; ++i) out[i] = d->linkage[3 + i];
       return;
     case kNominalMaxTorqueForce:
-    case kNominalMaxTorqueStiffness:
-    case kNominalMaxTorqueDamping:
       if (!d->torque_output) return raise(kInvalidEnum);
-      *out = what == kNominalMaxTorqueForce ? d->max_torque_mnm : what == kNominalMaxTorqueStiffness ? 500.0 : 2.0;
+      *out = d->max_torque_mnm;
       return;
+    // HD_NOMINAL_MAX_TORQUE_STIFFNESS and _DAMPING are not reported (two errors on the stack, as a device that
+    // lacks a figure leaves them): the plugin must not take them for a frame's errors.
     default:
       raise(kInvalidEnum);
   }
