@@ -27,6 +27,7 @@ packages=(
   iproute2
   chromium
   mono-mcs mono-runtime
+  python3-websockets
 )
 
 missing=()

@@ -1,9 +1,9 @@
-#include "json_reader.hpp"
+#include "hapticd/json_reader.hpp"
 
 #include <cstdlib>
 #include <cstring>
 
-namespace hapticd::plugins::haply {
+namespace hapticd {
 
 JsonReader::Value JsonReader::Value::operator[](std::string_view key) const noexcept {
   if (!reader_ || node().kind != Kind::object) return {};
@@ -148,4 +148,4 @@ std::uint32_t JsonReader::value(int depth) noexcept {
   return index;
 }
 
-}  // namespace hapticd::plugins::haply
+}  // namespace hapticd

@@ -16,7 +16,7 @@ import sys
 
 # server/src, bottom to top. A folder may include its own layer's folder and any lower layer's.
 LAYERS = [
-    ["executor", "loader", "safety"],  # the loops (generic: they run any LoopWork), the plugin loader, safety
+    ["executor", "loader", "safety", "net"],  # the loops (generic), the plugin loader, safety, the WebSocket transport
     ["config"],                         # the session file
     ["session"],                        # one device: its chain, schemes, safety, status
     ["group"],                          # the device groups' stage

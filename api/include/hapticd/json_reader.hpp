@@ -1,8 +1,8 @@
 #pragma once
-// A small JSON reader for the Inverse Service's messages: parses a message into nodes that point into its text
-// (no copies of strings), in storage reserved once, so a state message a thousand times a second allocates
-// nothing. Bounded: a message deeper than 32 levels or with more nodes than the reader holds is refused. Strings
-// are compared as written (the service's keys and IDs have no escapes).
+// A small JSON reader for messages that come a thousand times a second (the Inverse Service's states, the engine
+// socket's commands): parses a message into nodes that point into its text (no copies of strings), in storage
+// reserved once, so a message allocates nothing. Bounded: a message deeper than 32 levels or with more nodes than the
+// reader holds is refused. Strings are compared as written (keys and IDs with escapes do not match).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -10,9 +10,11 @@
 #include <string_view>
 #include <vector>
 
-namespace hapticd::plugins::haply {
+#include "hapticd/export.hpp"
 
-class JsonReader {
+namespace hapticd {
+
+class HAPTICD_API JsonReader {
  public:
   enum class Kind : std::uint8_t { null, boolean, number, string, array, object };
   struct Node {
@@ -67,4 +69,4 @@ class JsonReader {
   const char* error_ = "";
 };
 
-}  // namespace hapticd::plugins::haply
+}  // namespace hapticd

@@ -21,8 +21,8 @@
 #include <thread>
 
 #include "hapticd/device.hpp"
+#include "hapticd/json_reader.hpp"
 #include "inverse_service_client.hpp"
-#include "json_reader.hpp"
 #include "servo_handoff.hpp"
 
 namespace hapticd::plugins::haply {

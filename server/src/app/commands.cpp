@@ -113,7 +113,8 @@ int run_session(const RunOptions& options) {
 
   // The stacks the threads still to come reserve (loop, recorder, bridge; Cyclone creates its own with smaller
   // stacks), and 8 MB of working memory: calibrated with ulimit -v (docs/safety.md).
-  const int threads = (s->config.dds.enabled ? 6 : 3) + (s->config.live_view.enabled ? 1 : 0);
+  const int threads = (s->config.dds.enabled ? 6 : 3) + (s->config.live_view.enabled ? 1 : 0) +
+                      (s->config.engine_socket.enabled ? 1 : 0);
   if (const std::string missing = check_address_space(threads, 8u << 20); !missing.empty()) {
     spdlog::error("cannot start the session: {}; no device was powered", missing);
     return kExitRuntimeError;
@@ -151,6 +152,15 @@ int run_session(const RunOptions& options) {
       spdlog::warn("the live view listens on {}, not on loopback only: whoever reaches it can watch the session",
                    s->config.live_view.address);
   }
+
+  if (served->bridge() != nullptr)
+    if (const EngineSocket* socket = served->bridge()->engine_socket()) {
+      spdlog::info("engine socket on {} (WebSocket/JSON for engines without DDS; docs/engine-socket.md){}",
+                   socket->url(), s->config.engine_socket.token.empty() ? "" : ", token required");
+      if (!net::loopback_address(s->config.engine_socket.address))
+        spdlog::warn("the engine socket listens on {}, beyond this machine: only clients with its token may connect",
+                     s->config.engine_socket.address);
+    }
 
   for (const ConfigureFailure& f : s->configure_failures)
     spdlog::error("device '{}' {}: {}", f.device,
@@ -363,6 +373,11 @@ int describe_config(const std::string& config_file) {
   print_schema(dds_settings_schema());
   fmt::print("\nlive_view section (present: the Foxglove WebSocket live view runs; docs/live-view.md):\n");
   print_schema(live_view_settings_schema());
+  fmt::print(
+      "\nengine_socket section (present: the WebSocket/JSON door for engines without DDS; docs/engine-socket.md):\n");
+  print_schema(engine_socket_settings_schema());
+  fmt::print("  {:<24} {}\n", "allowed_origins",
+             "web pages (scheme://host[:port]) that may connect besides this machine's");
   fmt::print("\na device entry (devices: [...]):\n");
   for (const EntryKey& k : device_entry_keys()) fmt::print("  {:<24} {}\n", k.key, k.text);
   fmt::print("\ngroups (optional, top level; docs/multi-device.md): a list of\n");

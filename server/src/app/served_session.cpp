@@ -104,7 +104,8 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
                                                        config.file.filename().string());
   if (config.dds.enabled) {
     try {
-      bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices, stages, dds_cpus_);
+      bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices, stages, dds_cpus_,
+                                            config.engine_socket);
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("DDS interface: ") + e.what());
     }

@@ -42,7 +42,7 @@ void CommandIntake::take_commands() {
     DeviceLink* d = links_.find(dds::text_of(c.device));
     if (d == nullptr) return;  // (the reader's filter keeps other devices' commands out, and counts them)
     d->instance.store(info.instance_handle, std::memory_order_relaxed);
-    admit(*d, c, sender_of(dds_.command.get(), info), info.source_timestamp);
+    (void)admit(*d, c, sender_of(dds_.command.get(), info), info.source_timestamp);
   });
 }
 
@@ -62,7 +62,7 @@ void CommandIntake::take_group_commands() {
         links_.count_unknown_command();
         continue;
       }
-      admit(d, g.commands[k], sender, info.source_timestamp);
+      (void)admit(d, g.commands[k], sender, info.source_timestamp);
     }
   });
 }
@@ -72,8 +72,18 @@ Sender CommandIntake::sender_of(dds_entity_t reader, const dds_sample_info_t& in
   return Sender{dds_.peers.participant_of(reader, info.publication_handle).value_or(PeerId{}), info.publication_handle};
 }
 
-void CommandIntake::admit(DeviceLink& d, const hapticd_msg_EngineCommand& c, const Sender& sender,
-                          dds_time_t source_timestamp) {
+CommandGate::Verdict CommandIntake::admit_from_socket(const hapticd_msg_EngineCommand& c, std::uint64_t connection) {
+  const std::lock_guard one_at_a_time(take_mutex_);
+  DeviceLink* d = links_.find(dds::text_of(c.device));
+  if (d == nullptr) {
+    links_.count_unknown_command();
+    return {false, dds::RejectReason::malformed};
+  }
+  return admit(*d, c, Sender{PeerId::of_socket(connection), socket_writer(connection)}, dds::wall_clock_ns());
+}
+
+CommandGate::Verdict CommandIntake::admit(DeviceLink& d, const hapticd_msg_EngineCommand& c, const Sender& sender,
+                                          dds_time_t source_timestamp) {
   CommandGate::Verdict v;
   {
     std::lock_guard lock(d.mutex);
@@ -84,7 +94,7 @@ void CommandIntake::admit(DeviceLink& d, const hapticd_msg_EngineCommand& c, con
       events_.send(d, hapticd_msg_EVENT_ENGINE_REJECTED, dds::to_string(v.reason),
                    "engine command rejected from '" + std::string(dds::text_of(c.engine)) +
                        "': " + std::string(dds::to_string(v.reason)));
-    return;
+    return v;
   }
   const std::int64_t state_written_ns = d.round_trip.command_accepted(c.serial, c.state_serial);
   d.device->engine_input(dds::to_engine_input(c));
@@ -94,6 +104,7 @@ void CommandIntake::admit(DeviceLink& d, const hapticd_msg_EngineCommand& c, con
       d.answered.store(c.state_serial, std::memory_order_release);
     d.synced.store(true, std::memory_order_release);
   }
+  return v;
 }
 
 }  // namespace hapticd::server

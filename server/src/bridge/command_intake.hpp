@@ -20,6 +20,9 @@ class CommandIntake {
   CommandIntake(DdsEndpoints& dds, DeviceLinks& links, EventSender& events);
   // Attaches the listener to the command reader; from then on commands flow. Last, once everything is built.
   void listen();
+  // The engine socket's thread: a command from its client `connection`, received now, through the same gate as
+  // a DDS writer's (the connection is the writer, its peer the participant). The gate's verdict.
+  CommandGate::Verdict admit_from_socket(const hapticd_msg_EngineCommand& c, std::uint64_t connection);
 
  private:
   void take_commands();
@@ -28,7 +31,8 @@ class CommandIntake {
   void take_group_commands();
   Sender sender_of(dds_entity_t reader, const dds_sample_info_t& info);
   // The gate's verdict on one device's command; an accepted one goes to the loop.
-  void admit(DeviceLink& d, const hapticd_msg_EngineCommand& c, const Sender& sender, dds_time_t source_timestamp);
+  CommandGate::Verdict admit(DeviceLink& d, const hapticd_msg_EngineCommand& c, const Sender& sender,
+                             dds_time_t source_timestamp);
   void liveliness_changed(const dds_liveliness_changed_status_t& status);
 
   DdsEndpoints& dds_;

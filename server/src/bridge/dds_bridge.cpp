@@ -39,7 +39,7 @@ std::uint64_t snapshot_interval_of(const DdsSettings& settings, double rate_hz) 
 void DdsBridge::pin_this_thread() const { (void)set_cpus(cpus_); }
 
 DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions,
-                     std::vector<GroupStage*> stages, std::vector<int> dds_cpus)
+                     std::vector<GroupStage*> stages, std::vector<int> dds_cpus, const EngineSocketSettings& socket)
     : settings_(settings), cpus_(std::move(dds_cpus)), links_(sessions, stages, settings) {
   const std::uint64_t interval = snapshot_interval_of(settings, rate_hz);
   double deadline = 1.0;
@@ -68,6 +68,11 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
                                                     settings.claim_hold_s);
   lockstep_ = std::make_unique<LockstepSync>(
       settings_, links_, interval, [](void* self) { static_cast<DdsBridge*>(self)->wake_publisher(); }, this);
+  if (socket.enabled) {
+    socket_ = std::make_unique<EngineSocket>(socket, links_, dds_->peers, *intake_,
+                                             [this] { (void)dds_set_guardcondition(dds_->wake.get(), true); });
+    publisher_->set_engine_socket(socket_.get());
+  }
   for (std::size_t i = 0; i < links_.size(); ++i) publisher_->publish_description(i);
   for (const GroupLink& g : links_.groups()) publisher_->publish_group_description(g);
   intake_->listen();  // last: commands may arrive at once
@@ -82,10 +87,12 @@ DdsBridge::~DdsBridge() {
 void DdsBridge::start() {
   publisher_thread_ = std::thread([this] { publisher_thread(); });
   receiver_thread_ = std::thread([this] { receiver_thread(); });
+  if (socket_) socket_->start();
 }
 
 void DdsBridge::stop() {
   if (!publisher_thread_.joinable() && !receiver_thread_.joinable()) return;
+  if (socket_) socket_->stop();  // no more commands or requests from its clients
   stopping_.store(true);
   wake_publisher();
   ticket_.notify_all();
@@ -131,6 +138,7 @@ void DdsBridge::receiver_thread() {
     (void)dds_waitset_wait(dds_->waitset.get(), triggered.data(), triggered.size(), wait);
     (void)dds_set_guardcondition(dds_->wake.get(), false);
     dispatcher_->handle_requests();
+    if (socket_) socket_->answer_requests(*dispatcher_);
     dispatcher_->check_claims();
     dispatcher_->check_engine_deadlines();
     const auto now = Clock::now();

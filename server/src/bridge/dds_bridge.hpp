@@ -6,6 +6,9 @@
 //   threads           and hands an accepted one to the loop (DeviceRequests::engine_input, lock-free);
 //   receiver thread   RequestDispatcher: answers requests, ends claims whose claimant is gone, counts missed
 //                     deadlines; and writes telemetry;
+//   socket thread     EngineSocket (when the session has an engine_socket section): the same gate for clients
+//                     without DDS, over WebSocket/JSON - their commands to CommandIntake, their requests to the
+//                     receiver's RequestDispatcher, the states from the StatePublisher;
 //   loop thread       LockstepSync: in lockstep, after_cycle() waits (wall time, bounded) until the owning engine
 //                     has answered the state just published, so end-to-end runs over DDS are repeatable.
 // The parts share the per-device links (DeviceLinks) and the DDS entities (DdsEndpoints).
@@ -20,6 +23,7 @@
 #include "bridge/command_intake.hpp"
 #include "bridge/dds_endpoints.hpp"
 #include "bridge/device_link.hpp"
+#include "bridge/engine_socket.hpp"
 #include "bridge/event_sender.hpp"
 #include "bridge/lockstep_sync.hpp"
 #include "bridge/request_dispatcher.hpp"
@@ -39,8 +43,10 @@ class DdsBridge final : public CycleListener {
   // dominate the round trip on small machines; keeping the DDS path off the loop's CPU and on one set of CPUs
   // makes it several times shorter (docs/dds-interface.md).
   // stages: the session's device groups (their descriptions, group states and group requests).
+  // socket: the engine socket's settings (not enabled: none); its port is bound here (an error names it).
   DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions,
-            std::vector<GroupStage*> stages = {}, std::vector<int> dds_cpus = {});
+            std::vector<GroupStage*> stages = {}, std::vector<int> dds_cpus = {},
+            const EngineSocketSettings& socket = {});
   ~DdsBridge() override;
   DdsBridge(const DdsBridge&) = delete;
   DdsBridge& operator=(const DdsBridge&) = delete;
@@ -74,6 +80,8 @@ class DdsBridge final : public CycleListener {
   [[nodiscard]] std::uint64_t unknown_device_requests() const noexcept { return links_.unknown_device_requests(); }
   // Claims that ended because their claimant's participant was gone (not released).
   [[nodiscard]] std::uint64_t claims_ended() const noexcept { return dispatcher_->claims_ended(); }
+  // The engine socket (nullptr: the session has none).
+  [[nodiscard]] const EngineSocket* engine_socket() const noexcept { return socket_.get(); }
 
  private:
   void publisher_thread();
@@ -90,6 +98,7 @@ class DdsBridge final : public CycleListener {
   std::unique_ptr<CommandIntake> intake_;
   std::unique_ptr<RequestDispatcher> dispatcher_;
   std::unique_ptr<LockstepSync> lockstep_;
+  std::unique_ptr<EngineSocket> socket_;
 
   std::atomic<std::uint32_t> ticket_{0};  // the loop -> the publisher (futex)
   std::atomic<bool> stopping_{false};

@@ -29,6 +29,29 @@ std::string PeerId::text() const {
   return s;
 }
 
+namespace {
+constexpr std::uint64_t kSocketTag = 0x5eca7e1100000000ull;  // the top 32 bits of a socket's writer handle
+constexpr std::uint64_t kSocketMask = 0xffffffff00000000ull;
+}  // namespace
+
+PeerId PeerId::of_socket(std::uint64_t connection) noexcept {
+  PeerId id;
+  std::memcpy(id.guid.data(), "hapticdw", 8);  // 8 bytes, the connection's 4, then entity id ffffffff
+  for (int b = 0; b < 4; ++b) id.guid[8 + b] = static_cast<unsigned char>(connection >> (8 * (3 - b)));
+  id.guid[12] = id.guid[13] = id.guid[14] = id.guid[15] = 0xff;
+  return id;
+}
+
+bool PeerId::is_socket() const noexcept {
+  return std::memcmp(guid.data(), "hapticdw", 8) == 0 && guid[12] == 0xff && guid[13] == 0xff && guid[14] == 0xff &&
+         guid[15] == 0xff;
+}
+
+dds_instance_handle_t socket_writer(std::uint64_t connection) noexcept {
+  return kSocketTag | (connection & ~kSocketMask);
+}
+bool is_socket_writer(dds_instance_handle_t writer) noexcept { return (writer & kSocketMask) == kSocketTag; }
+
 PeerDirectory::PeerDirectory(std::size_t capacity) : capacity_(std::max<std::size_t>(capacity, 1)) {
   entries_.reserve(capacity_);
   not_alive_.reserve(capacity_);
@@ -62,7 +85,21 @@ std::optional<PeerId> PeerDirectory::participant_of(dds_entity_t reader, dds_ins
   return id;
 }
 
-bool PeerDirectory::matched(dds_entity_t reader, dds_instance_handle_t writer) {
+void PeerDirectory::socket_opened(std::uint64_t connection) {
+  std::lock_guard lock(mutex_);
+  sockets_.push_back(connection);
+}
+
+void PeerDirectory::socket_closed(std::uint64_t connection) {
+  std::lock_guard lock(mutex_);
+  sockets_.erase(std::remove(sockets_.begin(), sockets_.end(), connection), sockets_.end());
+}
+
+bool PeerDirectory::matched(dds_entity_t reader, dds_instance_handle_t writer) const {
+  if (is_socket_writer(writer)) {
+    std::lock_guard lock(mutex_);
+    return std::find(sockets_.begin(), sockets_.end(), writer & ~kSocketMask) != sockets_.end();
+  }
   dds_builtintopic_endpoint_t* data = dds_get_matched_publication_data(reader, writer);
   if (data == nullptr) return false;
   dds_builtintopic_free_endpoint(data);
@@ -83,6 +120,11 @@ void PeerDirectory::liveliness_changed(const dds_liveliness_changed_status_t& st
 }
 
 bool PeerDirectory::has_live_writer(dds_entity_t reader, const PeerId& participant) {
+  if (participant.is_socket()) {  // its connection is open: the same check as its requests'
+    std::lock_guard lock(mutex_);
+    return std::any_of(sockets_.begin(), sockets_.end(),
+                       [&](std::uint64_t c) { return PeerId::of_socket(c) == participant; });
+  }
   std::vector<dds_instance_handle_t> handles(64);
   dds_return_t n = dds_get_matched_publications(reader, handles.data(), handles.size());
   if (n > static_cast<dds_return_t>(handles.size())) {  // more writers than room: ask again with room for all

@@ -18,14 +18,24 @@
 
 namespace hapticd::server {
 
-// A DDS participant, by its GUID (its key in discovery). All zero: nobody.
+// A DDS participant, by its GUID (its key in discovery), or a client of the engine socket (a GUID no DDS
+// participant has: its entity id is not a participant's). All zero: nobody.
 struct PeerId {
   std::array<unsigned char, 16> guid{};
   friend bool operator==(const PeerId&, const PeerId&) = default;
   [[nodiscard]] bool empty() const noexcept { return *this == PeerId{}; }
   // The GUID's prefix as hex (for messages: "participant 0110a4c3...").
   [[nodiscard]] std::string text() const;
+  // The engine socket's client `connection` (and whether a peer is one).
+  static PeerId of_socket(std::uint64_t connection) noexcept;
+  [[nodiscard]] bool is_socket() const noexcept;
 };
+
+// The writer handle that stands for an engine socket's client (its requests and commands), and whether a writer
+// handle is one. Cyclone's handles are 64-bit random-looking numbers: one with these 32 top bits is not
+// expected (2^-32 per writer).
+[[nodiscard]] dds_instance_handle_t socket_writer(std::uint64_t connection) noexcept;
+[[nodiscard]] bool is_socket_writer(dds_instance_handle_t writer) noexcept;
 
 class PeerDirectory {
  public:
@@ -34,12 +44,16 @@ class PeerDirectory {
   // The participant of `writer`, a writer matched on `reader`; nullopt when it is not (or no longer) matched.
   std::optional<PeerId> participant_of(dds_entity_t reader, dds_instance_handle_t writer);
   // Whether `writer` is still matched on `reader`: a participant that exits deletes its writers, one that
-  // vanishes is removed when its lease runs out.
-  [[nodiscard]] static bool matched(dds_entity_t reader, dds_instance_handle_t writer);
+  // vanishes is removed when its lease runs out. An engine socket's client: while its connection is open.
+  [[nodiscard]] bool matched(dds_entity_t reader, dds_instance_handle_t writer) const;
   // Cyclone's liveliness-changed callback of `reader` (automatic liveliness: the writer's process asserts it).
   void liveliness_changed(const dds_liveliness_changed_status_t& status);
-  // Whether `participant` has a writer matched on `reader` whose liveliness has not been lost.
+  // Whether `participant` has a writer matched on `reader` whose liveliness has not been lost (an engine socket's
+  // client: while its connection is open; the socket's pings close a frozen one).
   [[nodiscard]] bool has_live_writer(dds_entity_t reader, const PeerId& participant);
+  // The engine socket's connections (its thread): open from the handshake until closed.
+  void socket_opened(std::uint64_t connection);
+  void socket_closed(std::uint64_t connection);
 
  private:
   struct Entry {
@@ -54,6 +68,7 @@ class PeerDirectory {
   mutable std::mutex mutex_;
   std::vector<Entry> entries_;                    // at most capacity_
   std::vector<dds_instance_handle_t> not_alive_;  // writers whose liveliness was lost; at most capacity_
+  std::vector<std::uint64_t> sockets_;            // the engine socket's open connections (at most its clients)
   std::uint64_t clock_ = 0;
 };
 

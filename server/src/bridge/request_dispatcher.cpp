@@ -30,66 +30,74 @@ bool is_group_request(hapticd_msg_RequestKind kind) noexcept {
 void RequestDispatcher::handle_requests() {
   dds_.request.take([&](const hapticd_msg_ControlRequest& m, const dds_sample_info_t& info) {
     // A device, a group or "*" (every device) of this server: the reader's filter keeps the rest out.
-    const std::string target(dds::text_of(m.device));
-    DeviceLink* d = links_.find(target);
-    GroupLink* g = links_.find_group(target);
-    const bool every = target == "*";
-    if (d == nullptr && g == nullptr && !every) return;
-    std::vector<DeviceLink*> members;  // a group request's devices
-    if (g != nullptr)
-      for (std::size_t i : g->members) members.push_back(&links_[i]);
-    if (every)
-      for (auto& link : links_) members.push_back(link.get());
-    if (d != nullptr) d->requests.fetch_add(1, std::memory_order_relaxed);
-    for (DeviceLink* member : members) member->requests.fetch_add(1, std::memory_order_relaxed);
-    const std::optional<PeerId> requester = dds_.peers.participant_of(dds_.request.get(), info.publication_handle);
-    if (requester) {
-      if (const hapticd_msg_ControlReply* again = answered_->find(*requester, m)) {
-        (void)dds_.reply.write(*again);  // sent again: the same answer, nothing applied twice
-        return;
-      }
-    }
-    Answer answer;
-    bool dispatched = false;
-    if (dds::text_of(m.client).empty() || !dds::terminated(m.client) || !dds::terminated(m.subject)) {
-      answer.message = "malformed request (no client id)";
-    } else if (!requester) {
-      answer.message = "request from a writer that is no longer known";
-    } else {
-      dispatched = true;
-      const Request r{
-          m,
-          info,
-          *requester,
-          dds::text_of(m.client),
-          dds::text_of(m.subject),
-          std::vector<double>(m.values, m.values + std::clamp<std::int32_t>(m.value_count, 0, hapticd_msg_MAX_VALUES))};
-      try {  // whatever a request meets (a plugin that throws, memory) is its refusal, never the thread's end
-        if (is_group_request(m.kind)) {
-          answer = d != nullptr ? Answer{false, "'" + target + "' is a device: group requests name a group"}
-                                : dispatch_group(members, every, r);
-        } else {
-          answer = d != nullptr ? dispatch(*d, r) : Answer{false, "'" + target + "' is not a device: name one"};
-        }
-      } catch (const std::exception& e) {
-        answer = Answer{false, std::string("the request failed: ") + e.what()};
-      } catch (...) {
-        answer = Answer{false, "the request failed"};
-      }
-    }
-    hapticd_msg_ControlReply reply{};
-    dds::set_text(reply.device, target);
-    dds::set_text(reply.client, dds::text_of(m.client));
-    reply.request_id = m.request_id;
-    reply.accepted = answer.accepted;
-    dds::set_text(reply.message, answer.message);
-    const std::size_t count = std::min<std::size_t>(answer.values.size(), hapticd_msg_MAX_VALUES);
-    reply.value_count = static_cast<std::int32_t>(count);
-    std::copy_n(answer.values.begin(), count, reply.values);
-    if (dispatched) answered_->remember(*requester, reply);
+    const std::string_view target = dds::text_of(m.device);
+    if (links_.find(target) == nullptr && links_.find_group(target) == nullptr && target != "*") return;
+    const hapticd_msg_ControlReply reply =
+        answer(m, dds_.peers.participant_of(dds_.request.get(), info.publication_handle), info.publication_handle);
     // One instance per device (the reply's key): no state kept per client id beyond the bounded AnsweredRequests.
     (void)dds_.reply.write(reply);
   });
+}
+
+hapticd_msg_ControlReply RequestDispatcher::answer(const hapticd_msg_ControlRequest& m,
+                                                   const std::optional<PeerId>& requester,
+                                                   dds_instance_handle_t writer) {
+  const std::string target(dds::text_of(m.device));
+  DeviceLink* d = links_.find(target);
+  GroupLink* g = links_.find_group(target);
+  const bool every = target == "*";
+  std::vector<DeviceLink*> members;  // a group request's devices
+  if (g != nullptr)
+    for (std::size_t i : g->members) members.push_back(&links_[i]);
+  if (every)
+    for (auto& link : links_) members.push_back(link.get());
+  if (d != nullptr) d->requests.fetch_add(1, std::memory_order_relaxed);
+  for (DeviceLink* member : members) member->requests.fetch_add(1, std::memory_order_relaxed);
+  if (requester) {
+    if (const hapticd_msg_ControlReply* again = answered_->find(*requester, m))
+      return *again;  // sent again: the same answer, nothing applied twice
+  }
+  Answer answer;
+  bool dispatched = false;
+  if (d == nullptr && g == nullptr && !every) {
+    answer.message = "'" + target + "' is neither a device nor a group of this server";
+  } else if (dds::text_of(m.client).empty() || !dds::terminated(m.client) || !dds::terminated(m.subject)) {
+    answer.message = "malformed request (no client id)";
+  } else if (!requester) {
+    answer.message = "request from a writer that is no longer known";
+  } else {
+    dispatched = true;
+    const Request r{
+        m,
+        writer,
+        *requester,
+        dds::text_of(m.client),
+        dds::text_of(m.subject),
+        std::vector<double>(m.values, m.values + std::clamp<std::int32_t>(m.value_count, 0, hapticd_msg_MAX_VALUES))};
+    try {  // whatever a request meets (a plugin that throws, memory) is its refusal, never the thread's end
+      if (is_group_request(m.kind)) {
+        answer = d != nullptr ? Answer{false, "'" + target + "' is a device: group requests name a group"}
+                              : dispatch_group(members, every, r);
+      } else {
+        answer = d != nullptr ? dispatch(*d, r) : Answer{false, "'" + target + "' is not a device: name one"};
+      }
+    } catch (const std::exception& e) {
+      answer = Answer{false, std::string("the request failed: ") + e.what()};
+    } catch (...) {
+      answer = Answer{false, "the request failed"};
+    }
+  }
+  hapticd_msg_ControlReply reply{};
+  dds::set_text(reply.device, target);
+  dds::set_text(reply.client, dds::text_of(m.client));
+  reply.request_id = m.request_id;
+  reply.accepted = answer.accepted;
+  dds::set_text(reply.message, answer.message);
+  const std::size_t count = std::min<std::size_t>(answer.values.size(), hapticd_msg_MAX_VALUES);
+  reply.value_count = static_cast<std::int32_t>(count);
+  std::copy_n(answer.values.begin(), count, reply.values);
+  if (dispatched) answered_->remember(*requester, reply);
+  return reply;
 }
 
 RequestDispatcher::Answer RequestDispatcher::dispatch_group(const std::vector<DeviceLink*>& members, bool every,
@@ -218,7 +226,7 @@ RequestDispatcher::Answer RequestDispatcher::claim(DeviceLink& d, const Request&
     std::lock_guard lock(d.mutex);
     a.accepted = d.gate.claim(r.client, r.requester);
     if (a.accepted) {
-      d.claim_writer = r.info.publication_handle;
+      d.claim_writer = r.writer;
       d.claimed_ns = monotonic_now_ns();
     }
     a.message = a.accepted ? "claimed" : "claimed by '" + d.gate.owner() + "' (another participant)";
@@ -267,13 +275,13 @@ RequestDispatcher::Answer RequestDispatcher::drive_operator(DeviceLink& d, const
 RequestDispatcher::Answer RequestDispatcher::emergency_stop(DeviceLink& d, const Request& r) {
   {  // anyone may stop a device; the stop holds until its requester releases it
     std::lock_guard lock(d.mutex);
-    d.stops.add(Stopper{r.requester, std::string(r.client), r.info.publication_handle});
+    d.stops.add(Stopper{r.requester, std::string(r.client), r.writer});
   }
   return forward(d, DeviceRequest::Kind::emergency_stop, r);
 }
 
 bool RequestDispatcher::writer_gone(dds_instance_handle_t writer) const {
-  return !PeerDirectory::matched(dds_.request.get(), writer);
+  return !dds_.peers.matched(dds_.request.get(), writer);
 }
 
 std::optional<RequestDispatcher::Answer> RequestDispatcher::refused_recovery(DeviceLink& d, const Request& r) {
@@ -312,7 +320,7 @@ void RequestDispatcher::check_claims() {
       claimed_ns = d.claimed_ns;
     }
     const char* why = nullptr;
-    if (!PeerDirectory::matched(dds_.request.get(), claim_writer)) {
+    if (!dds_.peers.matched(dds_.request.get(), claim_writer)) {
       why = "left the domain";
     } else if (now - claimed_ns > claim_grace_ns_ && !dds_.peers.has_live_writer(dds_.command.get(), owner) &&
                !dds_.peers.has_live_writer(dds_.group_command.get(), owner)) {

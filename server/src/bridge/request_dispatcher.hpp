@@ -31,6 +31,10 @@ class RequestDispatcher {
 
   // Answers every request waiting on the reader.
   void handle_requests();
+  // Answers one request from `requester` (nullopt: a writer no longer known) through `writer` (a DDS request
+  // writer, or an engine socket's client: socket_writer()): applied once, the same answer when sent again.
+  hapticd_msg_ControlReply answer(const hapticd_msg_ControlRequest& m, const std::optional<PeerId>& requester,
+                                  dds_instance_handle_t writer);
   // Ends the claims whose claimant is gone: its request writer no longer matched (a clean exit deletes it; a
   // vanished participant is removed when its lease runs out), or no command writer of its participant whose
   // liveliness holds for claim_hold_s on end, counted from claim_grace_s after the claim (a killed or frozen
@@ -46,7 +50,7 @@ class RequestDispatcher {
   // A request as its handler sees it.
   struct Request {
     const hapticd_msg_ControlRequest& message;
-    const dds_sample_info_t& info;
+    dds_instance_handle_t writer;  // the request's writer (a claim ends when it is gone)
     const PeerId& requester;
     std::string_view client;
     std::string_view name;

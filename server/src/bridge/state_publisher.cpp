@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "bridge/engine_socket.hpp"
 #include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "session/device_requests.hpp"
@@ -69,6 +70,7 @@ void StatePublisher::publish_states() {
     d.round_trip.command_applied(s.engine_sequence, s.cycle);
     d.round_trip.state_written(p.last.serial, s.cycle, monotonic_now_ns());
     (void)dds_.state.write(p.last);
+    if (socket_ != nullptr) socket_->state(i, p.last);
     d.states.fetch_add(1, std::memory_order_relaxed);
     d.loop_time_ns.store(s.time_ns, std::memory_order_relaxed);
     p.last_write_ns = monotonic_now_ns();

@@ -17,6 +17,8 @@
 
 namespace hapticd::server {
 
+class EngineSocket;
+
 class StatePublisher {
  public:
   StatePublisher(DdsEndpoints& dds, DeviceLinks& links, EventSender& events, double rate_hz,
@@ -24,6 +26,8 @@ class StatePublisher {
 
   // Before the threads start: where the live statistics of the loop that drives `device` are (the executor's).
   void set_loop_statistics(std::size_t device, const LiveLoopStatistics* live) noexcept { live_[device] = live; }
+  // Before the threads start: the engine socket, which sends each state to its clients too (nullptr: none).
+  void set_engine_socket(EngineSocket* socket) noexcept { socket_ = socket; }
 
   // Publisher thread (and once more at the end): the new snapshot of every device as a state, and its events.
   // A device with nothing new has its last state repeated now and then, for readers that matched after it.
@@ -58,6 +62,7 @@ class StatePublisher {
   double rate_hz_;
   std::uint64_t snapshot_interval_;
   std::vector<const LiveLoopStatistics*> live_;  // per device: its loop's
+  EngineSocket* socket_ = nullptr;
   std::vector<Published> published_;
   std::unique_ptr<GroupSnapshot> group_snapshot_;                        // publisher thread (8 device snapshots)
   std::vector<std::unique_ptr<hapticd_msg_GroupState>> group_messages_;  // per group, the last (about 7 kB)

@@ -3,6 +3,7 @@
 #include <arpa/inet.h>
 
 #include <algorithm>
+#include <fstream>
 #include <set>
 
 #include "config/config_error.hpp"
@@ -200,6 +201,29 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
   return d;
 }
 
+// A section's allowed_origins: web pages (their Origin) that may connect besides those served from this machine.
+std::vector<std::string> read_origins(const YAML::Node& list, const std::string& file, const std::string& key) {
+  std::vector<std::string> origins;
+  if (!list.IsDefined() || list.IsNull()) return origins;
+  if (!list.IsSequence() || list.size() > 16)
+    throw ConfigError(file, line_of(list), key, "expected a list of at most 16 origins, e.g. [\"https://host:8443\"]");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (!list[i].IsScalar() || list[i].Scalar().find("://") == std::string::npos || list[i].Scalar().size() > 200)
+      throw ConfigError(file, line_of(list[i]), key + "[" + std::to_string(i) + "]",
+                        "expected an origin: scheme://host[:port]");
+    origins.push_back(list[i].Scalar());
+  }
+  return origins;
+}
+
+void check_ip_address(const std::string& address, const YAML::Node& node, const std::string& file,
+                      const std::string& key) {
+  unsigned char parsed[sizeof(in6_addr)];
+  if (inet_pton(AF_INET, address.c_str(), parsed) != 1 && inet_pton(AF_INET6, address.c_str(), parsed) != 1)
+    throw ConfigError(file, line_of(node), key,
+                      "'" + address + "' is not an IP address (127.0.0.1 for this machine only, the default)");
+}
+
 LiveViewSettings read_live_view(const YAML::Node& node, const std::string& file) {
   LiveViewSettings v;
   if (!node.IsDefined()) return v;
@@ -208,27 +232,57 @@ LiveViewSettings read_live_view(const YAML::Node& node, const std::string& file)
   if (!node.IsMap()) throw ConfigError(file, line_of(node), "live_view", "expected a mapping of live view settings");
   const Parameters p =
       read_parameters(node, live_view_settings_schema(), file, "live_view", line_of(node), {"allowed_origins"});
-  if (const YAML::Node list = node["allowed_origins"]; list.IsDefined() && !list.IsNull()) {
-    if (!list.IsSequence() || list.size() > 16)
-      throw ConfigError(file, line_of(list), "live_view.allowed_origins",
-                        "expected a list of at most 16 origins, e.g. [\"https://app.foxglove.dev\"]");
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const std::string key = "live_view.allowed_origins[" + std::to_string(i) + "]";
-      if (!list[i].IsScalar() || list[i].Scalar().find("://") == std::string::npos || list[i].Scalar().size() > 200)
-        throw ConfigError(file, line_of(list[i]), key, "expected an origin: scheme://host[:port]");
-      v.allowed_origins.push_back(list[i].Scalar());
-    }
-  }
+  v.allowed_origins = read_origins(node["allowed_origins"], file, "live_view.allowed_origins");
   v.enabled = p.boolean("enabled");
   v.address = p.string("address");
   v.port = static_cast<int>(p.integer("port"));
   v.rate_hz = p.real("rate_hz");
   v.max_clients = static_cast<int>(p.integer("max_clients"));
   v.force_scale_m_per_n = p.real("force_scale_m_per_n");
-  unsigned char parsed[sizeof(in6_addr)];
-  if (inet_pton(AF_INET, v.address.c_str(), parsed) != 1 && inet_pton(AF_INET6, v.address.c_str(), parsed) != 1)
-    throw ConfigError(file, line_of(node["address"]), "live_view.address",
-                      "'" + v.address + "' is not an IP address (127.0.0.1 for this machine only, the default)");
+  check_ip_address(v.address, node["address"], file, "live_view.address");
+  return v;
+}
+
+EngineSocketSettings read_engine_socket(const YAML::Node& node, const std::string& file,
+                                        const std::filesystem::path& folder) {
+  EngineSocketSettings v;
+  if (!node.IsDefined()) return v;
+  v.enabled = true;
+  if (node.IsNull()) return v;  // `engine_socket:` alone: on with the defaults
+  if (!node.IsMap())
+    throw ConfigError(file, line_of(node), "engine_socket", "expected a mapping of engine socket settings");
+  const Parameters p =
+      read_parameters(node, engine_socket_settings_schema(), file, "engine_socket", line_of(node), {"allowed_origins"});
+  v.allowed_origins = read_origins(node["allowed_origins"], file, "engine_socket.allowed_origins");
+  v.enabled = p.boolean("enabled");
+  v.address = p.string("address");
+  v.port = static_cast<int>(p.integer("port"));
+  v.max_clients = static_cast<int>(p.integer("max_clients"));
+  v.max_messages_per_s = p.real("max_messages_per_s");
+  check_ip_address(v.address, node["address"], file, "engine_socket.address");
+  if (const std::string token_file = p.string("token_file"); !token_file.empty()) {
+    const std::filesystem::path path =
+        std::filesystem::path(token_file).is_absolute() ? std::filesystem::path(token_file) : folder / token_file;
+    std::ifstream in(path);
+    std::string token;
+    if (!in || !std::getline(in, token))
+      throw ConfigError(file, line_of(node["token_file"]), "engine_socket.token_file",
+                        "cannot read the token from '" + path.string() + "'");
+    while (!token.empty() && (token.back() == '\r' || token.back() == ' ')) token.pop_back();
+    if (token.size() < 16 || token.size() > 256 ||
+        token.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-._~") !=
+            std::string::npos)
+      throw ConfigError(file, line_of(node["token_file"]), "engine_socket.token_file",
+                        "the token in '" + path.string() +
+                            "' must be 16-256 characters of letters, digits and -._~ (e.g. openssl rand -hex 24)");
+    v.token = token;
+  }
+  const bool loopback = v.address == "::1" || (v.address.rfind("127.", 0) == 0);
+  if (v.enabled && !loopback && v.token.empty())
+    throw ConfigError(file, line_of(node["address"]), "engine_socket.address",
+                      "the engine socket listens beyond this machine only with a token: give engine_socket.token_file "
+                      "(anyone who reaches " +
+                          v.address + " could otherwise claim and drive the devices)");
   return v;
 }
 
@@ -450,6 +504,34 @@ ParameterSchema group_loop_schema() {
       .minimum(-1)
       .maximum(1023)
       .default_value(std::int64_t{-1});
+  return s;
+}
+
+ParameterSchema engine_socket_settings_schema() {
+  ParameterSchema s;
+  const EngineSocketSettings d;
+  s.boolean("enabled", "serve the engine socket").default_value(true);
+  s.string("address",
+           "IP address to listen on: 127.0.0.1 (the default) serves this machine only; another interface's address "
+           "needs token_file")
+      .default_value(d.address);
+  s.integer("port", "TCP port; 0 takes any free port (the log names it)")
+      .minimum(0)
+      .maximum(65535)
+      .default_value(std::int64_t{d.port});
+  s.string("token_file",
+           "a file holding the access token clients present (?token=... or Authorization: Bearer); relative to "
+           "the session file; \"\": none (loopback only)")
+      .default_value(std::string());
+  s.integer("max_clients", "clients connected at once (more are refused)")
+      .minimum(1)
+      .maximum(64)
+      .default_value(std::int64_t{d.max_clients});
+  s.real("max_messages_per_s", "messages a client may send per second (more are dropped and counted)")
+      .unit("1/s")
+      .minimum(10.0)
+      .maximum(100000.0)
+      .default_value(d.max_messages_per_s);
   return s;
 }
 
@@ -677,10 +759,15 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
   SessionConfig config;
   config.file = path;
   config.overrides = applied;
-  MappingReader top(root, "", file, {"server", "dds", "live_view", "devices", "groups"});
+  MappingReader top(root, "", file, {"server", "dds", "live_view", "engine_socket", "devices", "groups"});
   config.server = read_server(top.optional("server"), file, path.parent_path());
   config.dds = read_dds(top.optional("dds"), file, path.parent_path());
   config.live_view = read_live_view(top.optional("live_view"), file);
+  config.engine_socket = read_engine_socket(top.optional("engine_socket"), file, path.parent_path());
+  if (config.engine_socket.enabled && !config.dds.enabled)
+    throw ConfigError(file, line_of(root["engine_socket"]), "engine_socket",
+                      "the engine socket needs the dds section: it is a door to the DDS interface's gate (claims, "
+                      "validation, deadlines); add `dds: {}` (loopback by default)");
 
   const YAML::Node devices = top.required("devices");
   if (!devices.IsSequence() || devices.size() == 0)

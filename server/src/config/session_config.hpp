@@ -93,6 +93,18 @@ struct LiveViewSettings {
   std::vector<std::string> allowed_origins;
 };
 
+// The `engine_socket` section: the WebSocket/JSON door to the DDS interface's gate for clients without DDS
+// (docs/engine-socket.md). Absent: none. Needs the `dds` section.
+struct EngineSocketSettings {
+  bool enabled = false;
+  std::string address = "127.0.0.1";  // loopback by default; another address needs a token
+  int port = 8766;                    // 0: any free port (the log says which)
+  std::string token;                  // read from token_file ("": none, loopback only)
+  int max_clients = 4;
+  double max_messages_per_s = 5000.0;  // per client: more are dropped (counted, the client told)
+  std::vector<std::string> allowed_origins;
+};
+
 struct PluginConfig {
   std::string plugin;
   std::optional<std::string> library;
@@ -166,6 +178,7 @@ struct SessionConfig {
   ServerSettings server;
   DdsSettings dds;
   LiveViewSettings live_view;
+  EngineSocketSettings engine_socket;
   std::vector<DeviceConfig> devices;
   std::vector<GroupConfig> groups;
   std::vector<AppliedOverride> overrides;  // what overrides changed: an error there names the override
@@ -186,6 +199,8 @@ ParameterSchema server_settings_schema();
 ParameterSchema dds_settings_schema();
 // The schema of the `live_view` section.
 ParameterSchema live_view_settings_schema();
+// The schema of the `engine_socket` section.
+ParameterSchema engine_socket_settings_schema();
 // The `base_pose` of a device entry.
 ParameterSchema base_pose_schema();
 // The schema of a group's `repulsion` mapping.

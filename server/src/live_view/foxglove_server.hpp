@@ -1,13 +1,10 @@
 #pragma once
-// A Foxglove WebSocket server (foxglove.websocket.v1, JSON channels): listens on one address, accepts viewers up
-// to a limit, tells each the server info and the channels, keeps their subscriptions, and sends each message
-// published on a channel to whoever subscribed to it. One thread of its own runs every socket and calls the
-// owner's tick at a fixed period; publish() is called from that tick. A viewer that cannot keep up loses
-// messages (counted), never the server's memory or time: everything queued for a viewer is bounded, and one
-// that stops taking what it is sent, or never subscribes, is disconnected. A malformed request is answered with
-// an error status (never echoing more than a few words of it) and counted. Browser pages connect only from the
-// allowed origins. Boost.Beast lives in this one file's implementation.
-#include <atomic>
+// A Foxglove WebSocket server (foxglove.websocket.v1, JSON channels) on the hardened WebSocket transport
+// (net/websocket_server.hpp: client limit, origins, bounded queues, slow and idle clients cut off): tells each
+// viewer the server info and the channels, keeps their subscriptions, and sends each message published on a
+// channel to whoever subscribed to it. The transport's thread calls the owner's tick at a fixed period; publish()
+// is called from that tick. A viewer that subscribes to nothing is idle. A malformed request is answered with an
+// error status (never echoing more than a few words of it) and counted.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -17,6 +14,7 @@
 #include <vector>
 
 #include "live_view/foxglove_protocol.hpp"
+#include "net/websocket_server.hpp"
 
 namespace hapticd::server::live_view {
 
@@ -42,19 +40,8 @@ struct FoxgloveServerOptions {
   std::string_view page;
 };
 
-struct FoxgloveServerCounters {
-  std::atomic<std::uint64_t> connections{0};  // viewers accepted so far
-  std::atomic<std::uint64_t> refused{0};      // connections refused: too many viewers, or not the protocol
-  std::atomic<std::uint64_t> clients{0};      // connected now
-  std::atomic<std::uint64_t> sent{0};         // messages queued for sending
-  std::atomic<std::uint64_t> dropped{0};      // messages a slow viewer did not get
-  std::atomic<std::uint64_t> bad_requests{0};
-  std::atomic<std::uint64_t> disconnected{0};  // viewers cut off: too slow, never reading, or idle
-};
-
-// Whether a browser page from `origin` (its Origin header; empty: not a page) may connect: loopback pages and
-// the listed ones.
-[[nodiscard]] bool origin_allowed(std::string_view origin, const std::vector<std::string>& allowed);
+using FoxgloveServerCounters = net::WebSocketCounters;
+using net::origin_allowed;
 
 class FoxgloveServer {
  public:
@@ -76,10 +63,11 @@ class FoxgloveServer {
   [[nodiscard]] bool subscribed(std::uint32_t channel) const noexcept;
   void publish(std::uint32_t channel, std::uint64_t time_ns, std::string_view payload);
 
-  struct Impl;
+  class Protocol;
 
  private:
-  std::shared_ptr<Impl> impl_;
+  std::unique_ptr<Protocol> protocol_;
+  std::unique_ptr<net::WebSocketServer> transport_;
 };
 
 }  // namespace hapticd::server::live_view

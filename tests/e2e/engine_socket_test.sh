@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# The engine socket (docs/engine-socket.md) with real clients on loopback: the shipped dds-coupling session of the
+# simulated ViSHaRD3 at 1 kHz (DDS on domain DOMAIN) with an engine socket on a free port. First the attacks
+# (tests/engine_socket/attacks.mjs: a second claim, an intruder's commands, a connection under the owner's client
+# id, malformed messages, a flood, a client that never reads, the owner leaving); then a wall engine in Node (ws) and
+# one in Python (websockets) and a web page in headless chromium (tools/engine_socket/wall.html), each holding the simulated operator's 15 N push at its wall 2 cm ahead through the
+# 3000 N/m coupling; then a server whose socket wants a token refuses a client without it and serves one with it;
+# and a socket beyond loopback without a token is a config error naming the key.
+# Usage: engine_socket_test.sh BIN_DIR SOURCE_DIR WORK_DIR DOMAIN
+set -u
+bin=$1 src=$2 work=$3 domain=$4
+rm -rf "$work"; mkdir -p "$work"; cd "$work"
+source "$src/tests/e2e/session_copy.sh"
+here="$src/tests/engine_socket"
+passed=0
+fail() { echo "FAIL: $*"; for f in *.log; do echo "--- $f"; tail -8 "$f"; done; exit 1; }
+ok() { echo "ok: $*"; passed=$((passed + 1)); }
+# A Python that has the websockets package: the one on PATH, else Debian's (python3-websockets).
+py=python3
+python3 -c "import websockets" 2> /dev/null || py=/usr/bin/python3
+"$py" -c "import websockets" 2> /dev/null || fail "no python3 with the websockets package (scripts/install-deps.sh)"
+
+serve() {  # serve LOG EXTRA...: the session with an engine socket on a free port; sets $server and $url
+  local log=$1; shift
+  timeout 70 "$bin/hapticd" --config "$src/config/sessions/vishard3/dds-coupling.yaml" --dds-domain "$domain" \
+    --duration 45 --log-level info --set server.realtime_priority=0 --set server.lock_memory=false \
+    --set server.rate_hz=1000 --set engine_socket.port=0 "$@" $(loose_watchdogs vishard3) > "$log" 2>&1 &
+  server=$!
+  url=
+  for _ in $(seq 100); do
+    url=$(sed -n 's/.*engine socket on \(ws:[^ ]*\) .*/\1/p' "$log")
+    [ -n "$url" ] && return 0
+    sleep 0.1
+  done
+  fail "the server did not say where its engine socket is"
+}
+push() { timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 operator vishard3 "$@" > push.log 2>&1 || fail "operator $*: $(cat push.log)"; }
+# wall ENGINE_LOG CMD...: runs a wall engine, pushes 15 N once it claimed, checks the handle rests at its wall.
+wall() {
+  local log=$1; shift
+  "$@" > "$log" 2>&1 &
+  local engine=$!
+  for _ in $(seq 100); do grep -q "claimed 'vishard3'" "$log" && break; sleep 0.1; done
+  grep -q "claimed 'vishard3'" "$log" || fail "$log: the engine did not claim"
+  push push 15 0 0 0.2
+  wait "$engine" || fail "$log: the engine exited with $?"
+  push release
+  local past
+  past=$(sed -n 's/.*handle \([-0-9.]*\) m past the start.*/\1/p' "$log")
+  grep "answered" "$log"
+  awk -v x="$past" 'BEGIN { exit !(x > 0.015 && x < 0.03) }' || fail "$log: the wall did not hold: $past m"
+}
+
+serve server.log
+trap 'kill $server 2> /dev/null' EXIT
+timeout 60 node "$here/attacks.mjs" "$url" vishard3 > attacks.log 2>&1 || fail "the attacks: $(cat attacks.log)"
+cat attacks.log
+ok "the attacks were refused"
+sleep 1
+wall node.log timeout 30 node "$here/wall_engine.mjs" "$url" vishard3 6
+ok "the Node engine's wall holds the 15 N push"
+wall python.log timeout 30 "$py" "$here/wall_engine.py" "$url" vishard3 6
+ok "the Python engine's wall holds the 15 N push"
+timeout 60 node "$here/browser_wall.mjs" "$url" vishard3 5 claimed.flag > browser.log 2>&1 &
+browser=$!
+for _ in $(seq 250); do [ -f claimed.flag ] && break; sleep 0.1; done
+[ -f claimed.flag ] || fail "the page in chromium did not claim the device"
+push push 15 0 0 0.2
+wait "$browser" || fail "the page in chromium: $(cat browser.log)"
+push release
+python3 - "$(tail -1 browser.log)" << 'PY' || fail "the page's wall: $(tail -1 browser.log)"
+import json, sys
+w = json.loads(sys.argv[1])
+print(f"the page answered {w['answered']} of {w['states']} states; handle {w['past']:.4f} m past the start")
+assert w["claimed"], w
+assert 0.015 < w["past"] < 0.03, "the wall did not hold"
+assert w["answered"] >= 0.9 * w["states"] - 1 and w["states"] > 3000, "too few states answered"
+PY
+ok "a page in headless chromium holds the 15 N push at its wall at 1 kHz"
+kill "$server"; wait "$server"
+
+# A token: refused without it (HTTP 401), served with it.
+head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' > token
+sed "s|^dds:|engine_socket: {token_file: $work/token}\ndds:|" "$src/config/sessions/vishard3/dds-coupling.yaml" |
+  sed -e "s%\.\./\.\./urdf/%$src/config/urdf/%g" > token-session.yaml
+timeout 60 "$bin/hapticd" --config token-session.yaml --dds-domain "$domain" --duration 20 --log-level info \
+  --set server.realtime_priority=0 --set server.lock_memory=false --set engine_socket.port=0 \
+  $(loose_watchdogs vishard3) > token-server.log 2>&1 &
+server=$!
+url=
+for _ in $(seq 100); do url=$(sed -n 's/.*engine socket on \(ws:[^ ]*\) .*/\1/p' token-server.log); [ -n "$url" ] && break; sleep 0.1; done
+[ -n "$url" ] || fail "the token server did not start"
+grep -q "token required" token-server.log || fail "the log does not say the socket wants a token"
+timeout 20 "$py" - "$url" "$(cat token)" > token.log 2>&1 << 'PY' || fail "the token check: $(cat token.log)"
+import asyncio, json, sys
+import websockets
+async def main(url, token):
+    try:
+        async with websockets.connect(url) as ws:
+            print("FAIL: connected without the token"); return 1
+    except websockets.exceptions.InvalidStatusCode as e:
+        assert e.status_code == 401, e
+        print("refused without the token: HTTP", e.status_code)
+    try:
+        async with websockets.connect(url + "/?token=" + token[:-1] + "x") as ws:
+            print("FAIL: connected with a wrong token"); return 1
+    except websockets.exceptions.InvalidStatusCode as e:
+        print("refused with a wrong token: HTTP", e.status_code)
+    async with websockets.connect(url, extra_headers={"Authorization": "Bearer " + token}) as ws:
+        inventory = json.loads(await ws.recv())
+        print("served with the token:", [d["device_id"] for d in inventory["devices"]])
+    return 0
+sys.exit(asyncio.run(main(sys.argv[1], sys.argv[2])))
+PY
+cat token.log
+ok "a socket with a token refuses clients without it and serves those with it"
+kill "$server"; wait "$server"
+
+# Beyond loopback without a token: a config error naming the key (nothing is bound, no device powered).
+"$bin/hapticd" --check-config "$src/config/sessions/vishard3/dds-coupling.yaml" \
+  --set engine_socket.address=192.0.2.1 > beyond.log 2>&1
+code=$?
+[ "$code" = 2 ] && grep -q "engine_socket.address" beyond.log && grep -q "token" beyond.log ||
+  fail "a socket beyond loopback without a token: exit $code: $(cat beyond.log)"
+ok "a socket beyond loopback without a token is a config error: $(grep -o 'engine_socket.address.*' beyond.log | head -c 120)"
+trap - EXIT
+echo "$passed passed, 0 failed"

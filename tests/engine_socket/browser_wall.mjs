@@ -1,0 +1,58 @@
+// The wall engine of a web page (tools/engine_socket/wall.html, served by the engine socket) in Debian's chromium,
+// headless: opens http://HOST:PORT/wall.html?device=DEVICE, lets it run RUN_S seconds, then reads the page's
+// window.wall through the DevTools protocol (with `ws`) and prints it as JSON on one line. The engine socket test
+// checks what it says (tests/e2e/engine_socket_test.sh).
+//   node browser_wall.mjs SOCKET_URL DEVICE RUN_S [CLAIMED_FILE]
+// CLAIMED_FILE: written once the page has claimed the device (the test then has the operator push).
+import { spawn } from "node:child_process";
+import { writeFileSync } from "node:fs";
+import { createRequire } from "node:module";
+const require = createRequire(new URL("../live_view/package.json", import.meta.url));
+const WebSocket = require("ws");
+
+const [socketUrl, device, runS, claimedFile] = process.argv.slice(2);
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+const page = `${socketUrl.replace(/^ws:/, "http:")}/wall.html?device=${encodeURIComponent(device)}`;
+const port = 9800 + Math.floor(Math.random() * 150);
+const chromium = spawn("chromium", ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-timer-throttling",
+  "--disable-renderer-backgrounding", `--remote-debugging-port=${port}`, "--remote-debugging-address=127.0.0.1",
+  page], { stdio: "ignore" });
+let chromiumError = null;
+chromium.on("error", (e) => { chromiumError = e; });
+let status = 0;
+try {
+  let target;
+  for (let i = 0; i < 75 && !target; ++i) {
+    await sleep(200);
+    try {
+      target = (await (await fetch(`http://127.0.0.1:${port}/json`)).json()).find((t) => t.type === "page");
+    } catch {}
+    if (chromiumError) throw new Error(`chromium: ${chromiumError.message}`);
+  }
+  if (!target) throw new Error("chromium did not open the page in 15 s");
+  const dev = new WebSocket(target.webSocketDebuggerUrl);
+  await new Promise((r, j) => { dev.on("open", r); dev.on("error", j); });
+  let id = 0;
+  const evaluate = (expression) => new Promise((resolve) => {
+    const mine = ++id;
+    const listener = (m) => {
+      const reply = JSON.parse(m);
+      if (reply.id !== mine) return;
+      dev.off("message", listener);
+      resolve(reply.result && reply.result.result ? reply.result.result.value : undefined);
+    };
+    dev.on("message", listener);
+    dev.send(JSON.stringify({ id: mine, method: "Runtime.evaluate", params: { expression, returnByValue: true } }));
+  });
+  for (let i = 0; i < 100 && !(await evaluate("window.wall && window.wall.claimed")); ++i) await sleep(100);
+  if (claimedFile) writeFileSync(claimedFile, "claimed\n");
+  await sleep(1000 * Number(runS));
+  console.log(JSON.stringify(await evaluate("window.wall")));
+  dev.close();
+} catch (e) {
+  console.error(`browser wall: ${e.message}`);
+  status = 1;
+} finally {
+  chromium.kill();
+}
+process.exit(status);

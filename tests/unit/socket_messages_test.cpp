@@ -1,0 +1,167 @@
+// The engine socket's JSON messages: what a client's message becomes (the DDS interface's own EngineCommand and
+// ControlRequest, checked by the gate afterwards), that nothing of a malformed message applies, that Haply's
+// shapes are taken, and the state and reply the server writes.
+#include "bridge/socket_messages.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "hapticd/dds/conversion.hpp"
+#include "hapticd/json_reader.hpp"
+
+namespace hapticd::server::socket_messages {
+namespace {
+
+struct Parsed {
+  Parser parser;
+  ClientMessage message;
+  std::uint64_t serial = 0;
+  bool parse(const std::string& text, std::string_view engine = "engine") {
+    return parser.parse(text, engine, serial, message);
+  }
+};
+
+TEST(SocketMessages, HaplysSetCursorForceIsAWrenchCommandNumberedByTheServer) {
+  Parsed p;
+  ASSERT_TRUE(p.parse(
+      R"({"inverse3":[{"device_id":"left","commands":{"set_cursor_force":{"vector":{"x":1.5,"y":-2,"z":0.25}}}}],
+                          "state_serial": 41})"));
+  ASSERT_EQ(p.message.commands.size(), 1u);
+  const hapticd_msg_EngineCommand& c = p.message.commands[0];
+  EXPECT_EQ(dds::text_of(c.device), "left");
+  EXPECT_EQ(dds::text_of(c.engine), "engine");
+  EXPECT_EQ(c.kind, hapticd_msg_COMMAND_WRENCH);
+  EXPECT_EQ(c.wrench[0], 1.5);
+  EXPECT_EQ(c.wrench[1], -2.0);
+  EXPECT_EQ(c.wrench[2], 0.25);
+  EXPECT_EQ(c.wrench[3], 0.0);
+  EXPECT_FALSE(c.local_model);
+  EXPECT_EQ(c.state_serial, 41u);
+  EXPECT_EQ(c.serial, 1u);
+  ASSERT_TRUE(p.parse(
+      R"({"devices":[{"device_id":"left","state_serial":42,"commands":{"set_cursor_force":{"vector":{"x":0}}}}]})"));
+  EXPECT_EQ(p.message.commands[0].serial, 2u);
+  EXPECT_EQ(p.message.commands[0].state_serial, 42u);
+}
+
+TEST(SocketMessages, CouplingMotionAndALocalModel) {
+  Parsed p;
+  ASSERT_TRUE(p.parse(R"({"devices":[
+      {"device_id":"a","commands":{"set_coupling":{"position":{"x":0.1,"y":0.2,"z":0.3},"velocity":{"x":1}}}},
+      {"device_id":"b","commands":{"set_motion":{"orientation":{"w":0,"x":1,"y":0,"z":0}}}},
+      {"device_id":"c","commands":{"set_wrench":{"force":{"z":1},"stiffness":[100,100,100,1,1,1],
+                                                 "anchor":{"position":{"x":0.5}}}}}]})"));
+  ASSERT_EQ(p.message.commands.size(), 3u);
+  const auto& a = p.message.commands[0];
+  EXPECT_EQ(a.kind, hapticd_msg_COMMAND_COUPLING);
+  EXPECT_EQ(a.command_pose.position[2], 0.3);
+  EXPECT_EQ(a.command_pose.orientation[0], 1.0);  // left out: the identity
+  EXPECT_EQ(a.twist[0], 1.0);
+  const auto& b = p.message.commands[1];
+  EXPECT_EQ(b.kind, hapticd_msg_COMMAND_MOTION);
+  EXPECT_EQ(b.command_pose.orientation[0], 0.0);
+  EXPECT_EQ(b.command_pose.orientation[1], 1.0);
+  const auto& c = p.message.commands[2];
+  EXPECT_TRUE(c.local_model);
+  EXPECT_EQ(c.stiffness[0], 100.0);
+  EXPECT_EQ(c.damping[0], 0.0);
+  EXPECT_EQ(c.anchor.position[0], 0.5);
+  EXPECT_EQ(c.anchor.orientation[0], 1.0);
+  EXPECT_EQ(c.wrench[2], 1.0);
+}
+
+TEST(SocketMessages, NothingOfAMalformedMessageApplies) {
+  Parsed p;
+  const std::string bad[] = {
+      "not json",
+      "[1,2]",
+      R"({"devices":[{"device_id":"a","commands":{"set_cursor_force":{"vector":{"x":1}}}},
+                     {"device_id":"b","commands":{"set_cursor_force":{"vector":{"x":"far"}}}}]})",
+      R"({"devices":[{"device_id":"a","commands":{"set_cursor_force":{}}}]})",
+      R"({"devices":[{"device_id":"a","commands":{"explode":{}}}]})",
+      R"({"devices":[{"device_id":"a","commands":{"set_coupling":{},"set_motion":{}}}]})",
+      R"({"devices":[{"commands":{"set_coupling":{}}}]})",
+      R"({"devices":[{"device_id":"a-name-far-longer-than-thirty-one-characters","commands":{"set_coupling":{}}}]})",
+      R"({"devices":{"device_id":"a"}})",
+      R"({"request":{"id":1,"kind":"self_destruct","device":"a"}})",
+      R"({"request":{"id":-1,"kind":"claim","device":"a"}})",
+      R"({"request":{"id":1,"kind":"set_parameter","device":"a","values":[1,"x"]}})",
+      R"({"request":{"id":1,"kind":"set_parameter","device":"a","values":[1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17]}})",
+      R"({"subscribe":"a"})",
+      R"({"session":{"configure":{"profile":{"name":""}}}})",
+      R"({"state_serial":"x"})",
+  };
+  for (const std::string& text : bad) {
+    EXPECT_FALSE(p.parse(text)) << text;
+    EXPECT_FALSE(p.message.error.empty()) << text;
+    EXPECT_TRUE(p.message.commands.empty()) << text;
+    EXPECT_EQ(p.serial, 0u) << text;  // no command numbers used up
+  }
+  // Nine commands: at most eight per message.
+  std::string nine = R"({"devices":[)";
+  for (int i = 0; i < 9; ++i)
+    nine += std::string(i ? "," : "") + R"({"device_id":"d","commands":{"set_cursor_force":{"vector":{"x":1}}}})";
+  EXPECT_FALSE(p.parse(nine + "]}"));
+  EXPECT_EQ(p.serial, 0u);
+}
+
+TEST(SocketMessages, ARequestSubscriptionAndProfile) {
+  Parsed p;
+  ASSERT_TRUE(p.parse(R"({"session":{"configure":{"profile":{"name":"unity-1"}}},"subscribe":["left","right"],
+                          "request":{"id":7,"kind":"set_parameter","device":"left","name":"controller.kp","values":[1,2]}})",
+                      "socket-3"));
+  ASSERT_TRUE(p.message.profile.has_value());
+  EXPECT_EQ(*p.message.profile, "unity-1");
+  ASSERT_TRUE(p.message.subscribe.has_value());
+  EXPECT_EQ(p.message.subscribe->size(), 2u);
+  ASSERT_TRUE(p.message.request.has_value());
+  const hapticd_msg_ControlRequest& r = *p.message.request;
+  EXPECT_EQ(r.kind, hapticd_msg_REQUEST_SET_PARAMETER);
+  EXPECT_EQ(dds::text_of(r.client), "unity-1");  // the profile of the same message names the requester
+  EXPECT_EQ(dds::text_of(r.device), "left");
+  EXPECT_EQ(dds::text_of(r.subject), "controller.kp");
+  EXPECT_EQ(r.value_count, 2);
+  EXPECT_EQ(r.values[1], 2.0);
+  EXPECT_EQ(r.request_id, 7u);
+}
+
+TEST(SocketMessages, TheStateAndTheReplyAreJsonAClientReads) {
+  hapticd_msg_DeviceState s{};
+  dds::set_text(s.device, "left");
+  dds::set_text(s.owner, "unity \"1\"");
+  s.serial = 12;
+  s.handle_pose.position[0] = 0.25;
+  s.handle_pose.orientation[0] = 1.0;
+  s.twist[4] = -2.0;
+  s.mode = hapticd_msg_MODE_SAFE;
+  s.buttons = 5;
+  std::string text;
+  state(s, text);
+  JsonReader json;
+  ASSERT_TRUE(json.parse(text)) << json.error() << "\n" << text;
+  const auto device = json.root()["devices"].at(0);
+  EXPECT_EQ(device["device_id"].string(), "left");
+  EXPECT_EQ(device["state"]["serial"].number(), 12.0);
+  EXPECT_EQ(device["state"]["cursor_position"]["x"].number(), 0.25);
+  EXPECT_EQ(device["state"]["angular_velocity"]["y"].number(), -2.0);
+  EXPECT_EQ(device["state"]["buttons"].number(), 5.0);
+  EXPECT_EQ(device["status"]["mode"].string(), "safe");
+  EXPECT_TRUE(device["status"]["owner"]);
+
+  hapticd_msg_ControlReply r{};
+  dds::set_text(r.device, "left");
+  dds::set_text(r.message, "claimed by 'x'");
+  r.value_count = 2;
+  r.values[0] = 1.5;
+  r.values[1] = std::nan("");
+  const std::string reply_text = reply(9, r);
+  ASSERT_TRUE(json.parse(reply_text)) << reply_text;
+  EXPECT_EQ(json.root()["reply"]["id"].number(), 9.0);
+  EXPECT_EQ(json.root()["reply"]["accepted"].boolean(), false);
+  EXPECT_EQ(json.root()["reply"]["values"].size(), 2u);
+  EXPECT_EQ(json.root()["reply"]["values"].at(1).kind(), JsonReader::Kind::null);  // NaN: null
+}
+
+}  // namespace
+}  // namespace hapticd::server::socket_messages
