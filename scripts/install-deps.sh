@@ -11,7 +11,7 @@ packages=(
   libeigen3-dev
   cyclonedds-dev cyclonedds-tools
   liburdfdom-dev libtinyxml-dev
-  libboost-dev libboost-filesystem-dev
+  libboost-dev libboost-filesystem-dev libssl-dev
   libspdlog-dev libfmt-dev
   libyaml-cpp-dev
   libcli11-dev

@@ -4,7 +4,8 @@
 # (tests/engine_socket/attacks.mjs: a second claim, an intruder's commands, a connection under the owner's client
 # id, malformed messages, a flood, a client that never reads, the owner leaving); then a wall engine in Node (ws) and
 # one in Python (websockets) and a web page in headless chromium (tools/engine_socket/wall.html), each holding the simulated operator's 15 N push at its wall 2 cm ahead through the
-# 3000 N/m coupling; then a server whose socket wants a token refuses a client without it and serves one with it;
+# 3000 N/m coupling; then a server whose socket speaks TLS and wants a token refuses a plain client and one without
+# the token and serves one with it;
 # and a socket beyond loopback without a token is a config error naming the key.
 # Usage: engine_socket_test.sh BIN_DIR SOURCE_DIR WORK_DIR DOMAIN
 set -u
@@ -79,41 +80,56 @@ PY
 ok "a page in headless chromium holds the 15 N push at its wall at 1 kHz"
 kill "$server"; wait "$server"
 
-# A token: refused without it (HTTP 401), served with it.
+# TLS and a token: a plain connection to the TLS socket fails; over TLS, refused without the token (HTTP 401) or
+# with a wrong one, served with it. A certificate of our own for 127.0.0.1, made here.
 head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' > token
-sed "s|^dds:|engine_socket: {token_file: $work/token}\ndds:|" "$src/config/sessions/vishard3/dds-coupling.yaml" |
-  sed -e "s%\.\./\.\./urdf/%$src/config/urdf/%g" > token-session.yaml
+openssl req -x509 -newkey rsa:2048 -nodes -keyout key.pem -out cert.pem -days 1 -subj /CN=127.0.0.1 \
+  -addext subjectAltName=IP:127.0.0.1 > openssl.log 2>&1 || fail "openssl: $(cat openssl.log)"
+sed "s|^dds:|engine_socket: {token_file: $work/token, tls_certificate_file: $work/cert.pem, tls_private_key_file: $work/key.pem}\ndds:|" \
+  "$src/config/sessions/vishard3/dds-coupling.yaml" | sed -e "s%\.\./\.\./urdf/%$src/config/urdf/%g" > token-session.yaml
 timeout 60 "$bin/hapticd" --config token-session.yaml --dds-domain "$domain" --duration 20 --log-level info \
   --set server.realtime_priority=0 --set server.lock_memory=false --set engine_socket.port=0 \
   $(loose_watchdogs vishard3) > token-server.log 2>&1 &
 server=$!
 url=
-for _ in $(seq 100); do url=$(sed -n 's/.*engine socket on \(ws:[^ ]*\) .*/\1/p' token-server.log); [ -n "$url" ] && break; sleep 0.1; done
-[ -n "$url" ] || fail "the token server did not start"
+for _ in $(seq 100); do url=$(sed -n 's/.*engine socket on \(wss:[^ ]*\) .*/\1/p' token-server.log); [ -n "$url" ] && break; sleep 0.1; done
+[ -n "$url" ] || fail "the TLS server did not start (or does not say wss://)"
 grep -q "token required" token-server.log || fail "the log does not say the socket wants a token"
-timeout 20 "$py" - "$url" "$(cat token)" > token.log 2>&1 << 'PY' || fail "the token check: $(cat token.log)"
-import asyncio, json, sys
+timeout 20 "$py" - "$url" "$(cat token)" "$work/cert.pem" > token.log 2>&1 << 'PY' || fail "the token check: $(cat token.log)"
+import asyncio, json, ssl, sys
 import websockets
-async def main(url, token):
+async def main(url, token, cert):
+    tls = ssl.create_default_context(cafile=cert)
     try:
-        async with websockets.connect(url) as ws:
+        async with websockets.connect(url.replace("wss:", "ws:") + "/?token=" + token, open_timeout=3) as ws:
+            print("FAIL: a plain connection to the TLS socket was served"); return 1
+    except Exception as e:
+        print("plain WebSocket refused:", type(e).__name__)
+    try:
+        async with websockets.connect(url, ssl=tls) as ws:
             print("FAIL: connected without the token"); return 1
     except websockets.exceptions.InvalidStatusCode as e:
         assert e.status_code == 401, e
         print("refused without the token: HTTP", e.status_code)
     try:
-        async with websockets.connect(url + "/?token=" + token[:-1] + "x") as ws:
+        async with websockets.connect(url + "/?token=" + token[:-1] + "x", ssl=tls) as ws:
             print("FAIL: connected with a wrong token"); return 1
     except websockets.exceptions.InvalidStatusCode as e:
         print("refused with a wrong token: HTTP", e.status_code)
-    async with websockets.connect(url, extra_headers={"Authorization": "Bearer " + token}) as ws:
+    async with websockets.connect(url, ssl=tls, extra_headers={"Authorization": "Bearer " + token}) as ws:
         inventory = json.loads(await ws.recv())
-        print("served with the token:", [d["device_id"] for d in inventory["devices"]])
+        await ws.send(json.dumps({"request": {"id": 1, "kind": "claim", "device": "vishard3"}}))
+        while True:
+            m = json.loads(await ws.recv())
+            if "reply" in m:
+                break
+        assert m["reply"]["accepted"], m
+        print("served over TLS with the token:", [d["device_id"] for d in inventory["devices"]], "claimed")
     return 0
-sys.exit(asyncio.run(main(sys.argv[1], sys.argv[2])))
+sys.exit(asyncio.run(main(sys.argv[1], sys.argv[2], sys.argv[3])))
 PY
 cat token.log
-ok "a socket with a token refuses clients without it and serves those with it"
+ok "a TLS socket with a token refuses plain and tokenless clients and serves those with it"
 kill "$server"; wait "$server"
 
 # Beyond loopback without a token: a config error naming the key (nothing is bound, no device powered).

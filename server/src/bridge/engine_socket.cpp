@@ -83,6 +83,8 @@ EngineSocket::EngineSocket(const EngineSocketSettings& settings, DeviceLinks& li
   o.subprotocol_hint =
       "hapticd's engine socket speaks WebSocket: connect with a WebSocket client (docs/engine-socket.md)";
   o.token = settings.token;
+  o.tls_certificate_file = settings.tls_certificate_file.string();
+  o.tls_private_key_file = settings.tls_private_key_file.string();
   // A state is worth nothing once the next one is out: about 100 states of one device wait at most, and a
   // client that takes nothing for a second is cut off (its claim ends, its device's forces fade).
   o.max_queued_bytes = 96u << 10;
@@ -113,7 +115,8 @@ void EngineSocket::stop() {
 
 std::string EngineSocket::url() const {
   const bool v6 = settings_.address.find(':') != std::string::npos;
-  return "ws://" + (v6 ? "[" + settings_.address + "]" : settings_.address) + ":" + std::to_string(server_->port());
+  return (settings_.tls_certificate_file.empty() ? "ws://" : "wss://") +
+         (v6 ? "[" + settings_.address + "]" : settings_.address) + ":" + std::to_string(server_->port());
 }
 
 void EngineSocket::opened(ConnectionId id) {

@@ -277,6 +277,19 @@ EngineSocketSettings read_engine_socket(const YAML::Node& node, const std::strin
                             "' must be 16-256 characters of letters, digits and -._~ (e.g. openssl rand -hex 24)");
     v.token = token;
   }
+  const auto resolved = [&](const std::string& name) {
+    const std::filesystem::path given = p.string(name);
+    if (given.empty()) return given;
+    const std::filesystem::path path = given.is_absolute() ? given : folder / given;
+    if (!std::ifstream(path))
+      throw ConfigError(file, line_of(node[name]), "engine_socket." + name, "cannot read '" + path.string() + "'");
+    return path;
+  };
+  v.tls_certificate_file = resolved("tls_certificate_file");
+  v.tls_private_key_file = resolved("tls_private_key_file");
+  if (v.tls_certificate_file.empty() != v.tls_private_key_file.empty())
+    throw ConfigError(file, line_of(node), "engine_socket",
+                      "TLS needs both tls_certificate_file and tls_private_key_file (PEM files)");
   const bool loopback = v.address == "::1" || (v.address.rfind("127.", 0) == 0);
   if (v.enabled && !loopback && v.token.empty())
     throw ConfigError(file, line_of(node["address"]), "engine_socket.address",
@@ -523,6 +536,10 @@ ParameterSchema engine_socket_settings_schema() {
            "a file holding the access token clients present (?token=... or Authorization: Bearer); relative to "
            "the session file; \"\": none (loopback only)")
       .default_value(std::string());
+  s.string("tls_certificate_file",
+           "TLS (wss://): the server's certificate chain, a PEM file relative to the session file; \"\": no TLS")
+      .default_value(std::string());
+  s.string("tls_private_key_file", "TLS: the certificate's private key, a PEM file").default_value(std::string());
   s.integer("max_clients", "clients connected at once (more are refused)")
       .minimum(1)
       .maximum(64)

@@ -100,6 +100,8 @@ struct EngineSocketSettings {
   std::string address = "127.0.0.1";  // loopback by default; another address needs a token
   int port = 8766;                    // 0: any free port (the log says which)
   std::string token;                  // read from token_file ("": none, loopback only)
+  // TLS (wss://): a PEM certificate chain and its private key, both or neither (paths resolved).
+  std::filesystem::path tls_certificate_file, tls_private_key_file;
   int max_clients = 4;
   double max_messages_per_s = 5000.0;  // per client: more are dropped (counted, the client told)
   std::vector<std::string> allowed_origins;

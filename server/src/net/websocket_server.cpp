@@ -3,13 +3,18 @@
 #include <algorithm>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
+#include <boost/asio/ssl.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
 #include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
 #include <deque>
+#include <optional>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 #include <unordered_map>
 
 namespace hapticd::server::net {
@@ -18,6 +23,7 @@ namespace asio = boost::asio;
 namespace beast = boost::beast;
 namespace http = beast::http;
 namespace websocket = beast::websocket;
+namespace ssl = asio::ssl;
 using tcp = asio::ip::tcp;
 
 namespace {
@@ -94,13 +100,26 @@ std::string quoted(std::string_view text) {
   return text.size() > kMax ? out + "..." : out;
 }
 
-class Connection;
+// A client's connection, whatever carries it (TCP, or TLS over TCP).
+class Connection {
+ public:
+  virtual ~Connection() = default;
+  virtual void start() = 0;
+  virtual void close() = 0;
+  virtual void send(std::shared_ptr<const std::string> data, bool binary, WebSocketServer::Kind kind) = 0;
+  virtual void disconnect() = 0;
+  virtual void check(std::chrono::steady_clock::time_point now) = 0;
+  [[nodiscard]] virtual std::optional<std::chrono::steady_clock::duration> idle_for(
+      std::chrono::steady_clock::time_point now) const = 0;
+  [[nodiscard]] virtual bool opened() const noexcept = 0;
+};
 
 struct WebSocketServer::Impl {
   Impl(WebSocketOptions o, WebSocketHandler& h) : options(std::move(o)), handler(h), acceptor(io), timer(io) {}
 
   WebSocketOptions options;
   WebSocketHandler& handler;
+  std::optional<ssl::context> tls;  // with a certificate and key: every connection speaks TLS
   asio::io_context io;
   tcp::acceptor acceptor;
   asio::steady_timer timer;
@@ -121,26 +140,37 @@ struct WebSocketServer::Impl {
   bool evict_idle_client();
 };
 
-// One client: the HTTP upgrade, then its messages in and out (one write at a time, a bounded queue).
-class Connection : public std::enable_shared_from_this<Connection> {
- public:
-  Connection(WebSocketServer::Impl& server, ConnectionId id, tcp::socket socket)
-      : server_(server), id_(id), ws_(std::move(socket)) {}
+// One client: the TLS handshake (with TLS), the HTTP upgrade, then its messages in and out (one write at a time, a
+// bounded queue). Next: what the WebSocket runs on - beast::tcp_stream or beast::ssl_stream<beast::tcp_stream>.
+template <class Next>
+class StreamConnection final : public Connection, public std::enable_shared_from_this<StreamConnection<Next>> {
+  static constexpr bool kTls = !std::is_same_v<Next, beast::tcp_stream>;
 
-  void start() {
+ public:
+  StreamConnection(WebSocketServer::Impl& server, ConnectionId id, tcp::socket socket)
+      : server_(server), id_(id), ws_(make_stream(server, std::move(socket))) {}
+
+  void start() override {
     connected_at_ = std::chrono::steady_clock::now();
     beast::get_lowest_layer(ws_).expires_after(server_.options.handshake_timeout);
-    http::async_read(beast::get_lowest_layer(ws_), buffer_, request_,
-                     [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_request(ec); });
+    if constexpr (kTls) {
+      ws_.next_layer().async_handshake(
+          ssl::stream_base::server, [self = this->shared_from_this()](beast::error_code ec) {
+            if (ec) return self->server_.remove(self->id_);  // not TLS, or a handshake that failed: nothing to answer
+            self->read_request();
+          });
+    } else {
+      read_request();
+    }
   }
 
-  void close() {
+  void close() override {
     beast::error_code ignored;
     beast::get_lowest_layer(ws_).socket().shutdown(tcp::socket::shutdown_both, ignored);
     beast::get_lowest_layer(ws_).close();
   }
 
-  void send(std::shared_ptr<const std::string> data, bool binary, WebSocketServer::Kind kind) {
+  void send(std::shared_ptr<const std::string> data, bool binary, WebSocketServer::Kind kind) override {
     if (!open_) return;
     const WebSocketOptions& o = server_.options;
     const bool reply = kind == WebSocketServer::Kind::reply;
@@ -159,7 +189,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
   }
 
   // Closes the connection; the failing read then removes the client (not here: the handler may be iterating).
-  void disconnect() {
+  void disconnect() override {
     if (closing_) return;
     closing_ = true;
     open_ = false;
@@ -168,19 +198,31 @@ class Connection : public std::enable_shared_from_this<Connection> {
   }
 
   // Too slow (nothing taken for slow_timeout while messages wait), or idle since it connected: disconnected.
-  void check(std::chrono::steady_clock::time_point now) {
+  void check(std::chrono::steady_clock::time_point now) override {
     const WebSocketOptions& o = server_.options;
     if (!queue_.empty() && now - last_progress_ > o.slow_timeout) return disconnect();
     if (opened_ && server_.handler.idle(id_) && now - connected_at_ > o.idle_timeout) return disconnect();
   }
   [[nodiscard]] std::optional<std::chrono::steady_clock::duration> idle_for(
-      std::chrono::steady_clock::time_point now) const {
+      std::chrono::steady_clock::time_point now) const override {
     if (closing_ || (opened_ && !server_.handler.idle(id_))) return std::nullopt;
     return now - connected_at_;
   }
-  [[nodiscard]] bool opened() const noexcept { return opened_; }
+  [[nodiscard]] bool opened() const noexcept override { return opened_; }
 
  private:
+  static websocket::stream<Next> make_stream(WebSocketServer::Impl& server, tcp::socket socket) {
+    if constexpr (kTls)
+      return websocket::stream<Next>(beast::tcp_stream(std::move(socket)), *server.tls);
+    else
+      return websocket::stream<Next>(std::move(socket));
+  }
+
+  void read_request() {
+    http::async_read(ws_.next_layer(), buffer_, request_,
+                     [self = this->shared_from_this()](beast::error_code ec, std::size_t) { self->on_request(ec); });
+  }
+
   struct Outgoing {
     std::shared_ptr<const std::string> data;
     bool binary;
@@ -228,7 +270,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
       response.set(http::field::server, o.server_header);
     }));
     ws_.read_message_max(o.max_message_bytes);
-    ws_.async_accept(request_, [self = shared_from_this()](beast::error_code e) { self->on_accepted(e); });
+    ws_.async_accept(request_, [self = this->shared_from_this()](beast::error_code e) { self->on_accepted(e); });
   }
 
   void serve_page() { respond(http::status::ok, "text/html; charset=utf-8", std::string(server_.options.page)); }
@@ -243,8 +285,8 @@ class Connection : public std::enable_shared_from_this<Connection> {
     response->body() = std::move(body);
     response->prepare_payload();
     response->keep_alive(false);
-    http::async_write(beast::get_lowest_layer(ws_), *response,
-                      [self = shared_from_this(), response](beast::error_code, std::size_t) {
+    http::async_write(ws_.next_layer(), *response,
+                      [self = this->shared_from_this(), response](beast::error_code, std::size_t) {
                         self->close();
                         self->server_.remove(self->id_);
                       });
@@ -260,7 +302,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
   }
 
   void read_next() {
-    ws_.async_read(in_, [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
+    ws_.async_read(in_, [self = this->shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
   }
 
   void on_read(beast::error_code ec) {
@@ -278,7 +320,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
   void write_next() {
     const Outgoing& next = queue_.front();
     ws_.binary(next.binary);
-    ws_.async_write(asio::buffer(*next.data), [self = shared_from_this()](beast::error_code ec, std::size_t) {
+    ws_.async_write(asio::buffer(*next.data), [self = this->shared_from_this()](beast::error_code ec, std::size_t) {
       self->queued_bytes_ -= self->queue_.front().data->size();
       if (self->queue_.front().reply) --self->queued_replies_;
       self->queue_.pop_front();
@@ -296,7 +338,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
 
   WebSocketServer::Impl& server_;
   ConnectionId id_;
-  websocket::stream<beast::tcp_stream> ws_;
+  websocket::stream<Next> ws_;
   beast::flat_buffer buffer_, in_;
   http::request<http::string_body> request_;
   bool open_ = false;    // messages may be queued
@@ -326,7 +368,11 @@ void WebSocketServer::Impl::accept() {
       }
       socket.set_option(tcp::no_delay(true), ec);  // small messages, each as soon as it is written
       const ConnectionId id = next_id++;
-      auto c = std::make_shared<Connection>(*this, id, std::move(socket));
+      std::shared_ptr<Connection> c;
+      if (tls)
+        c = std::make_shared<StreamConnection<beast::ssl_stream<beast::tcp_stream>>>(*this, id, std::move(socket));
+      else
+        c = std::make_shared<StreamConnection<beast::tcp_stream>>(*this, id, std::move(socket));
       connections.emplace(id, c);
       counters.clients.store(connections.size(), std::memory_order_relaxed);
       c->start();
@@ -392,6 +438,19 @@ WebSocketServer::WebSocketServer(WebSocketOptions options, WebSocketHandler& han
   if (!ec) s.acceptor.bind(endpoint, ec);
   if (!ec) s.acceptor.listen(asio::socket_base::max_listen_connections, ec);
   if (ec) throw std::runtime_error(s.options.what + ": cannot listen on " + where + ": " + ec.message());
+  if (!s.options.tls_certificate_file.empty()) {
+    s.tls.emplace(ssl::context::tls_server);
+    s.tls->set_options(ssl::context::default_workarounds | ssl::context::no_sslv2 | ssl::context::no_sslv3 |
+                       ssl::context::no_tlsv1 | ssl::context::no_tlsv1_1);
+    s.tls->use_certificate_chain_file(s.options.tls_certificate_file, ec);
+    if (ec)
+      throw std::runtime_error(s.options.what + ": cannot use the certificate " + s.options.tls_certificate_file +
+                               ": " + ec.message());
+    s.tls->use_private_key_file(s.options.tls_private_key_file, ssl::context::pem, ec);
+    if (ec)
+      throw std::runtime_error(s.options.what + ": cannot use the private key " + s.options.tls_private_key_file +
+                               ": " + ec.message());
+  }
 }
 
 WebSocketServer::~WebSocketServer() { stop(); }

@@ -1,11 +1,11 @@
 #pragma once
 // A hardened WebSocket server, the transport under the live view (Foxglove's protocol) and the engine socket
 // (hapticd's JSON protocol for clients without DDS): listens on one address, accepts clients up to a limit,
-// checks each upgrade (the page's Origin, an access token, a subprotocol), and hands each client's messages to a
-// protocol handler, which answers through send(). One thread of its own runs every socket, calls the handler and
-// its tick at a fixed period. A client that cannot keep up loses data messages (counted), never the server's
-// memory or time: everything queued for a client is bounded, and one that stops taking what it is sent, or
-// stays idle (by the handler's measure), is disconnected. Boost.Beast lives in this one file's implementation.
+// speaks TLS when given a certificate, checks each upgrade (the page's Origin, an access token, a subprotocol), and
+// hands each client's messages to a protocol handler, which answers through send(). One thread of its own runs every
+// socket, calls the handler and its tick at a fixed period. A client that cannot keep up loses data messages (counted),
+// never the server's memory or time: everything queued for a client is bounded, and one that stops taking what it is
+// sent, or stays idle (by the handler's measure), is disconnected. Boost.Beast lives in this one file's implementation.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -32,6 +32,8 @@ struct WebSocketOptions {
   // When not empty, a client must present this token: "?token=..." in its URL (browsers cannot set headers on a
   // WebSocket) or "Authorization: Bearer ...". Compared in constant time.
   std::string token;
+  // TLS (wss://) with this certificate chain and private key (PEM files); empty: plain WebSocket (ws://).
+  std::string tls_certificate_file, tls_private_key_file;
   // Per client, everything queued for it (data and replies): above it data messages are dropped; a reply that
   // does not fit, or a client that has not taken a message for slow_timeout, is disconnected.
   std::size_t max_queued_bytes = 8u << 20;
