@@ -69,8 +69,8 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
   lockstep_ = std::make_unique<LockstepSync>(
       settings_, links_, interval, [](void* self) { static_cast<DdsBridge*>(self)->wake_publisher(); }, this);
   if (socket.enabled) {
-    socket_ = std::make_unique<EngineSocket>(socket, links_, dds_->peers, *intake_,
-                                             [this] { (void)dds_set_guardcondition(dds_->wake.get(), true); });
+    socket_ = std::make_unique<EngineSocket>(
+        socket, links_, dds_->peers, *intake_, [this] { (void)dds_set_guardcondition(dds_->wake.get(), true); }, cpus_);
     publisher_->set_engine_socket(socket_.get());
   }
   for (std::size_t i = 0; i < links_.size(); ++i) publisher_->publish_description(i);

@@ -60,7 +60,7 @@ std::string_view code_of(dds::RejectReason reason) {
 }  // namespace
 
 EngineSocket::EngineSocket(const EngineSocketSettings& settings, DeviceLinks& links, PeerDirectory& peers,
-                           CommandIntake& intake, std::function<void()> wake_receiver)
+                           CommandIntake& intake, std::function<void()> wake_receiver, std::vector<int> cpus)
     : settings_(settings),
       links_(links),
       peers_(peers),
@@ -95,6 +95,7 @@ EngineSocket::EngineSocket(const EngineSocketSettings& settings, DeviceLinks& li
   o.send_buffer_bytes = 64u << 10;  // states wait here, counted, not in the kernel's megabytes
   o.idle_timeout = std::chrono::milliseconds(10000);
   o.allowed_origins = settings.allowed_origins;
+  o.cpus = std::move(cpus);
   o.origin_hint = "the origins listed in the session's engine_socket.allowed_origins";
   o.page = wall_page();  // a wall engine in the browser, from the socket's own origin
   o.page_path = "/wall.html";

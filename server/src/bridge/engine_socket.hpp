@@ -47,8 +47,9 @@ class EngineSocket final : public net::WebSocketHandler {
  public:
   // Binds the address and port (throws std::runtime_error naming them and the reason). wake_receiver: wakes the
   // bridge's receiver thread (a request is waiting, or a connection closed and its claims end).
+  // cpus: where its thread runs (the DDS threads' CPUs: off the loop's, no cross-CPU wake-up from the publisher).
   EngineSocket(const EngineSocketSettings& settings, DeviceLinks& links, PeerDirectory& peers, CommandIntake& intake,
-               std::function<void()> wake_receiver);
+               std::function<void()> wake_receiver, std::vector<int> cpus = {});
   ~EngineSocket() override;
   EngineSocket(const EngineSocket&) = delete;
   EngineSocket& operator=(const EngineSocket&) = delete;

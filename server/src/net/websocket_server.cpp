@@ -1,5 +1,8 @@
 #include "net/websocket_server.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
@@ -472,6 +475,12 @@ void WebSocketServer::start(std::chrono::nanoseconds tick_period) {
   s.accept();
   s.tick();
   s.thread = std::thread([&s] {
+    if (!s.options.cpus.empty()) {
+      cpu_set_t set;
+      CPU_ZERO(&set);
+      for (int c : s.options.cpus) CPU_SET(c, &set);
+      (void)pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+    }
     // A handler that throws (memory) loses its client's message or request, never the thread: it runs on.
     for (;;) {
       try {

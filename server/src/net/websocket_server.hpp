@@ -46,6 +46,8 @@ struct WebSocketOptions {
   std::chrono::milliseconds idle_timeout{10000};
   std::chrono::milliseconds idle_grace{1000};
   std::chrono::seconds handshake_timeout{5};
+  // The CPUs the server's thread runs on (empty: any).
+  std::vector<int> cpus;
   // A connection that answers no ping for this long is closed (a frozen or vanished peer); 0: Beast's default.
   std::chrono::milliseconds keepalive_timeout{0};
   // Web pages that may connect (their Origin header): pages served from loopback always may, and these (e.g.
