@@ -2,13 +2,14 @@
 # The sanitizer presets on the tests that exercise what they catch best (CI runs this after the full suite):
 #   asan (AddressSanitizer + UndefinedBehaviorSanitizer): the safety supervisor with fault injection, the
 #     fuzzed session loader and the fuzzed DDS command validation, the device session, the live view's server
-#     under its attacks, crafted recordings;
+#     under its attacks, crafted recordings, the engine socket's parser of untrusted JSON;
 #   tsan (ThreadSanitizer): the DDS end-to-end tests (the bridge's threads, Cyclone's receive thread and its
 #     liveliness callbacks, the loop's lock-free hand-offs; the ownership tests with their claimant processes;
 #     the device groups' snapshots, requests and group commands; requests racing a scheme switch), groups on loop
 #     threads of their own (with the recorder's rings), the bridge's round-trip probe and the scheme switching
 #     (loop and monitor threads), the loop on a device's clock (a ticking thread, the loop waiting on its ticks),
-#     the C API (its commands handed to the sender thread, against a server process);
+#     the C API (its commands handed to the sender thread, against a server process), the engine socket (its
+#     thread, the publisher's hand-off and the receiver's requests, with its Node, Python and browser clients);
 #   fuzz (libFuzzer with ASan + UBSan): the DDS engine-command validation and the session loader, each for a fixed
 #     number of inputs from a fixed seed (FUZZ_RUNS scales them; findings are written to build/fuzz/findings and
 #     fail the run).
@@ -39,11 +40,11 @@ fuzz() {
 for preset in "${presets[@]}"; do
   case "$preset" in
     asan) targets=(safety_test config_fuzz_test command_gate_test device_session_test foxglove_server_test
-                   playback_device_test)
-          tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession|FoxgloveServer|PlaybackDevice)\.' ;;
+                   playback_device_test socket_messages_test)
+          tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession|FoxgloveServer|PlaybackDevice|SocketMessages)\.' ;;
     tsan) targets=(dds_engine_test dds_ownership_test dds_groups_test dds_attacks_test separate_loops_test hapticctl
                    hapticd-scene-engine scheme_switching_test round_trip_probe_test device_clock_test c_api_test hapticd)
-          tests='^(DdsEngine|DdsOwnership|DdsGroups|DdsAttacks|SeparateLoops|SchemeSwitching|RoundTripProbe|DeviceClock|CApi)\.' ;;
+          tests='^(DdsEngine|DdsOwnership|DdsGroups|DdsAttacks|SeparateLoops|SchemeSwitching|RoundTripProbe|DeviceClock|CApi)\.|^engine_socket$' ;;
     fuzz) fuzz ; continue ;;
     *) echo "unknown preset '$preset' (asan, tsan, fuzz)" >&2; exit 2 ;;
   esac
