@@ -11,12 +11,13 @@ command was applied. Both engines run on CPU 0, the server's loop on the last CP
 The table gives the medians over the runs and the ratio Python / C++.
 Usage: bench/python_engine_round_trip.py BUILD_DIR [--seconds S] [--repeat R]"""
 import argparse
-import json
 import os
 import subprocess
 import tempfile
 import time
 from statistics import median
+
+from round_trip_stats import round_trip_of
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SESSION = os.path.join(ROOT, "config", "sessions", "vishard3", "dds-coupling.yaml")
@@ -42,11 +43,7 @@ def run(build, engine, seconds):
         engine_process = subprocess.Popen(PIN + command, stdout=subprocess.DEVNULL)  # both answer until the end
         server.wait(timeout=seconds + 30)
         engine_process.wait(timeout=30)
-        report = json.load(open(stats))
-    rt = report["dds_round_trip_us"]
-    applied = report["dds_applied_after_cycles"]
-    return {"p50": rt["p50"], "p99": rt["p99"], "count": rt["count"],
-            "next_cycle": 100.0 * applied[1] / max(1, sum(applied)), "overruns": report["overruns"]}
+        return round_trip_of(stats)
 
 
 def main():

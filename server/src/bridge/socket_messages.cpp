@@ -101,28 +101,25 @@ bool pose_and_twist(const Value& v, hapticd_msg_EngineCommand& c) {
          vector3(v["angular_velocity"], c.twist + 3);
 }
 
-void append_vector3(std::string& out, std::string_view key, const double* v) {
+// "key":{"x":..,...} with the named components.
+template <std::size_t N>
+void append_object(std::string& out, std::string_view key, const char* const (&names)[N], const double* v) {
   append_key(out, key);
-  out += "{\"x\":";
-  append_number(out, v[0]);
-  out += ",\"y\":";
-  append_number(out, v[1]);
-  out += ",\"z\":";
-  append_number(out, v[2]);
+  for (std::size_t i = 0; i < N; ++i) {
+    out += i == 0 ? "{\"" : ",\"";
+    out += names[i];
+    out += "\":";
+    append_number(out, v[i]);
+  }
   out += '}';
 }
-
+void append_vector3(std::string& out, std::string_view key, const double* v) {
+  static constexpr const char* kNames[] = {"x", "y", "z"};
+  append_object(out, key, kNames, v);
+}
 void append_quaternion(std::string& out, std::string_view key, const double* q) {
-  append_key(out, key);
-  out += "{\"w\":";
-  append_number(out, q[0]);
-  out += ",\"x\":";
-  append_number(out, q[1]);
-  out += ",\"y\":";
-  append_number(out, q[2]);
-  out += ",\"z\":";
-  append_number(out, q[3]);
-  out += '}';
+  static constexpr const char* kNames[] = {"w", "x", "y", "z"};
+  append_object(out, key, kNames, q);
 }
 
 const char* mode_name(hapticd_msg_DeviceMode mode) {

@@ -520,18 +520,33 @@ ParameterSchema group_loop_schema() {
   return s;
 }
 
-ParameterSchema engine_socket_settings_schema() {
+namespace {
+
+// What every listening section has: on, the address and port, and how many clients at once.
+ParameterSchema listener_schema(const char* what, const std::string& address, int port, const char* beyond_loopback,
+                                const char* clients, int max_clients) {
   ParameterSchema s;
-  const EngineSocketSettings d;
-  s.boolean("enabled", "serve the engine socket").default_value(true);
-  s.string("address",
-           "IP address to listen on: 127.0.0.1 (the default) serves this machine only; another interface's address "
-           "needs token_file")
-      .default_value(d.address);
+  s.boolean("enabled", std::string("serve the ") + what).default_value(true);
+  s.string("address", std::string("IP address to listen on: 127.0.0.1 (the default) serves this machine only; another "
+                                  "interface's address ") +
+                          beyond_loopback)
+      .default_value(address);
   s.integer("port", "TCP port; 0 takes any free port (the log names it)")
       .minimum(0)
       .maximum(65535)
-      .default_value(std::int64_t{d.port});
+      .default_value(std::int64_t{port});
+  s.integer("max_clients", std::string(clients) + " connected at once (more are refused)")
+      .minimum(1)
+      .maximum(64)
+      .default_value(std::int64_t{max_clients});
+  return s;
+}
+
+}  // namespace
+
+ParameterSchema engine_socket_settings_schema() {
+  const EngineSocketSettings d;
+  ParameterSchema s = listener_schema("engine socket", d.address, d.port, "needs token_file", "clients", d.max_clients);
   s.string("token_file",
            "a file holding the access token clients present (?token=... or Authorization: Bearer); relative to "
            "the session file; \"\": none (loopback only)")
@@ -540,10 +555,6 @@ ParameterSchema engine_socket_settings_schema() {
            "TLS (wss://): the server's certificate chain, a PEM file relative to the session file; \"\": no TLS")
       .default_value(std::string());
   s.string("tls_private_key_file", "TLS: the certificate's private key, a PEM file").default_value(std::string());
-  s.integer("max_clients", "clients connected at once (more are refused)")
-      .minimum(1)
-      .maximum(64)
-      .default_value(std::int64_t{d.max_clients});
   s.real("max_messages_per_s", "messages a client may send per second (more are dropped and counted)")
       .unit("1/s")
       .minimum(10.0)
@@ -553,22 +564,10 @@ ParameterSchema engine_socket_settings_schema() {
 }
 
 ParameterSchema live_view_settings_schema() {
-  ParameterSchema s;
   const LiveViewSettings d;
-  s.boolean("enabled", "serve the live view").default_value(true);
-  s.string("address",
-           "IP address to listen on: 127.0.0.1 (the default) serves this machine only; another interface's address "
-           "lets anyone who reaches it watch the session")
-      .default_value(d.address);
-  s.integer("port", "TCP port; 0 takes any free port (the log names it)")
-      .minimum(0)
-      .maximum(65535)
-      .default_value(std::int64_t{d.port});
+  ParameterSchema s = listener_schema("live view", d.address, d.port, "lets anyone who reaches it watch the session",
+                                      "viewers", d.max_clients);
   s.real("rate_hz", "messages per channel and second").unit("Hz").minimum(1.0).maximum(200.0).default_value(d.rate_hz);
-  s.integer("max_clients", "viewers connected at once (more are refused)")
-      .minimum(1)
-      .maximum(64)
-      .default_value(std::int64_t{d.max_clients});
   s.real("force_scale_m_per_n", "length of a force arrow in the 3-D view per newton")
       .unit("m/N")
       .greater_than(0.0)
