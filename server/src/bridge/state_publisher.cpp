@@ -69,8 +69,8 @@ void StatePublisher::publish_states() {
     p.last = state_message(s, labels_of(i, s, owner));
     d.round_trip.command_applied(s.engine_sequence, s.cycle);
     d.round_trip.state_written(p.last.serial, s.cycle, monotonic_now_ns());
+    if (socket_ != nullptr) socket_->state(i, p.last);  // first: its hand-off returns at once, the DDS write does not
     (void)dds_.state.write(p.last);
-    if (socket_ != nullptr) socket_->state(i, p.last);
     d.states.fetch_add(1, std::memory_order_relaxed);
     d.loop_time_ns.store(s.time_ns, std::memory_order_relaxed);
     p.last_write_ns = monotonic_now_ns();
