@@ -257,7 +257,7 @@ void EngineSocket::answer_requests(RequestDispatcher& dispatcher) {
     const dds_instance_handle_t writer = socket_writer(w.connection);
     // A client that left before its turn gets nothing done (a claim for it would only end again).
     const std::optional<PeerId> requester =
-        peers_.matched(0, writer) ? std::optional<PeerId>(PeerId::of_socket(w.connection)) : std::nullopt;
+        peers_.socket_open(w.connection) ? std::optional<PeerId>(PeerId::of_socket(w.connection)) : std::nullopt;
     const hapticd_msg_ControlReply reply = dispatcher.answer(w.request, requester, writer);
     counters_.requests.fetch_add(1, std::memory_order_relaxed);
     auto text = std::make_shared<const std::string>(

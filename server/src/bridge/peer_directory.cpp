@@ -95,11 +95,13 @@ void PeerDirectory::socket_closed(std::uint64_t connection) {
   sockets_.erase(std::remove(sockets_.begin(), sockets_.end(), connection), sockets_.end());
 }
 
+bool PeerDirectory::socket_open(std::uint64_t connection) const {
+  std::lock_guard lock(mutex_);
+  return std::find(sockets_.begin(), sockets_.end(), connection) != sockets_.end();
+}
+
 bool PeerDirectory::matched(dds_entity_t reader, dds_instance_handle_t writer) const {
-  if (is_socket_writer(writer)) {
-    std::lock_guard lock(mutex_);
-    return std::find(sockets_.begin(), sockets_.end(), writer & ~kSocketMask) != sockets_.end();
-  }
+  if (is_socket_writer(writer)) return socket_open(writer & ~kSocketMask);
   dds_builtintopic_endpoint_t* data = dds_get_matched_publication_data(reader, writer);
   if (data == nullptr) return false;
   dds_builtintopic_free_endpoint(data);

@@ -54,6 +54,7 @@ class PeerDirectory {
   // The engine socket's connections (its thread): open from the handshake until closed.
   void socket_opened(std::uint64_t connection);
   void socket_closed(std::uint64_t connection);
+  [[nodiscard]] bool socket_open(std::uint64_t connection) const;
 
  private:
   struct Entry {

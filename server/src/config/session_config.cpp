@@ -11,6 +11,7 @@
 #include "config/yaml_document.hpp"
 #include "config/yaml_reader.hpp"
 #include "hapticd/input_file.hpp"
+#include "net/websocket_server.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -290,8 +291,7 @@ EngineSocketSettings read_engine_socket(const YAML::Node& node, const std::strin
   if (v.tls_certificate_file.empty() != v.tls_private_key_file.empty())
     throw ConfigError(file, line_of(node), "engine_socket",
                       "TLS needs both tls_certificate_file and tls_private_key_file (PEM files)");
-  const bool loopback = v.address == "::1" || (v.address.rfind("127.", 0) == 0);
-  if (v.enabled && !loopback && v.token.empty())
+  if (v.enabled && !net::loopback_address(v.address) && v.token.empty())
     throw ConfigError(file, line_of(node["address"]), "engine_socket.address",
                       "the engine socket listens beyond this machine only with a token: give engine_socket.token_file "
                       "(anyone who reaches " +

@@ -365,11 +365,10 @@ void WebSocketServer::Impl::accept() {
       socket.shutdown(tcp::socket::shutdown_both, ignored);
       socket.close(ignored);
     } else {
-      if (options.send_buffer_bytes > 0) {
-        beast::error_code ignored;
+      beast::error_code ignored;
+      if (options.send_buffer_bytes > 0)
         socket.set_option(asio::socket_base::send_buffer_size(options.send_buffer_bytes), ignored);
-      }
-      socket.set_option(tcp::no_delay(true), ec);  // small messages, each as soon as it is written
+      socket.set_option(tcp::no_delay(true), ignored);  // small messages, each as soon as it is written
       const ConnectionId id = next_id++;
       std::shared_ptr<Connection> c;
       if (tls)
