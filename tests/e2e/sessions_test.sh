@@ -37,9 +37,9 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 pass() { echo "ok: $*"; }
 
-for session in $(find "$src/config/sessions" -name "*.yaml" | sort); do  # as shipped, playback.yaml too
-  if out=$(timeout 30 "$hapticd" --check-config "$session" $(haply_flags "$session") 2>&1); then pass "check-config ${session#$src/config/sessions/}"
-  else fail "check-config ${session#$src/config/sessions/}: $out"; fi
+for session in $(find "$src/config/sessions" "$src/config/scenes" -name "*.yaml" | sort); do  # as shipped, playback.yaml too
+  if out=$(timeout 30 "$hapticd" --check-config "$session" $(haply_flags "$session") 2>&1); then pass "check-config ${session#$src/config/}"
+  else fail "check-config ${session#$src/config/}: $out"; fi
 done
 
 # Every per-scheme and multi-device session runs in lockstep for a second (2000 cycles) without a device fault. A fault in the
