@@ -78,6 +78,8 @@ grant() {  # name publish-topics subscribe-topics [publish-partitions]  (subscri
   local publish="" subscribe="" partitions=""
   [ -n "${4:-}" ] && partitions="<partitions>$(partitions_xml "$4")</partitions>"
   [ -n "$2" ] && publish="<publish><topics>$(topics_xml "$2")</topics>$partitions</publish>"
+  # An engine's world for the live view (hapticd_world) is written in the default partition.
+  [ "$name" != server ] && [ -n "$2" ] && publish="$publish<publish><topics>$(topics_xml hapticd_world)</topics></publish>"
   [ -n "$3" ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics>$partitions</subscribe>"
   [ "$name" != server ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics></subscribe>"
   [ -z "$3" ] && subscribe=""

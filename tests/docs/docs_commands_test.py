@@ -30,7 +30,7 @@ import sys
 import tempfile
 
 PROGRAMS = ("hapticd", "hapticctl", "hapticd-eval", "hapticd-scene-engine", "hapticd-admittance-engine",
-            "hapticd-bimanual-engine")
+            "hapticd-bimanual-engine", "hapticd-mujoco-engine")
 MIN_CHECKED = 20  # fewer: the extraction broke, not the docs
 
 

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # hapticd-mujoco-engine against the server over DDS on loopback (domains DOMAIN and DOMAIN+1):
-#  1. the table scene (config/scenes/table-blocks.yaml): the engine claims the simulated ViSHaRD3; the operator moves
-#     the hand to the fixed box and pushes 15 N into it: the box holds the proxy (its contact force balances the push);
+#  1. the table scene with the arm (config/scenes/table-arm.xml, --arm, on table-blocks.yaml): the engine claims the
+#     simulated ViSHaRD3; the operator moves the hand to the fixed box and pushes 15 N into it: the box holds the
+#     proxy (its contact force balances the push), and the arm's last link sweeps a block aside;
 #  2. the server ends and a new one starts: the engine waits, claims again and the box holds the hand again;
 #  3. the server ends for good: the engine waits --wait seconds and exits 0;
-#  4. a group (config/scenes/bimanual-box.yaml, --group hands, domain DOMAIN+1): one command per group state;
+#  4. a group (config/scenes/bimanual-box.yaml, --group hands, domain DOMAIN+1): one command per group state; the
+#     server's live view draws the engine's world (tests/live_view/world_client.mjs) and drops it when the engine ends;
 #  5. errors end with a message and exit code 2: an MJCF that does not parse (MuJoCo's line), a scene without the
 #     device's proxy, a session whose virtual model takes no coupling.
 # Usage: mujoco_engine_test.sh BIN_DIR SOURCE_DIR WORK_DIR DOMAIN
@@ -16,7 +18,7 @@ source "$src/tests/e2e/session_copy.sh"
 passed=0
 fail() {
   echo "FAIL: $*"
-  for f in engine.log server1.log server2.log group_engine.log group_server.log; do
+  for f in engine.log server1.log server2.log group_engine.log group_server.log world.log; do
     [ -f "$f" ] && { echo "--- $f"; tail -15 "$f"; }
   done
   exit 1
@@ -38,10 +40,10 @@ wait_for() {  # wait_for LOG TEXT SECONDS
 # ---- 1. the table scene ----
 server server1.log table-blocks.yaml "$domain" 7 $(loose vishard3)
 server1=$!
-"$bin/hapticd-mujoco-engine" "$src/config/scenes/table-blocks.xml" --domain "$domain" --wait 5 --duration 40 \
-  --csv engine.csv --watch block_a > engine.log 2>&1 &
+"$bin/hapticd-mujoco-engine" "$src/config/scenes/table-arm.xml" --arm "$src/config/urdf/vishard3.urdf" \
+  --domain "$domain" --wait 5 --duration 40 --csv engine.csv --watch block_arm > engine.log 2>&1 &
 engine=$!
-trap 'kill $server1 $engine ${server2:-} ${gserver:-} ${gengine:-} 2> /dev/null' EXIT
+trap 'kill $server1 $engine ${server2:-} ${gserver:-} ${viewer:-} 2> /dev/null' EXIT
 wait_for engine.log "claimed 'vishard3'" 20 || fail "the engine did not claim"
 grep -q "2 steps of 0.500 ms per state, coupling 3000 N/m" engine.log || fail "$(grep claimed engine.log)"
 push_into_box() {
@@ -75,11 +77,18 @@ code=$?
 [ "$code" = 0 ] || fail "the engine exited with $code after the last server"
 grep -q "no server came back within 5 s" engine.log || fail "the engine did not say why it ended"
 grep -q "answered [0-9]* states; .* time per state p50" engine.log || fail "no summary"
+# The arm's last link swept the block that stood 5 mm clear of it (the hand moved 35 mm along x, twice).
+grep -q "^mujoco-engine: block_arm at (+128.0, -94.0, -25.0) mm" engine.log || fail "block_arm: $(grep block_arm engine.log | head -1)"
+grep -q "at the end, block_arm at (+128.0, -94.0," engine.log && fail "the arm did not move block_arm"
 ok "the engine exits 0 when no server comes back: $(grep 'answered' engine.log)"
 
-# ---- 4. a group ----
-server group_server.log bimanual-box.yaml "$group_domain" 4 $(loose left) $(loose right)
+# ---- 4. a group, its world in the live view ----
+server group_server.log bimanual-box.yaml "$group_domain" 8 $(loose left) $(loose right) --live-view 0
 gserver=$!
+wait_for group_server.log "live view on ws://" 15 || fail "the group's server announced no live view"
+url=$(grep -o 'live view on ws://[^ ]*' group_server.log | sed 's/live view on //')
+(cd "$src/tests/live_view" && timeout 30 node world_client.mjs "$url" mujoco-engine 4 0 25 --gone) > world.log 2>&1 &
+viewer=$!
 "$bin/hapticd-mujoco-engine" "$src/config/scenes/bimanual-box.xml" --group hands --domain "$group_domain" \
   --wait 5 --duration 2 --watch box > group_engine.log 2>&1
 code=$?
@@ -88,6 +97,8 @@ grep -q "claimed 'hands'" group_engine.log || fail "the group engine did not cla
 answered=$(sed -n 's/.*answered \([0-9]*\) states.*/\1/p' group_engine.log)
 [ "${answered:-0}" -gt 1000 ] || fail "the group engine answered ${answered:-no} group states in 2 s"
 ok "the group engine answered $answered group states of 'hands'"
+wait "$viewer" || fail "the live view's viewer: $(cat world.log)"
+ok "the live view drew the engine's world and removed it when the engine ended: $(head -1 world.log)"
 
 # ---- 5. errors ----
 printf "<mujoco>\n<worldbody>\n<body name='proxy'>\n</worldbody>\n</mujoco>\n" > broken.xml

@@ -11,7 +11,8 @@ namespace {
 
 server::Session build(const std::string& scene, const std::vector<std::string>& overrides,
                       const std::string& session_file) {
-  const std::string file = session_file.empty() ? source_dir() + "/config/scenes/" + scene + ".yaml" : session_file;
+  const std::string file = session_file.empty() ? source_dir() + "/config/scenes/" + scene + ".yaml"
+                                                : source_dir() + "/config/scenes/" + session_file;
   return server::Session::from_file(file, {.overrides = overrides, .plugin_paths = {plugin_dir()}});
 }
 
@@ -49,6 +50,10 @@ CoupledScene::CoupledScene(const std::string& scene, const std::vector<std::stri
     world_->set_gains(i, g);
     const server::DeviceView v = session_.device(devices_[i]);
     world_->place(i, mujoco::Hand{v.task.pose, v.handle_twist});
+    const DeviceDescription d = session_.description(devices_[i]);
+    arms_.push_back(world_->arm_bodies(i) > 0
+                        ? std::make_unique<mujoco::ArmModel>(d.robot_model_file, 0.02, d.base_pose)
+                        : nullptr);
   }
 }
 
@@ -57,6 +62,11 @@ void CoupledScene::step(std::uint64_t cycles) {
     for (std::size_t i = 0; i < devices_.size(); ++i) {
       const server::DeviceView v = session_.device(devices_[i]);
       hands_[i] = mujoco::Hand{v.task.pose, v.handle_twist};
+      if (arms_[i]) {
+        world_->set_arm(
+            i, arms_[i]->place(std::span<const double>(v.state.joints.position.data(),
+                                                       static_cast<std::size_t>(v.state.joints.position.size()))));
+      }
     }
     if (!world_->step(hands_).stable) ++unstable_;
     ++sequence_;

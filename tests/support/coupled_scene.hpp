@@ -17,7 +17,8 @@ namespace hapticd::test {
 
 class CoupledScene {
  public:
-  // scene: a name of config/scenes/ (<scene>.xml and, unless session_file says otherwise, <scene>.yaml).
+  // scene: a name of config/scenes/ (<scene>.xml with <scene>.yaml, or session_file: another session there). Where the
+  // scene shows a device's arm (arm_* bodies), its robot model's capsules move them, as --arm does in the engine.
   explicit CoupledScene(const std::string& scene, const std::vector<std::string>& overrides = {},
                         const std::string& session_file = "");
 
@@ -45,6 +46,7 @@ class CoupledScene {
   std::unique_ptr<mujoco::CoupledWorld> world_;
   std::vector<std::string> devices_;
   std::vector<mujoco::Hand> hands_;
+  std::vector<std::unique_ptr<mujoco::ArmModel>> arms_;  // per device; null where the scene shows no arm
   std::uint64_t sequence_ = 0;
   double lowest_energy_ = 0.0;
   std::uint64_t unstable_ = 0;

@@ -6,6 +6,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <string>
+
+#include "hapticd/model/collision.hpp"
+#include "hapticd/model/kinematics.hpp"
+#include "hapticd/model/model_data.hpp"
+#include "hapticd/model/urdf_loader.hpp"
 
 namespace hapticd::mujoco {
 
@@ -72,10 +78,17 @@ std::string fmt_error(const std::string& proxy, const char* what, double k, cons
 
 }  // namespace
 
+struct ArmBody {
+  int body = -1;
+  int mocap = -1;
+  int geom = -1;
+};
+
 struct CoupledWorld::Impl {
   std::unique_ptr<mjModel, ModelDeleter> model;
   std::unique_ptr<mjData, DataDeleter> data;
   std::vector<ProxyBody> proxies;
+  std::vector<std::vector<ArmBody>> arms;  // per device
   Eigen::Isometry3d to_world = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d to_scene = Eigen::Isometry3d::Identity();
   int substeps = 1;
@@ -183,6 +196,46 @@ CoupledWorld::CoupledWorld(const WorldOptions& options) : impl_(std::make_unique
     }
     p.name = name;
     impl_->proxies.push_back(p);
+    // The arm's bodies, if the scene shows the arm.
+    std::vector<ArmBody> arm;
+    for (int k = 0;; ++k) {
+      int b = mj_name2id(m, mjOBJ_BODY, ("arm_" + device + "_" + std::to_string(k)).c_str());
+      if (b < 0 && options.devices.size() == 1) b = mj_name2id(m, mjOBJ_BODY, ("arm_" + std::to_string(k)).c_str());
+      if (b < 0) break;
+      const std::string arm_name = mj_id2name(m, mjOBJ_BODY, b);
+      if (m->body_mocapid[b] < 0 || m->body_geomnum[b] != 1 || m->geom_type[m->body_geomadr[b]] != mjGEOM_CAPSULE) {
+        throw SceneError(file + ": the arm body '" + arm_name +
+                         "' must be a mocap body (mocap=\"true\") with exactly one geom, a capsule");
+      }
+      arm.push_back(ArmBody{b, m->body_mocapid[b], m->body_geomadr[b]});
+    }
+    impl_->arms.push_back(std::move(arm));
+  }
+  // A device's arm ends at its handle, inside its proxy: the two must not touch, while both touch everything else
+  // (collision bit 0, the scenes' default) and the other devices' proxies and arms. Device i has its own bit b_i:
+  // its proxy's geoms and its arm's have contype b_i; the arm's conaffinity is bit 0, the proxy's bit 0 and every
+  // other device's bit. Only in scenes that show an arm.
+  const auto has_arm = [&] {
+    for (const auto& a : impl_->arms)
+      if (!a.empty()) return true;
+    return false;
+  };
+  if (has_arm()) {
+    if (impl_->proxies.size() > 30) throw SceneError(file + ": at most 30 devices in a scene that shows arms");
+    int all = 0;
+    for (std::size_t i = 0; i < impl_->proxies.size(); ++i) all |= 1 << (i + 1);
+    for (std::size_t i = 0; i < impl_->proxies.size(); ++i) {
+      const int bit = 1 << (i + 1);
+      const int b = impl_->proxies[i].body;
+      for (int g = m->body_geomadr[b]; g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
+        m->geom_contype[g] = bit;
+        m->geom_conaffinity[g] = 1 | (all & ~bit);
+      }
+      for (const ArmBody& a : impl_->arms[i]) {
+        m->geom_contype[a.geom] = bit;
+        m->geom_conaffinity[a.geom] = 1;
+      }
+    }
   }
   mj_forward(m, impl_->data.get());
 }
@@ -230,6 +283,39 @@ void CoupledWorld::place(std::size_t device, const Hand& hand) {
              Pose{impl_->to_scene * hand.pose.position,
                   Eigen::Quaterniond(r * hand.pose.orientation.normalized().toRotationMatrix())});
   mj_forward(impl_->model.get(), impl_->data.get());
+}
+
+std::size_t CoupledWorld::arm_bodies(std::size_t device) const noexcept {
+  return device < impl_->arms.size() ? impl_->arms[device].size() : 0;
+}
+
+void CoupledWorld::set_arm(std::size_t device, std::span<const ArmCapsule> capsules) noexcept {
+  if (device >= impl_->arms.size()) return;
+  mjModel* m = impl_->model.get();
+  mjData* d = impl_->data.get();
+  const std::vector<ArmBody>& arm = impl_->arms[device];
+  for (std::size_t k = 0; k < arm.size(); ++k) {
+    mjtNum* pos = d->mocap_pos + 3 * arm[k].mocap;
+    mjtNum* quat = d->mocap_quat + 4 * arm[k].mocap;
+    if (k >= capsules.size() || !(capsules[k].radius > 0.0)) {  // parked far below, out of every contact
+      pos[0] = pos[1] = 0.0;
+      pos[2] = -1000.0;
+      continue;
+    }
+    const Eigen::Vector3d a = impl_->to_scene * capsules[k].a, b = impl_->to_scene * capsules[k].b;
+    const Eigen::Vector3d centre = 0.5 * (a + b);
+    const double half = 0.5 * (b - a).norm();
+    const Eigen::Quaterniond q = half > 1e-9 ? Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), b - a)
+                                             : Eigen::Quaterniond::Identity();
+    for (int i = 0; i < 3; ++i) pos[i] = centre[i];
+    quat[0] = q.w();
+    quat[1] = q.x();
+    quat[2] = q.y();
+    quat[3] = q.z();
+    m->geom_size[3 * arm[k].geom] = capsules[k].radius;
+    m->geom_size[3 * arm[k].geom + 1] = half;
+    m->geom_rbound[arm[k].geom] = half + capsules[k].radius;
+  }
 }
 
 StepReport CoupledWorld::step(std::span<const Hand> hands, int periods) noexcept {
@@ -339,6 +425,45 @@ std::vector<BodyShape> CoupledWorld::shapes() const {
     out.push_back(std::move(s));
   }
   return out;
+}
+
+struct ArmModel::Impl {
+  model::RobotModel robot;
+  model::ModelData data;
+  Eigen::Isometry3d base;
+  JointVector q;
+  model::PlacedCapsules placed;
+  std::array<ArmCapsule, model::PlacedCapsules::kMax> capsules;
+
+  Impl(model::RobotModel r, const Pose& base_pose)
+      : robot(std::move(r)), data(robot), base(to_isometry(base_pose)), q(JointVector::Zero(robot.dof())) {}
+};
+
+namespace {
+model::RobotModel arm_robot(const std::filesystem::path& urdf, double radius) {
+  model::RobotModel m = model::load_robot_model(urdf);
+  if (m.collision().empty()) m = m.with_collision(model::skeleton_capsules(m, radius));
+  return m;
+}
+}  // namespace
+
+ArmModel::ArmModel(const std::filesystem::path& urdf, double radius, const Pose& base)
+    : impl_(std::make_unique<Impl>(arm_robot(urdf, radius), base)) {}
+ArmModel::~ArmModel() = default;
+ArmModel::ArmModel(ArmModel&&) noexcept = default;
+ArmModel& ArmModel::operator=(ArmModel&&) noexcept = default;
+int ArmModel::dof() const noexcept { return impl_->robot.dof(); }
+
+std::span<const ArmCapsule> ArmModel::place(std::span<const double> q) noexcept {
+  Impl& a = *impl_;
+  for (int i = 0; i < a.robot.dof() && i < static_cast<int>(q.size()); ++i) a.q[i] = q[static_cast<std::size_t>(i)];
+  model::forward_kinematics(a.robot, a.data, a.q, model::BodyInertias::skip);
+  model::place_capsules(a.robot, a.data, a.placed);
+  for (int k = 0; k < a.placed.count; ++k) {
+    a.capsules[static_cast<std::size_t>(k)] =
+        ArmCapsule{a.base * a.placed.a[k], a.base * a.placed.b[k], a.placed.radius[k]};
+  }
+  return {a.capsules.data(), static_cast<std::size_t>(a.placed.count)};
 }
 
 Eigen::Isometry3d scene_frame(std::span<const Eigen::Vector3d> start_positions) {

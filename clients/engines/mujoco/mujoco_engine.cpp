@@ -71,6 +71,28 @@ std::string read_gains(Client& client, const std::string& device, CouplingGains&
 // handle itself (a handle device); the handle's twist.
 Hand hand_of(const DeviceState& s, bool handle_device) { return Hand{handle_device ? s.pose : s.target_pose, s.twist}; }
 
+// The world's shapes as the live view takes them (hapticd_world): at most kMaxWorldShapes.
+std::vector<hapticd::client::WorldShape> world_shapes(const std::vector<hapticd::mujoco::BodyShape>& shapes) {
+  using hapticd::client::ShapeKind;
+  std::vector<hapticd::client::WorldShape> out;
+  for (const auto& s : shapes) {
+    if (out.size() == static_cast<std::size_t>(hapticd::client::kMaxWorldShapes)) break;
+    hapticd::client::WorldShape w;
+    w.body.assign(s.body);
+    w.kind = s.type == "sphere"      ? ShapeKind::sphere
+             : s.type == "capsule"   ? ShapeKind::capsule
+             : s.type == "cylinder"  ? ShapeKind::cylinder
+             : s.type == "ellipsoid" ? ShapeKind::ellipsoid
+             : s.type == "plane"     ? ShapeKind::plane
+                                     : ShapeKind::box;
+    w.size = s.size;
+    w.color = s.rgba.cast<double>().cwiseMax(0.0).cwiseMin(1.0);
+    w.pose = s.pose;
+    out.push_back(w);
+  }
+  return out;
+}
+
 struct Timing {
   std::vector<double> per_state_us;
   void add(double us) {
@@ -86,10 +108,10 @@ struct Timing {
 
 int run(int argc, char** argv) {
   CLI::App app{"hapticd-mujoco-engine: a MuJoCo scene coupled to the devices through the virtual coupling"};
-  std::string scene, device, group, id = "mujoco-engine", csv;
+  std::string scene, device, group, id = "mujoco-engine", csv, arm_urdf;
   std::vector<std::string> watch;
   int domain = 0;
-  double duration = 0.0, wait = 10.0, server_timeout = 1.0;
+  double duration = 0.0, wait = 10.0, server_timeout = 1.0, world_rate = 30.0, arm_radius = 0.02;
   app.add_option("scene", scene, "the MJCF scene (a body 'proxy' or 'proxy_<device>' per device)")->required();
   app.add_option("--device", device, "the device to claim (default: the only one of the scene's session)");
   app.add_option("--group", group, "the group to claim instead (one proxy per device)")->excludes("--device");
@@ -100,6 +122,13 @@ int run(int argc, char** argv) {
                  "how long to wait for the device or group to appear, and for the server to come back after it ended");
   app.add_option("--server-timeout", server_timeout, "no state for this long: the server is gone, wait for it again")
       ->check(CLI::Range(0.1, 60.0));
+  app.add_option("--arm", arm_urdf,
+                 "the devices' robot model (URDF): their links move the scene's arm bodies (arm_<k>, arm_<device>_<k>)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--arm-radius", arm_radius, "the links' radius where the model has no collision capsules [m]")
+      ->check(CLI::Range(0.001, 0.2));
+  app.add_option("--world-rate", world_rate, "publish the world's shapes for the live view this often (0: never)")
+      ->check(CLI::Range(0.0, 100.0));
   app.add_option("--watch", watch, "print these bodies' positions now and then, and at the end");
   app.add_option("--csv", csv, "write time, each hand and proxy position and the proxies' contact forces here");
   CLI11_PARSE(app, argc, argv);
@@ -166,6 +195,26 @@ int run(int argc, char** argv) {
     fmt::print(stderr, "mujoco-engine: the scene does not load: {}\n", e.what());
     return 2;
   }
+  // The devices' arms, where the scene shows them.
+  std::vector<hapticd::mujoco::ArmModel> arms;
+  bool scene_shows_arm = false;
+  for (std::size_t i = 0; i < devices.size(); ++i) scene_shows_arm = scene_shows_arm || world->arm_bodies(i) > 0;
+  if (!arm_urdf.empty()) {
+    if (!scene_shows_arm) fmt::print("mujoco-engine: the scene has no arm bodies: --arm has nothing to move\n");
+    for (const std::string& d : devices) {
+      const auto described = client.wait_for_device(d, deadline());
+      try {
+        arms.emplace_back(arm_urdf, arm_radius, described ? described->base_pose : hapticd::Pose{});
+      } catch (const std::exception& e) {
+        fmt::print(stderr, "mujoco-engine: --arm {}: {}\n", arm_urdf, e.what());
+        return 2;
+      }
+    }
+  } else if (scene_shows_arm) {
+    fmt::print("mujoco-engine: the scene shows the arm; without --arm URDF its bodies are parked out of reach\n");
+    for (std::size_t i = 0; i < devices.size(); ++i) world->set_arm(i, {});
+  }
+
   std::mutex world_mutex;  // the state callback steps the world; the main thread re-places proxies after a restart
   std::atomic<bool> running{false}, session_ending{false};
   std::atomic<std::uint64_t> answered{0}, unstable{0}, seen{0};
@@ -201,6 +250,10 @@ int run(int argc, char** argv) {
       hands[i] = hand_of(*states[i], handle_device[i]);
       const auto mode = states[i]->mode;
       if (mode == hapticd::client::Mode::stopping || mode == hapticd::client::Mode::off) session_ending.store(true);
+    }
+    for (std::size_t i = 0; i < arms.size() && i < states.size(); ++i) {
+      const DeviceState& st = *states[i];
+      world->set_arm(i, arms[i].place(std::span<const double>(st.position.data(), static_cast<std::size_t>(st.dof))));
     }
     const int periods = cycle > last_cycle ? static_cast<int>(std::min<std::uint64_t>(cycle - last_cycle, 8)) : 1;
     last_cycle = cycle;
@@ -306,9 +359,21 @@ int run(int argc, char** argv) {
   auto last_progress = start, last_print = start;
   std::uint64_t last_answered = 0;
   int code = 0;
+  auto last_world = start;
   while (!g_stop.load()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(world_rate > 50.0 ? 5 : 20));
     const auto now = std::chrono::steady_clock::now();
+    if (world_rate > 0.0 && now - last_world > std::chrono::duration<double>(1.0 / world_rate)) {
+      last_world = now;
+      std::vector<hapticd::mujoco::BodyShape> shapes;
+      double physics_s = 0.0;
+      {
+        std::lock_guard lock(world_mutex);
+        shapes = world->shapes();
+        physics_s = world->time_s();
+      }
+      (void)client.publish_world(world_shapes(shapes), physics_s);
+    }
     if (duration > 0.0 && now - start > std::chrono::duration<double>(duration)) break;
     if (unstable.load() > 0) {
       fmt::print(stderr,

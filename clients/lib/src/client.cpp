@@ -321,6 +321,11 @@ struct Client::Impl {
   // write it (a watcher, an engine of other devices): sending then fails.
   std::mutex writers_mutex;
   std::map<std::string, TargetWriters, std::less<>> writers;
+  // The world's writer (publish_world), in the default partition, made on first use.
+  std::mutex world_mutex;
+  std::unique_ptr<dds::Writer<hapticd_msg_World>> world_writer;
+  bool world_writer_made = false;
+  std::uint64_t world_serial = 0;
   template <class T>
   dds::Writer<T>* writer(std::string_view target, std::unique_ptr<dds::Writer<T>> TargetWriters::*slot,
                          bool TargetWriters::*made) {
@@ -619,6 +624,33 @@ bool Client::send(std::string_view device, const EngineCommand& command) {
   c.serial = impl_->serial.fetch_add(1) + 1;
   dds::Writer<hapticd_msg_EngineCommand>* writer = impl_->command_writer(device);
   return writer != nullptr && writer->write(c);
+}
+
+bool Client::publish_world(std::span<const WorldShape> shapes, double time_s) {
+  if (shapes.size() > static_cast<std::size_t>(kMaxWorldShapes)) return false;
+  auto w = std::make_unique<hapticd_msg_World>();  // about 9 kB
+  dds::set_text(w->engine, impl_->options.client_id);
+  w->time_s = time_s;
+  w->shape_count = static_cast<std::int32_t>(shapes.size());
+  for (std::size_t k = 0; k < shapes.size(); ++k) {
+    const WorldShape& in = shapes[k];
+    hapticd_msg_WorldShape& out = w->shapes[k];
+    dds::set_text(out.body, in.body.view());
+    out.shape = static_cast<std::int32_t>(in.kind);
+    for (int a = 0; a < 3; ++a) out.size[a] = in.size[a];
+    for (int a = 0; a < 4; ++a) out.color[a] = in.color[a];
+    dds::to_msg(in.pose, out.shape_pose);
+  }
+  std::lock_guard lock(impl_->world_mutex);
+  w->serial = ++impl_->world_serial;
+  if (!impl_->world_writer_made) {
+    impl_->world_writer_made = true;
+    try {
+      impl_->world_writer = std::make_unique<dds::Writer<hapticd_msg_World>>(impl_->participant);
+    } catch (const std::exception&) {  // not permitted (DDS Security): publishing fails from now on
+    }
+  }
+  return impl_->world_writer != nullptr && impl_->world_writer->write(*w);
 }
 
 bool Client::send_group(std::string_view group, std::span<const DeviceCommand> commands) {

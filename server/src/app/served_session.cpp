@@ -111,6 +111,10 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
     }
     for (std::size_t d = 0; d < devices.size(); ++d)
       bridge_->set_loop_statistics(d, &executor_->live(loops_->loop_of(devices[d])));
+    if (live_view_) {  // the engines' worlds, drawn beside the devices
+      live_view::LiveView* view = live_view_.get();
+      bridge_->relay_worlds([view](const hapticd_msg_World& w) { view->take_world(w); });
+    }
     set_cycle_listener(bridge_.get());
     bridge_->start();
   }

@@ -66,8 +66,8 @@ class ServedSession {
   std::unique_ptr<Recorder> recorder_;
   std::unique_ptr<LoopPlan> loops_;  // which loop drives which device
   std::unique_ptr<Executor> executor_;
-  std::unique_ptr<DdsBridge> bridge_;
   std::unique_ptr<live_view::LiveView> live_view_;
+  std::unique_ptr<DdsBridge> bridge_;  // after the live view: destroyed first (it hands the live view the worlds)
   std::unique_ptr<SessionMonitor> monitor_;
   CycleListener* listener_ = nullptr;
 };

@@ -80,8 +80,13 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
 
 DdsBridge::~DdsBridge() {
   stop();
+  worlds_.reset();
   (void)dds_set_listener(dds_->command.get(), nullptr);  // no listener callback into the parts below
   (void)dds_set_listener(dds_->group_command.get(), nullptr);
+}
+
+void DdsBridge::relay_worlds(std::function<void(const hapticd_msg_World&)> sink) {
+  worlds_ = std::make_unique<WorldRelay>(dds_->participant, std::move(sink));
 }
 
 void DdsBridge::start() {

@@ -15,6 +15,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -28,6 +29,7 @@
 #include "bridge/lockstep_sync.hpp"
 #include "bridge/request_dispatcher.hpp"
 #include "bridge/state_publisher.hpp"
+#include "bridge/world_relay.hpp"
 #include "config/session_config.hpp"
 #include "executor/executor.hpp"
 #include "safety/fault_history.hpp"
@@ -80,6 +82,11 @@ class DdsBridge final : public CycleListener {
   [[nodiscard]] std::uint64_t unknown_device_requests() const noexcept { return links_.unknown_device_requests(); }
   // Claims that ended because their claimant's participant was gone (not released).
   [[nodiscard]] std::uint64_t claims_ended() const noexcept { return dispatcher_->claims_ended(); }
+  // Before start(): the engines' worlds (hapticd_world), checked, go to `sink` (the live view's) from now on.
+  void relay_worlds(std::function<void(const hapticd_msg_World&)> sink);
+  // Worlds relayed and dropped as malformed (0 without relay_worlds).
+  [[nodiscard]] std::uint64_t worlds_relayed() const noexcept { return worlds_ ? worlds_->accepted() : 0; }
+  [[nodiscard]] std::uint64_t worlds_rejected() const noexcept { return worlds_ ? worlds_->rejected() : 0; }
   // The engine socket (nullptr: the session has none).
   [[nodiscard]] const EngineSocket* engine_socket() const noexcept { return socket_.get(); }
 
@@ -99,6 +106,7 @@ class DdsBridge final : public CycleListener {
   std::unique_ptr<RequestDispatcher> dispatcher_;
   std::unique_ptr<LockstepSync> lockstep_;
   std::unique_ptr<EngineSocket> socket_;
+  std::unique_ptr<WorldRelay> worlds_;
 
   std::atomic<std::uint32_t> ticket_{0};  // the loop -> the publisher (futex)
   std::atomic<bool> stopping_{false};

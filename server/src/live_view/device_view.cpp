@@ -7,18 +7,17 @@
 #include "hapticd/json_text.hpp"
 #include "hapticd/model/collision.hpp"
 #include "hapticd/model/kinematics.hpp"
+#include "live_view/scene_json.hpp"
 #include "safety/device_fault.hpp"
 #include "session/state_flags.hpp"
 
 namespace hapticd::server::live_view {
 
 using namespace json_text;
+using namespace scene_json;
 
 namespace {
 
-struct Rgba {
-  double r, g, b, a;
-};
 constexpr Rgba kLinkColour{0.62, 0.64, 0.68, 1.0};
 constexpr Rgba kCapsuleColour{0.9, 0.5, 0.2, 0.25};
 constexpr Rgba kHandleColour{0.15, 0.45, 0.95, 1.0};
@@ -27,19 +26,6 @@ constexpr Rgba kProxyColour{1.0, 0.6, 0.0, 0.9};
 constexpr Rgba kOperatorColour{0.9, 0.15, 0.15, 1.0};
 constexpr Rgba kRenderedColour{0.1, 0.7, 0.2, 1.0};
 constexpr double kLinkDiameter = 0.02, kJointDiameter = 0.03, kHandleDiameter = 0.025, kMarkerDiameter = 0.015;
-
-void append_colour(std::string& out, const Rgba& c) {
-  append_number_object(out, {{"r", c.r}, {"g", c.g}, {"b", c.b}, {"a", c.a}});
-}
-
-void append_pose(std::string& out, const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
-  out += "{\"position\":";
-  append_vector3(out, p.x(), p.y(), p.z());
-  out += ",\"orientation\":";
-  append_quaternion(out, q.x(), q.y(), q.z(), q.w());
-  out += '}';
-}
-void append_pose(std::string& out, const Pose& p) { append_pose(out, p.position, p.orientation); }
 
 void append_wrench(std::string& out, const Eigen::Vector3d& force, const Eigen::Vector3d& torque) {
   out += "{\"force\":";
@@ -69,51 +55,6 @@ void append_transform(std::string& out, bool first, std::uint64_t time_ns, const
   append_vector3(out, p.x(), p.y(), p.z());
   out += ",\"rotation\":";
   append_quaternion(out, q.x(), q.y(), q.z(), q.w());
-  out += '}';
-}
-
-// A scene entity in the world frame; `primitives` is the body after "arrows" etc. are opened by the caller.
-void begin_entity(std::string& out, bool first, std::uint64_t time_ns, const std::string& id) {
-  if (!first) out += ',';
-  out += "{\"timestamp\":";
-  append_time(out, time_ns);
-  out += ",\"frame_id\":\"world\",\"id\":";
-  append_string(out, id);
-  out += ",\"lifetime\":{\"sec\":0,\"nsec\":0},\"frame_locked\":false,\"metadata\":[]";
-}
-void end_entity(std::string& out) { out += '}'; }
-// The primitive lists an entity does not use, empty.
-void empty_lists(std::string& out, std::initializer_list<const char*> names) {
-  for (const char* n : names) {
-    out += ",\"";
-    out += n;
-    out += "\":[]";
-  }
-}
-
-void append_sphere(std::string& out, bool first, const Eigen::Vector3d& centre, double diameter, const Rgba& c) {
-  if (!first) out += ',';
-  out += "{\"pose\":";
-  append_pose(out, centre, Eigen::Quaterniond::Identity());
-  out += ",\"size\":";
-  append_vector3(out, diameter, diameter, diameter);
-  out += ",\"color\":";
-  append_colour(out, c);
-  out += '}';
-}
-
-// A cylinder from a to b (its axis is the primitive's z).
-void append_cylinder(std::string& out, bool first, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double diameter,
-                     const Rgba& c) {
-  if (!first) out += ',';
-  const Eigen::Vector3d axis = b - a;
-  const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis);
-  out += "{\"pose\":";
-  append_pose(out, 0.5 * (a + b), q);
-  out += ",\"size\":";
-  append_vector3(out, diameter, diameter, axis.norm());
-  out += ",\"bottom_scale\":1,\"top_scale\":1,\"color\":";
-  append_colour(out, c);
   out += '}';
 }
 

@@ -20,7 +20,13 @@ std::vector<Channel> channels_of(const std::vector<DeviceSession*>& devices) {
     channels.push_back({LiveView::channel_id(d, 1), prefix + "/scene", kSceneUpdateName, scene});
     channels.push_back({LiveView::channel_id(d, 2), prefix + "/state", kDeviceStateName, state});
   }
+  channels.push_back({LiveView::channel_id(devices.size(), 0), "/world/scene", kSceneUpdateName, scene});
   return channels;
+}
+
+std::int64_t steady_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 std::int64_t wall_now_ns() {
@@ -68,7 +74,14 @@ std::string LiveView::url() const {
   return "ws://" + (v6 ? "[" + address_ + "]" : address_) + ":" + std::to_string(server_->port());
 }
 
+void LiveView::take_world(const hapticd_msg_World& world) { world_.take(world, steady_now_ns()); }
+
 void LiveView::tick() {
+  if (server_->subscribed(world_channel_id())) {
+    const auto time_ns = static_cast<std::uint64_t>(wall_now_ns());
+    if (world_.scene_update(time_ns, steady_now_ns(), message_))
+      server_->publish(world_channel_id(), time_ns, message_);
+  }
   for (std::size_t d = 0; d < sources_.size(); ++d) {
     Source& s = sources_[d];
     if (!s.status->take_view_snapshot(s.snapshot)) continue;

@@ -1,8 +1,9 @@
 #pragma once
 // The session's live view (docs/live-view.md): a Foxglove WebSocket server with three channels per device -
 // /<device>/transforms, /<device>/scene and /<device>/state - fed from the loop's view snapshots (a lock-free
-// hand-off of their own, published every loop_rate / rate_hz cycles) on the server's own thread. The loop never
-// waits for it and does nothing more for it than copy a snapshot at that interval.
+// hand-off of their own, published every loop_rate / rate_hz cycles) on the server's own thread, and /world/scene:
+// the worlds of the engines that publish one (hapticd_world, handed over by the DDS bridge). The loop never waits
+// for it and does nothing more for it than copy a snapshot at that interval.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -11,6 +12,7 @@
 #include "config/session_config.hpp"
 #include "live_view/device_view.hpp"
 #include "live_view/foxglove_server.hpp"
+#include "live_view/world_view.hpp"
 #include "session/device_session.hpp"
 
 namespace hapticd::server::live_view {
@@ -30,10 +32,15 @@ class LiveView {
   [[nodiscard]] std::string url() const;
   [[nodiscard]] const FoxgloveServerCounters& counters() const noexcept { return server_->counters(); }
 
-  // The channel ids of device d: transforms 3d+1, scene 3d+2, state 3d+3.
+  // The channel ids of device d: transforms 3d+1, scene 3d+2, state 3d+3; the engines' worlds after them.
   static std::uint32_t channel_id(std::size_t device, int which) noexcept {
     return static_cast<std::uint32_t>(3 * device + 1 + static_cast<std::size_t>(which));
   }
+  [[nodiscard]] std::uint32_t world_channel_id() const noexcept { return channel_id(sources_.size(), 0); }
+
+  // Any thread (the DDS bridge's receive thread): an engine's world, checked (dds::check_world).
+  void take_world(const hapticd_msg_World& world);
+  [[nodiscard]] const WorldView& worlds() const noexcept { return world_; }
 
  private:
   void tick();
@@ -48,6 +55,7 @@ class LiveView {
   std::vector<Source> sources_;
   std::string address_;
   std::unique_ptr<FoxgloveServer> server_;
+  WorldView world_;
   double rate_hz_;
   std::string message_;
 };

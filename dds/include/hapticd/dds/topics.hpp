@@ -29,6 +29,7 @@ HAPTICD_DDS_TOPIC(hapticd_msg_FaultReport, fault_report, "hapticd_fault_report")
 HAPTICD_DDS_TOPIC(hapticd_msg_GroupDescription, description, "hapticd_group_description")
 HAPTICD_DDS_TOPIC(hapticd_msg_GroupState, state, "hapticd_group_state")
 HAPTICD_DDS_TOPIC(hapticd_msg_GroupCommand, command, "hapticd_group_command")
+HAPTICD_DDS_TOPIC(hapticd_msg_World, state, "hapticd_world")
 #undef HAPTICD_DDS_TOPIC
 
 struct QosDeleter {

@@ -156,6 +156,12 @@ class HAPTICD_API Client {
   // Restart serial numbers (claim and claim_group do it).
   void reset_serial() noexcept;
 
+  // ---- an engine's world, for the live view (docs/live-view.md) ----
+  // Publishes the shapes of the engine's world (at most kMaxWorldShapes; a few tens of times a second is plenty),
+  // keyed by this client's id; the servers' live views draw them beside their devices. False when it could not be
+  // written (too many shapes, DDS Security does not permit this identity to publish hapticd_world).
+  bool publish_world(std::span<const WorldShape> shapes, double time_s = 0.0);
+
  private:
   // The devices of a group as its description names them (none before it arrived).
   [[nodiscard]] std::vector<std::string> group_devices(std::string_view group) const;

@@ -234,6 +234,19 @@ struct HAPTICD_API EngineCommand {
   [[nodiscard]] static EngineCommand motion(const Pose& pose, const Twist& twist, std::uint64_t state_serial);
 };
 
+// ---- an engine's world, for the live view (Client::publish_world; docs/live-view.md) ----
+inline constexpr int kMaxWorldShapes = 64;
+enum class ShapeKind : std::uint8_t { box, sphere, capsule, cylinder, ellipsoid, plane };
+struct WorldShape {
+  Name body;  // the body it belongs to ("world": fixed)
+  ShapeKind kind = ShapeKind::box;
+  // box, ellipsoid: half-extents (semi-axes) along the pose's x, y, z; sphere: x the radius; capsule, cylinder: x the
+  // radius, y half the length along the pose's z; plane: x, y half-extents (0: unbounded), the normal the pose's z.
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  Eigen::Vector4d color = Eigen::Vector4d::Ones();  // red, green, blue, alpha in 0..1
+  Pose pose;                                        // world frame
+};
+
 enum class RequestKind : std::uint8_t {
   claim,
   release,

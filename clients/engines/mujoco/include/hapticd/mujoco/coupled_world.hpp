@@ -66,6 +66,12 @@ struct BodyShape {
   Pose pose;
 };
 
+// A capsule of a device's arm (server world frame): the segment a-b and its radius.
+struct ArmCapsule {
+  Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
 struct WorldOptions {
   std::filesystem::path scene;       // an MJCF file
   std::vector<std::string> devices;  // one proxy each, in this order
@@ -105,6 +111,16 @@ class CoupledWorld {
   // Puts a proxy at its hand, at rest (at the start, and when the engine claims a device again); set the gains first.
   void place(std::size_t device, const Hand& hand);
 
+  // The device's arm in the scene (optional per scene): the scene's mocap bodies `arm_<device>_<k>` (or `arm_<k>`
+  // when it couples one device), each with one capsule geom, k = 0, 1, ..., take the device's capsules - their
+  // poses and sizes - so that the arm itself pushes the scene's objects (kinematic: nothing pushes it back).
+  // Bodies beyond the capsules given are parked out of reach. A device's arm never touches its own proxy (the world
+  // sets the collision bits of the proxies' and arms' geoms in such scenes: contype/conaffinity bit 0 is for
+  // everything else). No allocation.
+  void set_arm(std::size_t device, std::span<const ArmCapsule> capsules) noexcept;
+  // How many arm bodies the scene has for the device (0: it shows no arm).
+  [[nodiscard]] std::size_t arm_bodies(std::size_t device) const noexcept;
+
   // Advances the world `periods` state periods (substeps each) with the hands (one per device, in order) held.
   // No allocation.
   StepReport step(std::span<const Hand> hands, int periods = 1) noexcept;
@@ -117,6 +133,24 @@ class CoupledWorld {
   [[nodiscard]] std::vector<BodyShape> shapes() const;
   // The energy the coupling has given the proxies since the start (J): integrated force times proxy velocity.
   [[nodiscard]] double coupling_work_j() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// A device's arm as capsules for CoupledWorld::set_arm: its robot model (URDF; its <collision> capsules, else
+// capsules of `radius` along its kinematic skeleton), placed at the device's base pose.
+class ArmModel {
+ public:
+  // Throws std::runtime_error for a model that does not load (the message says why).
+  ArmModel(const std::filesystem::path& urdf, double radius, const Pose& base);
+  ~ArmModel();
+  ArmModel(ArmModel&&) noexcept;
+  ArmModel& operator=(ArmModel&&) noexcept;
+  [[nodiscard]] int dof() const noexcept;
+  // The capsules at the joint positions `q` (at least dof() of them; the rest ignored). No allocation.
+  [[nodiscard]] std::span<const ArmCapsule> place(std::span<const double> q) noexcept;
 
  private:
   struct Impl;
