@@ -306,6 +306,15 @@ int run(int argc, char** argv) {
     });
   }
 
+  // Whatever way run() ends from here, the callbacks are gone before the locals they use (declared above) are.
+  struct Unhook {
+    Client& c;
+    ~Unhook() {
+      c.on_state({});
+      c.on_group_state({});
+    }
+  } unhook{client};
+
   // Claims (again): the coupling's gains as the server's session has them now, the proxies placed at the hands of
   // the newest states.
   const auto claim = [&]() -> bool {
