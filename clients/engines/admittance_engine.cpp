@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "claim_keeper.hpp"
+#include "engine_main.hpp"
 #include "hapticd/client/client.hpp"
 
 namespace {
@@ -91,13 +92,6 @@ int run(int argc, char** argv) {
 }
 }  // namespace
 
-// Every error ends with a message and exit code 2, never an abort: a DDS participant that cannot be made (a
-// malformed HAPTICD_DDS_NETWORK, a Cyclone configuration or DDS Security refusing it), a bad client id.
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticd-admittance-engine: %s\n", e.what());
-    return 2;
-  }
+  return hapticd::examples::guarded_main("hapticd-admittance-engine", run, argc, argv);
 }

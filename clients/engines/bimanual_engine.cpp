@@ -12,6 +12,7 @@
 
 #include "bimanual.hpp"
 #include "claim_keeper.hpp"
+#include "engine_main.hpp"
 
 namespace {
 std::atomic<bool> g_stop{false};
@@ -81,13 +82,4 @@ int run(int argc, char** argv) {
 }
 }  // namespace
 
-// Every error ends with a message and exit code 2, never an abort: a DDS participant that cannot be made (a
-// malformed HAPTICD_DDS_NETWORK, a Cyclone configuration or DDS Security refusing it), a bad client id.
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticd-bimanual-engine: %s\n", e.what());
-    return 2;
-  }
-}
+int main(int argc, char** argv) { return hapticd::examples::guarded_main("hapticd-bimanual-engine", run, argc, argv); }

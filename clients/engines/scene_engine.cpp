@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "claim_keeper.hpp"
+#include "engine_main.hpp"
 #include "hapticd/client/client.hpp"
 #include "scene.hpp"
 
@@ -147,13 +148,4 @@ int run(int argc, char** argv) {
 }
 }  // namespace
 
-// Every error ends with a message and exit code 2, never an abort: a DDS participant that cannot be made (a
-// malformed HAPTICD_DDS_NETWORK, a Cyclone configuration or DDS Security refusing it), a bad client id.
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticd-scene-engine: %s\n", e.what());
-    return 2;
-  }
-}
+int main(int argc, char** argv) { return hapticd::examples::guarded_main("hapticd-scene-engine", run, argc, argv); }

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "../claim_keeper.hpp"
+#include "../engine_main.hpp"
 #include "hapticd/client/client.hpp"
 #include "hapticd/mujoco/coupled_world.hpp"
 
@@ -112,7 +113,9 @@ int run(int argc, char** argv) {
   std::vector<std::string> watch;
   int domain = 0;
   double duration = 0.0, wait = 10.0, server_timeout = 1.0, world_rate = 30.0, arm_radius = 0.02;
-  app.add_option("scene", scene, "the MJCF scene (a body 'proxy' or 'proxy_<device>' per device)")->required();
+  app.add_option("scene", scene, "the MJCF scene (a body 'proxy' or 'proxy_<device>' per device)")
+      ->required()
+      ->check(CLI::ExistingFile);
   app.add_option("--device", device, "the device to claim (default: the only one of the scene's session)");
   app.add_option("--group", group, "the group to claim instead (one proxy per device)")->excludes("--device");
   app.add_option("--id", id, "client id (the owner name)");
@@ -451,13 +454,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-// Every error ends with a message and a non-zero exit code, never an abort: a scene that does not load (MuJoCo's
-// message names the MJCF line), a session without the coupling, a DDS participant that cannot be made.
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticd-mujoco-engine: %s\n", e.what());
-    return 2;
-  }
-}
+int main(int argc, char** argv) { return hapticd::examples::guarded_main("hapticd-mujoco-engine", run, argc, argv); }
