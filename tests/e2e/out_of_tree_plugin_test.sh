@@ -5,7 +5,9 @@
 # a lockstep session with it; then build examples/session_api against the same package and step an installed
 # session file in-process with the session API (the installed plugins found beside libhapticd_server.so); then
 # build examples/client_engine against the installed client library (hapticd::client) and have it render its
-# wall over DDS (loopback, domain 90) to the installed server. Usage: out_of_tree_plugin_test.sh BUILD_DIR SOURCE_DIR WORK_DIR
+# wall over DDS (loopback, domain 90) to the installed server; and examples/mujoco_world against the installed
+# MuJoCo coupling (hapticd::mujoco_coupling), pressing a proxy into the installed table scene's fixed box.
+# Usage: out_of_tree_plugin_test.sh BUILD_DIR SOURCE_DIR WORK_DIR
 set -eu
 build=$1; src=$2; work=$3
 rm -rf "$work"; mkdir -p "$work"
@@ -56,6 +58,13 @@ echo "$err" | grep -q "override 'devices.vishard3.virtual_model.parameters.mass_
 
 # The C API from the installed package through pkg-config: the plain-C engine compiles, links and runs (its version
 # check and a client made and ended; no server needed for that).
+cmake -S "$src/examples/mujoco_world" -B "$work/mujoco_world" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" > "$work/mujoco_world_configure.log"
+cmake --build "$work/mujoco_world" > "$work/mujoco_world_build.log" || { cat "$work/mujoco_world_build.log"; exit 1; }
+out=$("$work/mujoco_world/press_world" "$prefix/share/hapticd/config/scenes/table-blocks.xml")
+echo "$out"
+echo "$out" | grep -q "^proxy at x = 4[0-9]\.[0-9]* mm, hand at 60.00 mm" || { echo "FAIL: the embedded MuJoCo world"; exit 1; }
+
 PKG_CONFIG_PATH="$prefix/lib/pkgconfig:$prefix/lib/$(gcc -print-multiarch)/pkgconfig" \
   cc -std=c11 -Wall -Wextra -Werror "$src/examples/c_api/wall_engine.c" -o "$work/c_wall_engine" \
   $(PKG_CONFIG_PATH="$prefix/lib/pkgconfig:$prefix/lib/$(gcc -print-multiarch)/pkgconfig" \
