@@ -2,8 +2,7 @@
 # The sanitizer presets on the tests that exercise what they catch best (CI runs this after the full suite):
 #   asan (AddressSanitizer + UndefinedBehaviorSanitizer): the safety supervisor with fault injection, the
 #     fuzzed session loader and the fuzzed DDS command validation, the device session, the live view's server
-#     under its attacks, crafted recordings, the engine socket's parser of untrusted JSON, the engines' worlds' check,
-#     the MuJoCo coupling in lockstep (its arithmetic on MuJoCo's arrays);
+#     under its attacks, crafted recordings, the engine socket's parser of untrusted JSON, the engines' worlds' check;
 #   tsan (ThreadSanitizer): the DDS end-to-end tests (the bridge's threads, Cyclone's receive thread and its
 #     liveliness callbacks, the loop's lock-free hand-offs; the ownership tests with their claimant processes;
 #     the device groups' snapshots, requests and group commands; requests racing a scheme switch), groups on loop
@@ -41,8 +40,8 @@ fuzz() {
 for preset in "${presets[@]}"; do
   case "$preset" in
     asan) targets=(safety_test config_fuzz_test command_gate_test device_session_test foxglove_server_test
-                   playback_device_test socket_messages_test world_view_test mujoco_scenes_test)
-          tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession|FoxgloveServer|PlaybackDevice|SocketMessages|WorldView|MujocoScenes)\.' ;;
+                   playback_device_test socket_messages_test world_view_test)
+          tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession|FoxgloveServer|PlaybackDevice|SocketMessages|WorldView)\.' ;;
     tsan) targets=(dds_engine_test dds_ownership_test dds_groups_test dds_attacks_test separate_loops_test hapticctl
                    hapticd-scene-engine scheme_switching_test round_trip_probe_test device_clock_test c_api_test hapticd)
           tests='^(DdsEngine|DdsOwnership|DdsGroups|DdsAttacks|SeparateLoops|SchemeSwitching|RoundTripProbe|DeviceClock|CApi)\.|^engine_socket$' ;;
