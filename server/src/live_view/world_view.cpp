@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "hapticd/dds/conversion.hpp"
 #include "hapticd/json_text.hpp"
 #include "live_view/scene_json.hpp"
 
@@ -12,20 +13,6 @@ using namespace scene_json;
 
 namespace {
 
-std::string text_of(const char* text, std::size_t capacity) {
-  std::size_t n = 0;
-  while (n < capacity && text[n] != '\0') ++n;
-  return std::string(text, n);
-}
-
-Pose pose_of(const hapticd_msg_Pose& p) {
-  Pose out;
-  out.position = Eigen::Vector3d(p.position[0], p.position[1], p.position[2]);
-  out.orientation =
-      Eigen::Quaterniond(p.orientation[0], p.orientation[1], p.orientation[2], p.orientation[3]).normalized();
-  return out;
-}
-
 // One world's entity: its shapes as cubes, spheres and cylinders (a capsule: a cylinder and two spheres; a plane: a
 // thin cube, 2 m across when unbounded).
 void append_world(std::string& out, bool first, std::uint64_t time_ns, const std::string& engine,
@@ -34,7 +21,8 @@ void append_world(std::string& out, bool first, std::uint64_t time_ns, const std
   std::string cubes, spheres, cylinders;
   for (int i = 0; i < w.shape_count; ++i) {
     const hapticd_msg_WorldShape& s = w.shapes[i];
-    const Pose pose = pose_of(s.shape_pose);
+    Pose pose = dds::to_pose(s.shape_pose);
+    pose.orientation.normalize();  // check_world lets through a norm within 0.5..2
     const Eigen::Vector3d size(s.size[0], s.size[1], s.size[2]);
     const Rgba c{s.color[0], s.color[1], s.color[2], s.color[3]};
     switch (s.shape) {
@@ -76,7 +64,7 @@ void append_world(std::string& out, bool first, std::uint64_t time_ns, const std
 }  // namespace
 
 void WorldView::take(const hapticd_msg_World& world, std::int64_t now_ns) {
-  const std::string engine = text_of(world.engine, sizeof world.engine);
+  const std::string engine(dds::text_of(world.engine));
   std::lock_guard lock(mutex_);
   auto it = engines_.find(engine);
   if (it == engines_.end()) {
