@@ -13,6 +13,7 @@
 #include "minimum_inertia_command.hpp"
 #include "output_capability_command.hpp"
 #include "report/report.hpp"
+#include "teleoperation_command.hpp"
 #include "tracking_command.hpp"
 #include "transparency_command.hpp"
 #include "z_width_command.hpp"
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   hapticd::eval::add_tracking_command(app, exit_code);
   hapticd::eval::add_friction_command(app, exit_code);
   hapticd::eval::add_transparency_command(app, exit_code);
+  hapticd::eval::add_teleoperation_command(app, exit_code);
   hapticd::eval::add_all_command(app, exit_code);
   const bool parse_only = std::getenv("HAPTICD_PARSE_ONLY") != nullptr;  // the documentation's commands test
   if (parse_only)

@@ -209,6 +209,26 @@ ParameterSchema SimDevice::parameter_schema() {
   declare_profile(s, "source_path", "position source path from the attach position", "m", "constant");
   declare_profile(s, "wrench_force", "scripted force", "n", "constant");
   declare_profile(s, "wrench_torque", "scripted torque", "nm", "constant");
+  s.real_vector("wall_normal",
+                "a wall in the device's world: the direction from the handle's position at enable towards it (world); "
+                "zero: no wall")
+      .size(3)
+      .default_value(std::vector<double>{0.0, 0.0, 0.0});
+  s.real("wall_offset_m", "the wall's distance along wall_normal from the handle's position at enable")
+      .unit("m")
+      .minimum(0.0)
+      .maximum(1.0)
+      .default_value(WallSettings{}.offset_m);
+  s.real("wall_stiffness", "the wall's stiffness")
+      .unit("N/m")
+      .greater_than(0.0)
+      .maximum(1e6)
+      .default_value(WallSettings{}.stiffness);
+  s.real("wall_damping", "the wall's damping (it pushes, never pulls)")
+      .unit("N s/m")
+      .minimum(0.0)
+      .maximum(1e4)
+      .default_value(WallSettings{}.damping);
   return s;
 }
 
@@ -351,6 +371,18 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   a.wrench_torque = read_profile(p, "wrench_torque", "nm");
   initial_attachment_ = a;
   requested_ = a;
+  WallSettings wall;
+  const auto& wn = p.real_vector("wall_normal");
+  const Eigen::Vector3d normal(wn[0], wn[1], wn[2]);
+  if (!normal.allFinite()) throw ParameterError("wall_normal", "must be finite");
+  if (normal.norm() > 0.0) {
+    if (normal.norm() < 1e-6) throw ParameterError("wall_normal", "zero (no wall) or a direction");
+    wall.normal = normal.normalized();
+  }
+  wall.offset_m = p.real("wall_offset_m");
+  wall.stiffness = p.real("wall_stiffness");
+  wall.damping = p.real("wall_damping");
+  wall_.configure(wall);
   passive_gimbal_ = p.boolean("passive_gimbal");
 
   command_ = JointVector::Zero(n);
@@ -370,6 +402,7 @@ Outcome SimDevice::enable() {
   sensor_.reset();
   carried_velocity_valid_ = false;
   attachment_.select(initial_attachment_);
+  wall_.reset();
   command_.setZero();
   delayed_count_ = 0;
   simulated_ns_ = 0;
@@ -429,6 +462,7 @@ void SimDevice::substep() noexcept {
   const Vector6d twist = chain_->handle_twist();
   const double t = static_cast<double>(simulated_ns_) * 1e-9;
   Vector6d wrench = attachment_.step(t, substep_s_, handle, twist);
+  wrench.head<3>() += wall_.force(handle.translation(), twist.head<3>());
   if (passive_gimbal_) wrench.tail<3>().setZero();
   if (sensor_present_) sensor_reading(handle, twist, wrench);
   truth_.handle_pose = handle;

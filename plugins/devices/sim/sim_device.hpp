@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "drive.hpp"
+#include "environment_wall.hpp"
 #include "flexible_chain.hpp"
 #include "force_sensor.hpp"
 #include "handle_attachment.hpp"
@@ -67,6 +68,7 @@ class SimDevice final : public Device {
   std::vector<Drive> drives_;
   ForceSensor sensor_;
   HandleAttachment attachment_;
+  EnvironmentWall wall_;
   AttachmentSettings initial_attachment_;
   realtime::LatestValue<AttachmentSettings> attachment_requests_;
   AttachmentSettings pending_;

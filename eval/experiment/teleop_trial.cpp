@@ -1,0 +1,210 @@
+#include "teleop_trial.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "hapticd/server/session.hpp"
+
+namespace hapticd::eval {
+namespace {
+
+using teleop::ChannelModel;
+using teleop::ChannelSettings;
+using teleop::LinkPacket;
+using teleop::LocalSample;
+using teleop::Role;
+using teleop::TeleopSide;
+
+std::vector<std::string> master_overrides(TeleopTask task) {
+  const std::string p = "devices.master.device.parameters.";
+  if (task == TeleopTask::wall) {
+    return {p + "operator_motion=step", p + "operator_motion_m=[0.06, 0, 0]", p + "operator_motion_start_s=0.3",
+            p + "operator_force=ramp",  p + "operator_force_n=[2.0, 0, 0]",   p + "operator_force_start_s=3.0"};
+  }
+  return {p + "operator_motion=sine", p + "operator_motion_m=[0.03, 0, 0]", p + "operator_motion_frequency_hz=0.5"};
+}
+
+std::vector<std::string> remote_overrides(TeleopTask task) {
+  if (task == TeleopTask::wall) return {};
+  return {"devices.remote.device.parameters.wall_normal=[0, 0, 0]"};
+}
+
+LocalSample sample_of(const server::DeviceView& v) {
+  LocalSample s;
+  s.time_ns = std::llround(v.time_s * 1e9);
+  s.position = v.handle_pose.position;
+  s.velocity = v.handle_twist.linear;
+  s.force = v.operator_wrench.force;  // what holds the handle: for the remote, its environment
+  return s;
+}
+
+void apply(server::Session& session, const std::string& device, const Eigen::Vector3d& force, std::uint64_t seq) {
+  EngineInput input;
+  input.has_wrench = true;
+  input.wrench.force = force;
+  input.sequence = seq;
+  session.set_engine_input(device, input);
+}
+
+// Least-squares slope of y against x.
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sx += x[i];
+    sy += y[i];
+    sxx += x[i] * x[i];
+    sxy += x[i] * y[i];
+  }
+  const double d = n * sxx - sx * sx;
+  return d > 0.0 ? (n * sxy - sx * sy) / d : 0.0;
+}
+
+// Peak to peak of y about its straight-line trend over t.
+double detrended_peak_to_peak(const std::vector<double>& t, const std::vector<double>& y) {
+  if (t.size() < 2) return 0.0;
+  const double k = slope(t, y);
+  double mt = 0, my = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    mt += t[i];
+    my += y[i];
+  }
+  mt /= static_cast<double>(t.size());
+  my /= static_cast<double>(t.size());
+  double lo = std::numeric_limits<double>::max(), hi = -lo;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double r = y[i] - (my + k * (t[i] - mt));
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  return hi - lo;
+}
+
+double peak_to_peak(const std::vector<double>& y) {
+  if (y.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+  return *hi - *lo;
+}
+
+double mean(const std::vector<double>& y) {
+  double s = 0.0;
+  for (double v : y) s += v;
+  return y.empty() ? 0.0 : s / static_cast<double>(y.size());
+}
+
+}  // namespace
+
+const char* to_string(TeleopTask task) noexcept { return task == TeleopTask::wall ? "wall" : "free"; }
+
+TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path& config_dir,
+                              const std::vector<std::filesystem::path>& plugin_paths) {
+  if (!(row.duration_s >= 2.0 && row.duration_s <= 600.0))
+    throw std::invalid_argument("teleoperation trial: duration_s must be in [2, 600] s");
+  ChannelSettings channel;
+  channel.delay_s = row.round_trip_s / 2.0;
+  channel.jitter_s = row.jitter_s;
+  channel.loss = row.loss;
+  channel.seed = row.seed;
+  ChannelModel to_remote(channel);
+  channel.seed = row.seed ^ 0xA5A5A5A5ULL;
+  ChannelModel to_master(channel);
+  TeleopSide master_side(Role::master, row.link);
+  TeleopSide remote_side(Role::remote, row.link);
+
+  server::SessionOptions mo{master_overrides(row.task), plugin_paths};
+  mo.overrides.push_back("server.seed=" + std::to_string(row.seed));
+  server::SessionOptions ro{remote_overrides(row.task), plugin_paths};
+  ro.overrides.push_back("server.seed=" + std::to_string(row.seed + 1));
+  server::Session master = server::Session::from_file(config_dir / "master.yaml", mo);
+  server::Session remote = server::Session::from_file(config_dir / "remote.yaml", ro);
+  const double dt = master.period_s();
+  if (std::abs(remote.period_s() - dt) > 1e-12)
+    throw std::invalid_argument("teleoperation trial: the master and the remote must run at one rate");
+
+  TeleopResult result;
+  const auto cycles = static_cast<std::uint64_t>(std::llround(row.duration_s / dt));
+  const double c = row.link.force_scale / row.link.motion_scale;
+  Eigen::Vector3d master_origin, remote_origin;
+  std::vector<double> ts, mx, rx, fx, fpos;  // for the figures of merit
+  double min_energy = 0.0;
+  double max_force = 0.0;
+  for (std::uint64_t k = 1; k <= cycles; ++k) {
+    master.step(1);
+    remote.step(1);
+    const server::DeviceView mv = master.device("master");
+    const server::DeviceView rv = remote.device("remote");
+    if (k == 1) {
+      master_origin = mv.handle_pose.position;
+      remote_origin = rv.handle_pose.position;
+    }
+    if (!mv.fault.empty() || !rv.fault.empty()) {
+      result.fault = !mv.fault.empty() ? "master: " + mv.fault : "remote: " + rv.fault;
+      break;
+    }
+    const std::int64_t now = std::llround(mv.time_s * 1e9);
+    to_master.deliver(now, [&](const LinkPacket& p) { master_side.receive(p); });
+    to_remote.deliver(now, [&](const LinkPacket& p) { remote_side.receive(p); });
+    const teleop::SideOutput mo_out = master_side.cycle(sample_of(mv), dt);
+    const teleop::SideOutput ro_out = remote_side.cycle(sample_of(rv), dt);
+    apply(master, "master", mo_out.force, k);
+    apply(remote, "remote", ro_out.force, k);
+    to_remote.send(mo_out.packet, now);
+    to_master.send(ro_out.packet, now);
+
+    const teleop::EnergyPort& pm = *master_side.status().port;
+    const teleop::EnergyPort& pr = *remote_side.status().port;
+    const double energy = (pm.energy_in() - pm.energy_out()) + c * (pr.energy_in() - pr.energy_out());
+    min_energy = std::min(min_energy, energy);
+    max_force = std::max(max_force, mo_out.force.norm());
+    const double t = static_cast<double>(k) * dt;
+    const Eigen::Vector3d xm = mv.handle_pose.position - master_origin;
+    const Eigen::Vector3d xr = rv.handle_pose.position - remote_origin;
+    ts.push_back(t);
+    mx.push_back(xm.x());
+    rx.push_back(xr.x());
+    fx.push_back(-mo_out.force.x());
+    fpos.push_back(xm.x());
+    if (row.keep_samples)
+      result.samples.push_back({t, xm, xr, mo_out.force, ro_out.force, rv.operator_wrench.force, energy});
+  }
+  result.to_remote = to_remote.counters();
+  result.to_master = to_master.counters();
+  result.min_energy_j = min_energy;
+  result.passive = min_energy >= -1e-3;
+  result.max_force_n = max_force;
+  result.dissipated_j = master_side.status().port->dissipated() + c * remote_side.status().port->dissipated();
+
+  // Figures of merit over the run's last part (a run that faulted has no such part: it is unstable).
+  const double end = row.duration_s;
+  std::vector<double> wt, wm, wr, sx, sf, dm, dr;
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    if (ts[i] >= end - 1.5) {
+      wt.push_back(ts[i]);
+      wm.push_back(mx[i]);
+      wr.push_back(rx[i]);
+    }
+    if (ts[i] >= end - 2.0) {
+      dm.push_back(row.link.motion_scale * mx[i]);
+      dr.push_back(rx[i]);
+    }
+    if (row.task == TeleopTask::wall && ts[i] >= 3.0 && fx[i] > 0.5) {
+      sx.push_back(fpos[i]);
+      sf.push_back(fx[i]);
+    }
+  }
+  result.drift_mm = row.task == TeleopTask::free ? 1e3 * (mean(dr) - mean(dm)) : std::nan("");
+  if (row.task == TeleopTask::wall) {
+    result.oscillation_mm = 1e3 * std::max(detrended_peak_to_peak(wt, wm), detrended_peak_to_peak(wt, wr));
+    result.stable = result.fault.empty() && result.oscillation_mm < 5.0;
+    if (sx.size() >= 200) result.felt_stiffness_n_per_m = slope(sx, sf);
+  } else {
+    const double master_p2p = peak_to_peak(dm);
+    result.oscillation_mm = master_p2p > 0.0 ? peak_to_peak(dr) / master_p2p : 0.0;  // a ratio here
+    result.stable = result.fault.empty() && master_p2p < 0.12 && result.oscillation_mm < 1.5;
+  }
+  return result;
+}
+
+}  // namespace hapticd::eval

@@ -1,0 +1,67 @@
+#pragma once
+// A teleoperation trial in lockstep (docs/teleoperation.md, "Evaluation"): the master and remote sessions
+// (config/sessions/teleoperation/), a TeleopSide each, and a ChannelModel each way, stepped cycle by cycle on one
+// virtual clock: each cycle both sessions step, each side takes what its channel delivered by then and its
+// device's handle, and its force reaches its device as an engine's wrench in the next cycle. The same row and seed
+// give the same run.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "hapticd/teleop/channel_model.hpp"
+#include "hapticd/teleop/teleop_side.hpp"
+
+namespace hapticd::eval {
+
+enum class TeleopTask {
+  wall,  // the operator reaches 6 cm ahead; the remote meets its wall at 3 cm; then the operator pushes harder
+  free,  // the operator moves 3 cm back and forth at 0.5 Hz; no wall
+};
+
+struct TeleopRow {
+  TeleopTask task = TeleopTask::wall;
+  double round_trip_s = 0.0;  // the channel's delay, half each way
+  double loss = 0.0;          // each way
+  double jitter_s = 0.0;      // each way
+  teleop::LinkSettings link;
+  double duration_s = 6.0;
+  std::uint64_t seed = 1;
+  bool keep_samples = false;
+};
+
+struct TeleopSample {
+  double t = 0.0;
+  Eigen::Vector3d master = Eigen::Vector3d::Zero();  // handles from their start [m]
+  Eigen::Vector3d remote = Eigen::Vector3d::Zero();
+  Eigen::Vector3d master_force = Eigen::Vector3d::Zero();  // the link's force on the master [N]
+  Eigen::Vector3d remote_force = Eigen::Vector3d::Zero();  // on the remote
+  Eigen::Vector3d environment = Eigen::Vector3d::Zero();   // the remote's environment on its handle (sensor)
+  double energy = 0.0;                                     // the link's stored energy as observed (master units)
+};
+
+struct TeleopResult {
+  std::string fault;                    // a device's fault ("" none): the run ended there
+  double min_energy_j = 0.0;            // the link's observed energy at its lowest (< 0: it created energy)
+  bool passive = false;                 // min_energy_j >= -1 mJ
+  bool stable = false;                  // no fault and no sustained or growing oscillation (below)
+  double oscillation_mm = 0.0;          // the wall task: the master's peak to peak in the last 1.5 s about its trend;
+                                        // free motion: the remote's amplitude over the master's
+  double felt_stiffness_n_per_m = 0.0;  // the wall task: the master's force against its position while pushing
+  // Free motion: the remote's mean position minus the master's (scaled) over the last 2 s (one period of the
+  // operator's motion); NaN for the wall, where the two differ by the contact's deflection, not by drift.
+  double drift_mm = 0.0;
+  double max_force_n = 0.0;   // on the master
+  double dissipated_j = 0.0;  // by the passivity controllers, both sides
+  teleop::ChannelCounters to_remote, to_master;
+  std::vector<TeleopSample> samples;  // with keep_samples: every cycle
+};
+
+// `config_dir`: where master.yaml and remote.yaml are (config/sessions/teleoperation); `plugin_paths` are searched
+// for plugins first. Throws std::runtime_error when a session cannot be built, std::invalid_argument for a bad row.
+TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path& config_dir,
+                              const std::vector<std::filesystem::path>& plugin_paths = {});
+
+const char* to_string(TeleopTask task) noexcept;
+
+}  // namespace hapticd::eval

@@ -1,0 +1,160 @@
+#include "teleoperation_command.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "device_presets.hpp"
+#include "eval_options.hpp"
+#include "experiment/teleop_trial.hpp"
+#include "report/progress.hpp"
+
+namespace hapticd::eval {
+namespace {
+
+struct Options {
+  CommonOptions common;
+  std::vector<double> round_trips_ms{0.0, 10.0, 50.0, 200.0, 500.0};
+  std::vector<double> losses_percent{0.0, 5.0, 20.0};
+  std::vector<std::string> schemes{"none", "tdpa"};
+  std::vector<std::string> tasks{"wall", "free"};
+  std::string architecture = "position_force";
+  double jitter_ms = 0.0;
+  double duration_s = 6.0;
+  double stiffness = teleop::LinkSettings{}.stiffness;
+  double damping = teleop::LinkSettings{}.damping;
+  double motion_scale = 1.0;
+  double force_scale = 1.0;
+};
+
+teleop::Passivity parse_passivity(const std::string& s) {
+  if (s == "none") return teleop::Passivity::none;
+  if (s == "wave") return teleop::Passivity::wave;
+  return teleop::Passivity::tdpa;
+}
+
+std::string cell(const TeleopResult& r) {
+  if (!r.fault.empty()) return "fault";
+  return fmt::format("{}{}", r.passive ? "P" : "-", r.stable ? "S" : "-");
+}
+
+int run(const Options& o) {
+  std::string tried;
+  const auto master_file = find_config_file("sessions/teleoperation/master.yaml", &tried);
+  if (!master_file) throw std::runtime_error("no config/sessions/teleoperation/master.yaml; looked at:" + tried);
+  const std::filesystem::path config_dir = master_file->parent_path();
+
+  std::vector<TeleopTask> tasks;
+  for (const std::string& t : o.tasks) tasks.push_back(t == "free" ? TeleopTask::free : TeleopTask::wall);
+  Progress progress("teleoperation",
+                    tasks.size() * o.schemes.size() * o.round_trips_ms.size() * o.losses_percent.size());
+  Json rows = Json::array();
+  fmt::print("teleoperation, {}: P passive, S stable; felt stiffness [N/m], drift [mm], min energy [mJ]\n",
+             o.architecture);
+  for (const TeleopTask task : tasks) {
+    for (const std::string& scheme : o.schemes) {
+      fmt::print("{} / {}\n", to_string(task), scheme);
+      for (const double rtt : o.round_trips_ms) {
+        fmt::print("  {:>5g} ms:", rtt);
+        for (const double loss : o.losses_percent) {
+          TeleopRow row;
+          row.task = task;
+          row.round_trip_s = rtt * 1e-3;
+          row.loss = loss * 1e-2;
+          row.jitter_s = o.jitter_ms * 1e-3;
+          row.duration_s = o.duration_s;
+          row.seed = o.common.seed;
+          row.link.architecture = o.architecture == "position_position" ? teleop::Architecture::position_position
+                                                                        : teleop::Architecture::position_force;
+          row.link.passivity = parse_passivity(scheme);
+          row.link.stiffness = o.stiffness;
+          row.link.damping = o.damping;
+          row.link.motion_scale = o.motion_scale;
+          row.link.force_scale = o.force_scale;
+          const TeleopResult r = run_teleop_trial(row, config_dir);
+          progress.advance(fmt::format("{} {} {:g} ms {:g} %", to_string(task), scheme, rtt, loss));
+          fmt::print("  {:>2g}%: {:<5} K {:>5.0f} drift {:>6.1f} E {:>8.1f}", loss, cell(r), r.felt_stiffness_n_per_m,
+                     r.drift_mm, 1e3 * r.min_energy_j);
+          rows.push(Json::object()
+                        .set("task", to_string(task))
+                        .set("passivity", scheme)
+                        .set("round_trip_ms", rtt)
+                        .set("loss_percent", loss)
+                        .set("passive", r.passive)
+                        .set("stable", r.stable)
+                        .set("fault", r.fault)
+                        .set("min_energy_j", r.min_energy_j)
+                        .set("oscillation", r.oscillation_mm)
+                        .set("felt_stiffness_n_per_m", r.felt_stiffness_n_per_m)
+                        .set("drift_mm", r.drift_mm)
+                        .set("max_force_n", r.max_force_n)
+                        .set("dissipated_j", r.dissipated_j)
+                        .set("packets_lost", static_cast<unsigned long>(r.to_remote.lost + r.to_master.lost)));
+        }
+        fmt::print("\n");
+      }
+    }
+  }
+  Json result = Json::object();
+  result.set("experiment", "teleoperation")
+      .set("title", "Teleoperation: a stiff wall and free motion through a delayed, lossy link")
+      .set("device", o.common.device)
+      .set("architecture", o.architecture)
+      .set("stiffness_n_per_m", o.stiffness)
+      .set("damping_n_s_per_m", o.damping)
+      .set("jitter_ms", o.jitter_ms)
+      .set("duration_s", o.duration_s)
+      .set("rows", rows)
+      .set("command", command_line());
+  publish_result(o.common.report(), "teleoperation", result);
+  return 0;
+}
+
+}  // namespace
+
+void add_teleoperation_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "teleoperation",
+      "Bilateral teleoperation of a simulated ViSHaRD3 by another: a stiff wall and free motion at each round-trip "
+      "delay and loss, with and without passivity control (passive, stable, felt stiffness, drift)");
+  add_common_options(cmd, o->common);
+  cmd->add_option("--round-trips", o->round_trips_ms, "round-trip delays [ms]")
+      ->check(CLI::Range(0.0, 5000.0))
+      ->capture_default_str();
+  cmd->add_option("--losses", o->losses_percent, "packet losses each way [%]")
+      ->check(CLI::Range(0.0, 99.0))
+      ->capture_default_str();
+  cmd->add_option("--passivity", o->schemes, "none, tdpa, wave")
+      ->check(CLI::IsMember({"none", "tdpa", "wave"}))
+      ->capture_default_str();
+  cmd->add_option("--tasks", o->tasks, "wall, free")->check(CLI::IsMember({"wall", "free"}))->capture_default_str();
+  cmd->add_option("--architecture", o->architecture, "position_force or position_position")
+      ->check(CLI::IsMember({"position_force", "position_position"}))
+      ->capture_default_str();
+  cmd->add_option("--jitter", o->jitter_ms, "each packet's extra delay, uniform up to this [ms]")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--duration", o->duration_s, "each run [s]")->check(CLI::Range(4.0, 600.0))->capture_default_str();
+  cmd->add_option("--stiffness", o->stiffness, "the remote's position controller or the coupling [N/m]")
+      ->check(CLI::Range(0.0, 1e5))
+      ->capture_default_str();
+  cmd->add_option("--damping", o->damping, "its damping [N s/m]")->check(CLI::Range(0.0, 1e4))->capture_default_str();
+  cmd->add_option("--motion-scale", o->motion_scale, "remote motion per master motion")
+      ->check(CLI::Range(0.01, 100.0))
+      ->capture_default_str();
+  cmd->add_option("--force-scale", o->force_scale, "master force per remote force")
+      ->check(CLI::Range(0.01, 100.0))
+      ->capture_default_str();
+  cmd->callback([o, &exit_code] {
+    Options run_options = *o;
+    if (run_options.common.quick) {
+      run_options.round_trips_ms = {0.0, 200.0};
+      run_options.losses_percent = {0.0, 20.0};
+      run_options.duration_s = 4.0;
+    }
+    exit_code = run(run_options);
+  });
+}
+
+}  // namespace hapticd::eval

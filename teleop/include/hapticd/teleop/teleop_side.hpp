@@ -1,0 +1,122 @@
+#pragma once
+// One side of a bilateral teleoperation link (docs/teleoperation.md): the master (the device the operator holds)
+// or the remote (the manipulator in the remote environment). Each cycle it takes its device's handle - position,
+// velocity and the force the environment applies to it - and the newest packet from the other side, and gives
+// the force to apply to its handle and the packet to send. Architectures:
+//   - position-force: the master sends its motion; the remote's setpoint follows it through a position
+//     controller (a spring-damper to the handle) and returns the force its environment applies; the master
+//     displays that force;
+//   - position-position: each side sends its motion, and a spring-damper across the link pulls each handle
+//     towards the other's.
+// Passivity: none (the delayed link as it is); the time-domain passivity approach (an EnergyPort each side, the
+// energy that entered at each port carried in the packets); or wave variables (position-force only: the master's
+// motion and the remote's force travel as waves, which a delay cannot make active; a lost wave is read as zero).
+// Scaling: the remote moves motion_scale times the master's motion; the master feels force_scale times the
+// remote's force. Everything runs on the caller's thread without allocating.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+
+#include "hapticd/teleop/energy_port.hpp"
+#include "hapticd/teleop/link_packet.hpp"
+
+namespace hapticd::teleop {
+
+enum class Role { master, remote };
+enum class Architecture { position_force, position_position };
+enum class Passivity { none, tdpa, wave };
+
+struct LinkSettings {
+  Architecture architecture = Architecture::position_force;
+  Passivity passivity = Passivity::tdpa;
+  double motion_scale = 1.0;  // remote motion per master motion
+  double force_scale = 1.0;   // master force per remote force
+  // Position-position: the coupling across the link; position-force: the remote's position controller.
+  double stiffness = 1500.0;     // [N/m]
+  double damping = 20.0;         // [N s/m]
+  double wave_impedance = 40.0;  // wave variables' b [N s/m]
+  // Position-force: the remote's setpoint closes its distance to the master's motion over this time (drift
+  // compensation, paid from the energy budget like all of the setpoint's motion).
+  double drift_time_s = 0.02;
+  double max_speed = 1.0;   // the remote setpoint's speed limit [m/s]
+  double max_force = 40.0;  // the force either side commands at most [N]
+  // No packet for this long: the link is lost (the remote's setpoint holds still; the master's force fades out
+  // over fade_s, and in again over fade_s when packets come back).
+  double link_timeout_s = 1.0;
+  double fade_s = 0.1;
+};
+
+// The settings' first problem ("" when there is none).
+std::string link_settings_problem(const LinkSettings& settings);
+const char* to_string(Architecture a) noexcept;
+const char* to_string(Passivity p) noexcept;
+
+struct LocalSample {
+  std::int64_t time_ns = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // the handle (world) [m]
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [m/s]
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();     // the environment's force on the handle (the remote) [N]
+};
+
+struct SideOutput {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // to apply to the local handle [N]
+  LinkPacket packet;                                // to send
+};
+
+struct SideStatus {
+  const EnergyPort* port = nullptr;
+  double peer_energy_in = 0.0;  // the other port's energy in, as received, in this side's units [J]
+  std::uint64_t received = 0;   // packets taken
+  std::uint64_t stale = 0;      // packets older than one already taken (reordered): ignored
+  double silence_s = 0.0;       // since the newest packet arrived (from the start: since the link started)
+  bool link_lost = false;       // silence_s > link_timeout_s
+  bool peer_stopped = false;
+  double fade = 1.0;  // the master's force weight: falls to 0 over fade_s while the link is lost, rises when back
+  // Position-force, the remote: its setpoint's distance from the master's motion as last received [m].
+  double drift_m = 0.0;
+};
+
+class TeleopSide {
+ public:
+  // Throws std::invalid_argument with link_settings_problem().
+  TeleopSide(Role role, const LinkSettings& settings);
+
+  // The link starts at the handle's present position (both sides' motions are taken from here).
+  void start(const LocalSample& sample) noexcept;
+  // A packet from the other side (any order; only the newest by sequence is kept).
+  void receive(const LinkPacket& packet) noexcept;
+  // One cycle of dt seconds. `stopped`: this side's device is stopped (the other side is told to stop too).
+  SideOutput cycle(const LocalSample& sample, double dt, bool stopped = false) noexcept;
+
+  [[nodiscard]] const SideStatus& status() const noexcept { return status_; }
+  [[nodiscard]] Role role() const noexcept { return role_; }
+  [[nodiscard]] const LinkSettings& settings() const noexcept { return settings_; }
+  // The remote's setpoint (position-force; its start frame) [m].
+  [[nodiscard]] const Eigen::Vector3d& setpoint() const noexcept { return setpoint_; }
+
+ private:
+  Eigen::Vector3d master_force(const Eigen::Vector3d& x, const Eigen::Vector3d& v, double dt, LinkPacket& out) noexcept;
+  Eigen::Vector3d remote_force(const Eigen::Vector3d& x, const Eigen::Vector3d& v, const Eigen::Vector3d& f_env,
+                               double dt, LinkPacket& out) noexcept;
+  // The energy scale from the remote's units to the master's: force_scale / motion_scale.
+  [[nodiscard]] double to_master_units() const noexcept { return settings_.force_scale / settings_.motion_scale; }
+
+  Role role_;
+  LinkSettings settings_;
+  EnergyPort port_;
+  SideStatus status_;
+  bool started_ = false;
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  std::int64_t last_ns_ = 0;
+  std::uint64_t sequence_ = 0;
+  LinkPacket peer_;  // the newest packet taken
+  bool have_peer_ = false;
+  // Waves arrived since the last cycle (their mean is this cycle's wave; none: zero).
+  Eigen::Vector3d wave_sum_ = Eigen::Vector3d::Zero();
+  int waves_ = 0;
+  // Position-force, the remote: its setpoint (start frame) and the setpoint's velocity.
+  Eigen::Vector3d setpoint_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d setpoint_velocity_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace hapticd::teleop

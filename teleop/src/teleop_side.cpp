@@ -1,0 +1,179 @@
+#include "hapticd/teleop/teleop_side.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace hapticd::teleop {
+namespace {
+
+Eigen::Vector3d clamp_norm(const Eigen::Vector3d& v, double limit) noexcept {
+  const double n = v.norm();
+  return n > limit ? Eigen::Vector3d(v * (limit / n)) : v;
+}
+
+}  // namespace
+
+std::string link_settings_problem(const LinkSettings& s) {
+  const auto bad = [](double v, double lo, double hi) { return !std::isfinite(v) || v < lo || v > hi; };
+  if (bad(s.motion_scale, 0.01, 100.0)) return "motion_scale must be in [0.01, 100]";
+  if (bad(s.force_scale, 0.01, 100.0)) return "force_scale must be in [0.01, 100]";
+  if (bad(s.stiffness, 0.0, 1e5)) return "stiffness must be in [0, 100000] N/m";
+  if (bad(s.damping, 0.0, 1e4)) return "damping must be in [0, 10000] N s/m";
+  if (bad(s.wave_impedance, 0.1, 1e4)) return "wave_impedance must be in [0.1, 10000] N s/m";
+  if (bad(s.drift_time_s, 1e-4, 10.0)) return "drift_time_s must be in [0.0001, 10] s";
+  if (bad(s.max_speed, 1e-3, 10.0)) return "max_speed must be in [0.001, 10] m/s";
+  if (bad(s.max_force, 0.0, 1000.0)) return "max_force must be in [0, 1000] N";
+  if (bad(s.link_timeout_s, 1e-3, 60.0)) return "link_timeout_s must be in [0.001, 60] s";
+  if (bad(s.fade_s, 0.0, 10.0)) return "fade_s must be in [0, 10] s";
+  if (s.passivity == Passivity::wave && s.architecture != Architecture::position_force)
+    return "wave variables carry the position-force architecture only (passivity: tdpa or none for position-position)";
+  return "";
+}
+
+const char* to_string(Architecture a) noexcept {
+  return a == Architecture::position_force ? "position_force" : "position_position";
+}
+
+const char* to_string(Passivity p) noexcept {
+  switch (p) {
+    case Passivity::none:
+      return "none";
+    case Passivity::tdpa:
+      return "tdpa";
+    case Passivity::wave:
+      return "wave";
+  }
+  return "?";
+}
+
+TeleopSide::TeleopSide(Role role, const LinkSettings& settings) : role_(role), settings_(settings) {
+  if (const std::string problem = link_settings_problem(settings); !problem.empty())
+    throw std::invalid_argument("teleoperation: " + problem);
+  status_.port = &port_;
+}
+
+void TeleopSide::start(const LocalSample& sample) noexcept {
+  started_ = true;
+  origin_ = sample.position;
+  last_ns_ = sample.time_ns;
+  setpoint_.setZero();
+  setpoint_velocity_.setZero();
+}
+
+void TeleopSide::receive(const LinkPacket& packet) noexcept {
+  if (have_peer_ && packet.sequence <= peer_.sequence) {
+    ++status_.stale;
+    return;
+  }
+  peer_ = packet;
+  have_peer_ = true;
+  ++status_.received;
+  status_.silence_s = 0.0;
+  if (settings_.passivity == Passivity::wave) {
+    wave_sum_ += packet.wave;
+    ++waves_;
+  }
+}
+
+SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped) noexcept {
+  if (!started_) start(sample);
+  SideOutput out;
+  const Eigen::Vector3d x = sample.position - origin_;
+  const Eigen::Vector3d& v = sample.velocity;
+  status_.silence_s += dt;
+  status_.link_lost = status_.silence_s > settings_.link_timeout_s;
+  status_.peer_stopped = have_peer_ && peer_.stopped;
+
+  Eigen::Vector3d force =
+      role_ == Role::master ? master_force(x, v, dt, out.packet) : remote_force(x, v, sample.force, dt, out.packet);
+  wave_sum_.setZero();
+  waves_ = 0;
+
+  // A lost link or a stopped side: the master's force fades out; the remote's setpoint has stopped (above).
+  const bool hold = status_.link_lost || status_.peer_stopped || stopped;
+  // The weight falls over fade_s and rises again over fade_s when the link is back: no jolt either way.
+  const double step = settings_.fade_s > 0.0 ? dt / settings_.fade_s : 1.0;
+  status_.fade = std::clamp(status_.fade + (hold ? -step : step), 0.0, 1.0);
+  if (role_ == Role::master) force *= status_.fade;
+  out.force = force;
+  out.packet.sequence = ++sequence_;
+  out.packet.sent_ns = sample.time_ns;
+  out.packet.energy_in = port_.energy_in();
+  out.packet.stopped = stopped;
+  last_ns_ = sample.time_ns;
+  return out;
+}
+
+Eigen::Vector3d TeleopSide::master_force(const Eigen::Vector3d& x, const Eigen::Vector3d& v, double dt,
+                                         LinkPacket& out) noexcept {
+  const LinkSettings& s = settings_;
+  const double c = to_master_units();
+  const Eigen::Vector3d xs = s.motion_scale * x;  // in the remote's units of motion
+  const Eigen::Vector3d vs = s.motion_scale * v;
+  out.position = xs;
+  out.velocity = vs;
+  status_.peer_energy_in = peer_.energy_in * c;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  if (s.passivity == Passivity::wave) {
+    // The force on the link in the remote's units, f = b v - sqrt(2b) w, sent as u = (b v + f) / sqrt(2b).
+    const double b = s.wave_impedance;
+    const Eigen::Vector3d w = waves_ > 0 ? Eigen::Vector3d(wave_sum_ / waves_) : Eigen::Vector3d::Zero();
+    Eigen::Vector3d f = b * vs - std::sqrt(2.0 * b) * w;
+    f = clamp_norm(f, s.max_force / s.force_scale);
+    out.wave = (b * vs + f) / std::sqrt(2.0 * b);
+    force = -s.force_scale * f;
+    return port_.force_out(force, v, dt, status_.peer_energy_in, false);
+  }
+  if (have_peer_ && !status_.link_lost) {
+    if (s.architecture == Architecture::position_force) {
+      force = s.force_scale * peer_.force;
+    } else {
+      force = s.force_scale * (s.stiffness * (peer_.position - xs) + s.damping * (peer_.velocity - vs));
+    }
+  }
+  force = clamp_norm(force, s.max_force);
+  return port_.force_out(force, v, dt, status_.peer_energy_in, s.passivity == Passivity::tdpa);
+}
+
+Eigen::Vector3d TeleopSide::remote_force(const Eigen::Vector3d& x, const Eigen::Vector3d& v,
+                                         const Eigen::Vector3d& f_env, double dt, LinkPacket& out) noexcept {
+  const LinkSettings& s = settings_;
+  const double c = to_master_units();
+  out.position = x;
+  out.velocity = v;
+  out.force = f_env;
+  status_.peer_energy_in = peer_.energy_in / c;
+  const bool follow = have_peer_ && !status_.link_lost && !peer_.stopped;
+  if (s.architecture == Architecture::position_position) {
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+    if (follow) force = s.stiffness * (peer_.position - x) + s.damping * (peer_.velocity - v);
+    force = clamp_norm(force, s.max_force);
+    return port_.force_out(force, v, dt, status_.peer_energy_in, s.passivity == Passivity::tdpa);
+  }
+  // Position-force: the link moves the setpoint; the environment's force on the handle pushes back on it.
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  if (s.passivity == Passivity::wave) {
+    // v = (sqrt(2b) u - f) / b with f = -f_env the force the link exerts on the setpoint; w = (b v - f) / sqrt(2b).
+    const double b = s.wave_impedance;
+    const Eigen::Vector3d u = waves_ > 0 ? Eigen::Vector3d(wave_sum_ / waves_) : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d f = -f_env;
+    velocity = follow ? Eigen::Vector3d((std::sqrt(2.0 * b) * u - f) / b) : Eigen::Vector3d::Zero();
+    velocity = clamp_norm(velocity, s.max_speed);
+    out.wave = (b * velocity - f) / std::sqrt(2.0 * b);
+    velocity = port_.velocity_out(velocity, f_env, dt, status_.peer_energy_in, false);
+  } else {
+    if (follow) {
+      velocity = peer_.velocity + (peer_.position - setpoint_) / s.drift_time_s;
+      velocity = clamp_norm(velocity, s.max_speed);
+    }
+    velocity = port_.velocity_out(velocity, f_env, dt, status_.peer_energy_in, s.passivity == Passivity::tdpa);
+  }
+  setpoint_velocity_ = velocity;
+  setpoint_ += velocity * dt;
+  if (have_peer_) status_.drift_m = (peer_.position - setpoint_).norm();
+  const Eigen::Vector3d force = s.stiffness * (setpoint_ - x) + s.damping * (setpoint_velocity_ - v);
+  return clamp_norm(force, s.max_force);
+}
+
+}  // namespace hapticd::teleop

@@ -1,0 +1,125 @@
+// Bilateral teleoperation in lockstep (docs/teleoperation.md): the master and remote sessions of
+// config/sessions/teleoperation through the channel model, each row's claim of `hapticd-eval teleoperation` -
+// passive and stable with the time-domain passivity approach at every delay and loss, unstable and active without
+// it at the long delays - the wall's felt stiffness, the drift, and the same seed giving the same run.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "experiment/teleop_trial.hpp"
+#include "support/test_paths.hpp"
+
+namespace hapticd::eval {
+namespace {
+
+TeleopResult run(TeleopTask task, teleop::Architecture a, teleop::Passivity p, double rtt_ms, double loss,
+                 std::uint64_t seed = 1, bool keep = false) {
+  TeleopRow row;
+  row.task = task;
+  row.round_trip_s = rtt_ms * 1e-3;
+  row.loss = loss;
+  row.link.architecture = a;
+  row.link.passivity = p;
+  row.seed = seed;
+  row.keep_samples = keep;
+  return run_teleop_trial(row, test::source_dir() + "/config/sessions/teleoperation", {test::plugin_dir()});
+}
+
+std::string describe(const TeleopResult& r) {
+  return "fault '" + r.fault + "', min energy " + std::to_string(r.min_energy_j) + " J, oscillation " +
+         std::to_string(r.oscillation_mm) + ", felt " + std::to_string(r.felt_stiffness_n_per_m) + " N/m, drift " +
+         std::to_string(r.drift_mm) + " mm";
+}
+
+using teleop::Architecture;
+using teleop::Passivity;
+
+class Rows : public ::testing::TestWithParam<Architecture> {};
+
+TEST_P(Rows, WithPassivityControlEveryDelayAndLossIsPassiveAndStable) {
+  for (const TeleopTask task : {TeleopTask::wall, TeleopTask::free}) {
+    for (const double rtt : {0.0, 50.0, 200.0, 500.0}) {
+      for (const double loss : {0.0, 0.2}) {
+        const TeleopResult r = run(task, GetParam(), Passivity::tdpa, rtt, loss);
+        SCOPED_TRACE(std::string(to_string(task)) + " " + std::to_string(rtt) + " ms " + std::to_string(loss));
+        EXPECT_TRUE(r.passive) << describe(r);
+        EXPECT_TRUE(r.stable) << describe(r);
+        EXPECT_GE(r.min_energy_j, -1e-9) << describe(r);  // the controllers' guarantee, up to rounding
+        if (task == TeleopTask::free) {
+          EXPECT_LT(std::abs(r.drift_mm), 2.0) << describe(r);
+        }
+        if (task == TeleopTask::wall && rtt == 0.0) {
+          EXPECT_GT(r.felt_stiffness_n_per_m, 800.0) << describe(r);
+        }
+      }
+    }
+  }
+}
+
+TEST_P(Rows, WithoutItTheLongDelaysGoUnstableAndCreateEnergy) {
+  for (const double rtt : {200.0, 500.0}) {
+    const TeleopResult r = run(TeleopTask::wall, GetParam(), Passivity::none, rtt, 0.05);
+    SCOPED_TRACE(std::to_string(rtt) + " ms");
+    EXPECT_FALSE(r.stable) << describe(r);
+    EXPECT_FALSE(r.passive) << describe(r);
+    EXPECT_LT(r.min_energy_j, -1.0) << describe(r);
+  }
+  // Without delay the same link is stable, and the wall is felt through the remote's controller in series:
+  // 5000 N/m and 1500 N/m make 1154 N/m.
+  const TeleopResult r = run(TeleopTask::wall, GetParam(), Passivity::none, 0.0, 0.0);
+  EXPECT_TRUE(r.stable) << describe(r);
+  EXPECT_NEAR(r.felt_stiffness_n_per_m, 1154.0, 120.0) << describe(r);
+}
+
+INSTANTIATE_TEST_SUITE_P(Teleoperation, Rows,
+                         ::testing::Values(Architecture::position_force, Architecture::position_position),
+                         [](const ::testing::TestParamInfo<Architecture>& p) {
+                           return std::string(teleop::to_string(p.param));
+                         });
+
+TEST(Teleoperation, PositionPositionWithoutPassivityControlIsUnstableInFreeMotionToo) {
+  const TeleopResult r = run(TeleopTask::free, Architecture::position_position, Passivity::none, 200.0, 0.0);
+  EXPECT_FALSE(r.stable) << describe(r);
+  EXPECT_FALSE(r.passive) << describe(r);
+}
+
+TEST(Teleoperation, WaveVariablesArePassiveAtEveryDelay) {
+  for (const double rtt : {0.0, 200.0, 500.0}) {
+    const TeleopResult r = run(TeleopTask::wall, Architecture::position_force, Passivity::wave, rtt, 0.05);
+    EXPECT_TRUE(r.passive) << rtt << " ms: " << describe(r);
+    EXPECT_TRUE(r.fault.empty()) << describe(r);
+  }
+}
+
+TEST(Teleoperation, TheSameSeedGivesTheSameRun) {
+  const auto a = run(TeleopTask::wall, Architecture::position_force, Passivity::tdpa, 50.0, 0.05, 11, true);
+  const auto b = run(TeleopTask::wall, Architecture::position_force, Passivity::tdpa, 50.0, 0.05, 11, true);
+  const auto c = run(TeleopTask::wall, Architecture::position_force, Passivity::tdpa, 50.0, 0.05, 12, true);
+  ASSERT_EQ(a.samples.size(), b.samples.size());
+  ASSERT_FALSE(a.samples.empty());
+  for (std::size_t i = 0; i < a.samples.size(); ++i) {
+    ASSERT_EQ(a.samples[i].master, b.samples[i].master) << i;
+    ASSERT_EQ(a.samples[i].remote_force, b.samples[i].remote_force) << i;
+    ASSERT_EQ(a.samples[i].energy, b.samples[i].energy) << i;
+  }
+  EXPECT_EQ(a.to_remote.lost, b.to_remote.lost);
+  EXPECT_NE(a.to_remote.lost, c.to_remote.lost);
+  bool differs = false;
+  for (std::size_t i = 0; i < std::min(a.samples.size(), c.samples.size()); ++i)
+    differs = differs || a.samples[i].master != c.samples[i].master;
+  EXPECT_TRUE(differs);
+}
+
+TEST(Teleoperation, RefusesABadRow) {
+  TeleopRow row;
+  row.link.stiffness = -5.0;
+  EXPECT_THROW(run_teleop_trial(row, test::source_dir() + "/config/sessions/teleoperation", {test::plugin_dir()}),
+               std::invalid_argument);
+  row = TeleopRow{};
+  row.loss = 1.5;
+  EXPECT_THROW(run_teleop_trial(row, test::source_dir() + "/config/sessions/teleoperation", {test::plugin_dir()}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hapticd::eval
