@@ -21,9 +21,9 @@ struct Experiment {
   bool every_device;
 };
 const std::vector<Experiment> kExperiments{
-    {"output-capability", true}, {"backdrivability", false}, {"force-response", false},
-    {"minimum-inertia", true},   {"force-gain", false},      {"tracking", false},
-    {"z-width", false},          {"transparency", false},    {"friction", true}};
+    {"output-capability", true}, {"backdrivability", false}, {"force-response", false}, {"minimum-inertia", true},
+    {"force-gain", false},       {"tracking", false},        {"z-width", false},        {"transparency", false},
+    {"friction", true},          {"teleoperation", false}};
 
 // Runs this program with the arguments (a child process per experiment: each has its own options and a fault
 // in one does not stop the others). Returns its exit status.
@@ -86,7 +86,7 @@ int run(const CommonOptions& o) {
 }  // namespace
 
 void add_all_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<CommonOptions>();
+  auto o = command_options<CommonOptions>();
   CLI::App* cmd = app.add_subcommand(
       "all",
       "Every experiment of the chapter the device has a protocol for in turn (vishard6, vishard10: output "

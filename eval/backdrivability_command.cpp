@@ -145,7 +145,7 @@ int run(const Options& o) {
 }  // namespace
 
 void add_backdrivability_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<Options>();
+  auto o = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "backdrivability",
       "A stiff guide moves the handle along x (constant-acceleration and constant-velocity phases); the force "

@@ -2,6 +2,7 @@
 // The options every experiment subcommand takes: the device, where the results go, quick (CI-sized) runs.
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,15 @@ struct CommonOptions {
 
   [[nodiscard]] ReportOptions report() const { return {out, !no_figures}; }
 };
+
+// A subcommand's options, alive as long as the program: CLI11 writes into them while it parses, and the
+// documentation test's parse-only mode (HAPTICD_PARSE_ONLY) replaces the callbacks that also hold them.
+template <class T>
+std::shared_ptr<T> command_options() {
+  static std::vector<std::shared_ptr<T>> kept;
+  kept.push_back(std::make_shared<T>());
+  return kept.back();
+}
 
 struct RigDevice;
 // The rig's device for these options (experiment/rig.hpp).

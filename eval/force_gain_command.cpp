@@ -114,7 +114,7 @@ int run(const Options& o) {
 }  // namespace
 
 void add_force_gain_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<Options>();
+  auto o = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "force-gain",
       "Bisection of the largest force-feedback gain Kp impedance display (PD force feedback) renders stably, per "

@@ -146,7 +146,7 @@ int run(const Options& o) {
 }  // namespace
 
 void add_force_response_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<Options>();
+  auto o = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "force-response",
       "Dynamic force precision: the handle held by a stiff guide, sinusoidal desired force, gain, phase, "

@@ -183,7 +183,7 @@ int run(const Options& o) {
 }  // namespace
 
 void add_friction_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<Options>();
+  auto o = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "friction",
       "Runs the friction identification on the simulated device and plots the identified curves against the "

@@ -275,7 +275,7 @@ int run(const Options& o) {
 }  // namespace
 
 void add_minimum_inertia_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<Options>();
+  auto o = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "minimum-inertia",
       "Bisection of the smallest pure virtual mass each admittance scheme renders stably, per direction, under "

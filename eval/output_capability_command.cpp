@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "device_presets.hpp"
+#include "eval_options.hpp"
 #include "hapticd/model/kinematics.hpp"
 #include "hapticd/model/output_capability.hpp"
 #include "hapticd/model/urdf_loader.hpp"
@@ -143,7 +144,7 @@ int run(const Options& o) {
 }  // namespace
 
 void add_output_capability_command(CLI::App& app, int& exit_code) {
-  auto options = std::make_shared<Options>();
+  auto options = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "output-capability",
       "Worst-direction peak force, velocity and acceleration of the handle over a workspace grid (appendix C)");

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <fstream>
 #include <memory>
 
 #include "device_presets.hpp"
@@ -25,6 +27,8 @@ struct Options {
   double damping = teleop::LinkSettings{}.damping;
   double motion_scale = 1.0;
   double force_scale = 1.0;
+  double trace_round_trip_ms = 200.0;  // the wall's run over time at this delay (no loss) goes into the report
+  std::string table;                   // also the rows alone, to this file (the docs' tables)
 };
 
 teleop::Passivity parse_passivity(const std::string& s) {
@@ -49,8 +53,11 @@ int run(const Options& o) {
   Progress progress("teleoperation",
                     tasks.size() * o.schemes.size() * o.round_trips_ms.size() * o.losses_percent.size());
   Json rows = Json::array();
-  fmt::print("teleoperation, {}: P passive, S stable; felt stiffness [N/m], drift [mm], min energy [mJ]\n",
-             o.architecture);
+  Json traces = Json::array();
+  fmt::print(
+      "teleoperation, {}: P passive, S stable; the wall's felt stiffness K [N/m], free motion's drift [mm]; "
+      "lowest energy E [mJ]\n",
+      o.architecture);
   for (const TeleopTask task : tasks) {
     for (const std::string& scheme : o.schemes) {
       fmt::print("{} / {}\n", to_string(task), scheme);
@@ -71,10 +78,32 @@ int run(const Options& o) {
           row.link.damping = o.damping;
           row.link.motion_scale = o.motion_scale;
           row.link.force_scale = o.force_scale;
+          // The wall at the trace delay without loss: its run over time, for the report's figure.
+          row.keep_samples = task == TeleopTask::wall && rtt == o.trace_round_trip_ms && loss == 0.0;
           const TeleopResult r = run_teleop_trial(row, config_dir);
+          if (row.keep_samples) {
+            std::vector<double> t, xm, xr, f;
+            for (std::size_t k = 0; k < r.samples.size(); k += 10) {  // 100 Hz
+              t.push_back(r.samples[k].t);
+              xm.push_back(r.samples[k].master.x());
+              xr.push_back(r.samples[k].remote.x());
+              f.push_back(r.samples[k].master_force.x());
+            }
+            traces.push(Json::object()
+                            .set("passivity", scheme)
+                            .set("round_trip_ms", rtt)
+                            .set("time_s", t)
+                            .set("master_x_m", xm)
+                            .set("remote_x_m", xr)
+                            .set("master_force_x_n", f));
+          }
           progress.advance(fmt::format("{} {} {:g} ms {:g} %", to_string(task), scheme, rtt, loss));
-          fmt::print("  {:>2g}%: {:<5} K {:>5.0f} drift {:>6.1f} E {:>8.1f}", loss, cell(r), r.felt_stiffness_n_per_m,
-                     r.drift_mm, 1e3 * r.min_energy_j);
+          fmt::print("  {:>2g}%: {:<5} {} E {:>9.1f}", loss, cell(r),
+                     task == TeleopTask::wall
+                         ? (std::isnan(r.felt_stiffness_n_per_m) ? std::string("K     -")
+                                                                 : fmt::format("K {:>5.0f}", r.felt_stiffness_n_per_m))
+                         : fmt::format("drift {:>5.1f}", r.drift_mm),
+                     1e3 * r.min_energy_j);
           rows.push(Json::object()
                         .set("task", to_string(task))
                         .set("passivity", scheme)
@@ -104,16 +133,24 @@ int run(const Options& o) {
       .set("damping_n_s_per_m", o.damping)
       .set("jitter_ms", o.jitter_ms)
       .set("duration_s", o.duration_s)
+      .set("wall_offset_m", 0.03)
       .set("rows", rows)
+      .set("traces", traces)
       .set("command", command_line());
   publish_result(o.common.report(), "teleoperation", result);
+  if (!o.table.empty()) {
+    std::ofstream out(o.table);
+    out << rows.dump(1) << "\n";
+    if (!out) throw std::runtime_error("cannot write " + o.table);
+    fmt::print("rows: {}\n", o.table);
+  }
   return 0;
 }
 
 }  // namespace
 
 void add_teleoperation_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<Options>();
+  auto o = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "teleoperation",
       "Bilateral teleoperation of a simulated ViSHaRD3 by another: a stiff wall and free motion at each round-trip "
@@ -143,6 +180,10 @@ void add_teleoperation_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--motion-scale", o->motion_scale, "remote motion per master motion")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
+  cmd->add_option("--trace-round-trip", o->trace_round_trip_ms,
+                  "the wall's run over time at this round-trip delay (no loss) goes into the report [ms]")
+      ->capture_default_str();
+  cmd->add_option("--table", o->table, "also write the rows alone to this JSON file");
   cmd->add_option("--force-scale", o->force_scale, "master force per remote force")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
@@ -152,6 +193,7 @@ void add_teleoperation_command(CLI::App& app, int& exit_code) {
       run_options.round_trips_ms = {0.0, 200.0};
       run_options.losses_percent = {0.0, 20.0};
       run_options.duration_s = 4.0;
+      run_options.tasks = {"wall"};
     }
     exit_code = run(run_options);
   });

@@ -137,7 +137,7 @@ int run(const Options& o) {
 }  // namespace
 
 void add_tracking_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<Options>();
+  auto o = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "tracking",
       "The trajectory model plays a fast path along x (+-10 m/s^2) near a singular region; the tracking error of "

@@ -144,7 +144,7 @@ int run(const Options& o) {
 }  // namespace
 
 void add_transparency_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<Options>();
+  auto o = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "transparency",
       "Over the workspace grid: the handle's apparent inertia and friction per direction, the condition number of "

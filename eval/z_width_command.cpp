@@ -156,7 +156,7 @@ int run(const Options& o) {
 }  // namespace
 
 void add_z_width_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<Options>();
+  auto o = command_options<Options>();
   CLI::App* cmd = app.add_subcommand(
       "z-width",
       "The virtual walls (stiffness per damping) each scheme renders stably and passively under collisions with "

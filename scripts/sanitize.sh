@@ -10,9 +10,9 @@
 #     (loop and monitor threads), the loop on a device's clock (a ticking thread, the loop waiting on its ticks),
 #     the C API (its commands handed to the sender thread, against a server process), the engine socket (its
 #     thread, the publisher's hand-off and the receiver's requests, with its Node, Python and browser clients);
-#   fuzz (libFuzzer with ASan + UBSan): the DDS engine-command validation and the session loader, each for a fixed
-#     number of inputs from a fixed seed (FUZZ_RUNS scales them; findings are written to build/fuzz/findings and
-#     fail the run).
+#   fuzz (libFuzzer with ASan + UBSan): the DDS engine-command validation, the session loader and a teleoperation
+#     link's packets into both sides of a link, each for a fixed number of inputs from a fixed seed (FUZZ_RUNS
+#     scales them; findings are written to build/fuzz/findings and fail the run).
 # All three build with Debian's clang-14 at -O1 and line tables only; the fuzzers are built in the asan build
 # (its libraries carry libFuzzer's coverage instrumentation too), so the server is compiled twice, not three times.
 # Only these targets are built, to keep CI short on small machines.
@@ -26,15 +26,17 @@ export TSAN_OPTIONS="${TSAN_OPTIONS:-} suppressions=$PWD/tests/tsan.supp halt_on
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-} halt_on_error=1 print_stacktrace=1"
 fuzz() {
   cmake --preset asan > /dev/null
-  cmake --build --preset asan --target engine_command_fuzzer session_config_fuzzer
+  cmake --build --preset asan --target engine_command_fuzzer session_config_fuzzer teleop_packet_fuzzer
   local out=build/fuzz/findings scale=${FUZZ_RUNS:-1}
-  mkdir -p "$out" build/fuzz/corpus/engine_command build/fuzz/corpus/session_config
+  mkdir -p "$out" build/fuzz/corpus/engine_command build/fuzz/corpus/session_config build/fuzz/corpus/teleop_packet
   for f in config/sessions/*.yaml config/sessions/*/*.yaml; do cp "$f" "build/fuzz/corpus/session_config/${f//\//_}"; done
   # -runs bounds the work (deterministic from -seed on a fresh corpus); -max_total_time only guards the time.
   build/asan/bin/engine_command_fuzzer -seed=1 -runs=$((400000 * scale)) -max_total_time=300 -max_len=4096 \
     -artifact_prefix="$out/engine_command-" build/fuzz/corpus/engine_command
   build/asan/bin/session_config_fuzzer -seed=1 -runs=$((20000 * scale)) -max_total_time=300 -max_len=8192 \
     -artifact_prefix="$out/session_config-" build/fuzz/corpus/session_config
+  build/asan/bin/teleop_packet_fuzzer -seed=1 -runs=$((200000 * scale)) -max_total_time=120 -max_len=512 \
+    -artifact_prefix="$out/teleop_packet-" build/fuzz/corpus/teleop_packet
 }
 
 for preset in "${presets[@]}"; do

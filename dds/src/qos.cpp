@@ -39,6 +39,12 @@ Qos topic_qos(TopicKind kind, const CommandTiming& timing) {
       dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
       dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 256);
       break;
+    case TopicKind::link:  // a teleoperation link: every packet counts (wave variables), none may block a server;
+      // a few cycles of history, so that a burst is taken whole at the receiver's next cycle
+      dds_qset_reliability(p, DDS_RELIABILITY_BEST_EFFORT, 0);
+      dds_qset_durability(p, DDS_DURABILITY_VOLATILE);
+      dds_qset_history(p, DDS_HISTORY_KEEP_LAST, 64);
+      break;
     case TopicKind::event:
       dds_qset_reliability(p, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
       dds_qset_durability(p, DDS_DURABILITY_VOLATILE);

@@ -26,9 +26,9 @@ std::vector<std::string> master_overrides(TeleopTask task) {
   return {p + "operator_motion=sine", p + "operator_motion_m=[0.03, 0, 0]", p + "operator_motion_frequency_hz=0.5"};
 }
 
-std::vector<std::string> remote_overrides(TeleopTask task) {
-  if (task == TeleopTask::wall) return {};
-  return {"devices.remote.device.parameters.wall_normal=[0, 0, 0]"};
+std::vector<std::string> remote_overrides(const TeleopRow& row) {
+  if (row.task == TeleopTask::free) return {"devices.remote.device.parameters.wall_normal=[0, 0, 0]"};
+  return {"devices.remote.device.parameters.wall_offset_m=" + std::to_string(row.wall_offset_m)};
 }
 
 LocalSample sample_of(const server::DeviceView& v) {
@@ -115,7 +115,7 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
 
   server::SessionOptions mo{master_overrides(row.task), plugin_paths};
   mo.overrides.push_back("server.seed=" + std::to_string(row.seed));
-  server::SessionOptions ro{remote_overrides(row.task), plugin_paths};
+  server::SessionOptions ro{remote_overrides(row), plugin_paths};
   ro.overrides.push_back("server.seed=" + std::to_string(row.seed + 1));
   server::Session master = server::Session::from_file(config_dir / "master.yaml", mo);
   server::Session remote = server::Session::from_file(config_dir / "remote.yaml", ro);
@@ -198,7 +198,14 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
   if (row.task == TeleopTask::wall) {
     result.oscillation_mm = 1e3 * std::max(detrended_peak_to_peak(wt, wm), detrended_peak_to_peak(wt, wr));
     result.stable = result.fault.empty() && result.oscillation_mm < 5.0;
-    if (sx.size() >= 200) result.felt_stiffness_n_per_m = slope(sx, sf);
+    result.felt_stiffness_n_per_m = std::nan("");  // an oscillating contact has no stiffness
+    // Force per depth past where the wall is for the master (the remote's wall over the motion scale), averaged
+    // over the contact: what the operator feels, however the link's drift has moved the master meanwhile.
+    const double wall = row.wall_offset_m / row.link.motion_scale;
+    std::vector<double> depth;
+    for (const double x : sx) depth.push_back(x - wall);
+    if (result.stable)
+      result.felt_stiffness_n_per_m = sx.size() >= 200 && mean(depth) > 1e-4 ? mean(sf) / mean(depth) : 0.0;
   } else {
     const double master_p2p = peak_to_peak(dm);
     result.oscillation_mm = master_p2p > 0.0 ? peak_to_peak(dr) / master_p2p : 0.0;  // a ratio here

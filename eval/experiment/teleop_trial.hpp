@@ -26,6 +26,7 @@ struct TeleopRow {
   double jitter_s = 0.0;      // each way
   teleop::LinkSettings link;
   double duration_s = 6.0;
+  double wall_offset_m = 0.03;  // the remote's wall, ahead of its start along x
   std::uint64_t seed = 1;
   bool keep_samples = false;
 };
@@ -41,13 +42,15 @@ struct TeleopSample {
 };
 
 struct TeleopResult {
-  std::string fault;                    // a device's fault ("" none): the run ended there
-  double min_energy_j = 0.0;            // the link's observed energy at its lowest (< 0: it created energy)
-  bool passive = false;                 // min_energy_j >= -1 mJ
-  bool stable = false;                  // no fault and no sustained or growing oscillation (below)
-  double oscillation_mm = 0.0;          // the wall task: the master's peak to peak in the last 1.5 s about its trend;
-                                        // free motion: the remote's amplitude over the master's
-  double felt_stiffness_n_per_m = 0.0;  // the wall task: the master's force against its position while pushing
+  std::string fault;            // a device's fault ("" none): the run ended there
+  double min_energy_j = 0.0;    // the link's observed energy at its lowest (< 0: it created energy)
+  bool passive = false;         // min_energy_j >= -1 mJ
+  bool stable = false;          // no fault and no sustained or growing oscillation (below)
+  double oscillation_mm = 0.0;  // the wall task: the master's peak to peak in the last 1.5 s about its trend;
+                                // free motion: the remote's amplitude over the master's
+  // The wall task: the force felt at the master over its depth past the wall (the remote's wall over the motion
+  // scale), both averaged over the contact from 3 s on; 0 when no contact was felt, NaN when the run was unstable.
+  double felt_stiffness_n_per_m = 0.0;
   // Free motion: the remote's mean position minus the master's (scaled) over the last 2 s (one period of the
   // operator's motion); NaN for the wall, where the two differ by the contact's deflection, not by drift.
   double drift_mm = 0.0;

@@ -316,7 +316,45 @@ def friction(result, out_dir):
     return [png], [(["joint", "Coulomb", "break-away", "RMS error vs truth", "worst"], rows)]
 
 
-DRAW = {"force-response": force_response, "backdrivability": backdrivability, "minimum-inertia": minimum_inertia,
+def teleoperation(result, out_dir):
+    """Each row's claims (passive, stable), the wall's felt stiffness and the drift; the wall over time."""
+    pngs = []
+    traces = result.get("traces", [])
+    if traces:
+        fig, (ax_x, ax_f) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+        for tr in traces:
+            label = f"{tr['passivity']}, {tr['round_trip_ms']:g} ms"
+            line, = ax_x.plot(tr["time_s"], [1e3 * x for x in tr["master_x_m"]], label=f"master, {label}")
+            ax_x.plot(tr["time_s"], [1e3 * x for x in tr["remote_x_m"]], linestyle="--", color=line.get_color(),
+                      label=f"remote, {label}")
+            ax_f.plot(tr["time_s"], [-f for f in tr["master_force_x_n"]], color=line.get_color(), label=label)
+        ax_x.axhline(1e3 * result.get("wall_offset_m", 0.03), color="grey", linestyle=":", linewidth=1)
+        ax_x.set_ylabel("handle along x [mm]")
+        ax_f.set_ylabel("force felt at the master [N]")
+        ax_f.set_xlabel("time [s]")
+        ax_x.legend(fontsize=7)
+        ax_f.legend(fontsize=7)
+        for ax in (ax_x, ax_f):
+            ax.grid(True, alpha=0.3)
+        fig.suptitle(f"Teleoperation, {result['architecture']}: the remote's wall (dotted) through the link")
+        fig.tight_layout()
+        png = out_dir / "teleoperation.png"
+        fig.savefig(png, dpi=100)
+        plt.close(fig)
+        pngs.append(png)
+    head = ["task", "passivity", "round trip", "loss", "passive", "stable", "lowest energy", "felt stiffness",
+            "drift"]
+    rows = []
+    for r in result["rows"]:
+        rows.append([r["task"], r["passivity"], fmt(r["round_trip_ms"], "ms"), fmt(r["loss_percent"], "%"),
+                     "yes" if r["passive"] else "no", "yes" if r["stable"] else ("fault" if r["fault"] else "no"),
+                     fmt(1e3 * r["min_energy_j"], "mJ"),
+                     fmt(r["felt_stiffness_n_per_m"], "N/m") if r["task"] == "wall" else "-",  # null: unstable
+                     fmt(r["drift_mm"], "mm") if r["drift_mm"] is not None else "-"])
+    return pngs, [(head, rows)]
+
+
+DRAW = {"teleoperation": teleoperation, "force-response": force_response, "backdrivability": backdrivability, "minimum-inertia": minimum_inertia,
         "force-gain": force_gain,
         "tracking": tracking, "z-width": z_width, "transparency": transparency, "friction": friction}
 

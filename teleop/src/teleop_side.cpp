@@ -61,6 +61,15 @@ void TeleopSide::start(const LocalSample& sample) noexcept {
   setpoint_velocity_.setZero();
 }
 
+void TeleopSide::rebase(const LocalSample& sample) noexcept {
+  // The peer's position in this side's frame: the master's packets are in the remote's units already.
+  const Eigen::Vector3d peer = have_peer_ ? peer_.position : Eigen::Vector3d::Zero();
+  origin_ = sample.position - (role_ == Role::master ? Eigen::Vector3d(peer / settings_.motion_scale) : peer);
+  setpoint_ = peer;
+  setpoint_velocity_.setZero();
+  started_ = true;
+}
+
 void TeleopSide::receive(const LinkPacket& packet) noexcept {
   if (have_peer_ && packet.sequence <= peer_.sequence) {
     ++status_.stale;
@@ -85,18 +94,16 @@ SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped)
   status_.link_lost = status_.silence_s > settings_.link_timeout_s;
   status_.peer_stopped = have_peer_ && peer_.stopped;
 
-  Eigen::Vector3d force =
+  // A lost link or a stopped side: the master's force fades out (the remote's setpoint stops: remote_force). The
+  // weight falls over fade_s and rises again over fade_s when the link is back: no jolt either way.
+  const bool hold = status_.link_lost || status_.peer_stopped || stopped;
+  const double step = settings_.fade_s > 0.0 ? dt / settings_.fade_s : 1.0;
+  status_.fade = std::clamp(status_.fade + (hold ? -step : step), 0.0, 1.0);
+
+  out.force =
       role_ == Role::master ? master_force(x, v, dt, out.packet) : remote_force(x, v, sample.force, dt, out.packet);
   wave_sum_.setZero();
   waves_ = 0;
-
-  // A lost link or a stopped side: the master's force fades out; the remote's setpoint has stopped (above).
-  const bool hold = status_.link_lost || status_.peer_stopped || stopped;
-  // The weight falls over fade_s and rises again over fade_s when the link is back: no jolt either way.
-  const double step = settings_.fade_s > 0.0 ? dt / settings_.fade_s : 1.0;
-  status_.fade = std::clamp(status_.fade + (hold ? -step : step), 0.0, 1.0);
-  if (role_ == Role::master) force *= status_.fade;
-  out.force = force;
   out.packet.sequence = ++sequence_;
   out.packet.sent_ns = sample.time_ns;
   out.packet.energy_in = port_.energy_in();
@@ -122,17 +129,18 @@ Eigen::Vector3d TeleopSide::master_force(const Eigen::Vector3d& x, const Eigen::
     Eigen::Vector3d f = b * vs - std::sqrt(2.0 * b) * w;
     f = clamp_norm(f, s.max_force / s.force_scale);
     out.wave = (b * vs + f) / std::sqrt(2.0 * b);
-    force = -s.force_scale * f;
+    force = -s.force_scale * status_.fade * f;
     return port_.force_out(force, v, dt, status_.peer_energy_in, false);
   }
-  if (have_peer_ && !status_.link_lost) {
+  // While the link is lost the last packet's force (or spring) fades out; the port sees what is applied.
+  if (have_peer_) {
     if (s.architecture == Architecture::position_force) {
       force = s.force_scale * peer_.force;
     } else {
       force = s.force_scale * (s.stiffness * (peer_.position - xs) + s.damping * (peer_.velocity - vs));
     }
   }
-  force = clamp_norm(force, s.max_force);
+  force = status_.fade * clamp_norm(force, s.max_force);
   return port_.force_out(force, v, dt, status_.peer_energy_in, s.passivity == Passivity::tdpa);
 }
 

@@ -101,6 +101,14 @@ fr_id = json.loads((work / "friction.json").read_text())
 [j1] = fr_id["joints"]
 assert j1["joint"] == "joint1" and j1["rms_error_percent"] < 10, j1
 assert len(j1["velocity_rad_s"]) > 20, len(j1["velocity_rad_s"])
+tele = json.loads((work / "teleoperation.json").read_text())
+rows = {(r["task"], r["passivity"], r["round_trip_ms"], r["loss_percent"]): r for r in tele["rows"]}
+assert len(rows) == 8, sorted(rows)
+# With the time-domain passivity controllers every row is passive and stable; without, the 200 ms rows are neither.
+assert all(r["passive"] and r["stable"] for k, r in rows.items() if k[1] == "tdpa"), rows
+assert all(not r["passive"] and not r["stable"] for k, r in rows.items() if k[1] == "none" and k[2] == 200), rows
+assert 900 < rows[("wall", "tdpa", 0.0, 0.0)]["felt_stiffness_n_per_m"] < 1400, rows
+assert [t["passivity"] for t in tele["traces"]] == ["none", "tdpa"] and len(tele["traces"][0]["time_s"]) == 400, tele["traces"]
 print("experiments ok")
 PY
 
@@ -161,7 +169,7 @@ print("uncompared joint ok")
 PY
 
 for f in report.html force-response.png backdrivability.png minimum-inertia.png force-gain.png tracking.png z-width.png \
-  transparency.png friction.png; do
+  transparency.png friction.png teleoperation.png; do
   [ -s "$work/$f" ] || { echo "missing $f"; exit 1; }
 done
 grep -q "data:image/png;base64" "$work/report.html"

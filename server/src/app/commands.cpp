@@ -98,6 +98,10 @@ int check_config(const std::string& file, const std::vector<std::string>& sets) 
     for (const DeviceSession* d : g->devices()) names += (names.empty() ? "" : ", ") + d->name();
     fmt::print("  group {}: {}; {} pair(s) with collision capsules\n", g->name(), names, g->guards().size());
   }
+  if (const TeleoperationSettings& t = s->config.teleoperation; t.enabled)
+    fmt::print("  teleoperation: {} is the {} of '{}' on DDS domain {} ({}, passivity {}; link lost after {} s)\n",
+               t.device, t.role == teleop::Role::master ? "master" : "remote", t.peer, s->config.dds.domain_id,
+               teleop::to_string(t.link.architecture), teleop::to_string(t.link.passivity), t.link.link_timeout_s);
   return kExitOk;
 }
 
@@ -193,6 +197,15 @@ int run_session(const RunOptions& options) {
     for (std::size_t i = 0; i < sessions.size(); ++i) {
       spdlog::info("{}: engine commands accepted {}, rejected {}, deadline misses {}", sessions[i]->name(),
                    bridge->commands_accepted(i), bridge->commands_rejected(i), bridge->deadline_misses(i));
+    }
+    if (const TeleopLink* link = bridge->teleop_link(); link != nullptr) {
+      const TeleopLink::Energy e = link->energy();
+      spdlog::info(
+          "{}: teleoperation link to '{}': packets sent {}, taken {}, rejected {}; lost {} times, {} stops; energy in "
+          "{:.4f} J, out {:.4f} J, dissipated {:.4f} J, lowest observed {:.4f} J; largest force {:.2f} N",
+          link->settings().device, link->settings().peer, link->packets_sent(), link->packets_taken(),
+          link->packets_rejected(), link->losses(), link->stops(), e.in, e.out, e.dissipated, e.lowest_observed,
+          e.max_force_n);
     }
     if (const std::uint64_t unknown = bridge->unknown_device_commands(); unknown > 0)
       spdlog::warn("{} engine commands named a device this server does not have: rejected as malformed", unknown);
@@ -378,6 +391,10 @@ int describe_config(const std::string& config_file) {
   print_schema(engine_socket_settings_schema());
   fmt::print("  {:<24} {}\n", "allowed_origins",
              "web pages (scheme://host[:port]) that may connect besides this machine's");
+  fmt::print(
+      "\nteleoperation section (present: this device is one side of a link to another server's; "
+      "docs/teleoperation.md):\n");
+  print_schema(teleoperation_settings_schema());
   fmt::print("\na device entry (devices: [...]):\n");
   for (const EntryKey& k : device_entry_keys()) fmt::print("  {:<24} {}\n", k.key, k.text);
   fmt::print("\ngroups (optional, top level; docs/multi-device.md): a list of\n");

@@ -105,7 +105,7 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
   if (config.dds.enabled) {
     try {
       bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices, stages, dds_cpus_,
-                                            config.engine_socket);
+                                            config.engine_socket, config.teleoperation);
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("DDS interface: ") + e.what());
     }

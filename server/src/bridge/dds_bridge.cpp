@@ -39,7 +39,8 @@ std::uint64_t snapshot_interval_of(const DdsSettings& settings, double rate_hz) 
 void DdsBridge::pin_this_thread() const { (void)set_cpus(cpus_); }
 
 DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions,
-                     std::vector<GroupStage*> stages, std::vector<int> dds_cpus, const EngineSocketSettings& socket)
+                     std::vector<GroupStage*> stages, std::vector<int> dds_cpus, const EngineSocketSettings& socket,
+                     const TeleoperationSettings& teleop)
     : settings_(settings), cpus_(std::move(dds_cpus)), links_(sessions, stages, settings) {
   const std::uint64_t interval = snapshot_interval_of(settings, rate_hz);
   double deadline = 1.0;
@@ -73,6 +74,12 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
         socket, links_, dds_->peers, *intake_, [this] { (void)dds_set_guardcondition(dds_->wake.get(), true); }, cpus_);
     publisher_->set_engine_socket(socket_.get());
   }
+  if (teleop.enabled) {
+    DeviceLink* linked = links_.find(teleop.device);
+    if (linked == nullptr) throw std::runtime_error("teleoperation: no device '" + teleop.device + "'");
+    link_ = std::make_unique<TeleopLink>(teleop, *linked, dds_->participant, *events_);
+    publisher_->set_teleop_link(link_.get());
+  }
   for (std::size_t i = 0; i < links_.size(); ++i) publisher_->publish_description(i);
   for (const GroupLink& g : links_.groups()) publisher_->publish_group_description(g);
   intake_->listen();  // last: commands may arrive at once
@@ -80,6 +87,7 @@ DdsBridge::DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<De
 
 DdsBridge::~DdsBridge() {
   stop();
+  link_.reset();
   worlds_.reset();
   (void)dds_set_listener(dds_->command.get(), nullptr);  // no listener callback into the parts below
   (void)dds_set_listener(dds_->group_command.get(), nullptr);

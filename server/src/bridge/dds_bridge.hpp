@@ -9,6 +9,8 @@
 //   socket thread     EngineSocket (when the session has an engine_socket section): the same gate for clients
 //                     without DDS, over WebSocket/JSON - their commands to CommandIntake, their requests to the
 //                     receiver's RequestDispatcher, the states from the StatePublisher;
+//   (publisher thread) TeleopLink (when the session has a teleoperation section): with each state of its device,
+//                     the peer server's packets in, the link's force to the loop, this side's packet out;
 //   loop thread       LockstepSync: in lockstep, after_cycle() waits (wall time, bounded) until the owning engine
 //                     has answered the state just published, so end-to-end runs over DDS are repeatable.
 // The parts share the per-device links (DeviceLinks) and the DDS entities (DdsEndpoints).
@@ -29,6 +31,7 @@
 #include "bridge/lockstep_sync.hpp"
 #include "bridge/request_dispatcher.hpp"
 #include "bridge/state_publisher.hpp"
+#include "bridge/teleop_link.hpp"
 #include "bridge/world_relay.hpp"
 #include "config/session_config.hpp"
 #include "executor/executor.hpp"
@@ -46,9 +49,10 @@ class DdsBridge final : public CycleListener {
   // makes it several times shorter (docs/dds-interface.md).
   // stages: the session's device groups (their descriptions, group states and group requests).
   // socket: the engine socket's settings (not enabled: none); its port is bound here (an error names it).
+  // teleop: the teleoperation link's settings (not enabled: none); the link claims its device here.
   DdsBridge(const DdsSettings& settings, double rate_hz, std::vector<DeviceSession*> sessions,
             std::vector<GroupStage*> stages = {}, std::vector<int> dds_cpus = {},
-            const EngineSocketSettings& socket = {});
+            const EngineSocketSettings& socket = {}, const TeleoperationSettings& teleop = {});
   ~DdsBridge() override;
   DdsBridge(const DdsBridge&) = delete;
   DdsBridge& operator=(const DdsBridge&) = delete;
@@ -89,6 +93,8 @@ class DdsBridge final : public CycleListener {
   [[nodiscard]] std::uint64_t worlds_rejected() const noexcept { return worlds_ ? worlds_->rejected() : 0; }
   // The engine socket (nullptr: the session has none).
   [[nodiscard]] const EngineSocket* engine_socket() const noexcept { return socket_.get(); }
+  // The teleoperation link (nullptr: the session has none).
+  [[nodiscard]] const TeleopLink* teleop_link() const noexcept { return link_.get(); }
 
  private:
   void publisher_thread();
@@ -107,6 +113,7 @@ class DdsBridge final : public CycleListener {
   std::unique_ptr<LockstepSync> lockstep_;
   std::unique_ptr<EngineSocket> socket_;
   std::unique_ptr<WorldRelay> worlds_;
+  std::unique_ptr<TeleopLink> link_;
 
   std::atomic<std::uint32_t> ticket_{0};  // the loop -> the publisher (futex)
   std::atomic<bool> stopping_{false};

@@ -42,6 +42,14 @@ PeerId PeerId::of_socket(std::uint64_t connection) noexcept {
   return id;
 }
 
+PeerId PeerId::of_link() noexcept {
+  PeerId id;
+  std::memcpy(id.guid.data(), "hapticdt", 8);  // then zeros and entity id fffffffe: no participant's, no socket's
+  id.guid[12] = id.guid[13] = id.guid[14] = 0xff;
+  id.guid[15] = 0xfe;
+  return id;
+}
+
 bool PeerId::is_socket() const noexcept {
   return std::memcmp(guid.data(), "hapticdw", 8) == 0 && guid[12] == 0xff && guid[13] == 0xff && guid[14] == 0xff &&
          guid[15] == 0xff;

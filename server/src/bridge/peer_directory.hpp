@@ -29,6 +29,9 @@ struct PeerId {
   // The engine socket's client `connection` (and whether a peer is one).
   static PeerId of_socket(std::uint64_t connection) noexcept;
   [[nodiscard]] bool is_socket() const noexcept;
+  // The server's own teleoperation link (bridge/teleop_link): it holds its device's claim for the session.
+  static PeerId of_link() noexcept;
+  [[nodiscard]] bool is_link() const noexcept { return *this == of_link(); }
 };
 
 // The writer handle that stands for an engine socket's client (its requests and commands), and whether a writer

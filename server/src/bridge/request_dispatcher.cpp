@@ -314,7 +314,7 @@ void RequestDispatcher::check_claims() {
     std::int64_t claimed_ns = 0;
     {
       std::lock_guard lock(d.mutex);
-      if (d.gate.owner().empty()) continue;
+      if (d.gate.owner().empty() || d.gate.owner_participant().is_link()) continue;  // the link's: the session's
       owner = d.gate.owner_participant();
       claim_writer = d.claim_writer;
       claimed_ns = d.claimed_ns;

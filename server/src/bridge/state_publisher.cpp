@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bridge/engine_socket.hpp"
+#include "bridge/teleop_link.hpp"
 #include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "session/device_requests.hpp"
@@ -52,6 +53,7 @@ void StatePublisher::publish_states() {
       continue;
     }
     const DeviceSnapshot& s = p.snapshot;
+    if (link_ != nullptr && link_->device() == i) link_->on_state(s);  // first: the link's round trip is the loop's
     bool first = false;
     {
       std::lock_guard lock(description_mutex_);

@@ -18,6 +18,7 @@
 namespace hapticd::server {
 
 class EngineSocket;
+class TeleopLink;
 
 class StatePublisher {
  public:
@@ -28,6 +29,8 @@ class StatePublisher {
   void set_loop_statistics(std::size_t device, const LiveLoopStatistics* live) noexcept { live_[device] = live; }
   // Before the threads start: the engine socket, which sends each state to its clients too (nullptr: none).
   void set_engine_socket(EngineSocket* socket) noexcept { socket_ = socket; }
+  // Before the threads start: the teleoperation link, which runs with each state of its device (nullptr: none).
+  void set_teleop_link(TeleopLink* link) noexcept { link_ = link; }
 
   // Publisher thread (and once more at the end): the new snapshot of every device as a state, and its events.
   // A device with nothing new has its last state repeated now and then, for readers that matched after it.
@@ -63,6 +66,7 @@ class StatePublisher {
   std::uint64_t snapshot_interval_;
   std::vector<const LiveLoopStatistics*> live_;  // per device: its loop's
   EngineSocket* socket_ = nullptr;
+  TeleopLink* link_ = nullptr;
   std::vector<Published> published_;
   std::unique_ptr<GroupSnapshot> group_snapshot_;                        // publisher thread (8 device snapshots)
   std::vector<std::unique_ptr<hapticd_msg_GroupState>> group_messages_;  // per group, the last (about 7 kB)

@@ -8,6 +8,7 @@
 
 #include "config/config_error.hpp"
 #include "config/config_overrides.hpp"
+#include "config/teleoperation_settings.hpp"
 #include "config/yaml_document.hpp"
 #include "config/yaml_reader.hpp"
 #include "hapticd/input_file.hpp"
@@ -775,7 +776,8 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
   SessionConfig config;
   config.file = path;
   config.overrides = applied;
-  MappingReader top(root, "", file, {"server", "dds", "live_view", "engine_socket", "devices", "groups"});
+  MappingReader top(root, "", file,
+                    {"server", "dds", "live_view", "engine_socket", "teleoperation", "devices", "groups"});
   config.server = read_server(top.optional("server"), file, path.parent_path());
   config.dds = read_dds(top.optional("dds"), file, path.parent_path());
   config.live_view = read_live_view(top.optional("live_view"), file);
@@ -820,6 +822,27 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
     config.devices.push_back(std::move(device));
   }
   config.groups = read_groups(top.optional("groups"), file, config.devices);
+  config.teleoperation = read_teleoperation(top.optional("teleoperation"), file);
+  if (TeleoperationSettings& t = config.teleoperation; t.enabled) {
+    if (!config.dds.enabled)
+      throw ConfigError(file, t.line, "teleoperation",
+                        "the link travels over the DDS interface: add the dds section (both servers in one domain)");
+    if (t.device.empty()) {
+      if (config.devices.size() != 1)
+        throw ConfigError(file, t.line, "teleoperation.device", "the session has several devices: name the linked one");
+      t.device = config.devices.front().name;
+    }
+    if (std::none_of(config.devices.begin(), config.devices.end(),
+                     [&](const DeviceConfig& d) { return d.name == t.device; }))
+      throw ConfigError(file, line_of(root["teleoperation"]["device"]), "teleoperation.device",
+                        "no device '" + t.device + "' in this session");
+    if (!valid_device_name(t.peer))
+      throw ConfigError(file, line_of(root["teleoperation"]["peer"]), "teleoperation.peer",
+                        "device name '" + t.peer + "' must be 1-31 characters of letters, digits, '_' and '-'");
+    if (t.peer == t.device)
+      throw ConfigError(file, line_of(root["teleoperation"]["peer"]), "teleoperation.peer",
+                        "the peer is the other server's device; '" + t.peer + "' is this one's");
+  }
   return config;
 }
 

@@ -11,6 +11,7 @@
 
 #include "config/config_overrides.hpp"
 #include "config/repulsion_settings.hpp"
+#include "config/teleoperation_settings.hpp"
 #include "hapticd/dds/network.hpp"
 #include "hapticd/parameters.hpp"
 #include "hapticd/spatial.hpp"
@@ -181,6 +182,7 @@ struct SessionConfig {
   DdsSettings dds;
   LiveViewSettings live_view;
   EngineSocketSettings engine_socket;
+  TeleoperationSettings teleoperation;
   std::vector<DeviceConfig> devices;
   std::vector<GroupConfig> groups;
   std::vector<AppliedOverride> overrides;  // what overrides changed: an error there names the override

@@ -7,7 +7,7 @@
 
 namespace hapticd::dds {
 
-enum class TopicKind { description, state, command, request, reply, event, telemetry, fault_report };
+enum class TopicKind { description, state, command, request, reply, event, telemetry, fault_report, link };
 
 template <class T>
 struct TopicOf;
@@ -30,6 +30,7 @@ HAPTICD_DDS_TOPIC(hapticd_msg_GroupDescription, description, "hapticd_group_desc
 HAPTICD_DDS_TOPIC(hapticd_msg_GroupState, state, "hapticd_group_state")
 HAPTICD_DDS_TOPIC(hapticd_msg_GroupCommand, command, "hapticd_group_command")
 HAPTICD_DDS_TOPIC(hapticd_msg_World, state, "hapticd_world")
+HAPTICD_DDS_TOPIC(hapticd_msg_TeleopPacket, link, "hapticd_teleop")
 #undef HAPTICD_DDS_TOPIC
 
 struct QosDeleter {

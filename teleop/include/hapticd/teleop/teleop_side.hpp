@@ -83,6 +83,9 @@ class TeleopSide {
 
   // The link starts at the handle's present position (both sides' motions are taken from here).
   void start(const LocalSample& sample) noexcept;
+  // The side goes on from the handle's present position as if it were where the peer's last packet puts it (after
+  // the device was stopped and recovered: no pull towards where the peer went meanwhile). The energies go on.
+  void rebase(const LocalSample& sample) noexcept;
   // A packet from the other side (any order; only the newest by sequence is kept).
   void receive(const LinkPacket& packet) noexcept;
   // One cycle of dt seconds. `stopped`: this side's device is stopped (the other side is told to stop too).

@@ -1,0 +1,231 @@
+// The teleoperation link over DDS (bridge/teleop_link, docs/teleoperation.md): one side served here as `hapticd`
+// serves it, the other written with raw DDS as another server's link would write it (and as an attacker could):
+// the remote follows the master's motion into its wall and reports the contact; the link holds the device's claim;
+// malformed packets are rejected, counted and never applied; a silent link stops the remote and fades the master's
+// force; the peer's stop stops this side. Loopback, domains 155 and 156, each test bounded in time.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <thread>
+
+#include "e2e/dds_server_rig.hpp"
+#include "hapticd/dds/conversion.hpp"
+#include "support/test_paths.hpp"
+#include "support/test_session.hpp"
+
+namespace hapticd::server {
+namespace {
+
+using namespace std::chrono_literals;
+using e2e::Server;
+
+std::string side_yaml(int domain, double duration_s, const std::string& role, const std::string& device,
+                      const std::string& peer, const std::string& attachment, const std::string& passivity) {
+  return "server: {clock: realtime, rate_hz: 1000, seed: 5, realtime_priority: 0, lock_memory: false, duration_s: " +
+         std::to_string(duration_s) + "}\ndds: {domain_id: " + std::to_string(domain) +
+         "}\nteleoperation: {role: " + role + ", peer: " + peer + ", passivity: " + passivity +
+         ", link_timeout_s: 0.3, fade_s: 0.05}\ndevices:\n  - name: " + device +
+         "\n    device:\n      plugin: sim\n      parameters: {urdf: " + test::source_dir() +
+         "/config/urdf/vishard3.urdf, initial_position: [-0.3, 1.6, 0.0], passive_gimbal: true, " + attachment +
+         "}\n    virtual_model:\n      plugin: admittance\n      parameters: {mass_kg: [3.0, 3.0, 3.0], "
+         "damping_n_s_per_m: [15.0, 15.0, 15.0], rotation: false, coupling: true, coupling_stiffness_n_per_m: 0, "
+         "coupling_damping_n_s_per_m: 0}\n    controller:\n      plugin: resolved_acceleration\n      parameters: "
+         "{task: translation, bandwidth_rad_s: 60}\n    safety: {" +
+         e2e::kRealtimeWatchdogs + "}\n";
+}
+
+// The other server's side, written by hand: sends its packets at 1 kHz on a thread of its own, takes the served
+// side's.
+class Peer {
+ public:
+  Peer(int domain, const std::string& me, const std::string& to, std::int32_t role)
+      : participant_(dds::ParticipantOptions{domain, {}, {}}), writer_(participant_), reader_(participant_) {
+    dds::set_text(packet_.sender, me);
+    dds::set_text(packet_.receiver, to);
+    packet_.role = role;
+    packet_.energy_in = 1000.0;  // plenty: the served side's passivity controller never has to act for want of it
+  }
+  ~Peer() { stop(); }
+  // The packet to send from now on (the serial is the peer's); `bad`: every 10th packet is replaced by it.
+  void set(const std::function<void(hapticd_msg_TeleopPacket&, double t)>& motion) {
+    std::lock_guard lock(mutex_);
+    motion_ = motion;
+  }
+  void set_bad(const std::vector<hapticd_msg_TeleopPacket>& bad) {
+    std::lock_guard lock(mutex_);
+    bad_ = bad;
+  }
+  void start() {
+    running_ = true;
+    thread_ = std::thread([this] { run(); });
+  }
+  void stop() {
+    running_ = false;
+    if (thread_.joinable()) thread_.join();
+  }
+  std::uint64_t bad_sent() const { return bad_sent_.load(); }
+  // The served side's newest packet (serial 0: none yet).
+  hapticd_msg_TeleopPacket newest() {
+    reader_.take([&](const hapticd_msg_TeleopPacket& p, const dds_sample_info_t&) {
+      if (dds::text_of(p.sender) == dds::text_of(packet_.receiver) && p.serial > newest_.serial) newest_ = p;
+    });
+    return newest_;
+  }
+  bool wait_matched(std::chrono::seconds timeout) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (writer_.matched() == 0 && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(5ms);
+    return writer_.matched() > 0;
+  }
+
+ private:
+  void run() {
+    const auto start = std::chrono::steady_clock::now();
+    std::uint64_t k = 0;
+    while (running_) {
+      const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      {
+        std::lock_guard lock(mutex_);
+        packet_.serial = ++serial_;
+        packet_.sent_ns = static_cast<std::int64_t>(t * 1e9);
+        if (motion_) motion_(packet_, t);
+        if (!bad_.empty() && ++k % 10 == 0) {
+          hapticd_msg_TeleopPacket b = bad_[(k / 10) % bad_.size()];
+          b.serial = packet_.serial;
+          (void)writer_.write(b);
+          bad_sent_.fetch_add(1);
+        } else {
+          (void)writer_.write(packet_);
+        }
+      }
+      std::this_thread::sleep_for(1ms);
+    }
+  }
+  dds::Participant participant_;
+  dds::Writer<hapticd_msg_TeleopPacket> writer_;
+  dds::Reader<hapticd_msg_TeleopPacket> reader_;
+  std::mutex mutex_;
+  hapticd_msg_TeleopPacket packet_{};
+  hapticd_msg_TeleopPacket newest_{};
+  std::function<void(hapticd_msg_TeleopPacket&, double)> motion_;
+  std::vector<hapticd_msg_TeleopPacket> bad_;
+  std::uint64_t serial_ = 0;
+  std::atomic<std::uint64_t> bad_sent_{0};
+  std::atomic<bool> running_{false};
+  std::thread thread_;
+};
+
+bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    std::this_thread::sleep_for(10ms);
+  }
+  return true;
+}
+
+TEST(TeleopLink, TheRemoteFollowsIntoItsWallRejectsMalformedPacketsAndStopsWhenTheLinkFallsSilent) {
+  constexpr int kDomain = 155;
+  Server server(side_yaml(kDomain, 8.0, "remote", "remote", "master",
+                          "attachment: none, wall_normal: [1.0, 0.0, 0.0], wall_offset_m: 0.03", "tdpa"));
+  Peer master(kDomain, "master", "remote", hapticd_msg_TELEOP_MASTER);
+  // The master's hand moves 5 cm along x over 1 s and holds: 2 cm past the remote's wall.
+  master.set([](hapticd_msg_TeleopPacket& p, double t) {
+    const double s = std::clamp(t - 0.5, 0.0, 1.0);
+    p.position[0] = 0.05 * s;
+    p.velocity[0] = s > 0.0 && s < 1.0 ? 0.05 : 0.0;
+    p.energy_in = 1000.0;
+  });
+  // Malformed, or not for this link: each is rejected and counted, never applied.
+  std::vector<hapticd_msg_TeleopPacket> bad(6);
+  for (auto& b : bad) {
+    dds::set_text(b.sender, "master");
+    dds::set_text(b.receiver, "remote");
+    b.role = hapticd_msg_TELEOP_MASTER;
+  }
+  bad[0].position[0] = std::nan("");        // not finite
+  bad[1].position[0] = 1e6;                 // out of range
+  bad[2].role = hapticd_msg_TELEOP_REMOTE;  // the same role as the served side
+  bad[3].energy_in = -5.0;
+  dds::set_text(bad[4].sender, "intruder");               // another device
+  std::memset(bad[5].sender, 'x', sizeof bad[5].sender);  // not terminated
+  master.set_bad(bad);
+  server.start();
+  ASSERT_TRUE(master.wait_matched(20s));
+  master.start();
+
+  // A DDS engine cannot claim the linked device: the link holds it.
+  client::Client engine({"intruding-engine", kDomain});
+  ASSERT_TRUE(engine.wait_for_device("remote", 20s).has_value());
+  EXPECT_FALSE(engine.claim("remote", 5s).accepted);
+
+  std::this_thread::sleep_for(2500ms);
+  const hapticd_msg_TeleopPacket r = master.newest();
+  ASSERT_GT(r.serial, 1000u);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
+  // At its wall (3 cm ahead, 5000 N/m) with the position controller's spring 2 cm short of the master.
+  EXPECT_GT(r.position[0], 0.028) << r.position[0];
+  EXPECT_LT(r.position[0], 0.040) << r.position[0];
+  EXPECT_LT(r.force[0], -5.0) << "the wall's force on the remote: " << r.force[0];
+  EXPECT_FALSE(r.stopped);
+  const TeleopLink& link = *server.bridge().teleop_link();
+  EXPECT_GT(link.packets_taken(), 1500u);
+  EXPECT_GE(link.packets_rejected(), master.bad_sent() * 9 / 10) << "of " << master.bad_sent();
+  EXPECT_GT(master.bad_sent(), 100u);
+
+  // The master falls silent: after 0.3 s the remote stops (an emergency stop) and says so in its packets.
+  master.stop();
+  EXPECT_TRUE(wait_until([&] { return server.device().status().fault() == DeviceFault::emergency_stop; }, 2000ms))
+      << to_string(server.device().status().fault());
+  EXPECT_EQ(link.stops(), 1u);
+  EXPECT_EQ(link.losses(), 1u);
+  EXPECT_TRUE(wait_until([&] { return master.newest().stopped; }, 1000ms));
+  server.join();  // the session's duration
+}
+
+TEST(TeleopLink, TheMasterDisplaysTheRemotesForceFadesItWhenTheLinkIsSilentAndStopsWithTheRemote) {
+  constexpr int kDomain = 156;
+  Server server(
+      side_yaml(kDomain, 5.0, "master", "master", "remote", "attachment: operator, operator_grasp: 0.7", "tdpa"));
+  Peer remote(kDomain, "remote", "master", hapticd_msg_TELEOP_REMOTE);
+  std::atomic<bool> stopped{false};
+  remote.set([&](hapticd_msg_TeleopPacket& p, double) {
+    p.force[0] = -4.0;  // the remote's wall pushes back with 4 N
+    p.energy_in = 1000.0;
+    p.stopped = stopped.load();
+  });
+  server.start();
+  ASSERT_TRUE(remote.wait_matched(20s));
+  remote.start();
+  // What the master renders (its published state's environment wrench: the link's force), as a client sees it.
+  client::Client watcher({"watcher", kDomain});
+  ASSERT_TRUE(watcher.wait_for_state("master", 20s).has_value());
+  const auto rendered = [&] {
+    const auto s = watcher.latest_state("master");
+    return s ? s->environment_wrench.force : Eigen::Vector3d::Zero().eval();
+  };
+  // The operator holds still: the link's force is what the master displays (its passivity controller lets it
+  // through: the remote reported enough energy, and the hand hardly moves).
+  EXPECT_TRUE(wait_until([&] { return std::abs(rendered().x() + 4.0) < 0.5; }, 5000ms)) << rendered().transpose();
+  // The remote falls silent: the force fades to nothing, without a fault.
+  remote.stop();
+  EXPECT_TRUE(wait_until([&] { return rendered().norm() < 0.05; }, 2000ms)) << rendered().transpose();
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
+  const TeleopLink& link = *server.bridge().teleop_link();
+  EXPECT_EQ(link.losses(), 1u);
+  EXPECT_EQ(link.stops(), 0u);
+  // It comes back: the force returns.
+  remote.start();
+  EXPECT_TRUE(wait_until([&] { return std::abs(rendered().x() + 4.0) < 0.5; }, 3000ms)) << rendered().transpose();
+  // The remote is stopped (its E-stop): the master stops too.
+  stopped = true;
+  EXPECT_TRUE(wait_until([&] { return server.device().status().fault() == DeviceFault::emergency_stop; }, 2000ms));
+  EXPECT_EQ(link.stops(), 1u);
+  remote.stop();
+  server.join();  // the session's duration: a stopped device with a hand on it may take long to come to rest
+}
+
+}  // namespace
+}  // namespace hapticd::server

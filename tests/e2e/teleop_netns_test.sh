@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# Teleoperation across machines (docs/teleoperation.md): the master server and the remote server in two network
+# namespaces that reach each other only through a third, where hapticd-link-relay delays and drops their UDP
+# datagrams (this machine's kernel has no netem): 192.0.2.1 (master) - 192.0.2.2 | relay | 192.0.2.129 - 192.0.2.130
+# (remote), two veth pairs, created and removed here. Each server's Cyclone DDS names the relay as its peer and
+# advertises the relay's address facing the other side. The master's simulated operator reaches 5 cm ahead; the
+# remote meets its wall 3 cm ahead; with 40 ms round trip and 5 % loss each way the master feels the wall through
+# the link and both ports stay passive (the time-domain passivity controllers). Then the relay stops: the remote
+# stops (link lost), the master's force fades. Skipped (exit 77) where namespaces cannot be made.
+# Usage: teleop_netns_test.sh BIN_DIR SOURCE_DIR WORK_DIR
+set -uo pipefail
+bin=$1 src=$2 work=$3
+rm -rf "$work"; mkdir -p "$work"
+skip() { echo "SKIP: $*"; exit 77; }
+fail() {
+  echo "FAIL: $*"
+  for f in master.log remote.log relay.log; do [ -f "$work/$f" ] && { echo "--- $f"; tail -12 "$work/$f"; }; done
+  exit 1
+}
+[ "$(id -u)" -eq 0 ] || skip "network namespaces need root"
+command -v ip > /dev/null || skip "no ip (iproute2)"
+ns_m="hapticd-tm-$$" ns_r="hapticd-tr-$$" ns_x="hapticd-tx-$$"
+cleanup() {
+  for n in "$ns_m" "$ns_r" "$ns_x"; do ip netns pids "$n" 2> /dev/null | xargs -r kill 2> /dev/null; done
+  sleep 0.2
+  for n in "$ns_m" "$ns_r" "$ns_x"; do ip netns del "$n" 2> /dev/null; done
+}
+trap cleanup EXIT
+ip netns add "$ns_m" 2> "$work/netns.err" || skip "cannot create a network namespace: $(cat "$work/netns.err")"
+ip netns add "$ns_r" || skip "cannot create a second network namespace"
+ip netns add "$ns_x" || skip "cannot create a third network namespace"
+ip link add "tm$$" netns "$ns_m" type veth peer name "txm$$" netns "$ns_x" 2> "$work/veth.err" ||
+  skip "cannot create a veth pair: $(cat "$work/veth.err")"
+ip link add "tr$$" netns "$ns_r" type veth peer name "txr$$" netns "$ns_x" || skip "cannot create a second veth pair"
+ip -n "$ns_m" addr add 192.0.2.1/25 dev "tm$$"
+ip -n "$ns_x" addr add 192.0.2.2/25 dev "txm$$"
+ip -n "$ns_x" addr add 192.0.2.129/25 dev "txr$$"
+ip -n "$ns_r" addr add 192.0.2.130/25 dev "tr$$"
+for n in "$ns_m" "$ns_r" "$ns_x"; do ip -n "$n" link set lo up; done
+ip -n "$ns_m" link set "tm$$" up
+ip -n "$ns_r" link set "tr$$" up
+ip -n "$ns_x" link set "txm$$" up
+ip -n "$ns_x" link set "txr$$" up
+# No route between the two sides: only the relay joins them.
+ip netns exec "$ns_m" ping -c 1 -W 1 192.0.2.130 > /dev/null 2>&1 && fail "the master reaches the remote without the relay"
+
+domain=157  # unicast ports 7400 + 250 * 157 + 10 + 2 i and + 11 + 2 i: 46660-46669 for participant indices 0-4
+cyclone_xml() {  # interface, the relay's address on this side (peer), the relay's address on the other (advertised)
+  cat << XML
+<CycloneDDS xmlns="https://cdds.io/config"><Domain Id="any">
+  <General><Interfaces><NetworkInterface name="$1" multicast="false"/></Interfaces><AllowMulticast>false</AllowMulticast>
+    <ExternalNetworkAddress>$3</ExternalNetworkAddress></General>
+  <Discovery><ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>4</MaxAutoParticipantIndex>
+    <Peers><Peer address="$2"/></Peers></Discovery>
+</Domain></CycloneDDS>
+XML
+}
+cyclone_xml "tm$$" 192.0.2.2 192.0.2.129 > "$work/master.xml"
+cyclone_xml "tr$$" 192.0.2.129 192.0.2.2 > "$work/remote.xml"
+
+ip netns exec "$ns_x" "$bin/hapticd-link-relay" --route 192.0.2.2=192.0.2.130 --route 192.0.2.129=192.0.2.1 \
+  --ports 46660-46669 --delay-ms 20 --jitter-ms 2 --loss 0.05 --seed 3 --duration 7 > "$work/relay.log" 2>&1 &
+relay=$!
+sleep 0.5
+grep -q "2 route(s), 10 port(s) each" "$work/relay.log" || fail "the relay did not start: $(cat "$work/relay.log")"
+source "$src/tests/e2e/session_copy.sh"  # loose_watchdogs: why, there
+common=(--dds-domain "$domain" --set server.realtime_priority=0 --set server.lock_memory=false
+  --set teleoperation.link_timeout_s=0.5 --log-level info)
+p=devices.master.device.parameters
+ip netns exec "$ns_r" timeout 40 "$bin/hapticd" --config "$src/config/sessions/teleoperation/remote.yaml" \
+  --duration 10 --set "dds.cyclone_config=$work/remote.xml" "${common[@]}" $(loose_watchdogs remote) \
+  > "$work/remote.log" 2>&1 &
+remote=$!
+ip netns exec "$ns_m" timeout 40 "$bin/hapticd" --config "$src/config/sessions/teleoperation/master.yaml" \
+  --duration 10 --set "dds.cyclone_config=$work/master.xml" "${common[@]}" $(loose_watchdogs master) \
+  --set "$p.operator_motion=step" --set "$p.operator_motion_m=[0.05, 0, 0]" --set "$p.operator_motion_start_s=1.5" \
+  > "$work/master.log" 2>&1 &
+master=$!
+wait "$relay"
+grep -q "192.0.2.2 -> 192.0.2.130: relayed [1-9][0-9]*, dropped [1-9]" "$work/relay.log" ||
+  fail "the relay relayed nothing, or dropped nothing, towards the remote"
+wait "$master" || fail "the master server exited with $?"
+wait "$remote"
+code=$?
+[ "$code" = 3 ] || fail "the remote server exited with $code, not 3 (a device fault: its stop when the link was lost)"
+
+# summary LOG: the link's end-of-session line, as "sent taken rejected lost stops lowest largest"
+summary() {
+  sed -n 's/.*teleoperation link to .*: packets sent \([0-9]*\), taken \([0-9]*\), rejected \([0-9]*\); lost \([0-9]*\) times, \([0-9]*\) stops; energy in .* lowest observed \([-0-9.]*\) J; largest force \([0-9.]*\) N/\1 \2 \3 \4 \5 \6 \7/p' "$work/$1"
+}
+read -r m_sent m_taken m_rejected m_lost m_stops m_lowest m_force <<< "$(summary master.log)"
+read -r r_sent r_taken r_rejected r_lost r_stops r_lowest r_force <<< "$(summary remote.log)"
+[ -n "${m_force:-}" ] && [ -n "${r_force:-}" ] || fail "no link summary: $(grep -h teleoperation "$work"/*.log)"
+echo "master: sent $m_sent, taken $m_taken, lowest observed $m_lowest J, largest force $m_force N, lost $m_lost, stops $m_stops"
+echo "remote: sent $r_sent, taken $r_taken, lowest observed $r_lowest J, largest force $r_force N, lost $r_lost, stops $r_stops"
+# Through the relay: most packets arrived (5 % loss each way, and the link ran for the relay's ~6 s of the 10 s).
+[ "$m_taken" -gt 3000 ] && [ "$r_taken" -gt 3000 ] || fail "too few packets through the relay: $m_taken, $r_taken"
+[ "$m_rejected" -eq 0 ] && [ "$r_rejected" -eq 0 ] || fail "packets rejected: $m_rejected, $r_rejected"
+# The master felt the remote's wall (the operator's arm pushes it 2 cm past the wall: several newtons).
+awk -v f="$m_force" 'BEGIN { exit !(f > 3.0) }' || fail "the master felt no wall: largest force $m_force N"
+# Both ports passive: the energy observed never below zero (up to rounding).
+awk -v a="$m_lowest" -v b="$r_lowest" 'BEGIN { exit !(a > -1e-6 && b > -1e-6) }' ||
+  fail "a port was active: lowest observed $m_lowest J, $r_lowest J"
+# The relay stopped at 7 s: the remote stopped (link lost), the master's force faded out.
+grep -q "teleoperation link lost (no packet from 'master' .*): the remote stops" "$work/remote.log" ||
+  fail "the remote did not stop when the link was lost"
+grep -q "device 'remote' fault emergency_stop" "$work/remote.log" || fail "the remote's stop is not its safe mode"
+grep -q "teleoperation link lost (no packet from 'remote' .*): the force fades out" "$work/master.log" ||
+  fail "the master did not fade its force when the link was lost"
+grep -q "device 'master': ok" "$work/master.log" || fail "the master faulted: $(grep -h FAULT "$work/master.log")"
+echo "PASS: teleoperation across namespaces through the relay (40 ms round trip, 5 % loss each way)"
