@@ -182,6 +182,9 @@ TEST(TeleopLink, TheRemoteFollowsIntoItsWallRejectsMalformedPacketsAndStopsWhenT
   EXPECT_EQ(link.stops(), 1u);
   EXPECT_EQ(link.losses(), 1u);
   EXPECT_TRUE(wait_until([&] { return master.newest().stopped; }, 1000ms));
+  // The person at the device recovers it (the link, which holds the claim, cannot ask): any client may.
+  const auto reply = engine.recover("remote", 5s);
+  EXPECT_TRUE(reply.accepted) << reply.message;
   server.join();  // the session's duration
 }
 

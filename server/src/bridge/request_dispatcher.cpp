@@ -291,7 +291,10 @@ std::optional<RequestDispatcher::Answer> RequestDispatcher::refused_recovery(Dev
   if (!d.stops.empty())
     return Answer{false, std::string(stopper ? "its stop released, " : "") + "stopped by " + d.stops.holders() +
                              ": only who stopped it can release its stop"};
-  if (stopper || d.gate.owner().empty() || d.gate.owned_by(r.requester)) return std::nullopt;
+  // A device its server's teleoperation link holds is recovered by whoever asks (the link cannot ask; the person at
+  // the device does): as a free device's, its E-stops requested over DDS still latch under their stoppers.
+  if (stopper || d.gate.owner().empty() || d.gate.owner_participant().is_link() || d.gate.owned_by(r.requester))
+    return std::nullopt;
   return Answer{false, "claimed by '" + d.gate.owner() + "'"};
 }
 
