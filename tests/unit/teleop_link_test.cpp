@@ -170,6 +170,32 @@ TEST(TeleopSide, PositionForceRemoteFollowsTheMasterAndMasterDisplaysTheRemotesF
   EXPECT_NEAR(master.cycle(at(201, 0.51), 1e-3).force.x(), -6.0, 1e-9);
 }
 
+TEST(TeleopSide, ScalesMotionAndForceAndConvertsTheEnergiesBetweenThem) {
+  LinkSettings s;
+  s.motion_scale = 0.5;  // the remote moves half the master's motion
+  s.force_scale = 2.0;   // the master feels twice the remote's force
+  TeleopSide master(Role::master, s), remote(Role::remote, s);
+  master.start(at(0, 0.0));
+  remote.start(at(0, 0.0));
+  const SideOutput m = master.cycle(at(1, 0.02, 0.1), 1e-3);
+  EXPECT_NEAR(m.packet.position.x(), 0.01, 1e-12);
+  EXPECT_NEAR(m.packet.velocity.x(), 0.05, 1e-12);
+  // Power scales by force_scale / motion_scale = 4 from the remote's units to the master's: 1 J in at the remote
+  // pays for 4 J out at the master, and 1 J in at the master for 0.25 J out at the remote.
+  LinkPacket from_remote;
+  from_remote.sequence = 1;
+  from_remote.energy_in = 1.0;
+  master.receive(from_remote);
+  master.cycle(at(2, 0.02), 1e-3);
+  EXPECT_NEAR(master.status().peer_energy_in, 4.0, 1e-12);
+  LinkPacket from_master;
+  from_master.sequence = 1;
+  from_master.energy_in = 1.0;
+  remote.receive(from_master);
+  remote.cycle(at(2, 0.0), 1e-3);
+  EXPECT_NEAR(remote.status().peer_energy_in, 0.25, 1e-12);
+}
+
 TEST(TeleopSide, TdpaStopsTheRemoteSetpointUntilTheMasterHasPaidForTheContact) {
   LinkSettings s;  // tdpa
   TeleopSide remote(Role::remote, s);
