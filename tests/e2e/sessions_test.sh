@@ -47,10 +47,13 @@ done
 # speed monitor (no brakes are simulated).
 # Sessions with the DDS interface run on this test's own domain.
 dds_flags() { grep -q "^dds:" "$1" && echo "--dds-domain 68"; }
+# A teleoperation side runs here alone: its peer never comes, and the remote's link would stop it (its safety,
+# docs/teleoperation.md) once link_timeout_s has passed - within the second at 1 kHz. The test is of the scheme.
+teleop_flags() { grep -q "^teleoperation:" "$1" && echo "--set teleoperation.link_timeout_s=10"; }
 for session in $(find "$src/config/sessions" -mindepth 2 -name "*.yaml" ! -name "identify-*" | sort); do
   name=${session#$src/config/sessions/}
   out=$(timeout 60 "$hapticd" --config "$session" --clock lockstep --duration 1 $(dds_flags "$session") \
-    $(haply_flags "$session") 2>&1)
+    $(teleop_flags "$session") $(haply_flags "$session") 2>&1)
   # Every device of the session: no fault within the second (a multi-device session reports each), and no group
   # whose hard minimum tripped.
   fault_cycles=$(echo "$out" | grep -oE "FAULT at cycle [0-9]+" | grep -oE "[0-9]+$" || true)
