@@ -56,7 +56,6 @@ TeleopSide::TeleopSide(Role role, const LinkSettings& settings) : role_(role), s
 void TeleopSide::start(const LocalSample& sample) noexcept {
   started_ = true;
   origin_ = sample.position;
-  last_ns_ = sample.time_ns;
   setpoint_.setZero();
   setpoint_velocity_.setZero();
 }
@@ -108,7 +107,6 @@ SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped)
   out.packet.sent_ns = sample.time_ns;
   out.packet.energy_in = port_.energy_in();
   out.packet.stopped = stopped;
-  last_ns_ = sample.time_ns;
   return out;
 }
 

@@ -142,7 +142,7 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   in_.store(port.energy_in(), std::memory_order_relaxed);
   out_.store(port.energy_out(), std::memory_order_relaxed);
   dissipated_.store(port.dissipated(), std::memory_order_relaxed);
-  if (side_.status().received > 0 && port.observed() < lowest_observed_.load(std::memory_order_relaxed))
+  if (st.received > 0 && port.observed() < lowest_observed_.load(std::memory_order_relaxed))
     lowest_observed_.store(port.observed(), std::memory_order_relaxed);
   if (out.force.norm() > max_force_.load(std::memory_order_relaxed))
     max_force_.store(out.force.norm(), std::memory_order_relaxed);

@@ -110,7 +110,6 @@ class TeleopSide {
   SideStatus status_;
   bool started_ = false;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
-  std::int64_t last_ns_ = 0;
   std::uint64_t sequence_ = 0;
   LinkPacket peer_;  // the newest packet taken
   bool have_peer_ = false;
