@@ -14,7 +14,8 @@
 #     link's packets into both sides of a link, each for a fixed number of inputs from a fixed seed (FUZZ_RUNS
 #     scales them; findings are written to build/fuzz/findings and fail the run).
 # All three build with Debian's clang-14 at -O1 and line tables only; the fuzzers are built in the asan build
-# (its libraries carry libFuzzer's coverage instrumentation too), so the server is compiled twice, not three times.
+# (the libraries the fuzzers explore - DDS validation, server core, teleoperation - carry libFuzzer's coverage
+# instrumentation too: fuzz/CMakeLists.txt), so the server is compiled twice, not three times.
 # Only these targets are built, to keep CI short on small machines.
 # Usage: scripts/sanitize.sh [asan|tsan|fuzz]...   (default: all three)
 set -euo pipefail

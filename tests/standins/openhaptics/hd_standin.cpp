@@ -52,9 +52,9 @@ constexpr HDenum kCurrentButtons = 0x2000, kCurrentPosition = 0x2050, kCurrentVe
                  kDeviceVendor = 0x2503, kDeviceSerialNumber = 0x2504, kUsableWorkspaceDimensions = 0x2551,
                  kInputDof = 0x2553, kOutputDof = 0x2554, kCalibrationStyle = 0x2555, kUpdateRate = 0x2600,
                  kNominalMaxStiffness = 0x2602, kNominalMaxForce = 0x2603, kNominalMaxContinuousForce = 0x2604,
-                 kNominalMaxDamping = 0x2609, kNominalMaxTorqueStiffness = 0x2620, kNominalMaxTorqueDamping = 0x2621,
-                 kNominalMaxTorqueForce = 0x2622, kCurrentForce = 0x2700, kCurrentTorque = 0x2701,
-                 kCurrentJointAngles = 0x2100, kCurrentGimbalAngles = 0x2150, kForceOutput = 0x4000;
+                 kNominalMaxDamping = 0x2609, kNominalMaxTorqueForce = 0x2622, kCurrentForce = 0x2700,
+                 kCurrentTorque = 0x2701, kCurrentJointAngles = 0x2100, kCurrentGimbalAngles = 0x2150,
+                 kForceOutput = 0x4000;
 constexpr HDenum kCalibrationOk = 0x5000, kCalibrationNeedsUpdate = 0x5001, kCalibrationNeedsManualInput = 0x5002;
 constexpr int kCalibrationEncoderReset = 1 << 0, kCalibrationInkwell = 1 << 2;
 constexpr HDCallbackCode kCallbackDone = 0;
