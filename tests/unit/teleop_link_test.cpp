@@ -182,16 +182,16 @@ TEST(TeleopSide, ScalesMotionAndForceAndConvertsTheEnergiesBetweenThem) {
   EXPECT_NEAR(m.packet.velocity.x(), 0.05, 1e-12);
   // Power scales by force_scale / motion_scale = 4 from the remote's units to the master's: 1 J in at the remote
   // pays for 4 J out at the master, and 1 J in at the master for 0.25 J out at the remote.
-  LinkPacket from_remote;
-  from_remote.sequence = 1;
-  from_remote.energy_in = 1.0;
-  master.receive(from_remote);
+  const auto one_joule_in = [] {
+    LinkPacket p;
+    p.sequence = 1;
+    p.energy_in = 1.0;
+    return p;
+  };
+  master.receive(one_joule_in());
   master.cycle(at(2, 0.02), 1e-3);
   EXPECT_NEAR(master.status().peer_energy_in, 4.0, 1e-12);
-  LinkPacket from_master;
-  from_master.sequence = 1;
-  from_master.energy_in = 1.0;
-  remote.receive(from_master);
+  remote.receive(one_joule_in());
   remote.cycle(at(2, 0.0), 1e-3);
   EXPECT_NEAR(remote.status().peer_energy_in, 0.25, 1e-12);
 }
