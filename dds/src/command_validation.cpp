@@ -64,7 +64,7 @@ std::string_view to_string(RejectReason reason) noexcept {
 
 ContentCheck check_command_content(const hapticd_msg_EngineCommand& c, const CommandBounds& b) noexcept {
   const auto reject = [](RejectReason r) { return ContentCheck{false, r}; };
-  if (!terminated(c.device) || !terminated(c.engine) || text_of(c.device).empty() || text_of(c.engine).empty())
+  if (!valid_text(c.device) || !valid_text(c.engine) || text_of(c.device).empty() || text_of(c.engine).empty())
     return reject(RejectReason::malformed);
   // The enum and the bool are read as the bytes they are: a sample from anywhere may hold any value there.
   std::int32_t kind = 0;

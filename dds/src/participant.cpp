@@ -1,20 +1,17 @@
 #include "hapticd/dds/participant.hpp"
 
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <mutex>
-#include <sstream>
+
+#include "hapticd/input_file.hpp"
 
 namespace hapticd::dds {
 namespace {
 
+// A regular file of at most 1 MiB (a /dev/zero or a named pipe there is refused, never read: hapticd/input_file.hpp).
 std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read the Cyclone DDS configuration " + path.string());
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return read_input_file(path, "Cyclone DDS configuration", 1024u * 1024u);
 }
 
 const char* environment(const char* name) {

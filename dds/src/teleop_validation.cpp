@@ -18,8 +18,8 @@ bool bounded(const double (&v)[3], double limit) noexcept {
 }  // namespace
 
 std::string_view check_teleop_packet(const hapticd_msg_TeleopPacket& p, const TeleopBounds& b) noexcept {
-  if (!terminated(p.sender) || text_of(p.sender).empty()) return "the sender's name is malformed";
-  if (!terminated(p.receiver) || text_of(p.receiver).empty()) return "the receiver's name is malformed";
+  if (!valid_text(p.sender) || text_of(p.sender).empty()) return "the sender's name is malformed";
+  if (!valid_text(p.receiver) || text_of(p.receiver).empty()) return "the receiver's name is malformed";
   if (p.role != hapticd_msg_TELEOP_MASTER && p.role != hapticd_msg_TELEOP_REMOTE) return "the role is unknown";
   // The bool is read as the byte it is: a sample from anywhere may hold any value there.
   unsigned char stopped = 0;

@@ -17,12 +17,12 @@ bool finite(const double* v, int n) noexcept {
 }  // namespace
 
 std::string_view check_world(const hapticd_msg_World& w, const WorldBounds& bounds) noexcept {
-  if (!terminated(w.engine) || text_of(w.engine).empty()) return "the engine's name is malformed";
+  if (!valid_text(w.engine) || text_of(w.engine).empty()) return "the engine's name is malformed";
   if (w.shape_count < 0 || w.shape_count > hapticd_msg_MAX_WORLD_SHAPES) return "the shape count is out of range";
   if (!std::isfinite(w.time_s)) return "the time is not finite";
   for (int i = 0; i < w.shape_count; ++i) {
     const hapticd_msg_WorldShape& s = w.shapes[i];
-    if (!terminated(s.body)) return "a body's name is malformed";
+    if (!valid_text(s.body)) return "a body's name is malformed";
     if (s.shape < hapticd_msg_SHAPE_BOX || s.shape > hapticd_msg_SHAPE_PLANE) return "a shape is of no known kind";
     if (!finite(s.size, 3) || !finite(s.color, 4) || !finite(s.shape_pose.position, 3) ||
         !finite(s.shape_pose.orientation, 4))

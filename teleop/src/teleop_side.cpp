@@ -70,10 +70,11 @@ void TeleopSide::rebase(const LocalSample& sample) noexcept {
 }
 
 void TeleopSide::receive(const LinkPacket& packet) noexcept {
-  if (have_peer_ && packet.sequence <= peer_.sequence) {
+  if (have_peer_ && static_cast<std::int64_t>(packet.sequence - peer_.sequence) <= 0) {
     ++status_.stale;
     return;
   }
+  if (!have_peer_) ++status_.peers;
   peer_ = packet;
   have_peer_ = true;
   ++status_.received;
@@ -84,8 +85,37 @@ void TeleopSide::receive(const LinkPacket& packet) noexcept {
   }
 }
 
+void TeleopSide::peer_changed() noexcept {
+  credited_before_ = credited_peer_energy();
+  energy_bound_ = 0.0;
+  have_peer_ = false;
+  peer_ = LinkPacket{};
+  rebase_pending_ = true;
+}
+
+double TeleopSide::peer_power_bound() const noexcept {
+  // What enters the peer's port: the master's, the link's force (at most max_force) against the hand's motion; the
+  // remote's (position-force), its environment's force against the setpoint's motion (at most max_speed). Twice
+  // that: the packets sample both, and the energy between two samples may come at a higher rate.
+  const LinkSettings& s = settings_;
+  const double bound = role_ == Role::remote ? s.max_force * peer_.velocity.norm() / s.motion_scale
+                       : s.architecture == Architecture::position_force ? peer_.force.norm() * s.max_speed
+                                                                        : s.max_force * peer_.velocity.norm();
+  return 2.0 * bound;
+}
+
+double TeleopSide::credited_peer_energy() const noexcept {
+  return credited_before_ + (have_peer_ ? std::min(peer_.energy_in, energy_bound_) : 0.0);
+}
+
 SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped) noexcept {
   if (!started_) start(sample);
+  if (rebase_pending_ && have_peer_) {
+    rebase(sample);
+    rebase_pending_ = false;
+  }
+  // The bound grows with the peer's newest motion and force while its packets come.
+  if (have_peer_ && status_.silence_s <= settings_.link_timeout_s) energy_bound_ += peer_power_bound() * dt;
   SideOutput out;
   const Eigen::Vector3d x = sample.position - origin_;
   const Eigen::Vector3d& v = sample.velocity;
@@ -118,7 +148,8 @@ Eigen::Vector3d TeleopSide::master_force(const Eigen::Vector3d& x, const Eigen::
   const Eigen::Vector3d vs = s.motion_scale * v;
   out.position = xs;
   out.velocity = vs;
-  status_.peer_energy_in = peer_.energy_in * c;
+  status_.peer_energy_in = (credited_before_ + peer_.energy_in) * c;
+  status_.peer_energy_credited = credited_peer_energy() * c;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   if (s.passivity == Passivity::wave) {
     // The force on the link in the remote's units, f = b v - sqrt(2b) w, sent as u = (b v + f) / sqrt(2b).
@@ -128,7 +159,7 @@ Eigen::Vector3d TeleopSide::master_force(const Eigen::Vector3d& x, const Eigen::
     f = clamp_norm(f, s.max_force / s.force_scale);
     out.wave = (b * vs + f) / std::sqrt(2.0 * b);
     force = -s.force_scale * status_.fade * f;
-    return port_.force_out(force, v, dt, status_.peer_energy_in, false);
+    return port_.force_out(force, v, dt, status_.peer_energy_credited, false);
   }
   // While the link is lost the last packet's force (or spring) fades out; the port sees what is applied.
   if (have_peer_) {
@@ -139,7 +170,7 @@ Eigen::Vector3d TeleopSide::master_force(const Eigen::Vector3d& x, const Eigen::
     }
   }
   force = status_.fade * clamp_norm(force, s.max_force);
-  return port_.force_out(force, v, dt, status_.peer_energy_in, s.passivity == Passivity::tdpa);
+  return port_.force_out(force, v, dt, status_.peer_energy_credited, s.passivity == Passivity::tdpa);
 }
 
 Eigen::Vector3d TeleopSide::remote_force(const Eigen::Vector3d& x, const Eigen::Vector3d& v,
@@ -149,13 +180,14 @@ Eigen::Vector3d TeleopSide::remote_force(const Eigen::Vector3d& x, const Eigen::
   out.position = x;
   out.velocity = v;
   out.force = f_env;
-  status_.peer_energy_in = peer_.energy_in / c;
+  status_.peer_energy_in = (credited_before_ + peer_.energy_in) / c;
+  status_.peer_energy_credited = credited_peer_energy() / c;
   const bool follow = have_peer_ && !status_.link_lost && !peer_.stopped;
   if (s.architecture == Architecture::position_position) {
     Eigen::Vector3d force = Eigen::Vector3d::Zero();
     if (follow) force = s.stiffness * (peer_.position - x) + s.damping * (peer_.velocity - v);
     force = clamp_norm(force, s.max_force);
-    return port_.force_out(force, v, dt, status_.peer_energy_in, s.passivity == Passivity::tdpa);
+    return port_.force_out(force, v, dt, status_.peer_energy_credited, s.passivity == Passivity::tdpa);
   }
   // Position-force: the link moves the setpoint; the environment's force on the handle pushes back on it.
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
@@ -167,13 +199,13 @@ Eigen::Vector3d TeleopSide::remote_force(const Eigen::Vector3d& x, const Eigen::
     velocity = follow ? Eigen::Vector3d((std::sqrt(2.0 * b) * u - f) / b) : Eigen::Vector3d::Zero();
     velocity = clamp_norm(velocity, s.max_speed);
     out.wave = (b * velocity - f) / std::sqrt(2.0 * b);
-    velocity = port_.velocity_out(velocity, f_env, dt, status_.peer_energy_in, false);
+    velocity = port_.velocity_out(velocity, f_env, dt, status_.peer_energy_credited, false);
   } else {
     if (follow) {
       velocity = peer_.velocity + (peer_.position - setpoint_) / s.drift_time_s;
       velocity = clamp_norm(velocity, s.max_speed);
     }
-    velocity = port_.velocity_out(velocity, f_env, dt, status_.peer_energy_in, s.passivity == Passivity::tdpa);
+    velocity = port_.velocity_out(velocity, f_env, dt, status_.peer_energy_credited, s.passivity == Passivity::tdpa);
   }
   setpoint_velocity_ = velocity;
   setpoint_ += velocity * dt;

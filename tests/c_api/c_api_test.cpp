@@ -4,9 +4,15 @@
 // local delivery, which allocates): discovery, states, a claim and its refusal to another client, parameters, and the
 // per-cycle calls - the latest state and a command - allocating nothing.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -49,6 +55,33 @@ TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
   EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
   EXPECT_STRNE(hapticd_last_error(), "");
   o.network = nullptr;
+  // Hardening round 4, item 8: a Cyclone configuration that never ends (/dev/zero: read without limit before) or a
+  // named pipe (waited on for ever) is refused at once, and says why.
+  const std::string fifo = ::testing::TempDir() + "c_api_cyclone_fifo";
+  (void)std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& endless : {std::string("/dev/zero"), fifo}) {
+    // On a thread of its own, bounded: a create that hangs (the old code waited on the pipe) fails the test.
+    auto done = std::make_shared<std::atomic<bool>>(false);
+    auto result = std::make_shared<std::pair<hapticd_status, std::string>>();
+    std::thread([endless, o, done, result]() mutable {
+      o.cyclone_config = endless.c_str();
+      hapticd_client* made = nullptr;
+      result->first = hapticd_client_create(&o, &made);
+      result->second = hapticd_last_error();
+      hapticd_client_destroy(made);
+      done->store(true);
+    }).detach();
+    for (int i = 0; i < 500 && !done->load(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (!done->load()) {
+      std::fprintf(stderr, "FAILED: hapticd_client_create with cyclone_config %s hangs\n", endless.c_str());
+      std::_Exit(1);  // a hung thread cannot be joined
+    }
+    EXPECT_NE(result->first, HAPTICD_OK);
+    EXPECT_NE(result->second.find("not a regular file"), std::string::npos) << result->second;
+  }
+  (void)std::remove(fifo.c_str());
+  o.cyclone_config = nullptr;
 
   c = make("c-api-errors", kEmptyDomain);
   ASSERT_NE(c, nullptr);
@@ -126,6 +159,13 @@ TEST(CApi, AnEngineDiscoversClaimsAndAnswersStatesWithoutAllocating) {
   EXPECT_STREQ(state.device, "vishard3");
   EXPECT_EQ(state.dof, 3);
   EXPECT_NEAR(state.pose.position.x, info.start_pose.position.x, 0.01);
+  // Hardening round 4, item 9: a timeout of 1e10 s or more overflowed the clock and returned TIMEOUT at once; it
+  // waits (here for a state 200 serials on, a fraction of a second away).
+  for (const double long_timeout : {1e10, 1e300}) {
+    const std::uint64_t after = state.serial + 200;
+    ASSERT_EQ(hapticd_wait_for_state(c, "vishard3", long_timeout, after, &state), HAPTICD_OK) << hapticd_last_error();
+    EXPECT_GT(state.serial, after);
+  }
 
   hapticd_reply reply;
   ASSERT_EQ(hapticd_claim(c, "vishard3", 5.0, &reply), HAPTICD_OK) << hapticd_last_error();

@@ -8,7 +8,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -151,6 +154,89 @@ TEST_F(Haply, TheSessionsMistakesAreConfigErrors) {
   Session s = test::build_test_session(
       session("clock: device", inverse3("right", uncalibrated.url(), "require_calibrated: false")));
   EXPECT_FALSE(s.impl().devices[0]->description().handle.senses_orientation);
+}
+
+// Runs `f` on a thread of its own and waits at most `seconds`: a call that hangs fails the test and ends the program
+// (a hung thread cannot be joined), so the test bounds its own time.
+template <class F>
+void within(double seconds, F f) {
+  auto done = std::make_shared<std::atomic<bool>>(false);
+  std::thread([done, f]() mutable {
+    f();
+    done->store(true);
+  }).detach();
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (!done->load() && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (!done->load()) {
+    std::fprintf(stderr, "FAILED: the call did not return within %.0f s (it hangs)\n", seconds);
+    std::fflush(stderr);
+    std::_Exit(1);
+  }
+}
+
+// Hardening round 4, item 1: an inventory whose device id is too long for the plugin's commands (the shipped
+// inverse3-wall.yaml takes the id from the service). Before: the commands carried raw stack bytes with a 450- or
+// 5000-character id while the device reported ok, and a 3 MB id crashed the server (SIGSEGV).
+TEST_F(Haply, AServiceWhoseDeviceIdCannotBeSentWholeIsRefusedBeforeAnythingIsSent) {
+  for (const std::size_t length : {65u, 450u, 5000u}) {
+    InverseServiceStandIn service({0, std::string(length, 'A'), "61548", true, 0.001});
+    const std::string e = config_error(session("clock: device, duration_s: 0.2", inverse3("right", service.url())));
+    EXPECT_NE(e.find("has " + std::to_string(length) + " characters (at most 64)"), std::string::npos) << e;
+    EXPECT_EQ(service.call_log().find("set_cursor_force"), std::string::npos) << service.call_log();
+    EXPECT_EQ(service.call_log().find("non-text bytes"), std::string::npos) << service.call_log();
+  }
+  InverseServiceStandIn quoted({0, "04 9D/<x>", "61548", true, 0.001});  // not an id to write into a command
+  std::string e = config_error(session("clock: device", inverse3("right", quoted.url())));
+  EXPECT_NE(e.find("has a character other than"), std::string::npos) << e;
+  InverseServiceStandIn huge({0, std::string(3'000'000, 'A'), "61548", true, 0.001});
+  within(20.0, [&] { e = config_error(session("clock: device", inverse3("right", huge.url()))); });
+  EXPECT_NE(e.find("larger than 256 KiB"), std::string::npos) << e;
+  // The longest id taken runs, and every message it sends is whole text.
+  InverseServiceStandIn longest({0, std::string(64, 'B'), "61548", true, 0.001});
+  Session s = test::build_test_session(session("clock: device, duration_s: 0.3", inverse3("right", longest.url())));
+  longest.hand(1.0, 0.0, 0.0, 0);
+  (void)run(s);
+  EXPECT_EQ(s.device("right").fault, "");
+  EXPECT_NE(longest.call_log().find("\nset_cursor_force\n"), std::string::npos) << longest.call_log();
+  EXPECT_EQ(longest.call_log().find("non-text bytes"), std::string::npos) << longest.call_log();
+}
+
+// Hardening round 4, item 6: the plugin's time-outs had no effect (Asio's blocking read ends in poll(fd, -1)). A
+// service that never sends its inventory hung the server's start past connect_timeout_s; one that keeps the
+// connection open after the close message kept the server from exiting.
+TEST_F(Haply, AServiceThatSendsNoInventoryFailsTheStartWithinItsTimeout) {
+  InverseServiceStandIn::Options silent;
+  silent.send_inventory = false;
+  InverseServiceStandIn service(silent);
+  std::string e;
+  const auto start = std::chrono::steady_clock::now();
+  within(15.0, [&] {
+    e = config_error(session("clock: device", inverse3("right", service.url(), "connect_timeout_s: 0.5")));
+  });
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(e.find("sent no device inventory: the service sent nothing within the time allowed"), std::string::npos)
+      << e;
+  EXPECT_LT(took, 5.0);
+}
+
+TEST_F(Haply, AServiceThatNeverAnswersTheCloseDoesNotHoldTheServersEnd) {
+  InverseServiceStandIn::Options hanging;
+  hanging.ignore_close = true;
+  InverseServiceStandIn service(hanging);
+  service.hand(1.0, 0.0, 0.0, 0);
+  const auto start = std::chrono::steady_clock::now();
+  within(15.0, [&] {
+    Session s = test::build_test_session(session("clock: device, duration_s: 0.3", inverse3("right", service.url())));
+    (void)run(s);
+  });
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 8.0);
+  std::string log = service.call_log();
+  for (int i = 0; i < 100 && log.find("close ignored") == std::string::npos; ++i) {  // the service's thread logs it
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    log = service.call_log();
+  }
+  EXPECT_NE(log.find("set_cursor_force zero\nclose ignored"), std::string::npos) << log;
 }
 
 TEST_F(Haply, TheCycleAllocatesNothing) {

@@ -7,9 +7,12 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <thread>
+#include <vector>
 
 #include "e2e/dds_server_rig.hpp"
+#include "support/test_paths.hpp"
 #include "support/test_session.hpp"
 
 namespace hapticd::server {
@@ -107,6 +110,67 @@ TEST(DdsAttacks, AMotionCommandWhoseTargetJumpsIsFollowedWithinTheLimits) {
   EXPECT_NEAR(travelled, 0.25, 0.01);
   EXPECT_LT(fastest, 1.1);                            // the virtual speed limit, 1 m/s, and a little tracking
   EXPECT_LT(server.recording().peak_torque(), 40.0);  // the drives' peak is 54 N m: never at it
+}
+
+// Hardening round 4, item 5: MOTION commands the checks accept, to the shipped dds-coupling session's ViSHaRD3
+// with the simulated operator holding the handle (lockstep, the engine answering every state): one target 250 mm
+// away in -y, one 1.5 m away, and targets jumping +-300 mm every 50 ms. Before: the first two ended in
+// joint_velocity_violation, the far target put 139.7 N on the hand and the jumps 127.7 N - above the 80 N rendered-
+// force limit. Now the following respects the joints' speeds and yields to the hand: no fault, the hand's load below
+// the limit.
+std::string held_handle_session(int domain, double duration_s) {
+  return "server: {clock: lockstep, rate_hz: 2000, seed: 42, realtime_priority: 0, lock_memory: false, duration_s: " +
+         std::to_string(duration_s) + "}\ndds: {domain_id: " + std::to_string(domain) +
+         ", lockstep_start_wait_s: 20, lockstep_wait_s: 2}\ndevices:\n  - name: v3\n    engine_deadline_s: 0.05\n"
+         "    engine_fade_s: 0.02\n    device:\n      plugin: sim\n      parameters: {urdf: " +
+         test::source_dir() +
+         "/config/urdf/vishard3.urdf, initial_position: [-0.3, 1.6, 0.0], passive_gimbal: true, "
+         "sensor_accelerations: true, attachment: operator, operator_grasp: 0.7}\n    virtual_model:\n      plugin: "
+         "admittance\n      parameters: {mass_kg: [3.0, 3.0, 3.0], damping_n_s_per_m: [15.0, 15.0, 15.0], rotation: "
+         "false, coupling: true, coupling_stiffness_n_per_m: 3000, coupling_damping_n_s_per_m: 30}\n    controller:\n"
+         "      plugin: resolved_acceleration\n      parameters: {task: translation, bandwidth_rad_s: 60}\n";
+}
+
+TEST(DdsAttacks, AMotionCommandTheChecksAcceptNeverTripsAFaultNorOverloadsTheHand) {
+  struct Attack {
+    const char* name;
+    std::function<Eigen::Vector3d(double t)> offset;  // the target's offset from the start at loop time t
+  };
+  const std::vector<Attack> attacks = {
+      {"250 mm in -y", [](double t) { return t > 0.2 ? Eigen::Vector3d(0, -0.25, 0) : Eigen::Vector3d::Zero(); }},
+      {"1.5 m away", [](double t) { return t > 0.2 ? Eigen::Vector3d(1.5, 0, 0) : Eigen::Vector3d::Zero(); }},
+      {"+-300 mm every 50 ms",
+       [](double t) { return Eigen::Vector3d(0, (static_cast<int>(t / 0.05) % 2 == 0 ? 0.3 : -0.3), 0); }},
+  };
+  int domain = 144;
+  for (const Attack& attack : attacks) {
+    Server server(held_handle_session(domain, 3.0));
+    Client engine({"motion-attacker", domain});
+    ++domain;
+    server.start();
+    ASSERT_TRUE(engine.wait_for_state("v3", 20s).has_value());
+    const auto described = engine.wait_for_device("v3", 5s, true);
+    ASSERT_TRUE(described.has_value());
+    const Pose start = *described->start_pose;
+    ASSERT_TRUE(engine.claim("v3", 10s).accepted);
+    engine.on_state([&](const client::DeviceState& s) {
+      Pose target = start;
+      target.position += attack.offset(static_cast<double>(s.loop_time_ns) * 1e-9);
+      engine.send_motion("v3", target, Twist{}, s.serial);
+    });
+    server.join();
+    engine.on_state({});
+    double hand = 0.0;
+    for (const Eigen::Vector3d& f : server.recording().operator_force()) hand = std::max(hand, f.norm());
+    const auto& x = server.recording().position();
+    ASSERT_GT(x.size(), 5000u);
+    double fastest = 0.0;
+    for (std::size_t k = 1; k < x.size(); ++k) fastest = std::max(fastest, (x[k] - x[k - 1]).norm() * 2000.0);
+    std::printf("motion attack %s: largest force on the hand %.1f N, fastest %.3f m/s, fault %s\n", attack.name, hand,
+                fastest, std::string(to_string(server.device().status().fault())).c_str());
+    EXPECT_EQ(server.device().status().fault(), DeviceFault::none) << attack.name;
+    EXPECT_LT(hand, 80.0) << attack.name;  // the rendered-force limit, safety.max_force_n
+  }
 }
 
 }  // namespace

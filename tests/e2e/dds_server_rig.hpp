@@ -36,6 +36,7 @@ class RecordingListener final : public CycleListener {
   RecordingListener(CycleListener* next, DeviceSession* device) : next_(next), device_(device) {
     force_.reserve(20000);
     position_.reserve(20000);
+    operator_force_.reserve(20000);
     weight_.reserve(20000);
     index_.reserve(20000);
   }
@@ -43,6 +44,7 @@ class RecordingListener final : public CycleListener {
     index_.push_back(index);
     force_.push_back(device_->task().wrench.force);
     position_.push_back(device_->chain_state().handle_pose.position);
+    operator_force_.push_back(device_->chain_state().operator_wrench.force);
     weight_.push_back(device_->engine_weight());
     if (device_->command().torque_nm.size() > 0)
       peak_torque_ = std::max(peak_torque_, device_->command().torque_nm.cwiseAbs().maxCoeff());
@@ -50,6 +52,8 @@ class RecordingListener final : public CycleListener {
   }
   const std::vector<Eigen::Vector3d>& force() const { return force_; }
   const std::vector<Eigen::Vector3d>& position() const { return position_; }
+  // What the operator's hand applies to the handle (the sensor), each cycle: the force on the hand.
+  const std::vector<Eigen::Vector3d>& operator_force() const { return operator_force_; }
   const std::vector<double>& engine_weight() const { return weight_; }
   // The largest joint torque commanded in any cycle (N m).
   double peak_torque() const { return peak_torque_; }
@@ -59,7 +63,7 @@ class RecordingListener final : public CycleListener {
  private:
   CycleListener* next_;
   DeviceSession* device_;
-  std::vector<Eigen::Vector3d> force_, position_;
+  std::vector<Eigen::Vector3d> force_, position_, operator_force_;
   std::vector<double> weight_;
   std::vector<std::uint64_t> index_;
   double peak_torque_ = 0.0;

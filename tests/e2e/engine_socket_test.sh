@@ -23,8 +23,8 @@ python3 -c "import websockets" 2> /dev/null || py=/usr/bin/python3
 
 serve() {  # serve LOG EXTRA...: the session with an engine socket on a free port; sets $server and $url
   local log=$1; shift
-  timeout 70 "$bin/hapticd" --config "$src/config/sessions/vishard3/dds-coupling.yaml" --dds-domain "$domain" \
-    --duration 45 --log-level info --set server.realtime_priority=0 --set server.lock_memory=false \
+  timeout 90 "$bin/hapticd" --config "$src/config/sessions/vishard3/dds-coupling.yaml" --dds-domain "$domain" \
+    --duration 65 --log-level info --set server.realtime_priority=0 --set server.lock_memory=false \
     --set server.rate_hz=1000 --set engine_socket.port=0 "$@" $(loose_watchdogs vishard3) > "$log" 2>&1 &
   server=$!
   url=
@@ -57,6 +57,36 @@ trap 'kill $server 2> /dev/null' EXIT
 timeout 60 node "$here/attacks.mjs" "$url" vishard3 > attacks.log 2>&1 || fail "the attacks: $(cat attacks.log)"
 cat attacks.log
 ok "the attacks were refused"
+# Hardening round 4, item 4: a DDS client whose id is not UTF-8 (hapticctl --id) claims the device and E-stops it
+# while a socket client watches. Before: the id was copied raw into the socket's JSON (the state's owner, "stopped
+# by '...'"), the watcher closed with 1007 and lost its claims. Now the requests are refused and the watcher reads on.
+timeout 20 "$py" - "$url" > utf8-watch.log 2>&1 << 'PY' &
+import asyncio, json, sys
+import websockets
+async def main(url):
+    async with websockets.connect(url) as ws:
+        json.loads(await ws.recv())
+        await ws.send(json.dumps({"subscribe": ["vishard3"]}))
+        loop = asyncio.get_running_loop()
+        end, states = loop.time() + 6, 0
+        while loop.time() < end:
+            m = json.loads(await asyncio.wait_for(ws.recv(), timeout=2))  # closed with 1007: an exception
+            states += "devices" in m
+        print(f"watched {states} states to the end")
+asyncio.run(main(sys.argv[1]))
+PY
+watcher=$!
+sleep 1.5
+bad_id=$(printf 'intruder\xff\xfe\xc0')
+timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 --id "$bad_id" claim vishard3 --hold 2 > utf8-claim.log 2>&1 &&
+  fail "a claim under an id that is not UTF-8 was accepted: $(cat utf8-claim.log)"
+grep -q "not UTF-8" utf8-claim.log || fail "the claim's refusal does not say why: $(cat utf8-claim.log)"
+timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 --id "$bad_id" estop vishard3 > utf8-estop.log 2>&1 &&
+  fail "an E-stop under an id that is not UTF-8 was accepted: $(cat utf8-estop.log)"
+wait "$watcher" || fail "the socket client watching the device lost its connection: $(cat utf8-watch.log)"
+grep -q "watched [0-9]* states to the end" utf8-watch.log || fail "the watcher: $(cat utf8-watch.log)"
+grep -q "not UTF-8 was refused" server.log || fail "the server does not log the refusal"
+ok "requests under an id that is not UTF-8 are refused and counted; a socket client watching reads on"
 sleep 1
 wall node.log timeout 30 node "$here/wall_engine.mjs" "$url" vishard3 6
 ok "the Node engine's wall holds the 15 N push"
@@ -79,6 +109,28 @@ assert 0.015 < w["past"] < 0.03, "the wall did not hold"
 assert w["answered"] >= 0.9 * w["states"] - 1 and w["states"] > 1000, "too few states answered"
 PY
 ok "a page in headless chromium holds the 15 N push at its wall at 1 kHz"
+# Hardening round 4, item 7: another site's page that frames the socket's wall page (before: the framed page claimed
+# the device and rendered its wall, 5186 commands, with no user action), and the wall page opened on its own: while
+# chromium has each open, the device stays free (a DDS client claims it). The pages are sent unframeable.
+page_url=${url/ws:/http:}/wall.html?device=vishard3
+"$py" - "$page_url" > frame-headers.log 2>&1 << 'PY' || fail "the served page's headers: $(cat frame-headers.log)"
+import sys, urllib.request
+h = urllib.request.urlopen(sys.argv[1], timeout=5).headers
+assert "frame-ancestors 'none'" in h.get("Content-Security-Policy", ""), dict(h)
+assert h.get("X-Frame-Options") == "DENY", dict(h)
+print("the page is sent with frame-ancestors 'none' and X-Frame-Options: DENY")
+PY
+printf '<!DOCTYPE html><title>another site</title><iframe src="%s" width="600" height="400"></iframe>\n' \
+  "$page_url" > attack.html
+for page in "file://$work/attack.html" "$page_url"; do
+  timeout 30 node "$here/open_page.mjs" "$page" 6 > open-page.log 2>&1 &
+  opened=$!
+  sleep 4
+  timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 10 claim vishard3 > page-claim.log 2>  timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 claim vishard3 > page-claim.log 2>&1 ||1 ||
+    fail "$page claimed the device without a person's click: $(cat page-claim.log)"
+  wait "$opened" || fail "chromium: $(cat open-page.log)"
+done
+ok "another site cannot frame the wall page, and the page claims nothing without a person's click"
 kill "$server"; wait "$server"
 
 # TLS and a token: a plain connection to the TLS socket fails; over TLS, refused without the token (HTTP 401) or

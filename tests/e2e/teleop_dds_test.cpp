@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <thread>
 
 #include "e2e/dds_server_rig.hpp"
@@ -38,11 +39,13 @@ std::string side_yaml(int domain, double duration_s, const std::string& role, co
 }
 
 // The other server's side, written by hand: sends its packets at 1 kHz on a thread of its own, takes the served
-// side's.
+// side's. As a server's link does, it writes in its device's partition and reads its peer's (data model 13).
 class Peer {
  public:
   Peer(int domain, const std::string& me, const std::string& to, std::int32_t role)
-      : participant_(dds::ParticipantOptions{domain, {}, {}}), writer_(participant_), reader_(participant_) {
+      : participant_(dds::ParticipantOptions{domain, {}, {}}),
+        writer_(participant_, {}, "hapticd.teleop." + me),
+        reader_(participant_, {}, nullptr, {"hapticd.teleop." + to}) {
     dds::set_text(packet_.sender, me);
     dds::set_text(packet_.receiver, to);
     packet_.role = role;
@@ -67,6 +70,16 @@ class Peer {
     if (thread_.joinable()) thread_.join();
   }
   std::uint64_t bad_sent() const { return bad_sent_.load(); }
+  // The peer's count goes on from here (an impostor's serials ahead of the real peer's).
+  void count_from(std::uint64_t serial) {
+    std::lock_guard lock(mutex_);
+    serial_ = serial - 1;
+  }
+  // One packet goes out with this serial (a forged one; the peer's own count goes on after it).
+  void forge_serial(std::uint64_t serial) {
+    std::lock_guard lock(mutex_);
+    forged_ = serial;
+  }
   // The served side's newest packet (serial 0: none yet).
   hapticd_msg_TeleopPacket newest() {
     reader_.take([&](const hapticd_msg_TeleopPacket& p, const dds_sample_info_t&) {
@@ -88,7 +101,8 @@ class Peer {
       const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       {
         std::lock_guard lock(mutex_);
-        packet_.serial = ++serial_;
+        packet_.serial = forged_ != 0 ? forged_ : ++serial_;
+        forged_ = 0;
         packet_.sent_ns = static_cast<std::int64_t>(t * 1e9);
         if (motion_) motion_(packet_, t);
         if (!bad_.empty() && ++k % 10 == 0) {
@@ -112,6 +126,7 @@ class Peer {
   std::function<void(hapticd_msg_TeleopPacket&, double)> motion_;
   std::vector<hapticd_msg_TeleopPacket> bad_;
   std::uint64_t serial_ = 0;
+  std::uint64_t forged_ = 0;
   std::atomic<std::uint64_t> bad_sent_{0};
   std::atomic<bool> running_{false};
   std::thread thread_;
@@ -228,6 +243,122 @@ TEST(TeleopLink, TheMasterDisplaysTheRemotesForceFadesItWhenTheLinkIsSilentAndSt
   EXPECT_EQ(link.stops(), 1u);
   remote.stop();
   server.join();  // the session's duration: a stopped device with a hand on it may take long to come to rest
+}
+
+// Hardening round 4, items 2 and 3: a third participant posing as the master (the right names and role, 1e9 J
+// claimed) while the real master holds still, a forged serial of 2^64-1, and the master's server restarting. Before:
+// the impostor drove the remote 39.4 mm through its wall at 40 N; one forged serial, or a restarted master (serials
+// from 1 again), left the remote deaf to the master for good without a word.
+TEST(TeleopLink, TheRemoteTakesOnlyItsBoundMastersPacketsAndTakesARestartedMasterBack) {
+  constexpr int kDomain = 158;
+  Server server(side_yaml(kDomain, 14.0, "remote", "remote", "master",
+                          "attachment: none, wall_normal: [1.0, 0.0, 0.0], wall_offset_m: 0.03", "tdpa"));
+  auto master = std::make_unique<Peer>(kDomain, "master", "remote", hapticd_msg_TELEOP_MASTER);
+  master->set([](hapticd_msg_TeleopPacket& p, double) { p.energy_in = 0.0; });  // holds still
+  server.start();
+  ASSERT_TRUE(master->wait_matched(20s));
+  master->start();
+  const TeleopLink& link = *server.bridge().teleop_link();
+  ASSERT_TRUE(wait_until([&] { return link.packets_taken() > 200; }, 5000ms));
+  EXPECT_EQ(link.bindings(), 1u);
+
+  // The impostor: 40 mm ahead along x (10 mm past the wall), at speed, claiming 1e9 J.
+  Peer impostor(kDomain, "master", "remote", hapticd_msg_TELEOP_MASTER);
+  impostor.set([](hapticd_msg_TeleopPacket& p, double t) {
+    p.position[0] = std::min(0.04, 0.2 * t);
+    p.velocity[0] = t < 0.2 ? 0.2 : 0.0;
+    p.energy_in = 1e9;
+  });
+  impostor.count_from(1'000'000);  // ahead of the real master's serials
+  ASSERT_TRUE(impostor.wait_matched(20s));
+  impostor.start();
+  std::this_thread::sleep_for(1500ms);
+  impostor.forge_serial(~std::uint64_t{0});  // and a serial of 2^64-1 from the impostor too
+  std::this_thread::sleep_for(500ms);
+  impostor.stop();
+  const hapticd_msg_TeleopPacket held = master->newest();
+  EXPECT_LT(std::abs(held.position[0]), 0.002) << "the remote followed the impostor to " << held.position[0];
+  EXPECT_GT(link.impostor_packets(), 500u);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
+
+  // A forged serial of 2^64-1 from the bound master itself: older than its count by serial arithmetic, ignored;
+  // the master's own packets go on being taken.
+  master->forge_serial(~std::uint64_t{0});
+  master->set([](hapticd_msg_TeleopPacket& p, double) {
+    p.position[0] = 0.01;
+    p.energy_in = 0.0;
+  });
+  EXPECT_TRUE(wait_until([&] { return master->newest().position[0] > 0.007; }, 3000ms))
+      << "the remote no longer follows its master after a forged serial: " << master->newest().position[0];
+
+  // The master's server restarts: the old participant goes, the remote stops when the link falls silent, a new one
+  // (serials from 1) comes; the link re-binds to it and, once the person recovers the remote, the remote follows.
+  master.reset();
+  EXPECT_TRUE(wait_until([&] { return server.device().status().fault() == DeviceFault::emergency_stop; }, 3000ms));
+  Peer restarted(kDomain, "master", "remote", hapticd_msg_TELEOP_MASTER);
+  std::atomic<double> target{0.0};
+  restarted.set([&](hapticd_msg_TeleopPacket& p, double) {
+    p.position[0] = target.load();
+    p.energy_in = 0.0;
+  });
+  ASSERT_TRUE(restarted.wait_matched(20s));
+  restarted.start();
+  EXPECT_TRUE(wait_until([&] { return link.bindings() == 2u; }, 3000ms)) << link.bindings();
+  client::Client person({"person-at-the-remote", kDomain});
+  ASSERT_TRUE(person.wait_for_device("remote", 20s).has_value());
+  std::this_thread::sleep_for(300ms);
+  const auto recovered = person.recover("remote", 5s);
+  EXPECT_TRUE(recovered.accepted) << recovered.message;
+  std::this_thread::sleep_for(500ms);
+  const double before = restarted.newest().position[0];
+  target = 0.02;  // the new master moves 2 cm: the remote follows (re-anchored where it was)
+  EXPECT_TRUE(wait_until([&] { return restarted.newest().position[0] - before > 0.015; }, 4000ms))
+      << "the remote moved " << restarted.newest().position[0] - before << " m after the master's restart";
+  restarted.stop();
+  server.join();
+}
+
+// Item 2, the master's side: a participant posing as the remote pushes with 40 N and claims 1e9 J (before: it
+// pushed the master 160.6 mm and did 2.48 J of work on the operator's hand; the report said -0.0000 J); and the
+// bound remote's own claim of 1e9 J at rest is credited only as far as its force and motion could carry it.
+TEST(TeleopLink, TheMasterIgnoresAnImpostorAndCreditsOnlyEnergyTheLinkCouldCarry) {
+  constexpr int kDomain = 159;
+  Server server(
+      side_yaml(kDomain, 6.0, "master", "master", "remote", "attachment: operator, operator_grasp: 0.7", "tdpa"));
+  Peer remote(kDomain, "remote", "master", hapticd_msg_TELEOP_REMOTE);
+  remote.set([](hapticd_msg_TeleopPacket& p, double) { p.energy_in = 1e9; });  // no force, no motion
+  server.start();
+  ASSERT_TRUE(remote.wait_matched(20s));
+  remote.start();
+  client::Client watcher({"watcher", kDomain});
+  ASSERT_TRUE(watcher.wait_for_state("master", 20s).has_value());
+  const TeleopLink& link = *server.bridge().teleop_link();
+  ASSERT_TRUE(wait_until([&] { return link.packets_taken() > 200; }, 5000ms));
+  const Eigen::Vector3d start = watcher.latest_state("master")->pose.position;
+  Peer impostor(kDomain, "remote", "master", hapticd_msg_TELEOP_REMOTE);
+  impostor.set([](hapticd_msg_TeleopPacket& p, double) {
+    p.force[1] = 40.0;
+    p.energy_in = 1e9;
+  });
+  impostor.count_from(1'000'000);  // ahead of the real remote's serials
+  ASSERT_TRUE(impostor.wait_matched(20s));
+  impostor.start();
+  double largest = 0.0, moved = 0.0;
+  for (int i = 0; i < 150; ++i) {
+    std::this_thread::sleep_for(10ms);
+    const auto s = watcher.latest_state("master");
+    largest = std::max(largest, s->environment_wrench.force.norm());
+    moved = std::max(moved, (s->pose.position - start).norm());
+  }
+  impostor.stop();
+  EXPECT_LT(largest, 0.5) << "the master rendered the impostor's force";
+  EXPECT_LT(moved, 0.005) << "the impostor moved the master's handle";
+  EXPECT_GT(link.impostor_packets(), 500u);
+  const TeleopLink::Energy e = link.energy();
+  EXPECT_GT(e.peer_claimed, 1e8);
+  EXPECT_LT(e.peer_credited, 0.01) << "a claim the link's force and motion could not carry was credited";
+  remote.stop();
+  server.join();
 }
 
 }  // namespace

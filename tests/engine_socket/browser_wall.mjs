@@ -1,5 +1,6 @@
 // The wall engine of a web page (tools/engine_socket/wall.html, served by the engine socket) in Debian's chromium,
-// headless: opens http://HOST:PORT/wall.html?device=DEVICE, lets it run RUN_S seconds, then reads the page's
+// headless: opens http://HOST:PORT/wall.html?device=DEVICE, clicks its Claim button as a person would (a trusted
+// mouse event through the DevTools protocol), lets it run RUN_S seconds, then reads the page's
 // window.wall through the DevTools protocol (with `ws`) and prints it as JSON on one line. The engine socket test
 // checks what it says (tests/e2e/engine_socket_test.sh).
 //   node browser_wall.mjs SOCKET_URL DEVICE RUN_S [CLAIMED_FILE]
@@ -33,17 +34,29 @@ try {
   const dev = new WebSocket(target.webSocketDebuggerUrl);
   await new Promise((r, j) => { dev.on("open", r); dev.on("error", j); });
   let id = 0;
-  const evaluate = (expression) => new Promise((resolve) => {
+  const call = (method, params) => new Promise((resolve) => {
     const mine = ++id;
     const listener = (m) => {
       const reply = JSON.parse(m);
       if (reply.id !== mine) return;
       dev.off("message", listener);
-      resolve(reply.result && reply.result.result ? reply.result.result.value : undefined);
+      resolve(reply.result);
     };
     dev.on("message", listener);
-    dev.send(JSON.stringify({ id: mine, method: "Runtime.evaluate", params: { expression, returnByValue: true } }));
+    dev.send(JSON.stringify({ id: mine, method, params }));
   });
+  const evaluate = async (expression) => {
+    const r = await call("Runtime.evaluate", { expression, returnByValue: true });
+    return r && r.result ? r.result.value : undefined;
+  };
+  // The page claims only on a person's click: a real (trusted) mouse click on its Claim button, as a person's.
+  const where = `(() => { const b = document.getElementById("claim"); if (!b || b.disabled) return null;
+    const r = b.getBoundingClientRect(); return { x: r.x + r.width / 2, y: r.y + r.height / 2 }; })()`;
+  let button = null;
+  for (let i = 0; i < 100 && !(button = await evaluate(where)); ++i) await sleep(100);
+  if (!button) throw new Error("the page's Claim button did not become active");
+  for (const type of ["mousePressed", "mouseReleased"])
+    await call("Input.dispatchMouseEvent", { type, x: button.x, y: button.y, button: "left", clickCount: 1 });
   for (let i = 0; i < 100 && !(await evaluate("window.wall && window.wall.claimed")); ++i) await sleep(100);
   if (claimedFile) writeFileSync(claimedFile, "claimed\n");
   await sleep(1000 * Number(runS));

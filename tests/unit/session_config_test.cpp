@@ -2,6 +2,14 @@
 #include "config/session_config.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <thread>
 
 #include "assembly/session_builder.hpp"
 #include "config/config_error.hpp"
@@ -315,6 +323,49 @@ TEST(SessionConfig, ADocumentThatContainsItselfIsRefusedBeforeItIsBuilt) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("more than 64 deep"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace hapticd::server
+
+namespace hapticd::server {
+namespace {
+
+// Hardening round 4, item 8: the engine socket's token file or PEM file as a named pipe hung the server's start
+// (std::ifstream waits for a writer), and as a device it would be read without end: each is a config error naming
+// the key, at once.
+TEST(SessionConfig, ATokenOrPemFileThatIsNoRegularFileIsAConfigErrorAtOnce) {
+  const std::string fifo = ::testing::TempDir() + "session_config_token_fifo";
+  (void)std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto refused = [&](const std::string& key, const std::string& path) {
+    const std::string text = kHeader + "dds: {domain_id: 7}\nengine_socket: {" + key + ": " + path +
+                             (key == "token_file" ? "" : ", tls_private_key_file: " + path) + "}\n" + kValidDevices;
+    const auto file = test::write_temp_file("session.yaml", text);
+    auto done = std::make_shared<std::atomic<int>>(0);
+    auto message = std::make_shared<std::string>();
+    std::thread([file, key, done, message] {
+      try {
+        (void)load_session_config(file);
+        done->store(1);
+      } catch (const ConfigError& e) {
+        *message = e.what();
+        done->store(e.key() == "engine_socket." + key ? 2 : 3);
+      }
+    }).detach();
+    for (int i = 0; i < 1000 && done->load() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (done->load() == 0) {
+      std::fprintf(stderr, "FAILED: reading engine_socket.%s = %s hangs\n", key.c_str(), path.c_str());
+      std::_Exit(1);  // a hung thread cannot be joined
+    }
+    EXPECT_EQ(done->load(), 2) << *message;
+    EXPECT_NE(message->find("not a regular file"), std::string::npos) << *message;
+  };
+  refused("token_file", fifo);
+  refused("token_file", "/dev/zero");
+  refused("tls_certificate_file", fifo);
+  refused("tls_certificate_file", "/dev/zero");
+  (void)std::remove(fifo.c_str());
 }
 
 }  // namespace

@@ -165,3 +165,46 @@ TEST(SocketMessages, TheStateAndTheReplyAreJsonAClientReads) {
 
 }  // namespace
 }  // namespace hapticd::server::socket_messages
+
+namespace hapticd::server::socket_messages {
+namespace {
+
+// Hardening round 4, item 4: bytes that are not UTF-8 in a peer's text (an owner's id, a refusal quoting it) are
+// written as U+FFFD, so the text stays valid for every JSON client (Python's websockets closed with 1007 before);
+// valid multi-byte text passes unchanged.
+TEST(SocketMessages, TextThatIsNotUtf8IsWrittenAsReplacementCharacters) {
+  hapticd_msg_DeviceState s{};
+  dds::set_text(s.device, "left");
+  dds::set_text(s.owner, "intruder\xff\xfe\xc0\x80 \xed\xa0\x80 \xf4\x90\x80\x80 caf\xc3\xa9 \xe2\x82");
+  s.handle_pose.orientation[0] = 1.0;
+  std::string text;
+  state(s, text);
+  EXPECT_TRUE(valid_utf8(text)) << text;
+  EXPECT_NE(text.find("intruder\\ufffd\\ufffd\\ufffd\\ufffd \\ufffd"), std::string::npos) << text;
+  EXPECT_NE(text.find("caf\xc3\xa9 \\ufffd\\ufffd"), std::string::npos) << text;
+  JsonReader json;
+  ASSERT_TRUE(json.parse(text)) << json.error();
+  hapticd_msg_ControlReply r{};
+  dds::set_text(r.device, "left");
+  dds::set_text(r.message, "stopped by '\xff'");
+  EXPECT_TRUE(valid_utf8(reply(1, r)));
+}
+
+TEST(SocketMessages, Utf8IsCheckedAsRfc3629SaysIt) {
+  EXPECT_TRUE(valid_utf8(""));
+  EXPECT_TRUE(valid_utf8("plain"));
+  EXPECT_TRUE(valid_utf8("\xc3\xa9\xe2\x82\xac\xf0\x9f\x98\x80\xf4\x8f\xbf\xbf"));  // e-acute, euro, emoji, U+10FFFF
+  EXPECT_FALSE(valid_utf8("\xc0\xaf"));                                             // overlong '/'
+  EXPECT_FALSE(valid_utf8("\xe0\x80\xaf"));                                         // overlong
+  EXPECT_FALSE(valid_utf8("\xed\xa0\x80"));                                         // a surrogate
+  EXPECT_FALSE(valid_utf8("\xf4\x90\x80\x80"));                                     // above U+10FFFF
+  EXPECT_FALSE(valid_utf8("\xe2\x82"));                                             // cut short
+  EXPECT_FALSE(valid_utf8("\x80"));                                                 // a lone continuation
+  char name[8] = {'o', 'k', '\xff', '\0'};
+  EXPECT_FALSE(dds::valid_text(name));
+  name[2] = '\0';
+  EXPECT_TRUE(dds::valid_text(name));
+}
+
+}  // namespace
+}  // namespace hapticd::server::socket_messages

@@ -203,6 +203,7 @@ TEST(TeleopSide, TdpaStopsTheRemoteSetpointUntilTheMasterHasPaidForTheContact) {
   LinkPacket from_master;
   from_master.sequence = 1;
   from_master.position = {0.02, 0, 0};  // the master is 2 cm ahead, having put no energy in
+  from_master.velocity = {0.05, 0, 0};  // moving: the energy it reports later is energy its motion could carry
   remote.receive(from_master);
   // In contact: the environment pushes back on the handle; the setpoint may not advance into it.
   for (int k = 1; k < 100; ++k) remote.cycle(at(k, 0.0, 0.0, -5.0), 1e-3);
@@ -300,6 +301,102 @@ TEST(TeleopSide, KeepsOnlyTheNewestPacketAndNeverAllocates) {
   for (int k = 1; k < 1000; ++k) out = master.cycle(at(k, 0.001 * k, 1.0), 1e-3);
   EXPECT_EQ(guard.allocations(), 0u);
   EXPECT_NEAR(out.force.x(), -1.0, 1e-12);
+}
+
+// Hardening round 4, item 3: a forged serial of 2^64-1 made every later packet "older" for good. Serial-number
+// arithmetic: a serial far ahead is older; a wrapping serial goes on.
+TEST(TeleopSide, SerialsCompareBySerialArithmetic) {
+  LinkSettings s;
+  s.passivity = Passivity::none;
+  TeleopSide master(Role::master, s);
+  master.start(at(0, 0.0));
+  master.receive(packet(100));
+  master.receive(packet(~std::uint64_t{0}));  // 2^64-1 after 100: older by serial arithmetic
+  EXPECT_EQ(master.status().stale, 1u);
+  master.receive(packet(101));
+  EXPECT_EQ(master.status().received, 2u);
+  TeleopSide wrapping(Role::master, s);
+  wrapping.start(at(0, 0.0));
+  wrapping.receive(packet(~std::uint64_t{0} - 1));
+  wrapping.receive(packet(~std::uint64_t{0}));
+  wrapping.receive(packet(1));  // the count wrapped: newer
+  EXPECT_EQ(wrapping.status().received, 3u);
+  EXPECT_EQ(wrapping.status().stale, 0u);
+}
+
+// Item 2: a peer's claimed energy was taken on trust (1e9 J let a forger's force through the passivity controller).
+// Credited only as far as the force and motion at the peer's port could carry it: the remote's port takes in at
+// most its environment's force times the setpoint's speed limit, the master's the link's force times its speed.
+TEST(TeleopSide, APeersEnergyIsCreditedOnlyAsFarAsTheLinksForceAndMotionCouldCarryIt) {
+  LinkSettings s;  // tdpa, max_force 40 N, max_speed 1 m/s
+  TeleopSide master(Role::master, s);
+  master.start(at(0, 0.0));
+  LinkPacket from_remote;
+  from_remote.energy_in = 1e9;
+  from_remote.force = {-10.0, 0, 0};  // displayed by the master; at rest it carries no energy
+  for (int k = 1; k <= 500; ++k) {
+    from_remote.sequence = static_cast<std::uint64_t>(k);
+    from_remote.force = k <= 250 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(-10.0, 0, 0);
+    master.receive(from_remote);
+    // The operator's hand moves with the force: energy out of the link, paid only from what is credited.
+    master.cycle(at(k, -1e-4 * k, -0.1), 1e-3);
+    if (k == 250) {
+      EXPECT_EQ(master.status().peer_energy_credited, 0.0);  // no force at the remote's port: nothing carried
+      EXPECT_NEAR(master.status().peer_energy_in, 1e9, 1.0);
+    }
+  }
+  // 10 N for 0.25 s at up to 1 m/s, twice: at most 5 J credited; the controller let out no more.
+  EXPECT_GT(master.status().peer_energy_credited, 4.0);
+  EXPECT_LE(master.status().peer_energy_credited, 5.0 + 1e-9);
+  EXPECT_LE(master.status().port->energy_out(), master.status().peer_energy_credited + 1e-9);
+
+  TeleopSide remote(Role::remote, s);
+  remote.start(at(0, 0.0));
+  LinkPacket from_master;
+  from_master.energy_in = 1e9;
+  from_master.velocity = {0.05, 0, 0};
+  for (int k = 1; k <= 200; ++k) {
+    from_master.sequence = static_cast<std::uint64_t>(k);
+    remote.receive(from_master);
+    remote.cycle(at(k, 0.0, 0.0, -5.0), 1e-3);
+  }
+  // The master's port: 40 N at 0.05 m/s, twice, for 0.2 s: 0.8 J.
+  EXPECT_NEAR(remote.status().peer_energy_credited, 0.8, 0.01);
+}
+
+// Item 3: a restarted peer (its server's new participant; serials from 1 again) was ignored for good. After
+// peer_changed its packets are taken, its energy counts from zero on top of what was credited, and the side
+// re-anchors where its handle is: no pull towards where the new peer's motion starts.
+TEST(TeleopSide, ANewPeerStartsItsSerialsAndEnergyAfreshAndTheSideReanchors) {
+  LinkSettings s;
+  s.passivity = Passivity::none;
+  TeleopSide remote(Role::remote, s);
+  remote.start(at(0, 0.0));
+  LinkPacket p;
+  p.position = {0.01, 0, 0};
+  for (int k = 1; k <= 500; ++k) {
+    p.sequence = static_cast<std::uint64_t>(k);
+    remote.receive(p);
+    remote.cycle(at(k, 0.01), 1e-3);
+  }
+  EXPECT_NEAR(remote.setpoint().x(), 0.01, 1e-4);
+  p.sequence = 1;
+  p.position = {0.0, 0, 0};  // the new master starts where its own handle is: 0
+  remote.receive(p);
+  EXPECT_EQ(remote.status().stale, 1u);  // the old sender's count: older
+  remote.peer_changed();
+  remote.receive(p);
+  EXPECT_EQ(remote.status().received, 501u);
+  EXPECT_EQ(remote.status().peers, 2u);
+  SideOutput out;
+  for (int k = 501; k <= 700; ++k) out = remote.cycle(at(k, 0.01), 1e-3);
+  EXPECT_LT(out.force.norm(), 0.1) << "the remote is pulled towards the new master's start";
+  // The new master moves 1 cm: the remote follows from where it is.
+  p.sequence = 2;
+  p.position = {0.01, 0, 0};
+  remote.receive(p);
+  for (int k = 701; k <= 900; ++k) out = remote.cycle(at(k, 0.01), 1e-3);
+  EXPECT_NEAR(out.force.x(), s.stiffness * 0.01, 0.5);
 }
 
 }  // namespace

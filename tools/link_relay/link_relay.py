@@ -11,7 +11,9 @@ the other side (ExternalNetworkAddress) and names it as its peer, so that everyt
       --ports 7410-7419 --delay-ms 50 --jitter-ms 5 --loss 0.05 --seed 1 --duration 60
 
 Ports: Cyclone's unicast discovery and data ports of domain D are 7400 + 250 D + 10 + 2 i and + 11 + 2 i for
-participant index i. Prints what it relayed and dropped per direction at the end (SIGINT, SIGTERM or --duration).
+participant index i. The datagrams in flight are bounded (--max-queued-mb, as a router's queue is): one that
+arrives while the queue is full is dropped and counted as an overflow, so a flood costs bounded memory. Prints
+what it relayed, dropped and dropped for overflow per direction at the end (SIGINT, SIGTERM or --duration).
 Standard library only.
 """
 import argparse
@@ -57,16 +59,21 @@ def main(argv=None):
     p.add_argument("--loss", type=float, default=0.0, help="probability that a datagram is dropped, 0..0.999")
     p.add_argument("--seed", type=int, default=1, help="the generator's seed (the same seed drops the same datagrams)")
     p.add_argument("--duration", type=float, default=0.0, help="seconds to run (0: until stopped)")
+    p.add_argument("--max-queued-mb", type=float, default=16.0,
+                   help="the datagrams in flight at most (MiB); more are dropped and counted as overflow")
     a = p.parse_args(argv)
     if not (0.0 <= a.loss <= 0.999) or a.delay_ms < 0 or a.jitter_ms < 0 or a.delay_ms > 10000 or a.jitter_ms > 10000:
         p.error("--loss in 0..0.999, --delay-ms and --jitter-ms in 0..10000")
+    if not (0.0625 <= a.max_queued_mb <= 1024):
+        p.error("--max-queued-mb in 0.0625..1024")
+    max_queued = int(a.max_queued_mb * (1 << 20))
 
     rng = random.Random(a.seed)
     sel = selectors.DefaultSelector()
     senders = {}  # target address -> a socket to send from
-    counts = {}  # route -> [relayed, dropped]
+    counts = {}  # route -> [relayed, dropped, overflow]
     for listen, target in a.route:
-        counts[(listen, target)] = [0, 0]
+        counts[(listen, target)] = [0, 0, 0]
         if target not in senders:
             s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
             s.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, 4 << 20)
@@ -86,6 +93,7 @@ def main(argv=None):
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: stop.__setitem__(0, True))
     pending = []  # (due, order, target, port, data)
+    queued = 0  # bytes in pending
     order = 0
     end = time.monotonic() + a.duration if a.duration > 0 else float("inf")
     print(f"hapticd-link-relay: {len(a.route)} route(s), {len(a.ports)} port(s) each; delay {a.delay_ms:g} ms, "
@@ -106,18 +114,24 @@ def main(argv=None):
                 if lost:
                     counts[(listen, target)][1] += 1
                     continue
+                if queued + len(data) > max_queued:
+                    counts[(listen, target)][2] += 1
+                    continue
                 order += 1
                 heapq.heappush(pending, (now + (a.delay_ms + jitter) * 1e-3, order, target, port, data))
+                queued += len(data)
                 counts[(listen, target)][0] += 1
         now = time.monotonic()
         while pending and pending[0][0] <= now:
             _, _, target, port, data = heapq.heappop(pending)
+            queued -= len(data)
             try:
                 senders[target].sendto(data, (target, port))
             except OSError:
                 pass  # nobody there (yet): as a network would lose it
-    for (listen, target), (relayed, dropped) in counts.items():
-        print(f"hapticd-link-relay: {listen} -> {target}: relayed {relayed}, dropped {dropped}", flush=True)
+    for (listen, target), (relayed, dropped, overflow) in counts.items():
+        print(f"hapticd-link-relay: {listen} -> {target}: relayed {relayed}, dropped {dropped}, "
+              f"overflow {overflow}", flush=True)
     return 0
 
 

@@ -1,13 +1,15 @@
 #pragma once
 // Writing JSON text by hand, without a document tree (the live view's messages, 30 a second per channel; the
 // evaluation reports' strings): numbers in their shortest exact form (non-finite ones as null, which JSON has
-// instead of NaN), strings escaped.
+// instead of NaN), strings escaped and valid UTF-8.
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <string>
 #include <string_view>
+
+#include "hapticd/utf8.hpp"
 
 namespace hapticd::json_text {
 
@@ -27,9 +29,23 @@ inline void append_integer(std::string& out, std::int64_t v) {
   out.append(buffer, result.ptr);
 }
 
+// Escaped; bytes that are not valid UTF-8 written as U+FFFD (hapticd/utf8.hpp): a peer's bytes never make the
+// text invalid for a JSON client.
 inline void append_string(std::string& out, std::string_view text) {
   out += '"';
-  for (const char c : text) {
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t n = next_utf8(text, at);
+    if (n != 1) {
+      if (n == 0) {
+        out += "\\ufffd";
+        ++at;
+      } else {
+        out.append(text.substr(at, n));
+        at += n;
+      }
+      continue;
+    }
+    const char c = text[at++];
     switch (c) {
       case '"':
         out += "\\\"";

@@ -20,6 +20,14 @@ namespace hapticd::client {
 namespace {
 constexpr std::chrono::milliseconds kRequestRetry{250};  // a request without a reply is sent again after this
 
+// A timeout the steady clock can count: at most about three years (1e10 s and more overflowed its nanoseconds and
+// returned at once); not positive or NaN: none.
+std::chrono::steady_clock::duration countable(Timeout timeout) {
+  constexpr Timeout kLongest{1e8};
+  const Timeout t = timeout > Timeout::zero() ? std::min(timeout, kLongest) : Timeout::zero();
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(t);
+}
+
 // A writer in a target's partition, or none where the domain's DDS Security permissions do not let this identity
 // publish the topic there.
 template <class T>
@@ -268,7 +276,7 @@ struct Client::Impl {
                             std::uint64_t after) {
     std::unique_lock lock(mutex);
     waiters.fetch_add(1);
-    const bool got = changed.wait_for(lock, timeout, [&] {
+    const bool got = changed.wait_for(lock, countable(timeout), [&] {
       const T* s = find(kept, name, key);
       return s != nullptr && s->serial > after;
     });
@@ -375,7 +383,7 @@ std::optional<DeviceInfo> Client::wait_for_device(std::string_view device, Timeo
     const auto it = impl_->descriptions.find(device);
     return it != impl_->descriptions.end() && (!started || it->second.start_pose.has_value());
   };
-  if (!impl_->changed.wait_for(lock, timeout, ready)) return std::nullopt;
+  if (!impl_->changed.wait_for(lock, countable(timeout), ready)) return std::nullopt;
   return impl_->descriptions.find(device)->second;
 }
 
@@ -399,7 +407,7 @@ std::vector<GroupInfo> Client::groups() const {
 
 std::optional<GroupInfo> Client::wait_for_group(std::string_view group, Timeout timeout) {
   std::unique_lock lock(impl_->mutex);
-  if (!impl_->changed.wait_for(lock, timeout, [&] { return impl_->group_descriptions.contains(group); }))
+  if (!impl_->changed.wait_for(lock, countable(timeout), [&] { return impl_->group_descriptions.contains(group); }))
     return std::nullopt;
   return impl_->group_descriptions.find(group)->second;
 }
@@ -476,8 +484,7 @@ Reply Client::request(std::string_view device, RequestKind kind, std::string_vie
   r.value_count = static_cast<std::int32_t>(std::min<std::size_t>(values.size(), kMaxValues));
   for (std::int32_t i = 0; i < r.value_count; ++i) r.values[i] = values[static_cast<std::size_t>(i)];
   // A reliable writer delivers to the readers it has matched: give discovery a moment after start-up.
-  const auto until =
-      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout);
+  const auto until = std::chrono::steady_clock::now() + countable(timeout);
   dds::Writer<hapticd_msg_ControlRequest>* writer = impl_->request_writer(device);
   if (writer == nullptr)
     return Reply{false,

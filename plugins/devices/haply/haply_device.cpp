@@ -34,6 +34,25 @@ bool vec3(const JsonReader::Value& v, std::array<double, 3>& out) {
   return true;
 }
 
+// Why a device id from the inventory cannot be used ("" when it can): it is written into every command, so it is
+// short and plain (Haply's ids are a few hex digits).
+std::string id_problem(std::string_view id) {
+  const auto plain = [](char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '-' || c == '_' ||
+           c == '.';
+  };
+  if (id.empty()) return "is empty";
+  if (id.size() > HaplyDevice::kMaxIdLength)
+    return "has " + std::to_string(id.size()) + " characters (at most " + std::to_string(HaplyDevice::kMaxIdLength) +
+           ")";
+  for (const char c : id)
+    if (!plain(c)) return "has a character other than letters, digits, '-', '_' and '.'";
+  return "";
+}
+
+// The first characters of an id for a message.
+std::string shown(std::string_view id) { return std::string(id.substr(0, 24)) + (id.size() > 24 ? "..." : ""); }
+
 }  // namespace
 
 ParameterSchema HaplyDevice::parameter_schema() {
@@ -60,7 +79,7 @@ ParameterSchema HaplyDevice::parameter_schema() {
       .minimum(0.0)
       .default_value(5.0);
   s.boolean("require_calibrated", "refuse an Inverse3 whose status says it is not calibrated").default_value(true);
-  s.real("connect_timeout_s", "connecting and the service's first message")
+  s.real("connect_timeout_s", "connecting, the service's first message, and each answer after it")
       .unit("s")
       .greater_than(0.0)
       .maximum(30.0)
@@ -91,6 +110,9 @@ void HaplyDevice::configure(const Parameters& p, const PluginContext& context) {
                                            : "the Inverse Service reports no Inverse3 '" + wanted + "' (" +
                                                  std::to_string(root["inverse3"].size()) + " connected)");
   device_id_ = std::string(device["device_id"].string().value_or(""));
+  if (std::string why = id_problem(device_id_); !why.empty())
+    throw DeviceUnavailable("the Inverse Service at " + client_->url() + " reports an Inverse3 whose device_id ('" +
+                            shown(device_id_) + "') " + why + ": not a device this plugin drives");
   const JsonReader::Value status = device["status"];
   if (status["ready"].boolean() == false)
     throw std::runtime_error("the Inverse3 '" + device_id_ + "' is not ready (the service's status: ready false)");
@@ -107,6 +129,9 @@ void HaplyDevice::configure(const Parameters& p, const PluginContext& context) {
       const JsonReader::Value g = device_entry(root, kind, grip == "auto" ? std::string_view() : grip);
       if (g) {
         grip_id_ = std::string(g["device_id"].string().value_or(""));
+        if (std::string why = id_problem(grip_id_); !why.empty())
+          throw DeviceUnavailable("the Inverse Service reports a VerseGrip whose device_id ('" + shown(grip_id_) +
+                                  "') " + why + " (grip: none runs without it)");
         grip_kind_ = kind;
         break;
       }
@@ -116,6 +141,7 @@ void HaplyDevice::configure(const Parameters& p, const PluginContext& context) {
   }
 
   handoff_.configure(p, context.rate_hz);
+  timeout_s_ = timeout;
 
   DeviceDescription& d = description_;
   d.model = "haply inverse3 " + device_id_ + (grip_id_.empty() ? "" : " with " + grip_kind_ + " " + grip_id_);
@@ -196,14 +222,23 @@ void HaplyDevice::run() noexcept {
         first ? "\"session\":{\"configure\":{\"profile\":{\"name\":\"hapticd\"}}}," : "", device_id_.c_str(),
         applied.force_n[0], applied.force_n[1], applied.force_n[2]);
     first = false;
+    HaplySample s;
+    if (n <= 0 || static_cast<std::size_t>(n) >= sizeof message) {  // the ids are checked: not expected
+      s.error = "a command for the Inverse Service does not fit its buffer: nothing is sent";
+      s.received_ns = now_ns();
+      handoff_.publish(s, s.received_ns);
+      break;
+    }
     // Paced at the session's rate: the service answers as fast as it is asked.
     sleep_until(next_send);
     next_send = std::max(next_send + handoff_.period_ns(), now_ns() - handoff_.period_ns());
-    HaplySample s;
     std::string_view text;
-    if (!client_->send(std::string_view(message, static_cast<std::size_t>(n))) || !client_->receive(text)) {
+    if (!client_->send(std::string_view(message, static_cast<std::size_t>(n)), timeout_s_) ||
+        !client_->receive(text, timeout_s_)) {
       if (!running_.load()) break;
-      s.error = "the connection to the Inverse Service failed (the service stopped or closed it)";
+      s.error =
+          "the connection to the Inverse Service failed (the service stopped, closed it, did not answer within "
+          "connect_timeout_s or sent a message over the size limit)";
       s.received_ns = now_ns();
       handoff_.publish(s, s.received_ns);
       break;
@@ -266,7 +301,7 @@ void HaplyDevice::stop() noexcept {
                                 "\"x\":0,\"y\":0,\"z\":0}}}}]}",
                                 device_id_.c_str());
     if (n > 0 && static_cast<std::size_t>(n) < sizeof message &&
-        client_->send(std::string_view(message, static_cast<std::size_t>(n)))) {
+        client_->send(std::string_view(message, static_cast<std::size_t>(n)), 0.1)) {
       client_->close_gracefully(0.1);  // the service answers the force with a state, then the close
       return;
     }

@@ -42,6 +42,8 @@ struct HaplyCommand {
 
 class HaplyDevice final : public Device {
  public:
+  // The longest device id taken from the service (it is written into every command).
+  static constexpr std::size_t kMaxIdLength = 64;
   static ParameterSchema parameter_schema();
 
   ~HaplyDevice() override;
@@ -61,7 +63,8 @@ class HaplyDevice final : public Device {
   std::unique_ptr<InverseServiceClient> client_;
   JsonReader json_;
   std::string device_id_, grip_id_;
-  std::string grip_kind_;  // "wireless_verse_grip" or "verse_grip"
+  std::string grip_kind_;   // "wireless_verse_grip" or "verse_grip"
+  double timeout_s_ = 2.0;  // connect_timeout_s: every exchange with the service
   DeviceDescription description_;
 
   ServoHandoff<HaplySample, HaplyCommand> handoff_;

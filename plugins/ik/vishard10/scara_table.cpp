@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hapticd/input_file.hpp"
+
 namespace hapticd::ik::vishard10 {
 namespace {
 
@@ -101,8 +103,7 @@ void ScaraTable::save(const std::filesystem::path& file, const std::string& head
 }
 
 ScaraTable ScaraTable::load(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error("cannot read the SCARA table " + file.string());
+  std::istringstream in(read_input_file(file, "SCARA table"));  // a regular file, size-limited
   ScaraTable t;
   int line_number = 0;
   const auto fail = [&](const std::string& what) {

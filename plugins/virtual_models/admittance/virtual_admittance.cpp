@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "hapticd/chain_state.hpp"
+#include "hapticd/model/model_data.hpp"
 #include "hapticd/render_port.hpp"
 
 namespace hapticd::models {
@@ -54,10 +55,16 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
                 "side (world, m); at most 8")
       .default_value(std::vector<double>{});
   s.boolean("walls_relative", "wall points are offsets from the handle's position at activation").default_value(false);
-  s.real("wall_stiffness_n_per_m", "stiffness of the walls").unit("N/m").minimum(0.0).default_value(5000.0).tunable();
+  s.real("wall_stiffness_n_per_m", "stiffness of the walls")
+      .unit("N/m")
+      .minimum(0.0)
+      .maximum(1e5)
+      .default_value(5000.0)
+      .tunable();
   s.real("wall_damping_n_s_per_m", "damping of the walls while penetrated")
       .unit("N s/m")
       .minimum(0.0)
+      .maximum(1e4)
       .default_value(50.0)
       .tunable();
   s.boolean("motion_based", "walls act on the measured handle motion (motion-based impedance control)")
@@ -66,16 +73,29 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
             "take the rendering engine's input: virtual coupling to its proxy pose, its wrench (and "
             "local model), or its desired motion")
       .default_value(false);
-  s.real("coupling_stiffness_n_per_m", "coupling spring").unit("N/m").minimum(0.0).default_value(2000.0).tunable();
-  s.real("coupling_damping_n_s_per_m", "coupling damper").unit("N s/m").minimum(0.0).default_value(20.0).tunable();
+  // Physical maxima (a run-time set of 1e308 was taken before; the render guard bounded the force, not the gain).
+  s.real("coupling_stiffness_n_per_m", "coupling spring")
+      .unit("N/m")
+      .minimum(0.0)
+      .maximum(1e5)
+      .default_value(2000.0)
+      .tunable();
+  s.real("coupling_damping_n_s_per_m", "coupling damper")
+      .unit("N s/m")
+      .minimum(0.0)
+      .maximum(1e4)
+      .default_value(20.0)
+      .tunable();
   s.real("coupling_rotational_stiffness_n_m_per_rad", "rotational coupling spring")
       .unit("N m/rad")
       .minimum(0.0)
+      .maximum(1e3)
       .default_value(20.0)
       .tunable();
   s.real("coupling_rotational_damping_n_m_s", "rotational coupling damper")
       .unit("N m s/rad")
       .minimum(0.0)
+      .maximum(1e2)
       .default_value(0.2)
       .tunable();
   s.real("workspace_radius_m",
@@ -87,6 +107,7 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
   s.real("workspace_stiffness_n_per_m", "stiffness of the workspace spring")
       .unit("N/m")
       .minimum(0.0)
+      .maximum(1e5)
       .default_value(1000.0)
       .tunable();
   s.real("max_tracking_error_m",
@@ -116,6 +137,21 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
       .greater_than(0.0)
       .maximum(10000.0)
       .default_value(50.0);
+  s.real("engine_joint_speed_fraction",
+         "an engine's motion is followed at joint speeds of at most this share of each joint's velocity_max (the "
+         "safety supervisor damps from 0.75 and faults at 0.95 of it); the Cartesian speed and acceleration limits "
+         "shrink by the same factor where the joints would go faster")
+      .minimum(0.05)
+      .maximum(0.7)
+      .default_value(0.5);
+  s.real("engine_max_hand_force_n",
+         "an engine's motion yields to the operator: from 3/4 of this force on the hand the body blends into its own "
+         "dynamics (it moves with the hand), fully at this force; keep it below the rendered-force limit "
+         "(safety.max_force_n, 80 N by default)")
+      .unit("N")
+      .greater_than(0.0)
+      .maximum(1000.0)
+      .default_value(50.0);
   return s;
 }
 
@@ -144,6 +180,15 @@ void VirtualAdmittance::configure_environment(const Parameters& p, const PluginC
   max_angular_velocity_ = p.real("max_angular_velocity_rad_s");
   engine_max_acceleration_ = p.real("engine_max_acceleration_m_s2");
   engine_max_angular_acceleration_ = p.real("engine_max_angular_acceleration_rad_s2");
+  engine_max_hand_force_ = p.real("engine_max_hand_force_n");
+  const double share = p.real("engine_joint_speed_fraction");
+  joint_count_ = 0;
+  if (context.device != nullptr && context.device->interface == DeviceInterface::joints) {
+    for (const JointDescription& j : context.device->joints) {
+      if (joint_count_ == joint_speed_limit_.size()) break;
+      joint_speed_limit_[joint_count_++] = share * j.velocity_max;
+    }
+  }
   period_s_ = 1.0 / context.rate_hz;
   const auto& w = p.real_vector("walls");
   if (w.size() % 6 != 0 || w.size() / 6 > kMaxWalls) {
@@ -242,25 +287,48 @@ Eigen::Vector3d approach_velocity(const Eigen::Vector3d& error, double max_accel
 
 }  // namespace
 
-void VirtualAdmittance::follow_engine_motion(const EngineInput& e, std::int64_t now_ns,
-                                             const BodyState& start) noexcept {
+double VirtualAdmittance::joint_speed_scale(const ChainState& c, const Eigen::Vector3d& velocity) const noexcept {
+  // The joint velocities that give the handle `velocity` (least squares through the translational Jacobian; near a
+  // singularity they grow, and so does the cut), against each joint's share of its velocity_max.
+  if (c.data == nullptr || joint_count_ == 0 || velocity.squaredNorm() < 1e-18) return 1.0;
+  const auto& jacobian = c.data->frame_jacobian;
+  const std::size_t n = std::min<std::size_t>(joint_count_, static_cast<std::size_t>(jacobian.cols()));
+  const Eigen::Matrix3d jjt = jacobian.topRows<3>() * jacobian.topRows<3>().transpose();
+  const Eigen::Vector3d y = (jjt + 1e-10 * Eigen::Matrix3d::Identity()).ldlt().solve(velocity);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double qd = jacobian.col(static_cast<Eigen::Index>(i)).head<3>().dot(y);
+    if (joint_speed_limit_[i] > 0.0) worst = std::max(worst, std::abs(qd) / joint_speed_limit_[i]);
+  }
+  return std::isfinite(worst) && worst > 1.0 ? 1.0 / worst : (std::isfinite(worst) ? 1.0 : 0.0);
+}
+
+void VirtualAdmittance::follow_engine_motion(const EngineInput& e, std::int64_t now_ns, const BodyState& start,
+                                             const ChainState& c) noexcept {
   // An admittance-type engine: the virtual body follows the engine's desired motion, extrapolated with its twist
   // since it arrived, from where the body was at the start of the cycle. It follows through a limiter - speed
-  // (max_velocity_m_s) and acceleration (engine_max_acceleration_m_s2) - so whatever the engine sends, a jump of
-  // its target included, the inner loop is given a motion the device can make (a jump passed straight on was
-  // chased at full torque into the speed limit's fault). While the input fades, the body blends back to its own
-  // dynamics from where it is.
+  // (max_velocity_m_s) and acceleration (engine_max_acceleration_m_s2), both shrunk where the joints would pass
+  // engine_joint_speed_fraction of their velocity_max - so whatever the engine sends, a jump of its target
+  // included, the inner loop is given a motion the device can make (a jump passed straight on was chased at full
+  // torque into the speed limit's fault; a Cartesian limit alone let the joints pass theirs). It yields to the
+  // operator: above 3/4 of engine_max_hand_force_n on the hand the body blends into its own dynamics, which move it
+  // with the hand (a far target pulled the hand with 140 N before). While the input fades, the body blends back to
+  // its own dynamics from where it is.
   const double dt = period_s_;
   const double since = std::max(0.0, static_cast<double>(now_ns - e.received_ns) * 1e-9);
   const Eigen::Vector3d desired = e.motion_pose.position + since * e.motion_twist.linear;
-  const Eigen::Vector3d wanted =
-      clamp_norm(clamp_norm(e.motion_twist.linear, max_velocity_) +
-                     approach_velocity(desired - start.position, engine_max_acceleration_, dt),
-                 max_velocity_);
-  const Eigen::Vector3d followed_velocity =
-      clamp_norm(start.velocity + clamp_norm(wanted - start.velocity, engine_max_acceleration_ * dt), max_velocity_);
+  const double joints = joint_speed_scale(c, desired - start.position);
+  const double speed = max_velocity_ * joints, acceleration = engine_max_acceleration_ * joints;
+  const Eigen::Vector3d wanted = clamp_norm(
+      clamp_norm(e.motion_twist.linear, speed) + approach_velocity(desired - start.position, acceleration, dt), speed);
+  Eigen::Vector3d followed_velocity =
+      clamp_norm(start.velocity + clamp_norm(wanted - start.velocity, acceleration * dt), max_velocity_);
+  followed_velocity *= joint_speed_scale(c, followed_velocity);
   const Eigen::Vector3d followed_position = start.position + dt * followed_velocity;
-  const double a = e.weight;
+  const double hand = c.has_operator_wrench ? c.operator_wrench.force.norm() : 0.0;
+  const double yield = std::clamp((engine_max_hand_force_ - hand) / (0.25 * engine_max_hand_force_), 0.0, 1.0);
+  hand_yield_ = std::min(yield, hand_yield_ + dt / 0.1);  // yields at once, takes up the motion again over 0.1 s
+  const double a = e.weight * hand_yield_;
   position_ = (1.0 - a) * position_ + a * followed_position;
   velocity_ = clamp_norm((1.0 - a) * velocity_ + a * followed_velocity, max_velocity_);
   if (rotation_) {
@@ -408,7 +476,7 @@ Outcome VirtualAdmittance::update(const CycleTime& cycle, const VirtualModelInpu
     }
     angular_acceleration_world = orientation_ * wd;
   }
-  if (coupling_ && e.has_motion && e.weight > 0.0) follow_engine_motion(e, cycle.time_ns, start);
+  if (coupling_ && e.has_motion && e.weight > 0.0) follow_engine_motion(e, cycle.time_ns, start, c);
   Eigen::Vector3d commanded_acceleration = acceleration;
   if (c.output_saturated && limit_tracking_error(c)) {
     // On the limit: no acceleration away from the handle either (the inner loop gets a consistent target).

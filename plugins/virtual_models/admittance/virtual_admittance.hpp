@@ -77,7 +77,10 @@ class VirtualAdmittance final : public VirtualModel {
     Eigen::Vector3d position, velocity, body_angular_velocity;
     Eigen::Quaterniond orientation;
   };
-  void follow_engine_motion(const EngineInput& engine, std::int64_t now_ns, const BodyState& start) noexcept;
+  void follow_engine_motion(const EngineInput& engine, std::int64_t now_ns, const BodyState& start,
+                            const ChainState& chain) noexcept;
+  // At most 1: the factor that keeps the joint speeds of the handle moving at `velocity` within their shares.
+  [[nodiscard]] double joint_speed_scale(const ChainState& chain, const Eigen::Vector3d& velocity) const noexcept;
 
   // The parameters tune() may change.
   struct Tunable {
@@ -104,6 +107,10 @@ class VirtualAdmittance final : public VirtualModel {
   double max_velocity_ = 1.0, max_angular_velocity_ = 5.0;
   // An admittance-type engine's motion is followed within these (and the speed limits above).
   double engine_max_acceleration_ = 10.0, engine_max_angular_acceleration_ = 50.0;
+  double engine_max_hand_force_ = 50.0;
+  double hand_yield_ = 1.0;  // the share of the engine's motion followed (1: all; less while the hand is loaded)
+  std::array<double, 16> joint_speed_limit_{};  // engine_joint_speed_fraction x each joint's velocity_max
+  std::size_t joint_count_ = 0;
   double max_tracking_error_ = 0.0, max_tracking_angle_ = 0.0;  // 0: no anti-windup limit
   // true when the translation was limited.
   bool limit_tracking_error(const ChainState& chain) noexcept;

@@ -206,6 +206,10 @@ int run_session(const RunOptions& options) {
           link->settings().device, link->settings().peer, link->packets_sent(), link->packets_taken(),
           link->packets_rejected(), link->losses(), link->stops(), e.in, e.out, e.dissipated, e.lowest_observed,
           e.max_force_n);
+      spdlog::info(
+          "{}: teleoperation link's peer: bound {} times; {} packets rejected from another participant than the bound "
+          "peer; its energy in claimed {:.4f} J, credited {:.4f} J (what its force and motion could carry)",
+          link->settings().device, link->bindings(), link->impostor_packets(), e.peer_claimed, e.peer_credited);
     }
     if (const std::uint64_t unknown = bridge->unknown_device_commands(); unknown > 0)
       spdlog::warn("{} engine commands named a device this server does not have: rejected as malformed", unknown);

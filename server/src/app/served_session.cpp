@@ -9,6 +9,7 @@
 #include "app/invariant_stop.hpp"
 #include "assembly/session_builder.hpp"
 #include "group/group_stage.hpp"
+#include "hapticd/input_file.hpp"
 
 namespace hapticd::server {
 namespace {
@@ -70,10 +71,11 @@ RecordingHeader recording_header(const SessionConfig& config, const std::vector<
   RecordingHeader h;
   h.session_file = config.file.string();
   if (!config.file.empty()) {
-    std::ifstream in(config.file);
-    std::ostringstream text;
-    text << in.rdbuf();
-    h.session_text = text.str();
+    try {  // the file the session was read from (hapticd/input_file.hpp: a regular file, size-limited)
+      h.session_text = read_input_file(config.file, "session file");
+    } catch (const std::runtime_error&) {
+      h.session_text.clear();  // gone or changed since: the recording says nothing of its text
+    }
   }
   h.rate_hz = config.server.rate_hz;
   h.lockstep = config.server.clock == ClockMode::lockstep;

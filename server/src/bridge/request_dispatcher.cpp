@@ -1,5 +1,7 @@
 #include "bridge/request_dispatcher.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 
 #include "executor/loop_clock.hpp"
@@ -63,6 +65,12 @@ hapticd_msg_ControlReply RequestDispatcher::answer(const hapticd_msg_ControlRequ
     answer.message = "'" + target + "' is neither a device nor a group of this server";
   } else if (dds::text_of(m.client).empty() || !dds::terminated(m.client) || !dds::terminated(m.subject)) {
     answer.message = "malformed request (no client id)";
+  } else if (!dds::valid_text(m.client) || !dds::valid_text(m.subject)) {
+    // Its id would reach the engine socket's and the live view's JSON clients (owner, "stopped by ..."): refused.
+    const std::uint64_t n = text_refused_.fetch_add(1, std::memory_order_relaxed) + 1;
+    if (n == 1 || n % 100 == 0)
+      spdlog::warn("a request whose client id or subject is not UTF-8 was refused ({} so far)", n);
+    answer.message = "malformed request (the client id or subject is not UTF-8 text)";
   } else if (!requester) {
     answer.message = "request from a writer that is no longer known";
   } else {

@@ -45,6 +45,8 @@ class RequestDispatcher {
   void check_engine_deadlines();
 
   [[nodiscard]] std::uint64_t claims_ended() const noexcept { return claims_ended_.load(); }
+  // Requests refused because their client id or subject is not UTF-8 text.
+  [[nodiscard]] std::uint64_t text_refused() const noexcept { return text_refused_.load(); }
 
  private:
   // A request as its handler sees it.
@@ -100,6 +102,7 @@ class RequestDispatcher {
   std::int64_t claim_grace_ns_;
   std::int64_t claim_hold_ns_;
   std::atomic<std::uint64_t> claims_ended_{0};
+  std::atomic<std::uint64_t> text_refused_{0};
   std::unique_ptr<AnsweredRequests> answered_ = std::make_unique<AnsweredRequests>();  // about 90 kB
 };
 

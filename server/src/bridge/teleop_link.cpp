@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
+#include <cstring>
 
 #include "bridge/peer_directory.hpp"
 #include "hapticd/dds/conversion.hpp"
@@ -23,6 +25,19 @@ std::int32_t role_of(teleop::Role r) noexcept {
   return r == teleop::Role::master ? hapticd_msg_TELEOP_MASTER : hapticd_msg_TELEOP_REMOTE;
 }
 
+// The DDS partition a device's teleoperation packets travel in (DDS Security: granted to its server's identity).
+std::string link_partition(const std::string& device) { return "hapticd.teleop." + device; }
+
+// The participant of a matched writer, for messages ("participant 0110a4c3..."; "?" when no longer matched).
+std::string participant_of(dds_entity_t reader, dds_instance_handle_t writer) {
+  dds_builtintopic_endpoint_t* data = dds_get_matched_publication_data(reader, writer);
+  if (data == nullptr) return "?";
+  PeerId id;
+  std::memcpy(id.guid.data(), data->participant_key.v, id.guid.size());
+  dds_builtintopic_free_endpoint(data);
+  return id.text();
+}
+
 }  // namespace
 
 TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceLink& device, const dds::Participant& participant,
@@ -31,8 +46,8 @@ TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceLink& device
       device_(device),
       events_(events),
       name_(settings.device),
-      reader_(participant),
-      writer_(participant),
+      reader_(participant, {}, nullptr, {link_partition(settings.peer)}),
+      writer_(participant, {}, link_partition(settings.device)),
       side_(settings.role, settings.link) {
   dds::set_text(packet_.sender, name_);
   dds::set_text(packet_.receiver, settings.peer);
@@ -45,21 +60,14 @@ TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceLink& device
 void TeleopLink::take_packets() {
   const std::int32_t peer_role =
       role_of(settings_.role == teleop::Role::master ? teleop::Role::remote : teleop::Role::master);
-  reader_.take([&](const hapticd_msg_TeleopPacket& p, const dds_sample_info_t&) {
+  reader_.take([&](const hapticd_msg_TeleopPacket& p, const dds_sample_info_t& info) {
     // Packets of other links in the domain are not this link's business; a malformed one for this link is.
     if (dds::terminated(p.receiver) && dds::text_of(p.receiver) != name_) return;
     std::string_view problem = dds::check_teleop_packet(p);
     if (problem.empty() && dds::text_of(p.sender) != settings_.peer) problem = "it comes from another device";
     if (problem.empty() && p.role != peer_role) problem = "its sender has the same role as this side";
-    if (!problem.empty()) {
-      const std::uint64_t n = rejected_.fetch_add(1, std::memory_order_relaxed) + 1;
-      if (n == 1 || n % 1000 == 0) {
-        spdlog::warn("{}: a teleoperation packet was rejected: {} ({} so far)", name_, problem, n);
-        events_.send(device_, hapticd_msg_EVENT_ENGINE_REJECTED, "teleoperation_packet",
-                     fmt::format("teleoperation packet rejected: {} ({} so far)", problem, n));
-      }
-      return;
-    }
+    if (!problem.empty()) return reject("teleoperation_packet", problem, rejected_);
+    if (!admit(info.publication_handle)) return;
     teleop::LinkPacket packet;
     packet.sequence = p.serial;
     packet.sent_ns = p.sent_ns;
@@ -74,6 +82,52 @@ void TeleopLink::take_packets() {
   });
 }
 
+void TeleopLink::reject(std::string_view code, std::string_view problem, std::atomic<std::uint64_t>& counter) {
+  const std::uint64_t n = counter.fetch_add(1, std::memory_order_relaxed) + 1;
+  if (&counter != &rejected_) rejected_.fetch_add(1, std::memory_order_relaxed);
+  if (n == 1 || n % 1000 == 0) {
+    spdlog::warn("{}: a teleoperation packet was rejected: {} ({} so far)", name_, problem, n);
+    events_.send(device_, hapticd_msg_EVENT_ENGINE_REJECTED, code,
+                 fmt::format("teleoperation packet rejected: {} ({} so far)", problem, n));
+  }
+}
+
+bool TeleopLink::matched(dds_instance_handle_t writer) const {
+  std::array<dds_instance_handle_t, 64> writers{};  // the peer's and a few more: an impostor is one writer too
+  const dds_return_t n = dds_get_matched_publications(reader_.get(), writers.data(), writers.size());
+  if (n < 0) return true;  // unknown: the binding stays
+  const std::size_t shown = std::min<std::size_t>(static_cast<std::size_t>(n), writers.size());
+  if (std::find(writers.begin(), writers.begin() + static_cast<std::ptrdiff_t>(shown), writer) !=
+      writers.begin() + static_cast<std::ptrdiff_t>(shown))
+    return true;
+  return static_cast<std::size_t>(n) > writers.size();  // more than shown: it may be among the rest
+}
+
+bool TeleopLink::admit(dds_instance_handle_t writer) {
+  if (writer == bound_) return true;
+  if (bound_ != 0 && matched(bound_)) {
+    reject("teleoperation_impostor",
+           "it comes from participant " + participant_of(reader_.get(), writer) +
+               ", not from the peer the link is bound to (participant " + participant_of(reader_.get(), bound_) + ")",
+           impostors_);
+    return false;
+  }
+  const bool again = bound_ != 0;
+  bound_ = writer;
+  bindings_.fetch_add(1, std::memory_order_relaxed);
+  const std::string who = participant_of(reader_.get(), writer);
+  if (!again) {
+    spdlog::info("{}: teleoperation link bound to '{}' (participant {})", name_, settings_.peer, who);
+    return true;
+  }
+  side_.peer_changed();  // a restarted peer: its serials and energy start afresh
+  const std::string message = fmt::format(
+      "teleoperation link re-bound to '{}' (participant {}): the peer it was bound to is gone", settings_.peer, who);
+  spdlog::warn("{}: {}", name_, message);
+  events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_rebound", message);
+  return true;
+}
+
 void TeleopLink::stop_device(std::string_view code, const std::string& message) {
   device_.device->emergency_stop();
   stops_.fetch_add(1, std::memory_order_relaxed);
@@ -82,9 +136,10 @@ void TeleopLink::stop_device(std::string_view code, const std::string& message) 
 }
 
 TeleopLink::Energy TeleopLink::energy() const noexcept {
-  return {in_.load(std::memory_order_relaxed), out_.load(std::memory_order_relaxed),
-          dissipated_.load(std::memory_order_relaxed), lowest_observed_.load(std::memory_order_relaxed),
-          max_force_.load(std::memory_order_relaxed)};
+  return {in_.load(std::memory_order_relaxed),           out_.load(std::memory_order_relaxed),
+          dissipated_.load(std::memory_order_relaxed),   lowest_observed_.load(std::memory_order_relaxed),
+          max_force_.load(std::memory_order_relaxed),    peer_claimed_.load(std::memory_order_relaxed),
+          peer_credited_.load(std::memory_order_relaxed)};
 }
 
 void TeleopLink::on_state(const DeviceSnapshot& s) {
@@ -142,6 +197,8 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   in_.store(port.energy_in(), std::memory_order_relaxed);
   out_.store(port.energy_out(), std::memory_order_relaxed);
   dissipated_.store(port.dissipated(), std::memory_order_relaxed);
+  peer_claimed_.store(st.peer_energy_in, std::memory_order_relaxed);
+  peer_credited_.store(st.peer_energy_credited, std::memory_order_relaxed);
   if (st.received > 0 && port.observed() < lowest_observed_.load(std::memory_order_relaxed))
     lowest_observed_.store(port.observed(), std::memory_order_relaxed);
   if (out.force.norm() > max_force_.load(std::memory_order_relaxed))

@@ -6,10 +6,18 @@
 // take the peer's packets (each checked - a malformed one is dropped, counted and reported, never applied - and
 // only the newest kept), run the link's side (teleop::TeleopSide: the control law and the passivity controller),
 // hand the force to the loop as the engine's input (lock-free; it fades at the engine deadline if the link stops
-// running), and send this side's packet. Safety: a peer that reports itself stopped stops this device too (an
-// emergency stop), so either side's stop stops both; the remote stops when the link has been silent for
-// link_timeout_s; the master's force fades out then and back in when the link returns. After a recovery the
-// side starts again from where its handle is (no jump towards the peer).
+// running), and send this side's packet.
+// Who may speak for the peer (docs/teleoperation.md, "Binding"): each side writes its packets in a DDS partition of
+// its own device ("hapticd.teleop.<device>"), and reads only its peer's - with DDS Security, the permissions grant
+// that partition to the peer server's identity alone. The link binds to the writer of the first valid packet; a
+// packet from any other writer is rejected and counted while the bound writer is matched (an impostor, even one
+// with the right names and role); once the bound writer is gone (its server ended or its lease ran out), the next
+// valid writer re-binds the link: its serials and energy start afresh and the side re-anchors (a restarted peer
+// takes the link up again). A peer's energy is credited only as far as the link's own force and motion could have
+// carried it (teleop::TeleopSide), so the report's figures stay true whatever a packet claims. Safety: a peer that
+// reports itself stopped stops this device too (an emergency stop), so either side's stop stops both; the remote stops
+// when the link has been silent for link_timeout_s; the master's force fades out then and back in when the link
+// returns. After a recovery the side starts again from where its handle is (no jump towards the peer).
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -42,17 +50,27 @@ class TeleopLink {
   [[nodiscard]] std::uint64_t packets_rejected() const noexcept { return rejected_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t stops() const noexcept { return stops_.load(std::memory_order_relaxed); }
   [[nodiscard]] std::uint64_t losses() const noexcept { return losses_.load(std::memory_order_relaxed); }
+  // Valid packets from a writer other than the bound peer's while it was there; times the link was (re-)bound.
+  [[nodiscard]] std::uint64_t impostor_packets() const noexcept { return impostors_.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t bindings() const noexcept { return bindings_.load(std::memory_order_relaxed); }
   // This port's energies [J]: in, out, dissipated by its passivity controller; the lowest observed energy (what
   // entered at the peer's port, as received, minus what left here: below zero only without passivity control);
-  // the largest force the link applied here [N].
+  // the largest force the link applied here [N]; the peer's energy in as its packets claimed it and as credited
+  // (this side's units) [J].
   struct Energy {
     double in = 0.0, out = 0.0, dissipated = 0.0, lowest_observed = 0.0, max_force_n = 0.0;
+    double peer_claimed = 0.0, peer_credited = 0.0;
   };
   [[nodiscard]] Energy energy() const noexcept;
   [[nodiscard]] const TeleoperationSettings& settings() const noexcept { return settings_; }
 
  private:
   void take_packets();
+  // Whether `writer` may speak for the peer: binds the link to it when it is unbound or its bound writer is gone;
+  // else (an impostor) counts and reports it and returns false.
+  bool admit(dds_instance_handle_t writer);
+  [[nodiscard]] bool matched(dds_instance_handle_t writer) const;
+  void reject(std::string_view code, std::string_view problem, std::atomic<std::uint64_t>& counter);
   void stop_device(std::string_view code, const std::string& message);
 
   TeleoperationSettings settings_;
@@ -64,13 +82,15 @@ class TeleopLink {
   teleop::TeleopSide side_;
   hapticd_msg_TeleopPacket packet_{};
   std::int64_t last_ns_ = 0;
+  dds_instance_handle_t bound_ = 0;  // the peer's writer (0: none yet)
   std::uint64_t engine_sequence_ = 0;
   bool started_ = false;
   bool was_stopped_ = false;
   bool lost_reported_ = false;
   bool peer_stop_seen_ = false;
-  std::atomic<std::uint64_t> sent_{0}, taken_{0}, rejected_{0}, stops_{0}, losses_{0};
+  std::atomic<std::uint64_t> sent_{0}, taken_{0}, rejected_{0}, stops_{0}, losses_{0}, impostors_{0}, bindings_{0};
   std::atomic<double> in_{0.0}, out_{0.0}, dissipated_{0.0}, lowest_observed_{0.0}, max_force_{0.0};
+  std::atomic<double> peer_claimed_{0.0}, peer_credited_{0.0};
 };
 
 }  // namespace hapticd::server

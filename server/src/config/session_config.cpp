@@ -3,7 +3,6 @@
 #include <arpa/inet.h>
 
 #include <algorithm>
-#include <fstream>
 #include <set>
 
 #include "config/config_error.hpp"
@@ -265,11 +264,13 @@ EngineSocketSettings read_engine_socket(const YAML::Node& node, const std::strin
   if (const std::string token_file = p.string("token_file"); !token_file.empty()) {
     const std::filesystem::path path =
         std::filesystem::path(token_file).is_absolute() ? std::filesystem::path(token_file) : folder / token_file;
-    std::ifstream in(path);
     std::string token;
-    if (!in || !std::getline(in, token))
-      throw ConfigError(file, line_of(node["token_file"]), "engine_socket.token_file",
-                        "cannot read the token from '" + path.string() + "'");
+    try {  // a regular file of at most 4 KiB: a named pipe or a device there is refused, never waited on
+      token = read_input_file(path, "token file", 4096);
+    } catch (const std::runtime_error& e) {
+      throw ConfigError(file, line_of(node["token_file"]), "engine_socket.token_file", e.what());
+    }
+    token = token.substr(0, token.find('\n'));
     while (!token.empty() && (token.back() == '\r' || token.back() == ' ')) token.pop_back();
     if (token.size() < 16 || token.size() > 256 ||
         token.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-._~") !=
@@ -283,8 +284,11 @@ EngineSocketSettings read_engine_socket(const YAML::Node& node, const std::strin
     const std::filesystem::path given = p.string(name);
     if (given.empty()) return given;
     const std::filesystem::path path = given.is_absolute() ? given : folder / given;
-    if (!std::ifstream(path))
-      throw ConfigError(file, line_of(node[name]), "engine_socket." + name, "cannot read '" + path.string() + "'");
+    try {  // OpenSSL reads it later: a regular file of at most 1 MiB, checked here
+      (void)read_input_file(path, "PEM file", 1024u * 1024u);
+    } catch (const std::runtime_error& e) {
+      throw ConfigError(file, line_of(node[name]), "engine_socket." + name, e.what());
+    }
     return path;
   };
   v.tls_certificate_file = resolved("tls_certificate_file");

@@ -285,6 +285,11 @@ class StreamConnection final : public Connection, public std::enable_shared_from
     auto response = std::make_shared<http::response<http::string_body>>(status, request_.version());
     response->set(http::field::content_type, content_type);
     response->set(http::field::cache_control, "no-store");
+    // No other page may frame what is served here (a framed wall page claimed a device for another site): CSP's
+    // frame-ancestors, and X-Frame-Options for browsers without it.
+    response->set("Content-Security-Policy", "frame-ancestors 'none'");
+    response->set(http::field::x_frame_options, "DENY");
+    response->set("X-Content-Type-Options", "nosniff");
     response->body() = std::move(body);
     response->prepare_payload();
     response->keep_alive(false);

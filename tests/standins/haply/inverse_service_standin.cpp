@@ -101,6 +101,11 @@ struct InverseServiceStandIn::Impl {
 
   // The force a message commands (set_cursor_force of our device), if it has one; the message in the log.
   void take_command(const std::string& text) {
+    for (const char c : text)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) {
+        log("non-text bytes");
+        break;
+      }
     if (text.find("\"session\":{\"configure\":{\"profile\"") != std::string::npos) log("session profile");
     const std::size_t at = text.find("\"set_cursor_force\"");
     if (at == std::string::npos || text.find("\"" + options.device_id + "\"") == std::string::npos) {
@@ -130,15 +135,26 @@ struct InverseServiceStandIn::Impl {
       std::lock_guard lock(mutex);
       last = Clock::now();
     }
-    ws.write(net::buffer(state_json(true)), ec);
-    log("inventory");
+    if (options.send_inventory) {
+      ws.write(net::buffer(state_json(true)), ec);
+      log("inventory");
+    }
+    if (options.ignore_close) {
+      // Beast answers a close frame once this callback returns: it returns when the stand-in ends.
+      ws.control_callback([this](websocket::frame_type kind, beast::string_view) {
+        if (kind != websocket::frame_type::close) return;
+        log("close ignored");
+        while (!stopping.load()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      });
+    }
     beast::flat_buffer buffer;
     while (!ec && !stopping.load()) {
       buffer.clear();
       ws.read(buffer, ec);
       if (ec) break;
       take_command(beast::buffers_to_string(buffer.cdata()));
-      for (;;) {  // paused: no answer until it ends
+      if (!options.send_inventory) continue;  // a service that never got going
+      for (;;) {                              // paused: no answer until it ends
         Clock::time_point until;
         {
           std::lock_guard lock(mutex);

@@ -23,6 +23,11 @@ class InverseServiceStandIn {
     // Each message advances the physics by this much (a service in step with its client, so a loaded test machine
     // does not change the run); 0: by the time since the previous message.
     double step_s = 0.001;
+    // Hostile or broken services (hardening, docs/safety.md): no inventory after the handshake (the service waits);
+    // the client's close frame never read nor answered (every message before it is; the connection stays open
+    // until the stand-in ends).
+    bool send_inventory = true;
+    bool ignore_close = false;
   };
   explicit InverseServiceStandIn(Options options);
   ~InverseServiceStandIn();
@@ -46,7 +51,8 @@ class InverseServiceStandIn {
   [[nodiscard]] std::uint64_t messages() const noexcept;
   // The lifecycle as the service saw it, one event per line, a run of the same event once: "connect",
   // "inventory", "session profile", "set_cursor_force" (or "... zero"), "close" (the client closed the WebSocket)
-  // or "connection lost".
+  // or "connection lost"; "non-text bytes" for a message with bytes that are not printable ASCII; "close ignored"
+  // when ignore_close takes effect.
   [[nodiscard]] std::string call_log() const;
 
  private:

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "hapticd/spatial.hpp"
+#include "hapticd/utf8.hpp"
 #include "hapticd_msg.h"
 
 namespace hapticd::dds {
@@ -28,6 +29,13 @@ bool terminated(const char (&in)[N]) noexcept {
   for (std::size_t i = 0; i < N; ++i)
     if (in[i] == '\0') return true;
   return false;
+}
+
+// True when the array holds a NUL and the text before it is valid UTF-8: a name or id a peer sent that the server
+// may repeat to its JSON and Foxglove clients.
+template <std::size_t N>
+bool valid_text(const char (&in)[N]) noexcept {
+  return terminated(in) && valid_utf8(text_of(in));
 }
 
 [[nodiscard]] Pose to_pose(const hapticd_msg_Pose& in) noexcept;

@@ -65,11 +65,16 @@ struct SideOutput {
 
 struct SideStatus {
   const EnergyPort* port = nullptr;
-  double peer_energy_in = 0.0;  // the other port's energy in, as received, in this side's units [J]
-  std::uint64_t received = 0;   // packets taken
-  std::uint64_t stale = 0;      // packets older than one already taken (reordered): ignored
-  double silence_s = 0.0;       // since the newest packet arrived (from the start: since the link started)
-  bool link_lost = false;       // silence_s > link_timeout_s
+  // The other port's energy in, in this side's units [J]: as its packets claim it, and as credited - no more than
+  // the link's own force and motion at that port could have carried (a peer's claim is never taken on trust). The
+  // passivity controller spends only what is credited.
+  double peer_energy_in = 0.0;
+  double peer_energy_credited = 0.0;
+  std::uint64_t received = 0;  // packets taken
+  std::uint64_t stale = 0;     // packets not newer than one already taken (reordered, or a serial gone back): ignored
+  std::uint64_t peers = 0;     // senders the side has taken packets from (peer_changed: one more)
+  double silence_s = 0.0;      // since the newest packet arrived (from the start: since the link started)
+  bool link_lost = false;      // silence_s > link_timeout_s
   bool peer_stopped = false;
   double fade = 1.0;  // the master's force weight: falls to 0 over fade_s while the link is lost, rises when back
   // Position-force, the remote: its setpoint's distance from the master's motion as last received [m].
@@ -86,8 +91,13 @@ class TeleopSide {
   // The side goes on from the handle's present position as if it were where the peer's last packet puts it (after
   // the device was stopped and recovered: no pull towards where the peer went meanwhile). The energies go on.
   void rebase(const LocalSample& sample) noexcept;
-  // A packet from the other side (any order; only the newest by sequence is kept).
+  // A packet from the other side (any order; only the newest by sequence is kept: serial-number arithmetic, RFC
+  // 1982, so a serial that wraps goes on and one far ahead - 2^64-1 after 100 - is older, not newer).
   void receive(const LinkPacket& packet) noexcept;
+  // The packets come from another sender from now on (its server restarted: the link's owner re-bound it): its
+  // serials and its energy count start afresh, and the side re-anchors at its first packet (no pull towards
+  // where the new sender's motion starts). The energy credited so far stays.
+  void peer_changed() noexcept;
   // One cycle of dt seconds. `stopped`: this side's device is stopped (the other side is told to stop too).
   SideOutput cycle(const LocalSample& sample, double dt, bool stopped = false) noexcept;
 
@@ -104,11 +114,20 @@ class TeleopSide {
   // The energy scale from the remote's units to the master's: force_scale / motion_scale.
   [[nodiscard]] double to_master_units() const noexcept { return settings_.force_scale / settings_.motion_scale; }
 
+  // The power the peer's port can take in at most, as its newest packet shows it (its units) [W].
+  [[nodiscard]] double peer_power_bound() const noexcept;
+  // The peer's energy in as credited (its units): claimed, within what the bound has let in since the peer came.
+  [[nodiscard]] double credited_peer_energy() const noexcept;
+
   Role role_;
   LinkSettings settings_;
   EnergyPort port_;
   SideStatus status_;
   bool started_ = false;
+  bool rebase_pending_ = false;  // peer_changed: re-anchor at the next cycle with a packet
+  // The peer's energy (its units): credited by earlier senders; what the bound has let in since this one came.
+  double credited_before_ = 0.0;
+  double energy_bound_ = 0.0;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   std::uint64_t sequence_ = 0;
   LinkPacket peer_;  // the newest packet taken
