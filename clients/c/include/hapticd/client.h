@@ -328,7 +328,8 @@ typedef struct hapticd_client_options {
 
 /* Makes a client (one DDS participant). *out is NULL on failure. */
 HAPTICD_C_API hapticd_status hapticd_client_create(const hapticd_client_options* options, hapticd_client** out);
-/* Ends it: its claims end with it (the server sees the participant go). NULL is ignored. */
+/* Ends it: its claims end with it (the server sees the participant go). NULL is ignored. Destroying a client twice,
+ * or calling anything with a destroyed one, is undefined behaviour (as free() twice is): set your pointer to NULL. */
 HAPTICD_C_API void hapticd_client_destroy(hapticd_client* client);
 
 /* ---- devices ---- */
