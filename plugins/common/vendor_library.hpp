@@ -7,11 +7,27 @@
 // so a wrong path is an error, never another library), else the folders of an environment variable (the vendor's
 // own, e.g. FORCEDIM_SDK, and its lib/ and lib/release/lin-x86_64-gcc/ subfolders), then the dynamic loader's own
 // search (LD_LIBRARY_PATH, ld.so.conf, the system folders).
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace hapticd::plugins {
+
+// The longest text taken from a vendor's library (a model name, a serial, an error): its strings are read only this
+// far (no strlen over memory the library may not have terminated).
+inline constexpr std::size_t kMaxVendorText = 200;
+
+// A string a vendor's library returned, bounded before use: at most kMaxVendorText bytes, bytes outside printable
+// ASCII written as '?'; `absent` for a null pointer. Not real-time (it allocates): in the loop, format with
+// "%.200s", which reads no further either.
+inline std::string vendor_text(const char* text, const char* absent = "unknown") {
+  if (text == nullptr) return absent;
+  std::string out;
+  for (std::size_t i = 0; i < kMaxVendorText && text[i] != '\0'; ++i)
+    out += (text[i] >= 0x20 && text[i] < 0x7f) ? text[i] : '?';
+  return out;
+}
 
 struct VendorLibrarySearch {
   std::string vendor;                // for messages: "Force Dimension SDK"

@@ -7,6 +7,15 @@
 - ``recording.read``: a recording (``hapticd --record FILE.h5``) as NumPy arrays.
 - Errors: ``Error``, ``SessionError``, ``RequestRefused``, ``Timeout`` (``hapticd.errors``).
 """
+try:
+    import numpy as _numpy  # noqa: F401  (the states, the recordings: every part of the package uses it)
+except ImportError as _missing:  # a python3 other than the one the package was built for (pyenv, conda, a venv)
+    import sys as _sys
+
+    raise ImportError(
+        f"the hapticd package needs NumPy, which this interpreter ({_sys.executable}) lacks: run your script with "
+        "hapticd-python (the interpreter the package was built for, with NumPy, h5py and Matplotlib), or install "
+        "NumPy here (python3 -m pip install numpy) - docs/python.md, 'Which Python'") from _missing
 from ._hapticd import (  # noqa: F401
     Client,
     CycleRecord,

@@ -136,3 +136,14 @@ def test_a_handle_device_reports_its_buttons_and_gripper(monkeypatch):
         assert v.buttons == 5
         assert v.gripper == pytest.approx(0.3)
         assert v.joint_position.shape == (4,)  # x, y, z and the gripper: a handle device's axes
+
+
+def test_an_interpreter_without_numpy_is_told_to_use_hapticd_python():
+    # A pyenv or conda python3 without NumPy importing the package: before, "No module named 'numpy'" from deep in
+    # hapticd/recording.py; now a message that names the way out. (NumPy hidden in a child interpreter.)
+    import subprocess
+    import sys
+
+    code = "import sys; sys.modules['numpy'] = None\ntry:\n    import hapticd\nexcept ImportError as e:\n    print(e)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60).stdout
+    assert "needs NumPy" in out and "hapticd-python" in out, out

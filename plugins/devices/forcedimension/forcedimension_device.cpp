@@ -89,12 +89,12 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
     const std::string which =
         serial > 0 ? "serial number " + std::to_string(serial) : "index " + std::to_string(p.integer("index"));
     throw DeviceUnavailable("no Force Dimension device with " + which + " (" +
-                            std::to_string(dhd_->get_device_count()) + " connected): " + dhd_->last_error());
+                            std::to_string(dhd_->get_device_count()) +
+                            " connected): " + vendor_text(dhd_->last_error()));
   }
   id_ = static_cast<char>(opened);
   open_ = true;
-  const char* name = dhd_->get_system_name(id_);
-  const std::string system = name != nullptr ? name : "unknown";
+  const std::string system = vendor_text(dhd_->get_system_name(id_));
   const ModelFigures* m = figures_of(system);
   if (m == nullptr) {
     close_device();
@@ -110,7 +110,7 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
                                "tool, or set calibrate: true to have the SDK calibrate it (the handle moves)");
     }
     if (dhd_->drd_open_id(id_) < 0 || dhd_->drd_auto_init(id_) < 0) {
-      const std::string why = dhd_->last_error();
+      const std::string why = vendor_text(dhd_->last_error());
       close_device();
       throw std::runtime_error("the " + system + " could not be calibrated: " + why);
     }
@@ -147,7 +147,7 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
 
 const char* ForceDimensionDevice::failure(const char* what) noexcept {
   std::array<char, 256>& text = errors_[static_cast<std::size_t>(error_)];
-  if (text[0] == '\0') std::snprintf(text.data(), text.size(), "%s: %s", what, dhd_->last_error());
+  if (text[0] == '\0') std::snprintf(text.data(), text.size(), "%s: %.200s", what, dhd_->last_error());
   return text.data();
 }
 

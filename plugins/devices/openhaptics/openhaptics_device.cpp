@@ -67,13 +67,12 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
   handle_ = hd_->init_device(name.empty() ? nullptr : name.c_str());
   if (const HDErrorInfo e = hd_->get_error(); handle_ == kInvalidHandle || e.errorCode != kSuccess) {
     handle_ = kInvalidHandle;
-    throw DeviceUnavailable("cannot open the OpenHaptics device " +
-                            (name.empty() ? "(the default)" : "'" + name + "'") + ": " + hd_->text_of(e.errorCode) +
-                            " (internal code " + std::to_string(e.internalErrorCode) + ")");
+    throw DeviceUnavailable(
+        "cannot open the OpenHaptics device " + (name.empty() ? "(the default)" : "'" + name + "'") + ": " +
+        vendor_text(hd_->text_of(e.errorCode)) + " (internal code " + std::to_string(e.internalErrorCode) + ")");
   }
   hd_->make_current_device(handle_);
-  const char* model_text = hd_->get_string(kDeviceModelType);
-  const std::string model = model_text != nullptr ? model_text : "unknown";
+  const std::string model = vendor_text(hd_->get_string(kDeviceModelType));
 
   // Calibration: an update the SDK makes itself (nothing moves); the inkwell needs the user.
   const HDenum calibration = hd_->check_calibration();
@@ -92,7 +91,8 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
     hd_->update_calibration(static_cast<HDenum>(style));
     if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess) {
       close_device();
-      throw std::runtime_error("the " + model + " could not update its calibration: " + hd_->text_of(e.errorCode));
+      throw std::runtime_error("the " + model +
+                               " could not update its calibration: " + vendor_text(hd_->text_of(e.errorCode)));
     }
   }
 
@@ -101,7 +101,7 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
   if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess) {
     close_device();
     throw std::runtime_error("the HD scheduler cannot run at the session's rate of " + std::to_string(context.rate_hz) +
-                             " Hz (" + hd_->text_of(e.errorCode) +
+                             " Hz (" + vendor_text(hd_->text_of(e.errorCode)) +
                              "): set server.rate_hz to one it supports, e.g. 1000");
   }
 
@@ -114,10 +114,10 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
   hd_->get_doublev(kNominalMaxContinuousForce, &continuous);
   hd_->get_doublev(kNominalMaxStiffness, &stiffness);
   hd_->get_doublev(kNominalMaxDamping, &damping);
-  const char* serial_text = hd_->get_string(kDeviceSerialNumber);
+  const std::string serial = vendor_text(hd_->get_string(kDeviceSerialNumber), "");
 
   DeviceDescription& d = description_;
-  d.model = "openhaptics " + model + (serial_text != nullptr ? std::string(" ") + serial_text : std::string());
+  d.model = "openhaptics " + model + (serial.empty() ? std::string() : " " + serial);
   d.interface = DeviceInterface::handle;
   HandleDescription& h = d.handle;
   h.senses_orientation = input_dof >= 6;
@@ -165,7 +165,7 @@ const char* OpenHapticsDevice::failure(const char* what, const HdErrors& errors)
   for (int i = 0; i < shown && used > 0 && used < static_cast<int>(text.size()); ++i) {
     const HDErrorInfo& e = errors.first[static_cast<std::size_t>(i)];
     used += std::snprintf(text.data() + used, text.size() - static_cast<std::size_t>(used),
-                          "%s%s (HD error 0x%04x, internal %d)", i > 0 ? "; " : "", hd_->text_of(e.errorCode),
+                          "%s%.200s (HD error 0x%04x, internal %d)", i > 0 ? "; " : "", hd_->text_of(e.errorCode),
                           e.errorCode, e.internalErrorCode);
   }
   if (errors.count > shown && used > 0 && used < static_cast<int>(text.size()))

@@ -58,13 +58,13 @@ ParameterSchema VirtualAdmittance::parameter_schema() {
   s.real("wall_stiffness_n_per_m", "stiffness of the walls")
       .unit("N/m")
       .minimum(0.0)
-      .maximum(1e5)
+      .maximum(1e7)  // z-width sweeps go to 1e6 N/m (the device's own limits bound what it renders)
       .default_value(5000.0)
       .tunable();
   s.real("wall_damping_n_s_per_m", "damping of the walls while penetrated")
       .unit("N s/m")
       .minimum(0.0)
-      .maximum(1e4)
+      .maximum(1e5)
       .default_value(50.0)
       .tunable();
   s.boolean("motion_based", "walls act on the measured handle motion (motion-based impedance control)")

@@ -37,6 +37,24 @@ struct LoadedSession {
 };
 
 // Config errors are printed once, here, without a log prefix: they are for the user to fix.
+// --busy-machine: the loop watchdogs of simulated devices (the shipped sim and playback plugins) loosened to what a
+// development machine that compiles or runs tests beside the server keeps (the tests' own: a stall of 1 s, 2000
+// overruns in a row); a device of any other plugin - hardware - keeps its settings, and the log says which changed.
+void loosen_loop_watchdogs(SessionConfig& config) {
+  for (DeviceConfig& d : config.devices) {
+    if (d.device.plugin != "sim" && d.device.plugin != "playback") {
+      spdlog::info("--busy-machine: device '{}' ({}) is not simulated: its watchdogs stay as set", d.name,
+                   d.device.plugin);
+      continue;
+    }
+    if (d.safety.max_stall_s > 0.0) d.safety.max_stall_s = std::max(d.safety.max_stall_s, 1.0);
+    if (d.safety.max_consecutive_overruns > 0)
+      d.safety.max_consecutive_overruns = std::max<std::uint32_t>(d.safety.max_consecutive_overruns, 2000);
+    spdlog::info("--busy-machine: device '{}' (simulated): max_stall_s {} s, max_consecutive_overruns {}", d.name,
+                 d.safety.max_stall_s, d.safety.max_consecutive_overruns);
+  }
+}
+
 // A device that is not there (DeviceUnavailable: its vendor's library or service missing, no device answering):
 // exit code 4, nothing powered; `exit_code` says which.
 std::optional<LoadedSession> load(const std::string& file, const std::vector<std::string>& sets,
@@ -51,6 +69,7 @@ std::optional<LoadedSession> load(const std::string& file, const std::vector<std
         s.config.dds.enabled = true;
         s.config.dds.domain_id = *overrides->dds_domain;
       }
+      if (overrides->busy_machine) loosen_loop_watchdogs(s.config);
     }
     s.loader = std::make_unique<PluginLoader>(PluginLoader::search_paths_for(s.config.server.plugin_paths));
     // Running, a plugin that throws from configure() isolates its device; checking, it is an error.

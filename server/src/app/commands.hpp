@@ -18,6 +18,7 @@ struct RunOptions {
   std::string record_file;           // record every cycle here (HDF5, docs/recording.md)
   std::optional<int> dds_domain;     // turns the DDS interface on, on this domain (overrides dds.domain_id)
   std::vector<std::string> sets;     // --set key.path=value: overrides of the session file (config_overrides)
+  bool busy_machine = false;         // simulated devices' loop watchdogs loosened (a shared development machine)
 };
 
 inline constexpr int kExitOk = 0;

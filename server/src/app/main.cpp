@@ -62,11 +62,19 @@ int run_command(int argc, char** argv) {
                                  "run the DDS interface on this domain (loopback-only "
                                  "configuration unless dds.cyclone_config says otherwise)")
                       ->check(CLI::Range(0, 230));
+  app.add_flag("--busy-machine", run.busy_machine,
+               "a development machine that is busy with other work: the loop watchdogs of simulated devices (sim, "
+               "playback) loosened to a 1 s stall and 2000 overruns; other devices keep theirs (docs/running.md)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
   check_opt->excludes(config_opt);
   server_opt->excludes(check_opt)->excludes(list_opt)->excludes(describe_opt);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version: 0; any other command-line error is a configuration error, exit 2, said by CLI11.
+    return app.exit(e) == 0 ? kExitOk : kExitConfigError;
+  }
   if (std::getenv("HAPTICD_PARSE_ONLY") != nullptr) {  // the documentation's commands test (docs_commands)
     std::fputs("hapticd: the command line parsed (HAPTICD_PARSE_ONLY is set: nothing run)\n", stderr);
     return 0;

@@ -22,12 +22,15 @@ void log_fault_report(const DeviceSession& d, const FaultReport& r) {
     if (c.torque.size() > 0) torque = std::max(torque, c.torque.cwiseAbs().maxCoeff());
     force = std::max(force, c.operator_force.norm());
   }
+  std::string governed(governed_by(r.fault));
+  for (std::size_t at = governed.find("<device>"); at != std::string::npos; at = governed.find("<device>", at))
+    governed.replace(at, 8, d.name());
   spdlog::error(
       "device '{}' fault {} at cycle {}: {}; safe mode (damping, then zero torque). Last {} cycles: "
-      "largest handle speed {:.3f} m/s, joint speed {:.3f}, torque {:.2f}, operator force {:.1f} N",
+      "largest handle speed {:.3f} m/s, joint speed {:.3f}, torque {:.2f}, operator force {:.1f} N{}",
       d.name(), fault_code(r.fault), r.cycle,
       std::string(to_string(r.fault)) + (r.reason[0] != '\0' ? ": " + std::string(r.reason.data()) : std::string()),
-      r.count, speed, joint_speed, torque, force);
+      r.count, speed, joint_speed, torque, force, governed.empty() ? "" : ". Governed by " + governed);
 }
 
 }  // namespace

@@ -35,5 +35,8 @@ enum class DeviceFault : std::uint8_t {
 [[nodiscard]] std::string_view fault_code(DeviceFault fault) noexcept;
 // A sentence ("a joint exceeded its velocity limit").
 [[nodiscard]] std::string_view to_string(DeviceFault fault) noexcept;
+// What governs the fault and how to change it, for people ("" where nothing does: a plugin's failure, an E-stop):
+// the device's setting ("safety.max_stall_s (0.02 s): --set devices.<device>.safety.max_stall_s=...").
+[[nodiscard]] std::string_view governed_by(DeviceFault fault) noexcept;
 
 }  // namespace hapticd::server
