@@ -322,6 +322,16 @@ RecordingFile::RecordingFile(const std::filesystem::path& file, const RecordingH
   Impl& m = *impl_;
   m.path = file;
   m.access = Handle(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"));
+  // The metadata cache (the chunk indexes, which grow with the file) at most 4 MiB: HDF5's adaptive default grows to
+  // 32 MiB, and a long recording's server grew about 2 MB a minute until it did (the soak, docs/measurements.md).
+  H5AC_cache_config_t cache{};
+  cache.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  check(H5Pget_mdc_config(m.access.get(), &cache), "H5Pget_mdc_config");
+  cache.set_initial_size = true;
+  cache.initial_size = 1u << 20;
+  cache.min_size = 1u << 20;
+  cache.max_size = 4u << 20;
+  check(H5Pset_mdc_config(m.access.get(), &cache), "H5Pset_mdc_config");
   errno = 0;
   m.file = Handle(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, m.access.get()));
   if (m.file.get() < 0) fail("cannot create the recording " + file.string());

@@ -120,7 +120,10 @@ SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped)
   const Eigen::Vector3d x = sample.position - origin_;
   const Eigen::Vector3d& v = sample.velocity;
   status_.silence_s += dt;
-  status_.link_lost = status_.silence_s > settings_.link_timeout_s;
+  // Lost only once it was up: before the peer's first packet the link is waiting (the remote's setpoint holds, the
+  // master has nothing to render) - a pair whose discovery takes longer than the timeout does not stop at start.
+  status_.waiting = status_.received == 0 && status_.silence_s > settings_.link_timeout_s;
+  status_.link_lost = status_.received > 0 && status_.silence_s > settings_.link_timeout_s;
   status_.peer_stopped = have_peer_ && peer_.stopped;
 
   // A lost link or a stopped side: the master's force fades out (the remote's setpoint stops: remote_force). The

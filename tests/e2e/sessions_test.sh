@@ -47,8 +47,8 @@ done
 # speed monitor (no brakes are simulated).
 # Sessions with the DDS interface run on this test's own domain.
 dds_flags() { grep -q "^dds:" "$1" && echo "--dds-domain 68"; }
-# A teleoperation side runs here alone: its peer never comes, and the remote's link would stop it (its safety,
-# docs/teleoperation.md) once link_timeout_s has passed - within the second at 1 kHz. The test is of the scheme.
+# A teleoperation side runs here alone: its peer never comes (the link waits for it: docs/teleoperation.md); the
+# long timeout keeps the test of the scheme alone whatever the link does.
 teleop_flags() { grep -q "^teleoperation:" "$1" && echo "--set teleoperation.link_timeout_s=10"; }
 for session in $(find "$src/config/sessions" -mindepth 2 -name "*.yaml" ! -name "identify-*" | sort); do
   name=${session#$src/config/sessions/}

@@ -303,6 +303,25 @@ TEST(TeleopSide, KeepsOnlyTheNewestPacketAndNeverAllocates) {
   EXPECT_NEAR(out.force.x(), -1.0, 1e-12);
 }
 
+// A link that never came up is waiting, not lost: a pair whose discovery took longer than the timeout (a soak
+// through the relay on a loaded machine) stopped its remote at start. The remote holds; once packets came and
+// stop, the link is lost as before.
+TEST(TeleopSide, ALinkThatNeverCameUpWaitsAndIsLostOnlyAfterItsFirstPacket) {
+  LinkSettings s;
+  s.link_timeout_s = 0.2;
+  TeleopSide remote(Role::remote, s);
+  remote.start(at(0, 0.0));
+  for (int k = 1; k <= 500; ++k) remote.cycle(at(k, 0.0), 1e-3);
+  EXPECT_TRUE(remote.status().waiting);
+  EXPECT_FALSE(remote.status().link_lost);
+  EXPECT_EQ(remote.setpoint(), Eigen::Vector3d::Zero());
+  remote.receive(packet(1));
+  remote.cycle(at(501, 0.0), 1e-3);
+  EXPECT_FALSE(remote.status().waiting);
+  for (int k = 502; k <= 800; ++k) remote.cycle(at(k, 0.0), 1e-3);
+  EXPECT_TRUE(remote.status().link_lost);
+}
+
 // Hardening round 4, item 3: a forged serial of 2^64-1 made every later packet "older" for good. Serial-number
 // arithmetic: a serial far ahead is older; a wrapping serial goes on.
 TEST(TeleopSide, SerialsCompareBySerialArithmetic) {

@@ -175,6 +175,11 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   } else if (!st.peer_stopped) {
     peer_stop_seen_ = false;
   }
+  if (st.waiting && !waiting_reported_) {
+    waiting_reported_ = true;
+    spdlog::info("{}: no teleoperation packet from '{}' yet: waiting for the peer (this side holds still)", name_,
+                 settings_.peer);
+  }
   if (st.link_lost && !lost_reported_) {
     lost_reported_ = true;
     losses_.fetch_add(1, std::memory_order_relaxed);

@@ -87,6 +87,7 @@ class TeleopLink {
   bool started_ = false;
   bool was_stopped_ = false;
   bool lost_reported_ = false;
+  bool waiting_reported_ = false;
   bool peer_stop_seen_ = false;
   std::atomic<std::uint64_t> sent_{0}, taken_{0}, rejected_{0}, stops_{0}, losses_{0}, impostors_{0}, bindings_{0};
   std::atomic<double> in_{0.0}, out_{0.0}, dissipated_{0.0}, lowest_observed_{0.0}, max_force_{0.0};

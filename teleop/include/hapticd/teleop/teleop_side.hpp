@@ -74,7 +74,8 @@ struct SideStatus {
   std::uint64_t stale = 0;     // packets not newer than one already taken (reordered, or a serial gone back): ignored
   std::uint64_t peers = 0;     // senders the side has taken packets from (peer_changed: one more)
   double silence_s = 0.0;      // since the newest packet arrived (from the start: since the link started)
-  bool link_lost = false;      // silence_s > link_timeout_s
+  bool link_lost = false;      // silence_s > link_timeout_s after the first packet
+  bool waiting = false;        // no packet yet for longer than link_timeout_s (not lost: never up)
   bool peer_stopped = false;
   double fade = 1.0;  // the master's force weight: falls to 0 over fade_s while the link is lost, rises when back
   // Position-force, the remote: its setpoint's distance from the master's motion as last received [m].
