@@ -36,13 +36,10 @@ python3 -c "import websockets, h5py" 2> /dev/null || py=/usr/bin/python3
 fail() { echo "soak: FAIL: $*"; exit 1; }
 source "$src/tests/e2e/session_copy.sh"  # loose_watchdogs: a shared machine runs a loop late now and then
 pids=()
+source "$src/tests/e2e/link_namespaces.sh"  # the teleoperation pair's hosts
 cleanup() {
   for p in "${pids[@]}"; do kill "$p" 2> /dev/null; done
-  [ -n "${ns_m:-}" ] && for n in "$ns_m" "$ns_r" "$ns_x"; do
-    ip netns pids "$n" 2> /dev/null | xargs -r kill 2> /dev/null
-    sleep 0.2
-    ip netns del "$n" 2> /dev/null
-  done
+  link_namespaces_down
 }
 trap cleanup EXIT
 
@@ -118,30 +115,9 @@ pids+=("$clients")
 
 # The teleoperation pair through the relay, in namespaces.
 teleop=skipped
-if [ "$(id -u)" -eq 0 ] && command -v ip > /dev/null && ip netns add "hapticd-sm-$$" 2> /dev/null; then
-  ns_m="hapticd-sm-$$" ns_r="hapticd-sr-$$" ns_x="hapticd-sx-$$"
-  ip netns add "$ns_r" && ip netns add "$ns_x" || fail "cannot create the namespaces"
-  ip link add "sm$$" netns "$ns_m" type veth peer name "sxm$$" netns "$ns_x"
-  ip link add "sr$$" netns "$ns_r" type veth peer name "sxr$$" netns "$ns_x"
-  ip -n "$ns_m" addr add 192.0.2.1/25 dev "sm$$"
-  ip -n "$ns_x" addr add 192.0.2.2/25 dev "sxm$$"
-  ip -n "$ns_x" addr add 192.0.2.129/25 dev "sxr$$"
-  ip -n "$ns_r" addr add 192.0.2.130/25 dev "sr$$"
-  for n in "$ns_m" "$ns_r" "$ns_x"; do ip -n "$n" link set lo up; done
-  ip -n "$ns_m" link set "sm$$" up; ip -n "$ns_r" link set "sr$$" up
-  ip -n "$ns_x" link set "sxm$$" up; ip -n "$ns_x" link set "sxr$$" up
-  cyclone_xml() {
-    cat << XML
-<CycloneDDS xmlns="https://cdds.io/config"><Domain Id="any">
-  <General><Interfaces><NetworkInterface name="$1" multicast="false"/></Interfaces><AllowMulticast>false</AllowMulticast>
-    <ExternalNetworkAddress>$3</ExternalNetworkAddress></General>
-  <Discovery><ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>4</MaxAutoParticipantIndex>
-    <Peers><Peer address="$2"/></Peers></Discovery>
-</Domain></CycloneDDS>
-XML
-  }
-  cyclone_xml "sm$$" 192.0.2.2 192.0.2.129 > "$out/master.xml"
-  cyclone_xml "sr$$" 192.0.2.129 192.0.2.2 > "$out/remote.xml"
+if [ "$(id -u)" -eq 0 ] && command -v ip > /dev/null && link_namespaces_up "s$$"; then
+  link_cyclone_xml "$if_m" 192.0.2.2 192.0.2.129 > "$out/master.xml"
+  link_cyclone_xml "$if_r" 192.0.2.129 192.0.2.2 > "$out/remote.xml"
   ip netns exec "$ns_x" timeout $((seconds + 60)) "$bin/hapticd-link-relay" --route 192.0.2.2=192.0.2.130 \
     --route 192.0.2.129=192.0.2.1 --ports 46660-46669 --delay-ms 20 --jitter-ms 2 --loss 0.05 --seed 3 \
     --duration $((seconds + 20)) > "$out/relay.log" 2>&1 &
@@ -182,7 +158,9 @@ cat "$out/rss.txt"
 cat "$out/clients.log"
 grep -c "to the end" "$out/clients.log" | grep -qx 5 || fail "not every client ran to the end"
 # Memory: from the sample at 60 s to the last.
-read -r first last < <(awk 'NR > 1 && $1 >= 60 { if (!f) f = $2; l = $2 } END { print f + 0, l + 0 }' "$out/rss.txt")
+# (A run shorter than two minutes compares from its first sample.)
+read -r first last < <(awk 'NR == 2 { s = $2 } NR > 1 && $1 >= 60 { if (!f) f = $2; l = $2 } NR > 1 { e = $2 }
+  END { if (!f) { f = s; l = e } print f + 0, l + 0 }' "$out/rss.txt")
 growth=$(awk -v a="$first" -v b="$last" 'BEGIN { printf "%.1f", (b - a) / 1024 }')
 echo "soak: the server's resident memory $((first / 1024)) MB at 60 s, $((last / 1024)) MB at the end: ${growth} MB more"
 # The recording: a row for every cycle the server ran (the periods the loop skipped after an overrun have none: the

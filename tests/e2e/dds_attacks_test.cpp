@@ -78,13 +78,10 @@ TEST(DdsAttacks, ParameterReadsDuringSchemeSwitchesAreAnsweredNeverAnAbort) {
   EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
 }
 
-TEST(DdsAttacks, AMotionCommandWhoseTargetJumpsIsFollowedWithinTheLimits) {
-  // Item 6: the owner engine sends MOTION commands whose target jumps 250 mm along x. Passed straight on as the
-  // virtual body's position, the inner loop chased it at full torque (54 N m peak, 1.52 m/s) into the speed
-  // limit's fault after 122 mm. The body now follows the engine's motion through the speed limit (1 m/s) and
-  // the acceleration limit (10 m/s^2): no fault, and the handle arrives.
-  Server server(e2e::session_yaml(143, 2.0, "constant", "[0.0, 0.0, 0.0]"));
-  Client engine({"motion-engine", 143});
+// An owner engine on `domain` that answers every state of the served session's v3 with a MOTION command to its
+// start pose plus offset(loop time in s), until the session ends; the server's recording says what happened.
+void run_motion_engine(Server& server, int domain, const std::function<Eigen::Vector3d(double)>& offset) {
+  Client engine({"motion-engine", domain});
   server.start();
   ASSERT_TRUE(engine.wait_for_state("v3", 20s).has_value());
   const auto described = engine.wait_for_device("v3", 5s, true);
@@ -93,15 +90,32 @@ TEST(DdsAttacks, AMotionCommandWhoseTargetJumpsIsFollowedWithinTheLimits) {
   ASSERT_TRUE(engine.claim("v3", 10s).accepted);
   engine.on_state([&](const client::DeviceState& s) {
     Pose target = start;
-    if (s.loop_time_ns > 200'000'000) target.position.x() += 0.25;  // the jump, 0.2 s in
+    target.position += offset(static_cast<double>(s.loop_time_ns) * 1e-9);
     engine.send_motion("v3", target, Twist{}, s.serial);
   });
   server.join();
   engine.on_state({});
-  const auto& x = server.recording().position();
-  ASSERT_GT(x.size(), 3000u);
+}
+
+// The handle's fastest speed over the recorded cycles [m/s] (2 kHz).
+double fastest_speed(const std::vector<Eigen::Vector3d>& x) {
   double fastest = 0.0;
   for (std::size_t k = 1; k < x.size(); ++k) fastest = std::max(fastest, (x[k] - x[k - 1]).norm() * 2000.0);
+  return fastest;
+}
+
+TEST(DdsAttacks, AMotionCommandWhoseTargetJumpsIsFollowedWithinTheLimits) {
+  // Item 6: the owner engine sends MOTION commands whose target jumps 250 mm along x. Passed straight on as the
+  // virtual body's position, the inner loop chased it at full torque (54 N m peak, 1.52 m/s) into the speed
+  // limit's fault after 122 mm. The body now follows the engine's motion through the speed limit (1 m/s) and
+  // the acceleration limit (10 m/s^2): no fault, and the handle arrives.
+  Server server(e2e::session_yaml(143, 2.0, "constant", "[0.0, 0.0, 0.0]"));
+  run_motion_engine(server, 143, [](double t) {  // the jump, 0.2 s in
+    return t > 0.2 ? Eigen::Vector3d(0.25, 0, 0) : Eigen::Vector3d::Zero();
+  });
+  const auto& x = server.recording().position();
+  ASSERT_GT(x.size(), 3000u);
+  const double fastest = fastest_speed(x);
   const double travelled = x[x.size() - 600].x() - x.front().x();  // before the shutdown ramp
   std::printf("motion jump of 250 mm: travelled %.1f mm, fastest %.3f m/s, peak joint torque %.1f N m, fault %s\n",
               1e3 * travelled, fastest, server.recording().peak_torque(),
@@ -145,27 +159,12 @@ TEST(DdsAttacks, AMotionCommandTheChecksAcceptNeverTripsAFaultNorOverloadsTheHan
   int domain = 144;
   for (const Attack& attack : attacks) {
     Server server(held_handle_session(domain, 3.0));
-    Client engine({"motion-attacker", domain});
-    ++domain;
-    server.start();
-    ASSERT_TRUE(engine.wait_for_state("v3", 20s).has_value());
-    const auto described = engine.wait_for_device("v3", 5s, true);
-    ASSERT_TRUE(described.has_value());
-    const Pose start = *described->start_pose;
-    ASSERT_TRUE(engine.claim("v3", 10s).accepted);
-    engine.on_state([&](const client::DeviceState& s) {
-      Pose target = start;
-      target.position += attack.offset(static_cast<double>(s.loop_time_ns) * 1e-9);
-      engine.send_motion("v3", target, Twist{}, s.serial);
-    });
-    server.join();
-    engine.on_state({});
+    run_motion_engine(server, domain++, attack.offset);
     double hand = 0.0;
     for (const Eigen::Vector3d& f : server.recording().operator_force()) hand = std::max(hand, f.norm());
     const auto& x = server.recording().position();
     ASSERT_GT(x.size(), 5000u);
-    double fastest = 0.0;
-    for (std::size_t k = 1; k < x.size(); ++k) fastest = std::max(fastest, (x[k] - x[k - 1]).norm() * 2000.0);
+    const double fastest = fastest_speed(x);
     std::printf("motion attack %s: largest force on the hand %.1f N, fastest %.3f m/s, fault %s\n", attack.name, hand,
                 fastest, std::string(to_string(server.device().status().fault())).c_str());
     EXPECT_EQ(server.device().status().fault(), DeviceFault::none) << attack.name;

@@ -19,44 +19,15 @@ fail() {
 }
 [ "$(id -u)" -eq 0 ] || skip "network namespaces need root"
 command -v ip > /dev/null || skip "no ip (iproute2)"
-ns_m="hapticd-tm-$$" ns_r="hapticd-tr-$$" ns_x="hapticd-tx-$$"
-cleanup() {
-  for n in "$ns_m" "$ns_r" "$ns_x"; do ip netns pids "$n" 2> /dev/null | xargs -r kill 2> /dev/null; done
-  sleep 0.2
-  for n in "$ns_m" "$ns_r" "$ns_x"; do ip netns del "$n" 2> /dev/null; done
-}
-trap cleanup EXIT
-ip netns add "$ns_m" 2> "$work/netns.err" || skip "cannot create a network namespace: $(cat "$work/netns.err")"
-ip netns add "$ns_r" || skip "cannot create a second network namespace"
-ip netns add "$ns_x" || skip "cannot create a third network namespace"
-ip link add "tm$$" netns "$ns_m" type veth peer name "txm$$" netns "$ns_x" 2> "$work/veth.err" ||
-  skip "cannot create a veth pair: $(cat "$work/veth.err")"
-ip link add "tr$$" netns "$ns_r" type veth peer name "txr$$" netns "$ns_x" || skip "cannot create a second veth pair"
-ip -n "$ns_m" addr add 192.0.2.1/25 dev "tm$$"
-ip -n "$ns_x" addr add 192.0.2.2/25 dev "txm$$"
-ip -n "$ns_x" addr add 192.0.2.129/25 dev "txr$$"
-ip -n "$ns_r" addr add 192.0.2.130/25 dev "tr$$"
-for n in "$ns_m" "$ns_r" "$ns_x"; do ip -n "$n" link set lo up; done
-ip -n "$ns_m" link set "tm$$" up
-ip -n "$ns_r" link set "tr$$" up
-ip -n "$ns_x" link set "txm$$" up
-ip -n "$ns_x" link set "txr$$" up
+source "$src/tests/e2e/link_namespaces.sh"
+trap link_namespaces_down EXIT
+link_namespaces_up "t$$" || skip "$link_namespaces_error"
 # No route between the two sides: only the relay joins them.
 ip netns exec "$ns_m" ping -c 1 -W 1 192.0.2.130 > /dev/null 2>&1 && fail "the master reaches the remote without the relay"
 
 domain=157  # unicast ports 7400 + 250 * 157 + 10 + 2 i and + 11 + 2 i: 46660-46669 for participant indices 0-4
-cyclone_xml() {  # interface, the relay's address on this side (peer), the relay's address on the other (advertised)
-  cat << XML
-<CycloneDDS xmlns="https://cdds.io/config"><Domain Id="any">
-  <General><Interfaces><NetworkInterface name="$1" multicast="false"/></Interfaces><AllowMulticast>false</AllowMulticast>
-    <ExternalNetworkAddress>$3</ExternalNetworkAddress></General>
-  <Discovery><ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>4</MaxAutoParticipantIndex>
-    <Peers><Peer address="$2"/></Peers></Discovery>
-</Domain></CycloneDDS>
-XML
-}
-cyclone_xml "tm$$" 192.0.2.2 192.0.2.129 > "$work/master.xml"
-cyclone_xml "tr$$" 192.0.2.129 192.0.2.2 > "$work/remote.xml"
+link_cyclone_xml "$if_m" 192.0.2.2 192.0.2.129 > "$work/master.xml"
+link_cyclone_xml "$if_r" 192.0.2.129 192.0.2.2 > "$work/remote.xml"
 
 ip netns exec "$ns_x" "$bin/hapticd-link-relay" --route 192.0.2.2=192.0.2.130 --route 192.0.2.129=192.0.2.1 \
   --ports 46660-46669 --delay-ms 20 --jitter-ms 2 --loss 0.05 --seed 3 --duration 7 > "$work/relay.log" 2>&1 &
