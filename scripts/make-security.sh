@@ -2,12 +2,15 @@
 # DDS Security for hapticd (docs/deployment.md, "A secure lab network"): creates, with openssl, a certificate
 # authority, one identity per role and the signed governance and permissions documents, and a Cyclone
 # configuration per identity that turns on authentication, access control and encryption.
-#   scripts/make-security.sh OUT_DIR [DOMAIN_SPEC] [ENGINE=DEVICES ...]
+#   scripts/make-security.sh OUT_DIR [DOMAIN_SPEC] [ENGINE=DEVICES ...] [teleop:NAME=OWN,PEER ...]
 #     DOMAIN_SPEC: e.g. 0 or 0-230 (default 0-230); ENGINE=DEVICES: an engine identity and the devices (or groups)
-#     it may command, comma-separated, * for all (default: engine=*)
-# Identities: server (the hapticd server: every topic), one per engine (writes requests and commands in its
-# devices' partitions only - hapticd.<device>, docs/dds-interface.md - and reads the server's topics), watcher
-# (may only watch: reads the server's topics, writes nothing). The governance
+#     it may command, comma-separated, * for all (default: engine=*); teleop:NAME=OWN,PEER: the identity of a
+#     teleoperation side's server whose device is OWN and whose peer's is PEER (docs/teleoperation.md)
+# Identities: server (the hapticd server: every topic but the teleoperation link's), one per engine (writes
+# requests and commands in its devices' partitions only - hapticd.<device>, docs/dds-interface.md - and reads the
+# server's topics), one per teleoperation side (a server's topics, and the link's packets written only in its own
+# device's partition hapticd.teleop.OWN and read only from its peer's, so no other identity can speak for either
+# side), watcher (may only watch: reads the server's topics, writes nothing). The governance
 # document requires authentication for joining, encrypts discovery, liveliness and every topic's payload, and
 # checks read and write access on every topic. Keys are EC P-256; certificates valid for 365 days.
 # OUT_DIR/<identity>/cyclonedds.xml is what `dds.cyclone_config` (server) or HAPTICD_DDS_CONFIG (clients) takes;
@@ -17,8 +20,16 @@ set -f  # the topic and partition patterns (hapticd_*, *) are not file names
 out=${1:?usage: make-security.sh OUT_DIR [DOMAIN_SPEC] [ENGINE=DEVICES ...]}
 domains=${2:-0-230}
 shift $(($# < 2 ? $# : 2))
-engines=("$@")
-[ ${#engines[@]} -eq 0 ] && engines=("engine=*")
+engines=() sides=()
+for a in "$@"; do
+  case $a in
+    teleop:*=*,*) sides+=("${a#teleop:}") ;;
+    teleop:*) echo "make-security: '$a': a teleoperation side is teleop:NAME=OWN_DEVICE,PEER_DEVICE" >&2; exit 2 ;;
+    *=*) engines+=("$a") ;;
+    *) echo "make-security: '$a': an engine is NAME=DEVICES" >&2; exit 2 ;;
+  esac
+done
+[ ${#engines[@]} -eq 0 ] && [ ${#sides[@]} -eq 0 ] && engines=("engine=*")
 command -v openssl > /dev/null || { echo "make-security: openssl is needed" >&2; exit 1; }
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -68,20 +79,25 @@ openssl smime -sign -in "$out/governance.xml" -text -out "$out/governance.p7s" -
   -inkey "$out/ca_key.pem" 2> /dev/null
 
 # ---- one identity per role, and what it may publish and subscribe ----
-server_topics="hapticd_*"
+# The server's topics: every one but the teleoperation link's (hapticd_teleop), which only the sides' identities
+# may write, each in its own device's partition.
+server_topics="hapticd_description hapticd_state hapticd_reply hapticd_event hapticd_telemetry hapticd_fault_report"
+server_topics="$server_topics hapticd_group_description hapticd_group_state hapticd_plugin_api_version"
+server_topics="$server_topics hapticd_plugin_catalog hapticd_world hapticd_command hapticd_group_command hapticd_request"
 engine_publish="hapticd_command hapticd_group_command hapticd_request"
 reads="hapticd_description hapticd_state hapticd_reply hapticd_event hapticd_telemetry hapticd_fault_report hapticd_group_description hapticd_group_state"
 topics_xml() { for t in $1; do printf '<topic>%s</topic>' "$t"; done; }
 partitions_xml() { for p in $1; do printf '<partition>%s</partition>' "$p"; done; }
-grant() {  # name publish-topics subscribe-topics [publish-partitions]  (subscriptions: the default partition)
-  local name=$1 subject="/C=DE/O=hapticd lab/CN=$1"
+grant() {  # name publish-topics subscribe-topics [publish-partitions [server]]  (a client's subscriptions: the
+  # default partition; a server's: its publishing partitions)
+  local name=$1 subject="/C=DE/O=hapticd lab/CN=$1" kind=${5:-client}
   local publish="" subscribe="" partitions=""
   [ -n "${4:-}" ] && partitions="<partitions>$(partitions_xml "$4")</partitions>"
   [ -n "$2" ] && publish="<publish><topics>$(topics_xml "$2")</topics>$partitions</publish>"
   # An engine's world for the live view (hapticd_world) is written in the default partition.
-  [ "$name" != server ] && [ -n "$2" ] && publish="$publish<publish><topics>$(topics_xml hapticd_world)</topics></publish>"
+  [ "$kind" != server ] && [ -n "$2" ] && publish="$publish<publish><topics>$(topics_xml hapticd_world)</topics></publish>"
   [ -n "$3" ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics>$partitions</subscribe>"
-  [ "$name" != server ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics></subscribe>"
+  [ "$kind" != server ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics></subscribe>"
   [ -z "$3" ] && subscribe=""
   cat << XML
     <grant name="$name">
@@ -96,13 +112,19 @@ XML
   echo '<?xml version="1.0" encoding="UTF-8"?>'
   echo '<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_permissions.xsd">'
   echo '  <permissions>'
-  grant server "$server_topics" "$server_topics" "*"
+  grant server "$server_topics" "$server_topics" "*" server
   for e in "${engines[@]}"; do
     devices=${e#*=} parts=""
     for d in ${devices//,/ }; do parts="$parts hapticd.$d"; done
     grant "${e%%=*}" "$engine_publish" "$reads" "$parts"
   done
   grant watcher "" "$reads"
+  for t in "${sides[@]}"; do
+    name=${t%%=*} pair=${t#*=}
+    own=${pair%%,*} peer=${pair#*,}
+    grant "$name" "$server_topics" "$server_topics" "*" server |
+      sed "s|</allow_rule>|<publish><topics><topic>hapticd_teleop</topic></topics><partitions><partition>hapticd.teleop.$own</partition></partitions></publish><subscribe><topics><topic>hapticd_teleop</topic></topics><partitions><partition>hapticd.teleop.$peer</partition></partitions></subscribe></allow_rule>|"
+  done
   echo '  </permissions>'
   echo '</dds>'
 } > "$out/permissions.xml"
@@ -111,6 +133,7 @@ openssl smime -sign -in "$out/permissions.xml" -text -out "$out/permissions.p7s"
 
 identities=(server watcher)
 for e in "${engines[@]}"; do identities+=("${e%%=*}"); done
+for t in "${sides[@]}"; do identities+=("${t%%=*}"); done
 for name in "${identities[@]}"; do
   dir="$out/$name"
   mkdir -p "$dir"

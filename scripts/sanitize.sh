@@ -43,11 +43,13 @@ fuzz() {
 for preset in "${presets[@]}"; do
   case "$preset" in
     asan) targets=(safety_test config_fuzz_test command_gate_test device_session_test foxglove_server_test
+                   forcedimension_test
                    playback_device_test socket_messages_test world_view_test)
-          tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession|FoxgloveServer|PlaybackDevice|SocketMessages|WorldView)\.' ;;
+          tests='^(Safety|ConfigFuzz|CommandGate|CommandValidation|DeviceSession|FoxgloveServer|PlaybackDevice|SocketMessages|WorldView|ForceDimension)\.' ;;
     tsan) targets=(dds_engine_test dds_ownership_test dds_groups_test dds_attacks_test separate_loops_test hapticctl
-                   hapticd-scene-engine scheme_switching_test round_trip_probe_test device_clock_test c_api_test hapticd)
-          tests='^(DdsEngine|DdsOwnership|DdsGroups|DdsAttacks|SeparateLoops|SchemeSwitching|RoundTripProbe|DeviceClock|CApi)\.|^engine_socket$' ;;
+                   hapticd-scene-engine scheme_switching_test round_trip_probe_test device_clock_test c_api_test hapticd
+                   forcedimension_test)
+          tests='^(DdsEngine|DdsOwnership|DdsGroups|DdsAttacks|SeparateLoops|SchemeSwitching|RoundTripProbe|DeviceClock|CApi|ForceDimension)\.|^engine_socket$' ;;
     fuzz) fuzz ; continue ;;
     *) echo "unknown preset '$preset' (asan, tsan, fuzz)" >&2; exit 2 ;;
   esac

@@ -5,7 +5,9 @@
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "config/config_error.hpp"
@@ -62,9 +64,13 @@ class ForceDimension : public ::testing::Test {
   static std::string session(const std::string& devices) {
     return "server: {rate_hz: 2000, clock: lockstep, seed: 3}\ndevices:\n" + devices;
   }
+  // The SDK calls' deadline: a second, unless the test sets its own (a sanitizer's run on a loaded machine can delay
+  // the SDK thread's wake-up past the default 20 ms; these tests test the plugin, not the machine).
   static std::string omega(const std::string& name, const std::string& device_parameters, const std::string& chain) {
+    const std::string deadline =
+        device_parameters.find("call_deadline_ms") == std::string::npos ? ", call_deadline_ms: 1000" : "";
     return "  - name: " + name +
-           "\n    device:\n      plugin: forcedimension\n      parameters: {sdk_path: " + StandIn::path() +
+           "\n    device:\n      plugin: forcedimension\n      parameters: {sdk_path: " + StandIn::path() + deadline +
            (device_parameters.empty() ? "" : ", " + device_parameters) + "}\n" + chain;
   }
   // Impedance display of a wall 5 mm ahead of the start along +x (its free side -x), 2000 N/m.
@@ -280,6 +286,48 @@ TEST_F(ForceDimension, AdmittanceDisplayWithoutAForceSensorIsAConfigErrorSayingW
                                                    "[1, 1, 1]}}\n    controller: {plugin: handle_force}\n")));
   EXPECT_NE(e.find("virtual_model.parameters.mass_kg"), std::string::npos) << e;
   EXPECT_NE(e.find("no operator force"), std::string::npos) << e;
+}
+
+// Round 4: an SDK call that never returns (a USB transfer that hangs) held the loop: every dhd call ran on the loop's
+// thread with no deadline, so the whole session - the other device too - stopped, with no fault and no reason.
+TEST_F(ForceDimension, ACallThatHangsFaultsItsDeviceNamingTheCallAndTheOtherDeviceRunsOn) {
+  Session s = test::build_test_session(session(omega("left", "serial: 10001, call_deadline_ms: 200", wall_chain()) +
+                                               omega("right", "serial: 10002", wall_chain())));
+  standin_.hand(0, 2.0, 0.0, 0.0, 0);
+  standin_.hand(1, 2.0, 0.0, 0.0, 0);
+  s.step(2000);
+  ASSERT_EQ(s.device("left").fault, "");
+  standin_.fault(0, "hang_position");  // the left one's next dhdGetPosition does not return
+  s.step(2000);                        // 1 s of the session: each cycle waits at most the deadline, once
+  const std::string fault = s.device("left").fault;
+  EXPECT_NE(fault.find("has not returned from dhdGetPosition"), std::string::npos) << fault;
+  EXPECT_NE(fault.find("call_deadline_ms"), std::string::npos) << fault;
+  EXPECT_EQ(s.device("right").fault, "");
+  EXPECT_NEAR(standin_.written(1).x(), -2.0, 0.1);  // the right one still holds its hand at the wall
+  // A recovery while the call is still out is refused, saying why.
+  ASSERT_TRUE(s.request("left", {DeviceRequest::Kind::recover, "", {}}).accepted);
+  s.step(10);
+  EXPECT_NE(s.device("left").fault, "");
+  // The call returns: the device comes to rest in its safe mode, brakes, and recovers on request.
+  standin_.fault(0, "release");
+  standin_.hand(0, 0.0, 0.0, 0.0, 0);
+  s.step(4000);
+  EXPECT_TRUE(s.device("left").at_rest);
+  ASSERT_TRUE(s.request("left", {DeviceRequest::Kind::recover, "", {}}).accepted);
+  s.step(100);
+  EXPECT_EQ(s.device("left").fault, "");
+}
+
+TEST_F(ForceDimension, OpeningADeviceThatDoesNotAnswerIsGivenUpAtItsTimeoutNamingTheCall) {
+  standin_.fault(0, "hang_open");
+  const std::string e = config_error(session(omega("left", "open_timeout_s: 0.2", wall_chain())));
+  EXPECT_NE(e.find("did not return from dhdOpenID within open_timeout_s"), std::string::npos) << e;
+  // The call the server gave up returns later, into nothing freed, and closes the device it opened.
+  standin_.fault(0, "release");
+  for (int i = 0; i < 500 && std::string(standin_.call_log()).find("dhdClose(0)") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_NE(std::string(standin_.call_log()).find("dhdClose(0)"), std::string::npos) << standin_.call_log();
+  EXPECT_EQ(config_error(session(omega("left", "", wall_chain()))), "");
 }
 
 TEST_F(ForceDimension, TheCycleAllocatesNothing) {

@@ -35,6 +35,7 @@ struct StandIn {
   void (*unplug)(int, bool) = nullptr;
   void (*linkage)(int, const double*) = nullptr;
   void (*torque)(int, double*) = nullptr;
+  void (*hang_init)(bool) = nullptr;
 
   static std::string path() { return test::standin_dir() + "/openhaptics/libHD.so"; }
   StandIn() {
@@ -49,6 +50,7 @@ struct StandIn {
     unplug = reinterpret_cast<decltype(unplug)>(dlsym(handle, "standin_hd_unplug"));
     linkage = reinterpret_cast<decltype(linkage)>(dlsym(handle, "standin_hd_linkage"));
     torque = reinterpret_cast<decltype(torque)>(dlsym(handle, "standin_hd_torque"));
+    hang_init = reinterpret_cast<decltype(hang_init)>(dlsym(handle, "standin_hd_hang_init"));
   }
   ~StandIn() {
     if (handle != nullptr) dlclose(handle);
@@ -277,6 +279,21 @@ TEST_F(OpenHaptics, TheSessionsMistakesAreConfigErrors) {
   EXPECT_NE(e.find("/nowhere/libHD.so"), std::string::npos) << e;
   e = config_error(session("clock: device", touch("left", "", wall_chain(), "max_stall_s: off")));
   EXPECT_NE(e.find("its stall watchdog must be on"), std::string::npos) << e;
+}
+
+// Round 4: a device that does not answer hdInitDevice held the server's start for ever (no deadline; SIGINT did not
+// stop it).
+TEST_F(OpenHaptics, OpeningADeviceThatDoesNotAnswerIsGivenUpAtItsTimeoutNamingTheCall) {
+  standin_.hang_init(true);
+  const std::string e = config_error(session("clock: device", touch("left", "open_timeout_s: 0.2")));
+  EXPECT_NE(e.find("did not return from hdInitDevice within open_timeout_s"), std::string::npos) << e;
+  // The call the server gave up returns later, into nothing freed, and closes the device it opened; then the device
+  // opens again.
+  standin_.hang_init(false);
+  for (int i = 0; i < 500 && std::string(standin_.call_log()).find("hdDisableDevice(0)") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_NE(std::string(standin_.call_log()).find("hdDisableDevice(0)"), std::string::npos) << standin_.call_log();
+  EXPECT_EQ(config_error(session("clock: device", touch("left", "open_timeout_s: 5"))), "");
 }
 
 TEST_F(OpenHaptics, TheCycleAllocatesNothing) {

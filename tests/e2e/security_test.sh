@@ -6,8 +6,11 @@
 # 'other' sees the device but may not command it, nor may the watcher (their permissions do not cover the device's
 # partition: refused with a clear message); the captured payloads
 # on the domain's ports show neither the device's name nor its joint names, which the same capture finds in a
-# plain run. The round trip with security against the plain one, in the same run. Skipped (77) without root
-# (the capture needs it). Usage: security_test.sh BIN_DIR SOURCE_DIR WORK_DIR
+# plain run. The round trip with security against the plain one, in the same run. A teleoperation pair with the
+# sides' identities (teleop:lab-m=master,remote, teleop:lab-r=remote,master): a second master server - the round-4
+# impostor - with the server identity, or with the remote side's, cannot speak for the master (refused at start by
+# access control), and the remote reports no packet from anyone but its master. Skipped (77) without root (the
+# capture needs it). Usage: security_test.sh BIN_DIR SOURCE_DIR WORK_DIR
 set -uo pipefail
 bin=$1 src=$2 work=$3
 rm -rf "$work"; mkdir -p "$work"
@@ -15,8 +18,8 @@ rm -rf "$work"; mkdir -p "$work"
 fail() { echo "FAIL: $*"; exit 1; }
 domain=89
 ports=(29650 29900)  # 7400 + 250 * 89 and the participants' unicast ports above it
-bash "$src/scripts/make-security.sh" "$work/security" $domain engine=vishard3 other=another-device > /dev/null ||
-  fail "make-security.sh"
+bash "$src/scripts/make-security.sh" "$work/security" $domain engine=vishard3 other=another-device \
+  teleop:lab-m=master,remote teleop:lab-r=remote,master > /dev/null || fail "make-security.sh"
 session=$src/config/sessions/vishard3/dds-coupling.yaml
 source "$src/tests/e2e/session_copy.sh"  # loose_watchdogs: why, there
 secure() { echo "$work/security/$1/cyclonedds.xml"; }
@@ -75,4 +78,26 @@ read -r n_secure p50_secure p99_secure < <(round_trip "$work/stats-secure.json")
 echo "round trip, plain:  $n_plain samples, p50 $p50_plain us, p99 $p99_plain us"
 echo "round trip, secure: $n_secure samples, p50 $p50_secure us, p99 $p99_secure us"
 python3 -c "print(f'security / plain: p50 {$p50_secure / $p50_plain:.2f}x, p99 {$p99_secure / $p99_plain:.2f}x')"
+
+# ---- teleoperation: only the sides' identities speak for them ----
+teleop() {  # NAME SIDE IDENTITY DURATION: a teleoperation server in the background; its pid in $side_pid
+  "$bin/hapticd" --config "$src/config/sessions/teleoperation/$2.yaml" --dds-domain $domain --duration "$4" \
+    --set "dds.cyclone_config=$(secure "$3")" --set server.realtime_priority=0 --set server.lock_memory=false \
+    $(loose_watchdogs "$2") > "$work/teleop-$1.log" 2>&1 &
+  side_pid=$!
+}
+teleop remote remote lab-r 8; remote_pid=$side_pid
+teleop master master lab-m 8; master_pid=$side_pid
+sleep 1
+teleop impostor-server master server 4; imp1=$side_pid
+teleop impostor-remote master lab-r 4; imp2=$side_pid
+wait $imp1 $imp2 $master_pid $remote_pid
+for i in impostor-server impostor-remote; do
+  grep -q "Not Allowed By Security" "$work/teleop-$i.log" ||
+    fail "a second master with the identity of '$i' was not refused: $(tail -3 "$work/teleop-$i.log")"
+done
+grep -q "peer: bound 1 times; 0 packets rejected" "$work/teleop-remote.log" ||
+  fail "the remote's link: $(grep "link's peer" "$work/teleop-remote.log")"
+grep -q "device 'remote': ok" "$work/teleop-remote.log" || fail "the remote: $(tail -3 "$work/teleop-remote.log")"
+echo "teleoperation: $(grep -o "peer: bound.*participant than the bound peer" "$work/teleop-remote.log"); impostors: $(grep -o "cannot create.*Security" "$work/teleop-impostor-server.log")"
 echo "1 passed, 0 failed"

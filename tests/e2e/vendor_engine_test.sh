@@ -66,7 +66,8 @@ run() {
 
 export FORCEDIM_SDK="$standins/forcedimension" HAPTICD_DHD_STANDIN="omega.7:10002" HAPTICD_DHD_STANDIN_BUTTONS=1 \
   HAPTICD_DHD_STANDIN_HAND=2,0,0
-run forcedimension omega forcedimension/omega-engine.yaml 2 2000 0x1
+run forcedimension omega forcedimension/omega-engine.yaml 2 2000 0x1 \
+  --set devices.omega.device.parameters.call_deadline_ms=1000  # the machine's load, not the SDK (sessions_test.sh)
 
 export OH_SDK_BASE="$standins/openhaptics" HAPTICD_HD_STANDIN="Default Device=Touch:220-10001" \
   HAPTICD_HD_STANDIN_BUTTONS=2 HAPTICD_HD_STANDIN_HAND=1.5,0,0

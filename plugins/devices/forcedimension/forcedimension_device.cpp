@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "hapticd/realtime/tick_signal.hpp"
+
 namespace hapticd::plugins::forcedimension {
 namespace {
 
@@ -60,6 +62,23 @@ ParameterSchema ForceDimensionDevice::parameter_schema() {
       .unit("N m")
       .minimum(0.0)
       .default_value(0.0);
+  s.real("call_deadline_ms",
+         "how long the loop waits for the SDK's calls of one cycle; a call that has not returned by then faults the "
+         "device, naming it")
+      .unit("ms")
+      .greater_than(0.0)
+      .maximum(5000.0)
+      .default_value(20.0);
+  s.real("open_timeout_s", "how long opening the device may take before it is given up")
+      .unit("s")
+      .greater_than(0.0)
+      .maximum(600.0)
+      .default_value(10.0);
+  s.real("calibration_timeout_s", "how long the SDK's calibration (calibrate: true) may take")
+      .unit("s")
+      .greater_than(0.0)
+      .maximum(600.0)
+      .default_value(120.0);
   s.real("max_gripper_force_n", "the largest gripper force; 0: the model's nominal")
       .unit("N")
       .minimum(0.0)
@@ -67,9 +86,20 @@ ParameterSchema ForceDimensionDevice::parameter_schema() {
   return s;
 }
 
-ForceDimensionDevice::~ForceDimensionDevice() { close_device(); }
+ForceDimensionDevice::~ForceDimensionDevice() {
+  close_device();
+  // A job still stuck in the SDK keeps the link (and the library) alive with its thread.
+  if (link_) (void)link_->sdk.stop(0.0, link_);
+}
 
-void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) {
+void ForceDimensionDevice::run_once(const char* call, const char* timeout_key, double seconds) {
+  if (link_->sdk.run(link_->once, seconds)) return;
+  throw DeviceUnavailable(std::string("the Force Dimension SDK did not return from ") + call + " within " +
+                          timeout_key + " (" + std::to_string(seconds) +
+                          " s): the device or its USB connection does not answer; the server does not use it");
+}
+
+void ForceDimensionDevice::configure(const Parameters& p, const PluginContext& context) {
   VendorLibrarySearch search;
   search.vendor = "Force Dimension SDK";
   search.names = {"libdrd.so.3", "libdrd.so", "libdhd.so.3", "libdhd.so"};
@@ -77,24 +107,42 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
   search.environment = "FORCEDIM_SDK";
   search.subdirs = {"lib", "lib/release/lin-x86_64-gcc"};
   try {
-    library_ = std::make_unique<VendorLibrary>(search);
-    dhd_ = std::make_unique<DhdApi>(*library_);
+    link_ = std::make_shared<DhdLink>(std::make_unique<VendorLibrary>(search));
   } catch (const VendorLibraryError& e) {
     throw DeviceUnavailable(e.what());
   }
+  deadline_ns_ = static_cast<std::int64_t>(p.real("call_deadline_ms") * 1e6);
+  (void)context;
+  DhdLink& l = *link_;
+  const double open_s = p.real("open_timeout_s");
   const long long serial = p.integer("serial");
-  const int opened =
-      serial > 0 ? dhd_->open_serial(static_cast<int>(serial)) : dhd_->open_id(static_cast<char>(p.integer("index")));
-  if (opened < 0) {
+  const char index = static_cast<char>(p.integer("index"));
+  l.once = [&l, serial, index] {
+    l.sdk.calling(serial > 0 ? "dhdOpenSerial" : "dhdOpenID");
+    l.opened = serial > 0 ? l.dhd->open_serial(static_cast<int>(serial)) : l.dhd->open_id(index);
+    l.once_error = vendor_text(l.dhd->last_error());
+    l.open = l.opened >= 0;
+    if (l.open) {
+      l.id = static_cast<char>(l.opened);
+      l.sdk.calling("dhdGetSystemName");
+      l.system_name = vendor_text(l.dhd->get_system_name(l.id));
+      l.sdk.calling("dhdHasGripper");
+      l.has_gripper = l.dhd->has_gripper(l.id);
+      l.sdk.calling("drdIsInitialized");
+      l.calibrated = l.dhd->drd_is_initialized == nullptr || l.dhd->drd_is_initialized(l.id);
+    } else {
+      l.sdk.calling("dhdGetDeviceCount");
+      l.device_count = l.dhd->get_device_count();
+    }
+  };
+  run_once(serial > 0 ? "dhdOpenSerial" : "dhdOpenID", "open_timeout_s", open_s);
+  if (!l.open) {
     const std::string which =
         serial > 0 ? "serial number " + std::to_string(serial) : "index " + std::to_string(p.integer("index"));
-    throw DeviceUnavailable("no Force Dimension device with " + which + " (" +
-                            std::to_string(dhd_->get_device_count()) +
-                            " connected): " + vendor_text(dhd_->last_error()));
+    throw DeviceUnavailable("no Force Dimension device with " + which + " (" + std::to_string(l.device_count) +
+                            " connected): " + l.once_error);
   }
-  id_ = static_cast<char>(opened);
-  open_ = true;
-  const std::string system = vendor_text(dhd_->get_system_name(id_));
+  const std::string system = l.system_name;
   const ModelFigures* m = figures_of(system);
   if (m == nullptr) {
     close_device();
@@ -102,21 +150,36 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
                              "' is not one this plugin knows (omega.3/6/7, sigma.7, delta.3/6, lambda.7)");
   }
   // Calibration: the robotic SDK knows whether the device has been; the haptic SDK alone cannot tell.
-  if (dhd_->drd_is_initialized != nullptr && !dhd_->drd_is_initialized(id_)) {
+  if (!l.calibrated) {
     if (!p.boolean("calibrate")) {
       close_device();
       throw std::runtime_error("the " + system +
                                " is not calibrated (the SDK: device not ready); calibrate it with the vendor's "
                                "tool, or set calibrate: true to have the SDK calibrate it (the handle moves)");
     }
-    if (dhd_->drd_open_id(id_) < 0 || dhd_->drd_auto_init(id_) < 0) {
-      const std::string why = vendor_text(dhd_->last_error());
+    l.once = [&l] {
+      l.sdk.calling("drdOpenID");
+      l.calibrated = false;
+      if (l.dhd->drd_open_id(l.id) < 0) {
+        l.once_error = vendor_text(l.dhd->last_error());
+        return;
+      }
+      l.sdk.calling("drdAutoInit");
+      if (l.dhd->drd_auto_init(l.id) < 0) {
+        l.once_error = vendor_text(l.dhd->last_error());
+        return;
+      }
+      l.calibrated = true;
+      l.sdk.calling("drdStop");
+      if (l.dhd->drd_stop != nullptr) (void)l.dhd->drd_stop(true, l.id);
+    };
+    run_once("drdAutoInit", "calibration_timeout_s", p.real("calibration_timeout_s"));
+    if (!l.calibrated) {
       close_device();
-      throw std::runtime_error("the " + system + " could not be calibrated: " + why);
+      throw std::runtime_error("the " + system + " could not be calibrated: " + l.once_error);
     }
-    if (dhd_->drd_stop != nullptr) (void)dhd_->drd_stop(true, id_);
   }
-  device_gravity_ = p.string("gravity_compensation") == "device";
+  l.device_gravity = p.string("gravity_compensation") == "device";
 
   DeviceDescription& d = description_;
   d.model = "forcedimension " + system;
@@ -124,7 +187,7 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
   HandleDescription& h = d.handle;
   h.senses_orientation = m->orientation;
   h.actuated_torque = m->torque;
-  h.has_gripper = m->gripper && dhd_->has_gripper(id_);
+  h.has_gripper = m->gripper && l.has_gripper;
   h.actuated_gripper = h.has_gripper;
   h.buttons = 1;
   h.workspace_min = Eigen::Vector3d(-m->half_x, -m->half_yz, -m->half_yz);
@@ -143,46 +206,74 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext&) 
   h.recommended_rotational_stiffness_nm_per_rad = m->rotational_stiffness;
   h.recommended_rotational_damping_nm_s_per_rad = m->rotational_damping;
   d.capabilities.brakes = true;
+  l.orientation = h.senses_orientation;
+  l.gripper = h.has_gripper;
 }
 
-const char* ForceDimensionDevice::failure(const char* what) noexcept {
+const char* ForceDimensionDevice::failure(const char* reason) noexcept {
   std::array<char, 256>& text = errors_[static_cast<std::size_t>(error_)];
-  if (text[0] == '\0') std::snprintf(text.data(), text.size(), "%s: %.200s", what, dhd_->last_error());
+  if (text[0] == '\0') std::snprintf(text.data(), text.size(), "%s", reason);
   return text.data();
 }
 
+const char* ForceDimensionDevice::stuck() noexcept {
+  char reason[256];
+  const SdkThread& sdk = link_->sdk;
+  const double ms = static_cast<double>(realtime::TickSignal::now_ns() - sdk.stuck_since_ns()) * 1e-6;
+  if (sdk.stuck_in()[0] != '\0')
+    std::snprintf(reason, sizeof reason,
+                  "the Force Dimension SDK has not returned from %s in %.0f ms (call_deadline_ms)", sdk.stuck_in(), ms);
+  else  // between calls: the thread itself was not run in time
+    std::snprintf(reason, sizeof reason,
+                  "the thread that calls the Force Dimension SDK did not run within call_deadline_ms (%.0f ms): the "
+                  "machine is overloaded",
+                  static_cast<double>(deadline_ns_) * 1e-6);
+  return failure(reason);
+}
+
+Outcome ForceDimensionDevice::reported() noexcept {
+  if (!link_->failed) return Outcome::success();
+  link_->failed = false;  // told once
+  return Outcome::failure(failure(link_->error.data()));
+}
+
+Outcome ForceDimensionDevice::run_job(const SdkThread::Job& job) noexcept {
+  SdkThread& sdk = link_->sdk;
+  // The previous job has returned (one stuck past its deadline: the fault), and its failure has been told.
+  if (!sdk.wait(posted_ns_ + deadline_ns_)) return Outcome::failure(stuck());
+  if (Outcome previous = reported(); !previous.ok()) return previous;
+  posted_ns_ = realtime::TickSignal::now_ns();
+  if (!sdk.post(job) || !sdk.wait(posted_ns_ + deadline_ns_)) return Outcome::failure(stuck());
+  return reported();
+}
+
 Outcome ForceDimensionDevice::enable() {
-  if (!open_) return Outcome::failure("the Force Dimension device is not open");
+  if (!link_ || !link_->open) return Outcome::failure("the Force Dimension device is not open");
   errors_[static_cast<std::size_t>(error_)][0] = '\0';
   gripper_read_ = false;
-  if (dhd_->set_gravity_compensation(device_gravity_ ? 1 : 0, id_) < 0)
-    return Outcome::failure(failure("gravity compensation"));
-  if (dhd_->enable_force(1, id_) < 0) return Outcome::failure(failure("enabling forces"));
-  if (dhd_->set_brakes(0, id_) < 0) return Outcome::failure(failure("releasing the brakes"));
-  return Outcome::success();
+  link_->failed = false;
+  if (!link_->sdk.run(link_->enable_job, 1.0)) return Outcome::failure(stuck());
+  return reported();
 }
 
 Outcome ForceDimensionDevice::read(const CycleTime& cycle, DeviceState& state) {
+  if (Outcome done = run_job(link_->read_job); !done.ok()) return done;
+  const DhdReading& r = link_->reading;
   HandleState& h = state.handle;
   state.timestamp_ns = cycle.time_ns;
-  if (dhd_->get_position(&h.pose.position.x(), &h.pose.position.y(), &h.pose.position.z(), id_) < 0)
-    return Outcome::failure(failure("reading the position"));
-  if (dhd_->get_linear_velocity(&h.twist.linear.x(), &h.twist.linear.y(), &h.twist.linear.z(), id_) < 0)
-    return Outcome::failure(failure("reading the velocity"));
+  h.pose.position = Eigen::Vector3d(r.position[0], r.position[1], r.position[2]);
+  h.twist.linear = Eigen::Vector3d(r.velocity[0], r.velocity[1], r.velocity[2]);
   if (description_.handle.senses_orientation) {
-    double r[3][3];
-    if (dhd_->get_orientation_frame(r, id_) < 0) return Outcome::failure(failure("reading the orientation"));
     Eigen::Matrix3d m;
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) m(i, j) = r[i][j];
+      for (int j = 0; j < 3; ++j) m(i, j) = r.frame[i][j];
     h.pose.orientation = Eigen::Quaterniond(m);
-    if (dhd_->get_angular_velocity_rad(&h.twist.angular.x(), &h.twist.angular.y(), &h.twist.angular.z(), id_) < 0)
-      return Outcome::failure(failure("reading the angular velocity"));
+    h.twist.angular = Eigen::Vector3d(r.angular_velocity[0], r.angular_velocity[1], r.angular_velocity[2]);
   }
-  h.buttons = dhd_->get_button_mask(id_);
+  h.buttons = r.buttons;
   if (description_.handle.has_gripper) {
     const double before = h.gripper;
-    if (dhd_->get_gripper_angle_rad(&h.gripper, id_) < 0) return Outcome::failure(failure("reading the gripper"));
+    h.gripper = r.gripper_rad;
     // The first sample has nothing to differentiate against: rate zero, not a jump from zero.
     h.gripper_rate = gripper_read_ && cycle.period_ns > 0
                          ? (h.gripper - before) / (static_cast<double>(cycle.period_ns) * 1e-9)
@@ -196,20 +287,21 @@ Outcome ForceDimensionDevice::write(const CycleTime&, const JointCommand& comman
   const HandleDescription& h = description_.handle;
   const JointVector& e = command.torque_nm;
   if (e.size() != h.axes()) return Outcome::failure("the command does not match the device's axes");
-  const double tx = h.actuated_torque ? e[3] : 0.0, ty = h.actuated_torque ? e[4] : 0.0,
-               tz = h.actuated_torque ? e[5] : 0.0;
-  const double grip = h.actuated_gripper ? e[e.size() - 1] : 0.0;
-  const int r = dhd_->set_force_and_torque_and_gripper_force(e[0], e[1], e[2], tx, ty, tz, grip, id_);
-  if (r < 0) return Outcome::failure(failure("writing the force"));
-  return Outcome::success();  // r == kMotorSaturated: the device clamped it, within its own limits
+  std::array<double, 7>& f = link_->force;
+  if (link_->sdk.busy()) return Outcome::failure(stuck());  // the job's input is the SDK thread's until it returns
+  f = {e[0], e[1], e[2], 0.0, 0.0, 0.0, 0.0};
+  if (h.actuated_torque) f[3] = e[3], f[4] = e[4], f[5] = e[5];
+  if (h.actuated_gripper) f[6] = e[e.size() - 1];
+  return run_job(link_->write_job);
 }
 
 Outcome ForceDimensionDevice::brake(bool on) {
-  if (dhd_->set_brakes(on ? 1 : 0, id_) < 0) return Outcome::failure(failure(on ? "braking" : "releasing the brakes"));
-  return Outcome::success();
+  link_->brakes_on = on;
+  return run_job(link_->brake_job);
 }
 
 Outcome ForceDimensionDevice::reset_fault() {
+  if (link_->sdk.busy()) return Outcome::failure(stuck());  // the SDK has not come back: nothing to recover to
   // A recovery: the next failure says its own reason, in the other buffer.
   error_ = 1 - error_;
   errors_[static_cast<std::size_t>(error_)][0] = '\0';
@@ -219,12 +311,11 @@ Outcome ForceDimensionDevice::reset_fault() {
 void ForceDimensionDevice::disable() { close_device(); }
 
 void ForceDimensionDevice::close_device() noexcept {
-  if (!open_ || !dhd_) return;
-  (void)dhd_->set_force_and_torque_and_gripper_force(0, 0, 0, 0, 0, 0, 0, id_);
-  (void)dhd_->enable_force(0, id_);
-  (void)dhd_->set_brakes(1, id_);
-  (void)dhd_->close(id_);
-  open_ = false;
+  if (!link_ || !link_->open) return;
+  // Zero force, forces off, brakes on, closed: on the SDK's thread, 0.5 s at most (a device that does not answer
+  // is left to its own watchdog; its fault has said so).
+  if (!link_->sdk.wait(realtime::TickSignal::now_ns() + 500'000'000)) return;
+  (void)link_->sdk.run(link_->close_job, 0.5);
 }
 
 }  // namespace hapticd::plugins::forcedimension

@@ -3,6 +3,10 @@
 // time ("forcedimension", docs/devices.md). A handle device (hapticd/handle.hpp): read() takes the handle's
 // position, orientation, linear and angular velocity, buttons and gripper; write() sets force, torque and gripper
 // force in one call; brake() engages the device's electromagnetic brakes. Every failure carries the SDK's own text.
+// Every SDK call runs on the SDK's own thread (DhdLink, SdkThread) with a deadline: read() waits for its reading at
+// most `call_deadline_ms`, write() for the force's call the same; a call that has not returned by then faults the
+// device naming the call, and the loop goes on. Configure's open and calibration have deadlines of their own
+// (`open_timeout_s`, `calibration_timeout_s`).
 //   configure: load libdrd (or libdhd) from `sdk_path`, FORCEDIM_SDK or the library path; open the device by
 //              `serial` or `index`; refuse an uncalibrated device with the vendor's message unless `calibrate`
 //              asks the robotic SDK (libdrd) to calibrate it; describe it from its model's nominal figures.
@@ -13,9 +17,8 @@
 #include <memory>
 #include <string>
 
-#include "dhd_api.hpp"
+#include "dhd_link.hpp"
 #include "hapticd/device.hpp"
-#include "vendor_library.hpp"
 
 namespace hapticd::plugins::forcedimension {
 
@@ -34,16 +37,24 @@ class ForceDimensionDevice final : public Device {
   void disable() override;
 
  private:
-  // The SDK's text of its last error, kept for the fault: the first since the last enable or recovery. Two
-  // buffers in turn, so a recovery never rewrites the text of the fault another thread may still be reading.
-  const char* failure(const char* what) noexcept;
+  // The reason of a fault, kept: the first since the last enable or recovery. Two buffers in turn, so a recovery
+  // never rewrites the text of the fault another thread may still be reading.
+  const char* failure(const char* text) noexcept;
+  // The fault of a job that missed its deadline: the SDK call it is stuck in, and for how long.
+  const char* stuck() noexcept;
+  // The loop: `job` posted once the previous one has finished (within its deadline; its failure told first) and
+  // waited for. A failure: the SDK's, or stuck().
+  Outcome run_job(const SdkThread::Job& job) noexcept;
+  // A failure of the last job not told yet (told once).
+  Outcome reported() noexcept;
+  // Configure: `job` (link_->once) run with a deadline of `seconds`; throws DeviceUnavailable naming `call` when
+  // it does not return in time.
+  void run_once(const char* call, const char* timeout_key, double seconds);
   void close_device() noexcept;
 
-  std::unique_ptr<VendorLibrary> library_;
-  std::unique_ptr<DhdApi> dhd_;
-  char id_ = -1;
-  bool open_ = false;
-  bool device_gravity_ = true;
+  std::shared_ptr<DhdLink> link_;
+  std::int64_t deadline_ns_ = 20'000'000;
+  std::int64_t posted_ns_ = 0;  // when the last job was posted
   DeviceDescription description_;
   std::array<std::array<char, 256>, 2> errors_{};
   int error_ = 0;              // the buffer in use

@@ -4,35 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <mutex>
 #include <stdexcept>
 #include <thread>
 
+#include "hapticd/realtime/tick_signal.hpp"
+
 namespace hapticd::plugins::openhaptics {
-namespace {
-
-// The HD scheduler is one per process, shared by every device: started by the first enable(), stopped by the
-// last disable().
-std::mutex scheduler_mutex;
-int scheduler_users = 0;
-
-HDCallbackCode servo_callback(void* self) { return static_cast<OpenHapticsDevice*>(self)->servo(); }
-
-}  // namespace
-
-HdErrors HdErrors::of(const HdApi& hd) noexcept {
-  HdErrors errors;
-  errors.drain(hd);
-  return errors;
-}
-
-void HdErrors::drain(const HdApi& hd) noexcept {
-  for (int i = 0; i < 16; ++i) {
-    const HDErrorInfo e = hd.get_error();
-    if (e.errorCode == kSuccess) return;
-    add(e);
-  }
-}
 
 ParameterSchema OpenHapticsDevice::parameter_schema() {
   ParameterSchema s;
@@ -44,11 +21,29 @@ ParameterSchema OpenHapticsDevice::parameter_schema() {
       .unit("N")
       .minimum(0.0)
       .default_value(0.0);
+  s.real("open_timeout_s", "how long opening the device and reading its figures may take before it is given up")
+      .unit("s")
+      .greater_than(0.0)
+      .maximum(600.0)
+      .default_value(10.0);
   ServoHandoff<HdSample, HdCommand>::add_parameters(s);
   return s;
 }
 
-OpenHapticsDevice::~OpenHapticsDevice() { close_device(); }
+OpenHapticsDevice::~OpenHapticsDevice() {
+  close_device();
+  // A call still stuck in the SDK keeps the link (the library, the callback's state) alive with its thread.
+  if (link_) (void)link_->sdk.stop(0.0, link_);
+}
+
+void OpenHapticsDevice::run_once(const char* timeout_key, double seconds) {
+  if (link_->sdk.run(link_->once, seconds)) return;
+  const char* call = link_->sdk.stuck_in();
+  throw DeviceUnavailable(std::string("the OpenHaptics SDK did not return from ") +
+                          (call[0] != '\0' ? call : "a call") + " within " + timeout_key + " (" +
+                          std::to_string(seconds) +
+                          " s): the device or its connection does not answer; the server does not use it");
+}
 
 void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& context) {
   VendorLibrarySearch search;
@@ -58,82 +53,112 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
   search.environment = "OH_SDK_BASE";
   search.subdirs = {"lib", "lib64"};
   try {
-    library_ = std::make_unique<VendorLibrary>(search);
-    hd_ = std::make_unique<HdApi>(*library_);
+    link_ = std::make_shared<HdLink>(std::make_unique<VendorLibrary>(search));
   } catch (const VendorLibraryError& e) {
     throw DeviceUnavailable(e.what());
   }
+  HdLink& l = *link_;
+  const double open_s = p.real("open_timeout_s");
   const std::string name = p.string("device_name");
-  handle_ = hd_->init_device(name.empty() ? nullptr : name.c_str());
-  if (const HDErrorInfo e = hd_->get_error(); handle_ == kInvalidHandle || e.errorCode != kSuccess) {
-    handle_ = kInvalidHandle;
-    throw DeviceUnavailable(
-        "cannot open the OpenHaptics device " + (name.empty() ? "(the default)" : "'" + name + "'") + ": " +
-        vendor_text(hd_->text_of(e.errorCode)) + " (internal code " + std::to_string(e.internalErrorCode) + ")");
-  }
-  hd_->make_current_device(handle_);
-  const std::string model = vendor_text(hd_->get_string(kDeviceModelType));
-
+  std::string open_error;
+  // Open, then what the device says of itself; the calibration checked. On the SDK's thread, with a deadline.
+  l.once = [&l, name, rate = std::lround(context.rate_hz)] {
+    const HdApi& hd = *l.hd;
+    HdFacts& f = l.facts;
+    l.failed = "";
+    l.sdk.calling("hdInitDevice");
+    l.handle = hd.init_device(name.empty() ? nullptr : name.c_str());
+    if (const HDErrorInfo e = hd.get_error(); l.handle == kInvalidHandle || e.errorCode != kSuccess) {
+      l.handle = kInvalidHandle;
+      l.errors = HdErrors{};
+      l.errors.add(e);
+      l.failed = "hdInitDevice";
+      return;
+    }
+    l.sdk.calling("hdMakeCurrentDevice");
+    hd.make_current_device(l.handle);
+    l.sdk.calling("hdGetString");
+    f.model = vendor_text(hd.get_string(kDeviceModelType));
+    f.serial = vendor_text(hd.get_string(kDeviceSerialNumber), "");
+    l.sdk.calling("hdCheckCalibration");
+    f.calibration = hd.check_calibration();
+    if (f.calibration == kCalibrationNeedsUpdate) {
+      int styles = 0;
+      hd.get_integerv(kCalibrationStyle, &styles);
+      const int style = (styles & kCalibrationAuto)           ? kCalibrationAuto
+                        : (styles & kCalibrationEncoderReset) ? kCalibrationEncoderReset
+                                                              : kCalibrationInkwell;
+      l.sdk.calling("hdUpdateCalibration");
+      hd.update_calibration(static_cast<HDenum>(style));
+      if (l.errors = HdErrors::of(hd); l.errors.count > 0) {
+        l.failed = "hdUpdateCalibration";
+        return;
+      }
+    }
+    l.sdk.calling("hdSetSchedulerRate");
+    hd.set_scheduler_rate(static_cast<unsigned long>(rate));
+    if (l.errors = HdErrors::of(hd); l.errors.count > 0) {
+      l.failed = "hdSetSchedulerRate";
+      return;
+    }
+    l.sdk.calling("hdGetDoublev");
+    hd.get_integerv(kInputDof, &f.input_dof);
+    hd.get_integerv(kOutputDof, &f.output_dof);
+    hd.get_doublev(kUsableWorkspaceDimensions, f.workspace);
+    hd.get_doublev(kNominalMaxForce, &f.max_force);
+    hd.get_doublev(kNominalMaxContinuousForce, &f.continuous);
+    hd.get_doublev(kNominalMaxStiffness, &f.stiffness);
+    hd.get_doublev(kNominalMaxDamping, &f.damping);
+    if (f.output_dof >= 6) {
+      hd.get_doublev(kNominalMaxTorqueForce, &f.max_torque_mnm);
+      hd.get_doublev(kNominalMaxTorqueStiffness, &f.torque_stiffness);
+      hd.get_doublev(kNominalMaxTorqueDamping, &f.torque_damping);
+      (void)HdErrors::of(hd);  // a figure the device does not report stays 0 (each one left an error)
+    }
+  };
+  run_once("open_timeout_s", open_s);
+  const HdFacts& f = l.facts;
+  const std::string failed = l.failed;
+  const std::string sdk_text =
+      l.errors.count > 0 ? vendor_text(l.hd->text_of(l.errors.first[0].errorCode)) : std::string("no error");
+  if (failed == "hdInitDevice")
+    throw DeviceUnavailable("cannot open the OpenHaptics device " +
+                            (name.empty() ? "(the default)" : "'" + name + "'") + ": " + sdk_text + " (internal code " +
+                            std::to_string(l.errors.first[0].internalErrorCode) + ")");
+  const std::string model = f.model;
   // Calibration: an update the SDK makes itself (nothing moves); the inkwell needs the user.
-  const HDenum calibration = hd_->check_calibration();
-  if (calibration == kCalibrationNeedsManualInput) {
+  if (f.calibration == kCalibrationNeedsManualInput) {
     close_device();
     throw std::runtime_error("the " + model +
                              " needs calibrating (the SDK: HD_CALIBRATION_NEEDS_MANUAL_INPUT): put the stylus into "
                              "the inkwell, or calibrate it with Touch Diagnostic, then start again");
   }
-  if (calibration == kCalibrationNeedsUpdate) {
-    int styles = 0;
-    hd_->get_integerv(kCalibrationStyle, &styles);
-    const int style = (styles & kCalibrationAuto)           ? kCalibrationAuto
-                      : (styles & kCalibrationEncoderReset) ? kCalibrationEncoderReset
-                                                            : kCalibrationInkwell;
-    hd_->update_calibration(static_cast<HDenum>(style));
-    if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess) {
-      close_device();
-      throw std::runtime_error("the " + model +
-                               " could not update its calibration: " + vendor_text(hd_->text_of(e.errorCode)));
-    }
+  if (failed == "hdUpdateCalibration") {
+    close_device();
+    throw std::runtime_error("the " + model + " could not update its calibration: " + sdk_text);
   }
-
-  handoff_.configure(p, context.rate_hz);
-  hd_->set_scheduler_rate(static_cast<unsigned long>(std::lround(context.rate_hz)));
-  if (const HDErrorInfo e = hd_->get_error(); e.errorCode != kSuccess) {
+  if (failed == "hdSetSchedulerRate") {
     close_device();
     throw std::runtime_error("the HD scheduler cannot run at the session's rate of " + std::to_string(context.rate_hz) +
-                             " Hz (" + vendor_text(hd_->text_of(e.errorCode)) +
-                             "): set server.rate_hz to one it supports, e.g. 1000");
+                             " Hz (" + sdk_text + "): set server.rate_hz to one it supports, e.g. 1000");
   }
-
-  int input_dof = 0, output_dof = 0;
-  hd_->get_integerv(kInputDof, &input_dof);
-  hd_->get_integerv(kOutputDof, &output_dof);
-  double workspace[6] = {0, 0, 0, 0, 0, 0}, max_force = 0, continuous = 0, stiffness = 0, damping = 0;
-  hd_->get_doublev(kUsableWorkspaceDimensions, workspace);
-  hd_->get_doublev(kNominalMaxForce, &max_force);
-  hd_->get_doublev(kNominalMaxContinuousForce, &continuous);
-  hd_->get_doublev(kNominalMaxStiffness, &stiffness);
-  hd_->get_doublev(kNominalMaxDamping, &damping);
-  const std::string serial = vendor_text(hd_->get_string(kDeviceSerialNumber), "");
+  l.handoff.configure(p, context.rate_hz);
 
   DeviceDescription& d = description_;
-  d.model = "openhaptics " + model + (serial.empty() ? std::string() : " " + serial);
+  d.model = "openhaptics " + model + (f.serial.empty() ? std::string() : " " + f.serial);
   d.interface = DeviceInterface::handle;
   HandleDescription& h = d.handle;
-  h.senses_orientation = input_dof >= 6;
+  h.senses_orientation = f.input_dof >= 6;
   h.buttons = 2;
-  if (output_dof >= 6) {  // a PHANTOM with 6-DOF output: torques about the handle, Cartesian (HD_CURRENT_TORQUE)
-    double max_torque_mnm = 0, torque_stiffness = 0, torque_damping = 0;
-    hd_->get_doublev(kNominalMaxTorqueForce, &max_torque_mnm);
-    hd_->get_doublev(kNominalMaxTorqueStiffness, &torque_stiffness);
-    hd_->get_doublev(kNominalMaxTorqueDamping, &torque_damping);
-    (void)HdErrors::of(*hd_);  // a figure the device does not report stays 0 (each one left an error)
-    h.actuated_torque = max_torque_mnm > 0.0;
-    h.max_torque_nm = max_torque_mnm * 1e-3;
-    h.recommended_rotational_stiffness_nm_per_rad = torque_stiffness * 1e-3;
-    h.recommended_rotational_damping_nm_s_per_rad = torque_damping * 1e-3;
+  if (f.output_dof >= 6) {  // a PHANTOM with 6-DOF output: torques about the handle, Cartesian (HD_CURRENT_TORQUE)
+    h.actuated_torque = f.max_torque_mnm > 0.0;
+    h.max_torque_nm = f.max_torque_mnm * 1e-3;
+    h.recommended_rotational_stiffness_nm_per_rad = f.torque_stiffness * 1e-3;
+    h.recommended_rotational_damping_nm_s_per_rad = f.torque_damping * 1e-3;
   }
-  const Eigen::Vector3d lo(workspace[0], workspace[1], workspace[2]), hi(workspace[3], workspace[4], workspace[5]);
+  l.actuated_torque = h.actuated_torque;
+  const Eigen::Vector3d lo(f.workspace[0], f.workspace[1], f.workspace[2]),
+      hi(f.workspace[3], f.workspace[4], f.workspace[5]);
   if ((hi - lo).minCoeff() > 0.0) {
     h.workspace_min = lo * 1e-3;
     h.workspace_max = hi * 1e-3;
@@ -141,17 +166,17 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
     h.workspace_min = Eigen::Vector3d::Constant(-0.08);
     h.workspace_max = Eigen::Vector3d::Constant(0.08);
   }
-  if (!(max_force > 0.0)) {
+  if (!(f.max_force > 0.0)) {
     close_device();
     throw std::runtime_error("the " + model + " reports no nominal force (HD_NOMINAL_MAX_FORCE)");
   }
   const double asked = p.real("max_force_n");
-  if (asked > max_force)
-    throw ParameterError("max_force_n", "above the " + model + "'s nominal " + std::to_string(max_force));
-  h.max_force_n = asked > 0.0 ? asked : max_force;
-  h.continuous_force_n = continuous > 0.0 ? std::min(continuous, h.max_force_n) : 0.0;
-  h.recommended_stiffness_n_per_m = stiffness * 1e3;  // N/mm
-  h.recommended_damping_n_s_per_m = damping * 1e3;    // N s/mm
+  if (asked > f.max_force)
+    throw ParameterError("max_force_n", "above the " + model + "'s nominal " + std::to_string(f.max_force));
+  h.max_force_n = asked > 0.0 ? asked : f.max_force;
+  h.continuous_force_n = f.continuous > 0.0 ? std::min(f.continuous, h.max_force_n) : 0.0;
+  h.recommended_stiffness_n_per_m = f.stiffness * 1e3;  // N/mm
+  h.recommended_damping_n_s_per_m = f.damping * 1e3;    // N s/mm
 }
 
 const char* OpenHapticsDevice::failure(const char* what, const HdErrors& errors) noexcept {
@@ -165,7 +190,7 @@ const char* OpenHapticsDevice::failure(const char* what, const HdErrors& errors)
   for (int i = 0; i < shown && used > 0 && used < static_cast<int>(text.size()); ++i) {
     const HDErrorInfo& e = errors.first[static_cast<std::size_t>(i)];
     used += std::snprintf(text.data() + used, text.size() - static_cast<std::size_t>(used),
-                          "%s%.200s (HD error 0x%04x, internal %d)", i > 0 ? "; " : "", hd_->text_of(e.errorCode),
+                          "%s%.200s (HD error 0x%04x, internal %d)", i > 0 ? "; " : "", link_->hd->text_of(e.errorCode),
                           e.errorCode, e.internalErrorCode);
   }
   if (errors.count > shown && used > 0 && used < static_cast<int>(text.size()))
@@ -175,77 +200,37 @@ const char* OpenHapticsDevice::failure(const char* what, const HdErrors& errors)
 }
 
 Outcome OpenHapticsDevice::enable() {
-  if (handle_ == kInvalidHandle) return Outcome::failure("the OpenHaptics device is not open");
+  if (!link_ || link_->handle == kInvalidHandle) return Outcome::failure("the OpenHaptics device is not open");
+  HdLink& l = *link_;
   errors_[static_cast<std::size_t>(error_)][0] = '\0';
   have_sample_ = false;
-  applied_ = HdCommand{};
-  handoff_.reset();
-  end_errors_ = HdErrors{};
-  hd_->make_current_device(handle_);
-  (void)HdErrors::of(*hd_);  // nothing of configure's queries may be told as this start's, or a frame's, error
-  hd_->enable(kForceOutput);
-  if (const HdErrors e = HdErrors::of(*hd_); e.count > 0) return Outcome::failure(failure("enabling forces", e));
-  ended_.store(false);
-  running_.store(true);
-  callback_ = hd_->schedule_asynchronous(&servo_callback, this, kMaxSchedulerPriority);
-  if (const HdErrors e = HdErrors::of(*hd_); e.count > 0) {
-    running_.store(false);
-    return Outcome::failure(failure("scheduling the servo callback", e));
+  if (l.sdk.busy()) return Outcome::failure("the OpenHaptics SDK has not returned from an earlier call");
+  l.handoff.reset();
+  l.once = [&l] { l.start(); };
+  if (!l.sdk.run(l.once, 2.0)) {
+    const char* call = l.sdk.stuck_in();
+    char reason[160];
+    std::snprintf(reason, sizeof reason, "the OpenHaptics SDK did not return from %s within 2 s",
+                  call[0] != '\0' ? call : "a call");
+    return Outcome::failure(failure(reason, HdErrors{}));
   }
-  scheduled_ = true;
-  {
-    std::lock_guard lock(scheduler_mutex);
-    if (scheduler_users++ == 0) hd_->start_scheduler();
-  }
-  if (const HdErrors e = HdErrors::of(*hd_); e.count > 0)
-    return Outcome::failure(failure("starting the HD scheduler", e));
+  if (l.failed[0] != '\0') return Outcome::failure(failure(l.failed, l.errors));
   // The first sample before the first cycle (the loop may not run on the device's clock).
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-  const std::uint64_t before = handoff_.samples();
-  while (handoff_.samples() == before && std::chrono::steady_clock::now() < until)
+  const std::int64_t until = realtime::TickSignal::now_ns() + 1'000'000'000;
+  const std::uint64_t before = l.handoff.samples();
+  while (l.handoff.samples() == before && realtime::TickSignal::now_ns() < until)
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  if (handoff_.samples() == before)
+  if (l.handoff.samples() == before)
     return Outcome::failure("the HD scheduler did not call the servo callback within 1 s");
   return Outcome::success();
 }
 
-HDCallbackCode OpenHapticsDevice::servo() noexcept {
-  if (!running_.load(std::memory_order_acquire)) {  // the end: one frame with no force, then done
-    const double zero[3] = {0, 0, 0};
-    hd_->begin_frame(handle_);
-    hd_->set_doublev(kCurrentForce, zero);
-    if (description_.handle.actuated_torque) hd_->set_doublev(kCurrentTorque, zero);
-    hd_->end_frame(handle_);
-    ended_.store(true, std::memory_order_release);
-    return kCallbackDone;
-  }
-  HdSample s;
-  hd_->begin_frame(handle_);
-  hd_->get_doublev(kCurrentPosition, s.position_mm.data());
-  hd_->get_doublev(kCurrentVelocity, s.velocity_mm_s.data());
-  hd_->get_doublev(kCurrentTransform, s.transform.data());
-  hd_->get_doublev(kCurrentAngularVelocity, s.angular_velocity.data());
-  hd_->get_doublev(kCurrentJointAngles, s.joint_angles.data());
-  hd_->get_doublev(kCurrentGimbalAngles, s.gimbal_angles.data());
-  hd_->get_integerv(kCurrentButtons, &s.buttons);
-  s.errors = end_errors_;  // the previous frame's end first
-  s.errors.drain(*hd_);
-  s.time_ns = realtime::TickSignal::now_ns();
-  handoff_.publish(s, s.time_ns);
-  handoff_.next_command(applied_);  // on the device's clock: the loop's answer to this tick
-  hd_->set_doublev(kCurrentForce, applied_.force_n.data());
-  if (description_.handle.actuated_torque) hd_->set_doublev(kCurrentTorque, applied_.torque_mnm.data());
-  hd_->end_frame(handle_);
-  end_errors_ = HdErrors{};  // told with the next sample
-  end_errors_.drain(*hd_);
-  return kCallbackContinue;
-}
-
 Outcome OpenHapticsDevice::read(const CycleTime& cycle, DeviceState& state) {
-  if (handoff_.take(sample_)) have_sample_ = true;
+  ServoHandoff<HdSample, HdCommand>& handoff = link_->handoff;
+  if (handoff.take(sample_)) have_sample_ = true;
   if (!have_sample_) return Outcome::failure("no sample from the HD scheduler yet");
   if (sample_.errors.count > 0) return Outcome::failure(failure("the servo frame", sample_.errors));
-  if (realtime::TickSignal::now_ns() - sample_.time_ns > handoff_.max_sample_age_ns())
+  if (realtime::TickSignal::now_ns() - sample_.time_ns > handoff.max_sample_age_ns())
     return Outcome::failure("no sample from the HD scheduler within max_sample_age_s (it stopped calling)");
   HandleState& h = state.handle;
   state.timestamp_ns = cycle.time_ns;
@@ -282,7 +267,7 @@ Outcome OpenHapticsDevice::write(const CycleTime&, const JointCommand& command) 
       c.torque_mnm[i] = e[3 + i] * 1e3;
     }
   }
-  handoff_.command(c);
+  link_->handoff.command(c);
   return Outcome::success();
 }
 
@@ -296,23 +281,12 @@ Outcome OpenHapticsDevice::reset_fault() {
 void OpenHapticsDevice::disable() { close_device(); }
 
 void OpenHapticsDevice::close_device() noexcept {
-  if (!hd_ || handle_ == kInvalidHandle) return;
-  running_.store(false, std::memory_order_release);
-  if (scheduled_) {
-    // The callback's last frame writes no force (on the scheduler's thread, where frames belong); 0.1 s at most.
-    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
-    while (!ended_.load(std::memory_order_acquire) && std::chrono::steady_clock::now() < until)
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    hd_->unschedule(callback_);
-    scheduled_ = false;
-    std::lock_guard lock(scheduler_mutex);
-    if (--scheduler_users == 0) hd_->stop_scheduler();
-  }
-  hd_->make_current_device(handle_);
-  hd_->disable(kForceOutput);
-  hd_->disable_device(handle_);
-  (void)HdErrors::of(*hd_);
-  handle_ = kInvalidHandle;
+  if (!link_ || link_->handle == kInvalidHandle) return;
+  // On the SDK's thread, 1 s at most; a call that hangs is left to it (the device's own watchdog stops its motors).
+  if (!link_->sdk.wait(realtime::TickSignal::now_ns() + 1'000'000'000)) return;
+  HdLink& l = *link_;
+  l.once = [&l] { l.close(); };
+  (void)l.sdk.run(l.once, 1.0);
 }
 
 }  // namespace hapticd::plugins::openhaptics

@@ -16,51 +16,16 @@
 //              clocks the loop, the callback waits for the loop's force of its own tick (bounded:
 //              `command_wait_us`); a late one is held for `hold_ticks` ticks, then the callback writes zero.
 //   disable:   the callback ends, zero force, forces off, the scheduler stopped (by the last device), closed.
+// Every call but the callback's runs on the SDK's own thread (HdLink, SdkThread) with a deadline: opening and
+// configure's queries `open_timeout_s`, enable 2 s, disable 1 s; a call that does not return in time is named in the
+// error (configure, enable) and left to its thread (disable).
 #include <array>
-#include <atomic>
-#include <cstdint>
 #include <memory>
-#include <string>
 
 #include "hapticd/device.hpp"
-#include "hd_api.hpp"
-#include "servo_handoff.hpp"
-#include "vendor_library.hpp"
+#include "hd_link.hpp"
 
 namespace hapticd::plugins::openhaptics {
-
-// The HD error stack as a frame left it: the first errors popped (the newest first) and how many there were.
-struct HdErrors {
-  std::array<HDErrorInfo, 3> first{};
-  int count = 0;
-  void add(const HDErrorInfo& e) noexcept {
-    if (count < static_cast<int>(first.size())) first[static_cast<std::size_t>(count)] = e;
-    ++count;
-  }
-  // Pops the stack (at most 16: a bounded frame) into this.
-  void drain(const HdApi& hd) noexcept;
-  // The stack as it is now, popped.
-  [[nodiscard]] static HdErrors of(const HdApi& hd) noexcept;
-};
-
-// One frame of the callback, for the loop.
-struct HdSample {
-  std::int64_t time_ns = 0;  // CLOCK_MONOTONIC, when the callback took it
-  std::array<double, 3> position_mm{};
-  std::array<double, 3> velocity_mm_s{};
-  std::array<double, 16> transform{};  // column-major, translation in mm
-  std::array<double, 3> angular_velocity{};
-  std::array<double, 3> joint_angles{};   // rad
-  std::array<double, 3> gimbal_angles{};  // rad
-  int buttons = 0;
-  HdErrors errors;  // the stack after this frame's reads (and the previous frame's end)
-};
-
-// The loop's force (and torque, on a device with 6-DOF output) for the callback.
-struct HdCommand {
-  std::array<double, 3> force_n{};
-  std::array<double, 3> torque_mnm{};
-};
 
 class OpenHapticsDevice final : public Device {
  public:
@@ -74,28 +39,17 @@ class OpenHapticsDevice final : public Device {
   Outcome write(const CycleTime& cycle, const JointCommand& command) override;
   Outcome reset_fault() override;
   void disable() override;
-  DeviceClock* clock() noexcept override { return handoff_.clock(); }
-
-  // The HD scheduler's thread, once per tick.
-  HDCallbackCode servo() noexcept;
+  DeviceClock* clock() noexcept override { return link_ ? link_->handoff.clock() : nullptr; }
 
  private:
   const char* failure(const char* what, const HdErrors& errors) noexcept;
+  // Configure: link_->once run with a deadline of `seconds`; throws DeviceUnavailable naming the call it is stuck
+  // in when it does not return in time.
+  void run_once(const char* timeout_key, double seconds);
   void close_device() noexcept;
 
-  std::unique_ptr<VendorLibrary> library_;
-  std::unique_ptr<HdApi> hd_;
-  HHD handle_ = kInvalidHandle;
+  std::shared_ptr<HdLink> link_;
   DeviceDescription description_;
-
-  // Callback <-> loop.
-  ServoHandoff<HdSample, HdCommand> handoff_;
-  std::atomic<bool> running_{false};  // the callback continues while set
-  std::atomic<bool> ended_{false};    // the callback wrote its last frame
-  HDSchedulerHandle callback_ = 0;
-  bool scheduled_ = false;
-  HdCommand applied_;    // the callback's: the force it writes
-  HdErrors end_errors_;  // the callback's: the previous frame's end, for the next sample
 
   // Loop.
   HdSample sample_;

@@ -10,9 +10,12 @@
 // standin_dhd_setup), a fixed physics step (lockstep: standin_dhd_set_step or HAPTICD_DHD_STANDIN_STEP) or the
 // wall clock, buttons held and the hand's push (standin_dhd_hand, or HAPTICD_DHD_STANDIN_BUTTONS and
 // HAPTICD_DHD_STANDIN_HAND "fx,fy,fz" for a run of the server), faults on cue (unplugged, one failing
-// force call, uncalibrated), and a log of the lifecycle calls.
+// force call, uncalibrated, a call that hangs: "hang_open", "hang_position", "hang_force" until "release" - or
+// HAPTICD_DHD_STANDIN_HANG=open|position|force for a run of the server; a hung call returns after 60 s at most),
+// and a log of the lifecycle calls.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +23,7 @@
 #include <cstring>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "hand_trigger.hpp"
@@ -57,6 +61,35 @@ struct Device {
 };
 
 std::mutex mutex;  // the plugin's loop and a test's control calls
+
+// A call that hangs on cue, as one stuck in a USB transfer would (outside the mutex: the tests' controls still
+// answer). 0: none; else the call's number below.
+enum Hang : int { kHangNone = 0, kHangOpen = 1, kHangPosition = 2, kHangForce = 3 };
+std::atomic<int> hang_call{-1};  // -1: not read from the environment yet
+std::atomic<bool> released{false};
+std::atomic<int> hang_device{-1};  // the device whose calls hang; -1: every device
+
+int hang_of(const char* name) {
+  if (name == nullptr) return kHangNone;
+  if (std::strcmp(name, "open") == 0) return kHangOpen;
+  if (std::strcmp(name, "position") == 0) return kHangPosition;
+  if (std::strcmp(name, "force") == 0) return kHangForce;
+  return kHangNone;
+}
+
+void maybe_hang(int call, int id = -1) {
+  int h = hang_call.load();
+  if (h < 0) {
+    int expected = -1;
+    (void)hang_call.compare_exchange_strong(expected, hang_of(std::getenv("HAPTICD_DHD_STANDIN_HANG")));
+    h = hang_call.load();
+  }
+  if (h != call) return;
+  if (const int only = hang_device.load(); only >= 0 && id >= 0 && id != only) return;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!released.load() && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
 std::vector<Device> devices;
 bool set_up = false;
 int current = -1;  // the default device (ID -1): the last one opened
@@ -197,11 +230,13 @@ STANDIN_API int dhdOpen() {
   return fail(kErrorNoDeviceFound);
 }
 STANDIN_API int dhdOpenID(char index) {
+  maybe_hang(kHangOpen);
   std::lock_guard lock(mutex);
   if (!set_up) setup_from(std::getenv("HAPTICD_DHD_STANDIN"));
   return open_index(index);
 }
 STANDIN_API int dhdOpenSerial(int serial) {
+  maybe_hang(kHangOpen);
   std::lock_guard lock(mutex);
   if (!set_up) setup_from(std::getenv("HAPTICD_DHD_STANDIN"));
   for (std::size_t i = 0; i < devices.size(); ++i)
@@ -278,6 +313,7 @@ STANDIN_API int dhdSetGravityCompensation(int on, char id) {
   return 0;
 }
 STANDIN_API int dhdGetPosition(double* px, double* py, double* pz, char id) {
+  maybe_hang(kHangPosition, id);
   std::lock_guard lock(mutex);
   Device* d = device(id);
   if (d == nullptr) return -1;
@@ -323,6 +359,7 @@ STANDIN_API int dhdGetGripperAngleRad(double* a, char id) {
 }
 STANDIN_API int dhdSetForceAndTorqueAndGripperForce(double fx, double fy, double fz, double tx, double ty, double tz,
                                                     double fg, char id) {
+  maybe_hang(kHangForce, id);
   std::lock_guard lock(mutex);
   Device* d = device(id);
   if (d == nullptr) return -1;
@@ -375,6 +412,8 @@ STANDIN_API int drdStop(bool /*keep_forces*/, char id) {
 STANDIN_API void standin_dhd_setup(const char* spec) {
   std::lock_guard lock(mutex);
   fixed_step_s = 0.0;
+  hang_call.store(kHangNone);
+  released.store(false);
   setup_from(spec);
   call_log.clear();
   last_error = kNoError;
@@ -383,8 +422,20 @@ STANDIN_API void standin_dhd_set_step(double seconds) {
   std::lock_guard lock(mutex);
   fixed_step_s = seconds;
 }
-// kind: "unplug", "replug", "fail_next_force", "uncalibrated"; false: no such device or kind.
+// kind: "unplug", "replug", "fail_next_force", "uncalibrated"; "hang_open" (any device), "hang_position",
+// "hang_force" (this device's calls) and "release" (the hung call returns); false: no such device or kind.
 STANDIN_API bool standin_dhd_fault(int index, const char* kind) {
+  if (std::strncmp(kind, "hang_", 5) == 0 && hang_of(kind + 5) != kHangNone) {
+    released.store(false);
+    hang_device.store(std::strcmp(kind, "hang_open") == 0 ? -1 : index);
+    hang_call.store(hang_of(kind + 5));
+    return true;
+  }
+  if (std::strcmp(kind, "release") == 0) {
+    released.store(true);
+    hang_call.store(kHangNone);
+    return true;
+  }
   std::lock_guard lock(mutex);
   if (index < 0 || index >= static_cast<int>(devices.size())) return false;
   Device& d = devices[static_cast<std::size_t>(index)];
@@ -418,4 +469,10 @@ STANDIN_API bool standin_dhd_force(int index, double* fx, double* fy, double* fz
   return true;
 }
 // The lifecycle calls so far, one per line ("dhdOpen(0)", "dhdEnableForce(on)(0)", ...).
-STANDIN_API const char* standin_dhd_call_log() { return call_log.c_str(); }
+// A copy taken under the lock (the SDK's thread may be logging): valid until the caller's thread asks again.
+STANDIN_API const char* standin_dhd_call_log() {
+  thread_local std::string copy;
+  std::lock_guard lock(mutex);
+  copy = call_log;
+  return copy.c_str();
+}

@@ -11,11 +11,13 @@
 // "!manual" for a calibration it needs), the hand (HAPTICD_HD_STANDIN_HAND "fx,fy,fz" and
 // HAPTICD_HD_STANDIN_BUTTONS for a run of the server), a pause of the scheduler (a device that stops calling), an
 // error in the next frame, a device unplugged, the linkage's angles, a PHANTOM Premium 6DOF with torque output, the
-// last force written, the number of ticks and a log of the lifecycle calls.
+// last force written, the number of ticks, an hdInitDevice that hangs (standin_hd_hang_init, or
+// HAPTICD_HD_STANDIN_HANG=init for a run of the server; 60 s at most) and a log of the lifecycle calls.
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -92,6 +94,7 @@ unsigned long next_callback = 1;
 unsigned long rate_hz = 1000;
 std::thread scheduler;
 std::atomic<bool> scheduler_running{false};
+std::atomic<bool> hang_init{false};  // hdInitDevice hangs while set
 std::atomic<std::int64_t> pause_until_ns{0};
 std::atomic<std::uint64_t> ticks{0};
 std::string call_log;  // the lifecycle calls, in order (not the per-frame ones)
@@ -219,6 +222,10 @@ void run_scheduler() {
 // ---- the vendor's functions (hd.h, hdScheduler.h) ----
 
 STANDIN_API HHD hdInitDevice(const char* name) {
+  if (const char* hang = std::getenv("HAPTICD_HD_STANDIN_HANG"); hang != nullptr && std::string(hang) == "init")
+    hang_init.store(true);
+  // Hangs outside the mutex, as a call stuck in the driver would: the tests' controls still answer.
+  for (int ms = 0; hang_init.load() && ms < 60000; ++ms) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   std::lock_guard lock(mutex);
   if (!set_up) setup_from(std::getenv("HAPTICD_HD_STANDIN"));
   for (std::size_t i = 0; i < devices.size(); ++i) {
@@ -499,6 +506,8 @@ STANDIN_API void standin_hd_hand(int index, double fx, double fy, double fz, int
   devices[static_cast<std::size_t>(index)].hand = {fx, fy, fz};
   devices[static_cast<std::size_t>(index)].buttons = buttons;
 }
+// hdInitDevice hangs (true) until released (false).
+STANDIN_API void standin_hd_hang_init(bool hang) { hang_init.store(hang); }
 // The scheduler calls no callback for this long (a device that stops calling back).
 STANDIN_API void standin_hd_pause(double seconds) {
   pause_until_ns.store(now_ns() + static_cast<std::int64_t>(seconds * 1e9));
