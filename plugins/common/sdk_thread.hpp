@@ -34,8 +34,10 @@ class SdkThread {
   SdkThread& operator=(const SdkThread&) = delete;
 
   // Any thread but a job: `job` runs next on the SDK's thread. False (and nothing posted) while the previous job
-  // still runs. `job` must outlive its run (the plugin's own member, made once). Real-time safe.
-  bool post(const Job& job) noexcept;
+  // still runs. `job` must outlive its run (the plugin's own member, made once). `next_post_ns`
+  // (CLOCK_MONOTONIC; 0: unknown) is when the plugin expects to post the job after this one - the next cycle's
+  // reads: the SDK's thread is awake for it then, so the hand-off costs no wake-up. Real-time safe.
+  bool post(const Job& job, std::int64_t next_post_ns = 0) noexcept;
   // Waits until the posted job has finished, at most until `until_ns` (CLOCK_MONOTONIC). False: it still runs.
   // Real-time safe (a futex wait, bounded).
   bool wait(std::int64_t until_ns) noexcept;

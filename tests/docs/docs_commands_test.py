@@ -16,6 +16,9 @@ time): its command must make a PNG of the committed picture's size with somethin
 may be a project script run by `node` (tests/live_view/picture.mjs), which finds the programs in BIN_DIR through
 HAPTICD_BIN_DIR; node lines without "# makes" are not run.
 
+Blocks marked `<!-- newcomer -->` are not parsed here: the newcomer test runs them for real from a fresh prefix
+(tests/docs/newcomer_test.py).
+
 Usage: docs_commands_test.py SOURCE_DIR BIN_DIR
 """
 import json
@@ -43,7 +46,10 @@ def command_lines(path):
         line, number = lines[i], i + 1
         fence = re.match(r"^\s*```(\w*)", line)
         if fence:
-            in_sh = not in_block and fence.group(1) in ("sh", "bash", "console")
+            # A block marked <!-- newcomer --> runs for real in the newcomer test (tests/docs/newcomer_test.py),
+            # from an installed prefix its first block makes: not here.
+            newcomer = i > 0 and lines[i - 1].strip().startswith("<!-- newcomer")
+            in_sh = not in_block and fence.group(1) in ("sh", "bash", "console") and not newcomer
             in_block = not in_block
         elif in_sh:
             while line.rstrip().endswith("\\") and i + 1 < len(lines):

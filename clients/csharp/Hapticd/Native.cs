@@ -183,6 +183,25 @@ namespace Hapticd
         public Pose anchor;
         public fixed double stiffness[6];
         public fixed double damping[6];
+
+        // A spring and damper about `anchor`, per axis (N/m, N s/m): the server applies it every cycle until the
+        // next command, so a wall rendered at the engine's frame rate is felt at the loop's. Made in a local here:
+        // a fixed buffer written through a field needs pinning (CS1666), a local does not.
+        public static LocalModel Spring(Pose anchor, Vec3 stiffness, Vec3 damping)
+        {
+            return Spring(anchor, stiffness, damping, new Vec3(), new Vec3());
+        }
+        // The same with a rotational spring and damper (N m/rad, N m s/rad) about the anchor's orientation.
+        public static LocalModel Spring(Pose anchor, Vec3 stiffness, Vec3 damping, Vec3 rotationalStiffness,
+                                        Vec3 rotationalDamping)
+        {
+            var m = new LocalModel { anchor = anchor };
+            m.stiffness[0] = stiffness.x; m.stiffness[1] = stiffness.y; m.stiffness[2] = stiffness.z;
+            m.stiffness[3] = rotationalStiffness.x; m.stiffness[4] = rotationalStiffness.y; m.stiffness[5] = rotationalStiffness.z;
+            m.damping[0] = damping.x; m.damping[1] = damping.y; m.damping[2] = damping.z;
+            m.damping[3] = rotationalDamping.x; m.damping[4] = rotationalDamping.y; m.damping[5] = rotationalDamping.z;
+            return m;
+        }
     }
 
     // hapticd_command
@@ -206,6 +225,14 @@ namespace Hapticd
         {
             var c = new Command { kind = (int)CommandKind.Wrench, wrench = wrench, state_serial = stateSerial };
             c.pose.orientation = Quat.Identity;
+            return c;
+        }
+        // A wrench with a local model: wrench + stiffness .* (anchor - x) - damping .* xd, every cycle until the next.
+        public static Command Force(Wrench wrench, LocalModel model, ulong stateSerial)
+        {
+            var c = Force(wrench, stateSerial);
+            c.has_local_model = 1;
+            c.local_model = model;
             return c;
         }
         public static Command Motion(Pose pose, Twist twist, ulong stateSerial)

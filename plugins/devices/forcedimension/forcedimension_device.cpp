@@ -112,7 +112,7 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext& c
     throw DeviceUnavailable(e.what());
   }
   deadline_ns_ = static_cast<std::int64_t>(p.real("call_deadline_ms") * 1e6);
-  (void)context;
+  period_ns_ = static_cast<std::int64_t>(1e9 / context.rate_hz);
   DhdLink& l = *link_;
   const double open_s = p.real("open_timeout_s");
   const long long serial = p.integer("serial");
@@ -237,13 +237,13 @@ Outcome ForceDimensionDevice::reported() noexcept {
   return Outcome::failure(failure(link_->error.data()));
 }
 
-Outcome ForceDimensionDevice::run_job(const SdkThread::Job& job) noexcept {
+Outcome ForceDimensionDevice::run_job(const SdkThread::Job& job, std::int64_t next_post_ns) noexcept {
   SdkThread& sdk = link_->sdk;
   // The previous job has returned (one stuck past its deadline: the fault), and its failure has been told.
   if (!sdk.wait(posted_ns_ + deadline_ns_)) return Outcome::failure(stuck());
   if (Outcome previous = reported(); !previous.ok()) return previous;
   posted_ns_ = realtime::TickSignal::now_ns();
-  if (!sdk.post(job) || !sdk.wait(posted_ns_ + deadline_ns_)) return Outcome::failure(stuck());
+  if (!sdk.post(job, next_post_ns) || !sdk.wait(posted_ns_ + deadline_ns_)) return Outcome::failure(stuck());
   return reported();
 }
 
@@ -257,6 +257,7 @@ Outcome ForceDimensionDevice::enable() {
 }
 
 Outcome ForceDimensionDevice::read(const CycleTime& cycle, DeviceState& state) {
+  read_ns_ = realtime::TickSignal::now_ns();
   if (Outcome done = run_job(link_->read_job); !done.ok()) return done;
   const DhdReading& r = link_->reading;
   HandleState& h = state.handle;
@@ -292,7 +293,8 @@ Outcome ForceDimensionDevice::write(const CycleTime&, const JointCommand& comman
   f = {e[0], e[1], e[2], 0.0, 0.0, 0.0, 0.0};
   if (h.actuated_torque) f[3] = e[3], f[4] = e[4], f[5] = e[5];
   if (h.actuated_gripper) f[6] = e[e.size() - 1];
-  return run_job(link_->write_job);
+  // The next cycle's reads are expected one period after this cycle's.
+  return run_job(link_->write_job, read_ns_ + period_ns_);
 }
 
 Outcome ForceDimensionDevice::brake(bool on) {

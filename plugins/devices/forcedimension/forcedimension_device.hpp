@@ -44,7 +44,7 @@ class ForceDimensionDevice final : public Device {
   const char* stuck() noexcept;
   // The loop: `job` posted once the previous one has finished (within its deadline; its failure told first) and
   // waited for. A failure: the SDK's, or stuck().
-  Outcome run_job(const SdkThread::Job& job) noexcept;
+  Outcome run_job(const SdkThread::Job& job, std::int64_t next_post_ns = 0) noexcept;
   // A failure of the last job not told yet (told once).
   Outcome reported() noexcept;
   // Configure: `job` (link_->once) run with a deadline of `seconds`; throws DeviceUnavailable naming `call` when
@@ -55,6 +55,8 @@ class ForceDimensionDevice final : public Device {
   std::shared_ptr<DhdLink> link_;
   std::int64_t deadline_ns_ = 20'000'000;
   std::int64_t posted_ns_ = 0;  // when the last job was posted
+  std::int64_t read_ns_ = 0;    // when this cycle's reads were posted
+  std::int64_t period_ns_ = 500'000;
   DeviceDescription description_;
   std::array<std::array<char, 256>, 2> errors_{};
   int error_ = 0;              // the buffer in use
