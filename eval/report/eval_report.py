@@ -323,7 +323,8 @@ def teleoperation(result, out_dir):
     if traces:
         fig, (ax_x, ax_f) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
         for tr in traces:
-            label = f"{tr['passivity']}, {tr['round_trip_ms']:g} ms"
+            label = f"{tr['passivity']}, {tr['round_trip_ms']:g} ms" + (
+                f", {tr['loss_percent']:g} % loss" if tr.get("loss_percent") else "")
             line, = ax_x.plot(tr["time_s"], [1e3 * x for x in tr["master_x_m"]], label=f"master, {label}")
             ax_x.plot(tr["time_s"], [1e3 * x for x in tr["remote_x_m"]], linestyle="--", color=line.get_color(),
                       label=f"remote, {label}")

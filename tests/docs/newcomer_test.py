@@ -3,7 +3,7 @@
 before its fence) in docs/engines.md first - it installs hapticd to a fresh prefix - then in the other pages in
 alphabetical order, each in the order it appears, in one bash shell (so a block's variables and exports reach the
 next), from the source folder, with HOME an empty folder of this test's own and `build/default` (the README's build)
-meaning the build tree under test. `<!-- newcomer expect="REGEX" -->` also requires the block's output (standard
+meaning the build tree under test (as root without sudo, `sudo CMD` runs CMD). `<!-- newcomer expect="REGEX" -->` also requires the block's output (standard
 output and error) to match REGEX. A block that fails, or whose output does not match, fails the test with that
 block's place and output; every block's output is kept in WORK_DIR.
 
@@ -42,9 +42,11 @@ def main():
     pages = [source / "docs" / "engines.md"] + sorted(
         p for p in (source / "docs").glob("*.md") if p.name != "engines.md") + [source / "README.md"]
     script = ["set -euo pipefail",
-              "trap 'status=$?; kill $(jobs -p) 2> /dev/null || true; wait 2> /dev/null || true; "
-              "if [ $status -ne 0 ]; then echo \"FAIL: $where (exit $status)\"; cat \"$out\"; fi' EXIT",
-              "fail() { echo \"FAIL: $*\"; cat \"$out\"; exit 1; }"]
+              # As root on a machine without sudo (a CI container), the docs' `sudo` runs the command itself.
+              'if [ "$(id -u)" -eq 0 ] && ! command -v sudo > /dev/null; then sudo() { "$@"; }; fi',
+              "trap '__nc_status=$?; kill $(jobs -p) 2> /dev/null || true; wait 2> /dev/null || true; "
+              "if [ $__nc_status -ne 0 ]; then echo \"FAIL: $__nc_where (exit $__nc_status)\"; cat \"$__nc_out\"; fi' EXIT",
+              "fail() { echo \"FAIL: $*\"; cat \"$__nc_out\"; exit 1; }"]
     count = 0
     for page in pages:
         for line, expect, text in blocks(page):
@@ -52,13 +54,13 @@ def main():
             where = f"{page.relative_to(source)}:{line}"
             text = text.replace("build/default", str(build))
             out = work / f"block-{count:02d}.log"
-            script += [f"where={shlex.quote(where)} out={shlex.quote(str(out))}",
+            script += [f"__nc_where={shlex.quote(where)} __nc_out={shlex.quote(str(out))}",
                        f"echo \"--- {where}\"",
-                       "{", text, "} > \"$out\" 2>&1"]
+                       "{", text, "} > \"$__nc_out\" 2>&1"]
             if expect:
-                script.append(f"grep -Eq {shlex.quote(expect)} \"$out\" || "
+                script.append(f"grep -Eq {shlex.quote(expect)} \"$__nc_out\" || "
                               f"fail \"{where}: the output does not match {shlex.quote(expect)}\"")
-            script.append("tail -n 3 \"$out\"")
+            script.append("tail -n 3 \"$__nc_out\"")
     if count < 5:
         print(f"FAIL: only {count} marked blocks found (the extraction broke, not the docs)")
         return 1

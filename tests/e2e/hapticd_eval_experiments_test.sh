@@ -185,4 +185,15 @@ if "$eval_bin" force-response --quick --schemes nonsense --out "$work/bad" > "$w
   echo "an unknown scheme was accepted"; exit 1
 fi
 grep -q "unknown scheme 'nonsense'" "$work/bad.txt" || { cat "$work/bad.txt"; exit 1; }
+
+# The teleoperation report's trace: with only a lossy grid it is the lowest loss's (it used to be written only at
+# 0 % loss, so such a run silently had no figure); a trace round trip the grid lacks is an error.
+timeout 120 "$eval_bin" teleoperation --duration 4 --losses 20 --round-trips 100 --passivity tdpa --no-figures \
+  --out "$work/lossy" > "$work/lossy.txt"
+"$py" -c 'import json, sys; t = json.load(open(sys.argv[1]))["traces"]; assert [(x["round_trip_ms"], x["loss_percent"]) for x in t] == [(100, 20)] and len(t[0]["time_s"]) > 100, t' \
+  "$work/lossy/teleoperation.json"
+if "$eval_bin" teleoperation --quick --trace-round-trip 300 --out "$work/bad" > "$work/bad.txt" 2>&1; then
+  echo "a trace round trip outside the grid was accepted"; exit 1
+fi
+grep -q "trace-round-trip 300 is not one of the round trips run" "$work/bad.txt" || { cat "$work/bad.txt"; exit 1; }
 echo "hapticd-eval experiments ok"
