@@ -32,7 +32,7 @@ struct Options {
   // The wall's run over time at this delay (and the lowest loss run) goes into the report; < 0: the round trip
   // run nearest to 200 ms.
   double trace_round_trip_ms = -1.0;
-  std::string table;                   // also the rows alone, to this file (the docs' tables)
+  std::string table;  // also the rows alone, to this file (the docs' tables)
 };
 
 teleop::Passivity parse_passivity(const std::string& s) {
@@ -62,9 +62,10 @@ int run(const Options& o) {
     for (const double r : o.round_trips_ms)
       if (std::abs(r - 200.0) < std::abs(trace_rtt - 200.0)) trace_rtt = r;
   } else if (std::find(o.round_trips_ms.begin(), o.round_trips_ms.end(), trace_rtt) == o.round_trips_ms.end()) {
-    throw std::invalid_argument(fmt::format("--trace-round-trip {:g} is not one of the round trips run ({}): choose "
-                                            "one of them, or add it to --round-trips",
-                                            trace_rtt, fmt::join(o.round_trips_ms, ", ")));
+    throw std::invalid_argument(
+        fmt::format("--trace-round-trip {:g} is not one of the round trips run ({}): choose "
+                    "one of them, or add it to --round-trips",
+                    trace_rtt, fmt::join(o.round_trips_ms, ", ")));
   }
   const double trace_loss = *std::min_element(o.losses_percent.begin(), o.losses_percent.end());
   fmt::print("the report's figure: the wall at {:g} ms round trip and {:g} % loss\n", trace_rtt, trace_loss);
@@ -199,9 +200,10 @@ void add_teleoperation_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--motion-scale", o->motion_scale, "remote motion per master motion")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
-  cmd->add_option("--trace-round-trip", o->trace_round_trip_ms,
-                  "the wall's run over time at this round-trip delay (one of --round-trips; at the lowest loss run) goes "
-                  "into the report [ms]; default: the round trip run nearest to 200 ms");
+  cmd->add_option(
+      "--trace-round-trip", o->trace_round_trip_ms,
+      "the wall's run over time at this round-trip delay (one of --round-trips; at the lowest loss run) goes "
+      "into the report [ms]; default: the round trip run nearest to 200 ms");
   cmd->add_option("--table", o->table, "also write the rows alone to this JSON file");
   cmd->add_option("--force-scale", o->force_scale, "master force per remote force")
       ->check(CLI::Range(0.01, 100.0))
