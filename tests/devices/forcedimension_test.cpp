@@ -101,6 +101,10 @@ TEST_F(ForceDimension, AWallInImpedanceDisplayHoldsTheHandAndTheButtonsArrive) {
   EXPECT_DOUBLE_EQ(v.state.joints.position.x(), v.state.handle.pose.position.x());
   EXPECT_DOUBLE_EQ(v.command.torque_nm.x(), standin_.written(0).x());
   EXPECT_EQ(v.state.handle.buttons, 0x1u);
+  // What the unit is, as the server logs it at start: its serial number and the SDK's version and file.
+  const DeviceDescription& d = s.impl().devices[0]->description();
+  EXPECT_EQ(d.serial, "10001");
+  EXPECT_EQ(d.vendor_software, "Force Dimension SDK 3.6.0, " + StandIn::path());
 }
 
 TEST_F(ForceDimension, TwoDevicesOpenBySerialNumberAndTheGripperIsAnAxis) {

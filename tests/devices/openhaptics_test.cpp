@@ -121,6 +121,9 @@ TEST_F(OpenHaptics, TheTouchClocksTheLoopAndItsWallHoldsTheHand) {
   EXPECT_EQ(v.fault, "");
   EXPECT_EQ(v.state.handle.buttons, 0x1u);
   EXPECT_EQ(s.impl().devices[0]->description().model, "openhaptics Touch 220-10001");
+  EXPECT_EQ(s.impl().devices[0]->description().serial, "220-10001");
+  EXPECT_EQ(s.impl().devices[0]->description().vendor_software,
+            "OpenHaptics HD 3.4 (hapticd's stand-in), driver none (hapticd's stand-in), " + StandIn::path());
   EXPECT_EQ(standin_.stylus(0).force.norm(), 0.0);  // disabled: the callback's last frame wrote no force
 }
 

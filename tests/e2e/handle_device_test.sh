@@ -21,6 +21,8 @@ deadline="--set devices.omega.device.parameters.call_deadline_ms=1000"  # the ma
 HAPTICD_DHD_STANDIN_STEP=0.0005 timeout 60 "$bin/hapticd" --config "$session" --clock lockstep --duration 1 \
   --record lockstep.h5 $deadline > lockstep.log 2>&1 || fail "lockstep run: $(cat lockstep.log)"
 grep -q "device 'omega': ok" lockstep.log || fail "lockstep run: $(cat lockstep.log)"
+grep -q "device 'omega': forcedimension omega.7, serial 10002; Force Dimension SDK 3.6.0, .*libdrd.so" lockstep.log ||
+  fail "the log at start does not say what the device is: $(grep "device 'omega'" lockstep.log)"
 "$bin/hapticctl" export lockstep.h5 --csv > /dev/null || fail "export of the server's recording"
 [ "$(column handle.buttons lockstep.omega.csv)" = 5 ] || fail "buttons in the recording: $(head -1 lockstep.omega.csv)"
 near() { awk -v x="$1" -v y="$2" 'BEGIN { exit !(x - y < 1e-9 && y - x < 1e-9) }'; }

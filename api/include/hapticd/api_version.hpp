@@ -5,7 +5,7 @@ namespace hapticd {
 // Version of the binary plugin contract (interfaces, value types, descriptor layout). A plugin built against
 // another version is refused by the loader before any of its code is called. Bump on every change to a type
 // in api/include/hapticd that a plugin compiles against.
-inline constexpr int kApiVersion = 12;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
+inline constexpr int kApiVersion = 13;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
                                         // 4: EngineInput in VirtualModelInput; 5: EngineInput weight,
                                         //    local model and motion; 6: RenderGuard in
                                         //    VirtualModelInput, update() may throw;
@@ -26,5 +26,6 @@ inline constexpr int kApiVersion = 12;  // 2: DeviceState::sensor_acceleration; 
                                         //    DeviceState::handle, ChainState::has_handle), the
                                         //    descriptor's device_interfaces
                                         // 12: Device::clock() (device-clocked loops)
+                                        // 13: DeviceDescription::serial and vendor_software
 
 }  // namespace hapticd

@@ -27,6 +27,10 @@ struct DeviceCapabilities {
 // vectors): the server copies what the loop needs into fixed-size storage.
 struct DeviceDescription {
   std::string model;  // e.g. "vishard3", "test_mass_spring"
+  // What the unit is, for the log at start and --check-config: its serial number when it reports one, and the
+  // vendor's software the plugin drives it through - name, version, where it was found ("" for a simulation).
+  std::string serial;
+  std::string vendor_software;
   // Joints (a serial chain the server models from robot_model_file) or the handle (the vendor's SDK does the
   // kinematics: `handle` says what it offers, and the server sets `joints` to the handle's axes, hapticd/handle.hpp).
   DeviceInterface interface = DeviceInterface::joints;

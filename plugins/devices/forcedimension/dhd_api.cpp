@@ -22,6 +22,8 @@ DhdApi::DhdApi(const VendorLibrary& l)
       get_gripper_angle_rad(l.function<decltype(get_gripper_angle_rad)>("dhdGetGripperAngleRad")),
       set_force_and_torque_and_gripper_force(
           l.function<decltype(set_force_and_torque_and_gripper_force)>("dhdSetForceAndTorqueAndGripperForce")),
+      get_serial_number(l.optional_function<decltype(get_serial_number)>("dhdGetSerialNumber")),
+      get_sdk_version(l.optional_function<decltype(get_sdk_version)>("dhdGetSDKVersion")),
       drd_open_id(l.optional_function<decltype(drd_open_id)>("drdOpenID")),
       drd_is_initialized(l.optional_function<decltype(drd_is_initialized)>("drdIsInitialized")),
       drd_auto_init(l.optional_function<decltype(drd_auto_init)>("drdAutoInit")),

@@ -27,6 +27,9 @@ struct DhdApi {
   int (*get_gripper_angle_rad)(double* angle, char id);
   int (*set_force_and_torque_and_gripper_force)(double fx, double fy, double fz, double tx, double ty, double tz,
                                                 double fg, char id);
+  // Optional (null when the SDK lacks them): the unit's serial number and the SDK's version.
+  int (*get_serial_number)(unsigned short* serial, char id);
+  void (*get_sdk_version)(int* major, int* minor, int* release, int* revision);
   // libdrd only (the robotic SDK): calibration. Null when only libdhd was found.
   int (*drd_open_id)(char id);
   bool (*drd_is_initialized)(char id);

@@ -53,6 +53,8 @@ class DhdLink {
   int opened = -1, device_count = 0;
   bool calibrated = true, has_gripper = false;
   std::string system_name, once_error;
+  int serial_number = -1;                 // -1: not reported
+  std::array<int, 4> sdk_version{-1, 0, 0, 0};  // major, minor, release, revision; -1: not reported
 
  private:
   // After a call: false (failed set, the SDK's text of this thread's last error kept) when `result` < 0.

@@ -126,6 +126,15 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext& c
       l.id = static_cast<char>(l.opened);
       l.sdk.calling("dhdGetSystemName");
       l.system_name = vendor_text(l.dhd->get_system_name(l.id));
+      if (l.dhd->get_serial_number != nullptr) {
+        l.sdk.calling("dhdGetSerialNumber");
+        unsigned short sn = 0;
+        if (l.dhd->get_serial_number(&sn, l.id) >= 0) l.serial_number = sn;
+      }
+      if (l.dhd->get_sdk_version != nullptr) {
+        l.sdk.calling("dhdGetSDKVersion");
+        l.dhd->get_sdk_version(&l.sdk_version[0], &l.sdk_version[1], &l.sdk_version[2], &l.sdk_version[3]);
+      }
       l.sdk.calling("dhdHasGripper");
       l.has_gripper = l.dhd->has_gripper(l.id);
       l.sdk.calling("drdIsInitialized");
@@ -183,6 +192,13 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext& c
 
   DeviceDescription& d = description_;
   d.model = "forcedimension " + system;
+  if (l.serial_number >= 0) d.serial = std::to_string(l.serial_number);
+  d.vendor_software = "Force Dimension SDK" +
+                      (l.sdk_version[0] >= 0 ? " " + std::to_string(l.sdk_version[0]) + "." +
+                                                   std::to_string(l.sdk_version[1]) + "." +
+                                                   std::to_string(l.sdk_version[2])
+                                             : std::string(" (version not reported)")) +
+                      ", " + l.library->file();
   d.interface = DeviceInterface::handle;
   HandleDescription& h = d.handle;
   h.senses_orientation = m->orientation;

@@ -145,6 +145,8 @@ void HaplyDevice::configure(const Parameters& p, const PluginContext& context) {
 
   DeviceDescription& d = description_;
   d.model = "haply inverse3 " + device_id_ + (grip_id_.empty() ? "" : " with " + grip_kind_ + " " + grip_id_);
+  d.serial = device_id_;  // the service's id of the Inverse3 (its serial as the service reports it)
+  d.vendor_software = "Haply Inverse Service at " + url;
   d.interface = DeviceInterface::handle;
   HandleDescription& h = d.handle;
   h.senses_orientation = !grip_id_.empty();

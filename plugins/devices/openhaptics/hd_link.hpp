@@ -53,7 +53,7 @@ struct HdCommand {
 
 // What configure learns from the SDK (on the SDK's thread).
 struct HdFacts {
-  std::string model, serial;
+  std::string model, serial, version, driver;
   HDenum calibration = 0;
   int input_dof = 0, output_dof = 0;
   double workspace[6] = {0, 0, 0, 0, 0, 0};

@@ -80,6 +80,9 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
     l.sdk.calling("hdGetString");
     f.model = vendor_text(hd.get_string(kDeviceModelType));
     f.serial = vendor_text(hd.get_string(kDeviceSerialNumber), "");
+    f.version = vendor_text(hd.get_string(kVersion), "");
+    f.driver = vendor_text(hd.get_string(kDeviceDriverVersion), "");
+    (void)HdErrors::of(hd);  // a string the SDK does not report leaves an error: not this device's fault
     l.sdk.calling("hdCheckCalibration");
     f.calibration = hd.check_calibration();
     if (f.calibration == kCalibrationNeedsUpdate) {
@@ -146,6 +149,9 @@ void OpenHapticsDevice::configure(const Parameters& p, const PluginContext& cont
 
   DeviceDescription& d = description_;
   d.model = "openhaptics " + model + (f.serial.empty() ? std::string() : " " + f.serial);
+  d.serial = f.serial;
+  d.vendor_software = "OpenHaptics HD" + (f.version.empty() ? std::string() : " " + f.version) +
+                      (f.driver.empty() ? std::string() : ", driver " + f.driver) + ", " + l.library->file();
   d.interface = DeviceInterface::handle;
   HandleDescription& h = d.handle;
   h.senses_orientation = f.input_dof >= 6;

@@ -28,6 +28,16 @@
 namespace hapticd::server {
 namespace {
 
+// What a device is, for the log at start and --check-config: "forcedimension omega.6, serial 10001; Force Dimension
+// SDK 3.6.0, /opt/.../libdrd.so.3" (a simulation says so).
+std::string identity(const DeviceDescription& d) {
+  std::string text = d.model;
+  if (!d.serial.empty()) text += ", serial " + d.serial;
+  if (!d.vendor_software.empty()) text += "; " + d.vendor_software;
+  if (d.simulated) text += " (simulated)";
+  return text;
+}
+
 struct LoadedSession {
   SessionConfig config;
   std::unique_ptr<PluginLoader> loader;
@@ -102,6 +112,7 @@ int check_config(const std::string& file, const std::vector<std::string>& sets) 
   fmt::print("{}: ok ({} device{}, {} Hz, {} clock)\n", file, s->sessions.size(), s->sessions.size() == 1 ? "" : "s",
              s->config.server.rate_hz, clock_name(s->config.server.clock));
   for (const auto& d : s->sessions) {
+    fmt::print("  {}: {}\n", d->name(), identity(d->description()));
     const DeviceChain& c = d->chain();
     for (std::size_t k = 0; k < c.schemes.size(); ++k) {
       const SchemeChain& sc = c.schemes[k];
@@ -193,6 +204,7 @@ int run_session(const RunOptions& options) {
   spdlog::info("session {}: {} device(s) at {} Hz, {} clock{}", options.config_file, sessions.size(), server.rate_hz,
                clock_name(server.clock),
                server.duration_s > 0 ? fmt::format(", {} s", server.duration_s) : std::string(", until stopped"));
+  for (const DeviceSession* d : sessions) spdlog::info("device '{}': {}", d->name(), identity(d->description()));
 
   ExecutorResult result;
   try {

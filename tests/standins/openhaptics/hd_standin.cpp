@@ -51,7 +51,7 @@ constexpr HDerror kSuccess = 0x0000, kInvalidEnum = 0x0100, kInvalidValue = 0x01
 constexpr HHD kInvalidHandle = 0xFFFFFFFF;
 constexpr HDenum kCurrentButtons = 0x2000, kCurrentPosition = 0x2050, kCurrentVelocity = 0x2051,
                  kCurrentTransform = 0x2052, kCurrentAngularVelocity = 0x2053, kDeviceModelType = 0x2501,
-                 kDeviceVendor = 0x2503, kDeviceSerialNumber = 0x2504, kUsableWorkspaceDimensions = 0x2551,
+                 kVersion = 0x2500, kDeviceDriverVersion = 0x2502, kDeviceVendor = 0x2503, kDeviceSerialNumber = 0x2504, kUsableWorkspaceDimensions = 0x2551,
                  kInputDof = 0x2553, kOutputDof = 0x2554, kCalibrationStyle = 0x2555, kUpdateRate = 0x2600,
                  kNominalMaxStiffness = 0x2602, kNominalMaxForce = 0x2603, kNominalMaxContinuousForce = 0x2604,
                  kNominalMaxDamping = 0x2609, kNominalMaxTorqueForce = 0x2622, kCurrentForce = 0x2700,
@@ -374,6 +374,10 @@ STANDIN_API const char* hdGetString(HDenum what) {
       return d->serial.c_str();
     case kDeviceVendor:
       return "project stand-in";
+    case kVersion:
+      return "3.4 (hapticd's stand-in)";
+    case kDeviceDriverVersion:
+      return "none (hapticd's stand-in)";
     default:
       raise(kInvalidEnum);
       return nullptr;
