@@ -53,7 +53,7 @@ class DhdLink {
   int opened = -1, device_count = 0;
   bool calibrated = true, has_gripper = false;
   std::string system_name, once_error;
-  int serial_number = -1;                 // -1: not reported
+  int serial_number = -1;                       // -1: not reported
   std::array<int, 4> sdk_version{-1, 0, 0, 0};  // major, minor, release, revision; -1: not reported
 
  private:

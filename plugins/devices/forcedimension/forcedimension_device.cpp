@@ -193,12 +193,12 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext& c
   DeviceDescription& d = description_;
   d.model = "forcedimension " + system;
   if (l.serial_number >= 0) d.serial = std::to_string(l.serial_number);
-  d.vendor_software = "Force Dimension SDK" +
-                      (l.sdk_version[0] >= 0 ? " " + std::to_string(l.sdk_version[0]) + "." +
-                                                   std::to_string(l.sdk_version[1]) + "." +
-                                                   std::to_string(l.sdk_version[2])
-                                             : std::string(" (version not reported)")) +
-                      ", " + l.library->file();
+  d.vendor_software =
+      "Force Dimension SDK" +
+      (l.sdk_version[0] >= 0 ? " " + std::to_string(l.sdk_version[0]) + "." + std::to_string(l.sdk_version[1]) + "." +
+                                   std::to_string(l.sdk_version[2])
+                             : std::string(" (version not reported)")) +
+      ", " + l.library->file();
   d.interface = DeviceInterface::handle;
   HandleDescription& h = d.handle;
   h.senses_orientation = m->orientation;

@@ -51,12 +51,12 @@ constexpr HDerror kSuccess = 0x0000, kInvalidEnum = 0x0100, kInvalidValue = 0x01
 constexpr HHD kInvalidHandle = 0xFFFFFFFF;
 constexpr HDenum kCurrentButtons = 0x2000, kCurrentPosition = 0x2050, kCurrentVelocity = 0x2051,
                  kCurrentTransform = 0x2052, kCurrentAngularVelocity = 0x2053, kDeviceModelType = 0x2501,
-                 kVersion = 0x2500, kDeviceDriverVersion = 0x2502, kDeviceVendor = 0x2503, kDeviceSerialNumber = 0x2504, kUsableWorkspaceDimensions = 0x2551,
-                 kInputDof = 0x2553, kOutputDof = 0x2554, kCalibrationStyle = 0x2555, kUpdateRate = 0x2600,
-                 kNominalMaxStiffness = 0x2602, kNominalMaxForce = 0x2603, kNominalMaxContinuousForce = 0x2604,
-                 kNominalMaxDamping = 0x2609, kNominalMaxTorqueForce = 0x2622, kCurrentForce = 0x2700,
-                 kCurrentTorque = 0x2701, kCurrentJointAngles = 0x2100, kCurrentGimbalAngles = 0x2150,
-                 kForceOutput = 0x4000;
+                 kVersion = 0x2500, kDeviceDriverVersion = 0x2502, kDeviceVendor = 0x2503, kDeviceSerialNumber = 0x2504,
+                 kUsableWorkspaceDimensions = 0x2551, kInputDof = 0x2553, kOutputDof = 0x2554,
+                 kCalibrationStyle = 0x2555, kUpdateRate = 0x2600, kNominalMaxStiffness = 0x2602,
+                 kNominalMaxForce = 0x2603, kNominalMaxContinuousForce = 0x2604, kNominalMaxDamping = 0x2609,
+                 kNominalMaxTorqueForce = 0x2622, kCurrentForce = 0x2700, kCurrentTorque = 0x2701,
+                 kCurrentJointAngles = 0x2100, kCurrentGimbalAngles = 0x2150, kForceOutput = 0x4000;
 constexpr HDenum kCalibrationOk = 0x5000, kCalibrationNeedsUpdate = 0x5001, kCalibrationNeedsManualInput = 0x5002;
 constexpr int kCalibrationEncoderReset = 1 << 0, kCalibrationInkwell = 1 << 2;
 constexpr HDCallbackCode kCallbackDone = 0;
