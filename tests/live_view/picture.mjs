@@ -48,7 +48,7 @@ const url = await new Promise((resolve, reject) => {
 const port = 9300 + Math.floor(Math.random() * 500);
 const chromium = spawn("chromium", ["--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
   `--remote-debugging-port=${port}`, "--remote-debugging-address=127.0.0.1", "--window-size=1440,480",
-  url.replace(/^ws:/, "http:") + "/?url=" + encodeURIComponent(url)], { stdio: "ignore" });
+  url.replace(/^ws:/, "http:") + "/"], { stdio: "ignore" });  // the page connects to its own server on load
 let status = 0;
 let chromiumError = null;  // chromium missing or not startable: said instead of waiting for a page
 chromium.on("error", (e) => { chromiumError = e; });

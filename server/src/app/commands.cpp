@@ -180,8 +180,13 @@ int run_session(const RunOptions& options) {
   }
 
   if (const live_view::LiveView* view = served->live_view()) {
-    spdlog::info("live view on {} (Foxglove WebSocket: open it in Foxglove or Lichtblick; docs/live-view.md)",
-                 view->url());
+    {
+      std::string page = view->url();
+      if (page.rfind("ws://", 0) == 0) page = "http://" + page.substr(5) + "/";
+      spdlog::info("live view on {} (the page: {} in a browser; Foxglove or Lichtblick: the ws:// address; "
+                   "docs/live-view.md)",
+                   view->url(), page);
+    }
     if (s->config.live_view.address != "127.0.0.1" && s->config.live_view.address != "::1")
       spdlog::warn("the live view listens on {}, not on loopback only: whoever reaches it can watch the session",
                    s->config.live_view.address);

@@ -19,7 +19,7 @@ using namespace scene_json;
 namespace {
 
 constexpr Rgba kLinkColour{0.62, 0.64, 0.68, 1.0};
-constexpr Rgba kCapsuleColour{0.9, 0.5, 0.2, 0.25};
+constexpr Rgba kCapsuleColour{0.62, 0.51, 0.78, 0.25};  // violet: no world object's colour
 constexpr Rgba kHandleColour{0.15, 0.45, 0.95, 1.0};
 constexpr Rgba kTargetColour{0.2, 0.8, 0.3, 0.5};
 constexpr Rgba kProxyColour{1.0, 0.6, 0.0, 0.9};

@@ -19,13 +19,16 @@ void append_pose(std::string& out, const Eigen::Vector3d& p, const Eigen::Quater
 }
 void append_pose(std::string& out, const Pose& p) { append_pose(out, p.position, p.orientation); }
 
-void begin_entity(std::string& out, bool first, std::uint64_t time_ns, const std::string& id) {
+void begin_entity(std::string& out, bool first, std::uint64_t time_ns, const std::string& id,
+                  const std::string& metadata) {
   if (!first) out += ',';
   out += "{\"timestamp\":";
   append_time(out, time_ns);
   out += ",\"frame_id\":\"world\",\"id\":";
   append_string(out, id);
-  out += ",\"lifetime\":{\"sec\":0,\"nsec\":0},\"frame_locked\":false,\"metadata\":[]";
+  out += ",\"lifetime\":{\"sec\":0,\"nsec\":0},\"frame_locked\":false,\"metadata\":[";
+  out += metadata;
+  out += ']';
 }
 void end_entity(std::string& out) { out += '}'; }
 

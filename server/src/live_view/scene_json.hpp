@@ -20,8 +20,10 @@ void append_pose(std::string& out, const Eigen::Vector3d& p, const Eigen::Quater
 void append_pose(std::string& out, const Pose& p);
 
 // An entity in the world frame: begin_entity opens it (after a ',' unless first), the caller adds its primitive lists
-// (",\"spheres\":[...]") and empty_lists the others, end_entity closes it.
-void begin_entity(std::string& out, bool first, std::uint64_t time_ns, const std::string& id);
+// (",\"spheres\":[...]") and empty_lists the others, end_entity closes it. `metadata`: the entity's key/value
+// pairs, already as JSON objects separated by commas ("" none).
+void begin_entity(std::string& out, bool first, std::uint64_t time_ns, const std::string& id,
+                  const std::string& metadata = {});
 void end_entity(std::string& out);
 void empty_lists(std::string& out, std::initializer_list<const char*> names);
 

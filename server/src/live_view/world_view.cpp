@@ -1,5 +1,7 @@
 #include "live_view/world_view.hpp"
 
+#include <fmt/format.h>
+
 #include <vector>
 
 #include "hapticd/dds/conversion.hpp"
@@ -17,7 +19,22 @@ namespace {
 // thin cube, 2 m across when unbounded).
 void append_world(std::string& out, bool first, std::uint64_t time_ns, const std::string& engine,
                   const hapticd_msg_World& w) {
-  begin_entity(out, first, time_ns, "world/" + engine);
+  // Each body once in the metadata, with the colour of its first shape ("r g b" in 0..1): a viewer's legend.
+  std::string metadata;
+  for (int i = 0; i < w.shape_count; ++i) {
+    const std::string body(dds::text_of(w.shapes[i].body));
+    bool seen = false;
+    for (int k = 0; k < i && !seen; ++k) seen = body == dds::text_of(w.shapes[k].body);
+    if (seen) continue;
+    if (!metadata.empty()) metadata += ',';
+    metadata += "{\"key\":";
+    append_string(metadata, body);
+    metadata += ",\"value\":";
+    append_string(metadata, fmt::format("{:.3f} {:.3f} {:.3f}", w.shapes[i].color[0], w.shapes[i].color[1],
+                                        w.shapes[i].color[2]));
+    metadata += '}';
+  }
+  begin_entity(out, first, time_ns, "world/" + engine, metadata);
   std::string cubes, spheres, cylinders;
   for (int i = 0; i < w.shape_count; ++i) {
     const hapticd_msg_WorldShape& s = w.shapes[i];
