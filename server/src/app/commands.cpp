@@ -183,9 +183,10 @@ int run_session(const RunOptions& options) {
     {
       std::string page = view->url();
       if (page.rfind("ws://", 0) == 0) page = "http://" + page.substr(5) + "/";
-      spdlog::info("live view on {} (the page: {} in a browser; Foxglove or Lichtblick: the ws:// address; "
-                   "docs/live-view.md)",
-                   view->url(), page);
+      spdlog::info(
+          "live view on {} (the page: {} in a browser; Foxglove or Lichtblick: the ws:// address; "
+          "docs/live-view.md)",
+          view->url(), page);
     }
     if (s->config.live_view.address != "127.0.0.1" && s->config.live_view.address != "::1")
       spdlog::warn("the live view listens on {}, not on loopback only: whoever reaches it can watch the session",
