@@ -34,7 +34,7 @@ watch=$(sed -n 's/^# watch: //p' "$script")
 goal=$(sed -n "/^# goal: /,/^[^#]/p" "$script" | grep "^#" | sed "s/^# \(goal: \)\{0,1\} *//" | tr "\n" " ")
 last=$(awk '!/^#/ && NF { t = $1 } END { print t + 0 }' "$script")
 seconds=$(awk -v l="$last" -v h="$hold" 'BEGIN { printf "%d", l + h + 4 }')
-out=$(mktemp -d /tmp/hapticd-scene-demo.XXXXXX)
+out=$(mktemp -d "${TMPDIR:-/tmp}/hapticd-scene-demo.XXXXXX")
 "$bin/hapticd" --config "$src/config/scenes/$scene.yaml" --dds-domain "$domain" --duration "$seconds" --busy-machine \
   --live-view "$port" > "$out/server.log" 2>&1 &
 server=$!

@@ -29,7 +29,7 @@ if [ -z "$bin" ]; then
   [ -n "$bin" ] || bin=$(dirname "$(command -v hapticd || echo /nonexistent/hapticd)")
 fi
 [ -x "$bin/hapticd" ] || { echo "teleop-demo: no hapticd in ${bin} (build first: ./scripts/test.sh, or --bin DIR)" >&2; exit 2; }
-out=${out:-$(mktemp -d /tmp/hapticd-teleop-demo.XXXXXX)}
+out=${out:-$(mktemp -d "${TMPDIR:-/tmp}/hapticd-teleop-demo.XXXXXX")}
 mkdir -p "$out"
 source "$src/tests/e2e/link_namespaces.sh"
 trap link_namespaces_down EXIT

@@ -69,6 +69,8 @@ def main():
            if k not in ("HAPTICD_DDS_NETWORK", "HAPTICD_DDS_CONFIG", "CYCLONEDDS_URI", "PKG_CONFIG_PATH",
                         "LD_LIBRARY_PATH")}
     env["HOME"] = str(work / "home")
+    (work / "tmp").mkdir()
+    env["TMPDIR"] = str(work / "tmp")  # what the docs' commands make with mktemp stays in WORK_DIR
     try:
         r = subprocess.run(["bash", str(work / "newcomer.sh")], cwd=source, env=env, timeout=1200)
     except subprocess.TimeoutExpired:
