@@ -58,7 +58,7 @@ def main():
                        f"echo \"--- {where}\"",
                        "{", text, "} > \"$__nc_out\" 2>&1"]
             if expect:
-                script.append(f"grep -Eq {shlex.quote(expect)} \"$__nc_out\" || "
+                script.append(f"grep -Eq -e {shlex.quote(expect)} \"$__nc_out\" || "
                               f"fail \"{where}: the output does not match {shlex.quote(expect)}\"")
             script.append("tail -n 3 \"$__nc_out\"")
     if count < 5:
