@@ -105,19 +105,19 @@ std::string_view to_string(DeviceFault fault) noexcept {
 std::string_view governed_by(DeviceFault fault) noexcept {
   switch (fault) {
     case DeviceFault::joint_velocity:
-      return "the device's safety.joint_fault_at (0.95) of each joint's velocity_max: --set "
+      return "the device's safety.joint_fault_at (default 0.95) of each joint's velocity_max: --set "
              "devices.<device>.safety.joint_fault_at=...; an engine's MOTION is followed within the virtual model's "
              "engine_joint_speed_fraction";
     case DeviceFault::cartesian_velocity:
-      return "the device's safety.max_speed_m_s (1.5): --set devices.<device>.safety.max_speed_m_s=...";
+      return "the device's safety.max_speed_m_s (default 1.5): --set devices.<device>.safety.max_speed_m_s=...";
     case DeviceFault::workspace:
       return "the device's safety.workspace_min_m / workspace_max_m and wall_fault_depth_m";
     case DeviceFault::loop_overrun:
-      return "the device's safety.max_consecutive_overruns (10): --set "
+      return "the device's safety.max_consecutive_overruns (default 10): --set "
              "devices.<device>.safety.max_consecutive_overruns=...; a busy development machine with simulated "
              "devices: hapticd --busy-machine (docs/running.md)";
     case DeviceFault::loop_stall:
-      return "the device's safety.max_stall_s (0.02 s): --set devices.<device>.safety.max_stall_s=...; a busy "
+      return "the device's safety.max_stall_s (default 0.02 s): --set devices.<device>.safety.max_stall_s=...; a busy "
              "development machine with simulated devices: hapticd --busy-machine (docs/running.md)";
     case DeviceFault::sensor_saturation:
       return "the force/torque sensor's range (the device's description)";
