@@ -17,7 +17,9 @@ may be a project script run by `node` (tests/live_view/picture.mjs), which finds
 HAPTICD_BIN_DIR; node lines without "# makes" are not run.
 
 Blocks marked `<!-- newcomer -->` are not parsed here: the newcomer test runs them for real from a fresh prefix
-(tests/docs/newcomer_test.py).
+(tests/docs/newcomer_test.py). Every other block that starts a program (not a synopsis, not a `# makes` line) must
+say why it is not run: the line before its fence `<!-- not run here: REASON -->` (it needs a second machine, runs
+until Ctrl-C, takes minutes, ...), so a command a reader copies is either run as written or known not to be.
 
 Usage: docs_commands_test.py SOURCE_DIR BIN_DIR
 """
@@ -59,6 +61,39 @@ def command_lines(path):
             text = re.sub(r"\s+#\s.*$", "", line).strip().rstrip("&").strip()
             if text:
                 yield number, text, comment.group(1).strip() if comment else ""
+        i += 1
+
+
+STARTERS = PROGRAMS + ("hapticd-python", "hapticd-link-relay", "node", "python3")
+
+
+def unexplained_blocks(path):
+    """(line number, first command) of each sh block that starts a program, is not run by the newcomer test and
+    does not say why it is not run (`<!-- not run here: REASON -->` before its fence)."""
+    lines = path.read_text().splitlines()
+    i = 0
+    while i < len(lines):
+        if re.match(r"^\s*```(sh|bash)\s*$", lines[i]):
+            before = lines[i - 1].strip() if i > 0 else ""
+            end = i + 1
+            while end < len(lines) and not re.match(r"^\s*```\s*$", lines[end]):
+                end += 1
+            said = before.startswith("<!-- newcomer") or re.match(r"<!-- not run here: \S.* -->$", before)
+            for raw in lines[i + 1:end]:
+                if said or raw.startswith(" "):
+                    break
+                text = re.sub(r"\s+#\s.*$", "", raw).strip().rstrip("\\").strip()
+                try:
+                    words = shlex.split(text)
+                except ValueError:
+                    continue
+                while words and re.fullmatch(r"[A-Z_][A-Z0-9_]*=\S*", words[0]):
+                    words.pop(0)
+                starts = words and (words[0] in STARTERS or re.match(r"^(\./)?(scripts|eval)/", words[0]))
+                if starts and not is_synopsis(words) and not re.search(r"#\s+makes \S+", raw):
+                    yield i + 1, text
+                    break
+            i = end
         i += 1
 
 
@@ -178,6 +213,11 @@ def main():
             print(f"ok {where}: {text}")
             if makes:
                 remade += check_remade(bin_dir, source, words, makes.group(1), scratch, where, failures)
+    for path in files:
+        for number, text in unexplained_blocks(path):
+            failures.append(f"{path.relative_to(source)}:{number}: this block starts a program ({text}) but the newcomer "
+                            "test does not run it and the doc does not say why (<!-- not run here: REASON --> before "
+                            "its fence, or <!-- newcomer --> to run it)")
     print(f"{checked} example commands parse, {remade} made their docs' files again, {synopses} synopsis lines "
           f"skipped, {len(failures)} failed")
     for f in failures:
