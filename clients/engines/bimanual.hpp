@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "hapticd/client/client.hpp"
-#include "shared_body.hpp"
+#include "hapticd/model/shared_body.hpp"
 
 namespace hapticd::examples {
 
@@ -30,7 +30,7 @@ struct BoxReport {
 
 class BimanualEngine {
  public:
-  BimanualEngine(client::Client& client, std::string group, group_models::SharedBodySettings box)
+  BimanualEngine(client::Client& client, std::string group, model::SharedBodySettings box)
       : client_(client), group_(std::move(group)), box_(box) {}
   ~BimanualEngine() { client_.on_group_state({}); }
   BimanualEngine(const BimanualEngine&) = delete;
@@ -122,9 +122,9 @@ class BimanualEngine {
 
   client::Client& client_;
   std::string group_;
-  group_models::SharedBodySettings box_;
+  model::SharedBodySettings box_;
   bool table_below_ = true;
-  group_models::SharedBody body_;  // the receive thread's, after connect()
+  model::SharedBody body_;  // the receive thread's, after connect()
   std::array<std::string, 2> devices_;
   std::uint64_t last_serial_ = 0, answered_ = 0;
   BoxReport start_;

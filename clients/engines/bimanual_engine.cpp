@@ -43,7 +43,7 @@ int run(int argc, char** argv) {
   std::signal(SIGTERM, on_signal);
 
   hapticd::client::Client client({id, domain});
-  hapticd::group_models::SharedBodySettings box;
+  hapticd::model::SharedBodySettings box;
   box.mass_kg = mass;
   box.size_m = Eigen::Vector3d(size[0], size[1], size[2]);
   hapticd::examples::BimanualEngine engine(client, group, box);

@@ -451,7 +451,7 @@ TEST(DdsGroups, TheBimanualEngineLetsTwoOperatorsLiftAndTurnItsBox) {
                            held_arm("right", "{xyz: [0.45, 0.558, 0], rpy: [0, 0, 3.141592653589793]}");
   GroupServer server(hands_session(86, "lockstep", 4.5, arms));
   Client client({"bimanual-engine", 86});
-  group_models::SharedBodySettings box;
+  model::SharedBodySettings box;
   box.size_m = Eigen::Vector3d(0.32, 0.15, 0.10);
   examples::BimanualEngine engine(client, "hands", box);
   server.start();

@@ -26,6 +26,8 @@ LAYERS = [
     ["app"],                            # the hapticd program: commands, the served session, signals
 ]
 LEVEL = {folder: level for level, folders in enumerate(LAYERS) for folder in folders}
+# Headers the build generates (from idl/): included without a folder from their build directory.
+GENERATED = {"hapticd_msg.h", "hapticd_msgPubSubTypes.h", "hapticd_msg.hpp", "hapticd_msg.cxx", "hapticd_msgPubSubTypes.hpp", "hapticd_msgTypeObjectSupport.hpp"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.MULTILINE)
 SOURCES = ("*.cpp", "*.hpp", "*.h", "*.c", "*.in")
 
@@ -68,11 +70,18 @@ def main():
         root = source / top_folder
         if not root.is_dir():
             continue
+        names = {p.name for p in files(root)}
         for path in sorted(files(root)):
             for inc in includes(path):
                 top = inc.split("/")[0] if "/" in inc else None
                 if top in LEVEL and not (path.parent / inc).exists():
                     problems.append(f"{path.relative_to(source)}: includes the server-internal {inc}")
+                # An include without a folder names a header of the file's own part of the tree (a plugin's, a
+                # client's), found through an include directory: one from another part (a client including a
+                # plugin's header) is an arrow the prefixes above cannot see.
+                if top is None and inc not in names and inc not in GENERATED:
+                    problems.append(f"{path.relative_to(source)}: includes {inc}, which is not in {top_folder}/ "
+                                    "(a header of another part of the tree: include it by its installed path)")
                 checked += 1
     if checked < 100:
         problems.append(f"only {checked} includes checked: the scan broke")

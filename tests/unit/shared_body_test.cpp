@@ -1,7 +1,7 @@
 // The shared virtual object of bimanual coupling, on its own (the loop's period, fixed steps): it rests on the
 // table carrying its weight; two hands lift it 10 cm and turn it 30 degrees about the vertical, feeling its
 // weight between them; a squeeze shows as the internal force it is; a step allocates nothing.
-#include "shared_body.hpp"
+#include "hapticd/model/shared_body.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 
 #include "hapticd/testing/allocation_guard.hpp"
 
-namespace hapticd::group_models {
+namespace hapticd::model {
 namespace {
 
 constexpr double kPeriod = 0.0005;
@@ -130,4 +130,4 @@ TEST(SharedBody, AStepDoesNotAllocate) {
 }
 
 }  // namespace
-}  // namespace hapticd::group_models
+}  // namespace hapticd::model

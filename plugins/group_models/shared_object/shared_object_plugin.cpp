@@ -13,9 +13,11 @@
 #include "hapticd/group_model.hpp"
 #include "hapticd/plugin.hpp"
 #include "hapticd/realtime/latest_value.hpp"
-#include "shared_body.hpp"
+#include "hapticd/model/shared_body.hpp"
 
 namespace hapticd::group_models {
+using model::SharedBody;
+using model::SharedBodySettings;
 namespace {
 
 struct ObjectState {

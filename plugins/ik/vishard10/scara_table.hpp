@@ -3,7 +3,7 @@
 // around the base, the position of the elbow point E between the two link pairs (joint 3's axis). A tip
 // position between mesh points gets E by bilinear interpolation in (radius, angle); both pairs then follow
 // exactly (two-link inverse kinematics with fixed elbow sides), so the tip is reached exactly and the map is a
-// function: cyclic. The table is built off line by tools/scara_lut (numerical optimisation of the worst joint
+// function: cyclic. The table is built off line by plugins/ik/vishard10/scara_lut (numerical optimisation of the worst joint
 // rate per tip speed, docs/redundancy.md).
 //
 // E is coded in [-1, 1]^2 per tip position: s along the chord through the two intersections of the circles of

@@ -1,7 +1,7 @@
 #pragma once
 // Inverse kinematics `vishard10_ik`: the ViSHaRD10 partitioned solution (partitioned_solution.hpp,
 // docs/redundancy.md). Joints 6 and 7 always mimic a prismatic joint (the height). The x-y position by the
-// SCARA inverse function (two prismatic pairs), the optimised look-up table of tools/scara_lut, or a
+// SCARA inverse function (two prismatic pairs), the optimised look-up table of plugins/ik/vishard10/scara_lut, or a
 // pseudoinverse of joints 1-4 with a manipulability criterion; the orientation by the wrist inverse function (link 5
 // keeps the world yaw q5_0) or the weighted wrist pseudoinverse (weights on q5', q8', q9, q10; the criterion (q9 -
 // pi/2)^2 and a virtual wall keeping q9 in [zeta, pi - zeta]). With both inverse functions the whole map from handle

@@ -11,9 +11,10 @@
 #include <cstddef>
 #include <span>
 
+#include "hapticd/export.hpp"
 #include "hapticd/spatial.hpp"
 
-namespace hapticd::group_models {
+namespace hapticd::model {
 
 struct SharedBodySettings {
   double mass_kg = 1.0;
@@ -30,7 +31,7 @@ struct SharedBodySettings {
   int substeps = 4;                   // per loop period
 };
 
-class SharedBody {
+class HAPTICD_API SharedBody {
  public:
   static constexpr std::size_t kMaxHands = 8;
 
@@ -79,4 +80,4 @@ class SharedBody {
   Eigen::Vector3d table_force_ = Eigen::Vector3d::Zero();
 };
 
-}  // namespace hapticd::group_models
+}  // namespace hapticd::model

@@ -1,10 +1,10 @@
-#include "shared_body.hpp"
+#include "hapticd/model/shared_body.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-namespace hapticd::group_models {
+namespace hapticd::model {
 
 void SharedBody::configure(const SharedBodySettings& settings, double period_s) {
   if (!(settings.mass_kg > 0.0) || !(settings.size_m.minCoeff() > 0.0) || !(period_s > 0.0) || settings.substeps < 1)
@@ -104,4 +104,4 @@ double SharedBody::internal_force_n() const noexcept {
   return 0.5 * (on_body_[0] - on_body_[1]).dot(u);
 }
 
-}  // namespace hapticd::group_models
+}  // namespace hapticd::model
