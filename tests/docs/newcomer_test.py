@@ -58,8 +58,10 @@ def main():
                        f"echo \"--- {where}\"",
                        "{", text, "} > \"$__nc_out\" 2>&1"]
             if expect:
+                # (The expectation as an argument of its own: quoted inside a double-quoted message, an apostrophe
+                # in it broke the script.)
                 script.append(f"grep -Eq -e {shlex.quote(expect)} \"$__nc_out\" || "
-                              f"fail \"{where}: the output does not match {shlex.quote(expect)}\"")
+                              f"fail {shlex.quote(where + ': the output does not match')} {shlex.quote(expect)}")
             script.append("tail -n 3 \"$__nc_out\"")
     if count < 5:
         print(f"FAIL: only {count} marked blocks found (the extraction broke, not the docs)")

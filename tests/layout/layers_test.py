@@ -65,7 +65,7 @@ def main():
                 problems.append(f"{path.relative_to(source)}: includes {inc}: {top}/ and {mine}/ are one layer")
     # Outside the server: no server-internal header (their folder names as include prefixes).
     # (tests/, bench/ and fuzz/ look inside on purpose: white-box tests, benchmarks and fuzzers of the internals.)
-    outside = ["plugins", "clients", "eval", "tools", "examples", "python", "recording", "teleop", "dds", "api", "idl"]
+    outside = ["plugins", "clients", "eval", "tools", "examples", "python", "recording", "teleop", "scene", "dds", "api", "idl"]
     for top_folder in outside:
         root = source / top_folder
         if not root.is_dir():

@@ -1,6 +1,6 @@
-// The SCARA look-up table optimiser (plugins/ik/vishard10/scara_lut) on a small mesh: it improves on its own initial guess,
-// the figure it reports is the table's, and tables survive a save and load; a broken table file is refused
-// with its file and line.
+// The SCARA look-up table optimiser (plugins/ik/vishard10/scara_lut) on a small mesh: it improves on its own initial
+// guess, the figure it reports is the table's, and tables survive a save and load; a broken table file is refused with
+// its file and line.
 #include "scara_optimiser.hpp"
 
 #include <gtest/gtest.h>

@@ -11,9 +11,9 @@
 #include <cmath>
 
 #include "hapticd/group_model.hpp"
+#include "hapticd/model/shared_body.hpp"
 #include "hapticd/plugin.hpp"
 #include "hapticd/realtime/latest_value.hpp"
-#include "hapticd/model/shared_body.hpp"
 
 namespace hapticd::group_models {
 using model::SharedBody;

@@ -3,8 +3,8 @@
 // around the base, the position of the elbow point E between the two link pairs (joint 3's axis). A tip
 // position between mesh points gets E by bilinear interpolation in (radius, angle); both pairs then follow
 // exactly (two-link inverse kinematics with fixed elbow sides), so the tip is reached exactly and the map is a
-// function: cyclic. The table is built off line by plugins/ik/vishard10/scara_lut (numerical optimisation of the worst joint
-// rate per tip speed, docs/redundancy.md).
+// function: cyclic. The table is built off line by plugins/ik/vishard10/scara_lut (numerical optimisation of the worst
+// joint rate per tip speed, docs/redundancy.md).
 //
 // E is coded in [-1, 1]^2 per tip position: s along the chord through the two intersections of the circles of
 // reach (radius l1 + l2 around the base, l3 + l4 around the tip), t across it, between the two circles.

@@ -65,6 +65,10 @@ class VirtualAdmittance final : public VirtualModel {
                                                           const Eigen::Vector3d& velocity,
                                                           const Eigen::Vector3d& angular_velocity) const noexcept;
   [[nodiscard]] bool takes_engine_input() const noexcept { return coupling_; }
+  // The virtual body's position and velocity (world) as the last cycle left them: the haptic scene's proxy
+  // follows the body in admittance display.
+  [[nodiscard]] const Eigen::Vector3d& body_position() const noexcept { return position_; }
+  [[nodiscard]] const Eigen::Vector3d& body_velocity() const noexcept { return velocity_; }
 
  private:
   struct Wall {

@@ -1,0 +1,35 @@
+#pragma once
+// The haptic scene: named objects, each a shape with a material at a pose in the session's world frame
+// (docs/haptic-scene.md). Built off the loop (scene_file.hpp, or by code) and read by the proxy on the loop; the
+// loop never changes it. Real-time safe to query: no allocation.
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "hapticd/scene/material.hpp"
+#include "hapticd/scene/shape.hpp"
+
+namespace hapticd::scene {
+
+struct SceneObject {
+  std::string name;
+  Shape shape;
+  Material material;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // world <- object
+};
+
+// The object's surface point closest to a world point, in the world frame.
+[[nodiscard]] inline SurfacePoint closest_in_world(const SceneObject& object,
+                                                   const Eigen::Vector3d& world_point) noexcept {
+  const Eigen::Vector3d local = object.pose.inverse(Eigen::Isometry) * world_point;
+  SurfacePoint s = closest_point(object.shape, local);
+  s.point = object.pose * s.point;
+  s.normal = object.pose.linear() * s.normal;
+  return s;
+}
+
+struct Scene {
+  std::vector<SceneObject> objects;
+};
+
+}  // namespace hapticd::scene

@@ -1,0 +1,27 @@
+#pragma once
+// The scene file (YAML; docs/haptic-scene.md, "The scene file"): named materials and the objects of a haptic
+// scene with their shapes, sizes, poses and materials. Every error - a YAML syntax error, an unknown or missing
+// key, a size that is not positive, a value that is not finite, a material nobody defined - is a SceneFileError
+// whose message names the file, the line and the key ("scene.yaml:12: objects[1].radius: must be positive").
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "hapticd/scene/scene.hpp"
+
+namespace hapticd::scene {
+
+class SceneFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// At most this many objects in a scene (a scene is for what a hand touches, not a level of a game).
+inline constexpr std::size_t kMaxSceneObjects = 1024;
+
+// Reads and checks a scene file. Not real-time safe.
+[[nodiscard]] Scene load_scene_file(const std::filesystem::path& file);
+// The same from text (`name` stands for the file in messages).
+[[nodiscard]] Scene parse_scene(const std::string& text, const std::string& name);
+
+}  // namespace hapticd::scene

@@ -1,0 +1,218 @@
+#include "hapticd/scene/scene_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "hapticd/input_file.hpp"
+
+namespace hapticd::scene {
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(std::string name) : name_(std::move(name)) {}
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
+    const std::string line = node.IsDefined() && node.Mark().line >= 0 ? std::to_string(node.Mark().line + 1) : "?";
+    throw SceneFileError(name_ + ":" + line + ": " + key + ": " + what);
+  }
+
+  void only(const YAML::Node& map, const std::string& where, const std::set<std::string>& keys) const {
+    if (!map.IsMap()) fail(map, where, "must be a mapping");
+    for (const auto& entry : map) {
+      const std::string key = entry.first.as<std::string>();
+      if (!keys.contains(key)) {
+        std::string known;
+        for (const auto& k : keys) known += (known.empty() ? "" : ", ") + k;
+        fail(entry.first, where + "." + key, "unknown key (known: " + known + ")");
+      }
+    }
+  }
+
+  double real(const YAML::Node& node, const std::string& key) const {
+    double v = 0.0;
+    try {
+      v = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(node, key, "must be a number");
+    }
+    if (!std::isfinite(v)) fail(node, key, "must be finite");
+    return v;
+  }
+
+  double real(const YAML::Node& map, const std::string& where, const std::string& key, double fallback, double minimum,
+              bool positive) const {
+    const YAML::Node node = map[key];
+    if (!node.IsDefined()) return fallback;
+    const double v = real(node, where + "." + key);
+    if (positive && v <= 0.0) fail(node, where + "." + key, "must be positive");
+    if (v < minimum) fail(node, where + "." + key, "must be at least " + std::to_string(minimum));
+    return v;
+  }
+
+  double required_positive(const YAML::Node& map, const std::string& where, const std::string& key) const {
+    if (!map[key].IsDefined()) fail(map, where + "." + key, "missing (this shape needs it)");
+    return real(map, where, key, 0.0, 0.0, true);
+  }
+
+  Eigen::Vector3d vector3(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsSequence() || node.size() != 3) fail(node, key, "must be a list of 3 numbers");
+    return {real(node[0], key + "[0]"), real(node[1], key + "[1]"), real(node[2], key + "[2]")};
+  }
+
+  Material material(const YAML::Node& map, const std::string& where) const {
+    only(map, where,
+         {"stiffness", "damping", "static_friction", "dynamic_friction", "texture_amplitude", "texture_period"});
+    Material m;
+    m.stiffness_n_per_m = real(map, where, "stiffness", m.stiffness_n_per_m, 0.0, true);
+    m.damping_n_s_per_m = real(map, where, "damping", m.damping_n_s_per_m, 0.0, false);
+    m.static_friction = real(map, where, "static_friction", 0.0, 0.0, false);
+    m.dynamic_friction = real(map, where, "dynamic_friction", m.static_friction, 0.0, false);
+    if (m.dynamic_friction > m.static_friction) {
+      if (map["static_friction"].IsDefined())
+        fail(map["dynamic_friction"], where + ".dynamic_friction", "must not exceed static_friction");
+      m.static_friction = m.dynamic_friction;
+    }
+    m.texture_amplitude_m = real(map, where, "texture_amplitude", 0.0, 0.0, false);
+    m.texture_period_m = real(map, where, "texture_period", m.texture_period_m, 0.0, true);
+    return m;
+  }
+
+  Eigen::Isometry3d pose(const YAML::Node& map, const std::string& where) const {
+    Eigen::Isometry3d x = Eigen::Isometry3d::Identity();
+    if (map["position"].IsDefined()) x.translation() = vector3(map["position"], where + ".position");
+    const int orientations = map["rpy_deg"].IsDefined() + map["quaternion"].IsDefined() + map["normal"].IsDefined();
+    if (orientations > 1) fail(map, where, "give one of rpy_deg, quaternion and normal");
+    if (map["rpy_deg"].IsDefined()) {
+      const Eigen::Vector3d a = vector3(map["rpy_deg"], where + ".rpy_deg") * (std::numbers::pi / 180.0);
+      x.linear() =
+          (Eigen::AngleAxisd(a.z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(a.y(), Eigen::Vector3d::UnitY()) *
+           Eigen::AngleAxisd(a.x(), Eigen::Vector3d::UnitX()))
+              .toRotationMatrix();
+    } else if (map["quaternion"].IsDefined()) {
+      const YAML::Node q = map["quaternion"];
+      if (!q.IsSequence() || q.size() != 4) fail(q, where + ".quaternion", "must be [w, x, y, z]");
+      Eigen::Quaterniond quat(real(q[0], where + ".quaternion[0]"), real(q[1], where + ".quaternion[1]"),
+                              real(q[2], where + ".quaternion[2]"), real(q[3], where + ".quaternion[3]"));
+      if (quat.norm() < 1e-9) fail(q, where + ".quaternion", "must not be zero");
+      x.linear() = quat.normalized().toRotationMatrix();
+    } else if (map["normal"].IsDefined()) {
+      const Eigen::Vector3d n = vector3(map["normal"], where + ".normal");
+      if (n.norm() < 1e-9) fail(map["normal"], where + ".normal", "must not be zero");
+      x.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n.normalized()).toRotationMatrix();
+    }
+    return x;
+  }
+
+  SceneObject object(const YAML::Node& map, const std::string& where,
+                     const std::map<std::string, Material>& materials) const {
+    only(map, where,
+         {"name", "shape", "radius", "size", "length", "position", "rpy_deg", "quaternion", "normal", "material"});
+    SceneObject o;
+    if (!map["name"].IsDefined()) fail(map, where + ".name", "missing");
+    o.name = map["name"].as<std::string>();
+    if (o.name.empty() || o.name.size() > 64) fail(map["name"], where + ".name", "must have 1 to 64 characters");
+    if (!map["shape"].IsDefined()) fail(map, where + ".shape", "missing (plane, sphere, box, capsule or cylinder)");
+    const std::string shape = map["shape"].as<std::string>();
+    const std::map<std::string, ShapeKind> kinds{{"plane", ShapeKind::plane},
+                                                 {"sphere", ShapeKind::sphere},
+                                                 {"box", ShapeKind::box},
+                                                 {"capsule", ShapeKind::capsule},
+                                                 {"cylinder", ShapeKind::cylinder}};
+    const auto kind = kinds.find(shape);
+    if (kind == kinds.end())
+      fail(map["shape"], where + ".shape", "'" + shape + "' is not plane, sphere, box, capsule or cylinder");
+    o.shape.kind = kind->second;
+    const bool round = o.shape.kind != ShapeKind::plane && o.shape.kind != ShapeKind::box;
+    const bool long_ = o.shape.kind == ShapeKind::capsule || o.shape.kind == ShapeKind::cylinder;
+    auto refuse = [&](const char* key, bool wanted) {
+      if (!wanted && map[key].IsDefined()) fail(map[key], where + "." + key, "a " + shape + " has no " + key);
+    };
+    refuse("radius", round);
+    refuse("length", long_);
+    refuse("size", o.shape.kind == ShapeKind::box);
+    refuse("normal", o.shape.kind == ShapeKind::plane);
+    if (round) o.shape.radius = required_positive(map, where, "radius");
+    if (long_) o.shape.half_length = 0.5 * required_positive(map, where, "length");
+    if (o.shape.kind == ShapeKind::box) {
+      if (!map["size"].IsDefined()) fail(map, where + ".size", "missing (a box's edge lengths [x, y, z])");
+      const Eigen::Vector3d size = vector3(map["size"], where + ".size");
+      if (size.minCoeff() <= 0.0) fail(map["size"], where + ".size", "every edge must be positive");
+      o.shape.half_extents = 0.5 * size;
+    }
+    o.pose = pose(map, where);
+    if (map["material"].IsDefined()) {
+      const YAML::Node m = map["material"];
+      if (m.IsScalar()) {
+        const auto found = materials.find(m.as<std::string>());
+        if (found == materials.end())
+          fail(m, where + ".material", "no material '" + m.as<std::string>() + "' in materials");
+        o.material = found->second;
+      } else {
+        o.material = material(m, where + ".material");
+      }
+    }
+    return o;
+  }
+
+  Scene scene(const YAML::Node& root) const {
+    if (!root.IsDefined() || root.IsNull()) throw SceneFileError(name_ + ": the scene file is empty");
+    only(root, "scene", {"materials", "objects"});
+    std::map<std::string, Material> materials;
+    if (root["materials"].IsDefined()) {
+      const YAML::Node ms = root["materials"];
+      if (!ms.IsMap()) fail(ms, "materials", "must be a mapping of names to materials");
+      for (const auto& entry : ms)
+        materials[entry.first.as<std::string>()] = material(entry.second, "materials." + entry.first.as<std::string>());
+    }
+    const YAML::Node objects = root["objects"];
+    if (!objects.IsDefined() || !objects.IsSequence()) fail(root, "objects", "missing (a list of objects)");
+    if (objects.size() > kMaxSceneObjects)
+      fail(objects, "objects",
+           std::to_string(objects.size()) + " objects: at most " + std::to_string(kMaxSceneObjects));
+    Scene s;
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      const std::string where = "objects[" + std::to_string(i) + "]";
+      s.objects.push_back(object(objects[i], where, materials));
+      if (!names.insert(s.objects.back().name).second)
+        fail(objects[i]["name"], where + ".name", "'" + s.objects.back().name + "' is taken by another object");
+    }
+    return s;
+  }
+
+ private:
+  std::string name_;
+};
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw SceneFileError(name + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  try {
+    return Reader(name).scene(root);
+  } catch (const YAML::Exception& e) {
+    throw SceneFileError(name + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+}
+
+Scene load_scene_file(const std::filesystem::path& file) {
+  std::string text;
+  try {
+    text = read_input_file(file, "scene file");
+  } catch (const std::runtime_error& e) {
+    throw SceneFileError(e.what());
+  }
+  return parse_scene(text, file.string());
+}
+
+}  // namespace hapticd::scene
