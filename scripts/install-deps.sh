@@ -20,6 +20,7 @@ packages=(
   liborocos-kdl-dev
   libnlopt-dev
   libmujoco-dev
+  libembree-dev libassimp-dev
   rt-tests
   clang-14 libclang-rt-14-dev clang-format-14 lld
   python3 python3-matplotlib python3-dev python3-numpy python3-pytest pybind11-dev

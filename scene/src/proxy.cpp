@@ -1,16 +1,20 @@
 #include "hapticd/scene/proxy.hpp"
 
+#include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+
+#include "hapticd/scene/mesh.hpp"
 
 namespace hapticd::scene {
 namespace {
 
 constexpr double kSkin = 1e-7;              // a sweep stops this short of a surface [m]
 constexpr double kContactTolerance = 2e-6;  // within this of a surface the proxy touches it [m]
-constexpr double kForceTolerance = 1e-5;    // within this, a contact shares the force [m]
+constexpr double kForceTolerance = 1e-6;    // within this, a contact shares the force [m] (a mesh's neighbours just
+                                            // beyond the contact would tilt it by their rounded edges)
 constexpr int kSweepSteps = 32;
-constexpr int kProjectionSweeps = 256;
 
 }  // namespace
 
@@ -42,30 +46,154 @@ int GodObject::gather(const Eigen::Vector3d& x, double tolerance, Planes& planes
     if (skipped(i)) continue;
     const SceneObject& o = scene_->objects[i];
     if ((x - o.pose.translation()).norm() - bounds_[i] - r > tolerance) continue;
+    if (o.shape.kind == ShapeKind::mesh) {
+      gather_mesh(i, x, tolerance, planes, count);
+      continue;
+    }
     const SurfacePoint s = closest_in_world(o, x);
     if (s.distance - r > tolerance) continue;
     planes[static_cast<std::size_t>(count++)] =
-        Plane{s.normal, s.normal.dot(s.point) + r + kSkin, static_cast<int>(i), s};
+        Plane{s.normal, s.normal.dot(s.point) + r + kSkin, static_cast<int>(i), s, s.normal};
   }
   return count;
 }
 
-// Hildreth's method: the point nearest `goal` that satisfies every plane (cyclic projections with their
-// multipliers kept non-negative: converges to the exact solution, also with dependent planes).
+// A mesh's contact planes: one per triangle within reach, its normal the direction from the triangle's closest
+// point to the proxy's centre (the sphere against the triangle: flat on its face, round at its edges and corners);
+// planes that repeat one already taken (neighbours sharing the closest edge or vertex) are left out.
+void GodObject::gather_mesh(std::size_t object, const Eigen::Vector3d& x, double tolerance, Planes& planes,
+                            int& count) const noexcept {
+  const SceneObject& o = scene_->objects[object];
+  // Contacts on an edge or a corner towards a coplanar or concave neighbour are kept aside: they count only when
+  // no face (or convex edge) of the mesh holds the proxy - a proxy resting on a grid's vertex, say.
+  struct Context {
+    const GodObject* self;
+    const SceneObject* o;
+    const MeshShape* mesh;
+    Eigen::Vector3d local;
+    Planes* planes;
+    int* count;
+    int object;
+    int own;
+    Planes aside;
+    int aside_count;
+  } c{this, &o, o.shape.mesh.get(), o.pose.inverse(Eigen::Isometry) * x, &planes, &count, static_cast<int>(object), 0,
+      {},   0};
+  o.shape.mesh->for_each_near(
+      c.local, settings_.radius_m + tolerance,
+      [](void* p, const MeshShape::Near& near) {
+        auto* c = static_cast<Context*>(p);
+        const Eigen::Vector3d v = c->local - near.closest.point;
+        const double d = v.norm();
+        const Eigen::Vector3d local_normal = d > 1e-12 ? Eigen::Vector3d(v / d) : c->mesh->face_normal(near.triangle);
+        const Eigen::Vector3d normal = c->o->pose.linear() * local_normal;
+        const Eigen::Vector3d point = c->o->pose * near.closest.point;
+        const double offset = normal.dot(point) + c->self->settings_.radius_m + kSkin;
+        const bool own = c->mesh->own_contact(near.triangle, near.closest.barycentric);
+        Planes& into = own ? *c->planes : c->aside;
+        int& n = own ? *c->count : c->aside_count;
+        if (n >= kMaxContacts) return;
+        for (int j = 0; j < n; ++j) {
+          const Plane& q = into[static_cast<std::size_t>(j)];
+          if (q.object == c->object && q.normal.dot(normal) > 1.0 - 1e-12 && std::abs(q.offset - offset) < 1e-12)
+            return;
+        }
+        // Force shading: the vertex normals at the closest point, where the proxy meets the face from its front.
+        Eigen::Vector3d shaded = normal;
+        const Eigen::Vector3d s = c->mesh->shaded_normal(near.triangle, near.closest.barycentric);
+        if (c->self->settings_.force_shading && local_normal.dot(c->mesh->face_normal(near.triangle)) > 0.0 &&
+            s.dot(local_normal) > 0.0)
+          shaded = c->o->pose.linear() * s;
+        into[static_cast<std::size_t>(n++)] = Plane{normal, offset, c->object, SurfacePoint{point, normal, d}, shaded};
+        if (own) ++c->own;
+      },
+      &c);
+  if (c.own > 0) return;
+  for (int j = 0; j < c.aside_count && count < kMaxContacts; ++j)
+    planes[static_cast<std::size_t>(count++)] = c.aside[static_cast<std::size_t>(j)];
+}
+
+double GodObject::mesh_step(std::size_t object, const Eigen::Vector3d& x, const Eigen::Vector3d& u,
+                            double step) const noexcept {
+  const SceneObject& o = scene_->objects[object];
+  struct Context {
+    Eigen::Vector3d local, u;
+    double r, step;
+  } c{o.pose.inverse(Eigen::Isometry) * x, o.pose.linear().transpose() * u, settings_.radius_m, step};
+  o.shape.mesh->for_each_near(
+      c.local, c.r + step + kSkin,
+      [](void* p, const MeshShape::Near& near) {
+        auto* c = static_cast<Context*>(p);
+        const Eigen::Vector3d v = c->local - near.closest.point;
+        const double d = v.norm();
+        if (d < 1e-12) return;
+        const double approach = -(v / d).dot(c->u);
+        if (approach <= 1e-7) return;
+        c->step = std::min(c->step, std::max(0.0, (d - c->r - kSkin) / approach));
+      },
+      &c);
+  return c.step;
+}
+
+// The point nearest `goal` that satisfies every plane: an active-set method on the normal equations. In three
+// dimensions at most three independent planes are active (a corner); a plane that depends on the active ones
+// (its normal in their span: a duplicate, or a fourth at a corner) is not added. Exact, also for planes a few
+// degrees apart (a mesh's neighbouring facets), where cyclic projections would need thousands of sweeps.
 Eigen::Vector3d GodObject::project(const Eigen::Vector3d& goal, const Planes& planes, int count) noexcept {
-  std::array<double, kMaxContacts> lambda{};
+  std::array<int, 3> active{};
+  int n = 0;
   Eigen::Vector3d x = goal;
-  for (int sweep = 0; sweep < kProjectionSweeps && count > 0; ++sweep) {
-    double largest = 0.0;
+  Eigen::Vector3d lambda = Eigen::Vector3d::Zero();
+  // x = goal + sum lambda_i normal_i with normal_i . x = offset_i for the active planes.
+  auto solve = [&]() {
+    Eigen::Matrix3d gram = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    for (int a = 0; a < n; ++a) {
+      const Plane& pa = planes[static_cast<std::size_t>(active[static_cast<std::size_t>(a)])];
+      rhs[a] = pa.offset - pa.normal.dot(goal);
+      for (int b = 0; b < n; ++b)
+        gram(a, b) = pa.normal.dot(planes[static_cast<std::size_t>(active[static_cast<std::size_t>(b)])].normal);
+    }
+    lambda = gram.inverse() * rhs;  // the unused rows and columns are the identity's
+    x = goal;
+    for (int a = n; a < 3; ++a) lambda[a] = 0.0;
+    for (int a = 0; a < n; ++a)
+      x += lambda[a] * planes[static_cast<std::size_t>(active[static_cast<std::size_t>(a)])].normal;
+  };
+  auto independent = [&](const Eigen::Vector3d& normal) {
+    if (n == 0) return true;
+    const Eigen::Vector3d& a = planes[static_cast<std::size_t>(active[0])].normal;
+    if (n == 1) return a.cross(normal).squaredNorm() > 1e-14;
+    const Eigen::Vector3d& b = planes[static_cast<std::size_t>(active[1])].normal;
+    return n == 2 && std::abs(a.cross(b).normalized().dot(normal)) > 1e-7;
+  };
+  for (int iteration = 0; iteration < 4 * kMaxContacts; ++iteration) {
+    // A multiplier below zero: that plane pulls; it leaves the active set.
+    int worst_active = -1;
+    for (int a = 0; a < n; ++a)
+      if (lambda[a] < -1e-15 && (worst_active < 0 || lambda[a] < lambda[worst_active])) worst_active = a;
+    if (worst_active >= 0) {
+      for (int a = worst_active; a + 1 < n; ++a)
+        active[static_cast<std::size_t>(a)] = active[static_cast<std::size_t>(a + 1)];
+      --n;
+      solve();
+      continue;
+    }
+    // The plane x violates most joins it, if it is independent of the active ones.
+    int worst = -1;
+    double most = -1e-13;
     for (int j = 0; j < count; ++j) {
       const Plane& p = planes[static_cast<std::size_t>(j)];
-      const double old = lambda[static_cast<std::size_t>(j)];
-      const double next = std::max(0.0, old + (p.offset - p.normal.dot(x)));
-      x += (next - old) * p.normal;
-      lambda[static_cast<std::size_t>(j)] = next;
-      largest = std::max(largest, std::abs(next - old));
+      const double v = p.normal.dot(x) - p.offset;
+      if (v < most && independent(p.normal)) {
+        most = v;
+        worst = j;
+      }
     }
-    if (largest < 1e-12) break;
+    if (worst < 0) break;
+    if (n == 3) break;  // (cannot happen: three independent planes fix x)
+    active[static_cast<std::size_t>(n++)] = worst;
+    solve();
   }
   return x;
 }
@@ -88,6 +216,14 @@ Eigen::Vector3d GodObject::sweep(const Eigen::Vector3d& from, const Eigen::Vecto
       if (skipped(i)) continue;
       const SceneObject& o = scene_->objects[i];
       if ((x - o.pose.translation()).norm() - bounds_[i] - r > step) continue;
+      if (o.shape.kind == ShapeKind::mesh) {
+        const double t = mesh_step(i, x, u, step);
+        if (t < step) {
+          step = t;
+          limited = true;
+        }
+        continue;
+      }
       const SurfacePoint s = closest_in_world(o, x);
       const double approach = -s.normal.dot(u);
       if (approach <= 1e-7) continue;
@@ -112,8 +248,13 @@ Eigen::Vector3d GodObject::solve(const Eigen::Vector3d& start, const Eigen::Vect
     const int count = gather(x, kContactTolerance, planes);
     const Eigen::Vector3d target = project(goal, planes, count);
     bool hit = false;
+    const Eigen::Vector3d from = x;
     x = sweep(x, target, hit);
-    if (!hit) break;
+    if (hit) continue;  // stopped at a new contact: again from there with its plane
+    // Reached the target: the goal itself, or a point the contact planes hold. The planes are tangents taken where
+    // the proxy was; where it is now they may have turned (a round surface, a mesh's rounded edge) or held it in
+    // the air off a convex edge: again from here until it no longer moves.
+    if (count == 0 || (target - goal).squaredNorm() < 1e-24 || (x - from).squaredNorm() < 1e-18) break;
   }
   return x;
 }
@@ -178,9 +319,18 @@ const ProxyState& GodObject::update(const Eigen::Vector3d& goal, const Eigen::Ve
     const SceneObject& o = scene_->objects[static_cast<std::size_t>(planes[static_cast<std::size_t>(rule)].object)];
     last_stiffness_ = stiffness_of(o.material);
   }
-  const Eigen::Vector3d spring = last_stiffness_ * (proxy - goal);
+  Eigen::Vector3d spring = last_stiffness_ * (proxy - goal);
+  // Force shading: the spring (its normal part and the friction across it) turned as the main contact's facet
+  // normal turns into its shaded normal, so a tessellated curve feels smooth and its edges are not felt. (One
+  // turn for the whole spring: turning each contact's share by its own normal would tilt it by the neighbours'
+  // rounded edges.)
+  if (rule >= 0) {
+    const Plane& main_plane = planes[static_cast<std::size_t>(rule)];
+    if (main_plane.shaded.dot(main_plane.normal) < 1.0 - 1e-15)
+      spring = Eigen::Quaterniond::FromTwoVectors(main_plane.normal, main_plane.shaded) * spring;
+  }
   double shares = 0.0;
-  for (int j = 0; j < count; ++j) shares += std::max(0.0, spring.dot(planes[static_cast<std::size_t>(j)].normal));
+  for (int j = 0; j < count; ++j) shares += std::max(0.0, spring.dot(planes[static_cast<std::size_t>(j)].shaded));
   Eigen::Vector3d force = count > 0 ? Eigen::Vector3d::Zero() : spring;
   state_.contact_count = 0;
   for (int j = 0; j < count; ++j) {
@@ -188,18 +338,18 @@ const ProxyState& GodObject::update(const Eigen::Vector3d& goal, const Eigen::Ve
     const SceneObject& o = scene_->objects[static_cast<std::size_t>(p.object)];
     const double k = stiffness_of(o.material);
     const double scale = o.material.stiffness_n_per_m > 0.0 ? k / o.material.stiffness_n_per_m : 0.0;
-    const double share = shares > 0.0 ? std::max(0.0, spring.dot(p.normal)) / shares : (j == 0 ? 1.0 : 0.0);
+    const double share = shares > 0.0 ? std::max(0.0, spring.dot(p.shaded)) / shares : (j == 0 ? 1.0 : 0.0);
     Eigen::Vector3d own = share * spring;
-    const double into = goal_velocity.dot(p.normal);
-    if (into < 0.0) own -= o.material.damping_n_s_per_m * scale * into * p.normal;
+    const double into = goal_velocity.dot(p.shaded);
+    if (into < 0.0) own -= o.material.damping_n_s_per_m * scale * into * p.shaded;
     const Eigen::Vector3d local = o.pose.inverse(Eigen::Isometry) * p.surface.point;
-    own += k * texture_height(o.material, local) * p.normal;
-    const double normal_part = own.dot(p.normal);
-    if (normal_part < 0.0) own -= normal_part * p.normal;  // a surface pushes, never pulls
+    own += k * texture_height(o.material, local) * p.shaded;
+    const double normal_part = own.dot(p.shaded);
+    if (normal_part < 0.0) own -= normal_part * p.shaded;  // a surface pushes, never pulls
     ProxyContact& c = state_.contacts[static_cast<std::size_t>(state_.contact_count++)];
     c.object = p.object;
     c.point = p.surface.point;
-    c.normal = p.normal;
+    c.normal = p.shaded;
     c.force = own;
     force += own;
   }

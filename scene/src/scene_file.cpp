@@ -8,13 +8,14 @@
 #include <set>
 
 #include "hapticd/input_file.hpp"
+#include "hapticd/scene/mesh_file.hpp"
 
 namespace hapticd::scene {
 namespace {
 
 class Reader {
  public:
-  explicit Reader(std::string name) : name_(std::move(name)) {}
+  explicit Reader(std::string name) : name_(std::move(name)), folder_(std::filesystem::path(name_).parent_path()) {}
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
     const std::string line = node.IsDefined() && node.Mark().line >= 0 ? std::to_string(node.Mark().line + 1) : "?";
@@ -111,23 +112,24 @@ class Reader {
   SceneObject object(const YAML::Node& map, const std::string& where,
                      const std::map<std::string, Material>& materials) const {
     only(map, where,
-         {"name", "shape", "radius", "size", "length", "position", "rpy_deg", "quaternion", "normal", "material"});
+         {"name", "shape", "radius", "size", "length", "file", "scale", "position", "rpy_deg", "quaternion", "normal",
+          "material"});
     SceneObject o;
     if (!map["name"].IsDefined()) fail(map, where + ".name", "missing");
     o.name = map["name"].as<std::string>();
     if (o.name.empty() || o.name.size() > 64) fail(map["name"], where + ".name", "must have 1 to 64 characters");
-    if (!map["shape"].IsDefined()) fail(map, where + ".shape", "missing (plane, sphere, box, capsule or cylinder)");
+    if (!map["shape"].IsDefined())
+      fail(map, where + ".shape", "missing (plane, sphere, box, capsule, cylinder or mesh)");
     const std::string shape = map["shape"].as<std::string>();
-    const std::map<std::string, ShapeKind> kinds{{"plane", ShapeKind::plane},
-                                                 {"sphere", ShapeKind::sphere},
-                                                 {"box", ShapeKind::box},
-                                                 {"capsule", ShapeKind::capsule},
-                                                 {"cylinder", ShapeKind::cylinder}};
+    const std::map<std::string, ShapeKind> kinds{{"plane", ShapeKind::plane},       {"sphere", ShapeKind::sphere},
+                                                 {"box", ShapeKind::box},           {"capsule", ShapeKind::capsule},
+                                                 {"cylinder", ShapeKind::cylinder}, {"mesh", ShapeKind::mesh}};
     const auto kind = kinds.find(shape);
     if (kind == kinds.end())
-      fail(map["shape"], where + ".shape", "'" + shape + "' is not plane, sphere, box, capsule or cylinder");
+      fail(map["shape"], where + ".shape", "'" + shape + "' is not plane, sphere, box, capsule, cylinder or mesh");
     o.shape.kind = kind->second;
-    const bool round = o.shape.kind != ShapeKind::plane && o.shape.kind != ShapeKind::box;
+    const bool round =
+        o.shape.kind == ShapeKind::sphere || o.shape.kind == ShapeKind::capsule || o.shape.kind == ShapeKind::cylinder;
     const bool long_ = o.shape.kind == ShapeKind::capsule || o.shape.kind == ShapeKind::cylinder;
     auto refuse = [&](const char* key, bool wanted) {
       if (!wanted && map[key].IsDefined()) fail(map[key], where + "." + key, "a " + shape + " has no " + key);
@@ -136,6 +138,9 @@ class Reader {
     refuse("length", long_);
     refuse("size", o.shape.kind == ShapeKind::box);
     refuse("normal", o.shape.kind == ShapeKind::plane);
+    refuse("file", o.shape.kind == ShapeKind::mesh);
+    refuse("scale", o.shape.kind == ShapeKind::mesh);
+    if (o.shape.kind == ShapeKind::mesh) o.shape.mesh = mesh(map, where, o.name);
     if (round) o.shape.radius = required_positive(map, where, "radius");
     if (long_) o.shape.half_length = 0.5 * required_positive(map, where, "length");
     if (o.shape.kind == ShapeKind::box) {
@@ -159,6 +164,24 @@ class Reader {
     return o;
   }
 
+  // A mesh file (relative to the scene file), read, checked and given its structure here, off the loop.
+  std::shared_ptr<const MeshShape> mesh(const YAML::Node& map, const std::string& where,
+                                        const std::string& name) const {
+    if (!map["file"].IsDefined()) fail(map, where + ".file", "missing (a mesh's STL, OBJ, PLY or glTF file)");
+    std::filesystem::path file = map["file"].as<std::string>();
+    if (file.is_relative()) file = folder_ / file;
+    Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+    if (const YAML::Node s = map["scale"]; s.IsDefined()) {
+      scale = s.IsSequence() ? vector3(s, where + ".scale") : Eigen::Vector3d::Constant(real(s, where + ".scale"));
+      if (scale.minCoeff() <= 0.0) fail(s, where + ".scale", "must be positive");
+    }
+    try {
+      return MeshShape::build(load_mesh_file(file, scale), name);
+    } catch (const std::exception& e) {
+      fail(map["file"], where + ".file", e.what());
+    }
+  }
+
   Scene scene(const YAML::Node& root) const {
     if (!root.IsDefined() || root.IsNull()) throw SceneFileError(name_ + ": the scene file is empty");
     only(root, "scene", {"materials", "objects"});
@@ -176,9 +199,15 @@ class Reader {
            std::to_string(objects.size()) + " objects: at most " + std::to_string(kMaxSceneObjects));
     Scene s;
     std::set<std::string> names;
+    std::size_t triangles = 0;
     for (std::size_t i = 0; i < objects.size(); ++i) {
       const std::string where = "objects[" + std::to_string(i) + "]";
       s.objects.push_back(object(objects[i], where, materials));
+      if (s.objects.back().shape.mesh) triangles += s.objects.back().shape.mesh->data().triangles.size();
+      if (triangles > kMaxSceneTriangles)
+        fail(objects[i], where,
+             "the scene's meshes have " + std::to_string(triangles) + " triangles: at most " +
+                 std::to_string(kMaxSceneTriangles));
       if (!names.insert(s.objects.back().name).second)
         fail(objects[i]["name"], where + ".name", "'" + s.objects.back().name + "' is taken by another object");
     }
@@ -187,6 +216,7 @@ class Reader {
 
  private:
   std::string name_;
+  std::filesystem::path folder_;
 };
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "hapticd/scene/mesh.hpp"
+
 namespace hapticd::scene {
 namespace {
 
@@ -74,6 +76,13 @@ SurfacePoint closest_point(const Shape& shape, const Eigen::Vector3d& p) noexcep
     }
     case ShapeKind::cylinder:
       return cylinder(p, shape.radius, shape.half_length);
+    case ShapeKind::mesh: {
+      MeshShape::Near near{};
+      if (!shape.mesh || !shape.mesh->nearest(p, 1.0, near)) return {p, Eigen::Vector3d::UnitZ(), 1e9};
+      const Eigen::Vector3d v = p - near.closest.point;
+      const double d = v.norm();
+      return {near.closest.point, d > 1e-12 ? Eigen::Vector3d(v / d) : shape.mesh->face_normal(near.triangle), d};
+    }
   }
   return plane(p);
 }
@@ -90,6 +99,8 @@ double bounding_radius(const Shape& shape) noexcept {
       return shape.radius + shape.half_length;
     case ShapeKind::cylinder:
       return std::hypot(shape.radius, shape.half_length);
+    case ShapeKind::mesh:
+      return shape.mesh ? shape.mesh->bounding_radius() : 0.0;
   }
   return std::numeric_limits<double>::infinity();
 }
@@ -106,6 +117,8 @@ const char* kind_name(ShapeKind kind) noexcept {
       return "capsule";
     case ShapeKind::cylinder:
       return "cylinder";
+    case ShapeKind::mesh:
+      return "mesh";
   }
   return "?";
 }

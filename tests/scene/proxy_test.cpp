@@ -215,7 +215,8 @@ TEST(Proxy, AnObjectThatHoldsTheHandAtTheStartIsLeftOutUntilTheHandLeavesIt) {
 TEST(Proxy, StrokingASphereTheForceIsAlongItsNormal) {
   SceneObject ball;
   ball.name = "ball";
-  ball.shape = {ShapeKind::sphere, 0.04, 0.0, {}};
+  ball.shape.kind = ShapeKind::sphere;
+  ball.shape.radius = 0.04;
   ball.material = stiff(1500);
   Rig rig({{ball}}, 0.005, {0.0, 0.0, 0.08});
   double worst = 0.0;

@@ -12,10 +12,10 @@
 namespace hapticd::scene {
 namespace {
 
-Shape sphere(double r) { return {ShapeKind::sphere, r, 0.0, {}}; }
-Shape box(double x, double y, double z) { return {ShapeKind::box, 0.0, 0.0, {x, y, z}}; }
-Shape capsule(double r, double h) { return {ShapeKind::capsule, r, h, {}}; }
-Shape cylinder(double r, double h) { return {ShapeKind::cylinder, r, h, {}}; }
+Shape sphere(double r) { return {ShapeKind::sphere, r, 0.0, {}, nullptr}; }
+Shape box(double x, double y, double z) { return {ShapeKind::box, 0.0, 0.0, {x, y, z}, nullptr}; }
+Shape capsule(double r, double h) { return {ShapeKind::capsule, r, h, {}, nullptr}; }
+Shape cylinder(double r, double h) { return {ShapeKind::cylinder, r, h, {}, nullptr}; }
 
 // Points on the surface of a shape, densely (for the brute-force nearest point).
 std::vector<Eigen::Vector3d> surface_samples(const Shape& s) {
@@ -54,6 +54,7 @@ std::vector<Eigen::Vector3d> surface_samples(const Shape& s) {
             out.emplace_back(v * s.radius * std::cos(theta), v * s.radius * std::sin(theta), side * s.half_length);
           break;
         case ShapeKind::plane:
+        case ShapeKind::mesh:
           break;
       }
     }
@@ -97,7 +98,7 @@ TEST(SceneShapes, TheClosestPointIsOnTheSurfaceAtTheDistanceWithTheGradientAsNor
 }
 
 TEST(SceneShapes, ThePlaneIsTheHalfSpaceBelowZ) {
-  const Shape plane{ShapeKind::plane, 0, 0, {}};
+  const Shape plane{ShapeKind::plane, 0, 0, {}, nullptr};
   const SurfacePoint c = closest_point(plane, {0.1, -0.2, 0.03});
   EXPECT_NEAR(c.distance, 0.03, 1e-15);
   EXPECT_TRUE(c.point.isApprox(Eigen::Vector3d(0.1, -0.2, 0.0)));

@@ -8,7 +8,7 @@
 // One update, every cycle:
 //   1. the constrained goal: from where the proxy is, the point nearest the goal that satisfies every contact
 //      plane (the tangent planes of the objects it touches, several at once: edges, corners, creases - a small
-//      quadratic programme solved by Hildreth's method), reached by a sweep that stops at the first object on
+//      quadratic programme solved exactly by an active set), reached by a sweep that stops at the first object on
 //      the way (conservative advancement against each object's separating plane: exact for convex shapes, so a
 //      thin shell is never passed however fast the hand moves), repeated from there with the new contact;
 //   2. friction: the proxy sticks where it is while the tangential offset is within the static cone (mu_s times
@@ -31,6 +31,9 @@ struct ProxySettings {
   int max_iterations = 8;
   // Every material's stiffness is held to this (the device's limit); its damping scaled with it.
   double max_stiffness_n_per_m = 1e9;
+  // Meshes: the normal part of the force along the vertex normals interpolated at the contact (a tessellated
+  // curve feels smooth) rather than the facet's.
+  bool force_shading = true;
 };
 
 struct ProxyContact {
@@ -66,9 +69,15 @@ class GodObject {
     double offset;  // normal . x >= offset
     int object;
     SurfacePoint surface;
+    Eigen::Vector3d shaded;  // the normal the force is rendered along: a mesh's interpolated vertex normals
   };
   using Planes = std::array<Plane, kMaxContacts>;
   int gather(const Eigen::Vector3d& x, double tolerance, Planes& planes) const noexcept;
+  void gather_mesh(std::size_t object, const Eigen::Vector3d& x, double tolerance, Planes& planes,
+                   int& count) const noexcept;
+  // How far along `u` (unit, world) the proxy at `x` may go, at most `step`, before it meets the mesh `object`.
+  [[nodiscard]] double mesh_step(std::size_t object, const Eigen::Vector3d& x, const Eigen::Vector3d& u,
+                                 double step) const noexcept;
   [[nodiscard]] static Eigen::Vector3d project(const Eigen::Vector3d& goal, const Planes& planes, int count) noexcept;
   Eigen::Vector3d sweep(const Eigen::Vector3d& from, const Eigen::Vector3d& to, bool& hit) const noexcept;
   Eigen::Vector3d solve(const Eigen::Vector3d& start, const Eigen::Vector3d& goal) const noexcept;

@@ -18,10 +18,12 @@ class SceneFileError : public std::runtime_error {
 
 // At most this many objects in a scene (a scene is for what a hand touches, not a level of a game).
 inline constexpr std::size_t kMaxSceneObjects = 1024;
+// At most this many triangles in all of a scene's meshes.
+inline constexpr std::size_t kMaxSceneTriangles = 4'000'000;
 
 // Reads and checks a scene file. Not real-time safe.
 [[nodiscard]] Scene load_scene_file(const std::filesystem::path& file);
-// The same from text (`name` stands for the file in messages).
+// The same from text (`name` stands for the file in messages; mesh files are found relative to its folder).
 [[nodiscard]] Scene parse_scene(const std::string& text, const std::string& name);
 
 }  // namespace hapticd::scene
