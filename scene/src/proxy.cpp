@@ -264,6 +264,16 @@ const ProxyState& GodObject::update(const Eigen::Vector3d& goal, const Eigen::Ve
   for (std::size_t i = 0; i < ignored_.size(); ++i)
     if (ignored_[i] != 0 && closest_in_world(scene_->objects[i], goal).distance > r) ignored_[i] = 0;
 
+  // 0. An object that moved into the proxy pushes it out (and so the hand, through the spring).
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::size_t i = 0; i < scene_->objects.size(); ++i) {
+      if (skipped(i)) continue;
+      const SceneObject& o = scene_->objects[i];
+      if ((state_.proxy - o.pose.translation()).norm() - bounds_[i] - r > 0.0) continue;
+      const SurfacePoint s = closest_in_world(o, state_.proxy);
+      if (s.distance < r + kSkin) state_.proxy += (r + kSkin - s.distance) * s.normal;
+    }
+
   // 1. Where the proxy would go without friction.
   const Eigen::Vector3d previous = state_.proxy;
   const Eigen::Vector3d free = solve(previous, goal);
@@ -340,7 +350,7 @@ const ProxyState& GodObject::update(const Eigen::Vector3d& goal, const Eigen::Ve
     const double scale = o.material.stiffness_n_per_m > 0.0 ? k / o.material.stiffness_n_per_m : 0.0;
     const double share = shares > 0.0 ? std::max(0.0, spring.dot(p.shaded)) / shares : (j == 0 ? 1.0 : 0.0);
     Eigen::Vector3d own = share * spring;
-    const double into = goal_velocity.dot(p.shaded);
+    const double into = (goal_velocity - o.velocity).dot(p.shaded);
     if (into < 0.0) own -= o.material.damping_n_s_per_m * scale * into * p.shaded;
     const Eigen::Vector3d local = o.pose.inverse(Eigen::Isometry) * p.surface.point;
     own += k * texture_height(o.material, local) * p.shaded;

@@ -16,6 +16,8 @@ struct SceneObject {
   Shape shape;
   Material material;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // world <- object
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();      // of a moving object (world): its surface's damping is
+                                                           // on the hand's speed relative to it
 };
 
 // The object's surface point closest to a world point, in the world frame.
