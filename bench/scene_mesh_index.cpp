@@ -20,11 +20,11 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "hapticd/scene/mesh_file.hpp"
 #include "hapticd/scene/shape.hpp"
 #include "hapticd/scene/triangle.hpp"
 
@@ -39,44 +39,10 @@ struct Mesh {
 };
 
 Mesh icosphere(int level, double radius) {
-  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  const hapticd::scene::TriangleMeshData data = hapticd::scene::icosphere_mesh(level, radius);
   Mesh m;
-  for (auto v : {Eigen::Vector3d(-1, t, 0),
-                 {1, t, 0},
-                 {-1, -t, 0},
-                 {1, -t, 0},
-                 {0, -1, t},
-                 {0, 1, t},
-                 {0, -1, -t},
-                 {0, 1, -t},
-                 {t, 0, -1},
-                 {t, 0, 1},
-                 {-t, 0, -1},
-                 {-t, 0, 1}})
-    m.vertices.push_back(v.normalized());
-  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int l = 0; l < level; ++l) {
-    std::map<std::pair<unsigned, unsigned>, unsigned> middle;
-    auto mid = [&](unsigned a, unsigned b) {
-      const auto key = std::minmax(a, b);
-      auto [it, fresh] = middle.try_emplace(key, static_cast<unsigned>(m.vertices.size()));
-      if (fresh) m.vertices.push_back((m.vertices[a] + m.vertices[b]).normalized());
-      return it->second;
-    };
-    std::vector<std::array<unsigned, 3>> next;
-    next.reserve(m.triangles.size() * 4);
-    for (const auto& tri : m.triangles) {
-      const unsigned a = mid(tri[0], tri[1]), b = mid(tri[1], tri[2]), c = mid(tri[2], tri[0]);
-      next.push_back({tri[0], a, c});
-      next.push_back({tri[1], b, a});
-      next.push_back({tri[2], c, b});
-      next.push_back({a, b, c});
-    }
-    m.triangles = std::move(next);
-  }
-  for (auto& v : m.vertices) v *= radius;
+  m.vertices = data.vertices;
+  for (const auto& t : data.triangles) m.triangles.push_back({t[0], t[1], t[2]});
   return m;
 }
 

@@ -134,6 +134,26 @@ std::shared_ptr<const MeshShape> MeshShape::build(TriangleMeshData data, const s
   return mesh;
 }
 
+// The culling radius around `p` for an exact radius: widened for the single-precision structure (it culls, the
+// exact test in double precision decides).
+float MeshShape::culling_radius(const Eigen::Vector3d& p, double radius) const noexcept {
+  return static_cast<float>(radius * 1.0001 + 1e-6 * (1.0 + bounding_radius_ + p.norm()));
+}
+
+// Runs Embree's point query about `p` with `callback` for each triangle in reach (its user pointer `context`).
+void MeshShape::query(const Eigen::Vector3d& p, double radius, bool (*callback)(RTCPointQueryFunctionArguments*),
+                      void* context) const noexcept {
+  RTCPointQuery q;
+  q.x = static_cast<float>(p.x());
+  q.y = static_cast<float>(p.y());
+  q.z = static_cast<float>(p.z());
+  q.radius = culling_radius(p, radius);
+  q.time = 0.0f;
+  RTCPointQueryContext pc;
+  rtcInitPointQueryContext(&pc);
+  rtcPointQuery(index_->scene, &q, &pc, callback, context);
+}
+
 void MeshShape::for_each_near(const Eigen::Vector3d& p, double radius, NearFunction f, void* context) const noexcept {
   struct Query {
     const MeshShape* mesh;
@@ -142,17 +162,8 @@ void MeshShape::for_each_near(const Eigen::Vector3d& p, double radius, NearFunct
     NearFunction f;
     void* context;
   } q{this, p, radius, f, context};
-  RTCPointQuery query;
-  query.x = static_cast<float>(p.x());
-  query.y = static_cast<float>(p.y());
-  query.z = static_cast<float>(p.z());
-  // Widened for the single-precision structure: it culls, the exact test below decides.
-  query.radius = static_cast<float>(radius * 1.0001 + 1e-6 * (1.0 + bounding_radius_ + p.norm()));
-  query.time = 0.0f;
-  RTCPointQueryContext pc;
-  rtcInitPointQueryContext(&pc);
-  rtcPointQuery(
-      index_->scene, &query, &pc,
+  query(
+      p, radius,
       [](RTCPointQueryFunctionArguments* args) {
         auto* q = static_cast<Query*>(args->userPtr);
         const auto& t = q->mesh->data_.triangles[args->primID];
@@ -172,17 +183,8 @@ bool MeshShape::nearest(const Eigen::Vector3d& p, double max_distance, Near& out
     Near* out;
     bool found;
   } q{this, p, max_distance, &out, false};
-  RTCPointQuery query;
-  query.x = static_cast<float>(p.x());
-  query.y = static_cast<float>(p.y());
-  query.z = static_cast<float>(p.z());
-  const double slack = 1e-6 * (1.0 + bounding_radius_ + p.norm());
-  query.radius = static_cast<float>(max_distance * 1.0001 + slack);
-  query.time = 0.0f;
-  RTCPointQueryContext pc;
-  rtcInitPointQueryContext(&pc);
-  rtcPointQuery(
-      index_->scene, &query, &pc,
+  query(
+      p, max_distance,
       [](RTCPointQueryFunctionArguments* args) {
         auto* q = static_cast<Query*>(args->userPtr);
         const auto& t = q->mesh->data_.triangles[args->primID];
@@ -193,7 +195,7 @@ bool MeshShape::nearest(const Eigen::Vector3d& p, double max_distance, Near& out
         q->best = d;
         *q->out = Near{args->primID, c};
         q->found = true;
-        const float shrunk = static_cast<float>(d * 1.0001 + 1e-6 * (1.0 + q->mesh->bounding_radius_ + q->p.norm()));
+        const float shrunk = q->mesh->culling_radius(q->p, d);
         if (shrunk < args->query->radius) {
           args->query->radius = shrunk;
           return true;

@@ -23,11 +23,23 @@
 // acceleration that would take it further.
 #include <array>
 
+#include "hapticd/chain_state.hpp"
 #include "hapticd/engine_input.hpp"
 #include "hapticd/realtime/latest_value.hpp"
 #include "hapticd/virtual_model.hpp"
 
 namespace hapticd::models {
+
+// Impedance display: the device displays `wrench` ([force; torque], world) at the measured handle, which is the
+// target's pose and twist (the state's target pose: the body an engine's proxy is computed from).
+inline void display_on_handle(TaskTarget& target, const ChainState& chain, const Eigen::Matrix<double, 6, 1>& wrench) {
+  target.pose = chain.handle_pose;
+  target.twist = chain.handle_twist;
+  target.wrench.force = wrench.head<3>();
+  target.wrench.torque = wrench.tail<3>();
+  target.has_wrench = true;
+  target.has_motion = false;
+}
 
 class VirtualAdmittance final : public VirtualModel {
  public:

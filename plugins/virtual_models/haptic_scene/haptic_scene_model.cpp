@@ -82,12 +82,7 @@ Outcome HapticSceneModel::update(const CycleTime& cycle, const VirtualModelInput
   RenderPort::Vector6 port_twist;
   port_twist << c.handle_twist.linear, c.handle_twist.angular;
   const RenderPort::Vector6 rendered = input.render.limit(input.render.engine_port(wrench, port_twist));
-  target.pose = c.handle_pose;
-  target.twist = c.handle_twist;
-  target.wrench.force = rendered.head<3>();
-  target.wrench.torque = rendered.tail<3>();
-  target.has_wrench = true;
-  target.has_motion = false;
+  display_on_handle(target, c, rendered);
   return Outcome::success();
 }
 

@@ -93,12 +93,7 @@ Outcome ScriptedWrenchModel::update(const CycleTime& cycle, const VirtualModelIn
         port_twist);
   }
   const WrenchScript::Vector6 rendered = input.render.limit(environment);
-  target.pose = c.handle_pose;
-  target.twist = c.handle_twist;
-  target.wrench.force = rendered.head<3>();
-  target.wrench.torque = rendered.tail<3>();
-  target.has_wrench = true;
-  target.has_motion = false;
+  display_on_handle(target, c, rendered);
   return Outcome::success();
 }
 

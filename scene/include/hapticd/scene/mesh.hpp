@@ -13,6 +13,8 @@
 
 #include "hapticd/scene/triangle.hpp"
 
+struct RTCPointQueryFunctionArguments;
+
 namespace hapticd::scene {
 
 struct TriangleMeshData {
@@ -62,6 +64,9 @@ class MeshShape {
 
  private:
   MeshShape() = default;
+  [[nodiscard]] float culling_radius(const Eigen::Vector3d& p, double radius) const noexcept;
+  void query(const Eigen::Vector3d& p, double radius, bool (*callback)(RTCPointQueryFunctionArguments*),
+             void* context) const noexcept;
   TriangleMeshData data_;
   std::vector<Eigen::Vector3d> normals_;       // per vertex
   std::vector<Eigen::Vector3d> face_normals_;  // per triangle
