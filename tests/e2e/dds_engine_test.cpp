@@ -494,7 +494,7 @@ TEST(DdsEngine, TheLoopSideOfTheBridgeDoesNotAllocate) {
   if (!testing::AllocationGuard::available()) GTEST_SKIP() << "allocation counting unavailable under sanitizers";
   auto session = test::build_test_session(session_yaml(66, 1.0, "constant", "[2.0, 0.0, 0.0]", "realtime"));
   DeviceSession& d = *session.impl().devices[0];
-  DdsBridge bridge(session.impl().config.dds, 2000.0, {&d});
+  Doors bridge(session.impl().config, {&d});
   bridge.start();
   d.activate();
   d.cycle(test::cycle_at(0), 1.0);

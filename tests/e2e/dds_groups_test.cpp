@@ -84,7 +84,7 @@ class GroupServer {
     if (thread_.joinable()) thread_.join();
   }
   void stop() { stop_.store(true); }
-  DdsBridge& bridge() { return *served_->bridge(); }
+  Doors& bridge() { return *served_->doors(); }  // the gate and its doors
   DeviceSession& device(std::size_t i) { return *session_.impl().devices[i]; }
   const Trajectories& trajectories() const { return *trajectories_; }
 

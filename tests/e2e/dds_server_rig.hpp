@@ -129,7 +129,7 @@ class Server {
   void join() {
     if (thread_.joinable()) thread_.join();
   }
-  DdsBridge& bridge() { return *served_->bridge(); }
+  Doors& bridge() { return *served_->doors(); }  // the gate and its doors
   DeviceSession& device() { return *session_.impl().devices[0]; }
   const RecordingListener& recording() const { return *listener_; }
   const ExecutorResult& result() const { return result_; }

@@ -6,7 +6,9 @@
 # one in Python (websockets) and a web page in headless chromium (tools/engine_socket/wall.html), each holding the simulated operator's 15 N push at its wall 2 cm ahead through the
 # 3000 N/m coupling; then a server whose socket speaks TLS and wants a token refuses a plain client and one without
 # the token and serves one with it;
-# and a socket beyond loopback without a token is a config error naming the key.
+# and a socket beyond loopback without a token is a config error naming the key; and a session with an engine socket
+# and no dds section (config/sessions/vishard3/socket-coupling.yaml: the gate knows no transport) serves the Node
+# wall engine, the simulated operator pushed by an `operator` request over the socket too.
 # Usage: engine_socket_test.sh BIN_DIR SOURCE_DIR WORK_DIR DOMAIN
 set -u
 bin=$1 src=$2 work=$3 domain=$4
@@ -36,6 +38,27 @@ serve() {  # serve LOG EXTRA...: the session with an engine socket on a free por
   fail "the server did not say where its engine socket is"
 }
 push() { timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 operator vishard3 "$@" > push.log 2>&1 || fail "operator $*: $(cat push.log)"; }
+# The same operator request over the engine socket at $url (a session without DDS has no hapticctl).
+socket_push() {
+  timeout 20 "$py" - "$url" "$@" > push.log 2>&1 << 'PY' || fail "operator over the socket $*: $(cat push.log)"
+import asyncio, json, sys
+import websockets
+async def main(url, name, *values):
+    async with websockets.connect(url) as ws:
+        json.loads(await ws.recv())
+        await ws.send(json.dumps({"subscribe": []}))
+        await ws.send(json.dumps({"request": {"id": 1, "kind": "operator", "device": "vishard3", "name": name,
+                                              "values": [float(v) for v in values]}}))
+        while True:
+            m = json.loads(await asyncio.wait_for(ws.recv(), timeout=5))
+            if "reply" in m:
+                assert m["reply"]["accepted"], m
+                print("operator", name, values, "accepted")
+                return
+asyncio.run(main(*sys.argv[1:]))
+PY
+}
+pusher=push
 # wall ENGINE_LOG CMD...: runs a wall engine, pushes 15 N once it claimed, checks the handle rests at its wall.
 wall() {
   local log=$1; shift
@@ -43,9 +66,9 @@ wall() {
   local engine=$!
   for _ in $(seq 100); do grep -q "claimed 'vishard3'" "$log" && break; sleep 0.1; done
   grep -q "claimed 'vishard3'" "$log" || fail "$log: the engine did not claim"
-  push push 15 0 0 0.2
+  $pusher push 15 0 0 0.2
   wait "$engine" || fail "$log: the engine exited with $?"
-  push release
+  $pusher release
   local past
   past=$(sed -n 's/.*handle \([-0-9.]*\) m past the start.*/\1/p' "$log")
   grep "answered" "$log"
@@ -132,6 +155,22 @@ for page in "file://$work/attack.html" "$page_url"; do
 done
 ok "another site cannot frame the wall page, and the page claims nothing without a person's click"
 kill "$server"; wait "$server"
+
+# The engine socket without a dds section: no DDS participant, the same gate (issue 63; before, a config error).
+timeout 60 "$bin/hapticd" --config "$src/config/sessions/vishard3/socket-coupling.yaml" --duration 30 --log-level info \
+  --set server.realtime_priority=0 --set server.lock_memory=false --set server.rate_hz=1000 \
+  --set engine_socket.port=0 $(loose_watchdogs vishard3) > socket-only.log 2>&1 &
+server=$!
+url=
+for _ in $(seq 100); do url=$(sed -n 's/.*engine socket on \(ws:[^ ]*\) .*/\1/p' socket-only.log); [ -n "$url" ] && break; sleep 0.1; done
+[ -n "$url" ] || fail "the session without DDS did not open its engine socket: $(tail -5 socket-only.log)"
+grep -q "DDS interface" socket-only.log && fail "the session without a dds section started DDS"
+pusher=socket_push
+wall node-socket-only.log timeout 30 node "$here/wall_engine.mjs" "$url" vishard3 6
+pusher=push
+kill "$server"; wait "$server"
+grep -q "engine commands accepted [1-9]" socket-only.log || fail "the end report counts no accepted commands"
+ok "a session with an engine socket and no dds section serves the Node engine's wall: $(grep -o 'engine commands accepted [0-9]*' socket-only.log)"
 
 # TLS and a token: a plain connection to the TLS socket fails; over TLS, refused without the token (HTTP 401) or
 # with a wrong one, served with it. A certificate of our own for 127.0.0.1, made here.

@@ -1,4 +1,4 @@
-// The teleoperation link over DDS (bridge/teleop_link, docs/teleoperation.md): one side served here as `hapticd`
+// The teleoperation link over DDS (doors/teleop/teleop_link, docs/teleoperation.md): one side served here as `hapticd`
 // serves it, the other written with raw DDS as another server's link would write it (and as an attacker could):
 // the remote follows the master's motion into its wall and reports the contact; the link holds the device's claim;
 // malformed packets are rejected, counted and never applied; a silent link stops the remote and fades the master's

@@ -21,7 +21,8 @@ LAYERS = [
     ["session"],                        # one device: its chain, schemes, safety, status
     ["group"],                          # the device groups' stage
     ["cycle"],                          # a loop's devices and groups, one cycle in phases
-    ["recorder", "bridge", "live_view"],  # around the loop: recording, DDS, live view
+    ["gate"],                           # what reaches the devices from outside, whatever door: claims, commands, requests
+    ["recorder", "doors", "live_view"],  # around the loop: recording, the gate's doors (DDS, socket, link), live view
     ["assembly"],                       # a session built from its configuration (also the in-process Session API)
     ["app"],                            # the hapticd program: commands, the served session, signals
 ]

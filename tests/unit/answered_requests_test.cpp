@@ -1,6 +1,6 @@
-// The bridge's memory of answered requests (bridge/answered_requests): a request is recognised by requester,
+// The gate's memory of answered requests (gate/answered_requests): a request is recognised by requester,
 // client id, request id and target; the memory is bounded, the oldest forgotten first.
-#include "bridge/answered_requests.hpp"
+#include "gate/answered_requests.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@ namespace hapticd::server {
 namespace {
 
 PeerId peer(unsigned char k) {
-  PeerId p;
-  p.guid[0] = k;
-  return p;
+  std::array<unsigned char, 16> guid{};
+  guid[0] = k;
+  return PeerId::dds_participant(guid);
 }
 hapticd_msg_ControlRequest request(std::uint64_t id, const char* client = "c", const char* device = "v3") {
   hapticd_msg_ControlRequest r{};

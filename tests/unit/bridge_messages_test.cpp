@@ -1,10 +1,10 @@
-// The DDS bridge's messages and events as pure functions of what the loop published (server/src/bridge/
+// The gate's messages and events as pure functions of what the loop published (server/src/gate/
 // messages): no DDS entity, no thread.
 #include <gtest/gtest.h>
 
 #include <memory>
 
-#include "bridge/messages.hpp"
+#include "gate/messages.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "support/test_session.hpp"
 

@@ -1,7 +1,7 @@
-// The engine-command gate (server/src/bridge/command_gate) and the content checks it relies on
+// The engine-command gate (server/src/gate/command_gate) and the content checks it relies on
 // (dds/command_validation): ownership, order, freshness, and a bounded randomised fuzz of the content checks
 // (fixed seed) - no input may crash them or pass with non-finite or out-of-bounds content.
-#include "bridge/command_gate.hpp"
+#include "gate/command_gate.hpp"
 
 #include <gtest/gtest.h>
 
@@ -33,11 +33,11 @@ hapticd_msg_EngineCommand command(const char* engine, std::uint64_t serial) {
 
 // A participant (by its GUID's first byte) and one of its writers.
 PeerId peer(unsigned char n) {
-  PeerId p;
-  p.guid[0] = n;
-  return p;
+  std::array<unsigned char, 16> guid{};
+  guid[0] = n;
+  return PeerId::dds_participant(guid);
 }
-Sender from(unsigned char participant, dds_instance_handle_t writer) { return Sender{peer(participant), writer}; }
+Sender from(unsigned char participant, std::uint64_t writer) { return Sender{peer(participant), writer}; }
 
 TEST(CommandGate, OnlyTheOwnerIsHeardAndOnlyInOrderAndFresh) {
   CommandGate gate(dds::CommandBounds{}, 0.1);

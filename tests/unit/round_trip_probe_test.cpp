@@ -1,7 +1,7 @@
-// The DDS bridge's round-trip probe (server/src/bridge/round_trip_probe): state written -> command handed to the
+// The gate's round-trip probe (server/src/gate/round_trip_probe): state written -> command handed to the
 // loop, and how many cycles after the state's the loop applied the command; slots reused by newer states are
 // never mistaken for the old ones, and the hand-off between the publisher and the receive thread is consistent.
-#include "bridge/round_trip_probe.hpp"
+#include "gate/round_trip_probe.hpp"
 
 #include <gtest/gtest.h>
 

@@ -149,6 +149,12 @@ INSTANTIATE_TEST_SUITE_P(
                   "live_view.address", "address: localhost", "not an IP address"},
         BadConfig{"live_view_unknown_key", kHeader + kValidDevices + "live_view:\n  prot: 1\n", "live_view.prot",
                   "prot: 1", "unknown key"},
+        // The gate's settings: in the gate section, or (older sessions) in dds - not both.
+        BadConfig{"gate_key_in_dds_and_gate",
+                  kHeader + kValidDevices + "dds:\n  max_force_n: 100\ngate:\n  state_rate_hz: 100\n",
+                  "dds.max_force_n", "max_force_n: 100", "give max_force_n there (gate.max_force_n)"},
+        BadConfig{"gate_unknown_key", kHeader + kValidDevices + "gate:\n  max_froce_n: 1\n", "gate.max_froce_n",
+                  "max_froce_n: 1", "unknown key"},
         // Duplicate keys (hardening round 3, item 10): the second wins or the first, by the reader's whim.
         BadConfig{"duplicate_server_key", kHeader + "  rate_hz: 2000\n  rate_hz: 500\n" + kValidDevices,
                   "server.rate_hz", "rate_hz: 500", "given twice in one mapping (lines 3 and 4)"},
@@ -234,6 +240,29 @@ TEST(SessionConfig, LiveViewIsOffUnlessASectionTurnsItOn) {
   EXPECT_TRUE(set.live_view.enabled);
   EXPECT_EQ(set.live_view.port, 0);
   EXPECT_EQ(set.live_view.address, "::1");
+}
+
+TEST(SessionConfig, TheGatesSettingsComeFromTheGateSectionOrFromDds) {
+  // Issue 63: an engine socket without DDS is a session of its own (before: "the engine socket needs the dds
+  // section"); its bounds are the gate section's.
+  const SessionConfig socket_only = load_session_config(test::write_temp_file(
+      "session.yaml",
+      kHeader + kValidDevices + "engine_socket: {port: 0}\ngate: {max_force_n: 40, claim_hold_s: 2}\n"));
+  EXPECT_TRUE(socket_only.engine_socket.enabled);
+  EXPECT_FALSE(socket_only.dds.enabled);
+  EXPECT_EQ(socket_only.gate.max_force_n, 40.0);
+  EXPECT_EQ(socket_only.gate.claim_hold_s, 2.0);
+  EXPECT_EQ(socket_only.gate.max_torque_nm, GateSettings{}.max_torque_nm);
+  // A session written before the gate had a section: the same keys in dds.
+  const SessionConfig older = load_session_config(
+      test::write_temp_file("session.yaml", kHeader + kValidDevices + "dds: {domain_id: 3, max_force_n: 50}\n"));
+  EXPECT_TRUE(older.dds.enabled);
+  EXPECT_EQ(older.dds.domain_id, 3);
+  EXPECT_EQ(older.gate.max_force_n, 50.0);
+  // An override reaches either.
+  const SessionConfig set = load_session_config(
+      test::write_temp_file("session.yaml", kHeader + kValidDevices + "gate: {}\n"), {"gate.max_speed_m_s=1.5"});
+  EXPECT_EQ(set.gate.max_speed_m_s, 1.5);
 }
 
 TEST(SessionConfig, ShippedConfigsAreValid) {

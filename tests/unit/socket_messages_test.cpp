@@ -1,7 +1,7 @@
 // The engine socket's JSON messages: what a client's message becomes (the DDS interface's own EngineCommand and
 // ControlRequest, checked by the gate afterwards), that nothing of a malformed message applies, that Haply's
 // shapes are taken, and the state and reply the server writes.
-#include "bridge/socket_messages.hpp"
+#include "doors/socket/socket_messages.hpp"
 
 #include <gtest/gtest.h>
 

@@ -17,11 +17,11 @@
 #include "app/signals.hpp"
 #include "app/startup_checks.hpp"
 #include "assembly/session_builder.hpp"
-#include "bridge/cyclone_log.hpp"
-#include "bridge/dds_bridge.hpp"
 #include "config/config_error.hpp"
 #include "config/session_config.hpp"
 #include "config/yaml_reader.hpp"
+#include "doors/dds/cyclone_log.hpp"
+#include "doors/doors.hpp"
 #include "executor/executor.hpp"
 #include "recorder/recorder.hpp"
 
@@ -145,10 +145,10 @@ int run_session(const RunOptions& options) {
     spdlog::warn("lockstep clock without a duration: the session runs as fast as possible until SIGINT/SIGTERM");
   for (const std::string& w : s->config.warnings) spdlog::warn("safety: {}", w);
 
-  // The stacks the threads still to come reserve (loop, recorder, bridge; Cyclone creates its own with smaller
+  // The stacks the threads still to come reserve (loop, recorder, gate; Cyclone creates its own with smaller
   // stacks), and 8 MB of working memory: calibrated with ulimit -v (docs/safety.md).
-  const int threads = (s->config.dds.enabled ? 6 : 3) + (s->config.live_view.enabled ? 1 : 0) +
-                      (s->config.engine_socket.enabled ? 1 : 0);
+  const int threads = (s->config.dds.enabled || s->config.engine_socket.enabled ? 6 : 3) +
+                      (s->config.live_view.enabled ? 1 : 0) + (s->config.engine_socket.enabled ? 1 : 0);
   if (const std::string missing = check_address_space(threads, 8u << 20); !missing.empty()) {
     spdlog::error("cannot start the session: {}; no device was powered", missing);
     return kExitRuntimeError;
@@ -168,9 +168,9 @@ int run_session(const RunOptions& options) {
     spdlog::error("{}; no device was powered", e.what());
     return kExitRuntimeError;
   }
-  DdsBridge* bridge = served->bridge();
+  Doors* doors = served->doors();
   Recorder* recorder = served->recorder();
-  if (bridge != nullptr) {
+  if (doors != nullptr && doors->dds() != nullptr) {
     std::string cpus;
     for (int c : served->dds_cpus()) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
     spdlog::info("DDS interface on domain {} ({}){}", s->config.dds.domain_id,
@@ -193,8 +193,8 @@ int run_session(const RunOptions& options) {
                    s->config.live_view.address);
   }
 
-  if (served->bridge() != nullptr)
-    if (const EngineSocket* socket = served->bridge()->engine_socket()) {
+  if (doors != nullptr)
+    if (const EngineSocket* socket = doors->engine_socket()) {
       spdlog::info("engine socket on {} (WebSocket/JSON for engines without DDS; docs/engine-socket.md){}",
                    socket->url(), s->config.engine_socket.token.empty() ? "" : ", token required");
       if (!net::loopback_address(s->config.engine_socket.address))
@@ -230,12 +230,12 @@ int run_session(const RunOptions& options) {
         *broken);
   for (const auto& w : result.warnings) spdlog::warn("{}", w);
   for (const auto& e : result.plugin_errors) spdlog::error("{}", e);
-  if (bridge != nullptr) {
+  if (doors != nullptr) {
     for (std::size_t i = 0; i < sessions.size(); ++i) {
       spdlog::info("{}: engine commands accepted {}, rejected {}, deadline misses {}", sessions[i]->name(),
-                   bridge->commands_accepted(i), bridge->commands_rejected(i), bridge->deadline_misses(i));
+                   doors->commands_accepted(i), doors->commands_rejected(i), doors->deadline_misses(i));
     }
-    if (const TeleopLink* link = bridge->teleop_link(); link != nullptr) {
+    if (const TeleopLink* link = doors->teleop_link(); link != nullptr) {
       const TeleopLink::Energy e = link->energy();
       spdlog::info(
           "{}: teleoperation link to '{}': packets sent {}, taken {}, rejected {}; lost {} times, {} stops; energy in "
@@ -248,13 +248,13 @@ int run_session(const RunOptions& options) {
           "peer; its energy in claimed {:.4f} J, credited {:.4f} J (what its force and motion could carry)",
           link->settings().device, link->bindings(), link->impostor_packets(), e.peer_claimed, e.peer_credited);
     }
-    if (const std::uint64_t unknown = bridge->unknown_device_commands(); unknown > 0)
+    if (const std::uint64_t unknown = doors->unknown_device_commands(); unknown > 0)
       spdlog::warn("{} engine commands named a device this server does not have: rejected as malformed", unknown);
-    if (const std::uint64_t unknown = bridge->unknown_device_requests(); unknown > 0)
+    if (const std::uint64_t unknown = doors->unknown_device_requests(); unknown > 0)
       spdlog::info("{} requests named a device this server does not have: left to the server that has it", unknown);
-    if (const std::uint64_t ended = bridge->claims_ended(); ended > 0)
+    if (const std::uint64_t ended = doors->claims_ended(); ended > 0)
       spdlog::info("{} claims ended because their claimant was gone", ended);
-    const RoundTripStatistics rt = bridge->round_trip();
+    const RoundTripStatistics rt = doors->round_trip();
     if (rt.count > 0) {
       spdlog::info(
           "round trip state -> engine -> command accepted: {} samples, p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us",
@@ -280,16 +280,16 @@ int run_session(const RunOptions& options) {
     report.recording_failed = recorder && recorder->failed();
   };
   recording_counts();
-  if (bridge) {
-    report.round_trip = bridge->round_trip();
+  if (doors) {
+    report.round_trip = doors->round_trip();
     report.has_round_trip = report.round_trip.count > 0;
-    report.dds.enabled = true;
+    report.dds.enabled = doors->dds() != nullptr;
     for (std::size_t i = 0; i < sessions.size(); ++i) {
-      report.dds.deadline_misses += bridge->deadline_misses(i);
-      report.dds.commands_rejected += bridge->commands_rejected(i);
+      report.dds.deadline_misses += doors->deadline_misses(i);
+      report.dds.commands_rejected += doors->commands_rejected(i);
     }
-    report.dds.commands_rejected += bridge->unknown_device_commands();
-    report.dds.claims_ended = bridge->claims_ended();
+    report.dds.commands_rejected += doors->unknown_device_commands();
+    report.dds.claims_ended = doors->claims_ended();
     const cyclone_log::Counts log = cyclone_log::counts();
     report.dds.log_forwarded = log.forwarded;
     report.dds.log_suppressed = log.suppressed;
@@ -425,6 +425,10 @@ int describe_config(const std::string& config_file) {
              "", "list of folders, relative to the session file");
   fmt::print("\ndds section of a session file (present: the DDS interface runs):\n");
   print_schema(dds_settings_schema());
+  fmt::print(
+      "\ngate section (what every door's commands must satisfy, claims, states, lockstep; a session without it "
+      "may give these keys in its dds section):\n");
+  print_schema(gate_settings_schema());
   fmt::print("\nlive_view section (present: the Foxglove WebSocket live view runs; docs/live-view.md):\n");
   print_schema(live_view_settings_schema());
   fmt::print(

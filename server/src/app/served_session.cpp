@@ -102,29 +102,24 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
   if (config.live_view.enabled)  // binds its port before the DDS interface starts
     live_view_ = std::make_unique<live_view::LiveView>(config.live_view, devices, config.server.rate_hz,
                                                        config.file.filename().string());
-  if (config.dds.enabled) {
-    try {
-      bridge_ = std::make_unique<DdsBridge>(config.dds, config.server.rate_hz, devices, stages, dds_cpus_,
-                                            config.engine_socket, config.teleoperation);
-    } catch (const std::exception& e) {
-      throw std::runtime_error(std::string("DDS interface: ") + e.what());
-    }
+  if (config.dds.enabled || config.engine_socket.enabled) {  // the gate, with the doors the session opens
+    doors_ = std::make_unique<Doors>(config, devices, stages, dds_cpus_);
     for (std::size_t d = 0; d < devices.size(); ++d)
-      bridge_->set_loop_statistics(d, &executor_->live(loops_->loop_of(devices[d])));
+      doors_->set_loop_statistics(d, &executor_->live(loops_->loop_of(devices[d])));
     if (live_view_) {  // the engines' worlds, drawn beside the devices
       live_view::LiveView* view = live_view_.get();
-      bridge_->relay_worlds([view](const hapticd_msg_World& w) { view->take_world(w); });
+      doors_->relay_worlds([view](const hapticd_msg_World& w) { view->take_world(w); });
     }
-    set_cycle_listener(bridge_.get());
-    bridge_->start();
+    set_cycle_listener(doors_.get());
+    doors_->start();
   }
   if (live_view_) live_view_->start();
-  monitor_ = std::make_unique<SessionMonitor>(devices, bridge_.get(), options.stop, recorder_.get());
+  monitor_ = std::make_unique<SessionMonitor>(devices, doors_.get(), options.stop, recorder_.get());
 }
 
 ServedSession::~ServedSession() {
   if (live_view_) live_view_->stop();
-  if (bridge_) bridge_->stop();
+  if (doors_) doors_->stop();
 }
 
 void ServedSession::set_cycle_listener(CycleListener* listener) {
@@ -144,7 +139,7 @@ ExecutorResult ServedSession::run(const std::atomic<bool>& stop) {
       // would hang; the process ends with exit code 4 without them.
       if (invariant_failure()) return;
       if (s.live_view_) s.live_view_->stop();
-      if (s.bridge_) s.bridge_->stop();
+      if (s.doors_) s.doors_->stop();
     }
   } finish{*this};
   return executor_->run(stop, [this] { monitor_->poll(); });

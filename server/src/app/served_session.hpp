@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "app/session_monitor.hpp"
-#include "bridge/dds_bridge.hpp"
 #include "config/session_config.hpp"
 #include "cycle/loop_plan.hpp"
+#include "doors/doors.hpp"
 #include "executor/executor.hpp"
 #include "live_view/live_view.hpp"
 #include "recorder/recorder.hpp"
@@ -52,7 +52,8 @@ class ServedSession {
   [[nodiscard]] CycleListener* cycle_listener() const noexcept { return listener_; }
   void set_cycle_listener(CycleListener* listener);
 
-  [[nodiscard]] DdsBridge* bridge() const noexcept { return bridge_.get(); }  // null without a dds section
+  // The gate and its doors (null without a dds or engine_socket section).
+  [[nodiscard]] Doors* doors() const noexcept { return doors_.get(); }
   [[nodiscard]] const SessionMonitor& monitor() const noexcept { return *monitor_; }
   [[nodiscard]] Recorder* recorder() const noexcept { return recorder_.get(); }               // null: not recording
   [[nodiscard]] live_view::LiveView* live_view() const noexcept { return live_view_.get(); }  // null: none
@@ -67,7 +68,7 @@ class ServedSession {
   std::unique_ptr<LoopPlan> loops_;  // which loop drives which device
   std::unique_ptr<Executor> executor_;
   std::unique_ptr<live_view::LiveView> live_view_;
-  std::unique_ptr<DdsBridge> bridge_;  // after the live view: destroyed first (it hands the live view the worlds)
+  std::unique_ptr<Doors> doors_;  // after the live view: destroyed first (it hands the live view the worlds)
   std::unique_ptr<SessionMonitor> monitor_;
   CycleListener* listener_ = nullptr;
 };

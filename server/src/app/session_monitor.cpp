@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "bridge/dds_bridge.hpp"
+#include "doors/doors.hpp"
 #include "recorder/recorder.hpp"
 #include "safety/fault_history.hpp"
 #include "session/device_session.hpp"
@@ -35,10 +35,10 @@ void log_fault_report(const DeviceSession& d, const FaultReport& r) {
 
 }  // namespace
 
-SessionMonitor::SessionMonitor(std::vector<DeviceSession*> devices, DdsBridge* bridge,
+SessionMonitor::SessionMonitor(std::vector<DeviceSession*> devices, Doors* doors,
                                const std::atomic<bool>* stop_requested, const Recorder* recorder)
     : devices_(std::move(devices)),
-      bridge_(bridge),
+      doors_(doors),
       stop_requested_(stop_requested),
       reported_(devices_.size(), DeviceFault::none),
       logs_(devices_.size()),
@@ -60,7 +60,7 @@ void SessionMonitor::poll() {
     if (d.status().take_fault_report(*report_)) {
       ++reports_;
       log_fault_report(d, *report_);
-      if (bridge_ != nullptr) bridge_->publish_fault_report(i, *report_);
+      if (doors_ != nullptr) doors_->publish_fault_report(i, *report_);
     }
     SafetyEvent e;
     while (d.status().take_safety_event(e)) {
@@ -85,7 +85,7 @@ void SessionMonitor::poll() {
     const std::string message = recorder_->error() + "; the recording stops here (" +
                                 std::to_string(recorder_->lost()) + " device-cycles lost so far), the session runs on";
     spdlog::error("{}", message);
-    if (bridge_ != nullptr) bridge_->announce(hapticd_msg_EVENT_RECORDING, "recording_failed", message);
+    if (doors_ != nullptr) doors_->announce(hapticd_msg_EVENT_RECORDING, "recording_failed", message);
   }
   if (stop_requested_ != nullptr && stop_requested_->load() && !stop_logged_) {
     spdlog::info("stop requested: every device stops through its safe mode (damping, then zero torque)");

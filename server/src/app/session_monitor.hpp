@@ -12,16 +12,16 @@
 namespace hapticd::server {
 
 class DeviceSession;
-class DdsBridge;
+class Doors;
 class Recorder;
 struct FaultReport;
 
 class SessionMonitor {
  public:
-  // bridge may be nullptr (no DDS interface); stop_requested may be nullptr (nothing to log).
+  // doors may be nullptr (no DDS interface, no engine socket); stop_requested may be nullptr (nothing to log).
   // recorder may be nullptr; a failing recording is logged and announced once.
-  SessionMonitor(std::vector<DeviceSession*> devices, DdsBridge* bridge,
-                 const std::atomic<bool>* stop_requested = nullptr, const Recorder* recorder = nullptr);
+  SessionMonitor(std::vector<DeviceSession*> devices, Doors* doors, const std::atomic<bool>* stop_requested = nullptr,
+                 const Recorder* recorder = nullptr);
   ~SessionMonitor();
   SessionMonitor(const SessionMonitor&) = delete;
   SessionMonitor& operator=(const SessionMonitor&) = delete;
@@ -39,7 +39,7 @@ class SessionMonitor {
 
  private:
   std::vector<DeviceSession*> devices_;
-  DdsBridge* bridge_;
+  Doors* doors_;
   const std::atomic<bool>* stop_requested_;
   std::vector<DeviceFault> reported_;
   struct Log {

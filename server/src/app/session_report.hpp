@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "bridge/round_trip_probe.hpp"
 #include "config/session_config.hpp"
 #include "executor/executor.hpp"
+#include "gate/round_trip_probe.hpp"
 #include "group/group_stage.hpp"
 #include "session/device_session.hpp"
 

@@ -162,7 +162,9 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
   d.enabled = true;
   if (node.IsNull()) return d;  // `dds:` alone: on with the defaults
   if (!node.IsMap()) throw ConfigError(file, line_of(node), "dds", "expected a mapping of DDS settings");
-  const Parameters p = read_parameters(node, dds_settings_schema(), file, "dds", line_of(node), {"network"});
+  std::vector<std::string> elsewhere = gate_settings_schema().names();  // read by read_gate
+  elsewhere.push_back("network");
+  const Parameters p = read_parameters(node, dds_settings_schema(), file, "dds", line_of(node), elsewhere);
   d.enabled = p.boolean("enabled");
   d.domain_id = static_cast<int>(p.integer("domain_id"));
   if (const std::string c = p.string("cyclone_config"); !c.empty()) {
@@ -178,28 +180,56 @@ DdsSettings read_dds(const YAML::Node& node, const std::string& file, const std:
                         "give either dds.network or dds.cyclone_config, not both");
     d.network = read_network(node["network"], file);
   }
-  d.state_rate_hz = p.real("state_rate_hz");
-  d.telemetry_rate_hz = p.real("telemetry_rate_hz");
-  d.max_sample_age_s = p.real("max_sample_age_s");
-  d.max_force_n = p.real("max_force_n");
-  d.max_torque_nm = p.real("max_torque_nm");
-  d.max_stiffness_n_per_m = p.real("max_stiffness_n_per_m");
-  d.max_rotational_stiffness_n_m_per_rad = p.real("max_rotational_stiffness_n_m_per_rad");
-  d.max_damping_n_s_per_m = p.real("max_damping_n_s_per_m");
-  d.max_rotational_damping_n_m_s = p.real("max_rotational_damping_n_m_s");
-  d.max_distance_m = p.real("max_distance_m");
-  d.max_speed_m_s = p.real("max_speed_m_s");
-  d.max_angular_speed_rad_s = p.real("max_angular_speed_rad_s");
-  d.lockstep_sync = p.boolean("lockstep_sync");
-  d.lockstep_wait_s = p.real("lockstep_wait_s");
-  d.lockstep_start_wait_s = p.real("lockstep_start_wait_s");
-  d.lockstep_start_every = p.string("lockstep_start_for") == "every";
   d.cpu = static_cast<int>(p.integer("cpu"));
   d.max_peers = static_cast<int>(p.integer("max_peers"));
-  d.claim_grace_s = p.real("claim_grace_s");
-  d.claim_hold_s = p.real("claim_hold_s");
   d.log_lines_per_s = p.real("log_lines_per_s");
   return d;
+}
+
+GateSettings gate_settings_of(const Parameters& p) {
+  GateSettings g;
+  g.state_rate_hz = p.real("state_rate_hz");
+  g.telemetry_rate_hz = p.real("telemetry_rate_hz");
+  g.max_sample_age_s = p.real("max_sample_age_s");
+  g.max_force_n = p.real("max_force_n");
+  g.max_torque_nm = p.real("max_torque_nm");
+  g.max_stiffness_n_per_m = p.real("max_stiffness_n_per_m");
+  g.max_rotational_stiffness_n_m_per_rad = p.real("max_rotational_stiffness_n_m_per_rad");
+  g.max_damping_n_s_per_m = p.real("max_damping_n_s_per_m");
+  g.max_rotational_damping_n_m_s = p.real("max_rotational_damping_n_m_s");
+  g.max_distance_m = p.real("max_distance_m");
+  g.max_speed_m_s = p.real("max_speed_m_s");
+  g.max_angular_speed_rad_s = p.real("max_angular_speed_rad_s");
+  g.lockstep_sync = p.boolean("lockstep_sync");
+  g.lockstep_wait_s = p.real("lockstep_wait_s");
+  g.lockstep_start_wait_s = p.real("lockstep_start_wait_s");
+  g.lockstep_start_every = p.string("lockstep_start_for") == "every";
+  g.claim_grace_s = p.real("claim_grace_s");
+  g.claim_hold_s = p.real("claim_hold_s");
+  return g;
+}
+
+// The gate's settings: from the `gate` section, or (sessions written before it had one) the same keys in the
+// `dds` section - not both.
+GateSettings read_gate(const YAML::Node& gate, const YAML::Node& dds, const std::string& file) {
+  const ParameterSchema schema = gate_settings_schema();
+  if (gate.IsDefined()) {
+    if (dds.IsDefined() && dds.IsMap())
+      for (const auto& entry : dds) {
+        const std::string key = entry.first.Scalar();
+        if (schema.find(key) != nullptr)
+          throw ConfigError(file, line_of(entry.first), "dds." + key,
+                            "the session has a gate section: give " + key + " there (gate." + key + "), not in dds");
+      }
+    if (gate.IsNull()) return GateSettings{};
+    if (!gate.IsMap()) throw ConfigError(file, line_of(gate), "gate", "expected a mapping of the gate's settings");
+    return gate_settings_of(read_parameters(gate, schema, file, "gate", line_of(gate)));
+  }
+  if (!dds.IsDefined() || !dds.IsMap()) return GateSettings{};
+  // The gate's keys of the dds section (its own are read by read_dds).
+  std::vector<std::string> dds_keys = dds_settings_schema().names();
+  dds_keys.push_back("network");
+  return gate_settings_of(read_parameters(dds, schema, file, "dds", line_of(dds), dds_keys));
 }
 
 // A section's allowed_origins: web pages (their Origin) that may connect besides those served from this machine.
@@ -591,6 +621,31 @@ ParameterSchema dds_settings_schema() {
            "file; docs/deployment.md), else HAPTICD_DDS_CONFIG or HAPTICD_DDS_NETWORK, else the built-in "
            "loopback-only configuration (config/dds/cyclonedds-loopback.xml)")
       .default_value(std::string());
+  s.integer("cpu",
+            "CPU of the DDS threads: -2 auto (real-time clock, 2 or more CPUs: the loop on the last CPU "
+            "unless server.cpu is set, the DDS threads on the others), -1 no pinning")
+      .minimum(-2)
+      .maximum(1023)
+      .default_value(std::int64_t{d.cpu});
+  s.integer("max_peers",
+            "DDS writers whose participant the server remembers for ownership checks (least recently "
+            "used first out), and writers remembered as having lost their liveliness")
+      .minimum(8)
+      .maximum(65536)
+      .default_value(std::int64_t{d.max_peers});
+  s.real("log_lines_per_s",
+         "Cyclone DDS's own log lines (e.g. warnings about malformed packets) pass through the "
+         "server's log at most this often, in bursts of 20; the rest are counted and summarised")
+      .unit("1/s")
+      .greater_than(0.0)
+      .maximum(1000.0)
+      .default_value(d.log_lines_per_s);
+  return s;
+}
+
+ParameterSchema gate_settings_schema() {
+  ParameterSchema s;
+  const GateSettings d;
   s.real("state_rate_hz", "device state publication rate; 0: every loop cycle")
       .unit("Hz")
       .minimum(0.0)
@@ -659,39 +714,20 @@ ParameterSchema dds_settings_schema() {
            "repeatable); any: for the first engine")
       .choices({"every", "any"})
       .default_value(std::string("every"));
-  s.integer("cpu",
-            "CPU of the DDS threads: -2 auto (real-time clock, 2 or more CPUs: the loop on the last CPU "
-            "unless server.cpu is set, the DDS threads on the others), -1 no pinning")
-      .minimum(-2)
-      .maximum(1023)
-      .default_value(std::int64_t{d.cpu});
-  s.integer("max_peers",
-            "DDS writers whose participant the server remembers for ownership checks (least recently "
-            "used first out), and writers remembered as having lost their liveliness")
-      .minimum(8)
-      .maximum(65536)
-      .default_value(std::int64_t{d.max_peers});
   s.real("claim_grace_s",
-         "a claim whose participant has no live engine command writer this long after the claim "
-         "ends (a claimant that cannot be watched)")
+         "a claim whose peer shows no sign of life (no live engine command writer, no open connection) this "
+         "long after the claim ends (a claimant that cannot be watched)")
       .unit("s")
       .greater_than(0.0)
       .maximum(1.0)
       .default_value(d.claim_grace_s);
   s.real("claim_hold_s",
-         "a claimant whose participant is still on the domain but has had no live command writer this long "
-         "(frozen or killed) loses its claim; its forces fade at the command deadline meanwhile")
+         "a claimant that is still there but has shown no sign of life this long (frozen or killed: no live "
+         "command writer) loses its claim; its forces fade at the command deadline meanwhile")
       .unit("s")
       .minimum(0.5)
       .maximum(60.0)
       .default_value(d.claim_hold_s);
-  s.real("log_lines_per_s",
-         "Cyclone DDS's own log lines (e.g. warnings about malformed packets) pass through the "
-         "server's log at most this often, in bursts of 20; the rest are counted and summarised")
-      .unit("1/s")
-      .greater_than(0.0)
-      .maximum(1000.0)
-      .default_value(d.log_lines_per_s);
   return s;
 }
 
@@ -781,15 +817,12 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
   config.file = path;
   config.overrides = applied;
   MappingReader top(root, "", file,
-                    {"server", "dds", "live_view", "engine_socket", "teleoperation", "devices", "groups"});
+                    {"server", "dds", "gate", "live_view", "engine_socket", "teleoperation", "devices", "groups"});
   config.server = read_server(top.optional("server"), file, path.parent_path());
   config.dds = read_dds(top.optional("dds"), file, path.parent_path());
+  config.gate = read_gate(top.optional("gate"), top.optional("dds"), file);
   config.live_view = read_live_view(top.optional("live_view"), file);
   config.engine_socket = read_engine_socket(top.optional("engine_socket"), file, path.parent_path());
-  if (config.engine_socket.enabled && !config.dds.enabled)
-    throw ConfigError(file, line_of(root["engine_socket"]), "engine_socket",
-                      "the engine socket needs the dds section: it is a door to the DDS interface's gate (claims, "
-                      "validation, deadlines); add `dds: {}` (loopback by default)");
 
   const YAML::Node devices = top.required("devices");
   if (!devices.IsSequence() || devices.size() == 0)

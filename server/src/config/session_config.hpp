@@ -41,13 +41,10 @@ struct ServerSettings {
 };
 
 // The `dds` section: the DDS interface (docs/dds-interface.md). Absent: no DDS participant is created.
-struct DdsSettings {
-  bool enabled = false;
-  int domain_id = 0;
-  std::filesystem::path cyclone_config;  // empty: the built-in loopback configuration
-  // `dds.network` (not with cyclone_config): interfaces, unicast peers, multicast - docs/deployment.md. Neither:
-  // HAPTICD_DDS_CONFIG or HAPTICD_DDS_NETWORK from the environment, else loopback only.
-  std::optional<dds::NetworkSettings> network;
+// The gate's settings (docs/architecture.md, "The gate and its doors"): what every door's commands must satisfy,
+// how long a claim outlives its claimant, how often states and telemetry go out, lockstep. The `gate` section;
+// a session without one may give these keys in its `dds` section (as before the gate had a section of its own).
+struct GateSettings {
   double state_rate_hz = 0.0;  // 0: every cycle
   double telemetry_rate_hz = 10.0;
   double max_sample_age_s = 0.1;  // commands older than this (source timestamp) are rejected
@@ -65,19 +62,29 @@ struct DdsSettings {
   double lockstep_start_wait_s = 0.0;  // lockstep: the first cycle waits this long (wall) for an engine to answer
   // ... for an engine on every device (a two-engine run starts with both answering: repeatable), or on any.
   bool lockstep_start_every = true;
+  // A claim whose peer shows no sign of life (no live command writer, no open connection) this long after the
+  // claim ends (the claimant cannot be watched; docs/safety.md).
+  double claim_grace_s = 0.5;
+  // A claimant that is still there but has shown no sign of life this long (a frozen or killed process; a VR
+  // application loading a scene or collecting garbage is frozen for a second or so) loses its claim. Its forces
+  // fade at the command deadline all the same (docs/safety.md, "Ownership").
+  double claim_hold_s = 5.0;
+};
+
+// The `dds` section: the DDS door (docs/dds-interface.md). Absent: none.
+struct DdsSettings {
+  bool enabled = false;
+  int domain_id = 0;
+  std::filesystem::path cyclone_config;  // empty: the built-in loopback configuration
+  // `dds.network` (not with cyclone_config): interfaces, unicast peers, multicast - docs/deployment.md. Neither:
+  // HAPTICD_DDS_CONFIG or HAPTICD_DDS_NETWORK from the environment, else loopback only.
+  std::optional<dds::NetworkSettings> network;
   // CPU of the DDS threads (the bridge's and Cyclone's): -2 auto (real-time clock on 2+ CPUs: the loop gets
   // the last CPU unless server.cpu says otherwise, the DDS threads the others), -1 no pinning, else that CPU.
   int cpu = -2;
   // Writers whose participant the server remembers (for ownership) and writers that lost their liveliness: a
   // bounded table, least recently used first out (docs/safety.md, "Ownership").
   int max_peers = 256;
-  // A claim whose participant has no live engine command writer this long after the claim ends (the claimant
-  // cannot be watched; docs/safety.md).
-  double claim_grace_s = 0.5;
-  // A claimant whose participant is still there but has had no live command writer this long (a frozen or
-  // killed process; a VR application loading a scene or collecting garbage is frozen for a second or so) loses
-  // its claim. Its forces fade at the command deadline all the same (docs/safety.md, "Ownership").
-  double claim_hold_s = 5.0;
   // Cyclone DDS's own log lines pass through the server's logger at most this often (the rest are counted).
   double log_lines_per_s = 5.0;
 };
@@ -180,6 +187,7 @@ struct SessionConfig {
   std::filesystem::path file;
   ServerSettings server;
   DdsSettings dds;
+  GateSettings gate;  // the `gate` section, or the gate's keys in the `dds` section
   LiveViewSettings live_view;
   EngineSocketSettings engine_socket;
   TeleoperationSettings teleoperation;
@@ -201,6 +209,8 @@ const std::vector<EntryKey>& device_entry_keys();
 ParameterSchema server_settings_schema();
 // The schema of the `dds` section.
 ParameterSchema dds_settings_schema();
+// The `gate` section's keys (also accepted in the `dds` section).
+ParameterSchema gate_settings_schema();
 // The schema of the `live_view` section.
 ParameterSchema live_view_settings_schema();
 // The schema of the `engine_socket` section.

@@ -1,6 +1,6 @@
 #pragma once
 // Checks of an engine command's content before the server may use it: well-formed, finite, within bounds.
-// (Ownership, order and freshness need the server's state: server/src/bridge/command_gate.) Pure functions,
+// (Ownership, order and freshness need the server's state: server/src/gate/command_gate.) Pure functions,
 // fuzzed by tests/unit/command_validation_fuzz_test.
 #include <array>
 #include <cstdint>

@@ -1,0 +1,432 @@
+#include "doors/socket/socket_messages.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hapticd/dds/conversion.hpp"
+#include "hapticd/json_text.hpp"
+
+namespace hapticd::server::socket_messages {
+
+using namespace json_text;
+using Value = JsonReader::Value;
+using Kind = JsonReader::Kind;
+
+namespace {
+
+struct RequestName {
+  std::string_view name;
+  hapticd_msg_RequestKind kind;
+};
+constexpr RequestName kRequests[] = {
+    {"claim", hapticd_msg_REQUEST_CLAIM},
+    {"release", hapticd_msg_REQUEST_RELEASE},
+    {"switch_scheme", hapticd_msg_REQUEST_SWITCH_SCHEME},
+    {"set_parameter", hapticd_msg_REQUEST_SET_PARAMETER},
+    {"get_parameter", hapticd_msg_REQUEST_GET_PARAMETER},
+    {"describe_parameter", hapticd_msg_REQUEST_DESCRIBE_PARAMETER},
+    {"estop", hapticd_msg_REQUEST_ESTOP},
+    {"recover", hapticd_msg_REQUEST_RECOVER},
+    {"operator", hapticd_msg_REQUEST_OPERATOR},
+    {"describe", hapticd_msg_REQUEST_DESCRIBE},
+    {"group_claim", hapticd_msg_REQUEST_GROUP_CLAIM},
+    {"group_release", hapticd_msg_REQUEST_GROUP_RELEASE},
+    {"group_estop", hapticd_msg_REQUEST_GROUP_ESTOP},
+    {"group_recover", hapticd_msg_REQUEST_GROUP_RECOVER},
+};
+
+// A number member (absent: `fallback`; present but not a number: false).
+bool number(const Value& object, std::string_view key, double& out, double fallback = 0.0) {
+  const Value v = object[key];
+  if (!v) {
+    out = fallback;
+    return true;
+  }
+  const std::optional<double> n = v.number();
+  if (!n) return false;
+  out = *n;
+  return true;
+}
+
+// {"x":..,"y":..,"z":..} into out[0..2] (absent: zeros).
+bool vector3(const Value& v, double* out) {
+  if (!v) {
+    out[0] = out[1] = out[2] = 0.0;
+    return true;
+  }
+  return v.kind() == Kind::object && number(v, "x", out[0]) && number(v, "y", out[1]) && number(v, "z", out[2]);
+}
+
+// {"w":..,"x":..,"y":..,"z":..} into out[0..3] (absent: identity).
+bool quaternion(const Value& v, double* out) {
+  if (!v) {
+    out[0] = 1.0;
+    out[1] = out[2] = out[3] = 0.0;
+    return true;
+  }
+  return v.kind() == Kind::object && number(v, "w", out[0], 1.0) && number(v, "x", out[1]) && number(v, "y", out[2]) &&
+         number(v, "z", out[3]);
+}
+
+// [a, b, c, d, e, f] into out[0..5] (absent: zeros).
+bool vector6(const Value& v, double* out) {
+  for (int i = 0; i < 6; ++i) out[i] = 0.0;
+  if (!v) return true;
+  if (v.kind() != Kind::array || v.size() != 6) return false;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const std::optional<double> n = v.at(i).number();
+    if (!n) return false;
+    out[i] = *n;
+  }
+  return true;
+}
+
+// A name member that fits a DDS Name or Text (`capacity` characters).
+bool text(const Value& object, std::string_view key, std::size_t capacity, std::string_view& out) {
+  const Value v = object[key];
+  if (!v) {
+    out = {};
+    return true;
+  }
+  const std::optional<std::string_view> s = v.string();
+  if (!s || s->size() > capacity) return false;
+  out = *s;
+  return true;
+}
+
+// A pose and twist command ({"position", "orientation", "velocity", "angular_velocity"}).
+bool pose_and_twist(const Value& v, hapticd_msg_EngineCommand& c) {
+  return v.kind() == Kind::object && vector3(v["position"], c.command_pose.position) &&
+         quaternion(v["orientation"], c.command_pose.orientation) && vector3(v["velocity"], c.twist) &&
+         vector3(v["angular_velocity"], c.twist + 3);
+}
+
+// "key":{"x":..,...} with the named components.
+template <std::size_t N>
+void append_object(std::string& out, std::string_view key, const char* const (&names)[N], const double* v) {
+  append_key(out, key);
+  for (std::size_t i = 0; i < N; ++i) {
+    out += i == 0 ? "{\"" : ",\"";
+    out += names[i];
+    out += "\":";
+    append_number(out, v[i]);
+  }
+  out += '}';
+}
+void append_vector3(std::string& out, std::string_view key, const double* v) {
+  static constexpr const char* kNames[] = {"x", "y", "z"};
+  append_object(out, key, kNames, v);
+}
+void append_quaternion(std::string& out, std::string_view key, const double* q) {
+  static constexpr const char* kNames[] = {"w", "x", "y", "z"};
+  append_object(out, key, kNames, q);
+}
+
+const char* mode_name(hapticd_msg_DeviceMode mode) {
+  switch (mode) {
+    case hapticd_msg_MODE_STARTING:
+      return "starting";
+    case hapticd_msg_MODE_RUNNING:
+      return "running";
+    case hapticd_msg_MODE_STOPPING:
+      return "stopping";
+    case hapticd_msg_MODE_SAFE:
+      return "safe";
+    default:
+      return "off";
+  }
+}
+
+}  // namespace
+
+bool Parser::command(const Value& entry, std::string_view engine, std::uint64_t& serial, std::uint64_t state_serial,
+                     ClientMessage& out) {
+  std::string_view device;
+  if (entry.kind() != Kind::object || !text(entry, "device_id", 31, device) || device.empty()) {
+    out.error = "each device entry needs a device_id (a device name, at most 31 characters)";
+    return false;
+  }
+  double answered = static_cast<double>(state_serial);
+  if (!number(entry, "state_serial", answered, answered) || answered < 0.0) {
+    out.error = "state_serial must be a number (the serial of the state the command answers)";
+    return false;
+  }
+  const Value commands = entry["commands"];
+  if (!commands) return true;  // an entry without commands (Haply's clients send some)
+  if (commands.kind() != Kind::object || commands.size() != 1) {
+    out.error = "a device's commands hold one of set_cursor_force, set_wrench, set_coupling, set_motion";
+    return false;
+  }
+  if (out.commands.size() >= kMaxCommands) {
+    out.error = "at most 8 device commands per message";
+    return false;
+  }
+  hapticd_msg_EngineCommand c{};
+  dds::set_text(c.device, device);
+  dds::set_text(c.engine, engine);
+  c.state_serial = static_cast<std::uint64_t>(answered);
+  c.command_pose.orientation[0] = 1.0;
+  c.anchor.orientation[0] = 1.0;
+  bool ok = false;
+  if (const Value f = commands["set_cursor_force"]) {  // Haply's: a force on the cursor
+    c.kind = hapticd_msg_COMMAND_WRENCH;
+    ok = f.kind() == Kind::object && vector3(f["vector"], c.wrench) && f["vector"];
+  } else if (const Value w = commands["set_wrench"]) {
+    c.kind = hapticd_msg_COMMAND_WRENCH;
+    ok = w.kind() == Kind::object && vector3(w["force"], c.wrench) && vector3(w["torque"], c.wrench + 3);
+    if (ok && (w["stiffness"] || w["damping"] || w["anchor"])) {  // a local model the server evaluates every cycle
+      c.local_model = true;
+      const Value anchor = w["anchor"];
+      ok = vector6(w["stiffness"], c.stiffness) && vector6(w["damping"], c.damping) &&
+           (!anchor || (anchor.kind() == Kind::object && vector3(anchor["position"], c.anchor.position) &&
+                        quaternion(anchor["orientation"], c.anchor.orientation)));
+    }
+  } else if (const Value p = commands["set_coupling"]) {
+    c.kind = hapticd_msg_COMMAND_COUPLING;
+    ok = pose_and_twist(p, c);
+  } else if (const Value m = commands["set_motion"]) {
+    c.kind = hapticd_msg_COMMAND_MOTION;
+    ok = pose_and_twist(m, c);
+  } else {
+    out.error = "unknown command (set_cursor_force, set_wrench, set_coupling and set_motion are offered)";
+    return false;
+  }
+  if (!ok) {
+    out.error =
+        "malformed command for '" + std::string(device) + "': numbers expected where docs/engine-socket.md shows them";
+    return false;
+  }
+  c.serial = ++serial;
+  out.commands.push_back(c);
+  return true;
+}
+
+bool Parser::request(const Value& r, std::string_view client, ClientMessage& out) {
+  if (r.kind() != Kind::object) {
+    out.error = "request: expected an object";
+    return false;
+  }
+  std::string_view kind, device, name;
+  double id = 0.0;
+  if (!text(r, "kind", 31, kind) || !text(r, "device", 31, device) || !text(r, "name", 127, name) ||
+      !number(r, "id", id) || id < 0.0 || id > 9007199254740992.0 || device.empty()) {
+    out.error = "request: needs kind, device (a name), a numeric id and at most a name of 127 characters";
+    return false;
+  }
+  hapticd_msg_ControlRequest m{};
+  bool known = false;
+  for (const RequestName& k : kRequests)
+    if (k.name == kind) {
+      m.kind = k.kind;
+      known = true;
+    }
+  if (!known) {
+    out.error =
+        "request: unknown kind (claim, release, switch_scheme, set_parameter, get_parameter, "
+        "describe_parameter, estop, recover, operator, describe, group_claim, group_release, group_estop, "
+        "group_recover)";
+    return false;
+  }
+  const Value values = r["values"];
+  if (values && (values.kind() != Kind::array || values.size() > hapticd_msg_MAX_VALUES)) {
+    out.error = "request: values must be a list of at most 16 numbers";
+    return false;
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::optional<double> v = values.at(i).number();
+    if (!v) {
+      out.error = "request: values must be numbers";
+      return false;
+    }
+    m.values[i] = *v;
+  }
+  m.value_count = static_cast<std::int32_t>(values.size());
+  dds::set_text(m.device, device);
+  dds::set_text(m.client, client);
+  dds::set_text(m.subject, name);
+  m.request_id = static_cast<std::uint64_t>(id);
+  out.request = m;
+  return true;
+}
+
+bool Parser::parse(std::string_view text_in, std::string_view engine, std::uint64_t& serial, ClientMessage& out) {
+  out.commands.clear();
+  out.request.reset();
+  out.subscribe.reset();
+  out.profile.reset();
+  out.error.clear();
+  if (!json_.parse(text_in)) {
+    out.error = std::string("not JSON: ") + json_.error();
+    return false;
+  }
+  const Value root = json_.root();
+  if (root.kind() != Kind::object) {
+    out.error = "expected a JSON object";
+    return false;
+  }
+  std::string_view client = engine;
+  if (const Value session = root["session"]) {
+    std::string_view name;
+    const Value profile = session["configure"]["profile"];
+    if (!profile || !text(profile, "name", 31, name) || name.empty()) {
+      out.error = "session: expected {\"configure\":{\"profile\":{\"name\":\"<client id, 1-31 characters>\"}}}";
+      return false;
+    }
+    out.profile = std::string(name);
+    client = name;
+  }
+  if (const Value s = root["subscribe"]) {
+    if (s.kind() != Kind::array || s.size() > 64) {
+      out.error = "subscribe: expected a list of device names";
+      return false;
+    }
+    out.subscribe.emplace();
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const std::optional<std::string_view> name = s.at(i).string();
+      if (!name || name->empty() || name->size() > 31) {
+        out.error = "subscribe: expected a list of device names";
+        return false;
+      }
+      out.subscribe->emplace_back(*name);
+    }
+  }
+  if (const Value r = root["request"]; r && !request(r, client, out)) return false;
+  double state_serial = 0.0;
+  if (!number(root, "state_serial", state_serial) || state_serial < 0.0) {
+    out.error = "state_serial must be a number";
+    return false;
+  }
+  Value devices = root["devices"];
+  if (!devices) devices = root["inverse3"];  // a client written for Haply's Inverse Service
+  if (devices) {
+    if (devices.kind() != Kind::array) {
+      out.error = "devices: expected a list";
+      return false;
+    }
+    const std::uint64_t first_serial = serial;
+    for (std::size_t i = 0; i < devices.size(); ++i)
+      if (!command(devices.at(i), client, serial, static_cast<std::uint64_t>(state_serial), out)) {
+        serial = first_serial;  // nothing of a malformed message applies
+        out.commands.clear();
+        return false;
+      }
+  }
+  return true;
+}
+
+std::string inventory(std::uint64_t session_id, std::string_view client, const std::vector<InventoryDevice>& devices,
+                      const std::vector<InventoryGroup>& groups) {
+  std::string out = "{\"session_id\":";
+  append_integer(out, static_cast<std::int64_t>(session_id));
+  append_key(out, "client");
+  append_string(out, client);
+  out += ",\"devices\":[";
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    const InventoryDevice& d = devices[i];
+    if (i > 0) out += ',';
+    out += "{\"device_id\":";
+    append_string(out, d.name);
+    out += ",\"config\":{\"model\":";
+    append_string(out, d.model);
+    append_key(out, "interface");
+    append_string(out, d.interface);
+    append_key(out, "dof");
+    append_integer(out, d.dof);
+    out += d.simulated ? ",\"simulated\":true" : ",\"simulated\":false";
+    append_key(out, "command_deadline_s");
+    append_number(out, d.command_deadline_s);
+    append_vector3(out, "base_position", d.base_position.data());
+    append_quaternion(out, "base_orientation", d.base_orientation.data());
+    append_key(out, "scheme");
+    append_string(out, d.scheme);
+    out += ",\"schemes\":[";
+    for (std::size_t k = 0; k < d.schemes.size(); ++k) {
+      if (k > 0) out += ',';
+      append_string(out, d.schemes[k]);
+    }
+    out += "]}}";
+  }
+  out += "],\"groups\":[";
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    if (i > 0) out += ',';
+    out += "{\"group_id\":";
+    append_string(out, groups[i].name);
+    out += ",\"devices\":[";
+    for (std::size_t k = 0; k < groups[i].devices.size(); ++k) {
+      if (k > 0) out += ',';
+      append_string(out, groups[i].devices[k]);
+    }
+    out += "]}";
+  }
+  out += "]}";
+  return out;
+}
+
+void state(const hapticd_msg_DeviceState& s, std::string& out) {
+  out.clear();
+  out += "{\"devices\":[{\"device_id\":";
+  append_string(out, dds::text_of(s.device));
+  out += ",\"state\":{\"serial\":";
+  append_integer(out, static_cast<std::int64_t>(s.serial));
+  append_key(out, "cycle");
+  append_integer(out, static_cast<std::int64_t>(s.cycle));
+  append_key(out, "time_ns");
+  append_integer(out, s.loop_time_ns);
+  append_vector3(out, "cursor_position", s.handle_pose.position);
+  append_quaternion(out, "orientation", s.handle_pose.orientation);
+  append_vector3(out, "cursor_velocity", s.twist);
+  append_vector3(out, "angular_velocity", s.twist + 3);
+  append_vector3(out, "operator_force", s.operator_wrench);
+  append_vector3(out, "operator_torque", s.operator_wrench + 3);
+  append_vector3(out, "environment_force", s.environment_wrench);
+  append_vector3(out, "environment_torque", s.environment_wrench + 3);
+  append_vector3(out, "target_position", s.target_pose.position);
+  append_key(out, "buttons");
+  append_integer(out, s.buttons);
+  append_key(out, "gripper");
+  append_number(out, s.gripper);
+  append_key(out, "engine_serial");
+  append_integer(out, static_cast<std::int64_t>(s.engine_serial));
+  out += "},\"status\":{\"mode\":\"";
+  out += mode_name(s.mode);
+  out += '"';
+  append_key(out, "fault");
+  append_string(out, dds::text_of(s.fault));
+  append_key(out, "scheme");
+  append_string(out, dds::text_of(s.scheme));
+  append_key(out, "owner");
+  append_string(out, dds::text_of(s.owner));
+  append_key(out, "flags");
+  append_integer(out, s.flags);
+  out += "}}]}";
+}
+
+std::string reply(std::int64_t id, const hapticd_msg_ControlReply& r) {
+  std::string out = "{\"reply\":{\"id\":";
+  append_integer(out, id);
+  append_key(out, "device");
+  append_string(out, dds::text_of(r.device));
+  out += r.accepted ? ",\"accepted\":true" : ",\"accepted\":false";
+  append_key(out, "message");
+  append_string(out, dds::text_of(r.message));
+  out += ",\"values\":[";
+  for (std::int32_t i = 0; i < std::clamp<std::int32_t>(r.value_count, 0, hapticd_msg_MAX_VALUES); ++i) {
+    if (i > 0) out += ',';
+    append_number(out, r.values[i]);
+  }
+  out += "]}}";
+  return out;
+}
+
+std::string error(std::string_view code, std::string_view message, std::uint64_t count) {
+  std::string out = "{\"error\":{\"code\":";
+  append_string(out, code);
+  append_key(out, "message");
+  append_string(out, message);
+  append_key(out, "count");
+  append_integer(out, static_cast<std::int64_t>(count));
+  out += "}}";
+  return out;
+}
+
+}  // namespace hapticd::server::socket_messages

@@ -1,0 +1,236 @@
+#include "doors/teleop/teleop_link.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+
+#include "gate/peer.hpp"
+#include "hapticd/dds/conversion.hpp"
+#include "hapticd/dds/teleop_validation.hpp"
+#include "session/device_requests.hpp"
+
+namespace hapticd::server {
+namespace {
+
+void copy(double (&to)[3], const Eigen::Vector3d& from) noexcept {
+  for (int i = 0; i < 3; ++i) to[i] = from[i];
+}
+
+Eigen::Vector3d vec(const double (&v)[3]) noexcept { return {v[0], v[1], v[2]}; }
+
+std::int32_t role_of(teleop::Role r) noexcept {
+  return r == teleop::Role::master ? hapticd_msg_TELEOP_MASTER : hapticd_msg_TELEOP_REMOTE;
+}
+
+// The DDS partition a device's teleoperation packets travel in (DDS Security: granted to its server's identity).
+std::string link_partition(const std::string& device) { return "hapticd.teleop." + device; }
+
+// The participant of a matched writer, for messages ("participant 0110a4c3..."; "?" when no longer matched).
+std::string participant_of(dds_entity_t reader, dds_instance_handle_t writer) {
+  dds_builtintopic_endpoint_t* data = dds_get_matched_publication_data(reader, writer);
+  if (data == nullptr) return "?";
+  std::array<unsigned char, 16> guid{};
+  std::memcpy(guid.data(), data->participant_key.v, guid.size());
+  dds_builtintopic_free_endpoint(data);
+  return PeerId::dds_participant(guid).text().substr(12);  // the GUID's prefix, without "participant "
+}
+
+}  // namespace
+
+TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceGate& device, const dds::Participant& participant,
+                       EventFanout& events)
+    : settings_(settings),
+      device_(device),
+      events_(events),
+      name_(settings.device),
+      reader_(participant, {}, nullptr, {link_partition(settings.peer)}),
+      writer_(participant, {}, link_partition(settings.device)),
+      side_(settings.role, settings.link) {
+  dds::set_text(packet_.sender, name_);
+  dds::set_text(packet_.receiver, settings.peer);
+  packet_.role = role_of(settings.role);
+  std::lock_guard lock(device_.mutex);
+  device_.gate.claim("teleoperation:" + settings.peer, PeerId::link());
+  device_.claimed_ns = 0;
+}
+
+void TeleopLink::take_packets() {
+  const std::int32_t peer_role =
+      role_of(settings_.role == teleop::Role::master ? teleop::Role::remote : teleop::Role::master);
+  reader_.take([&](const hapticd_msg_TeleopPacket& p, const dds_sample_info_t& info) {
+    // Packets of other links in the domain are not this link's business; a malformed one for this link is.
+    if (dds::terminated(p.receiver) && dds::text_of(p.receiver) != name_) return;
+    std::string_view problem = dds::check_teleop_packet(p);
+    if (problem.empty() && dds::text_of(p.sender) != settings_.peer) problem = "it comes from another device";
+    if (problem.empty() && p.role != peer_role) problem = "its sender has the same role as this side";
+    if (!problem.empty()) return reject("teleoperation_packet", problem, rejected_);
+    if (!admit(info.publication_handle)) return;
+    teleop::LinkPacket packet;
+    packet.sequence = p.serial;
+    packet.sent_ns = p.sent_ns;
+    packet.position = vec(p.position);
+    packet.velocity = vec(p.velocity);
+    packet.force = vec(p.force);
+    packet.wave = vec(p.wave);
+    packet.energy_in = p.energy_in;
+    packet.stopped = p.stopped;
+    side_.receive(packet);
+    taken_.fetch_add(1, std::memory_order_relaxed);
+  });
+}
+
+void TeleopLink::reject(std::string_view code, std::string_view problem, std::atomic<std::uint64_t>& counter) {
+  const std::uint64_t n = counter.fetch_add(1, std::memory_order_relaxed) + 1;
+  if (&counter != &rejected_) rejected_.fetch_add(1, std::memory_order_relaxed);
+  if (n == 1 || n % 1000 == 0) {
+    spdlog::warn("{}: a teleoperation packet was rejected: {} ({} so far)", name_, problem, n);
+    events_.send(device_, hapticd_msg_EVENT_ENGINE_REJECTED, code,
+                 fmt::format("teleoperation packet rejected: {} ({} so far)", problem, n));
+  }
+}
+
+bool TeleopLink::matched(dds_instance_handle_t writer) const {
+  std::array<dds_instance_handle_t, 64> writers{};  // the peer's and a few more: an impostor is one writer too
+  const dds_return_t n = dds_get_matched_publications(reader_.get(), writers.data(), writers.size());
+  if (n < 0) return true;  // unknown: the binding stays
+  const std::size_t shown = std::min<std::size_t>(static_cast<std::size_t>(n), writers.size());
+  if (std::find(writers.begin(), writers.begin() + static_cast<std::ptrdiff_t>(shown), writer) !=
+      writers.begin() + static_cast<std::ptrdiff_t>(shown))
+    return true;
+  return static_cast<std::size_t>(n) > writers.size();  // more than shown: it may be among the rest
+}
+
+bool TeleopLink::admit(dds_instance_handle_t writer) {
+  if (writer == bound_) return true;
+  if (bound_ != 0 && matched(bound_)) {
+    // The participants are looked up (discovery data, allocated) only for the packets reported: the first and
+    // every 1000th of a flood.
+    const std::uint64_t next = impostors_.load(std::memory_order_relaxed) + 1;
+    const bool reported = next == 1 || next % 1000 == 0;
+    reject("teleoperation_impostor",
+           reported ? "it comes from participant " + participant_of(reader_.get(), writer) +
+                          ", not from the peer the link is bound to (participant " +
+                          participant_of(reader_.get(), bound_) + ")"
+                    : std::string(),
+           impostors_);
+    return false;
+  }
+  const bool again = bound_ != 0;
+  bound_ = writer;
+  bindings_.fetch_add(1, std::memory_order_relaxed);
+  const std::string who = participant_of(reader_.get(), writer);
+  if (!again) {
+    spdlog::info("{}: teleoperation link bound to '{}' (participant {})", name_, settings_.peer, who);
+    return true;
+  }
+  side_.peer_changed();  // a restarted peer: its serials and energy start afresh
+  const std::string message = fmt::format(
+      "teleoperation link re-bound to '{}' (participant {}): the peer it was bound to is gone", settings_.peer, who);
+  spdlog::warn("{}: {}", name_, message);
+  events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_rebound", message);
+  return true;
+}
+
+void TeleopLink::stop_device(std::string_view code, const std::string& message) {
+  device_.device->emergency_stop();
+  stops_.fetch_add(1, std::memory_order_relaxed);
+  spdlog::warn("{}: {}", name_, message);
+  events_.send(device_, hapticd_msg_EVENT_ESTOP, code, message);
+}
+
+TeleopLink::Energy TeleopLink::energy() const noexcept {
+  return {in_.load(std::memory_order_relaxed),           out_.load(std::memory_order_relaxed),
+          dissipated_.load(std::memory_order_relaxed),   lowest_observed_.load(std::memory_order_relaxed),
+          max_force_.load(std::memory_order_relaxed),    peer_claimed_.load(std::memory_order_relaxed),
+          peer_credited_.load(std::memory_order_relaxed)};
+}
+
+void TeleopLink::on_state(const DeviceSnapshot& s) {
+  take_packets();
+  teleop::LocalSample sample;
+  sample.time_ns = s.time_ns;
+  sample.position = s.handle_pose.position;
+  sample.velocity = s.handle_twist.linear;
+  sample.force = s.operator_wrench.force;  // what holds the handle: the remote's environment
+  // Stopped: a fault or an E-stop (the peer stops too). The server's orderly end is not a stop: its packets end
+  // and the peer's link times out (the remote stops, the master's force fades).
+  const bool stopped = s.fault != DeviceFault::none || s.estop;
+  if (!started_) {
+    side_.start(sample);
+    started_ = true;
+    last_ns_ = s.time_ns;
+  }
+  if (was_stopped_ && !stopped) side_.rebase(sample);  // recovered: on from here, no pull towards the peer
+  was_stopped_ = stopped;
+  const double dt = std::clamp(static_cast<double>(s.time_ns - last_ns_) * 1e-9, 1e-5, 0.1);
+  last_ns_ = s.time_ns;
+  const teleop::SideOutput out = side_.cycle(sample, dt, stopped);
+  const teleop::SideStatus& st = side_.status();
+
+  // Safety: the peer's stop stops this side; a silent link stops the remote and fades the master.
+  // On the peer's stop itself, not while it lasts: this side may recover before the peer does (its force stays
+  // faded out until the peer runs again).
+  if (st.peer_stopped && !peer_stop_seen_) {
+    peer_stop_seen_ = true;
+    if (!stopped)
+      stop_device("teleoperation_peer_stopped",
+                  "teleoperation: the peer device '" + settings_.peer + "' stopped; this one stops too");
+  } else if (!st.peer_stopped) {
+    peer_stop_seen_ = false;
+  }
+  if (st.waiting && !waiting_reported_) {
+    waiting_reported_ = true;
+    spdlog::info("{}: no teleoperation packet from '{}' yet: waiting for the peer (this side holds still)", name_,
+                 settings_.peer);
+  }
+  if (st.link_lost && !lost_reported_) {
+    lost_reported_ = true;
+    losses_.fetch_add(1, std::memory_order_relaxed);
+    const std::string silent = fmt::format("no packet from '{}' for {:.2f} s", settings_.peer, st.silence_s);
+    if (settings_.role == teleop::Role::remote && !stopped) {
+      stop_device("teleoperation_link_lost", "teleoperation link lost (" + silent + "): the remote stops");
+    } else {
+      spdlog::warn("{}: teleoperation link lost ({}): the force fades out", name_, silent);
+      events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_lost",
+                   "teleoperation link lost (" + silent + "): the force fades out");
+    }
+  } else if (!st.link_lost && lost_reported_) {
+    lost_reported_ = false;
+    spdlog::info("{}: teleoperation link back: packets from '{}' again", name_, settings_.peer);
+    events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_back",
+                 "teleoperation link back: packets from '" + settings_.peer + "' again");
+  }
+
+  const teleop::EnergyPort& port = *st.port;
+  in_.store(port.energy_in(), std::memory_order_relaxed);
+  out_.store(port.energy_out(), std::memory_order_relaxed);
+  dissipated_.store(port.dissipated(), std::memory_order_relaxed);
+  peer_claimed_.store(st.peer_energy_in, std::memory_order_relaxed);
+  peer_credited_.store(st.peer_energy_credited, std::memory_order_relaxed);
+  if (st.received > 0 && port.observed() < lowest_observed_.load(std::memory_order_relaxed))
+    lowest_observed_.store(port.observed(), std::memory_order_relaxed);
+  if (out.force.norm() > max_force_.load(std::memory_order_relaxed))
+    max_force_.store(out.force.norm(), std::memory_order_relaxed);
+
+  if (!stopped && !s.stopping) {
+    EngineInput input;
+    input.has_wrench = true;
+    input.wrench.force = out.force;
+    input.sequence = ++engine_sequence_;
+    device_.device->engine_input(input);
+  }
+  packet_.serial = out.packet.sequence;
+  packet_.sent_ns = out.packet.sent_ns;
+  copy(packet_.position, out.packet.position);
+  copy(packet_.velocity, out.packet.velocity);
+  copy(packet_.force, out.packet.force);
+  copy(packet_.wave, out.packet.wave);
+  packet_.energy_in = out.packet.energy_in;
+  packet_.stopped = out.packet.stopped;
+  if (writer_.write(packet_)) sent_.fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace hapticd::server
