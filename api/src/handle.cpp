@@ -22,6 +22,19 @@ std::vector<JointDescription> handle_axes(const HandleDescription& h) {
   return axes;
 }
 
+HandleCommand handle_command(const HandleDescription& h, const JointVector& e) noexcept {
+  HandleCommand c;
+  const auto at = [&](int i) { return i < e.size() ? e[i] : 0.0; };
+  c.force_n = Eigen::Vector3d(at(0), at(1), at(2));
+  int next = 3;
+  if (h.actuated_torque) {
+    c.torque_nm = Eigen::Vector3d(at(3), at(4), at(5));
+    next += 3;
+  }
+  if (h.actuated_gripper) c.gripper_force_n = at(next);
+  return c;
+}
+
 void handle_to_axes(const HandleDescription& h, const HandleState& s, JointVector& position,
                     JointVector& velocity) noexcept {
   const int n = h.axes();

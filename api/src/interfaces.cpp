@@ -31,6 +31,12 @@ void RuntimeRequests::tune(const Parameters&) { refuse_tuning(); }
 RuntimeReply RuntimeRequests::handle_request(std::string_view name, const std::vector<double>&) { return refuse(name); }
 bool Device::simulated_truth(SimulatedTruth&) const { return false; }
 Outcome Device::home() { return Outcome::success(); }
+Outcome Device::write(const CycleTime&, const JointCommand&) {
+  return Outcome::failure("this device takes no joint torques (a handle device: write_handle)");
+}
+Outcome Device::write_handle(const CycleTime&, const HandleCommand&) {
+  return Outcome::failure("this device takes no handle commands (a joint device: write)");
+}
 Outcome Device::reset_fault() { return Outcome::success(); }
 Outcome Device::brake(bool) { return Outcome::success(); }
 DeviceClock* Device::clock() noexcept { return nullptr; }

@@ -70,7 +70,8 @@ void bind_types(py::module_& m) {
       .value("ENGINE_STALE", EventKind::engine_stale)
       .value("ENGINE_REJECTED", EventKind::engine_rejected)
       .value("RECOVERED", EventKind::recovered)
-      .value("RECORDING", EventKind::recording);
+      .value("RECORDING", EventKind::recording)
+      .value("PARAMETER", EventKind::parameter);
   m.def("flag_names", &flag_names, py::arg("flags"), "The names of the set DeviceState flags, lowest bit first.");
 
   py::class_<LoopSummary>(m, "LoopSummary", "The loop's health: counts since the start, worst times over 1 s.")

@@ -110,6 +110,33 @@ wait "$watcher" || fail "the socket client watching the device lost its connecti
 grep -q "watched [0-9]* states to the end" utf8-watch.log || fail "the watcher: $(cat utf8-watch.log)"
 grep -q "not UTF-8 was refused" server.log || fail "the server does not log the refusal"
 ok "requests under an id that is not UTF-8 are refused and counted; a socket client watching reads on"
+# Issue 63: a parameter set over DDS is an event every door tells its clients (before: none reached the socket).
+timeout 20 "$py" - "$url" > event-watch.log 2>&1 << 'PY' &
+import asyncio, json, sys
+import websockets
+async def main(url):
+    async with websockets.connect(url) as ws:
+        json.loads(await ws.recv())
+        await ws.send(json.dumps({"subscribe": ["vishard3"]}))
+        loop = asyncio.get_running_loop()
+        end = loop.time() + 8
+        while loop.time() < end:
+            m = json.loads(await asyncio.wait_for(ws.recv(), timeout=2))
+            e = m.get("event")
+            if e and e["kind"] == "parameter":
+                print("event:", e["code"], e["message"])
+                return
+        print("no parameter event")
+asyncio.run(main(sys.argv[1]))
+PY
+watcher=$!
+sleep 1.5
+timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 set vishard3 virtual_model.coupling_damping_n_s_per_m 31 \
+  > set.log 2>&1 || fail "hapticctl set: $(cat set.log)"
+wait "$watcher"
+grep -q "event: virtual_model virtual_model.coupling_damping_n_s_per_m = 31 (set by" event-watch.log ||
+  fail "the socket client was not told of the set: $(cat event-watch.log)"
+ok "a parameter set over DDS reaches a socket client as an event: $(cat event-watch.log)"
 sleep 1
 wall node.log timeout 30 node "$here/wall_engine.mjs" "$url" vishard3 6
 ok "the Node engine's wall holds the 15 N push"

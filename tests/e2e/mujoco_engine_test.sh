@@ -3,6 +3,8 @@
 #  1. the table scene with the arm (config/scenes/table-arm.xml, --arm, on table-blocks.yaml): the engine claims the
 #     simulated ViSHaRD3; the operator moves the hand to the fixed box and pushes 15 N into it: the box holds the
 #     proxy (its contact force balances the push), and the arm's last link sweeps a block aside;
+#     then `hapticctl set` of the coupling stiffness mid-run: the engine's spring follows (the parameter event), and a
+#     stiffness its step cannot resolve is refused by the engine with its reason and set back on the server;
 #  2. the server ends and a new one starts: the engine waits, claims again and the box holds the hand again;
 #  3. the server ends for good: the engine waits --wait seconds and exits 0;
 #  4. a group (config/scenes/bimanual-box.yaml, --group hands, domain DOMAIN+1): one command per group state; the
@@ -38,7 +40,8 @@ wait_for() {  # wait_for LOG TEXT SECONDS
 }
 
 # ---- 1. the table scene ----
-server server1.log table-blocks.yaml "$domain" 7 $(loose vishard3)
+# (a console may tune the claimed device: gate.tuning_by anyone)
+server server1.log table-blocks.yaml "$domain" 10 $(loose vishard3) --set gate.tuning_by=anyone
 server1=$!
 "$bin/hapticd-mujoco-engine" "$src/config/scenes/table-arm.xml" --arm "$src/config/urdf/vishard3.urdf" \
   --domain "$domain" --wait 5 --duration 40 --csv engine.csv --watch block_arm > engine.log 2>&1 &
@@ -60,6 +63,18 @@ push_into_box() {
 }
 f=$(push_into_box) || exit 1
 ok "the fixed box holds the operator's push: $f N on the proxy"
+# Issue 63: before, the engine kept its 3000 N/m spring and its stability check on the old value after a set (which
+# the owner alone could make).
+ctl() { timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 "$@" > ctl.log 2>&1 || fail "hapticctl $*: $(cat ctl.log)"; }
+ctl set vishard3 virtual_model.coupling_stiffness_n_per_m 2500
+wait_for engine.log "'vishard3' coupling now 2500 N/m" 5 || fail "the engine's spring did not follow the set"
+ok "the engine's spring follows a set of the coupling stiffness: $(grep -o "coupling now 2500.*" engine.log)"
+ctl set vishard3 virtual_model.coupling_stiffness_n_per_m 90000
+wait_for engine.log "coupling back at 2500 N/m" 5 || fail "the engine did not refuse 90 kN/m: $(tail -3 engine.log)"
+grep -q "refused the coupling of 'vishard3' (90000 N/m.*): " engine.log || fail "the refusal does not say why"
+ctl get vishard3 virtual_model.coupling_stiffness_n_per_m
+grep -q "2500" ctl.log || fail "the server's stiffness was not set back: $(cat ctl.log)"
+ok "a stiffness the engine cannot resolve is refused with its reason and set back: $(grep -o "refused the coupling.*" engine.log | head -c 160)"
 
 # ---- 2. the server restarts ----
 wait "$server1" || fail "the first server exited with $?"

@@ -156,6 +156,43 @@ TEST_F(GateTest, AStopHoldsUntilItsStopperReleasesItWhateverDoorItCameThrough) {
       << dds::text_of(released.message);
 }
 
+TEST_F(GateTest, AParameterSetThroughOneDoorIsAnEventAtEveryDoor) {
+  hapticd_msg_ControlRequest set = request(hapticd_msg_REQUEST_SET_PARAMETER, "console", 1);
+  dds::set_text(set.subject, "virtual_model.damping_n_s_per_m");
+  set.value_count = 3;
+  set.values[0] = set.values[1] = set.values[2] = 45.0;
+  const auto reply = gate_.requests().answer(set, socket_peer(2));
+  ASSERT_TRUE(reply.accepted) << dds::text_of(reply.message);
+  for (const FakeDoor* door : {&dds_, &socket_}) {
+    const std::vector<std::string> events = door->events();
+    ASSERT_FALSE(events.empty());
+    EXPECT_EQ(events.back(), "virtual_model.damping_n_s_per_m = [45, 45, 45] (set by 'console')");
+  }
+}
+
+TEST_F(GateTest, OthersSetAClaimedDevicesParametersOnlyWhenTheSessionSaysSoAndNeverItsSafety) {
+  ASSERT_TRUE(gate_.requests().answer(request(hapticd_msg_REQUEST_CLAIM, "engine", 1), dds_peer(1)).accepted);
+  hapticd_msg_ControlRequest set = request(hapticd_msg_REQUEST_SET_PARAMETER, "console", 2);
+  dds::set_text(set.subject, "virtual_model.damping_n_s_per_m");
+  set.value_count = 3;
+  set.values[0] = set.values[1] = set.values[2] = 45.0;
+  EXPECT_FALSE(gate_.requests().answer(set, socket_peer(2)).accepted);  // gate.tuning_by: owner (the default)
+  GateSettings anyone;
+  anyone.tuning_by_anyone = true;
+  Gate tuned(anyone, 2000.0, {&test::device_of(session_)});
+  FakeDoor door(DoorKind::dds);
+  tuned.add_door(door);
+  ASSERT_TRUE(tuned.requests().answer(request(hapticd_msg_REQUEST_CLAIM, "engine", 1), dds_peer(1)).accepted);
+  const auto accepted = tuned.requests().answer(set, dds_peer(2));
+  EXPECT_TRUE(accepted.accepted) << dds::text_of(accepted.message);
+  ASSERT_FALSE(door.events().empty());
+  EXPECT_EQ(door.events().back(), "virtual_model.damping_n_s_per_m = [45, 45, 45] (set by 'console')");
+  hapticd_msg_ControlRequest safety = request(hapticd_msg_REQUEST_SET_PARAMETER, "console", 3);
+  dds::set_text(safety.subject, "safety.passivity_control");
+  safety.value_count = 1;
+  EXPECT_FALSE(tuned.requests().answer(safety, dds_peer(2)).accepted);
+}
+
 TEST_F(GateTest, EachStateReachesEveryDoor) {
   DeviceSession& d = test::device_of(session_);
   gate_.start();

@@ -151,8 +151,8 @@ INSTANTIATE_TEST_SUITE_P(
                   "prot: 1", "unknown key"},
         // The gate's settings: in the gate section, or (older sessions) in dds - not both.
         BadConfig{"gate_key_in_dds_and_gate",
-                  kHeader + kValidDevices + "dds:\n  max_force_n: 100\ngate:\n  state_rate_hz: 100\n",
-                  "dds.max_force_n", "max_force_n: 100", "give max_force_n there (gate.max_force_n)"},
+                  kHeader + kValidDevices + "dds:\n  max_force_n: 100\ngate:\n  max_force_n: 50\n", "dds.max_force_n",
+                  "max_force_n: 100", "also given in the gate section (gate.max_force_n)"},
         BadConfig{"gate_unknown_key", kHeader + kValidDevices + "gate:\n  max_froce_n: 1\n", "gate.max_froce_n",
                   "max_froce_n: 1", "unknown key"},
         // Duplicate keys (hardening round 3, item 10): the second wins or the first, by the reader's whim.
@@ -259,10 +259,14 @@ TEST(SessionConfig, TheGatesSettingsComeFromTheGateSectionOrFromDds) {
   EXPECT_TRUE(older.dds.enabled);
   EXPECT_EQ(older.dds.domain_id, 3);
   EXPECT_EQ(older.gate.max_force_n, 50.0);
-  // An override reaches either.
-  const SessionConfig set = load_session_config(
-      test::write_temp_file("session.yaml", kHeader + kValidDevices + "gate: {}\n"), {"gate.max_speed_m_s=1.5"});
+  EXPECT_FALSE(older.gate.tuning_by_anyone);
+  // The gate section over the dds section's gate keys: an override that makes a gate section keeps what dds says.
+  const SessionConfig set =
+      load_session_config(test::write_temp_file("session.yaml", kHeader + kValidDevices + "dds: {max_force_n: 50}\n"),
+                          {"gate.max_speed_m_s=1.5", "gate.tuning_by=anyone"});
   EXPECT_EQ(set.gate.max_speed_m_s, 1.5);
+  EXPECT_EQ(set.gate.max_force_n, 50.0);
+  EXPECT_TRUE(set.gate.tuning_by_anyone);
 }
 
 TEST(SessionConfig, ShippedConfigsAreValid) {

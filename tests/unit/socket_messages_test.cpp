@@ -161,6 +161,22 @@ TEST(SocketMessages, TheStateAndTheReplyAreJsonAClientReads) {
   EXPECT_EQ(json.root()["reply"]["accepted"].boolean(), false);
   EXPECT_EQ(json.root()["reply"]["values"].size(), 2u);
   EXPECT_EQ(json.root()["reply"]["values"].at(1).kind(), JsonReader::Kind::null);  // NaN: null
+
+  // An event: every kind by its name, one past the last as "other".
+  hapticd_msg_Event e{};
+  dds::set_text(e.device, "left");
+  e.serial = 4;
+  e.kind = hapticd_msg_EVENT_PARAMETER;
+  dds::set_text(e.code, "virtual_model");
+  dds::set_text(e.message, "virtual_model.coupling_stiffness_n_per_m = 2500 (set by 'console')");
+  const std::string event_text = event(e);
+  ASSERT_TRUE(json.parse(event_text)) << event_text;
+  EXPECT_EQ(json.root()["event"]["device"].string(), "left");
+  EXPECT_EQ(json.root()["event"]["serial"].number(), 4.0);
+  EXPECT_EQ(json.root()["event"]["kind"].string(), "parameter");
+  EXPECT_EQ(json.root()["event"]["code"].string(), "virtual_model");
+  EXPECT_EQ(event_kind_name(hapticd_msg_EVENT_OWNER), "owner");
+  EXPECT_EQ(event_kind_name(hapticd_msg_EVENT_PARAMETER + 1), "other");
 }
 
 }  // namespace

@@ -49,8 +49,13 @@ class HAPTICD_API Device : public RuntimeRequests {
   // Real-time safe. Fill the newest sample for the cycle at cycle.time_ns. A simulated device advances its
   // physics to that time under the last written command (zero-order hold).
   virtual Outcome read(const CycleTime& cycle, DeviceState& state) = 0;
-  // Real-time safe. Command joint torques, held until the next write().
-  virtual Outcome write(const CycleTime& cycle, const JointCommand& command) = 0;
+  // Real-time safe. Command joint torques, held until the next write(): a joint device's (interface joints). The
+  // default refuses (a handle device implements write_handle instead).
+  virtual Outcome write(const CycleTime& cycle, const JointCommand& command);
+  // Real-time safe. A handle device's (interface handle) command in newtons and newton-metres, held until the next
+  // call; the server has made it finite and bounded (its safety layer works on the axes, handle.hpp). The default
+  // refuses (a joint device implements write instead).
+  virtual Outcome write_handle(const CycleTime& cycle, const HandleCommand& command);
   // Real-time safe; the loop, when a recovery from the safe mode is carried out (the device at rest, zero
   // torque written): clear a latched fault of the drives (a CiA 402 fault reset, a speed monitor's latch) so the
   // chain can run again. An error keeps the device in its safe mode with the reason. The default does nothing.

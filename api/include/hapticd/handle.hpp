@@ -8,7 +8,8 @@
 //   gripper                 opening [rad], its rate [rad/s], force [N]                (actuated_gripper)
 // so that the joint-space parts of the chain (the command's limits, the safe mode's damping, the history and the
 // recordings) apply to them unchanged, and a command's `torque_nm` is the handle's force, torque and gripper force
-// on those axes. The device plugin fills only DeviceState::handle; the server fills the axes from it.
+// on those axes. The device plugin fills only DeviceState::handle; the server fills the axes from it, and hands it
+// its command in newtons and newton-metres (HandleCommand, Device::write_handle), never as joint torques.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -77,6 +78,18 @@ struct HandleState {
 // The axes a handle device runs with, named and limited from its description (the server sets them as the
 // device's joints; a plugin need not).
 [[nodiscard]] HAPTICD_API std::vector<JointDescription> handle_axes(const HandleDescription& handle);
+// What a handle device is asked to apply, held until the next command: in the device's base frame at the handle
+// point (as HandleState), finite and within the description's limits (the server's safety layer has made it so).
+struct HandleCommand {
+  Eigen::Vector3d force_n = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque_nm = Eigen::Vector3d::Zero();  // zero unless actuated_torque
+  double gripper_force_n = 0.0;                         // zero unless actuated_gripper
+};
+// The handle command that the axes' efforts (x, y, z, then rx, ry, rz with actuated_torque, then the gripper with
+// actuated_gripper; joint_vector of size axes()) stand for. Real-time safe; missing axes count as zero.
+[[nodiscard]] HAPTICD_API HandleCommand handle_command(const HandleDescription& handle,
+                                                       const JointVector& effort) noexcept;
+
 // The axes' positions and velocities from the handle's state (real-time safe: `position` and `velocity` are
 // resized within their fixed capacity).
 HAPTICD_API void handle_to_axes(const HandleDescription& handle, const HandleState& state, JointVector& position,

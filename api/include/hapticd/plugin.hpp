@@ -59,6 +59,7 @@ constexpr bool realtime_methods_not_noexcept() {
   if constexpr (std::is_base_of_v<Device, T>) {
     return !noexcept(declval<T&>().read(declval<Cycle>(), declval<DeviceState&>())) &&
            !noexcept(declval<T&>().write(declval<Cycle>(), declval<const JointCommand&>())) &&
+           !noexcept(declval<T&>().write_handle(declval<Cycle>(), declval<const HandleCommand&>())) &&
            !noexcept(declval<T&>().reset_fault()) && !noexcept(declval<T&>().brake(true));
   } else if constexpr (std::is_base_of_v<Controller, T>) {
     using In = const ControllerInput&;

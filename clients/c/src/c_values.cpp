@@ -10,7 +10,8 @@ static_assert(static_cast<int>(client::Mode::off) == HAPTICD_MODE_OFF &&
               static_cast<int>(client::Mode::safe) == HAPTICD_MODE_SAFE);
 static_assert(static_cast<int>(client::EventKind::fault) == HAPTICD_EVENT_FAULT &&
               static_cast<int>(client::EventKind::owner) == HAPTICD_EVENT_OWNER &&
-              static_cast<int>(client::EventKind::recording) == HAPTICD_EVENT_RECORDING);
+              static_cast<int>(client::EventKind::recording) == HAPTICD_EVENT_RECORDING &&
+              static_cast<int>(client::EventKind::parameter) == HAPTICD_EVENT_PARAMETER);
 static_assert(client::kMaxGroupDevices == HAPTICD_MAX_GROUP_DEVICES && client::kMaxValues == HAPTICD_MAX_VALUES &&
               client::kRejectReasons == HAPTICD_REJECT_REASONS && kMaxJoints == HAPTICD_MAX_JOINTS);
 

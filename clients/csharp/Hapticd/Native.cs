@@ -27,7 +27,7 @@ namespace Hapticd
     public enum Status { Ok = 0, InvalidArgument = 1, NotFound = 2, Timeout = 3, Refused = 4, Dds = 5, Internal = 6 }
     public enum Mode { Starting = 0, Running = 1, Stopping = 2, Safe = 3, Off = 4 }
     public enum CommandKind { Wrench = 0, Coupling = 1, Motion = 2 }
-    public enum EventKind { Fault = 0, Estop = 1, Mode = 2, Scheme = 3, Owner = 4, EngineStale = 5, EngineRejected = 6, Recovered = 7, Recording = 8 }
+    public enum EventKind { Fault = 0, Estop = 1, Mode = 2, Scheme = 3, Owner = 4, EngineStale = 5, EngineRejected = 6, Recovered = 7, Recording = 8, Parameter = 9 }
 
     [Flags]
     public enum StateFlags : uint

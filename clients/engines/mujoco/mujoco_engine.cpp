@@ -11,10 +11,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -66,6 +68,55 @@ std::string read_gains(Client& client, const std::string& device, CouplingGains&
     (void)value("coupling_rotational_damping_n_m_s", gains.rotational_damping_n_m_s);
   }
   return {};
+}
+
+// The server's coupling gains changed (a parameter event of the device's virtual model): read them again and put
+// them into the world if its step resolves them; if it does not, the engine refuses them - it says why and sets
+// the server's gains back to the ones it runs, so the device's spring and the proxy's are the same one again.
+// states: the states answered since the event came (printed: how long the old spring ran on).
+void follow_gains(Client& client, const std::string& device, std::size_t index, CoupledWorld& world,
+                  std::mutex& world_mutex, const std::function<std::uint64_t()>& states) {
+  CouplingGains now;
+  if (const std::string e = read_gains(client, device, now); !e.empty()) {
+    fmt::print(stderr, "mujoco-engine: the coupling of '{}' changed, but: {}\n", device, e);
+    return;
+  }
+  CouplingGains running;
+  std::string refusal;
+  {
+    std::lock_guard lock(world_mutex);
+    running = world.gains(index);
+    try {
+      world.set_gains(index, now);
+    } catch (const hapticd::mujoco::SceneError& e) {
+      refusal = e.what();
+    }
+  }
+  const auto same = [](const CouplingGains& a, const CouplingGains& b) {
+    return a.stiffness_n_per_m == b.stiffness_n_per_m && a.damping_n_s_per_m == b.damping_n_s_per_m &&
+           a.rotational_stiffness_n_m_per_rad == b.rotational_stiffness_n_m_per_rad &&
+           a.rotational_damping_n_m_s == b.rotational_damping_n_m_s;
+  };
+  if (refusal.empty()) {
+    if (!same(now, running))
+      fmt::print(
+          "mujoco-engine: '{}' coupling now {:.0f} N/m, {:.1f} N s/m (the session's changed; in effect {} states "
+          "after its event)\n",
+          device, now.stiffness_n_per_m, now.damping_n_s_per_m, states());
+    return;
+  }
+  fmt::print(stderr, "mujoco-engine: refused the coupling of '{}' ({:.0f} N/m, {:.1f} N s/m): {}; setting it back\n",
+             device, now.stiffness_n_per_m, now.damping_n_s_per_m, refusal);
+  bool restored = true;
+  for (auto [name, value] : {std::pair{"coupling_stiffness_n_per_m", running.stiffness_n_per_m},
+                             {"coupling_damping_n_s_per_m", running.damping_n_s_per_m}}) {
+    const auto r = client.set_parameter(device, fmt::format("virtual_model.{}", name), {value});
+    restored = restored && r.accepted;
+    if (!r.accepted) fmt::print(stderr, "mujoco-engine: cannot set {} back: {}\n", name, r.message);
+  }
+  if (restored)
+    fmt::print(stderr, "mujoco-engine: '{}' coupling back at {:.0f} N/m, {:.1f} N s/m\n", device,
+               running.stiffness_n_per_m, running.damping_n_s_per_m);
 }
 
 // The hand a state gives: the virtual body the device follows (a joint device in admittance display) or the
@@ -309,12 +360,30 @@ int run(int argc, char** argv) {
     });
   }
 
+  // A parameter of a device's virtual model set at run time (hapticctl set): the main loop reads the gains again.
+  std::atomic<bool> gains_changed{false};
+  std::atomic<std::uint64_t> answered_at_event{0};
+  std::mutex wake_mutex;  // the event wakes the main loop at once (it sleeps between its chores otherwise)
+  std::condition_variable wake;
+  client.on_event([&](const hapticd::client::Event& e) {
+    if (e.kind != hapticd::client::EventKind::parameter || e.code != "virtual_model" ||
+        std::find(devices.begin(), devices.end(), e.device) == devices.end())
+      return;
+    {
+      std::lock_guard lock(wake_mutex);
+      answered_at_event.store(answered.load());
+      gains_changed.store(true);
+    }
+    wake.notify_one();
+  });
+
   // Whatever way run() ends from here, the callbacks are gone before the locals they use (declared above) are.
   struct Unhook {
     Client& c;
     ~Unhook() {
       c.on_state({});
       c.on_group_state({});
+      c.on_event({});
     }
   } unhook{client};
 
@@ -373,7 +442,10 @@ int run(int argc, char** argv) {
   int code = 0;
   auto last_world = start;
   while (!g_stop.load()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(world_rate > 50.0 ? 5 : 20));
+    {
+      std::unique_lock lock(wake_mutex);
+      wake.wait_for(lock, std::chrono::milliseconds(world_rate > 50.0 ? 5 : 20), [&] { return gains_changed.load(); });
+    }
     const auto now = std::chrono::steady_clock::now();
     if (world_rate > 0.0 && now - last_world > std::chrono::duration<double>(1.0 / world_rate)) {
       last_world = now;
@@ -386,6 +458,9 @@ int run(int argc, char** argv) {
       }
       (void)client.publish_world(world_shapes(shapes), physics_s);
     }
+    if (gains_changed.exchange(false) && running.load())
+      for (std::size_t i = 0; i < devices.size(); ++i)
+        follow_gains(client, devices[i], i, *world, world_mutex, [&] { return answered.load() - answered_at_event; });
     if (duration > 0.0 && now - start > std::chrono::duration<double>(duration)) break;
     if (unstable.load() > 0) {
       fmt::print(stderr,
@@ -440,6 +515,7 @@ int run(int argc, char** argv) {
   running.store(false);
   client.on_state({});
   client.on_group_state({});
+  client.on_event({});
   if (group.empty()) {
     (void)client.release(devices.front(), std::chrono::milliseconds(500));
   } else {

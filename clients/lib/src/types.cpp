@@ -56,6 +56,8 @@ std::string_view to_string(EventKind kind) noexcept {
       return "recovered";
     case EventKind::recording:
       return "recording";
+    case EventKind::parameter:
+      return "parameter";
   }
   return "?";
 }

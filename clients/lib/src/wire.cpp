@@ -37,6 +37,7 @@ bool valid_quaternion(const double (&q)[4]) noexcept {
 
 static_assert(static_cast<int>(Mode::off) == hapticd_msg_MODE_OFF);
 static_assert(static_cast<int>(EventKind::recording) == hapticd_msg_EVENT_RECORDING);
+static_assert(static_cast<int>(EventKind::parameter) == hapticd_msg_EVENT_PARAMETER);
 static_assert(static_cast<int>(CommandKind::motion) == hapticd_msg_COMMAND_MOTION);
 static_assert(static_cast<int>(RequestKind::describe_parameter) == hapticd_msg_REQUEST_DESCRIBE_PARAMETER);
 static_assert(kMaxGroupDevices == hapticd_msg_MAX_GROUP_DEVICES && kMaxValues == hapticd_msg_MAX_VALUES &&
@@ -125,7 +126,7 @@ void from_msg(const hapticd_msg_GroupState& in, GroupState& out) noexcept {
 }
 
 Event from_msg(const hapticd_msg_Event& in) {
-  const auto kind = in.kind >= hapticd_msg_EVENT_FAULT && in.kind <= hapticd_msg_EVENT_RECORDING
+  const auto kind = in.kind >= hapticd_msg_EVENT_FAULT && in.kind <= hapticd_msg_EVENT_PARAMETER
                         ? static_cast<EventKind>(in.kind)
                         : EventKind::mode;
   return Event{std::string(text_of(in.device)), in.serial, in.loop_time_ns, kind, std::string(text_of(in.code)),

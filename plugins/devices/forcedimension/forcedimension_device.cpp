@@ -226,11 +226,7 @@ void ForceDimensionDevice::configure(const Parameters& p, const PluginContext& c
   l.gripper = h.has_gripper;
 }
 
-const char* ForceDimensionDevice::failure(const char* reason) noexcept {
-  std::array<char, 256>& text = errors_[static_cast<std::size_t>(error_)];
-  if (text[0] == '\0') std::snprintf(text.data(), text.size(), "%s", reason);
-  return text.data();
-}
+const char* ForceDimensionDevice::failure(const char* reason) noexcept { return failure_text_.keep(reason); }
 
 const char* ForceDimensionDevice::stuck() noexcept {
   char reason[256];
@@ -265,7 +261,7 @@ Outcome ForceDimensionDevice::run_job(const SdkThread::Job& job, std::int64_t ne
 
 Outcome ForceDimensionDevice::enable() {
   if (!link_ || !link_->open) return Outcome::failure("the Force Dimension device is not open");
-  errors_[static_cast<std::size_t>(error_)][0] = '\0';
+  failure_text_.clear();
   gripper_read_ = false;
   link_->failed = false;
   if (!link_->sdk.run(link_->enable_job, 1.0)) return Outcome::failure(stuck());
@@ -300,15 +296,12 @@ Outcome ForceDimensionDevice::read(const CycleTime& cycle, DeviceState& state) {
   return Outcome::success();
 }
 
-Outcome ForceDimensionDevice::write(const CycleTime&, const JointCommand& command) {
-  const HandleDescription& h = description_.handle;
-  const JointVector& e = command.torque_nm;
-  if (e.size() != h.axes()) return Outcome::failure("the command does not match the device's axes");
+Outcome ForceDimensionDevice::write_handle(const CycleTime&, const HandleCommand& c) {
   std::array<double, 7>& f = link_->force;
   if (link_->sdk.busy()) return Outcome::failure(stuck());  // the job's input is the SDK thread's until it returns
-  f = {e[0], e[1], e[2], 0.0, 0.0, 0.0, 0.0};
-  if (h.actuated_torque) f[3] = e[3], f[4] = e[4], f[5] = e[5];
-  if (h.actuated_gripper) f[6] = e[e.size() - 1];
+  // Force, torque and gripper force (zero where the unit has no such actuator: HandleCommand's rule).
+  f = {c.force_n.x(),   c.force_n.y(),   c.force_n.z(),    c.torque_nm.x(),
+       c.torque_nm.y(), c.torque_nm.z(), c.gripper_force_n};
   // The next cycle's reads are expected one period after this cycle's.
   return run_job(link_->write_job, read_ns_ + period_ns_);
 }
@@ -320,9 +313,7 @@ Outcome ForceDimensionDevice::brake(bool on) {
 
 Outcome ForceDimensionDevice::reset_fault() {
   if (link_->sdk.busy()) return Outcome::failure(stuck());  // the SDK has not come back: nothing to recover to
-  // A recovery: the next failure says its own reason, in the other buffer.
-  error_ = 1 - error_;
-  errors_[static_cast<std::size_t>(error_)][0] = '\0';
+  failure_text_.new_episode();                              // the next failure says its own reason
   return Outcome::success();
 }
 

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "dhd_link.hpp"
+#include "failure_text.hpp"
 #include "hapticd/device.hpp"
 
 namespace hapticd::plugins::forcedimension {
@@ -31,7 +32,7 @@ class ForceDimensionDevice final : public Device {
   [[nodiscard]] const DeviceDescription& description() const override { return description_; }
   Outcome enable() override;
   Outcome read(const CycleTime& cycle, DeviceState& state) override;
-  Outcome write(const CycleTime& cycle, const JointCommand& command) override;
+  Outcome write_handle(const CycleTime& cycle, const HandleCommand& command) override;
   Outcome brake(bool on) override;
   Outcome reset_fault() override;
   void disable() override;
@@ -58,8 +59,7 @@ class ForceDimensionDevice final : public Device {
   std::int64_t read_ns_ = 0;    // when this cycle's reads were posted
   std::int64_t period_ns_ = 500'000;
   DeviceDescription description_;
-  std::array<std::array<char, 256>, 2> errors_{};
-  int error_ = 0;              // the buffer in use
+  FailureText<256> failure_text_;
   bool gripper_read_ = false;  // a gripper sample since enable: its rate can be differentiated
 };
 

@@ -270,14 +270,9 @@ Outcome HaplyDevice::read(const CycleTime& cycle, DeviceState& state) {
   return Outcome::success();
 }
 
-Outcome HaplyDevice::write(const CycleTime&, const JointCommand& command) {
-  const JointVector& e = command.torque_nm;
-  if (e.size() != description_.handle.axes()) return Outcome::failure("the command does not match the device's axes");
-  HaplyCommand c;
-  for (std::size_t i = 0; i < 3; ++i) {
-    if (!std::isfinite(e[i])) return Outcome::failure("a non-finite force");
-    c.force_n[i] = e[i];
-  }
+Outcome HaplyDevice::write_handle(const CycleTime&, const HandleCommand& command) {
+  HaplyCommand c;  // (finite and bounded: the server's safety layer made it so)
+  for (std::size_t i = 0; i < 3; ++i) c.force_n[i] = command.force_n[static_cast<Eigen::Index>(i)];
   handoff_.command(c);
   return Outcome::success();
 }

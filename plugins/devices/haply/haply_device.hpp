@@ -51,7 +51,7 @@ class HaplyDevice final : public Device {
   [[nodiscard]] const DeviceDescription& description() const override { return description_; }
   Outcome enable() override;
   Outcome read(const CycleTime& cycle, DeviceState& state) override;
-  Outcome write(const CycleTime& cycle, const JointCommand& command) override;
+  Outcome write_handle(const CycleTime& cycle, const HandleCommand& command) override;
   void disable() override;
   DeviceClock* clock() noexcept override { return handoff_.clock(); }
 

@@ -189,26 +189,24 @@ const char* OpenHapticsDevice::failure(const char* what, const HdErrors& errors)
   // Each error the stack held, in the order the SDK gave them (the newest first): "the servo frame: device fault
   // (HD error 0x0300, internal 42); communication error ... (HD error 0x0302, internal 0)". The first failure since
   // the last recovery is the one told.
-  std::array<char, 384>& text = errors_[static_cast<std::size_t>(error_)];
-  if (text[0] != '\0') return text.data();
-  int used = std::snprintf(text.data(), text.size(), "%s: ", what);
-  const int shown = std::min(errors.count, static_cast<int>(errors.first.size()));
-  for (int i = 0; i < shown && used > 0 && used < static_cast<int>(text.size()); ++i) {
-    const HDErrorInfo& e = errors.first[static_cast<std::size_t>(i)];
-    used += std::snprintf(text.data() + used, text.size() - static_cast<std::size_t>(used),
-                          "%s%.200s (HD error 0x%04x, internal %d)", i > 0 ? "; " : "", link_->hd->text_of(e.errorCode),
-                          e.errorCode, e.internalErrorCode);
-  }
-  if (errors.count > shown && used > 0 && used < static_cast<int>(text.size()))
-    std::snprintf(text.data() + used, text.size() - static_cast<std::size_t>(used), "; %d more on the stack",
-                  errors.count - shown);
-  return text.data();
+  return failure_text_.keep_with([&](char* text, std::size_t size) {
+    int used = std::snprintf(text, size, "%s: ", what);
+    const int shown = std::min(errors.count, static_cast<int>(errors.first.size()));
+    for (int i = 0; i < shown && used > 0 && used < static_cast<int>(size); ++i) {
+      const HDErrorInfo& e = errors.first[static_cast<std::size_t>(i)];
+      used +=
+          std::snprintf(text + used, size - static_cast<std::size_t>(used), "%s%.200s (HD error 0x%04x, internal %d)",
+                        i > 0 ? "; " : "", link_->hd->text_of(e.errorCode), e.errorCode, e.internalErrorCode);
+    }
+    if (errors.count > shown && used > 0 && used < static_cast<int>(size))
+      std::snprintf(text + used, size - static_cast<std::size_t>(used), "; %d more on the stack", errors.count - shown);
+  });
 }
 
 Outcome OpenHapticsDevice::enable() {
   if (!link_ || link_->handle == kInvalidHandle) return Outcome::failure("the OpenHaptics device is not open");
   HdLink& l = *link_;
-  errors_[static_cast<std::size_t>(error_)][0] = '\0';
+  failure_text_.clear();
   have_sample_ = false;
   if (l.sdk.busy()) return Outcome::failure("the OpenHaptics SDK has not returned from an earlier call");
   l.handoff.reset();
@@ -259,28 +257,18 @@ Outcome OpenHapticsDevice::read(const CycleTime& cycle, DeviceState& state) {
   return Outcome::success();
 }
 
-Outcome OpenHapticsDevice::write(const CycleTime&, const JointCommand& command) {
-  const JointVector& e = command.torque_nm;
-  if (e.size() != description_.handle.axes()) return Outcome::failure("the command does not match the device's axes");
-  HdCommand c;
+Outcome OpenHapticsDevice::write_handle(const CycleTime&, const HandleCommand& command) {
+  HdCommand c;  // (finite and bounded: the server's safety layer made it so)
   for (std::size_t i = 0; i < 3; ++i) {
-    if (!std::isfinite(e[i])) return Outcome::failure("a non-finite force");
-    c.force_n[i] = e[i];
-  }
-  if (description_.handle.actuated_torque) {
-    for (std::size_t i = 0; i < 3; ++i) {
-      if (!std::isfinite(e[3 + i])) return Outcome::failure("a non-finite torque");
-      c.torque_mnm[i] = e[3 + i] * 1e3;
-    }
+    c.force_n[i] = command.force_n[static_cast<Eigen::Index>(i)];
+    c.torque_mnm[i] = command.torque_nm[static_cast<Eigen::Index>(i)] * 1e3;  // zero without actuated torque
   }
   link_->handoff.command(c);
   return Outcome::success();
 }
 
 Outcome OpenHapticsDevice::reset_fault() {
-  // A recovery: the next failure says its own reason, in the other buffer.
-  error_ = 1 - error_;
-  errors_[static_cast<std::size_t>(error_)][0] = '\0';
+  failure_text_.new_episode();  // the next failure says its own reason
   return Outcome::success();
 }
 

@@ -22,6 +22,7 @@
 #include <array>
 #include <memory>
 
+#include "failure_text.hpp"
 #include "hapticd/device.hpp"
 #include "hd_link.hpp"
 
@@ -36,7 +37,7 @@ class OpenHapticsDevice final : public Device {
   [[nodiscard]] const DeviceDescription& description() const override { return description_; }
   Outcome enable() override;
   Outcome read(const CycleTime& cycle, DeviceState& state) override;
-  Outcome write(const CycleTime& cycle, const JointCommand& command) override;
+  Outcome write_handle(const CycleTime& cycle, const HandleCommand& command) override;
   Outcome reset_fault() override;
   void disable() override;
   DeviceClock* clock() noexcept override { return link_ ? link_->handoff.clock() : nullptr; }
@@ -54,8 +55,7 @@ class OpenHapticsDevice final : public Device {
   // Loop.
   HdSample sample_;
   bool have_sample_ = false;
-  std::array<std::array<char, 384>, 2> errors_{};
-  int error_ = 0;
+  FailureText<384> failure_text_;
 };
 
 }  // namespace hapticd::plugins::openhaptics

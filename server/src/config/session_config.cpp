@@ -206,30 +206,30 @@ GateSettings gate_settings_of(const Parameters& p) {
   g.lockstep_start_every = p.string("lockstep_start_for") == "every";
   g.claim_grace_s = p.real("claim_grace_s");
   g.claim_hold_s = p.real("claim_hold_s");
+  g.tuning_by_anyone = p.string("tuning_by") == "anyone";
   return g;
 }
 
-// The gate's settings: from the `gate` section, or (sessions written before it had one) the same keys in the
-// `dds` section - not both.
+// The gate's settings: the `gate` section's keys, over those the `dds` section gives (sessions written before the
+// gate had a section of its own) - a key in both is an error.
 GateSettings read_gate(const YAML::Node& gate, const YAML::Node& dds, const std::string& file) {
+  GateSettings base;
   const ParameterSchema schema = gate_settings_schema();
-  if (gate.IsDefined()) {
-    if (dds.IsDefined() && dds.IsMap())
-      for (const auto& entry : dds) {
-        const std::string key = entry.first.Scalar();
-        if (schema.find(key) != nullptr)
-          throw ConfigError(file, line_of(entry.first), "dds." + key,
-                            "the session has a gate section: give " + key + " there (gate." + key + "), not in dds");
-      }
-    if (gate.IsNull()) return GateSettings{};
-    if (!gate.IsMap()) throw ConfigError(file, line_of(gate), "gate", "expected a mapping of the gate's settings");
-    return gate_settings_of(read_parameters(gate, schema, file, "gate", line_of(gate)));
+  if (dds.IsDefined() && dds.IsMap()) {  // the gate's keys of the dds section (its own are read by read_dds)
+    std::vector<std::string> dds_keys = dds_settings_schema().names();
+    dds_keys.push_back("network");
+    base = gate_settings_of(read_parameters(dds, schema, file, "dds", line_of(dds), dds_keys));
   }
-  if (!dds.IsDefined() || !dds.IsMap()) return GateSettings{};
-  // The gate's keys of the dds section (its own are read by read_dds).
-  std::vector<std::string> dds_keys = dds_settings_schema().names();
-  dds_keys.push_back("network");
-  return gate_settings_of(read_parameters(dds, schema, file, "dds", line_of(dds), dds_keys));
+  if (!gate.IsDefined() || gate.IsNull()) return base;
+  if (!gate.IsMap()) throw ConfigError(file, line_of(gate), "gate", "expected a mapping of the gate's settings");
+  if (dds.IsDefined() && dds.IsMap())
+    for (const auto& entry : gate) {
+      const std::string key = entry.first.Scalar();
+      if (dds[key].IsDefined())
+        throw ConfigError(file, line_of(dds[key]), "dds." + key,
+                          "also given in the gate section (gate." + key + "): give it once, there");
+    }
+  return gate_settings_of(read_parameters(gate, gate_settings_schema(base), file, "gate", line_of(gate)));
 }
 
 // A section's allowed_origins: web pages (their Origin) that may connect besides those served from this machine.
@@ -643,9 +643,8 @@ ParameterSchema dds_settings_schema() {
   return s;
 }
 
-ParameterSchema gate_settings_schema() {
+ParameterSchema gate_settings_schema(const GateSettings& d) {
   ParameterSchema s;
-  const GateSettings d;
   s.real("state_rate_hz", "device state publication rate; 0: every loop cycle")
       .unit("Hz")
       .minimum(0.0)
@@ -713,7 +712,12 @@ ParameterSchema gate_settings_schema() {
            "every: the first cycle waits for an engine on every device (runs with several engines are "
            "repeatable); any: for the first engine")
       .choices({"every", "any"})
-      .default_value(std::string("every"));
+      .default_value(std::string(d.lockstep_start_every ? "every" : "any"));
+  s.string("tuning_by",
+           "who may set a claimed device's tunable parameters (not safety.*): owner, or anyone (a console tuning "
+           "while an engine runs; the owner is told of every set as a parameter event)")
+      .choices({"owner", "anyone"})
+      .default_value(std::string(d.tuning_by_anyone ? "anyone" : "owner"));
   s.real("claim_grace_s",
          "a claim whose peer shows no sign of life (no live engine command writer, no open connection) this "
          "long after the claim ends (a claimant that cannot be watched)")

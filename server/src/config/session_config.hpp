@@ -69,6 +69,9 @@ struct GateSettings {
   // application loading a scene or collecting garbage is frozen for a second or so) loses its claim. Its forces
   // fade at the command deadline all the same (docs/safety.md, "Ownership").
   double claim_hold_s = 5.0;
+  // Who may set a claimed device's tunable parameters (not safety.*): its owner only, or anyone (a console tuning
+  // the coupling while an engine runs; the owner hears of every set as a parameter event and may set it back).
+  bool tuning_by_anyone = false;
 };
 
 // The `dds` section: the DDS door (docs/dds-interface.md). Absent: none.
@@ -210,7 +213,7 @@ ParameterSchema server_settings_schema();
 // The schema of the `dds` section.
 ParameterSchema dds_settings_schema();
 // The `gate` section's keys (also accepted in the `dds` section).
-ParameterSchema gate_settings_schema();
+ParameterSchema gate_settings_schema(const GateSettings& defaults = {});
 // The schema of the `live_view` section.
 ParameterSchema live_view_settings_schema();
 // The schema of the `engine_socket` section.

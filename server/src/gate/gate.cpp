@@ -32,7 +32,7 @@ Gate::Gate(const GateSettings& settings, double rate_hz, std::vector<DeviceSessi
       devices_(sessions, stages, settings),
       states_(devices_, events_, rate_hz, interval_),
       dispatcher_(std::make_unique<RequestDispatcher>(devices_, events_, states_, settings.claim_grace_s,
-                                                      settings.claim_hold_s)),
+                                                      settings.claim_hold_s, settings.tuning_by_anyone)),
       lockstep_(
           settings_, devices_, interval_, [](void* self) { static_cast<Gate*>(self)->wake_publisher(); }, this) {
   for (DeviceSession* s : sessions) s->set_snapshot_interval(interval_);

@@ -16,8 +16,8 @@ void LockstepSync::after_cycle(std::uint64_t index, const std::atomic<bool>& sto
     const auto give_up = Clock::now() + std::chrono::duration<double>(settings_.lockstep_start_wait_s);
     const auto synced = [](const auto& d) { return d->synced.load(std::memory_order_acquire); };
     const auto ready = [&] {
-      return settings_.lockstep_start_every ? std::all_of(links_.begin(), links_.end(), synced)
-                                            : std::any_of(links_.begin(), links_.end(), synced);
+      return settings_.lockstep_start_every ? std::all_of(devices_.begin(), devices_.end(), synced)
+                                            : std::any_of(devices_.begin(), devices_.end(), synced);
     };
     while (!ready() && Clock::now() < give_up && !stopping.load(std::memory_order_acquire)) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -26,7 +26,7 @@ void LockstepSync::after_cycle(std::uint64_t index, const std::atomic<bool>& sto
   }
   // Wait until each engine that answers every state has answered this one (bounded in wall time).
   const std::uint64_t serial = index / snapshot_interval_ + 1;
-  for (auto& link : links_) {
+  for (auto& link : devices_) {
     DeviceGate& d = *link;
     if (!d.synced.load(std::memory_order_acquire)) continue;
     const auto give_up = Clock::now() + std::chrono::duration<double>(settings_.lockstep_wait_s);

@@ -13,10 +13,10 @@ namespace hapticd::server {
 class LockstepSync {
  public:
   // nudge: wakes the publisher (it repeats the last state for late readers while the first cycle waits).
-  LockstepSync(const GateSettings& settings, DeviceGates& links, std::uint64_t snapshot_interval, void (*nudge)(void*),
-               void* nudge_arg)
+  LockstepSync(const GateSettings& settings, DeviceGates& devices, std::uint64_t snapshot_interval,
+               void (*nudge)(void*), void* nudge_arg)
       : settings_(settings),
-        links_(links),
+        devices_(devices),
         snapshot_interval_(snapshot_interval),
         nudge_(nudge),
         nudge_arg_(nudge_arg) {}
@@ -27,7 +27,7 @@ class LockstepSync {
 
  private:
   const GateSettings& settings_;
-  DeviceGates& links_;
+  DeviceGates& devices_;
   std::uint64_t snapshot_interval_;
   void (*nudge_)(void*);
   void* nudge_arg_;

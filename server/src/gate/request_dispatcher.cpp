@@ -1,5 +1,6 @@
 #include "gate/request_dispatcher.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -11,13 +12,14 @@
 
 namespace hapticd::server {
 
-RequestDispatcher::RequestDispatcher(DeviceGates& links, EventFanout& events, StateFanout& publisher,
-                                     double claim_grace_s, double claim_hold_s)
-    : links_(links),
+RequestDispatcher::RequestDispatcher(DeviceGates& devices, EventFanout& events, StateFanout& publisher,
+                                     double claim_grace_s, double claim_hold_s, bool tuning_by_anyone)
+    : devices_(devices),
       events_(events),
       publisher_(publisher),
       claim_grace_ns_(static_cast<std::int64_t>(claim_grace_s * 1e9)),
-      claim_hold_ns_(static_cast<std::int64_t>(claim_hold_s * 1e9)) {}
+      claim_hold_ns_(static_cast<std::int64_t>(claim_hold_s * 1e9)),
+      tuning_by_anyone_(tuning_by_anyone) {}
 
 namespace {
 
@@ -36,14 +38,14 @@ hapticd_msg_ControlReply RequestDispatcher::answer(const hapticd_msg_ControlRequ
                                                    const std::optional<Sender>& sender) {
   const std::optional<PeerId> requester = sender ? std::optional<PeerId>(sender->peer) : std::nullopt;
   const std::string target(dds::text_of(m.device));
-  DeviceGate* d = links_.find(target);
-  GroupGate* g = links_.find_group(target);
+  DeviceGate* d = devices_.find(target);
+  GroupGate* g = devices_.find_group(target);
   const bool every = target == "*";
   std::vector<DeviceGate*> members;  // a group request's devices
   if (g != nullptr)
-    for (std::size_t i : g->members) members.push_back(&links_[i]);
+    for (std::size_t i : g->members) members.push_back(&devices_[i]);
   if (every)
-    for (auto& link : links_) members.push_back(link.get());
+    for (auto& link : devices_) members.push_back(link.get());
   if (d != nullptr) d->requests.fetch_add(1, std::memory_order_relaxed);
   for (DeviceGate* member : members) member->requests.fetch_add(1, std::memory_order_relaxed);
   if (requester) {
@@ -258,8 +260,20 @@ RequestDispatcher::Answer RequestDispatcher::switch_scheme(DeviceGate& d, const 
 }
 
 RequestDispatcher::Answer RequestDispatcher::set_parameter(DeviceGate& d, const Request& r) {
-  if (auto refused = refused_unless_owner(d, r)) return *refused;
-  return forward(d, DeviceRequest::Kind::set_parameter, r);
+  // A claimed device's owner sets its parameters; with gate.tuning_by anyone, others may set its tunable ones too
+  // (the owner hears of it below), never its safety settings.
+  if (auto refused = refused_unless_owner(d, r); refused && (!tuning_by_anyone_ || r.name.rfind("safety.", 0) == 0))
+    return *refused;
+  Answer a = forward(d, DeviceRequest::Kind::set_parameter, r);
+  if (a.accepted) {  // every client hears of it: an engine whose model mirrors the parameter re-reads it
+    std::string values;
+    for (double v : r.values) values += (values.empty() ? "" : ", ") + fmt::format("{:g}", v);
+    const std::string_view slot = r.name.substr(0, r.name.find('.'));
+    events_.send(
+        d, hapticd_msg_EVENT_PARAMETER, slot,
+        fmt::format("{} = {} (set by '{}')", r.name, r.values.size() == 1 ? values : "[" + values + "]", r.client));
+  }
+  return a;
 }
 
 RequestDispatcher::Answer RequestDispatcher::get_parameter(DeviceGate& d, const Request& r) {
@@ -314,7 +328,7 @@ RequestDispatcher::Answer RequestDispatcher::describe(DeviceGate& d, const Reque
 
 void RequestDispatcher::check_claims() {
   const std::int64_t now = monotonic_now_ns();
-  for (auto& link : links_) {
+  for (auto& link : devices_) {
     DeviceGate& d = *link;
     PeerId owner;
     Sender claim_channel;

@@ -27,7 +27,7 @@ namespace hapticd::server {
 class RequestDispatcher {
  public:
   RequestDispatcher(DeviceGates& devices, EventFanout& events, StateFanout& publisher, double claim_grace_s,
-                    double claim_hold_s);
+                    double claim_hold_s, bool tuning_by_anyone = false);
   // Before any request: the doors, which vouch for their peers' presence.
   void set_doors(const std::vector<Door*>& doors);
 
@@ -94,12 +94,13 @@ class RequestDispatcher {
   Answer recover(DeviceGate& d, const Request& r);
   Answer describe(DeviceGate& d, const Request& r);
 
-  DeviceGates& links_;
+  DeviceGates& devices_;
   EventFanout& events_;
   StateFanout& publisher_;
   std::array<Door*, kDoorKinds> doors_{};  // by DoorKind
   std::int64_t claim_grace_ns_;
   std::int64_t claim_hold_ns_;
+  bool tuning_by_anyone_;  // gate.tuning_by: anyone may set a claimed device's tunable parameters (not safety.*)
   std::atomic<std::uint64_t> claims_ended_{0};
   std::atomic<std::uint64_t> text_refused_{0};
   std::unique_ptr<AnsweredRequests> answered_ = std::make_unique<AnsweredRequests>();  // about 90 kB

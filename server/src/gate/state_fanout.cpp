@@ -8,19 +8,19 @@
 
 namespace hapticd::server {
 
-StateFanout::StateFanout(DeviceGates& links, EventFanout& events, double rate_hz, std::uint64_t snapshot_interval)
-    : links_(links),
+StateFanout::StateFanout(DeviceGates& devices, EventFanout& events, double rate_hz, std::uint64_t snapshot_interval)
+    : devices_(devices),
       events_(events),
       rate_hz_(rate_hz),
       snapshot_interval_(snapshot_interval),
-      live_(links.size(), nullptr),
-      published_(links.size()),
+      live_(devices.size(), nullptr),
+      published_(devices.size()),
       group_snapshot_(std::make_unique<GroupSnapshot>()),
-      group_written_ns_(links.groups().size(), 0) {
-  for (std::size_t i = 0; i < links.groups().size(); ++i)
+      group_written_ns_(devices.groups().size(), 0) {
+  for (std::size_t i = 0; i < devices.groups().size(); ++i)
     group_messages_.push_back(std::make_unique<hapticd_msg_GroupState>());
-  for (std::size_t i = 0; i < links.size(); ++i)
-    for (const SchemeChain& s : links[i].device->chain().schemes) published_[i].scheme_names.push_back(s.name);
+  for (std::size_t i = 0; i < devices.size(); ++i)
+    for (const SchemeChain& s : devices[i].device->chain().schemes) published_[i].scheme_names.push_back(s.name);
 }
 
 hapticd_msg_LoopSummary StateFanout::loop_summary(std::size_t device) const noexcept {
@@ -36,8 +36,8 @@ hapticd_msg_LoopSummary StateFanout::loop_summary(std::size_t device) const noex
 }
 
 void StateFanout::publish_states() {
-  for (std::size_t i = 0; i < links_.size(); ++i) {
-    DeviceGate& d = links_[i];
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    DeviceGate& d = devices_[i];
     Published& p = published_[i];
     if (!d.status->take_snapshot(p.snapshot)) {
       // Nothing new (the loop waits, e.g. for the first engine in lockstep): repeat the last state now and
@@ -79,15 +79,15 @@ void StateFanout::publish_states() {
 }
 
 StateLabels StateFanout::labels_of(std::size_t device, const DeviceSnapshot& s, const std::string& owner) const {
-  const DeviceRequests& session = *links_[device].device;
+  const DeviceRequests& session = *devices_[device].device;
   return StateLabels{session.name(), s.cycle / snapshot_interval_ + 1, session.schemes().active_name(), owner,
                      loop_summary(device)};
 }
 
 void StateFanout::publish_group_states() {
   GroupSnapshot& g = *group_snapshot_;
-  for (std::size_t i = 0; i < links_.groups().size(); ++i) {
-    GroupGate& group = links_.groups()[i];
+  for (std::size_t i = 0; i < devices_.groups().size(); ++i) {
+    GroupGate& group = devices_.groups()[i];
     hapticd_msg_GroupState& m = *group_messages_[i];
     if (!group.stage->take_snapshot(g)) {
       // Nothing new (the loop waits, e.g. for the engines in lockstep): repeat the last one now and then, for
@@ -106,7 +106,7 @@ void StateFanout::publish_group_states() {
     m.clearance_m = g.clearance_m;
     m.device_count = static_cast<std::int32_t>(std::min(g.count, group.members.size()));
     for (std::size_t k = 0; k < static_cast<std::size_t>(m.device_count); ++k) {
-      DeviceGate& d = links_[group.members[k]];
+      DeviceGate& d = devices_[group.members[k]];
       std::string owner;
       {
         std::lock_guard lock(d.mutex);
@@ -125,7 +125,7 @@ void StateFanout::publish_group_description(const GroupGate& group) {
   m.data_model_version = hapticd_msg_VERSION;
   m.device_count = static_cast<std::int32_t>(group.members.size());
   for (std::size_t k = 0; k < group.members.size(); ++k)
-    dds::set_text(m.devices[k].text, links_[group.members[k]].device->name());
+    dds::set_text(m.devices[k].text, devices_[group.members[k]].device->name());
   m.min_distance_m = group.stage->min_distance_m();
   m.repulsion_distance_m = group.stage->repulsion_distance_m();
   m.own_loop = group.stage->own_loop();
@@ -138,20 +138,20 @@ void StateFanout::publish_description(std::size_t device) {
     std::lock_guard lock(description_mutex_);
     start = published_[device].start_pose;
   }
-  const hapticd_msg_DeviceDescription m = description_message(*links_[device].device, rate_hz_, start);
+  const hapticd_msg_DeviceDescription m = description_message(*devices_[device].device, rate_hz_, start);
   for (Door* door : doors_) door->description(m);
 }
 
 void StateFanout::publish_fault_report(std::size_t device, const FaultReport& report) {
-  const DeviceRequests& s = *links_[device].device;
+  const DeviceRequests& s = *devices_[device].device;
   auto m = std::make_unique<hapticd_msg_FaultReport>();  // 100 kB: not on the stack
   fill_fault_report(*m, s.name(), s.description().dof(), report);
   for (Door* door : doors_) door->fault_report(*m);
 }
 
 void StateFanout::publish_telemetry() {
-  for (std::size_t i = 0; i < links_.size(); ++i) {
-    const DeviceGate& d = links_[i];
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    const DeviceGate& d = devices_[i];
     hapticd_msg_Telemetry t{};
     dds::set_text(t.device, d.device->name());
     t.wall_time_ns = dds::wall_clock_ns();

@@ -55,7 +55,7 @@ class StateFanout {
   // Publisher thread: each group's newest snapshot as one group state.
   void publish_group_states();
 
-  DeviceGates& links_;
+  DeviceGates& devices_;
   EventFanout& events_;
   double rate_hz_;
   std::uint64_t snapshot_interval_;

@@ -311,11 +311,7 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
     } else {
       command_.torque_nm.setZero();  // exactly +0, not -0 from a negative torque times zero
     }
-    Outcome written = Outcome::failure("write() threw an exception");
-    try {
-      written = chain_.device->write(cycle, command_);
-    } catch (...) {
-    }
+    const Outcome written = write_device(cycle);
     if (written.ok()) {
       last_written_ = command_.torque_nm;
       safety_.written(command_.torque_nm);
@@ -332,6 +328,16 @@ void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale)
   publish_snapshot(cycle, torque_scale);
 }
 
+Outcome DeviceSession::write_device(const CycleTime& cycle) noexcept {
+  try {
+    if (description_.interface == DeviceInterface::handle)
+      return chain_.device->write_handle(cycle, handle_command(description_.handle, command_.torque_nm));
+    return chain_.device->write(cycle, command_);
+  } catch (...) {
+    return Outcome::failure("write() threw an exception");
+  }
+}
+
 void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
   // Joint damping (and, with a robot model, gravity compensation holding the posture) while the measurement can
   // be trusted, then zero torque.
@@ -340,10 +346,7 @@ void DeviceSession::safe_mode_step(const CycleTime& cycle) noexcept {
       measurement_valid_ && state_.joints.velocity.allFinite() && (gravity == nullptr || gravity->allFinite());
   safety_.safe_torque(state_.joints.position, state_.joints.velocity, valid, gravity, command_.torque_nm);
   status_.at_rest_.store(safety_.at_rest(), std::memory_order_release);
-  try {
-    (void)chain_.device->write(cycle, command_);
-  } catch (...) {
-  }
+  (void)write_device(cycle);
   last_written_ = command_.torque_nm;
   if (safety_.at_rest() && !braked_) {
     // At rest with zero torque: the device's brakes hold it (a handle device's, a joint device's holding brakes);

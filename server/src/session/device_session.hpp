@@ -152,6 +152,9 @@ class DeviceSession {
   ChainFault chain_step(const CycleTime& cycle);
   // Phase (d) in the safe mode: damping (and gravity hold) while the measurement can be trusted, then zero.
   void safe_mode_step(const CycleTime& cycle) noexcept;
+  // The command to the device as it takes it: joint torques, or a handle device's newtons and newton-metres
+  // (hapticd/handle.hpp: its axes' efforts). What the device threw is its failure.
+  Outcome write_device(const CycleTime& cycle) noexcept;
   void recover_if_requested(const CycleTime& cycle) noexcept;
   void record_history(const CycleTime& cycle) noexcept;
   void log_safety_event(SafetyEvent::Kind kind, DeviceFault fault, const CycleTime& cycle) noexcept;

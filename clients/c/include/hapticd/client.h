@@ -209,7 +209,8 @@ typedef enum hapticd_event_kind {
   HAPTICD_EVENT_ENGINE_STALE = 5,
   HAPTICD_EVENT_ENGINE_REJECTED = 6,
   HAPTICD_EVENT_RECOVERED = 7,
-  HAPTICD_EVENT_RECORDING = 8
+  HAPTICD_EVENT_RECORDING = 8,
+  HAPTICD_EVENT_PARAMETER = 9 /* a parameter was set at run time: code its plugin slot, message "name = values" */
 } hapticd_event_kind;
 
 typedef struct hapticd_event {

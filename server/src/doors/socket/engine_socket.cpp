@@ -64,13 +64,13 @@ std::string_view code_of(dds::RejectReason reason) {
 EngineSocket::EngineSocket(const EngineSocketSettings& settings, Gate& gate, std::vector<int> cpus)
     : settings_(settings),
       gate_(gate),
-      links_(gate.devices()),
+      devices_(gate.devices()),
       session_id_(static_cast<std::uint64_t>(std::chrono::system_clock::now().time_since_epoch().count())),
-      wanted_(std::make_unique<std::atomic<bool>[]>(links_.size())) {
-  for (const auto& d : links_) devices_.push_back(inventory_of(*d));
-  for (const GroupGate& g : links_.groups()) {
+      wanted_(std::make_unique<std::atomic<bool>[]>(devices_.size())) {
+  for (const auto& d : devices_) inventory_.push_back(inventory_of(*d));
+  for (const GroupGate& g : devices_.groups()) {
     socket_messages::InventoryGroup group{g.name, {}};
-    for (std::size_t i : g.members) group.devices.push_back(links_[i].device->name());
+    for (std::size_t i : g.members) group.devices.push_back(devices_[i].device->name());
     groups_.push_back(std::move(group));
   }
   net::WebSocketOptions o;
@@ -125,7 +125,7 @@ std::string EngineSocket::url() const {
 void EngineSocket::opened(ConnectionId id) {
   Client& c = clients_[id];
   c.id = "socket-" + std::to_string(id);
-  c.subscribed.assign(links_.size(), true);  // every device's states, as Haply's service sends them
+  c.subscribed.assign(devices_.size(), true);  // every device's states, as Haply's service sends them
   c.allowance = std::max(10.0, settings_.max_messages_per_s / 10.0);
   c.refilled_ns = monotonic_now_ns();
   {
@@ -134,7 +134,7 @@ void EngineSocket::opened(ConnectionId id) {
   }
   count_subscribers();
   server_->send(id,
-                std::make_shared<const std::string>(socket_messages::inventory(session_id_, c.id, devices_, groups_)),
+                std::make_shared<const std::string>(socket_messages::inventory(session_id_, c.id, inventory_, groups_)),
                 false, WebSocketServer::Kind::reply);
 }
 
@@ -226,9 +226,9 @@ void EngineSocket::received(ConnectionId id, std::string_view text, bool binary)
 }
 
 void EngineSocket::subscribe(Client& c, const std::vector<std::string>& devices, ConnectionId id) {
-  std::vector<bool> wanted(links_.size(), false);
+  std::vector<bool> wanted(devices_.size(), false);
   for (const std::string& name : devices) {
-    const DeviceGate* d = links_.find(name);
+    const DeviceGate* d = devices_.find(name);
     if (d == nullptr) return tell(id, ++c.malformed, "malformed", "subscribe: no device '" + net::quoted(name) + "'");
     wanted[d->index] = true;
   }
@@ -237,7 +237,7 @@ void EngineSocket::subscribe(Client& c, const std::vector<std::string>& devices,
 }
 
 void EngineSocket::count_subscribers() {
-  for (std::size_t i = 0; i < links_.size(); ++i)
+  for (std::size_t i = 0; i < devices_.size(); ++i)
     wanted_[i].store(
         std::any_of(clients_.begin(), clients_.end(), [&](const auto& c) { return c.second.subscribed[i]; }),
         std::memory_order_relaxed);
@@ -267,6 +267,16 @@ void EngineSocket::state(std::size_t device, const DeviceSnapshot&, const haptic
   // this thread's cycle (the DDS write, the events): the hand-off took 101 us at p90 on a 2-core machine, 12 with
   // this (docs/measurements.md, "C, C# and WebSocket engines' round trips"). Alone on a CPU it returns at once.
   if (posted) (void)sched_yield();
+}
+
+void EngineSocket::event(const hapticd_msg_Event& e) {
+  const DeviceGate* d = devices_.find(dds::text_of(e.device));
+  if (d == nullptr || !wanted_[d->index].load(std::memory_order_relaxed)) return;
+  auto text = std::make_shared<const std::string>(socket_messages::event(e));
+  (void)server_->post([this, device = d->index, text = std::move(text)] {
+    for (const auto& [id, c] : clients_)
+      if (c.subscribed[device]) server_->send(id, text, false, WebSocketServer::Kind::data);  // as a state
+  });
 }
 
 void EngineSocket::answer_requests(RequestDispatcher& dispatcher) {

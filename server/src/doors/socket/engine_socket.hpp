@@ -61,6 +61,8 @@ class EngineSocket final : public net::WebSocketHandler, public Door {
   [[nodiscard]] bool alive(const PeerId& p) override;
   // Publisher thread: device `device`'s newest state (sent to its subscribers; dropped for a client that lags).
   void state(std::size_t device, const DeviceSnapshot& snapshot, const hapticd_msg_DeviceState& s) override;
+  // Any thread: a device's event, to the clients subscribed to its states.
+  void event(const hapticd_msg_Event& e) override;
   // Service thread: answers the requests waiting.
   void answer_requests(RequestDispatcher& dispatcher) override;
 
@@ -98,8 +100,8 @@ class EngineSocket final : public net::WebSocketHandler, public Door {
 
   EngineSocketSettings settings_;
   Gate& gate_;
-  DeviceGates& links_;
-  std::vector<socket_messages::InventoryDevice> devices_;
+  DeviceGates& devices_;
+  std::vector<socket_messages::InventoryDevice> inventory_;
   std::vector<socket_messages::InventoryGroup> groups_;
   std::uint64_t session_id_;
   std::unique_ptr<net::WebSocketServer> server_;

@@ -418,6 +418,48 @@ std::string reply(std::int64_t id, const hapticd_msg_ControlReply& r) {
   return out;
 }
 
+std::string_view event_kind_name(std::int32_t kind) {
+  switch (kind) {
+    case hapticd_msg_EVENT_FAULT:
+      return "fault";
+    case hapticd_msg_EVENT_ESTOP:
+      return "estop";
+    case hapticd_msg_EVENT_MODE:
+      return "mode";
+    case hapticd_msg_EVENT_SCHEME:
+      return "scheme";
+    case hapticd_msg_EVENT_OWNER:
+      return "owner";
+    case hapticd_msg_EVENT_ENGINE_STALE:
+      return "engine_stale";
+    case hapticd_msg_EVENT_ENGINE_REJECTED:
+      return "engine_rejected";
+    case hapticd_msg_EVENT_RECOVERED:
+      return "recovered";
+    case hapticd_msg_EVENT_RECORDING:
+      return "recording";
+    case hapticd_msg_EVENT_PARAMETER:
+      return "parameter";
+    default:
+      return "other";
+  }
+}
+
+std::string event(const hapticd_msg_Event& e) {
+  std::string out = "{\"event\":{\"device\":";
+  append_string(out, dds::text_of(e.device));
+  append_key(out, "serial");
+  append_integer(out, static_cast<std::int64_t>(e.serial));
+  append_key(out, "kind");
+  append_string(out, event_kind_name(static_cast<std::int32_t>(e.kind)));
+  append_key(out, "code");
+  append_string(out, dds::text_of(e.code));
+  append_key(out, "message");
+  append_string(out, dds::text_of(e.message));
+  out += "}}";
+  return out;
+}
+
 std::string error(std::string_view code, std::string_view message, std::uint64_t count) {
   std::string out = "{\"error\":{\"code\":";
   append_string(out, code);

@@ -65,6 +65,9 @@ struct InventoryGroup {
 void state(const hapticd_msg_DeviceState& s, std::string& out);
 // The answer to a request.
 [[nodiscard]] std::string reply(std::int64_t id, const hapticd_msg_ControlReply& r);
+// A device's event (what the DDS interface's Event says): kind as a name ("parameter", "owner", ...).
+[[nodiscard]] std::string event(const hapticd_msg_Event& e);
+[[nodiscard]] std::string_view event_kind_name(std::int32_t kind);
 // A message that was not applied (malformed, refused by the gate, dropped by the rate limit); count: how many of
 // its kind so far.
 [[nodiscard]] std::string error(std::string_view code, std::string_view message, std::uint64_t count);

@@ -155,7 +155,8 @@ enum class EventKind : std::uint8_t {
   engine_stale,     // the owner missed the command deadline; forces fade
   engine_rejected,  // a command was rejected (rate-limited)
   recovered,        // the device left its safe mode on request
-  recording         // the session's recording failed
+  recording,        // the session's recording failed
+  parameter         // a parameter was set at run time; code: its plugin slot, message: "<name> = <values> ..."
 };
 [[nodiscard]] HAPTICD_API std::string_view to_string(EventKind kind) noexcept;
 
