@@ -8,6 +8,7 @@
 #include <set>
 
 #include "hapticd/input_file.hpp"
+#include "hapticd/scene/convex_hull.hpp"
 #include "hapticd/scene/mesh_file.hpp"
 
 namespace hapticd::scene {
@@ -112,21 +113,23 @@ class Reader {
   SceneObject object(const YAML::Node& map, const std::string& where,
                      const std::map<std::string, Material>& materials) const {
     only(map, where,
-         {"name", "shape", "radius", "size", "length", "file", "scale", "position", "rpy_deg", "quaternion", "normal",
-          "material"});
+         {"name", "shape", "radius", "size", "length", "file", "scale", "points", "position", "rpy_deg", "quaternion",
+          "normal", "material"});
     SceneObject o;
     if (!map["name"].IsDefined()) fail(map, where + ".name", "missing");
     o.name = map["name"].as<std::string>();
     if (o.name.empty() || o.name.size() > 64) fail(map["name"], where + ".name", "must have 1 to 64 characters");
     if (!map["shape"].IsDefined())
-      fail(map, where + ".shape", "missing (plane, sphere, box, capsule, cylinder or mesh)");
+      fail(map, where + ".shape", "missing (plane, sphere, box, capsule, cylinder, convex_hull or mesh)");
     const std::string shape = map["shape"].as<std::string>();
+    if (shape == "convex_hull") return convex_hull_object(map, where, materials);
     const std::map<std::string, ShapeKind> kinds{{"plane", ShapeKind::plane},       {"sphere", ShapeKind::sphere},
                                                  {"box", ShapeKind::box},           {"capsule", ShapeKind::capsule},
                                                  {"cylinder", ShapeKind::cylinder}, {"mesh", ShapeKind::mesh}};
     const auto kind = kinds.find(shape);
     if (kind == kinds.end())
-      fail(map["shape"], where + ".shape", "'" + shape + "' is not plane, sphere, box, capsule, cylinder or mesh");
+      fail(map["shape"], where + ".shape",
+           "'" + shape + "' is not plane, sphere, box, capsule, cylinder, convex_hull or mesh");
     o.shape.kind = kind->second;
     const bool round =
         o.shape.kind == ShapeKind::sphere || o.shape.kind == ShapeKind::capsule || o.shape.kind == ShapeKind::cylinder;
@@ -140,6 +143,7 @@ class Reader {
     refuse("normal", o.shape.kind == ShapeKind::plane);
     refuse("file", o.shape.kind == ShapeKind::mesh);
     refuse("scale", o.shape.kind == ShapeKind::mesh);
+    refuse("points", false);
     if (o.shape.kind == ShapeKind::mesh) o.shape.mesh = mesh(map, where, o.name);
     if (round) o.shape.radius = required_positive(map, where, "radius");
     if (long_) o.shape.half_length = 0.5 * required_positive(map, where, "length");
@@ -149,6 +153,44 @@ class Reader {
       if (size.minCoeff() <= 0.0) fail(map["size"], where + ".size", "every edge must be positive");
       o.shape.half_extents = 0.5 * size;
     }
+    place_and_dress(o, map, where, materials);
+    return o;
+  }
+
+  // A convex hull: of the points given, or of a mesh file's vertices (scaled); met as the mesh of its faces.
+  SceneObject convex_hull_object(const YAML::Node& map, const std::string& where,
+                                 const std::map<std::string, Material>& materials) const {
+    for (const char* key : {"radius", "length", "size", "normal"})
+      if (map[key].IsDefined()) fail(map[key], where + "." + key, std::string("a convex_hull has no ") + key);
+    SceneObject o;
+    o.name = map["name"].as<std::string>();
+    o.shape.kind = ShapeKind::mesh;
+    const bool listed = map["points"].IsDefined(), from_file = map["file"].IsDefined();
+    if (listed == from_file)
+      fail(map, where + ".points", "give the hull's points, or a mesh file whose vertices it wraps (file), not both");
+    if (listed && map["scale"].IsDefined()) fail(map["scale"], where + ".scale", "scale goes with file");
+    std::vector<Eigen::Vector3d> points;
+    if (listed) {
+      const YAML::Node list = map["points"];
+      if (!list.IsSequence() || list.size() > kMaxHullPoints)
+        fail(list, where + ".points", "expected a list of [x, y, z] points (at most 1000000)");
+      for (std::size_t i = 0; i < list.size(); ++i)
+        points.push_back(vector3(list[i], where + ".points[" + std::to_string(i) + "]"));
+    } else {
+      points = mesh_data(map, where).vertices;
+    }
+    try {
+      o.shape.mesh = MeshShape::build(convex_hull(points, o.name), o.name);
+    } catch (const std::invalid_argument& e) {
+      fail(listed ? map["points"] : map["file"], where + (listed ? ".points" : ".file"), e.what());
+    }
+    place_and_dress(o, map, where, materials);
+    return o;
+  }
+
+  // The object's pose and material.
+  void place_and_dress(SceneObject& o, const YAML::Node& map, const std::string& where,
+                       const std::map<std::string, Material>& materials) const {
     o.pose = pose(map, where);
     if (map["material"].IsDefined()) {
       const YAML::Node m = map["material"];
@@ -161,12 +203,21 @@ class Reader {
         o.material = material(m, where + ".material");
       }
     }
-    return o;
   }
 
   // A mesh file (relative to the scene file), read, checked and given its structure here, off the loop.
   std::shared_ptr<const MeshShape> mesh(const YAML::Node& map, const std::string& where,
                                         const std::string& name) const {
+    TriangleMeshData data = mesh_data(map, where);
+    try {
+      return MeshShape::build(std::move(data), name);
+    } catch (const std::exception& e) {
+      fail(map["file"], where + ".file", e.what());
+    }
+  }
+
+  // A mesh file's triangles (relative to the scene file), scaled.
+  TriangleMeshData mesh_data(const YAML::Node& map, const std::string& where) const {
     if (!map["file"].IsDefined()) fail(map, where + ".file", "missing (a mesh's STL, OBJ, PLY or glTF file)");
     std::filesystem::path file = map["file"].as<std::string>();
     if (file.is_relative()) file = folder_ / file;
@@ -176,7 +227,7 @@ class Reader {
       if (scale.minCoeff() <= 0.0) fail(s, where + ".scale", "must be positive");
     }
     try {
-      return MeshShape::build(load_mesh_file(file, scale), name);
+      return load_mesh_file(file, scale);
     } catch (const std::exception& e) {
       fail(map["file"], where + ".file", e.what());
     }
