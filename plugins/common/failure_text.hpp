@@ -4,7 +4,6 @@
 // a recovery (reset_fault) or an enable starts a new episode. The new episode writes into the other buffer, so a
 // reason the server still holds (an Outcome points at it) is never overwritten while it may be read.
 #include <array>
-#include <cstdarg>
 #include <cstddef>
 #include <cstdio>
 
@@ -17,17 +16,6 @@ class FailureText {
   const char* keep(const char* reason) noexcept {
     std::array<char, Size>& text = buffers_[current_];
     if (text[0] == '\0') std::snprintf(text.data(), text.size(), "%s", reason);
-    return text.data();
-  }
-  // The same, formatted (printf's rules; a vendor's strings with "%.200s").
-  const char* keepf(const char* format, ...) noexcept __attribute__((format(printf, 2, 3))) {
-    std::array<char, Size>& text = buffers_[current_];
-    if (text[0] == '\0') {
-      va_list args;
-      va_start(args, format);
-      std::vsnprintf(text.data(), text.size(), format, args);
-      va_end(args);
-    }
     return text.data();
   }
   // The same, written by fill(char* text, std::size_t size) when the episode has no reason yet (a reason built in

@@ -16,6 +16,7 @@ struct Face {
   Vec normal = Vec::Zero();          // unit, outwards
   double offset = 0.0;               // normal . x on the plane
   std::vector<std::uint32_t> outside;
+  std::uint64_t visited = 0;  // the point whose visible set last took this face in
   bool alive = true;
   [[nodiscard]] double distance(const Vec& p) const { return normal.dot(p) - offset; }
 };
@@ -117,9 +118,10 @@ class Hull {
     });
     const std::uint32_t eye = *far;
     // The faces it sees: connected, found across their edges from this one.
+    // (A stamp per face rather than a flag array cleared for every point added.)
+    const std::uint64_t stamp = ++visit_;
     std::vector<std::size_t> visible{face};
-    std::vector<bool> seen(faces_.size(), false);
-    seen[face] = true;
+    faces_[face].visited = stamp;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> horizon;
     for (std::size_t k = 0; k < visible.size(); ++k) {
       const Face& f = faces_[visible[k]];
@@ -131,9 +133,9 @@ class Hull {
           continue;
         }
         const std::size_t g = twin->second;
-        if (seen[g]) continue;
+        if (faces_[g].visited == stamp) continue;
         if (faces_[g].distance(p_[eye]) > eps_) {
-          seen[g] = true;
+          faces_[g].visited = stamp;
           visible.push_back(g);
         } else {
           horizon.emplace_back(a, b);
@@ -159,6 +161,7 @@ class Hull {
   const std::vector<Vec>& p_;
   double eps_;
   std::vector<Face> faces_;
+  std::uint64_t visit_ = 0;
   std::unordered_map<std::uint64_t, std::size_t> edges_;  // directed edge -> the alive face that has it
 };
 

@@ -57,7 +57,7 @@ struct DeviceGate {
   std::atomic<std::uint64_t> states{0};       // published (telemetry)
   std::atomic<std::int64_t> loop_time_ns{0};  // of the newest published state (events from any thread)
   RoundTripProbe round_trip;
-  // Rejected commands announced so far per reason (under `mutex`: the first, then every 100th).
+  // Rejected commands announced so far per reason (under the gate's admit lock: the first, then every 100th).
   std::array<std::uint64_t, dds::kRejectReasons> reject_events{};
 };
 
