@@ -1,10 +1,10 @@
 #pragma once
 // The bimanual engine's logic (clients/engines/bimanual_engine.cpp; the end-to-end test drives it too):
-// an impedance-type engine for a whole device group. It claims the group, places a virtual box between the hands
-// (resting on a table under it), and answers every group state with one group command: each hand's proxy is its
-// grasp point on the box, so the server's virtual coupling pulls each hand towards it; the box in turn moves under
-// the same couplings (the devices' own coupling stiffness and damping, read from the server), its weight and the
-// table (SharedBody, the shared_object group model's physics).
+// an impedance-type engine for a whole device group, run by hapticd::client::Engine (which claims the group). It
+// places a virtual box between the hands (resting on a table under it) and answers every group state with one group
+// command: each hand's proxy is its grasp point on the box, so the server's virtual coupling pulls each hand towards
+// it; the box in turn moves under the same couplings (the devices' own coupling stiffness and damping, read from the
+// server), its weight and the table (SharedBody, the shared_object group model's physics).
 #include <Eigen/Geometry>
 #include <array>
 #include <atomic>
@@ -12,6 +12,7 @@
 #include <cmath>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -30,21 +31,16 @@ struct BoxReport {
 
 class BimanualEngine {
  public:
-  BimanualEngine(client::Client& client, std::string group, model::SharedBodySettings box)
-      : client_(client), group_(std::move(group)), box_(box) {}
-  ~BimanualEngine() { client_.on_group_state({}); }
-  BimanualEngine(const BimanualEngine&) = delete;
-  BimanualEngine& operator=(const BimanualEngine&) = delete;
+  BimanualEngine(client::Client& client, model::SharedBodySettings box) : client_(client), box_(box) {}
 
-  // Finds and claims the group, reads its devices' coupling, places the box; then answers every group state.
-  // An empty string on success, else what went wrong.
-  std::string connect(std::chrono::duration<double> wait) {
-    const auto described = client_.wait_for_group(group_, wait);
-    if (!described) return "no group '" + group_ + "'";
-    if (described->devices.size() != 2) return "the example box is held by two hands";
-    const auto first = client_.wait_for_group_state(group_, wait);
-    if (!first) return "no state of group '" + group_ + "'";
-    for (int k = 0; k < 2; ++k) devices_[static_cast<std::size_t>(k)] = described->devices[static_cast<std::size_t>(k)];
+  // Reads the group's devices' coupling and places the box at the hands of the group's newest state (before the
+  // claim: hapticd::client::Engine::connect() found the group). An empty string on success, else what went wrong.
+  std::string prepare(const std::string& group, const std::vector<std::string>& devices,
+                      std::chrono::duration<double> wait) {
+    if (devices.size() != 2) return "the example box is held by two hands";
+    const auto first = client_.wait_for_group_state(group, wait);
+    if (!first) return "no state of group '" + group + "'";
+    for (std::size_t k = 0; k < 2; ++k) devices_[k] = devices[k];
     // The box couples to the hands as the devices' virtual coupling does: the same spring and damper.
     const client::Reply k = client_.get_parameter(devices_[0], "virtual_model.coupling_stiffness_n_per_m", wait);
     const client::Reply b = client_.get_parameter(devices_[0], "virtual_model.coupling_damping_n_s_per_m", wait);
@@ -65,10 +61,33 @@ class BimanualEngine {
                                                   pose.orientation.conjugate() * (h1 - pose.position)};
     body_.reset(pose, grasp);
     start_ = report_of();
-    if (!client_.claim_group(group_, wait).accepted) return "group '" + group_ + "' is claimed by another engine";
-    client_.on_group_state([this](const client::GroupState& g) { answer(g); });
     return {};
   }
+
+  // One group state (hapticd::client::Engine's answer, on the receive thread): the box steps under the hands'
+  // couplings, each hand's proxy is its grasp point.
+  bool answer(std::span<const client::DeviceState* const> states, std::span<client::EngineCommand> commands) {
+    if (states.size() != 2) return false;
+    std::array<Eigen::Vector3d, 2> position, velocity, force;
+    for (std::size_t k = 0; k < 2; ++k) {
+      position[k] = states[k]->pose.position;
+      velocity[k] = states[k]->twist.linear;
+    }
+    body_.step(position, velocity, force);
+    for (std::size_t k = 0; k < 2; ++k) {
+      Pose proxy = states[k]->pose;
+      proxy.position = body_.grasp_point(k);
+      Twist twist;
+      twist.linear = body_.velocity() + body_.angular_velocity().cross(proxy.position - body_.position());
+      commands[k] = client::EngineCommand::coupling(proxy, twist, states[k]->serial);
+    }
+    const BoxReport r = report_of();
+    std::lock_guard lock(mutex_);
+    report_ = r;
+    report_.answered = ++answered_;
+    return true;
+  }
+
   // The table under the box at the hands' height at the start (default), or at this height (world z).
   void set_table_height(double z) {
     table_below_ = false;
@@ -86,30 +105,6 @@ class BimanualEngine {
     return 0.5 * (g.states[0].pose.position[2] + g.states[1].pose.position[2]);
   }
 
-  void answer(const client::GroupState& g) {
-    if (g.device_count != 2 || g.serial <= last_serial_) return;  // (a repeated state: answered already)
-    last_serial_ = g.serial;
-    std::array<Eigen::Vector3d, 2> position, velocity, force;
-    for (std::size_t k = 0; k < 2; ++k) {
-      position[k] = g.states[k].pose.position;
-      velocity[k] = g.states[k].twist.linear;
-    }
-    body_.step(position, velocity, force);
-    std::array<client::DeviceCommand, 2> commands;
-    for (std::size_t k = 0; k < 2; ++k) {
-      Pose proxy = g.states[k].pose;
-      proxy.position = body_.grasp_point(k);
-      Twist twist;
-      twist.linear = body_.velocity() + body_.angular_velocity().cross(proxy.position - body_.position());
-      commands[k] = {client::Name(devices_[k]), client::EngineCommand::coupling(proxy, twist, g.states[k].serial)};
-    }
-    (void)client_.send_group(group_, commands);
-    const BoxReport r = report_of();
-    std::lock_guard lock(mutex_);
-    report_ = r;
-    report_.answered = ++answered_;
-  }
-
   BoxReport report_of() const {
     BoxReport r;
     r.position = body_.position();
@@ -121,12 +116,11 @@ class BimanualEngine {
   }
 
   client::Client& client_;
-  std::string group_;
   model::SharedBodySettings box_;
   bool table_below_ = true;
   model::SharedBody body_;  // the receive thread's, after connect()
   std::array<std::string, 2> devices_;
-  std::uint64_t last_serial_ = 0, answered_ = 0;
+  std::uint64_t answered_ = 0;
   BoxReport start_;
   mutable std::mutex mutex_;
   BoxReport report_;

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "e2e/dds_server_rig.hpp"
+#include "hapticd/client/engine.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
@@ -486,6 +487,54 @@ TEST(DdsEngine, ARequestSentAgainIsAnsweredAgainAndAppliedOnce) {
   ASSERT_TRUE(in_effect.accepted) << in_effect.message;
   ASSERT_EQ(in_effect.values.size(), 1u);
   EXPECT_EQ(in_effect.values[0], 2500.0);  // the repeated request was not applied again
+  server.stop();
+}
+
+TEST(DdsEngine, TheEngineHelperAnswersFollowsParametersAndEndsOnAFailingAnswerReleasingTheDevice) {
+  // hapticd::client::Engine (issue 63): it claims, answers each state through its callback, hands a parameter
+  // event of its device to its hook on its own thread, and ends - releasing the device - when the answer throws.
+  Server server(session_yaml(147, 60.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
+  server.start();
+  Client client({"helper", 147});
+  client::Engine engine(client, {.name = "helper", .device = "v3", .wait = std::chrono::seconds(20)});
+  ASSERT_TRUE(engine.connect());
+  EXPECT_TRUE(engine.description(0).start_pose.has_value());
+  std::atomic<bool> fail{false};
+  std::atomic<std::uint64_t> sizes_wrong{0};
+  std::vector<std::string> told;  // run()'s thread's, read after the run
+  std::thread::id hook_thread, run_thread;
+  engine.on_parameter([&](const client::Event& e, std::uint64_t) {
+    hook_thread = std::this_thread::get_id();
+    told.push_back(e.code + ": " + e.message);
+  });
+  client::EngineEnd end;
+  std::thread runs([&] {
+    run_thread = std::this_thread::get_id();
+    end = engine.run([&](std::span<const client::DeviceState* const> s, std::span<client::EngineCommand> out) {
+      if (fail.load()) throw std::runtime_error("the physics blew up");
+      out[0] = client::EngineCommand::force(Wrench{}, 0);  // the helper sets the state's serial
+      if (out.size() != 1 || s.size() != 1) sizes_wrong.fetch_add(1);
+      return true;
+    });
+  });
+  for (int i = 0; i < 500 && engine.answered() < 200; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_GE(engine.answered(), 200u);
+  EXPECT_TRUE(client.set_parameter("v3", "virtual_model.coupling_stiffness_n_per_m", {2500.0}).accepted);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  fail.store(true);
+  runs.join();
+  EXPECT_EQ(end.reason, client::EngineEndReason::failed);
+  EXPECT_EQ(end.exit_code(), 2);
+  EXPECT_NE(end.message.find("the physics blew up"), std::string::npos) << end.message;
+  ASSERT_EQ(told.size(), 1u);
+  EXPECT_NE(told[0].find("coupling_stiffness_n_per_m = 2500"), std::string::npos) << told[0];
+  EXPECT_EQ(hook_thread, run_thread);
+  EXPECT_EQ(sizes_wrong.load(), 0u);
+  // Its commands were accepted (their serials were the states'), and the device is free again.
+  EXPECT_GT(server.bridge().commands_accepted(0), 150u);
+  EXPECT_EQ(server.bridge().commands_rejected(0), 0u);
+  Client other({"other", 147});
+  EXPECT_TRUE(other.claim("v3").accepted);
   server.stop();
 }
 

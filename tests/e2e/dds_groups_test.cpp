@@ -16,6 +16,7 @@
 #include "app/served_session.hpp"
 #include "dds_server_rig.hpp"
 #include "hapticd/client/client.hpp"
+#include "hapticd/client/engine.hpp"
 #include "hapticd_msg.h"
 #include "support/test_session.hpp"
 
@@ -453,10 +454,27 @@ TEST(DdsGroups, TheBimanualEngineLetsTwoOperatorsLiftAndTurnItsBox) {
   Client client({"bimanual-engine", 86});
   model::SharedBodySettings box;
   box.size_m = Eigen::Vector3d(0.32, 0.15, 0.10);
-  examples::BimanualEngine engine(client, "hands", box);
+  examples::BimanualEngine box_engine(client, box);
+  // Run as the shipped engine runs it: by the engine helper, on a thread of its own.
+  client::Engine engine(client, {.name = "bimanual-engine", .group = "hands", .wait = 20s});
   server.start();
-  ASSERT_EQ(engine.connect(20s), "");
-  const examples::BoxReport start = engine.start();
+  ASSERT_TRUE(engine.connect());
+  ASSERT_EQ(box_engine.prepare("hands", engine.devices(), 20s), "");
+  const examples::BoxReport start = box_engine.start();
+  client::EngineEnd ended;
+  std::atomic<bool> done{false};
+  std::thread runs([&] {
+    ended = engine.run([&](auto s, auto c) { return box_engine.answer(s, c); });
+    done.store(true);
+  });
+  struct Join {
+    client::Engine& e;
+    std::thread& t;
+    ~Join() {
+      e.stop();
+      t.join();
+    }
+  } join{engine, runs};
   // The operators, driven by loop time: at 0.5 s both carry half the weight and aim 10 cm up over 1 s; at 2 s
   // both move along the chords of a 30 degree turn about the box's vertical axis, over 1 s.
   const auto loop_time = [&] {
@@ -469,7 +487,7 @@ TEST(DdsGroups, TheBimanualEngineLetsTwoOperatorsLiftAndTurnItsBox) {
     EXPECT_TRUE(client.operator_command(name, "move", {0.0, 0.0, 0.10, 1.0}).accepted);
   }
   while (loop_time() < 2.0) std::this_thread::sleep_for(1ms);
-  const examples::BoxReport lifted = engine.report();
+  const examples::BoxReport lifted = box_engine.report();
   const auto g = client.latest_group_state("hands");
   for (int k = 0; k < 2; ++k) {
     Eigen::Vector3d r = g->states[k].pose.position - lifted.position;
@@ -479,7 +497,11 @@ TEST(DdsGroups, TheBimanualEngineLetsTwoOperatorsLiftAndTurnItsBox) {
     EXPECT_TRUE(client.operator_command(g->states[k].device, "move", {d.x(), d.y(), 0.0, 1.0}).accepted);
   }
   server.finish();
-  const examples::BoxReport end = engine.report();
+  const examples::BoxReport end = box_engine.report();
+  // The helper saw the session end (its last states said so) and ended the run by itself.
+  for (int i = 0; i < 100 && !done.load(); ++i) std::this_thread::sleep_for(50ms);
+  ASSERT_TRUE(done.load()) << "the engine helper did not end with the session";
+  EXPECT_EQ(ended.reason, client::EngineEndReason::session_ended) << ended.message;
   EXPECT_EQ(server.bridge().lockstep_timeouts(), 0u);
   EXPECT_GT(end.answered, 8000u);  // every group state of the 4.5 s (and the ramp)
   EXPECT_NEAR(lifted.position.z() - start.position.z(), 0.10, 0.02);

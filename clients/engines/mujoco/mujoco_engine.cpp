@@ -7,28 +7,19 @@
 #include <mujoco/mujoco.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <mutex>
-#include <thread>
 
-#include "../claim_keeper.hpp"
 #include "../engine_main.hpp"
-#include "hapticd/client/client.hpp"
 #include "hapticd/mujoco/coupled_world.hpp"
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop.store(true); }
 
 // MuJoCo's fatal errors (out of memory in its arena) may not return into it: say so and end; the server fades
 // the device's forces out when the commands stop.
@@ -40,6 +31,7 @@ void on_mujoco_error(const char* message) {
 
 using hapticd::client::Client;
 using hapticd::client::DeviceState;
+using hapticd::client::EngineCommand;
 using hapticd::mujoco::CoupledWorld;
 using hapticd::mujoco::CouplingGains;
 using hapticd::mujoco::Hand;
@@ -70,6 +62,12 @@ std::string read_gains(Client& client, const std::string& device, CouplingGains&
   return {};
 }
 
+bool same_gains(const CouplingGains& a, const CouplingGains& b) {
+  return a.stiffness_n_per_m == b.stiffness_n_per_m && a.damping_n_s_per_m == b.damping_n_s_per_m &&
+         a.rotational_stiffness_n_m_per_rad == b.rotational_stiffness_n_m_per_rad &&
+         a.rotational_damping_n_m_s == b.rotational_damping_n_m_s;
+}
+
 // The server's coupling gains changed (a parameter event of the device's virtual model): read them again and put
 // them into the world if its step resolves them; if it does not, the engine refuses them - it says why and sets
 // the server's gains back to the ones it runs, so the device's spring and the proxy's are the same one again.
@@ -92,13 +90,8 @@ void follow_gains(Client& client, const std::string& device, std::size_t index, 
       refusal = e.what();
     }
   }
-  const auto same = [](const CouplingGains& a, const CouplingGains& b) {
-    return a.stiffness_n_per_m == b.stiffness_n_per_m && a.damping_n_s_per_m == b.damping_n_s_per_m &&
-           a.rotational_stiffness_n_m_per_rad == b.rotational_stiffness_n_m_per_rad &&
-           a.rotational_damping_n_m_s == b.rotational_damping_n_m_s;
-  };
   if (refusal.empty()) {
-    if (!same(now, running))
+    if (!same_gains(now, running))
       fmt::print(
           "mujoco-engine: '{}' coupling now {:.0f} N/m, {:.1f} N s/m (the session's changed; in effect {} states "
           "after its event)\n",
@@ -158,376 +151,261 @@ struct Timing {
   }
 };
 
-int run(int argc, char** argv) {
-  CLI::App app{"hapticd-mujoco-engine: a MuJoCo scene coupled to the devices through the virtual coupling"};
-  std::string scene, device, group, id = "mujoco-engine", csv, arm_urdf;
+// What the command line gives beyond the helper's options.
+struct Settings {
+  std::string scene, arm_urdf, csv;
   std::vector<std::string> watch;
-  int domain = 0;
-  double duration = 0.0, wait = 10.0, server_timeout = 1.0, world_rate = 30.0, arm_radius = 0.02;
-  app.add_option("scene", scene, "the MJCF scene (a body 'proxy' or 'proxy_<device>' per device)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  app.add_option("--device", device, "the device to claim (default: the only one of the scene's session)");
-  app.add_option("--group", group, "the group to claim instead (one proxy per device)")->excludes("--device");
-  app.add_option("--id", id, "client id (the owner name)");
-  app.add_option("--domain", domain, "DDS domain")->check(CLI::Range(0, 230));
-  app.add_option("--duration", duration, "stop after this many seconds (0: until SIGINT/SIGTERM or the session ends)");
-  app.add_option("--wait", wait,
-                 "how long to wait for the device or group to appear, and for the server to come back after it ended");
-  app.add_option("--server-timeout", server_timeout, "no state for this long: the server is gone, wait for it again")
-      ->check(CLI::Range(0.1, 60.0));
-  app.add_option("--arm", arm_urdf,
-                 "the devices' robot model (URDF): their links move the scene's arm bodies (arm_<k>, arm_<device>_<k>)")
-      ->check(CLI::ExistingFile);
-  app.add_option("--arm-radius", arm_radius, "the links' radius where the model has no collision capsules [m]")
-      ->check(CLI::Range(0.001, 0.2));
-  app.add_option("--world-rate", world_rate, "publish the world's shapes for the live view this often (0: never)")
-      ->check(CLI::Range(0.0, 100.0));
-  app.add_option("--watch", watch, "print these bodies' positions now and then, and at the end");
-  app.add_option("--csv", csv, "write time, each hand and proxy position and the proxies' contact forces here");
-  CLI11_PARSE(app, argc, argv);
-  if (std::getenv("HAPTICD_PARSE_ONLY") != nullptr) {  // the documentation's commands test (docs_commands)
-    std::fputs("hapticd-mujoco-engine: the command line parsed (HAPTICD_PARSE_ONLY is set: nothing run)\n", stderr);
-    return 0;
-  }
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  mju_user_error = on_mujoco_error;
+  double arm_radius = 0.02, world_rate = 30.0;
+};
 
-  Client client({id, domain});
-  const auto deadline = [&] { return std::chrono::duration<double>(wait); };
-  // The devices: the group's, or the one named (or the only one on the domain).
-  std::vector<std::string> devices;
-  if (!group.empty()) {
-    const auto g = client.wait_for_group(group, deadline());
-    if (!g) {
-      fmt::print(stderr, "mujoco-engine: no group '{}' on domain {} within {} s\n", group, domain, wait);
-      return 1;
-    }
-    devices = g->devices;
-  } else {
-    if (device.empty()) {
-      const auto until = std::chrono::steady_clock::now() + deadline();
-      while (client.devices().empty() && std::chrono::steady_clock::now() < until && !g_stop.load()) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      }
-      const auto found = client.devices();
-      if (found.size() != 1) {
-        fmt::print(stderr, "mujoco-engine: {} devices on domain {}: name one with --device\n", found.size(), domain);
-        return 1;
-      }
-      device = found.front().device;
-    }
-    devices = {device};
+// The MuJoCo world coupled to the devices hapticd::client::Engine found: built at their start poses (so a restarted
+// engine finds its objects where they were), stepped by each state on the receive thread (answer), set up again at
+// each claim (the session's gains, the proxies at the hands), published and watched from the main thread (chores).
+class MujocoEngine {
+ public:
+  MujocoEngine(Client& client, hapticd::client::Engine& engine, Settings settings)
+      : client_(client), engine_(engine), settings_(std::move(settings)) {
+    load_world();
+    load_arms();
+    open_csv();
   }
-  // Their start poses place the scene (scene_frame), so a restarted engine finds its objects where they were.
+
+  bool claimed(bool again);
+  bool answer(std::span<const DeviceState* const> states, std::span<EngineCommand> commands);
+  bool chores();
+  void follow(const hapticd::client::Event& event, std::uint64_t answered_then) {
+    if (event.code != "virtual_model") return;
+    for (std::size_t i = 0; i < devices().size(); ++i)
+      follow_gains(client_, devices()[i], i, *world_, world_mutex_, [&] { return engine_.answered() - answered_then; });
+  }
+  void print_watched(const char* prefix);
+  void summary() {
+    std::lock_guard lock(world_mutex_);
+    fmt::print("mujoco-engine: answered {} states; {:.1f} s of physics; time per state p50 {:.1f} us, p99 {:.1f} us\n",
+               engine_.answered(), world_->time_s(), timing_.percentile(0.5), timing_.percentile(0.99));
+  }
+
+ private:
+  [[nodiscard]] const std::vector<std::string>& devices() const { return engine_.devices(); }
+  void load_world();
+  void load_arms();
+  void open_csv();
+  void write_csv(std::span<const DeviceState* const> states, double time_s);
+
+  Client& client_;
+  hapticd::client::Engine& engine_;
+  const Settings settings_;
+  hapticd::mujoco::WorldOptions options_;
+  std::unique_ptr<CoupledWorld> world_;
+  std::vector<hapticd::mujoco::ArmModel> arms_;
+  std::vector<bool> handle_device_;
+  std::mutex world_mutex_;  // the receive thread steps the world; the main thread re-places proxies, publishes it
+  std::vector<Hand> hands_;
+  std::uint64_t last_cycle_ = 0;
+  std::atomic<bool> unstable_{false};
+  Timing timing_;
+  std::ofstream out_;
+  std::chrono::steady_clock::time_point last_world_, last_print_;
+};
+
+void MujocoEngine::load_world() {
   std::vector<Eigen::Vector3d> starts;
-  std::vector<bool> handle_device;
-  for (const std::string& d : devices) {
-    const auto described = client.wait_for_device(d, deadline(), true);
-    if (!described) {
-      fmt::print(stderr, "mujoco-engine: device '{}' did not start within {} s\n", d, wait);
-      return 1;
-    }
-    starts.push_back(described->start_pose->position);
-    handle_device.push_back(described->handle_device);
+  for (std::size_t i = 0; i < devices().size(); ++i) {
+    starts.push_back(engine_.description(i).start_pose->position);
+    handle_device_.push_back(engine_.description(i).handle_device);
   }
-  const auto period_of = [&]() -> double {
-    const auto d = client.wait_for_device(devices.front(), deadline());
-    return d && d->rate_hz > 0.0 ? 1.0 / d->rate_hz : 1e-3;
-  };
-  hapticd::mujoco::WorldOptions options;
-  options.scene = scene;
-  options.devices = devices;
-  options.state_period_s = period_of();
-  options.scene_to_world = hapticd::mujoco::scene_frame(starts);
-  std::unique_ptr<CoupledWorld> world;
+  const double rate = engine_.description(0).rate_hz;
+  options_.scene = settings_.scene;
+  options_.devices = devices();
+  options_.state_period_s = rate > 0.0 ? 1.0 / rate : 1e-3;
+  options_.scene_to_world = hapticd::mujoco::scene_frame(starts);
   try {
-    world = std::make_unique<CoupledWorld>(options);
+    world_ = std::make_unique<CoupledWorld>(options_);
   } catch (const hapticd::mujoco::SceneError& e) {
-    fmt::print(stderr, "mujoco-engine: the scene does not load: {}\n", e.what());
-    return 2;
+    throw std::runtime_error(std::string("the scene does not load: ") + e.what());
   }
-  // The devices' arms, where the scene shows them.
-  std::vector<hapticd::mujoco::ArmModel> arms;
+  hands_.resize(devices().size());
+}
+
+// The devices' arms, where the scene shows them.
+void MujocoEngine::load_arms() {
   bool scene_shows_arm = false;
-  for (std::size_t i = 0; i < devices.size(); ++i) scene_shows_arm = scene_shows_arm || world->arm_bodies(i) > 0;
-  if (!arm_urdf.empty()) {
-    if (!scene_shows_arm) fmt::print("mujoco-engine: the scene has no arm bodies: --arm has nothing to move\n");
-    for (const std::string& d : devices) {
-      const auto described = client.wait_for_device(d, deadline());
-      try {
-        arms.emplace_back(arm_urdf, arm_radius, described ? described->base_pose : hapticd::Pose{});
-      } catch (const std::exception& e) {
-        fmt::print(stderr, "mujoco-engine: --arm {}: {}\n", arm_urdf, e.what());
-        return 2;
-      }
-    }
-  } else if (scene_shows_arm) {
+  for (std::size_t i = 0; i < devices().size(); ++i) scene_shows_arm = scene_shows_arm || world_->arm_bodies(i) > 0;
+  if (settings_.arm_urdf.empty()) {
+    if (!scene_shows_arm) return;
     fmt::print("mujoco-engine: the scene shows the arm; without --arm URDF its bodies are parked out of reach\n");
-    for (std::size_t i = 0; i < devices.size(); ++i) world->set_arm(i, {});
+    for (std::size_t i = 0; i < devices().size(); ++i) world_->set_arm(i, {});
+    return;
   }
-
-  std::mutex world_mutex;  // the state callback steps the world; the main thread re-places proxies after a restart
-  std::atomic<bool> running{false}, session_ending{false};
-  std::atomic<std::uint64_t> answered{0}, unstable{0}, seen{0};
-  std::uint64_t last_cycle = 0;
-  std::vector<Hand> hands(devices.size());
-  std::vector<hapticd::client::DeviceCommand> group_commands(devices.size());
-  for (std::size_t i = 0; i < devices.size(); ++i) group_commands[i].device.assign(devices[i]);
-  Timing timing;
-  std::ofstream out;
-  if (!csv.empty()) {
-    out.open(csv);
-    if (!out) {
-      fmt::print(stderr, "mujoco-engine: cannot write {}\n", csv);
-      return 2;
+  if (!scene_shows_arm) fmt::print("mujoco-engine: the scene has no arm bodies: --arm has nothing to move\n");
+  for (std::size_t i = 0; i < devices().size(); ++i) {
+    try {
+      arms_.emplace_back(settings_.arm_urdf, settings_.arm_radius, engine_.description(i).base_pose);
+    } catch (const std::exception& e) {
+      throw std::runtime_error("--arm " + settings_.arm_urdf + ": " + e.what());
     }
-    out << "time_s";
-    for (const std::string& d : devices) {
-      out << fmt::format(
-          ",{0}_x,{0}_y,{0}_z,{0}_proxy_x,{0}_proxy_y,{0}_proxy_z,{0}_contact_fx,{0}_contact_fy,"
-          "{0}_contact_fz",
-          d);
-    }
-    out << "\n";
   }
+}
 
-  // One state (or one group state): step the world by the cycles since the last one, answer with the proxies.
-  const auto answer = [&](std::span<const DeviceState* const> states, std::uint64_t cycle, double time_s) {
-    const auto began = std::chrono::steady_clock::now();
-    seen.fetch_add(1);
-    std::lock_guard lock(world_mutex);
-    if (!running.load()) return;
-    for (std::size_t i = 0; i < states.size(); ++i) {
-      hands[i] = hand_of(*states[i], handle_device[i]);
-      const auto mode = states[i]->mode;
-      if (mode == hapticd::client::Mode::stopping || mode == hapticd::client::Mode::off) session_ending.store(true);
-    }
-    for (std::size_t i = 0; i < arms.size() && i < states.size(); ++i) {
-      const DeviceState& st = *states[i];
-      world->set_arm(i, arms[i].place(std::span<const double>(st.position.data(), static_cast<std::size_t>(st.dof))));
-    }
-    const int periods = cycle > last_cycle ? static_cast<int>(std::min<std::uint64_t>(cycle - last_cycle, 8)) : 1;
-    last_cycle = cycle;
-    // An unstable world put its proxies at the hands: this command pulls nowhere; it is the last one.
-    const bool stable = world->step(hands, periods).stable;
-    for (std::size_t i = 0; i < states.size(); ++i) {
-      const hapticd::mujoco::Proxy p = world->proxy(i);
-      auto& c = group_commands[i].command;
-      c.kind = hapticd::client::CommandKind::coupling;
-      c.pose = p.pose;
-      c.twist = p.twist;
-      c.state_serial = states[i]->serial;
-    }
-    if (group.empty()) {
-      client.send(devices.front(), group_commands.front().command);
-    } else {
-      client.send_group(group, group_commands);
-    }
-    answered.fetch_add(1);
-    if (!stable) {
-      unstable.fetch_add(1);
-      running.store(false);
-    }
-    timing.add(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - began).count());
-    if (out.is_open()) {
-      out << fmt::format("{:.4f}", time_s);
-      for (std::size_t i = 0; i < states.size(); ++i) {
-        const hapticd::mujoco::Proxy p = world->proxy(i);
-        out << fmt::format(",{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.3f},{:.3f},{:.3f}",
-                           hands[i].pose.position.x(), hands[i].pose.position.y(), hands[i].pose.position.z(),
-                           p.pose.position.x(), p.pose.position.y(), p.pose.position.z(), p.contact_force.x(),
-                           p.contact_force.y(), p.contact_force.z());
-      }
-      out << "\n";
-    }
-  };
-  if (group.empty()) {
-    client.on_state([&](const DeviceState& s) {
-      if (s.device != devices.front()) return;
-      const DeviceState* one[] = {&s};
-      answer(one, s.cycle, s.time_s());
-    });
-  } else {
-    client.on_group_state([&](const hapticd::client::GroupState& g) {
-      const auto n = static_cast<std::size_t>(g.device_count);
-      if (g.group != group || n != devices.size() || n > g.states.size()) return;
-      std::array<const DeviceState*, hapticd::client::kMaxGroupDevices> states{};
-      for (std::size_t i = 0; i < n; ++i) states[i] = &g.states[i];
-      answer(std::span(states.data(), n), g.cycle, g.states[0].time_s());
-    });
-  }
+void MujocoEngine::open_csv() {
+  if (settings_.csv.empty()) return;
+  out_.open(settings_.csv);
+  if (!out_) throw std::runtime_error("cannot write " + settings_.csv);
+  out_ << "time_s";
+  for (const std::string& d : devices())
+    out_ << fmt::format(
+        ",{0}_x,{0}_y,{0}_z,{0}_proxy_x,{0}_proxy_y,{0}_proxy_z,{0}_contact_fx,{0}_contact_fy,{0}_contact_fz", d);
+  out_ << "\n";
+}
 
-  // A parameter of a device's virtual model set at run time (hapticctl set): the main loop reads the gains again.
-  std::atomic<bool> gains_changed{false};
-  std::atomic<std::uint64_t> answered_at_event{0};
-  std::mutex wake_mutex;  // the event wakes the main loop at once (it sleeps between its chores otherwise)
-  std::condition_variable wake;
-  client.on_event([&](const hapticd::client::Event& e) {
-    if (e.kind != hapticd::client::EventKind::parameter || e.code != "virtual_model" ||
-        std::find(devices.begin(), devices.end(), e.device) == devices.end())
-      return;
-    {
-      std::lock_guard lock(wake_mutex);
-      answered_at_event.store(answered.load());
-      gains_changed.store(true);
-    }
-    wake.notify_one();
-  });
-
-  // Whatever way run() ends from here, the callbacks are gone before the locals they use (declared above) are.
-  struct Unhook {
-    Client& c;
-    ~Unhook() {
-      c.on_state({});
-      c.on_group_state({});
-      c.on_event({});
-    }
-  } unhook{client};
-
-  // Claims (again): the coupling's gains as the server's session has them now, the proxies placed at the hands of
-  // the newest states.
-  const auto claim = [&]() -> bool {
-    std::vector<CouplingGains> gains(devices.size());
-    for (std::size_t i = 0; i < devices.size(); ++i) {
-      if (const std::string e = read_gains(client, devices[i], gains[i]); !e.empty()) {
-        fmt::print(stderr, "mujoco-engine: {}\n", e);
-        return false;
-      }
-    }
-    const auto reply = group.empty() ? client.claim(devices.front()) : client.claim_group(group);
-    if (!reply.accepted) {
-      fmt::print(stderr, "mujoco-engine: cannot claim '{}': {}\n", group.empty() ? devices.front() : group,
-                 reply.message);
+// At each claim: the coupling's gains as the server's session has them now, the proxies at the newest states' hands.
+bool MujocoEngine::claimed(bool again) {
+  std::vector<CouplingGains> gains(devices().size());
+  for (std::size_t i = 0; i < devices().size(); ++i) {
+    if (const std::string e = read_gains(client_, devices()[i], gains[i]); !e.empty()) {
+      fmt::print(stderr, "mujoco-engine: {}\n", e);
       return false;
     }
-    std::lock_guard lock(world_mutex);
-    for (std::size_t i = 0; i < devices.size(); ++i) {
-      try {
-        world->set_gains(i, gains[i]);
-      } catch (const hapticd::mujoco::SceneError& e) {
-        fmt::print(stderr, "mujoco-engine: '{}': {}\n", devices[i], e.what());
-        return false;
-      }
-      const auto s = client.wait_for_state(devices[i], deadline());
-      if (!s) return false;
-      world->place(i, hand_of(*s, handle_device[i]));
-      last_cycle = s->cycle;
+  }
+  std::lock_guard lock(world_mutex_);
+  for (std::size_t i = 0; i < devices().size(); ++i) {
+    try {
+      world_->set_gains(i, gains[i]);
+    } catch (const hapticd::mujoco::SceneError& e) {
+      fmt::print(stderr, "mujoco-engine: '{}': {}\n", devices()[i], e.what());
+      return false;
     }
-    running.store(true);
-    return true;
-  };
-  if (!claim()) return 2;
-  const std::string claimed = group.empty() ? devices.front() : group;
-  fmt::print("mujoco-engine: claimed '{}'; {} steps of {:.3f} ms per state, coupling {:.0f} N/m, {:.1f} N s/m\n",
-             claimed, world->substeps(), 1e3 * world->timestep_s(), world->gains(0).stiffness_n_per_m,
-             world->gains(0).damping_n_s_per_m);
-  const auto print_watched = [&](const char* prefix) {
-    std::lock_guard lock(world_mutex);
-    for (const std::string& body : watch) {
-      const auto pose = world->body_pose(body);
-      if (!pose) continue;
-      const Eigen::Vector3d x = options.scene_to_world.inverse() * pose->position;
-      fmt::print("{}{} at ({:+.1f}, {:+.1f}, {:+.1f}) mm in the scene\n", prefix, body, 1e3 * x.x(), 1e3 * x.y(),
-                 1e3 * x.z());
-    }
-  };
-  print_watched("mujoco-engine: ");
+    const auto s = client_.wait_for_state(devices()[i], std::chrono::seconds(2));
+    if (!s) return false;
+    world_->place(i, hand_of(*s, handle_device_[i]));
+    last_cycle_ = s->cycle;
+  }
+  if (!again)
+    fmt::print("mujoco-engine: claimed '{}'; {} steps of {:.3f} ms per state, coupling {:.0f} N/m, {:.1f} N s/m\n",
+               engine_.target(), world_->substeps(), 1e3 * world_->timestep_s(), world_->gains(0).stiffness_n_per_m,
+               world_->gains(0).damping_n_s_per_m);
+  return true;
+}
 
-  const auto start = std::chrono::steady_clock::now();
-  auto last_progress = start, last_print = start;
-  std::uint64_t last_answered = 0;
-  int code = 0;
-  auto last_world = start;
-  while (!g_stop.load()) {
+// One state (or one group state): step the world by the cycles since the last one, answer with the proxies.
+bool MujocoEngine::answer(std::span<const DeviceState* const> states, std::span<EngineCommand> commands) {
+  const auto began = std::chrono::steady_clock::now();
+  std::lock_guard lock(world_mutex_);
+  if (unstable_.load()) return false;
+  for (std::size_t i = 0; i < states.size(); ++i) hands_[i] = hand_of(*states[i], handle_device_[i]);
+  for (std::size_t i = 0; i < arms_.size() && i < states.size(); ++i) {
+    const DeviceState& st = *states[i];
+    world_->set_arm(i, arms_[i].place(std::span<const double>(st.position.data(), static_cast<std::size_t>(st.dof))));
+  }
+  const std::uint64_t cycle = states.front()->cycle;
+  const int periods = cycle > last_cycle_ ? static_cast<int>(std::min<std::uint64_t>(cycle - last_cycle_, 8)) : 1;
+  last_cycle_ = cycle;
+  // An unstable world put its proxies at the hands: this command pulls nowhere; it is the last one.
+  if (!world_->step(hands_, periods).stable) unstable_.store(true);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const hapticd::mujoco::Proxy p = world_->proxy(i);
+    commands[i] = EngineCommand::coupling(p.pose, p.twist, states[i]->serial);
+  }
+  timing_.add(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - began).count());
+  write_csv(states, states.front()->time_s());
+  return true;
+}
+
+void MujocoEngine::write_csv(std::span<const DeviceState* const> states, double time_s) {
+  if (!out_.is_open()) return;
+  out_ << fmt::format("{:.4f}", time_s);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const hapticd::mujoco::Proxy p = world_->proxy(i);
+    const Eigen::Vector3d& h = hands_[i].pose.position;
+    out_ << fmt::format(",{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.3f},{:.3f},{:.3f}", h.x(), h.y(), h.z(),
+                        p.pose.position.x(), p.pose.position.y(), p.pose.position.z(), p.contact_force.x(),
+                        p.contact_force.y(), p.contact_force.z());
+  }
+  out_ << "\n";
+}
+
+// The main thread's chores: the world's shapes for the live view, the watched bodies; an unstable world ends it.
+bool MujocoEngine::chores() {
+  const auto now = std::chrono::steady_clock::now();
+  if (settings_.world_rate > 0.0 && now - last_world_ > std::chrono::duration<double>(1.0 / settings_.world_rate)) {
+    last_world_ = now;
+    std::vector<hapticd::mujoco::BodyShape> shapes;
+    double physics_s = 0.0;
     {
-      std::unique_lock lock(wake_mutex);
-      wake.wait_for(lock, std::chrono::milliseconds(world_rate > 50.0 ? 5 : 20), [&] { return gains_changed.load(); });
+      std::lock_guard lock(world_mutex_);
+      shapes = world_->shapes();
+      physics_s = world_->time_s();
     }
-    const auto now = std::chrono::steady_clock::now();
-    if (world_rate > 0.0 && now - last_world > std::chrono::duration<double>(1.0 / world_rate)) {
-      last_world = now;
-      std::vector<hapticd::mujoco::BodyShape> shapes;
-      double physics_s = 0.0;
-      {
-        std::lock_guard lock(world_mutex);
-        shapes = world->shapes();
-        physics_s = world->time_s();
-      }
-      (void)client.publish_world(world_shapes(shapes), physics_s);
-    }
-    if (gains_changed.exchange(false) && running.load())
-      for (std::size_t i = 0; i < devices.size(); ++i)
-        follow_gains(client, devices[i], i, *world, world_mutex, [&] { return answered.load() - answered_at_event; });
-    if (duration > 0.0 && now - start > std::chrono::duration<double>(duration)) break;
-    if (unstable.load() > 0) {
-      fmt::print(stderr,
-                 "mujoco-engine: the world went unstable (MuJoCo reset it, or a proxy ran away): the proxies were put "
-                 "at the hands and the device is released; lower the coupling stiffness, give the proxy more mass or "
-                 "inertia, or make the scene's timestep smaller\n");
-      code = 2;
-      break;
-    }
-    if (answered.load() != last_answered) {
-      last_answered = answered.load();
-      last_progress = now;
-      if (!group.empty() || devices.size() == 1) {
-        if (!hapticd::examples::keep_claim(client, claimed, "mujoco-engine", !group.empty(), devices.front())) {
-          code = hapticd::examples::kExitClaimLost;
-          break;
-        }
-      }
-      if (!watch.empty() && now - last_print > std::chrono::seconds(1)) {
-        last_print = now;
-        print_watched("");
-      }
-      continue;
-    }
-    if (now - last_progress < std::chrono::duration<double>(server_timeout)) continue;
-    // No state for a while: the session ended (its last states were answered) or the server is gone. Wait for
-    // states to come again (the server restarted), then claim again; the world goes on where it was.
-    running.store(false);
-    if (session_ending.exchange(false)) {
-      fmt::print("mujoco-engine: the session ended; waiting up to {} s for the server to come back\n", wait);
-    } else {
-      fmt::print("mujoco-engine: no state for {:.1f} s; waiting up to {} s for the server to come back\n",
-                 server_timeout, wait);
-    }
-    const std::uint64_t before = seen.load();
-    const auto until = std::chrono::steady_clock::now() + deadline();
-    while (!g_stop.load() && seen.load() == before && std::chrono::steady_clock::now() < until) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    if (seen.load() == before) {
-      if (!g_stop.load()) fmt::print("mujoco-engine: no server came back within {} s\n", wait);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // its loop runs: the start pose is published
-    if (!claim()) {
-      code = 2;
-      break;
-    }
-    fmt::print("mujoco-engine: the server is back; claimed '{}' again\n", claimed);
-    last_progress = std::chrono::steady_clock::now();
+    (void)client_.publish_world(world_shapes(shapes), physics_s);
   }
-  running.store(false);
-  client.on_state({});
-  client.on_group_state({});
-  client.on_event({});
-  if (group.empty()) {
-    (void)client.release(devices.front(), std::chrono::milliseconds(500));
-  } else {
-    (void)client.release_group(group, std::chrono::milliseconds(500));
+  if (unstable_.load()) {
+    fmt::print(stderr,
+               "mujoco-engine: the world went unstable (MuJoCo reset it, or a proxy ran away): the proxies were put "
+               "at the hands and the device is released; lower the coupling stiffness, give the proxy more mass or "
+               "inertia, or make the scene's timestep smaller\n");
+    return false;
   }
-  print_watched("mujoco-engine: at the end, ");
-  std::lock_guard lock(world_mutex);
-  fmt::print("mujoco-engine: answered {} states; {:.1f} s of physics; time per state p50 {:.1f} us, p99 {:.1f} us\n",
-             answered.load(), world->time_s(), timing.percentile(0.5), timing.percentile(0.99));
-  return code;
+  if (!settings_.watch.empty() && now - last_print_ > std::chrono::seconds(1)) {
+    last_print_ = now;
+    print_watched("");
+  }
+  return true;
+}
+
+void MujocoEngine::print_watched(const char* prefix) {
+  std::lock_guard lock(world_mutex_);
+  for (const std::string& body : settings_.watch) {
+    const auto pose = world_->body_pose(body);
+    if (!pose) continue;
+    const Eigen::Vector3d x = options_.scene_to_world.inverse() * pose->position;
+    fmt::print("{}{} at ({:+.1f}, {:+.1f}, {:+.1f}) mm in the scene\n", prefix, body, 1e3 * x.x(), 1e3 * x.y(),
+               1e3 * x.z());
+  }
+}
+
+void add_options(CLI::App& app, Settings& s, double& server_timeout) {
+  app.add_option("scene", s.scene, "the MJCF scene (a body 'proxy' or 'proxy_<device>' per device)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  app.add_option("--server-timeout", server_timeout, "no state for this long: the server is gone, wait for it again")
+      ->check(CLI::Range(0.1, 60.0));
+  app.add_option("--arm", s.arm_urdf,
+                 "the devices' robot model (URDF): their links move the scene's arm bodies (arm_<k>, arm_<device>_<k>)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--arm-radius", s.arm_radius, "the links' radius where the model has no collision capsules [m]")
+      ->check(CLI::Range(0.001, 0.2));
+  app.add_option("--world-rate", s.world_rate, "publish the world's shapes for the live view this often (0: never)")
+      ->check(CLI::Range(0.0, 100.0));
+  app.add_option("--watch", s.watch, "print these bodies' positions now and then, and at the end");
+  app.add_option("--csv", s.csv, "write time, each hand and proxy position and the proxies' contact forces here");
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return hapticd::examples::guarded_main("hapticd-mujoco-engine", run, argc, argv); }
+int main(int argc, char** argv) {
+  CLI::App app{"hapticd-mujoco-engine: a MuJoCo scene coupled to the devices through the virtual coupling"};
+  hapticd::examples::EngineCommandLine command_line{.id = "mujoco-engine"};
+  hapticd::examples::add_engine_options(app, command_line, hapticd::examples::Claims::device_or_group);
+  Settings settings;
+  double server_timeout = 1.0;
+  add_options(app, settings, server_timeout);
+  return hapticd::examples::engine_main("hapticd-mujoco-engine", app, argc, argv, [&] {
+    mju_user_error = on_mujoco_error;
+    Client client(command_line.client());
+    hapticd::client::EngineOptions options = command_line.options("mujoco-engine");
+    options.server_timeout = hapticd::client::Timeout(server_timeout);
+    options.wait_for_server = true;  // a restarted server finds the world where it was
+    options.chores_period = std::chrono::milliseconds(settings.world_rate > 50.0 ? 5 : 20);
+    hapticd::client::Engine engine(client, options);
+    if (!engine.connect()) return 1;
+    MujocoEngine world(client, engine, settings);
+    engine.on_claim([&](bool again) { return world.claimed(again); });
+    engine.on_chores([&] { return world.chores(); });
+    engine.on_parameter([&](const auto& event, std::uint64_t then) { world.follow(event, then); });
+    world.print_watched("mujoco-engine: ");
+    const auto end = engine.run([&](auto states, auto commands) { return world.answer(states, commands); });
+    world.print_watched("mujoco-engine: at the end, ");
+    world.summary();
+    return end.exit_code();
+  });
+}
