@@ -17,20 +17,27 @@ static class WallEngine
         int domain = args.Length > 2 ? int.Parse(args[2]) : 0;
         using (var client = new Client("cs-wall", domain))
         {
-            DeviceState first = client.WaitForState(device, 20.0);
-            double wallX = first.pose.position.x + 0.02;
             double deepest = 0.0;
-            var engine = new Engine(client, device, (ref DeviceState s, ref Command c) => {
+            Engine engine = null;
+            // Runs on the DDS receive thread once the device is claimed (its start pose is known by then).
+            engine = new Engine(client, device, (ref DeviceState s, ref Command c) => {
+                double wallX = engine.StartPose.position.x + 0.02;
                 double depth = s.pose.position.x - wallX;
                 if (depth > deepest) deepest = depth;
                 var anchor = s.pose;
                 anchor.position.x = wallX;
                 var k = depth > 0 ? new Vec3(2000, 0, 0) : new Vec3();
                 var b = depth > 0 ? new Vec3(10, 0, 0) : new Vec3();
-                c = Command.Force(new Wrench(), LocalModel.Spring(anchor, k, b), s.serial);
-            });
-            engine.Start();
-            Console.WriteLine("cs-wall: claimed '" + device + "'; a wall at x = " + wallX.ToString("0.0000") + " m");
+                c = Command.Force(new Wrench(), LocalModel.Spring(anchor, k, b), 0);  // the helper sets the serial
+            }, 20.0, "cs-wall");
+            engine.Start();  // its own thread: finds, claims, answers, retakes a lost claim
+            if (!engine.WaitUntilClaimed(20.0))
+            {
+                Console.Error.WriteLine("cs-wall: " + engine.EndReason + ": " + engine.EndMessage);
+                return engine.ExitCode != 0 ? engine.ExitCode : 1;
+            }
+            Console.WriteLine("cs-wall: claimed '" + device + "'; a wall at x = " +
+                              (engine.StartPose.position.x + 0.02).ToString("0.0000") + " m");
             Thread.Sleep(TimeSpan.FromSeconds(seconds));
             engine.Stop();
             Console.WriteLine("cs-wall: answered " + engine.Answered + " states; deepest " +

@@ -34,6 +34,11 @@ hapticd_client* make(const char* id, int domain = kDomain) {
   return c;
 }
 
+hapticd_device_info& info_out() {
+  static hapticd_device_info info;
+  return info;
+}
+
 TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
   EXPECT_EQ(hapticd_api_version(), HAPTICD_C_API_VERSION);
   hapticd_client* c = nullptr;
@@ -117,6 +122,40 @@ TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
   hapticd_event events[4];
   EXPECT_EQ(hapticd_take_events(c, events, -1, &count), HAPTICD_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(hapticd_claim_lost(c, nullptr), 0);
+  // The engine helper.
+  hapticd_engine* engine = nullptr;
+  hapticd_engine_options eo{};
+  EXPECT_EQ(hapticd_engine_create(c, &eo, &engine), HAPTICD_ERROR_INVALID_ARGUMENT);  // no size
+  EXPECT_NE(std::string(hapticd_last_error()).find("options->size"), std::string::npos);
+  eo.size = sizeof eo;
+  eo.device = "an-id-that-is-longer-than-thirty-one-characters";
+  EXPECT_EQ(hapticd_engine_create(c, &eo, &engine), HAPTICD_ERROR_INVALID_ARGUMENT);
+  eo.device = "vishard3";
+  eo.group = "hands";
+  EXPECT_EQ(hapticd_engine_create(c, &eo, &engine), HAPTICD_ERROR_INVALID_ARGUMENT);
+  eo.group = nullptr;
+  eo.wait_s = std::nan("");
+  EXPECT_EQ(hapticd_engine_create(c, &eo, &engine), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(engine, nullptr);
+  EXPECT_EQ(hapticd_engine_create(nullptr, &eo, &engine), HAPTICD_ERROR_INVALID_ARGUMENT);
+  eo.device = "nobody";
+  eo.wait_s = 0.2;
+  ASSERT_EQ(hapticd_engine_create(c, &eo, &engine), HAPTICD_OK) << hapticd_last_error();
+  EXPECT_EQ(hapticd_engine_run(engine, nullptr, nullptr, nullptr), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_engine_device(engine, 0, &info_out()), HAPTICD_ERROR_NOT_FOUND);  // not connected
+  hapticd_engine_end end{};
+  const auto answer_nothing = [](const hapticd_device_state*, int32_t, hapticd_command*, void*) -> int32_t {
+    return 0;
+  };
+  EXPECT_EQ(hapticd_engine_run(engine, answer_nothing, nullptr, &end), HAPTICD_OK);  // nobody drives "nobody"
+  EXPECT_EQ(end.reason, HAPTICD_ENGINE_NO_DEVICE);
+  EXPECT_EQ(end.exit_code, 1);
+  EXPECT_EQ(hapticd_engine_run(engine, answer_nothing, nullptr, &end), HAPTICD_ERROR_INVALID_ARGUMENT);  // once
+  EXPECT_EQ(hapticd_engine_stop(nullptr), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_engine_answered(nullptr), 0u);
+  EXPECT_EQ(hapticd_engine_device_count(engine), 0);
+  hapticd_engine_destroy(engine);
+  hapticd_engine_destroy(nullptr);
   EXPECT_STREQ(hapticd_status_name(HAPTICD_ERROR_TIMEOUT), "HAPTICD_ERROR_TIMEOUT");
   EXPECT_STREQ(hapticd_status_name(static_cast<hapticd_status>(99)), "an unknown status");
 

@@ -29,6 +29,8 @@ int main(void) {
   SIZE(hapticd_local_model);
   SIZE(hapticd_command);
   SIZE(hapticd_client_options);
+  SIZE(hapticd_engine_options);
+  SIZE(hapticd_engine_end);
   OFFSET(hapticd_device_state, serial);
   OFFSET(hapticd_device_state, cycle);
   OFFSET(hapticd_device_state, loop_time_ns);
@@ -65,5 +67,14 @@ int main(void) {
   OFFSET(hapticd_client_options, cyclone_config);
   OFFSET(hapticd_client_options, network);
   OFFSET(hapticd_client_options, command_deadline_s);
+  OFFSET(hapticd_engine_options, name);
+  OFFSET(hapticd_engine_options, device);
+  OFFSET(hapticd_engine_options, group);
+  OFFSET(hapticd_engine_options, wait_s);
+  OFFSET(hapticd_engine_options, server_timeout_s);
+  OFFSET(hapticd_engine_options, duration_s);
+  OFFSET(hapticd_engine_options, wait_for_server);
+  OFFSET(hapticd_engine_end, exit_code);
+  OFFSET(hapticd_engine_end, message);
   return hapticd_api_version() == HAPTICD_C_API_VERSION ? 0 : 1;
 }

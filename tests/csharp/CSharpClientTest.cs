@@ -5,6 +5,7 @@
 //   engine DOMAIN DEVICE SECONDS N  a wall engine (Hapticd.Engine) 2 cm ahead of the handle; the simulated operator
 //                                   pushes N newtons; a claim the server ends is taken again; the per-cycle calls
 //                                   make no managed garbage; prints where the handle rests
+//   callbacks                       every delegate handed to native code is a static [MonoPInvokeCallback] method
 // Exit code 0 when every check of the mode holds (each failure is printed).
 using System;
 using System.Collections.Generic;
@@ -34,7 +35,8 @@ static class CSharpClientTest
             case "layout": Layout(args[1]); break;
             case "errors": Errors(int.Parse(args[1])); break;
             case "engine": RunEngine(int.Parse(args[1]), args[2], double.Parse(args[3]), double.Parse(args[4])); break;
-            default: Console.Error.WriteLine("usage: layout FILE | errors DOMAIN | engine DOMAIN DEVICE SECONDS N"); return 2;
+            case "callbacks": CheckCallbacks(); break;
+            default: Console.Error.WriteLine("usage: layout FILE | errors DOMAIN | engine DOMAIN DEVICE SECONDS N | callbacks"); return 2;
         }
         Console.WriteLine(failures == 0 ? "all checks passed" : failures + " failures");
         return failures == 0 ? 0 : 1;
@@ -49,7 +51,8 @@ static class CSharpClientTest
             {"hapticd_device_info", typeof(DeviceInfo)}, {"hapticd_event", typeof(Event)}, {"hapticd_telemetry", typeof(Telemetry)},
             {"hapticd_reply", typeof(Reply)}, {"hapticd_parameter_info", typeof(ParameterInfo)},
             {"hapticd_local_model", typeof(LocalModel)}, {"hapticd_command", typeof(Command)},
-            {"hapticd_client_options", typeof(ClientOptions)} };
+            {"hapticd_client_options", typeof(ClientOptions)}, {"hapticd_engine_options", typeof(EngineOptions)},
+            {"hapticd_engine_end", typeof(EngineEnd)} };
         int checkedCount = 0;
         foreach (var line in File.ReadAllLines(file))
         {
@@ -109,15 +112,18 @@ static class CSharpClientTest
     {
         using (var client = new Client("cs-wall-engine", domain))
         {
-            var first = client.WaitForState(device, 20.0);
-            double startX = first.pose.position.x;
-            wallX = startX + 0.02;
+            double startX = 0;
+            // The engine helper runs on its own thread; its render reads the wall set once the device was found.
             var engine = new Engine(client, device, (ref DeviceState s, ref Command c) => {
                 var proxy = s.pose;
                 if (proxy.position.x > wallX) proxy.position.x = wallX;
-                c = Command.Coupling(proxy, new Twist(), s.serial);
-            });
+                c = Command.Coupling(proxy, new Twist(), 0);  // the helper sets the state's serial
+            }, 20.0, "cs-wall-engine");
+            wallX = double.PositiveInfinity;
             engine.Start();
+            Check(engine.WaitUntilClaimed(20.0), "claimed: " + engine.EndMessage);
+            startX = engine.StartPose.position.x;
+            wallX = startX + 0.02;
             Console.WriteLine("cs-wall-engine: claimed '" + device + "'; a wall at x = " + wallX.ToString("+0.0000;-0.0000") + " m");
             if (pushN != 0) client.OperatorCommand(device, "push", new double[] { pushN, 0, 0, 0.2 });
 
@@ -137,27 +143,43 @@ static class CSharpClientTest
             long garbage = GC.GetAllocatedBytesForCurrentThread() - before;
             Check(garbage == 0, "2000 state reads and commands made " + garbage + " bytes of managed garbage");
 
+            // A claim the server ends (this process stopped beyond its claim hold) is retaken by the helper.
             var end = DateTime.UtcNow.AddSeconds(seconds);
-            while (DateTime.UtcNow < end)
-            {
-                Thread.Sleep(50);
-                if (engine.ClaimLost)
-                {
-                    Console.WriteLine("cs-wall-engine: the server ended the claim of '" + device + "'");
-                    string why;
-                    bool again = engine.Reclaim(out why);
-                    Console.WriteLine(again ? "cs-wall-engine: claimed '" + device + "' again" : "cs-wall-engine: cannot claim again: " + why);
-                    Check(again, "claimed again after the loss");
-                }
-            }
+            while (DateTime.UtcNow < end && !engine.Ended) Thread.Sleep(50);
+            Check(!engine.Ended, "the engine ran to the end: " + engine.EndReason + ": " + engine.EndMessage);
             DeviceState last;
             client.TryLatestState(name, out last);
-            long answered = engine.Answered;
             engine.Stop();
+            long answered = engine.Answered;
+            Check(engine.Ended && engine.EndReason == EngineEndReason.Stopped && engine.ExitCode == 0,
+                  "Stop() ended the run: " + engine.EndReason + " " + engine.EndMessage);
             Check(engine.RenderErrors == 0, "the render function never threw");
             Check(answered > 0, "answered " + answered + " states");
             Console.WriteLine("cs-wall-engine: answered " + answered + " states; handle " +
                               (last.pose.position.x - startX).ToString("0.0000") + " m past the start, the wall at 0.0200 m");
         }
+    }
+
+    // IL2CPP marshals only static methods marked [MonoPInvokeCallback]: every delegate of a native callback type the
+    // assembly keeps is one, and no instance field holds such a delegate.
+    static void CheckCallbacks()
+    {
+        var assembly = typeof(Client).Assembly;
+        int checkedDelegates = 0;
+        foreach (var type in assembly.GetTypes())
+        {
+            foreach (var field in type.GetFields(System.Reflection.BindingFlags.Static | System.Reflection.BindingFlags.Instance | System.Reflection.BindingFlags.Public | System.Reflection.BindingFlags.NonPublic))
+            {
+                if (!typeof(Delegate).IsAssignableFrom(field.FieldType)) continue;
+                if (field.FieldType.GetCustomAttributes(typeof(UnmanagedFunctionPointerAttribute), false).Length == 0) continue;
+                Check(field.IsStatic, type.Name + "." + field.Name + " is a static field (no instance delegate crosses into native code)");
+                var d = (Delegate)field.GetValue(null);
+                Check(d != null && d.Method.IsStatic, type.Name + "." + field.Name + " holds a static method");
+                Check(d.Method.GetCustomAttributes(typeof(MonoPInvokeCallbackAttribute), false).Length == 1,
+                      d.Method.Name + " is marked [MonoPInvokeCallback]");
+                ++checkedDelegates;
+            }
+        }
+        Check(checkedDelegates >= 2, checkedDelegates + " native callbacks checked");
     }
 }

@@ -26,6 +26,8 @@ mono test.exe layout "$src/clients/c/abi/hapticd_c.layout" > layout.log 2>&1 || 
 echo "ok: $(grep -c '^ok' layout.log) layout checks"
 timeout 60 mono test.exe errors "$domain" > errors.log 2>&1 || fail "errors: $(cat errors.log)"
 echo "ok: $(grep -c '^ok' errors.log) error paths"
+timeout 60 mono test.exe callbacks > callbacks.log 2>&1 || fail "callbacks: $(cat callbacks.log)"
+echo "ok: $(grep -c '^ok' callbacks.log) checks: only static [MonoPInvokeCallback] methods are handed to native code"
 
 timeout 60 "$bin/hapticd" --config "$src/config/sessions/vishard3/dds-coupling.yaml" --dds-domain "$domain" \
   --duration 18 --log-level warn --set server.realtime_priority=0 --set server.lock_memory=false \
@@ -45,4 +47,4 @@ awk -v x="$past" 'BEGIN { exit !(x > 0.015 && x < 0.03) }' || fail "the wall did
 echo "ok: the C# engine's wall holds the 15 N push ($past m past the start)"
 wait "$server" || fail "the server exited with $?"
 trap - EXIT
-echo "5 passed, 0 failed"
+echo "6 passed, 0 failed"

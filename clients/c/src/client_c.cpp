@@ -9,62 +9,22 @@
 #include <stdexcept>
 #include <string>
 
+#include "c_status.hpp"
 #include "c_values.hpp"
-#include "command_sender.hpp"
+#include "client_handle.hpp"
 #include "hapticd/client.h"
 #include "hapticd/client/client.hpp"
 
-struct hapticd_client {
-  explicit hapticd_client(hapticd::client::ClientOptions options) : client(std::move(options)), sender(client) {}
-  hapticd::client::Client client;
-  hapticd::client_c::CommandSender sender;  // after the client: stopped before it
-  std::mutex events_mutex;
-  std::deque<hapticd::client::Event> pending_events;  // taken from the library, not yet handed out
-};
-
 namespace {
 
+using hapticd::client_c::bad_name;
 using hapticd::client_c::copy_text;
+using hapticd::client_c::fail;
 using hapticd::client_c::from_c;
+using hapticd::client_c::guarded;
+using hapticd::client_c::name_of;
 using hapticd::client_c::to_c;
 namespace client = hapticd::client;
-
-thread_local std::string last_error;
-
-hapticd_status fail(hapticd_status status, std::string_view message) noexcept {
-  try {
-    last_error.assign(message);
-  } catch (...) {
-    last_error.clear();  // no memory for the message: the status still says what
-  }
-  return status;
-}
-
-// Runs f, turning any exception into a status (never across the C interface).
-template <class F>
-hapticd_status guarded(F&& f) noexcept {
-  try {
-    return f();
-  } catch (const std::bad_alloc&) {
-    return fail(HAPTICD_ERROR_INTERNAL, "out of memory");
-  } catch (const std::exception& e) {
-    return fail(HAPTICD_ERROR_INTERNAL, e.what());
-  } catch (...) {
-    return fail(HAPTICD_ERROR_INTERNAL, "an unknown error");
-  }
-}
-
-// A name argument: 1..31 characters. Empty view when it is not one (the caller fails with the message).
-std::string_view name_of(const char* text) noexcept {
-  if (text == nullptr) return {};
-  const std::size_t n = strnlen(text, HAPTICD_NAME_SIZE);
-  return n == 0 || n >= HAPTICD_NAME_SIZE ? std::string_view{} : std::string_view(text, n);
-}
-
-hapticd_status bad_name(const char* what, const char* text) noexcept {
-  if (text == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, std::string(what) + " is NULL");
-  return fail(HAPTICD_ERROR_INVALID_ARGUMENT, std::string(what) + " must have 1 to 31 characters");
-}
 
 bool valid_timeout(double t) noexcept { return std::isfinite(t) && t >= 0.0; }
 
@@ -136,7 +96,7 @@ extern "C" {
 
 int hapticd_api_version(void) { return HAPTICD_C_API_VERSION; }
 
-const char* hapticd_last_error(void) { return last_error.c_str(); }
+const char* hapticd_last_error(void) { return hapticd::client_c::last_error_text(); }
 
 const char* hapticd_status_name(hapticd_status status) {
   switch (status) {

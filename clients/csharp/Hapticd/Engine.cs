@@ -1,101 +1,158 @@
-// The engine helper: claims a device and answers each of its states with the command a render function makes,
-// from the DDS receive thread (no thread hop, no managed allocation per state). A claim the server ends (the
-// application stalled beyond the server's claim hold) is told: ClaimLost turns true; call Reclaim() (or stop).
+// The engine helper for C#: the C API's hapticd_engine_* (the C++ library's one helper) run on a thread of its own,
+// so the caller - Unity's main thread - never waits: it finds the device and waits until it started, claims it,
+// answers each state with the command a render function makes on the DDS receive thread (no thread hop, no managed
+// allocation per state), claims again when the server ended the claim, and ends on Stop(), the session's end or a
+// lost device, releasing it. Only static methods marked [MonoPInvokeCallback] are handed to native code (IL2CPP
+// marshals no instance delegate); this engine comes back to them as a GCHandle.
 using System;
+using System.Runtime.InteropServices;
 using System.Threading;
 
 namespace Hapticd
 {
-    // Fills `command` for `state` (a coupling's proxy, a wrench, a motion); called on the DDS receive thread, once
-    // per state: be quick, do not wait, allocate nothing if the engine is to make no garbage.
+    // Fills `command` for `state` (a coupling's proxy, a wrench, a motion; the state's serial is set for you); called
+    // on the DDS receive thread, once per state: be quick, do not wait, allocate nothing if the engine is to make no
+    // garbage. An exception answers the state with nothing (counted in RenderErrors).
     public delegate void Render(ref DeviceState state, ref Command command);
 
-    public sealed class Engine : IDisposable
+    public sealed unsafe class Engine : IDisposable
     {
-        readonly Client client_;
-        readonly DeviceName device_;
-        readonly Render render_;
-        readonly StateCallback onState_;         // kept: the C API holds it
-        readonly ClaimLostCallback onClaimLost_;
-        long answered_;
-        int claimLost_;
-        int renderErrors_;
-        bool started_;
+        static readonly EngineAnswer AnswerCallback = OnAnswer;
+        static readonly EngineClaimHook ClaimCallback = OnClaim;
 
-        public Engine(Client client, string device, Render render)
+        readonly Client client_;
+        readonly string device_, name_;
+        readonly double waitS_;
+        readonly Render render_;
+        readonly object lock_ = new object();
+        GCHandle self_;  // what native code hands back to the static callbacks; freed by the run's thread at its end
+        IntPtr native_;  // under lock_: made, stopped and destroyed by the run's thread
+        Thread thread_;
+        bool stopRequested_;
+        int claimed_, renderErrors_, ended_;
+        long answered_;  // the count once the native engine is gone
+        DeviceInfo deviceInfo_;
+        EngineEnd end_;
+        string endMessage_ = "";
+
+        // name: the prefix of the helper's messages on standard output and error.
+        public Engine(Client client, string device, Render render, double waitS = 20.0, string name = "cs-engine")
         {
             client_ = client;
-            device_ = new DeviceName(device);
+            device_ = device;
             render_ = render;
-            unsafe { onState_ = OnState; }
-            onClaimLost_ = OnClaimLost;
+            waitS_ = waitS;
+            name_ = name;
         }
 
-        public string Device { get { return device_.Text; } }
-        public long Answered { get { return Interlocked.Read(ref answered_); } }
-        // The server ended this engine's claim (once per claim); Reclaim() claims again.
-        public bool ClaimLost { get { return Volatile.Read(ref claimLost_) != 0; } }
-        // States the render function threw on (answered with nothing).
+        public string Device { get { return device_; } }
+        // Claimed (and set up) at least once; the start pose is known from then on.
+        public bool Claimed { get { return Volatile.Read(ref claimed_) != 0; } }
+        // The handle's pose at the device's first cycle (valid once Claimed).
+        public Pose StartPose { get { return deviceInfo_.start_pose; } }
+        public long Answered { get { lock (lock_) return native_ == IntPtr.Zero ? answered_ : (long)Native.hapticd_engine_answered(native_); } }
         public int RenderErrors { get { return Volatile.Read(ref renderErrors_); } }
+        // The run ended (Stop, the session's end, no device, a claim lost to another client); EndReason says why.
+        public bool Ended { get { return Volatile.Read(ref ended_) != 0; } }
+        public EngineEndReason EndReason { get { return end_.Reason; } }
+        public string EndMessage { get { return endMessage_; } }
+        // What the shipped engines exit with: 0 finished or stopped, 1 no device, 2 refused or failed, 3 claim lost.
+        public int ExitCode { get { return end_.exit_code; } }
 
-        // Claims the device and answers its states from now on. HapticdException when the claim is refused.
-        public void Start(double timeoutS = 5.0)
+        // Starts the engine on a thread of its own and returns at once.
+        public void Start()
         {
-            client_.Claim(device_.Text, timeoutS);
-            Client.Check(Native.hapticd_on_claim_lost(client_.Handle, onClaimLost_, IntPtr.Zero));
-            Client.Check(Native.hapticd_on_state(client_.Handle, onState_, IntPtr.Zero));
-            started_ = true;
+            if (thread_ != null) throw new InvalidOperationException("an engine starts once");
+            self_ = GCHandle.Alloc(this);
+            thread_ = new Thread(Run) { IsBackground = true, Name = "hapticd-engine " + device_ };
+            thread_.Start();
         }
 
-        // Claims again after a loss; false (with the reason in `why`) when another client holds the device.
-        public bool Reclaim(out string why, double timeoutS = 5.0)
+        // Blocks the caller until the device is claimed or the run ended (false), at most timeoutS. Not for Unity's
+        // main thread: poll Claimed there.
+        public bool WaitUntilClaimed(double timeoutS)
         {
-            Interlocked.Exchange(ref claimLost_, 0);
-            try
-            {
-                client_.Claim(device_.Text, timeoutS);
-                why = "";
-                return true;
-            }
-            catch (HapticdException e)
-            {
-                why = e.Message;
-                return false;
-            }
+            var until = DateTime.UtcNow.AddSeconds(timeoutS);
+            while (!Claimed && !Ended && DateTime.UtcNow < until) Thread.Sleep(10);
+            return Claimed;
         }
 
-        // Stops answering and releases the device (its forces fade out).
-        public void Stop(double timeoutS = 1.0)
+        // Ends the run (the device is released; its forces fade out) and waits for its thread, at most timeoutS.
+        public void Stop(double timeoutS = 5.0)
         {
-            if (!started_) return;
-            started_ = false;
-            Native.hapticd_on_state(client_.Handle, null, IntPtr.Zero);
-            Native.hapticd_on_claim_lost(client_.Handle, null, IntPtr.Zero);
-            try { client_.Release(device_.Text, timeoutS); } catch (HapticdException) { }
+            if (thread_ == null) return;
+            lock (lock_)
+            {
+                stopRequested_ = true;
+                if (native_ != IntPtr.Zero) Native.hapticd_engine_stop(native_);
+            }
+            thread_.Join(TimeSpan.FromSeconds(timeoutS));
         }
 
         public void Dispose() { Stop(); }
 
-        unsafe void OnState(DeviceState* s, IntPtr user)
+        void Run()
         {
-            byte* name = s->device;
-            byte[] mine = device_.Bytes;
-            for (int i = 0; i < mine.Length; ++i)
-                if (name[i] != mine[i]) return;  // another device's state
-            var command = new Command();
+            IntPtr name = Marshal.StringToHGlobalAnsi(name_), dev = Marshal.StringToHGlobalAnsi(device_);
+            IntPtr made = IntPtr.Zero;
             try
             {
-                render_(ref *s, ref command);
+                var options = new EngineOptions { size = (uint)Marshal.SizeOf(typeof(EngineOptions)), name = name, device = dev, wait_s = waitS_ };
+                if (Native.hapticd_engine_create(client_.Handle, ref options, out made) != Status.Ok)
+                {
+                    end_.reason = (int)EngineEndReason.Failed;
+                    end_.exit_code = 2;
+                    endMessage_ = Client.LastError;
+                    return;
+                }
+                lock (lock_) native_ = made;
+                if (Native.hapticd_engine_connect(made) == Status.Ok) Native.hapticd_engine_device(made, 0, out deviceInfo_);
+                Native.hapticd_engine_on_claim(made, ClaimCallback, GCHandle.ToIntPtr(self_));
+                lock (lock_)
+                    if (stopRequested_) Native.hapticd_engine_stop(made);
+                Native.hapticd_engine_run(made, AnswerCallback, GCHandle.ToIntPtr(self_), out end_);
+                endMessage_ = end_.Message;
+            }
+            finally
+            {
+                lock (lock_)
+                {
+                    if (made != IntPtr.Zero)
+                    {
+                        answered_ = (long)Native.hapticd_engine_answered(made);
+                        Native.hapticd_engine_destroy(made);  // after its run: no callback comes any more
+                    }
+                    native_ = IntPtr.Zero;
+                }
+                self_.Free();
+                Marshal.FreeHGlobal(name);
+                Marshal.FreeHGlobal(dev);
+                Volatile.Write(ref ended_, 1);
+            }
+        }
+
+        [MonoPInvokeCallback(typeof(EngineClaimHook))]
+        static int OnClaim(int again, IntPtr user)
+        {
+            var self = (Engine)GCHandle.FromIntPtr(user).Target;
+            Volatile.Write(ref self.claimed_, 1);
+            return 1;
+        }
+
+        [MonoPInvokeCallback(typeof(EngineAnswer))]
+        static int OnAnswer(DeviceState* states, int count, Command* commands, IntPtr user)
+        {
+            var self = (Engine)GCHandle.FromIntPtr(user).Target;
+            try
+            {
+                self.render_(ref states[0], ref commands[0]);
             }
             catch (Exception)
             {
-                Interlocked.Increment(ref renderErrors_);
-                return;  // never into the native caller
+                Interlocked.Increment(ref self.renderErrors_);
+                return 0;  // never into the native caller
             }
-            if (command.state_serial == 0) command.state_serial = s->serial;
-            if (Native.hapticd_send(client_.Handle, mine, ref command) == Status.Ok) Interlocked.Increment(ref answered_);
+            return 1;
         }
-
-        void OnClaimLost(IntPtr device, IntPtr reason, IntPtr user) { Interlocked.Exchange(ref claimLost_, 1); }
     }
 }

@@ -271,6 +271,44 @@ namespace Hapticd
         }
     }
 
+    // hapticd_engine_options
+    [StructLayout(LayoutKind.Sequential)]
+    public struct EngineOptions
+    {
+        public uint size;
+        public IntPtr name, device, group;
+        public double wait_s, server_timeout_s, duration_s;
+        public int wait_for_server;
+    }
+
+    public enum EngineEndReason { Finished = 0, Stopped = 1, SessionEnded = 2, NoDevice = 3, ClaimRefused = 4, ClaimLost = 5, Failed = 6 }
+
+    // hapticd_engine_end
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct EngineEnd
+    {
+        public int reason, exit_code;
+        public fixed byte message[256];
+        public string Message { get { fixed (byte* p = message) return Text.Of(p, 256); } }
+        public EngineEndReason Reason { get { return (EngineEndReason)reason; } }
+    }
+
+    // The native callbacks' types. Only static methods marked [MonoPInvokeCallback] are handed to native code (IL2CPP
+    // marshals no instance delegate); the object they serve comes back in `user` as a GCHandle.
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    unsafe delegate int EngineAnswer(DeviceState* states, int count, Command* commands, IntPtr user);
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    delegate int EngineClaimHook(int again, IntPtr user);
+
+    // What IL2CPP looks for (by name) on a static method it must make callable from native code; Unity's own is
+    // AOT.MonoPInvokeCallbackAttribute, and one of this name in any namespace does the same.
+    [AttributeUsage(AttributeTargets.Method)]
+    public sealed class MonoPInvokeCallbackAttribute : Attribute
+    {
+        public MonoPInvokeCallbackAttribute(Type type) { Type = type; }
+        public Type Type { get; private set; }
+    }
+
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     unsafe delegate void StateCallback(DeviceState* state, IntPtr user);
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
@@ -307,6 +345,15 @@ namespace Hapticd
         [DllImport(Lib)] public static extern Status hapticd_send(ClientHandle c, byte[] device, ref Command command);
         [DllImport(Lib)] public static extern Status hapticd_send_coupling(ClientHandle c, byte[] device, ref Pose proxy, ref Twist twist, ulong serial);
         [DllImport(Lib)] public static extern Status hapticd_send_group(ClientHandle c, byte[] group, [In] Command[] commands, int count);
+        [DllImport(Lib)] public static extern Status hapticd_engine_create(ClientHandle c, ref EngineOptions options, out IntPtr engine);
+        [DllImport(Lib)] public static extern void hapticd_engine_destroy(IntPtr engine);
+        [DllImport(Lib)] public static extern Status hapticd_engine_connect(IntPtr engine);
+        [DllImport(Lib)] public static extern int hapticd_engine_device_count(IntPtr engine);
+        [DllImport(Lib)] public static extern Status hapticd_engine_device(IntPtr engine, int index, out DeviceInfo info);
+        [DllImport(Lib)] public static extern Status hapticd_engine_on_claim(IntPtr engine, EngineClaimHook hook, IntPtr user);
+        [DllImport(Lib)] public static extern Status hapticd_engine_run(IntPtr engine, EngineAnswer answer, IntPtr user, out EngineEnd end);
+        [DllImport(Lib)] public static extern Status hapticd_engine_stop(IntPtr engine);
+        [DllImport(Lib)] public static extern ulong hapticd_engine_answered(IntPtr engine);
     }
 
     // The C client's handle: destroyed once, when disposed or finalised.

@@ -106,6 +106,8 @@ bool Engine::connect() {
     auto described = client_.wait_for_device(d, options_.wait, true);
     if (!described) {
       say("no device " + in_quotes(d) + " started within " + wait + " s", true);
+      devices_.clear();
+      descriptions_.clear();
       return false;
     }
     descriptions_.push_back(std::move(*described));
@@ -169,14 +171,18 @@ void Engine::answer(std::span<const DeviceState* const> states, std::uint64_t se
     return;
   }
   if (!send) return;
-  for (std::size_t i = 0; i < states.size(); ++i) commands[i].state_serial = states[i]->serial;
-  if (options_.group.empty()) {
-    (void)client_.send(devices_.front(), commands.front());
-  } else {
-    for (std::size_t i = 0; i < states.size(); ++i) group_commands_[i].command = commands[i];
-    (void)client_.send_group(options_.group, std::span(group_commands_.data(), states.size()));
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    commands[i].state_serial = states[i]->serial;
+    group_commands_[i].command = commands[i];
   }
-  answered_.fetch_add(1, std::memory_order_relaxed);
+  const bool group = !options_.group.empty();
+  const std::span<const DeviceCommand> out(group_commands_.data(), states.size());
+  bool sent = false;
+  if (send_)
+    sent = send_(group ? std::string_view(options_.group) : std::string_view(devices_.front()), group, out);
+  else
+    sent = group ? client_.send_group(options_.group, out) : client_.send(devices_.front(), commands.front());
+  if (sent) answered_.fetch_add(1, std::memory_order_relaxed);
 }
 
 bool Engine::claim(bool again) {

@@ -435,6 +435,78 @@ HAPTICD_C_API hapticd_status hapticd_send_motion(hapticd_client* client, const c
 HAPTICD_C_API hapticd_status hapticd_send_group(hapticd_client* client, const char* group,
                                                 const hapticd_command* commands, int32_t count);
 
+/* ---- the engine helper (docs/engines.md, "The engine helper"; the C++ library's hapticd::client::Engine): finds
+ * its device or group and waits until it started, claims it, answers each state through one callback, retakes a
+ * claim the server ended, hands parameter events to a hook, ends on hapticd_engine_stop, a duration, the session's
+ * end or a silent server (or waits for the server to come back and claims again), releases, says why. Commands go
+ * out through the client's sender thread, as hapticd_send's. ---- */
+typedef struct hapticd_engine hapticd_engine;
+
+typedef struct hapticd_engine_options {
+  uint32_t size;           /* sizeof(hapticd_engine_options): later versions may add fields after these */
+  const char* name;        /* the prefix of its messages (standard output and error); NULL: "engine" */
+  const char* device;      /* the device to claim; NULL or "" and no group: the only device on the domain */
+  const char* group;       /* or the group to claim: one answer per group state, one group command */
+  double wait_s;           /* for the device or group to appear and start, for a server to come back; 0: 10 s */
+  double server_timeout_s; /* no state for this long: the session ended or the server is gone; 0: 3 s */
+  double duration_s;       /* end after this long; 0: until hapticd_engine_stop or the server's end */
+  int32_t wait_for_server; /* 1: after the session's end wait_s for the server to come back, claim again, go on */
+} hapticd_engine_options;
+
+typedef enum hapticd_engine_end_reason {
+  HAPTICD_ENGINE_FINISHED = 0,      /* the duration passed */
+  HAPTICD_ENGINE_STOPPED = 1,       /* hapticd_engine_stop */
+  HAPTICD_ENGINE_SESSION_ENDED = 2, /* the session ended, or no state came (and no server came back) */
+  HAPTICD_ENGINE_NO_DEVICE = 3,     /* the device or group did not appear or start */
+  HAPTICD_ENGINE_CLAIM_REFUSED = 4, /* another engine holds it, or the claim hook refused */
+  HAPTICD_ENGINE_CLAIM_LOST = 5,    /* the server ended the claim and another engine took the device */
+  HAPTICD_ENGINE_FAILED = 6         /* the chores hook ended the run */
+} hapticd_engine_end_reason;
+
+typedef struct hapticd_engine_end {
+  int32_t reason;    /* hapticd_engine_end_reason */
+  int32_t exit_code; /* 0 finished, stopped or the session ended; 1 no device; 2 refused or failed; 3 claim lost */
+  char message[HAPTICD_MESSAGE_SIZE];
+} hapticd_engine_end;
+
+/* One command per state, in the states' order (count: 1 for a device, the group's devices for a group); the
+ * commands come zeroed and the helper sets their state serials and devices. Return 1 to send them, 0 to send
+ * nothing for these states. On the DDS receive thread, one call at a time. */
+typedef int32_t (*hapticd_engine_answer)(const hapticd_device_state* states, int32_t count, hapticd_command* commands,
+                                         void* user);
+/* After each accepted claim, before the first answer (again: 1 for a retaken claim or a server that came back).
+ * Return 0 to end the run (it releases). On the thread of hapticd_engine_run. */
+typedef int32_t (*hapticd_engine_claim_hook)(int32_t again, void* user);
+/* Every 20 ms on the thread of hapticd_engine_run; return 0 to end the run. */
+typedef int32_t (*hapticd_engine_chores_hook)(void* user);
+/* A parameter of one of its devices was set (HAPTICD_EVENT_PARAMETER), on the thread of hapticd_engine_run as
+ * soon as it came; answered_then: hapticd_engine_answered when it arrived. */
+typedef void (*hapticd_engine_parameter_hook)(const hapticd_event* event, uint64_t answered_then, void* user);
+
+/* The client must outlive the engine. options->size must be at least the size of this version's struct. */
+HAPTICD_C_API hapticd_status hapticd_engine_create(hapticd_client* client, const hapticd_engine_options* options,
+                                                   hapticd_engine** out);
+HAPTICD_C_API void hapticd_engine_destroy(hapticd_engine* engine);
+/* Finds the device or group and waits until it started; HAPTICD_ERROR_NOT_FOUND (said why) if it did not. */
+HAPTICD_C_API hapticd_status hapticd_engine_connect(hapticd_engine* engine);
+/* After hapticd_engine_connect: how many devices it answers for, and each one's description (with its start pose). */
+HAPTICD_C_API int32_t hapticd_engine_device_count(hapticd_engine* engine);
+HAPTICD_C_API hapticd_status hapticd_engine_device(hapticd_engine* engine, int32_t index, hapticd_device_info* out);
+/* Hooks, each optional; set them before hapticd_engine_run. */
+HAPTICD_C_API hapticd_status hapticd_engine_on_claim(hapticd_engine* engine, hapticd_engine_claim_hook hook,
+                                                     void* user);
+HAPTICD_C_API hapticd_status hapticd_engine_on_chores(hapticd_engine* engine, hapticd_engine_chores_hook hook,
+                                                      void* user);
+HAPTICD_C_API hapticd_status hapticd_engine_on_parameter(hapticd_engine* engine, hapticd_engine_parameter_hook hook,
+                                                         void* user);
+/* Connects (unless done), claims, answers until it ends, releases; end (may be NULL) says why. HAPTICD_OK whatever
+ * the reason (end->exit_code tells success); an error status only for a bad argument or a second run. */
+HAPTICD_C_API hapticd_status hapticd_engine_run(hapticd_engine* engine, hapticd_engine_answer answer, void* user,
+                                                hapticd_engine_end* end);
+/* Ends the run at its next chore (any thread; not from a signal handler - set a flag and stop from the program). */
+HAPTICD_C_API hapticd_status hapticd_engine_stop(hapticd_engine* engine);
+HAPTICD_C_API uint64_t hapticd_engine_answered(hapticd_engine* engine);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,8 +1,8 @@
 // A Unity sample: the device's handle moves this GameObject, and a wall at `wallX` (metres along the device's x,
 // ahead of where the handle starts) is rendered through the server's virtual coupling. Add it to a GameObject,
 // start `hapticd --config config/sessions/vishard3/dds-coupling.yaml` (or a commercial device's engine session),
-// press Play. The engine answers every state on the DDS receive thread (Hapticd.Engine); Update() only moves the
-// GameObject from the newest state. Not run in Unity by this project (docs/engines.md, "C# and Unity").
+// press Play. The engine finds, claims and answers every state off the main thread (Hapticd.Engine: its own thread
+// and the DDS receive thread); Update() only moves the GameObject from the newest state, never waits. Not run in Unity by this project (docs/engines.md, "C# and Unity").
 using Hapticd;
 using UnityEngine;
 
@@ -16,19 +16,16 @@ public class HapticWall : MonoBehaviour
     Client client_;
     Engine engine_;
     DeviceName name_;
-    double wallWorldX_;
-    double startX_;
+    bool told_;
 
+    // Nothing here waits: the engine finds the device, claims it and answers its states on threads of its own.
     void Start()
     {
         try
         {
             client_ = new Client("unity-haptic-wall", domain);
-            var first = client_.WaitForState(device, 10.0);
-            startX_ = first.pose.position.x;
-            wallWorldX_ = startX_ + wallX;
             name_ = new DeviceName(device);
-            engine_ = new Engine(client_, device, Render);
+            engine_ = new Engine(client_, device, Render, 20.0, "unity-haptic-wall");
             engine_.Start();
         }
         catch (HapticdException e)
@@ -38,27 +35,31 @@ public class HapticWall : MonoBehaviour
         }
     }
 
-    // The DDS receive thread: the proxy is the handle held back at the wall (no allocation).
+    // The DDS receive thread, once the device is claimed: the proxy is the handle held back at the wall (no
+    // allocation).
     void Render(ref DeviceState s, ref Command c)
     {
         var proxy = s.pose;
-        if (proxy.position.x > wallWorldX_) proxy.position.x = wallWorldX_;
-        c = Command.Coupling(proxy, new Twist(), s.serial);
+        double wall = engine_.StartPose.position.x + wallX;
+        if (proxy.position.x > wall) proxy.position.x = wall;
+        c = Command.Coupling(proxy, new Twist(), 0);
     }
 
+    // The main thread reads the newest state only (the engine retakes a lost claim by itself).
     void Update()
     {
         if (engine_ == null) return;
-        if (engine_.ClaimLost)
+        if (engine_.Ended && !told_)
         {
-            string why;
-            if (!engine_.Reclaim(out why)) Debug.LogError("hapticd: the device is another client's now: " + why);
+            told_ = true;
+            Debug.LogError("hapticd: the engine ended: " + engine_.EndReason + ": " + engine_.EndMessage);
         }
         DeviceState s;
-        if (client_.TryLatestState(name_, out s))
-            transform.position = new Vector3((float)(s.pose.position.x - startX_) * metresToUnits,
-                                             (float)s.pose.position.z * metresToUnits,
-                                             (float)s.pose.position.y * metresToUnits);
+        if (!engine_.Claimed || !client_.TryLatestState(name_, out s)) return;
+        double startX = engine_.StartPose.position.x;
+        transform.position = new Vector3((float)(s.pose.position.x - startX) * metresToUnits,
+                                         (float)s.pose.position.z * metresToUnits,
+                                         (float)s.pose.position.y * metresToUnits);
     }
 
     void OnDestroy()

@@ -85,11 +85,16 @@ class HAPTICD_API Engine {
   Engine& operator=(const Engine&) = delete;
 
   // Finds the device (or the group, or the only device on the domain) and waits until it started: its
-  // description with the start pose. False: said why (run() then ends at once with no_device).
+  // description with the start pose. False: said why (run() then ends at once with no_device); devices() is empty.
   bool connect();
   [[nodiscard]] const std::vector<std::string>& devices() const noexcept { return devices_; }
   [[nodiscard]] const DeviceInfo& description(std::size_t index) const { return descriptions_.at(index); }
   [[nodiscard]] const std::string& target() const noexcept { return target_; }  // the device or group claimed
+
+  // How its commands go out, on the receive thread (set before run()): by default Client::send (a device) or
+  // Client::send_group (a group). The C API hands them to its sender thread instead (no allocation there).
+  using Send = std::function<bool(std::string_view target, bool group, std::span<const DeviceCommand> commands)>;
+  void send_through(Send send) { send_ = std::move(send); }
 
   void on_claim(ClaimHook hook) { on_claim_ = std::move(hook); }
   void on_chores(ChoresHook hook) { on_chores_ = std::move(hook); }
@@ -122,6 +127,7 @@ class HAPTICD_API Engine {
   ChoresHook on_chores_;
   ParameterHook on_parameter_;
   Answer answer_;
+  Send send_;
   std::vector<EngineCommand> commands_;        // the receive thread's
   std::vector<DeviceCommand> group_commands_;  // the receive thread's
   std::atomic<std::uint64_t> last_serial_{0};  // the newest state answered (reset by a claim)
