@@ -31,6 +31,7 @@ from ._hapticd import (  # noqa: F401
     GroupInfo,
     GroupState,
     JointDescription,
+    LocalModel,
     LoopSummary,
     Mode,
     Pose,
@@ -50,7 +51,7 @@ from .errors import ClaimLost, Error, RequestRefused, SessionError, Timeout  # n
 __all__ = [
     "ClaimLost", "Client", "CycleRecord", "DeviceDescription", "DeviceInfo", "DeviceState", "DeviceView", "EngineCommand",
     "EngineInput", "EngineStats", "Error", "Event", "EventKind", "FaultReport", "GroupInfo", "GroupState",
-    "JointDescription", "LoopSummary", "Mode", "Pose", "RequestRefused", "SchemeInfo", "Session", "SessionError",
+    "JointDescription", "LocalModel", "LoopSummary", "Mode", "Pose", "RequestRefused", "SchemeInfo", "Session", "SessionError",
     "SessionStatistics", "SimulatedTruth", "Telemetry", "Timeout", "Twist", "Wrench", "flag_names", "run_engine",
     "states",
 ]

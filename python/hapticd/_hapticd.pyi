@@ -175,12 +175,20 @@ class FaultReport:
     dof: int
     records: list[CycleRecord]
 
+class LocalModel:
+    anchor: Pose
+    stiffness: Vector     # 6: N/m (3), N m/rad (3)
+    damping: Vector       # 6: N s/m (3), N m s/rad (3)
+    def __init__(self, anchor: Pose, stiffness: Sequence[float], damping: Sequence[float] = ...) -> None: ...
+    @staticmethod
+    def spring(anchor: Pose, stiffness: Sequence[float], damping: Sequence[float] = ...) -> LocalModel: ...
+
 class EngineCommand:
     state_serial: int
     @staticmethod
     def coupling(proxy: Pose, proxy_twist: Twist = ..., state_serial: int = 0) -> EngineCommand: ...
     @staticmethod
-    def force(wrench: Wrench, state_serial: int = 0) -> EngineCommand: ...
+    def force(wrench: Wrench, state_serial: int = 0, local_model: Optional[LocalModel] = None) -> EngineCommand: ...
     @staticmethod
     def motion(pose: Pose, twist: Twist = ..., state_serial: int = 0) -> EngineCommand: ...
 

@@ -224,11 +224,39 @@ void bind_types(py::module_& m) {
       .def_readonly("dof", &FaultReport::dof)
       .def_readonly("records", &FaultReport::records);
 
+  using Vector6 = Eigen::Matrix<double, 6, 1>;
+  py::class_<LocalModel>(m, "LocalModel", R"(A wrench command's local model: every cycle until the next command the
+server applies wrench + stiffness * (anchor - x) - damping * velocity (6 values each: N/m, N m/rad; N s/m, N m s/rad).)")
+      .def(py::init([](const Pose& anchor, const Vector6& stiffness, const Vector6& damping) {
+             return LocalModel{anchor, stiffness, damping};
+           }),
+           py::arg("anchor"), py::arg("stiffness"), py::arg("damping") = Vector6::Zero().eval())
+      .def_static(
+          "spring",
+          [](const Pose& anchor, const Eigen::Vector3d& stiffness, const Eigen::Vector3d& damping) {
+            LocalModel model{anchor, Vector6::Zero(), Vector6::Zero()};
+            model.stiffness.head<3>() = stiffness;
+            model.damping.head<3>() = damping;
+            return model;
+          },
+          py::arg("anchor"), py::arg("stiffness"), py::arg("damping") = Eigen::Vector3d::Zero().eval(),
+          "a translational spring-damper about the anchor's position (N/m and N s/m per axis)")
+      .def_readwrite("anchor", &LocalModel::anchor)
+      .def_readwrite("stiffness", &LocalModel::stiffness)
+      .def_readwrite("damping", &LocalModel::damping);
+
   py::class_<EngineCommand>(m, "EngineCommand", "What an engine sends a device; made by coupling, force or motion.")
       .def_static("coupling", &EngineCommand::coupling, py::arg("proxy"), py::arg("proxy_twist") = Twist{},
                   py::arg("state_serial") = 0, "impedance type: the proxy the virtual coupling ties the handle to")
-      .def_static("force", &EngineCommand::force, py::arg("wrench"), py::arg("state_serial") = 0,
-                  "impedance type: a wrench to display")
+      .def_static(
+          "force",
+          [](const Wrench& wrench, std::uint64_t state_serial, std::optional<LocalModel> local_model) {
+            EngineCommand c = EngineCommand::force(wrench, state_serial);
+            c.local_model = std::move(local_model);
+            return c;
+          },
+          py::arg("wrench"), py::arg("state_serial") = 0, py::arg("local_model") = py::none(),
+          "impedance type: a wrench to display, with an optional local model the server applies every cycle")
       .def_static("motion", &EngineCommand::motion, py::arg("pose"), py::arg("twist") = Twist{},
                   py::arg("state_serial") = 0, "admittance type: the handle's desired motion")
       .def_readwrite("state_serial", &EngineCommand::state_serial);

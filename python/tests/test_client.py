@@ -64,6 +64,37 @@ def test_a_python_engine_renders_a_wall_the_operator_pushes_against(server):
         assert 0.015 < last.pose.position[0] - start[0] < 0.03
 
 
+@pytest.mark.domain(95)
+def test_a_wrench_with_a_local_model_is_a_wall_at_the_loops_rate(server):
+    # Issue 63: Python could send no wrench with a local model. A spring of 2000 N/m along x anchored on a wall 2 cm
+    # ahead, sent while the handle is past it (nothing in front): the server applies it every cycle until the next
+    # command; the operator's 15 N push rests 7.5 mm into it.
+    with hapticd.Client("py-local-model", domain=95) as c:
+        start = c.wait_for_state("vishard3", timeout=20.0).pose.position
+        wall_x = start[0] + 0.02
+        deepest = [0.0]
+
+        def wall(state):
+            depth = state.pose.position[0] - wall_x
+            deepest[0] = max(deepest[0], depth)
+            anchor = hapticd.Pose([wall_x, state.pose.position[1], state.pose.position[2]])
+            k, b = ([2000.0, 0.0, 0.0], [10.0, 0.0, 0.0]) if depth > 0 else ([0.0] * 3, [0.0] * 3)
+            return hapticd.EngineCommand.force(hapticd.Wrench(), local_model=hapticd.LocalModel.spring(anchor, k, b))
+
+        pusher = hapticd.Client("py-pusher", domain=95)
+        timer = threading.Timer(0.3, lambda: pusher.operator("vishard3", "push", [15.0, 0.0, 0.0, 0.2]))
+        timer.start()
+        stats = hapticd.run_engine(c, "vishard3", wall, duration=2.5)
+        timer.join()
+        pusher.close()
+        assert stats.ended_by == "duration" and stats.send_failures == 0 and stats.answered > 1000
+        assert 0.006 < deepest[0] < 0.010, deepest[0]
+    model = hapticd.LocalModel(hapticd.Pose(), [1, 2, 3, 4, 5, 6], [6, 5, 4, 3, 2, 1])
+    assert list(model.stiffness) == [1, 2, 3, 4, 5, 6] and list(model.damping) == [6, 5, 4, 3, 2, 1]
+    with pytest.raises(TypeError):
+        hapticd.LocalModel.spring(hapticd.Pose(), [1.0, 2.0])  # three values, one per axis
+
+
 @pytest.mark.domain(93)
 def test_an_emergency_stop_is_an_event_and_a_fault_report_and_recovery_works(server):
     with hapticd.Client("py-safety", domain=93) as c:

@@ -34,7 +34,10 @@
 extern "C" {
 #endif
 
-#if defined(_WIN32)
+/* The library defines HAPTICD_C_BUILDING when it builds itself (exporting); its users import. */
+#if defined(_WIN32) && defined(HAPTICD_C_BUILDING)
+#define HAPTICD_C_API __declspec(dllexport)
+#elif defined(_WIN32)
 #define HAPTICD_C_API __declspec(dllimport)
 #else
 #define HAPTICD_C_API __attribute__((visibility("default")))
