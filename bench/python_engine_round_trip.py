@@ -5,7 +5,8 @@ For each engine, alternately and --repeat times: hapticd with the simulated ViSH
 (config/sessions/vishard3/dds-coupling.yaml: the state published every cycle at 2 kHz, loopback only, a domain of
 its own) and one engine answering every state with a coupling command - the C++ example scene engine
 (hapticd-scene-engine: the client library's state callback on Cyclone's receive thread) or the Python wall engine
-(examples/python/wall_engine.py: hapticd.run_engine, a Python function per state on a waiting thread). The server
+(examples/python/wall_engine.py: hapticd.run_engine, the client library's engine helper calling a Python
+function per state on the receive thread, holding the GIL for the call). The server
 measures each round trip (state written -> command accepted) and counts how many cycles after its state each
 command was applied. Both engines run on CPU 0, the server's loop on the last CPU, as in bench/dds_round_trip.py.
 The table gives the medians over the runs and the ratio Python / C++.

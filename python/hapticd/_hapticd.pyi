@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import enum
 import os
-from typing import Any, Optional, Sequence, Union
+from typing import Any, Callable, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -50,6 +50,9 @@ class EventKind(enum.Enum):
     PARAMETER = ...
 
 def flag_names(flags: int) -> list[str]: ...
+# run_engine's engine helper (hapticd.engine.run_engine wraps it)
+def _run_engine(client: Client, device: str, answer: Callable[[DeviceState], object], duration_s: float,
+                timeout_s: float, wait_s: float) -> dict[str, Any]: ...
 
 class LoopSummary:
     rate_hz: float

@@ -5,8 +5,8 @@ import time
 from dataclasses import dataclass
 from typing import Callable, Iterator, Optional
 
-from ._hapticd import Client, DeviceState, EngineCommand, Mode
-from .errors import ClaimLost
+from ._hapticd import Client, DeviceState, Mode, _run_engine
+from .errors import ClaimLost, Error, RequestRefused, Timeout
 
 
 def states(client: Client, device: str, timeout: float = 1.0,
@@ -31,54 +31,39 @@ class EngineStats:
     skipped: int = 0           # states that arrived while the function ran (not answered)
     unanswered: int = 0        # states the function answered with None
     send_failures: int = 0     # commands that could not be written
-    ended_by: str = ""         # "duration", "device stopped" or "function" (it returned False)
+    ended_by: str = ""         # "duration", "device stopped" (the session ended) or "function" (it returned False)
 
 
 def run_engine(client: Client, device: str, answer: Callable[[DeviceState], object], duration: Optional[float] = None,
-               claim: bool = True, timeout: float = 1.0) -> EngineStats:
+               timeout: float = 3.0, wait: float = 20.0) -> EngineStats:
     """Answer each state of ``device`` with ``answer(state)``: an ``EngineCommand`` (``EngineCommand.coupling``,
     ``.force`` or ``.motion``; its state_serial is set to the state's), None (no command for this state) or False
-    (stop). Claims the device first and releases it at the end when ``claim`` is true. The GIL is released while
-    waiting for the next state, so other Python threads run meanwhile. Runs for ``duration`` seconds (None: until
-    the device stops or the function returns False). Raises ``ClaimLost`` when the server ends the claim (the
-    engine was gone - frozen, or its process stalled - for longer than the server's claim hold)."""
-    stats = EngineStats()
-    if claim:
-        client.claim(device)
-    end = None if duration is None else time.monotonic() + duration
-    try:
-        serial = 0
-        while not stats.ended_by:
-            if end is not None and time.monotonic() >= end:
-                stats.ended_by = "duration"
-                break
-            state = client.wait_for_state(device, timeout, serial)
-            if serial and state.serial > serial + 1:
-                stats.skipped += state.serial - serial - 1
-            serial = state.serial
-            if state.mode in (Mode.STOPPING, Mode.OFF):
-                stats.ended_by = "device stopped"
-                break
-            if claim and client.claim_lost(device):
-                raise ClaimLost(f"the claim of '{device}' ended without its release (owner now "
-                                f"'{state.owner}'): the server found this engine gone for longer than its claim hold")
-            command = answer(state)
-            if command is False:
-                stats.ended_by = "function"
-            elif command is None:
-                stats.unanswered += 1
-            elif not isinstance(command, EngineCommand):
-                raise TypeError(f"the engine function returned {type(command).__name__}, not an EngineCommand")
-            else:
-                command.state_serial = state.serial
-                if client.send(device, command):
-                    stats.answered += 1
-                else:
-                    stats.send_failures += 1
-    finally:
-        if claim:
-            try:
-                client.release(device)
-            except Exception:  # the server may be gone: there is nothing to release then
-                pass
-    return stats
+    (stop). The client library's engine helper (docs/engines.md, "The engine helper") waits up to ``wait`` seconds
+    for the device to start, claims it, calls ``answer`` on the client's receive thread for each state (holding the
+    GIL for the call only: other Python threads run meanwhile), claims again when the server ended the claim (the
+    engine was gone - frozen, or its process stalled - for longer than the server's claim hold), and releases the
+    device at the end. Runs for ``duration`` seconds (None: until the session ends, no state comes for ``timeout``
+    seconds, or the function returns False). Raises what ``answer`` raised, ``Timeout`` when the device did not start
+    or its states stopped coming, ``RequestRefused`` when the claim was refused, ``ClaimLost`` when another client
+    took the device after the server ended this engine's claim."""
+    result = _run_engine(client, device, answer, duration_s=duration or 0.0, timeout_s=timeout, wait_s=wait)
+    reason, message = result["reason"], result["message"]
+    if reason == _NO_DEVICE:
+        raise Timeout(f"no device '{device}' started within {wait} s")
+    if reason == _CLAIM_REFUSED:
+        raise RequestRefused(f"cannot claim '{device}': {message}")
+    if reason == _CLAIM_LOST:
+        raise ClaimLost(f"the claim of '{device}' ended without its release and another client took it: the server "
+                        "found this engine gone for longer than its claim hold")
+    if reason == _SESSION_ENDED and message.startswith("no state"):
+        raise Timeout(f"'{device}': {message}")
+    if reason == _FAILED:
+        raise Error(message)
+    ended_by = "function" if result["stopped_by_function"] else \
+        "duration" if reason == _FINISHED else "device stopped" if reason == _SESSION_ENDED else "stopped"
+    return EngineStats(answered=result["answered"], skipped=result["skipped"], unanswered=result["unanswered"],
+                       send_failures=result["send_failures"], ended_by=ended_by)
+
+
+# hapticd::client::EngineEndReason
+_FINISHED, _STOPPED, _SESSION_ENDED, _NO_DEVICE, _CLAIM_REFUSED, _CLAIM_LOST, _FAILED = range(7)

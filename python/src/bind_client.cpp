@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "bindings.hpp"
+#include "client_handle.hpp"
 #include "convert.hpp"
 #include "hapticd/client/client.hpp"
 
@@ -17,15 +18,6 @@ namespace hapticd::python {
 namespace {
 
 using namespace hapticd::client;
-
-// A Client that can be closed before Python collects it (with-statement, close()).
-struct ClientHandle {
-  std::unique_ptr<Client> client;
-  Client& get() {
-    if (!client) throw std::runtime_error("the client is closed");
-    return *client;
-  }
-};
 
 Timeout seconds(double s) { return Timeout(s); }
 

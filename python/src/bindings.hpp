@@ -10,6 +10,7 @@ namespace py = pybind11;
 
 void bind_spatial(py::module_& m);  // Pose, Twist, Wrench with NumPy fields
 void bind_client(py::module_& m);   // the DDS client library: Client and its value types
+void bind_engine(py::module_& m);   // the engine helper under run_engine
 void bind_session(py::module_& m);  // the in-process session API: Session, DeviceView, EngineInput
 
 // Raise the package's exceptions (hapticd.errors): a refused request, no answer in time, a session that cannot

@@ -36,5 +36,6 @@ PYBIND11_MODULE(_hapticd, m) {
   });
   hapticd::python::bind_spatial(m);
   hapticd::python::bind_client(m);
+  hapticd::python::bind_engine(m);
   hapticd::python::bind_session(m);
 }

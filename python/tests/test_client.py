@@ -95,6 +95,41 @@ def test_a_wrench_with_a_local_model_is_a_wall_at_the_loops_rate(server):
         hapticd.LocalModel.spring(hapticd.Pose(), [1.0, 2.0])  # three values, one per axis
 
 
+@pytest.mark.domain(96)
+def test_run_engine_raises_what_the_function_raised_releases_and_ends_when_told(server):
+    # run_engine is the client library's engine helper (issue 63): the function runs on the receive thread, an
+    # exception it raises ends the run, is raised in the caller and the device is released; False ends the run.
+    with hapticd.Client("py-raiser", domain=96) as c:
+        calls, threads = [0], set()
+
+        def broken(state):
+            calls[0] += 1
+            threads.add(threading.get_ident())
+            if calls[0] > 100:
+                raise ZeroDivisionError("the physics blew up")
+            return hapticd.EngineCommand.force(hapticd.Wrench())
+
+        with pytest.raises(ZeroDivisionError, match="blew up"):
+            hapticd.run_engine(c, "vishard3", broken, duration=10.0)
+        assert calls[0] == 101  # never called again once it raised
+        assert threading.get_ident() not in threads
+        with hapticd.Client("py-next", domain=96) as other:
+            other.claim("vishard3")  # released by the helper
+            other.release("vishard3")
+        seen = [0]
+
+        def few(state):
+            seen[0] += 1
+            return False if seen[0] == 50 else None
+
+        stats = hapticd.run_engine(c, "vishard3", few, duration=10.0)
+        assert (stats.ended_by, stats.unanswered, stats.answered) == ("function", 49, 0)
+        with pytest.raises(TypeError, match="not an EngineCommand"):
+            hapticd.run_engine(c, "vishard3", lambda state: 42, duration=10.0)
+        with pytest.raises(hapticd.Timeout):
+            hapticd.run_engine(c, "no-such-device", few, wait=0.3)
+
+
 @pytest.mark.domain(93)
 def test_an_emergency_stop_is_an_event_and_a_fault_report_and_recovery_works(server):
     with hapticd.Client("py-safety", domain=93) as c:
