@@ -71,7 +71,7 @@ PKG_CONFIG_PATH="$prefix/lib/pkgconfig:$prefix/lib/$(gcc -print-multiarch)/pkgco
     pkg-config --cflags --libs hapticd-client) -Wl,-rpath,"$prefix/lib" || { echo "FAIL: the C API through pkg-config"; exit 1; }
 code=0
 out=$("$work/c_wall_engine" --domain 90 --device nobody --wait 0.2 --duration 0 2>&1 < /dev/null) || code=$?
-[ "$code" -eq 1 ] && echo "$out" | grep -q "no state from 'nobody'" ||
+[ "$code" -eq 1 ] && echo "$out" | grep -q "no device 'nobody' started" ||
   { echo "FAIL: the pkg-config-built C engine ($code): $out"; exit 1; }
 echo "ok: the C API from the installed package (pkg-config hapticd-client)"
 
