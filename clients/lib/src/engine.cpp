@@ -51,8 +51,6 @@ Engine::Engine(Client& client, EngineOptions options) : client_(client), options
   target_ = options_.group.empty() ? options_.device : options_.group;
 }
 
-Engine::~Engine() { unhook(); }
-
 void Engine::say(std::string_view line, bool error) const {
   if (options_.say) {
     options_.say(error, line);

@@ -502,8 +502,9 @@ HAPTICD_C_API hapticd_status hapticd_engine_on_chores(hapticd_engine* engine, ha
                                                       void* user);
 HAPTICD_C_API hapticd_status hapticd_engine_on_parameter(hapticd_engine* engine, hapticd_engine_parameter_hook hook,
                                                          void* user);
-/* Connects (unless done), claims, answers until it ends, releases; end (may be NULL) says why. HAPTICD_OK whatever
- * the reason (end->exit_code tells success); an error status only for a bad argument or a second run. */
+/* Connects (unless done), claims, answers until it ends, releases; end (may be NULL) says why. For the run it takes
+ * the client's state and event callbacks (hapticd_on_state, hapticd_on_event) and clears them when it ends. HAPTICD_OK
+ * whatever the reason (end->exit_code tells success); an error status only for a bad argument or a second run. */
 HAPTICD_C_API hapticd_status hapticd_engine_run(hapticd_engine* engine, hapticd_engine_answer answer, void* user,
                                                 hapticd_engine_end* end);
 /* Ends the run at its next chore (any thread; not from a signal handler - set a flag and stop from the program). */

@@ -80,7 +80,7 @@ class HAPTICD_API Engine {
   using ParameterHook = std::function<void(const Event& event, std::uint64_t answered_then)>;
 
   Engine(Client& client, EngineOptions options);
-  ~Engine();
+  ~Engine() = default;
   Engine(const Engine&) = delete;
   Engine& operator=(const Engine&) = delete;
 
@@ -101,7 +101,8 @@ class HAPTICD_API Engine {
   void on_parameter(ParameterHook hook) { on_parameter_ = std::move(hook); }
 
   // Claims and answers until it ends (see EngineEndReason); then releases. Connects first if connect() was not
-  // called. Call once.
+  // called. Call once. For its run it takes the client's state (or group-state) and event callbacks (a Client has
+  // one of each) and clears them when it ends; it leaves them alone before and after.
   EngineEnd run(Answer answer);
   void stop() noexcept;
   static void stop_all() noexcept;  // every Engine of the process (async-signal-safe: for SIGINT and SIGTERM)
