@@ -46,175 +46,36 @@ T or_timeout(std::optional<T>&& value, const std::string& what) {
   return std::move(*value);
 }
 
+#include "hapticd_wire/python_fields.inc"
+
+// The value classes: generated from idl/hapticd_wire.toml (python_fields.inc), with what the table leaves to them.
 void bind_types(py::module_& m) {
-  py::enum_<Mode>(m, "Mode", "A device's mode.")
-      .value("STARTING", Mode::starting)
-      .value("RUNNING", Mode::running)
-      .value("STOPPING", Mode::stopping)
-      .value("SAFE", Mode::safe)
-      .value("OFF", Mode::off);
-  py::enum_<EventKind>(m, "EventKind", "What an event reports.")
-      .value("FAULT", EventKind::fault)
-      .value("ESTOP", EventKind::estop)
-      .value("MODE", EventKind::mode)
-      .value("SCHEME", EventKind::scheme)
-      .value("OWNER", EventKind::owner)
-      .value("ENGINE_STALE", EventKind::engine_stale)
-      .value("ENGINE_REJECTED", EventKind::engine_rejected)
-      .value("RECOVERED", EventKind::recovered)
-      .value("RECORDING", EventKind::recording)
-      .value("PARAMETER", EventKind::parameter);
+  bind_Mode(m);
+  bind_EventKind(m);
   m.def("flag_names", &flag_names, py::arg("flags"), "The names of the set DeviceState flags, lowest bit first.");
-
-  py::class_<LoopSummary>(m, "LoopSummary", "The loop's health: counts since the start, worst times over 1 s.")
-      .def_readonly("rate_hz", &LoopSummary::rate_hz)
-      .def_readonly("cycles", &LoopSummary::cycles)
-      .def_readonly("overruns", &LoopSummary::overruns)
-      .def_readonly("latency_max_us", &LoopSummary::latency_max_us)
-      .def_readonly("compute_max_us", &LoopSummary::compute_max_us);
-
-  py::class_<SchemeInfo>(m, "SchemeInfo", "A control scheme and the virtual model engine commands reach.")
-      .def_readonly("name", &SchemeInfo::name)
-      .def_readonly("virtual_model", &SchemeInfo::virtual_model)
-      .def("__repr__", [](const SchemeInfo& s) { return "SchemeInfo('" + s.name + "', '" + s.virtual_model + "')"; });
-
-  py::class_<DeviceInfo>(m, "DeviceInfo", "A device's description as its server publishes it.")
-      .def_readonly("device", &DeviceInfo::device)
-      .def_readonly("version", &DeviceInfo::version)
-      .def_readonly("device_plugin", &DeviceInfo::device_plugin)
-      .def_readonly("simulated", &DeviceInfo::simulated)
-      .def_readonly("rate_hz", &DeviceInfo::rate_hz)
-      .def_readonly("dof", &DeviceInfo::dof)
-      .def_readonly("joint_names", &DeviceInfo::joint_names)
-      .def_property_readonly("position_min", [](const DeviceInfo& d) { return joint_array(d.position_min); })
-      .def_property_readonly("position_max", [](const DeviceInfo& d) { return joint_array(d.position_max); })
-      .def_property_readonly("velocity_max", [](const DeviceInfo& d) { return joint_array(d.velocity_max); })
-      .def_property_readonly("torque_peak", [](const DeviceInfo& d) { return joint_array(d.torque_peak); })
-      .def_property_readonly("torque_continuous", [](const DeviceInfo& d) { return joint_array(d.torque_continuous); })
-      .def_readonly("base_frame", &DeviceInfo::base_frame)
-      .def_readonly("base_pose", &DeviceInfo::base_pose)
-      .def_readonly("handle_frame", &DeviceInfo::handle_frame)
-      .def_readonly("start_pose", &DeviceInfo::start_pose, "the handle at the first cycle; None before it")
-      .def_readonly("workspace_radius", &DeviceInfo::workspace_radius)
-      .def_property_readonly("workspace_min", [](const DeviceInfo& d) { return Eigen::Vector3d(d.workspace_min); })
-      .def_property_readonly("workspace_max", [](const DeviceInfo& d) { return Eigen::Vector3d(d.workspace_max); })
-      .def_readonly("schemes", &DeviceInfo::schemes)
-      .def_readonly("command_deadline_s", &DeviceInfo::command_deadline_s)
-      .def_readonly("command_fade_s", &DeviceInfo::command_fade_s)
-      .def_readonly("handle_device", &DeviceInfo::handle_device,
-                    "a handle device: its joints are the handle's axes (docs/devices.md)")
-      .def_readonly("handle_dof", &DeviceInfo::handle_dof, "3 or 6 (orientation sensed); 0 for a joint device")
-      .def_readonly("has_gripper", &DeviceInfo::has_gripper)
-      .def_readonly("button_count", &DeviceInfo::button_count)
-      .def("__repr__", [](const DeviceInfo& d) {
-        return "DeviceInfo('" + d.device + "', " + d.device_plugin + ", " + std::to_string(d.dof) + " joints)";
-      });
-
-  py::class_<DeviceState>(m, "DeviceState", "One published state of a device (world frame, SI units).")
-      .def_property_readonly("device", [](const DeviceState& s) { return s.device.str(); })
-      .def_readonly("serial", &DeviceState::serial)
-      .def_readonly("cycle", &DeviceState::cycle)
-      .def_readonly("loop_time_ns", &DeviceState::loop_time_ns)
-      .def_property_readonly("time_s", &DeviceState::time_s)
-      .def_readonly("pose", &DeviceState::pose, "the measured handle pose")
-      .def_readonly("twist", &DeviceState::twist)
-      .def_readonly("operator_wrench", &DeviceState::operator_wrench, "the operator's wrench on the handle")
-      .def_readonly("environment_wrench", &DeviceState::environment_wrench, "what the rendered environment applies")
-      .def_readonly("target_pose", &DeviceState::target_pose, "the chain's desired pose (admittance schemes)")
-      .def_readonly("dof", &DeviceState::dof)
+  bind_LoopSummary(m);
+  bind_SchemeInfo(m);
+  bind_DeviceInfo(m).def("__repr__", [](const DeviceInfo& d) {
+    return "DeviceInfo('" + d.device + "', " + d.device_plugin + ", " + std::to_string(d.dof) + " joints)";
+  });
+  bind_DeviceState(m)
+      .def_property_readonly("time_s", &DeviceState::time_s, "loop_time_ns in seconds")
       .def_property_readonly(
-          "position", [](const DeviceState& s) { return joint_array(s.position); }, "joints")
-      .def_property_readonly(
-          "velocity", [](const DeviceState& s) { return joint_array(s.velocity); }, "joints")
-      .def_property_readonly(
-          "torque", [](const DeviceState& s) { return joint_array(s.torque); }, "commanded")
-      .def_readonly("buttons", &DeviceState::buttons, "the handle's buttons, bit i: button i pressed")
-      .def_readonly("gripper", &DeviceState::gripper, "the gripper's opening (rad), 0 without one")
-      .def_readonly("mode", &DeviceState::mode)
-      .def_readonly("flags", &DeviceState::flags)
-      .def_property_readonly("flag_names", [](const DeviceState& s) { return flag_names(s.flags); })
-      .def_property_readonly("fault", [](const DeviceState& s) { return s.fault.str(); })
-      .def_property_readonly("scheme", [](const DeviceState& s) { return s.scheme.str(); })
-      .def_property_readonly("owner", [](const DeviceState& s) { return s.owner.str(); })
-      .def_readonly("engine_serial", &DeviceState::engine_serial)
-      .def_readonly("loop", &DeviceState::loop)
+          "flag_names", [](const DeviceState& s) { return flag_names(s.flags); }, "the names of the set flags")
       .def("__repr__", [](const DeviceState& s) {
         return "DeviceState('" + s.device.str() + "', serial=" + std::to_string(s.serial) +
                ", t=" + std::to_string(s.time_s()) + " s, " + std::string(to_string(s.mode)) + ")";
       });
-
-  py::class_<GroupInfo>(m, "GroupInfo", "A device group's description.")
-      .def_readonly("group", &GroupInfo::group)
-      .def_readonly("version", &GroupInfo::version)
-      .def_readonly("devices", &GroupInfo::devices)
-      .def_readonly("min_distance_m", &GroupInfo::min_distance_m)
-      .def_readonly("repulsion_distance_m", &GroupInfo::repulsion_distance_m)
-      .def_readonly("own_loop", &GroupInfo::own_loop);
-
-  py::class_<GroupState>(m, "GroupState", "Every device of a group from one cycle.")
-      .def_property_readonly("group", [](const GroupState& g) { return g.group.str(); })
-      .def_readonly("serial", &GroupState::serial)
-      .def_readonly("cycle", &GroupState::cycle)
-      .def_readonly("loop_time_ns", &GroupState::loop_time_ns)
-      .def_readonly("clearance_m", &GroupState::clearance_m)
-      .def_property_readonly("states", [](const GroupState& g) {
-        return std::vector<DeviceState>(g.states.begin(), g.states.begin() + g.device_count);
-      });
-
-  py::class_<Event>(m, "Event", "A device's event (fault, E-stop, mode, scheme, owner, ...).")
-      .def_readonly("device", &Event::device)
-      .def_readonly("serial", &Event::serial)
-      .def_readonly("loop_time_ns", &Event::loop_time_ns)
-      .def_readonly("kind", &Event::kind)
-      .def_readonly("code", &Event::code)
-      .def_readonly("message", &Event::message)
-      .def("__repr__", [](const Event& e) {
-        return "Event('" + e.device + "', " + std::string(to_string(e.kind)) + ", '" + e.code + "')";
-      });
-
-  py::class_<Telemetry>(m, "Telemetry", "A device's counters, ten times a second.")
-      .def_readonly("device", &Telemetry::device)
-      .def_readonly("wall_time_ns", &Telemetry::wall_time_ns)
-      .def_readonly("loop", &Telemetry::loop)
-      .def_readonly("states_published", &Telemetry::states_published)
-      .def_readonly("commands_received", &Telemetry::commands_received)
-      .def_readonly("commands_accepted", &Telemetry::commands_accepted)
-      .def_readonly("rejected", &Telemetry::rejected,
-                    "by reason: malformed, non-finite, out of bounds, out of order, stale, not the owner, wrong kind, "
-                    "other")
-      .def_readonly("requests", &Telemetry::requests)
-      .def_readonly("deadline_misses", &Telemetry::deadline_misses)
-      .def_readonly("scheme_switches", &Telemetry::scheme_switches)
-      .def_readonly("saturated_cycles", &Telemetry::saturated_cycles)
-      .def_readonly("limited_cycles", &Telemetry::limited_cycles)
-      .def_readonly("render_limited_cycles", &Telemetry::render_limited_cycles)
-      .def_readonly("faults", &Telemetry::faults)
-      .def_readonly("recoveries", &Telemetry::recoveries)
-      .def_readonly("thermal_load", &Telemetry::thermal_load)
-      .def_readonly("dissipated_j", &Telemetry::dissipated_j);
-
-  py::class_<CycleRecord>(m, "CycleRecord", "One cycle before a fault.")
-      .def_readonly("cycle", &CycleRecord::cycle)
-      .def_readonly("loop_time_ns", &CycleRecord::loop_time_ns)
-      .def_property_readonly("position", [](const CycleRecord& c) { return joint_array(c.position); })
-      .def_property_readonly("velocity", [](const CycleRecord& c) { return joint_array(c.velocity); })
-      .def_property_readonly("torque", [](const CycleRecord& c) { return joint_array(c.torque); })
-      .def_property_readonly("handle_position", [](const CycleRecord& c) { return Eigen::Vector3d(c.handle_position); })
-      .def_property_readonly("handle_velocity", [](const CycleRecord& c) { return Eigen::Vector3d(c.handle_velocity); })
-      .def_property_readonly("operator_force", [](const CycleRecord& c) { return Eigen::Vector3d(c.operator_force); })
-      .def_property_readonly("environment_force",
-                             [](const CycleRecord& c) { return Eigen::Vector3d(c.environment_force); })
-      .def_readonly("flags", &CycleRecord::flags);
-
-  py::class_<FaultReport>(m, "FaultReport", "A fault and the cycles before it (oldest first).")
-      .def_readonly("device", &FaultReport::device)
-      .def_readonly("serial", &FaultReport::serial)
-      .def_readonly("fault", &FaultReport::fault)
-      .def_readonly("message", &FaultReport::message)
-      .def_readonly("cycle", &FaultReport::cycle)
-      .def_readonly("loop_time_ns", &FaultReport::loop_time_ns)
-      .def_readonly("dof", &FaultReport::dof)
-      .def_readonly("records", &FaultReport::records);
+  bind_GroupInfo(m);
+  bind_GroupState(m).def_property_readonly("states", [](const GroupState& g) {
+    return std::vector<DeviceState>(g.states.begin(), g.states.begin() + g.device_count);
+  });
+  bind_Event(m).def("__repr__", [](const Event& e) {
+    return "Event('" + e.device + "', " + std::string(to_string(e.kind)) + ", '" + e.code + "')";
+  });
+  bind_Telemetry(m);
+  bind_CycleRecord(m);
+  bind_FaultReport(m);
 
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   py::class_<LocalModel>(m, "LocalModel", R"(A wrench command's local model: every cycle until the next command the

@@ -52,7 +52,9 @@ static class CSharpClientTest
             {"hapticd_reply", typeof(Reply)}, {"hapticd_parameter_info", typeof(ParameterInfo)},
             {"hapticd_local_model", typeof(LocalModel)}, {"hapticd_command", typeof(Command)},
             {"hapticd_client_options", typeof(ClientOptions)}, {"hapticd_engine_options", typeof(EngineOptions)},
-            {"hapticd_engine_end", typeof(EngineEnd)} };
+            {"hapticd_engine_end", typeof(EngineEnd)}, {"hapticd_group_info", typeof(GroupInfo)},
+            {"hapticd_group_state", typeof(GroupState)}, {"hapticd_fault_cycle", typeof(CycleRecord)},
+            {"hapticd_fault_report", typeof(FaultReport)} };
         int checkedCount = 0;
         foreach (var line in File.ReadAllLines(file))
         {
@@ -67,7 +69,10 @@ static class CSharpClientTest
             {
                 var parts = f[1].Split('.');
                 if (!types.ContainsKey(parts[0])) continue;
-                long offset = Marshal.OffsetOf(types[parts[0]], parts[1]).ToInt64();
+                // An array of structs is one field per element in C# (states_0, states_1, ...): its first.
+                var type = types[parts[0]];
+                string field = type.GetField(parts[1]) != null ? parts[1] : parts[1] + "_0";
+                long offset = Marshal.OffsetOf(type, field).ToInt64();
                 Check(offset == long.Parse(f[2]), f[1] + " at " + offset + ", C " + f[2]);
                 ++checkedCount;
             }

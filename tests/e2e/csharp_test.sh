@@ -6,15 +6,16 @@
 # no managed garbage, stopped (SIGSTOP) beyond the server's claim hold it is told of its lost claim and claims
 # again, and it holds the simulated operator's 15 N push at its wall (about 5 mm past it through the 3000 N/m
 # coupling). Unity itself is not run here.
-# Usage: csharp_test.sh BIN_DIR LIB_DIR SOURCE_DIR WORK_DIR DOMAIN
+# Usage: csharp_test.sh BIN_DIR LIB_DIR SOURCE_DIR WORK_DIR DOMAIN GENERATED_DIR (NativeTypes.g.cs: the structs,
+# generated from idl/hapticd_wire.toml)
 set -u
-bin=$1 lib=$2 src=$3 work=$4 domain=$5
+bin=$1 lib=$2 src=$3 work=$4 domain=$5 generated=$6
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 source "$src/tests/e2e/session_copy.sh"
 command -v mcs > /dev/null && command -v mono > /dev/null ||
   { echo "FAIL: Mono is not installed (mono-mcs, mono-runtime: scripts/install-deps.sh installs them)"; exit 1; }
 fail() { echo "FAIL: $*"; for f in engine.log server.log; do [ -f $f ] && { echo "--- $f"; tail -20 $f; }; done; exit 1; }
-mcs -unsafe -target:library -out:Hapticd.dll "$src"/clients/csharp/Hapticd/*.cs > build.log 2>&1 ||
+mcs -unsafe -target:library -out:Hapticd.dll "$src"/clients/csharp/Hapticd/*.cs "$generated/NativeTypes.g.cs" > build.log 2>&1 ||
   fail "the assembly does not compile: $(cat build.log)"
 mcs -unsafe -r:Hapticd.dll -out:test.exe "$src/tests/csharp/CSharpClientTest.cs" > build.log 2>&1 ||
   fail "the test does not compile: $(cat build.log)"

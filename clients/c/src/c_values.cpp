@@ -1,6 +1,8 @@
 #include "c_values.hpp"
 
 #include <algorithm>
+#include <array>
+#include <type_traits>
 
 namespace hapticd::client_c {
 namespace {
@@ -24,8 +26,33 @@ void copy_joints(double (&out)[N], const JointVector& in) noexcept {
   for (std::size_t i = 0; i < N; ++i) out[i] = i < n ? in[static_cast<Eigen::Index>(i)] : 0.0;
 }
 
-void to_c(const client::LoopSummary& in, hapticd_loop_summary& out) noexcept {
-  out = hapticd_loop_summary{in.rate_hz, in.cycles, in.overruns, in.latency_max_us, in.compute_max_us};
+// One field into its C form (the generated copies below call these).
+template <class T>
+void put(const T& in, T& out) noexcept {
+  out = in;
+}
+void put(int in, std::int32_t& out) noexcept { out = in; }
+void put(bool in, std::int32_t& out) noexcept { out = in ? 1 : 0; }
+template <class E, std::enable_if_t<std::is_enum_v<E>, int> = 0>
+void put(E in, std::int32_t& out) noexcept {
+  out = static_cast<std::int32_t>(in);
+}
+template <std::size_t N>
+void put(const client::Name& in, char (&out)[N]) noexcept {
+  copy_text(out, in.view());
+}
+template <std::size_t N>
+void put(const std::string& in, char (&out)[N]) noexcept {
+  copy_text(out, in);
+}
+void put(const Pose& in, hapticd_pose& out) noexcept;
+void put(const Twist& in, hapticd_twist& out) noexcept;
+void put(const Wrench& in, hapticd_wrench& out) noexcept;
+void put(const Eigen::Vector3d& in, hapticd_vec3& out) noexcept { out = vec3(in); }
+void put(const JointVector& in, double (&out)[HAPTICD_MAX_JOINTS]) noexcept { copy_joints(out, in); }
+template <std::size_t N>
+void put(const std::array<std::uint64_t, N>& in, std::uint64_t (&out)[N]) noexcept {
+  std::copy(in.begin(), in.end(), out);
 }
 
 }  // namespace
@@ -46,126 +73,48 @@ Pose from_c(const hapticd_pose& in) noexcept {
 Twist from_c(const hapticd_twist& in) noexcept { return Twist{vec3(in.linear), vec3(in.angular)}; }
 Wrench from_c(const hapticd_wrench& in) noexcept { return Wrench{vec3(in.force), vec3(in.torque)}; }
 
-void to_c(const client::DeviceState& in, hapticd_device_state& out) noexcept {
-  copy_text(out.device, in.device.view());
-  out.serial = in.serial;
-  out.cycle = in.cycle;
-  out.loop_time_ns = in.loop_time_ns;
-  to_c(in.pose, out.pose);
-  to_c(in.twist, out.twist);
-  to_c(in.operator_wrench, out.operator_wrench);
-  to_c(in.environment_wrench, out.environment_wrench);
-  to_c(in.target_pose, out.target_pose);
-  out.dof = in.dof;
-  copy_joints(out.position, in.position);
-  copy_joints(out.velocity, in.velocity);
-  copy_joints(out.torque, in.torque);
-  out.buttons = in.buttons;
-  out.gripper = in.gripper;
-  out.mode = static_cast<std::int32_t>(in.mode);
-  out.flags = in.flags;
-  copy_text(out.fault, in.fault.view());
-  copy_text(out.scheme, in.scheme.view());
-  copy_text(out.owner, in.owner.view());
-  out.engine_serial = in.engine_serial;
-  to_c(in.loop, out.loop);
-}
+namespace {
+void put(const Pose& in, hapticd_pose& out) noexcept { to_c(in, out); }
+void put(const Twist& in, hapticd_twist& out) noexcept { to_c(in, out); }
+void put(const Wrench& in, hapticd_wrench& out) noexcept { to_c(in, out); }
+
+#include "hapticd_wire/to_c.inc"
+}  // namespace
+
+void to_c(const client::DeviceState& in, hapticd_device_state& out) noexcept { copy_fields(in, out); }
 
 void to_c(const client::DeviceInfo& in, hapticd_device_info& out) noexcept {
   out = hapticd_device_info{};
-  copy_text(out.device, in.device);
-  out.version = in.version;
-  copy_text(out.device_plugin, in.device_plugin);
-  out.simulated = in.simulated ? 1 : 0;
-  out.rate_hz = in.rate_hz;
-  out.dof = in.dof;
+  copy_fields(in, out);
   for (std::size_t i = 0; i < in.joint_names.size() && i < HAPTICD_MAX_JOINTS; ++i)
     copy_text(out.joint_names[i], in.joint_names[i]);
-  copy_joints(out.position_min, in.position_min);
-  copy_joints(out.position_max, in.position_max);
-  copy_joints(out.velocity_max, in.velocity_max);
-  copy_joints(out.torque_peak, in.torque_peak);
-  copy_joints(out.torque_continuous, in.torque_continuous);
-  copy_text(out.base_frame, in.base_frame);
-  to_c(in.base_pose, out.base_pose);
-  copy_text(out.handle_frame, in.handle_frame);
   out.has_start_pose = in.start_pose ? 1 : 0;
   if (in.start_pose) to_c(*in.start_pose, out.start_pose);
-  out.workspace_radius = in.workspace_radius;
-  out.workspace_min = vec3(in.workspace_min);
-  out.workspace_max = vec3(in.workspace_max);
   out.scheme_count = static_cast<std::int32_t>(std::min<std::size_t>(in.schemes.size(), HAPTICD_MAX_SCHEMES));
-  for (std::size_t i = 0; i < static_cast<std::size_t>(out.scheme_count); ++i) {
-    copy_text(out.schemes[i].name, in.schemes[i].name);
-    copy_text(out.schemes[i].virtual_model, in.schemes[i].virtual_model);
-  }
-  out.command_deadline_s = in.command_deadline_s;
-  out.command_fade_s = in.command_fade_s;
-  out.handle_device = in.handle_device ? 1 : 0;
-  out.handle_dof = in.handle_dof;
-  out.has_gripper = in.has_gripper ? 1 : 0;
-  out.button_count = in.button_count;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(out.scheme_count); ++i)
+    copy_fields(in.schemes[i], out.schemes[i]);
 }
 
 void to_c(const client::GroupInfo& in, hapticd_group_info& out) noexcept {
   out = hapticd_group_info{};
-  copy_text(out.group, in.group);
-  out.version = in.version;
+  copy_fields(in, out);
   out.device_count = static_cast<std::int32_t>(std::min<std::size_t>(in.devices.size(), HAPTICD_MAX_GROUP_DEVICES));
   for (std::size_t i = 0; i < static_cast<std::size_t>(out.device_count); ++i) copy_text(out.devices[i], in.devices[i]);
-  out.min_distance_m = in.min_distance_m;
-  out.repulsion_distance_m = in.repulsion_distance_m;
-  out.own_loop = in.own_loop ? 1 : 0;
 }
 
 void to_c(const client::GroupState& in, hapticd_group_state& out) noexcept {
-  copy_text(out.group, in.group.view());
-  out.serial = in.serial;
-  out.cycle = in.cycle;
-  out.loop_time_ns = in.loop_time_ns;
-  out.clearance_m = in.clearance_m;
+  copy_fields(in, out);
   out.device_count = std::clamp(in.device_count, 0, HAPTICD_MAX_GROUP_DEVICES);
   for (int i = 0; i < out.device_count; ++i)
     to_c(in.states[static_cast<std::size_t>(i)], out.states[static_cast<std::size_t>(i)]);
 }
 
-void to_c(const client::Event& in, hapticd_event& out) noexcept {
-  copy_text(out.device, in.device);
-  out.serial = in.serial;
-  out.loop_time_ns = in.loop_time_ns;
-  out.kind = static_cast<std::int32_t>(in.kind);
-  copy_text(out.code, in.code);
-  copy_text(out.message, in.message);
-}
+void to_c(const client::Event& in, hapticd_event& out) noexcept { copy_fields(in, out); }
 
-void to_c(const client::Telemetry& in, hapticd_telemetry& out) noexcept {
-  copy_text(out.device, in.device);
-  out.wall_time_ns = in.wall_time_ns;
-  to_c(in.loop, out.loop);
-  out.states_published = in.states_published;
-  out.commands_received = in.commands_received;
-  out.commands_accepted = in.commands_accepted;
-  for (std::size_t i = 0; i < HAPTICD_REJECT_REASONS; ++i) out.rejected[i] = in.rejected[i];
-  out.requests = in.requests;
-  out.deadline_misses = in.deadline_misses;
-  out.scheme_switches = in.scheme_switches;
-  out.saturated_cycles = in.saturated_cycles;
-  out.limited_cycles = in.limited_cycles;
-  out.render_limited_cycles = in.render_limited_cycles;
-  out.faults = in.faults;
-  out.recoveries = in.recoveries;
-  out.thermal_load = in.thermal_load;
-  out.dissipated_j = in.dissipated_j;
-}
+void to_c(const client::Telemetry& in, hapticd_telemetry& out) noexcept { copy_fields(in, out); }
 
 void to_c(const client::FaultReport& in, hapticd_fault_report& out) noexcept {
-  copy_text(out.device, in.device);
-  out.serial = in.serial;
-  copy_text(out.fault, in.fault);
-  copy_text(out.message, in.message);
-  out.cycle = in.cycle;
-  out.loop_time_ns = in.loop_time_ns;
-  out.dof = in.dof;
+  copy_fields(in, out);
   // The newest records, oldest first.
   const std::size_t n = std::min<std::size_t>(in.records.size(), HAPTICD_MAX_FAULT_RECORDS);
   const std::size_t first = in.records.size() - n;
@@ -173,16 +122,10 @@ void to_c(const client::FaultReport& in, hapticd_fault_report& out) noexcept {
   for (std::size_t i = 0; i < n; ++i) {
     const client::CycleRecord& r = in.records[first + i];
     hapticd_fault_cycle& c = out.records[i];
-    c.cycle = r.cycle;
-    c.loop_time_ns = r.loop_time_ns;
+    copy_fields(r, c);
     copy_joints(c.position, r.position);
     copy_joints(c.velocity, r.velocity);
     copy_joints(c.torque, r.torque);
-    c.handle_position = vec3(r.handle_position);
-    c.handle_velocity = vec3(r.handle_velocity);
-    c.operator_force = vec3(r.operator_force);
-    c.environment_force = vec3(r.environment_force);
-    c.flags = r.flags;
   }
 }
 

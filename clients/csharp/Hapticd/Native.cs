@@ -1,6 +1,6 @@
-// hapticd's C API (hapticd/client.h) for C#: the P/Invoke declarations and the C structs, field for field
-// (blittable: fixed-size buffers, no marshalled strings), so a state is read and a command sent without a
-// managed allocation. The c_api_abi test holds the C layouts; this assembly's test holds these to the same file.
+// hapticd's C API (hapticd/client.h) for C#: the P/Invoke declarations and the spatial structs; the value structs,
+// field for field the C ones (blittable: fixed-size buffers, no marshalled strings, so a state is read and a command
+// sent without a managed allocation), are generated into NativeTypes.g.cs. The c_api_abi test holds the C layouts; this assembly's test holds these to the same file.
 using System;
 using System.Runtime.InteropServices;
 
@@ -21,13 +21,7 @@ namespace Hapticd
     [StructLayout(LayoutKind.Sequential)]
     public struct Wrench { public Vec3 force, torque; }
 
-    [StructLayout(LayoutKind.Sequential)]
-    public struct LoopSummary { public double rate_hz; public ulong cycles, overruns; public double latency_max_us, compute_max_us; }
-
     public enum Status { Ok = 0, InvalidArgument = 1, NotFound = 2, Timeout = 3, Refused = 4, Dds = 5, Internal = 6 }
-    public enum Mode { Starting = 0, Running = 1, Stopping = 2, Safe = 3, Off = 4 }
-    public enum CommandKind { Wrench = 0, Coupling = 1, Motion = 2 }
-    public enum EventKind { Fault = 0, Estop = 1, Mode = 2, Scheme = 3, Owner = 4, EngineStale = 5, EngineRejected = 6, Recovered = 7, Recording = 8, Parameter = 9 }
 
     [Flags]
     public enum StateFlags : uint
@@ -37,153 +31,26 @@ namespace Hapticd
         ThermalDerating = 1u << 9, PassivityControl = 1u << 10
     }
 
-    public static class Limits
+    // The value structs (DeviceState, DeviceInfo, GroupState, Event, Telemetry, FaultReport, Reply, Command, ...) are
+    // generated from idl/hapticd_wire.toml into NativeTypes.g.cs, with their fields and text accessors; what follows
+    // adds the helpers the table does not describe, in the other part of each partial struct.
+    public partial struct DeviceState
     {
-        public const int NameSize = 32, MessageSize = 256, MaxJoints = 10, MaxValues = 16, MaxGroupDevices = 8,
-                         MaxSchemes = 16, MaxFaultRecords = 64, RejectReasons = 8;
-    }
-
-    // hapticd_device_state
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe struct DeviceState
-    {
-        public fixed byte device[32];
-        public ulong serial, cycle;
-        public long loop_time_ns;
-        public Pose pose;
-        public Twist twist;
-        public Wrench operator_wrench, environment_wrench;
-        public Pose target_pose;
-        public int dof;
-        public fixed double position[10];
-        public fixed double velocity[10];
-        public fixed double torque[10];
-        public uint buttons;
-        public double gripper;
-        public int mode;
-        public uint flags;
-        public fixed byte fault[32];
-        public fixed byte scheme[32];
-        public fixed byte owner[32];
-        public ulong engine_serial;
-        public LoopSummary loop;
-
-        public string Device { get { fixed (byte* p = device) return Text.Of(p, 32); } }
-        public string Fault { get { fixed (byte* p = fault) return Text.Of(p, 32); } }
-        public string Owner { get { fixed (byte* p = owner) return Text.Of(p, 32); } }
-        public string Scheme { get { fixed (byte* p = scheme) return Text.Of(p, 32); } }
         public StateFlags Flags { get { return (StateFlags)flags; } }
     }
 
-    // hapticd_scheme_info
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe struct SchemeInfo { public fixed byte name[32]; public fixed byte virtual_model[32]; }
-
-    // hapticd_device_info
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe struct DeviceInfo
+    public partial struct DeviceInfo
     {
-        public fixed byte device[32];
-        public int version;
-        public fixed byte device_plugin[32];
-        public int simulated;
-        public double rate_hz;
-        public int dof;
-        public fixed byte joint_names[10 * 32];
-        public fixed double position_min[10];
-        public fixed double position_max[10];
-        public fixed double velocity_max[10];
-        public fixed double torque_peak[10];
-        public fixed double torque_continuous[10];
-        public fixed byte base_frame[32];
-        public Pose base_pose;
-        public fixed byte handle_frame[32];
-        public int has_start_pose;
-        public Pose start_pose;
-        public double workspace_radius;
-        public Vec3 workspace_min, workspace_max;
-        public int scheme_count;
-        public fixed byte schemes[16 * 64];
-        public double command_deadline_s, command_fade_s;
-        public int handle_device, handle_dof, has_gripper, button_count;
-
-        public string Device { get { fixed (byte* p = device) return Text.Of(p, 32); } }
-        public string DevicePlugin { get { fixed (byte* p = device_plugin) return Text.Of(p, 32); } }
-        public string JointName(int i) { fixed (byte* p = joint_names) return Text.Of(p + 32 * i, 32); }
-        public string SchemeName(int i) { fixed (byte* p = schemes) return Text.Of(p + 64 * i, 32); }
+        public string SchemeName(int i) { return Scheme(i).Name; }
     }
 
-    // hapticd_reply
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe struct Reply
+    public unsafe partial struct Reply
     {
-        public int answered, accepted;
-        public fixed byte message[256];
-        public int value_count;
-        public fixed double values[16];
-
-        public string Message { get { fixed (byte* p = message) return Text.Of(p, 256); } }
-        public double Value(int i) { fixed (double* v = values) return v[i]; }
+        public double Value(int i) { if (i < 0 || i >= Limits.MaxValues) throw new ArgumentOutOfRangeException("i"); fixed (double* v = values) return v[i]; }
     }
 
-    // hapticd_event
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe struct Event
+    public unsafe partial struct LocalModel
     {
-        public fixed byte device[32];
-        public ulong serial;
-        public long loop_time_ns;
-        public int kind;
-        public fixed byte code[32];
-        public fixed byte message[256];
-
-        public string Device { get { fixed (byte* p = device) return Text.Of(p, 32); } }
-        public string Code { get { fixed (byte* p = code) return Text.Of(p, 32); } }
-        public string Message { get { fixed (byte* p = message) return Text.Of(p, 256); } }
-        public EventKind Kind { get { return (EventKind)kind; } }
-    }
-
-    // hapticd_telemetry
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe struct Telemetry
-    {
-        public fixed byte device[32];
-        public long wall_time_ns;
-        public LoopSummary loop;
-        public ulong states_published, commands_received, commands_accepted;
-        public fixed ulong rejected[8];
-        public ulong requests, deadline_misses, scheme_switches;
-        public ulong saturated_cycles, limited_cycles, render_limited_cycles;
-        public ulong faults, recoveries;
-        public double thermal_load, dissipated_j;
-    }
-
-    // hapticd_parameter_info
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe struct ParameterInfo
-    {
-        public fixed byte name[64];
-        public int type;
-        public fixed byte unit[32];
-        public fixed byte description[256];
-        public int tunable, has_minimum, has_maximum, minimum_exclusive;
-        public double minimum, maximum;
-        public fixed byte value_text[256];
-        public int value_count;
-        public fixed double values[16];
-
-        public string Unit { get { fixed (byte* p = unit) return Text.Of(p, 32); } }
-        public string ValueText { get { fixed (byte* p = value_text) return Text.Of(p, 256); } }
-    }
-
-    // hapticd_local_model
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe struct LocalModel
-    {
-        public Pose anchor;
-        public fixed double stiffness[6];
-        public fixed double damping[6];
-
         // A spring and damper about `anchor`, per axis (N/m, N s/m): the server applies it every cycle until the
         // next command, so a wall rendered at the engine's frame rate is felt at the loop's. Made in a local here:
         // a fixed buffer written through a field needs pinning (CS1666), a local does not.
@@ -204,19 +71,8 @@ namespace Hapticd
         }
     }
 
-    // hapticd_command
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe struct Command
+    public partial struct Command
     {
-        public fixed byte device[32];  // a group command's device
-        public int kind;
-        public ulong state_serial;
-        public Wrench wrench;
-        public int has_local_model;
-        public LocalModel local_model;
-        public Pose pose;
-        public Twist twist;
-
         public static Command Coupling(Pose proxy, Twist proxyTwist, ulong stateSerial)
         {
             return new Command { kind = (int)CommandKind.Coupling, pose = proxy, twist = proxyTwist, state_serial = stateSerial };

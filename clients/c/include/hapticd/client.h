@@ -45,14 +45,9 @@ extern "C" {
 
 #define HAPTICD_C_API_VERSION 1
 
-#define HAPTICD_NAME_SIZE 32     /* names: up to 31 characters and a terminating zero */
-#define HAPTICD_MESSAGE_SIZE 256 /* messages: longer ones are cut */
-#define HAPTICD_MAX_JOINTS 10
-#define HAPTICD_MAX_VALUES 16        /* values of a request or reply */
-#define HAPTICD_MAX_GROUP_DEVICES 8  /* devices of a group */
-#define HAPTICD_MAX_SCHEMES 16       /* schemes listed in a device's description */
-#define HAPTICD_MAX_FAULT_RECORDS 64 /* cycles kept of a fault report (its newest) */
-#define HAPTICD_REJECT_REASONS 8
+/* The value types (states, descriptions, events, telemetry, fault reports, replies, commands), generated from the
+ * data model's table (idl/hapticd_wire.toml; docs/wire-types.md). */
+#include "hapticd/client_types.h"
 
 /* ---- status ---- */
 typedef enum hapticd_status {
@@ -72,34 +67,6 @@ HAPTICD_C_API const char* hapticd_last_error(void);
 /* A status's name ("HAPTICD_ERROR_TIMEOUT"). Never NULL. */
 HAPTICD_C_API const char* hapticd_status_name(hapticd_status status);
 
-/* ---- values (world frame; twists and wrenches at the handle point; quaternions w, x, y, z) ---- */
-typedef struct hapticd_vec3 {
-  double x, y, z;
-} hapticd_vec3;
-typedef struct hapticd_quat {
-  double w, x, y, z;
-} hapticd_quat;
-typedef struct hapticd_pose {
-  hapticd_vec3 position; /* m */
-  hapticd_quat orientation;
-} hapticd_pose;
-typedef struct hapticd_twist {
-  hapticd_vec3 linear;  /* m/s */
-  hapticd_vec3 angular; /* rad/s */
-} hapticd_twist;
-typedef struct hapticd_wrench {
-  hapticd_vec3 force;  /* N */
-  hapticd_vec3 torque; /* N m */
-} hapticd_wrench;
-
-typedef enum hapticd_mode {
-  HAPTICD_MODE_STARTING = 0,
-  HAPTICD_MODE_RUNNING = 1,
-  HAPTICD_MODE_STOPPING = 2,
-  HAPTICD_MODE_SAFE = 3,
-  HAPTICD_MODE_OFF = 4
-} hapticd_mode;
-
 /* hapticd_device_state.flags bits (hapticd/state_flags.hpp). */
 enum {
   HAPTICD_FLAG_TORQUE_SATURATED = 1u << 0,
@@ -115,160 +82,6 @@ enum {
   HAPTICD_FLAG_PASSIVITY_CONTROL = 1u << 10
 };
 
-typedef struct hapticd_loop_summary {
-  double rate_hz;
-  uint64_t cycles;
-  uint64_t overruns;
-  double latency_max_us;
-  double compute_max_us;
-} hapticd_loop_summary;
-
-/* One published state of a device. */
-typedef struct hapticd_device_state {
-  char device[HAPTICD_NAME_SIZE];
-  uint64_t serial; /* one per published state, increasing: answer it in the command */
-  uint64_t cycle;
-  int64_t loop_time_ns;
-  hapticd_pose pose; /* the measured handle */
-  hapticd_twist twist;
-  hapticd_wrench operator_wrench;    /* the operator's wrench on the handle */
-  hapticd_wrench environment_wrench; /* what the rendered environment applies to the handle */
-  hapticd_pose target_pose;          /* the chain's desired pose (the virtual body; a handle device's handle) */
-  int32_t dof;
-  double position[HAPTICD_MAX_JOINTS]; /* the first dof: rad or m (a handle device's axes) */
-  double velocity[HAPTICD_MAX_JOINTS];
-  double torque[HAPTICD_MAX_JOINTS]; /* commanded */
-  uint32_t buttons;                  /* bit i: button i pressed */
-  double gripper;                    /* the gripper's opening (rad), 0 without one */
-  int32_t mode;                      /* hapticd_mode */
-  uint32_t flags;                    /* HAPTICD_FLAG_* */
-  char fault[HAPTICD_NAME_SIZE];     /* "" when none */
-  char scheme[HAPTICD_NAME_SIZE];
-  char owner[HAPTICD_NAME_SIZE]; /* "" when free */
-  uint64_t engine_serial;        /* the newest engine command the loop has applied */
-  hapticd_loop_summary loop;
-} hapticd_device_state;
-
-typedef struct hapticd_scheme_info {
-  char name[HAPTICD_NAME_SIZE];
-  char virtual_model[HAPTICD_NAME_SIZE]; /* the plugin engine commands reach ("" none) */
-} hapticd_scheme_info;
-
-/* A device's description. */
-typedef struct hapticd_device_info {
-  char device[HAPTICD_NAME_SIZE];
-  int32_t version; /* the server's data model version */
-  char device_plugin[HAPTICD_NAME_SIZE];
-  int32_t simulated; /* 1: accepts operator commands */
-  double rate_hz;
-  int32_t dof;
-  char joint_names[HAPTICD_MAX_JOINTS][HAPTICD_NAME_SIZE];
-  double position_min[HAPTICD_MAX_JOINTS], position_max[HAPTICD_MAX_JOINTS], velocity_max[HAPTICD_MAX_JOINTS];
-  double torque_peak[HAPTICD_MAX_JOINTS], torque_continuous[HAPTICD_MAX_JOINTS];
-  char base_frame[HAPTICD_NAME_SIZE];
-  hapticd_pose base_pose;
-  char handle_frame[HAPTICD_NAME_SIZE];
-  int32_t has_start_pose; /* 1: start_pose is the handle at the first cycle */
-  hapticd_pose start_pose;
-  double workspace_radius; /* m around the start pose (0: not given) */
-  hapticd_vec3 workspace_min, workspace_max;
-  int32_t scheme_count;
-  hapticd_scheme_info schemes[HAPTICD_MAX_SCHEMES];
-  double command_deadline_s; /* engine commands must arrive at least this often */
-  double command_fade_s;     /* after a missed deadline the forces fade to zero over this time */
-  int32_t handle_device;     /* 1: a handle device (its joints are the handle's axes) */
-  int32_t handle_dof;        /* 3 or 6; 0 for a joint device */
-  int32_t has_gripper;
-  int32_t button_count;
-} hapticd_device_info;
-
-typedef struct hapticd_group_info {
-  char group[HAPTICD_NAME_SIZE];
-  int32_t version;
-  int32_t device_count;
-  char devices[HAPTICD_MAX_GROUP_DEVICES][HAPTICD_NAME_SIZE]; /* in the group's order */
-  double min_distance_m;
-  double repulsion_distance_m;
-  int32_t own_loop;
-} hapticd_group_info;
-
-/* Every device of a group from one cycle. */
-typedef struct hapticd_group_state {
-  char group[HAPTICD_NAME_SIZE];
-  uint64_t serial;
-  uint64_t cycle;
-  int64_t loop_time_ns;
-  double clearance_m; /* -1: not measured */
-  int32_t device_count;
-  hapticd_device_state states[HAPTICD_MAX_GROUP_DEVICES]; /* the first device_count */
-} hapticd_group_state;
-
-typedef enum hapticd_event_kind {
-  HAPTICD_EVENT_FAULT = 0,
-  HAPTICD_EVENT_ESTOP = 1,
-  HAPTICD_EVENT_MODE = 2,
-  HAPTICD_EVENT_SCHEME = 3,
-  HAPTICD_EVENT_OWNER = 4,
-  HAPTICD_EVENT_ENGINE_STALE = 5,
-  HAPTICD_EVENT_ENGINE_REJECTED = 6,
-  HAPTICD_EVENT_RECOVERED = 7,
-  HAPTICD_EVENT_RECORDING = 8,
-  HAPTICD_EVENT_PARAMETER = 9 /* a parameter was set at run time: code its plugin slot, message "name = values" */
-} hapticd_event_kind;
-
-typedef struct hapticd_event {
-  char device[HAPTICD_NAME_SIZE];
-  uint64_t serial;
-  int64_t loop_time_ns;
-  int32_t kind; /* hapticd_event_kind */
-  char code[HAPTICD_NAME_SIZE];
-  char message[HAPTICD_MESSAGE_SIZE];
-} hapticd_event;
-
-typedef struct hapticd_telemetry {
-  char device[HAPTICD_NAME_SIZE];
-  int64_t wall_time_ns;
-  hapticd_loop_summary loop;
-  uint64_t states_published, commands_received, commands_accepted;
-  /* rejected commands: malformed, non-finite, out of bounds, out of order, stale, not the owner, wrong kind, other */
-  uint64_t rejected[HAPTICD_REJECT_REASONS];
-  uint64_t requests, deadline_misses, scheme_switches;
-  uint64_t saturated_cycles, limited_cycles, render_limited_cycles;
-  uint64_t faults, recoveries;
-  double thermal_load;
-  double dissipated_j;
-} hapticd_telemetry;
-
-typedef struct hapticd_fault_cycle {
-  uint64_t cycle;
-  int64_t loop_time_ns;
-  double position[HAPTICD_MAX_JOINTS], velocity[HAPTICD_MAX_JOINTS], torque[HAPTICD_MAX_JOINTS];
-  hapticd_vec3 handle_position, handle_velocity, operator_force, environment_force;
-  uint32_t flags;
-} hapticd_fault_cycle;
-
-/* A fault and the cycles before it (oldest first; the newest HAPTICD_MAX_FAULT_RECORDS). */
-typedef struct hapticd_fault_report {
-  char device[HAPTICD_NAME_SIZE];
-  uint64_t serial;
-  char fault[HAPTICD_NAME_SIZE];
-  char message[HAPTICD_MESSAGE_SIZE];
-  uint64_t cycle;
-  int64_t loop_time_ns;
-  int32_t dof;
-  int32_t record_count;
-  hapticd_fault_cycle records[HAPTICD_MAX_FAULT_RECORDS];
-} hapticd_fault_report;
-
-/* A request's reply. */
-typedef struct hapticd_reply {
-  int32_t answered; /* 0: no reply within the timeout */
-  int32_t accepted;
-  char message[HAPTICD_MESSAGE_SIZE];
-  int32_t value_count;
-  double values[HAPTICD_MAX_VALUES]; /* get_parameter: the value in effect (a boolean as 0 or 1) */
-} hapticd_reply;
-
 typedef enum hapticd_parameter_type {
   HAPTICD_PARAMETER_REAL = 0,
   HAPTICD_PARAMETER_INTEGER = 1,
@@ -276,46 +89,6 @@ typedef enum hapticd_parameter_type {
   HAPTICD_PARAMETER_TEXT = 3,
   HAPTICD_PARAMETER_REAL_VECTOR = 4
 } hapticd_parameter_type;
-
-/* A parameter's declaration and value in effect. */
-typedef struct hapticd_parameter_info {
-  char name[64]; /* "<stage>.<parameter>" */
-  int32_t type;  /* hapticd_parameter_type */
-  char unit[HAPTICD_NAME_SIZE];
-  char description[HAPTICD_MESSAGE_SIZE];
-  int32_t tunable;
-  int32_t has_minimum, has_maximum, minimum_exclusive;
-  double minimum, maximum;
-  char value_text[HAPTICD_MESSAGE_SIZE];
-  int32_t value_count;
-  double values[HAPTICD_MAX_VALUES];
-} hapticd_parameter_info;
-
-/* ---- what an engine sends ---- */
-/* A wrench's local model: every cycle until the next command the server applies
- * wrench + stiffness .* (anchor - x) - damping .* xd. */
-typedef struct hapticd_local_model {
-  hapticd_pose anchor;
-  double stiffness[6]; /* N/m (3), N m/rad (3) */
-  double damping[6];   /* N s/m (3), N m s/rad (3) */
-} hapticd_local_model;
-
-typedef enum hapticd_command_kind {
-  HAPTICD_COMMAND_WRENCH = 0,   /* impedance type: a wrench (with an optional local model) */
-  HAPTICD_COMMAND_COUPLING = 1, /* impedance type: the proxy pose and twist of the virtual coupling */
-  HAPTICD_COMMAND_MOTION = 2    /* admittance type: the desired motion of the handle */
-} hapticd_command_kind;
-
-typedef struct hapticd_command {
-  char device[HAPTICD_NAME_SIZE]; /* a group command: the device it is for */
-  int32_t kind;                   /* hapticd_command_kind */
-  uint64_t state_serial;          /* the state it answers (0: none) */
-  hapticd_wrench wrench;          /* WRENCH */
-  int32_t has_local_model;
-  hapticd_local_model local_model;
-  hapticd_pose pose;   /* COUPLING: the proxy; MOTION: the desired pose */
-  hapticd_twist twist; /* COUPLING: the proxy's twist; MOTION: the desired twist */
-} hapticd_command;
 
 /* ---- the client ---- */
 typedef struct hapticd_client hapticd_client;

@@ -122,20 +122,36 @@ void append_quaternion(std::string& out, std::string_view key, const double* q) 
   append_object(out, key, kNames, q);
 }
 
-const char* mode_name(hapticd_msg_DeviceMode mode) {
-  switch (mode) {
-    case hapticd_msg_MODE_STARTING:
-      return "starting";
-    case hapticd_msg_MODE_RUNNING:
-      return "running";
-    case hapticd_msg_MODE_STOPPING:
-      return "stopping";
-    case hapticd_msg_MODE_SAFE:
-      return "safe";
-    default:
-      return "off";
-  }
+// One member of a JSON object: a comma before all but the first, then "key":.
+void json_member(std::string& out, bool& first, std::string_view key) {
+  if (!first) out += ',';
+  first = false;
+  append_string(out, key);
+  out += ':';
 }
+void json_vector3(std::string& out, const double* v) {
+  out += "{\"x\":";
+  append_number(out, v[0]);
+  out += ",\"y\":";
+  append_number(out, v[1]);
+  out += ",\"z\":";
+  append_number(out, v[2]);
+  out += '}';
+}
+void json_quaternion(std::string& out, const double* q) {
+  out += "{\"w\":";
+  append_number(out, q[0]);
+  out += ",\"x\":";
+  append_number(out, q[1]);
+  out += ",\"y\":";
+  append_number(out, q[2]);
+  out += ",\"z\":";
+  append_number(out, q[3]);
+  out += '}';
+}
+
+// The state's and the event's members, the enums' names: generated from idl/hapticd_wire.toml.
+#include "hapticd_wire/socket_json.inc"
 
 }  // namespace
 
@@ -366,39 +382,9 @@ void state(const hapticd_msg_DeviceState& s, std::string& out) {
   out.clear();
   out += "{\"devices\":[{\"device_id\":";
   append_string(out, dds::text_of(s.device));
-  out += ",\"state\":{\"serial\":";
-  append_integer(out, static_cast<std::int64_t>(s.serial));
-  append_key(out, "cycle");
-  append_integer(out, static_cast<std::int64_t>(s.cycle));
-  append_key(out, "time_ns");
-  append_integer(out, s.loop_time_ns);
-  append_vector3(out, "cursor_position", s.handle_pose.position);
-  append_quaternion(out, "orientation", s.handle_pose.orientation);
-  append_vector3(out, "cursor_velocity", s.twist);
-  append_vector3(out, "angular_velocity", s.twist + 3);
-  append_vector3(out, "operator_force", s.operator_wrench);
-  append_vector3(out, "operator_torque", s.operator_wrench + 3);
-  append_vector3(out, "environment_force", s.environment_wrench);
-  append_vector3(out, "environment_torque", s.environment_wrench + 3);
-  append_vector3(out, "target_position", s.target_pose.position);
-  append_key(out, "buttons");
-  append_integer(out, s.buttons);
-  append_key(out, "gripper");
-  append_number(out, s.gripper);
-  append_key(out, "engine_serial");
-  append_integer(out, static_cast<std::int64_t>(s.engine_serial));
-  out += "},\"status\":{\"mode\":\"";
-  out += mode_name(s.mode);
-  out += '"';
-  append_key(out, "fault");
-  append_string(out, dds::text_of(s.fault));
-  append_key(out, "scheme");
-  append_string(out, dds::text_of(s.scheme));
-  append_key(out, "owner");
-  append_string(out, dds::text_of(s.owner));
-  append_key(out, "flags");
-  append_integer(out, s.flags);
-  out += "}}]}";
+  out += ',';
+  append_json(out, s);
+  out += "}]}";
 }
 
 std::string reply(std::int64_t id, const hapticd_msg_ControlReply& r) {
@@ -419,44 +405,15 @@ std::string reply(std::int64_t id, const hapticd_msg_ControlReply& r) {
 }
 
 std::string_view event_kind_name(std::int32_t kind) {
-  switch (kind) {
-    case hapticd_msg_EVENT_FAULT:
-      return "fault";
-    case hapticd_msg_EVENT_ESTOP:
-      return "estop";
-    case hapticd_msg_EVENT_MODE:
-      return "mode";
-    case hapticd_msg_EVENT_SCHEME:
-      return "scheme";
-    case hapticd_msg_EVENT_OWNER:
-      return "owner";
-    case hapticd_msg_EVENT_ENGINE_STALE:
-      return "engine_stale";
-    case hapticd_msg_EVENT_ENGINE_REJECTED:
-      return "engine_rejected";
-    case hapticd_msg_EVENT_RECOVERED:
-      return "recovered";
-    case hapticd_msg_EVENT_RECORDING:
-      return "recording";
-    case hapticd_msg_EVENT_PARAMETER:
-      return "parameter";
-    default:
-      return "other";
-  }
+  return kind >= hapticd_msg_EVENT_FAULT && kind <= hapticd_msg_EVENT_PARAMETER
+             ? json_name(static_cast<hapticd_msg_EventKind>(kind))
+             : "other";
 }
 
 std::string event(const hapticd_msg_Event& e) {
-  std::string out = "{\"event\":{\"device\":";
-  append_string(out, dds::text_of(e.device));
-  append_key(out, "serial");
-  append_integer(out, static_cast<std::int64_t>(e.serial));
-  append_key(out, "kind");
-  append_string(out, event_kind_name(static_cast<std::int32_t>(e.kind)));
-  append_key(out, "code");
-  append_string(out, dds::text_of(e.code));
-  append_key(out, "message");
-  append_string(out, dds::text_of(e.message));
-  out += "}}";
+  std::string out = "{";
+  append_json(out, e);
+  out += '}';
   return out;
 }
 
