@@ -38,14 +38,14 @@ static int32_t claimed(int32_t again, void* user) {
   if (w->push_n != 0.0) {
     const double push[4] = {w->push_n, 0.0, 0.0, 0.2};
     hapticd_reply reply;
-    if (hapticd_operator_command(w->client, w->device, "push", push, 4, 5.0, &reply) != HAPTICD_OK)
+    if (hapticd_client_operator_command(w->client, w->device, "push", push, 4, 5.0, &reply) != HAPTICD_OK)
       fprintf(stderr, "c-wall-engine: the push was not taken: %s\n", hapticd_last_error());
   }
   return 1;
 }
 
 int main(int argc, char** argv) {
-  hapticd_client_options options = {.client_id = "c-wall-engine"};
+  hapticd_client_options options = {.size = sizeof(hapticd_client_options), .client_id = "c-wall-engine"};
   hapticd_engine_options engine_options = {.size = sizeof(hapticd_engine_options),
                                            .name = "c-wall-engine",
                                            .device = "vishard3",
@@ -94,8 +94,10 @@ int main(int argc, char** argv) {
   hapticd_engine_end end;
   hapticd_engine_run(engine, answer, &w, &end);
   hapticd_device_state last;
-  const int have_last = hapticd_latest_state(w.client, w.device, &last) == HAPTICD_OK;
-  const unsigned long long answered = (unsigned long long)hapticd_engine_answered(engine);
+  const int have_last = hapticd_client_latest_state(w.client, w.device, &last) == HAPTICD_OK;
+  uint64_t answered_states = 0;
+  hapticd_engine_answered(engine, &answered_states);
+  const unsigned long long answered = (unsigned long long)answered_states;
   printf("c-wall-engine: answered %llu states; handle %.4f m past the start, the wall at 0.0200 m\n", answered,
          have_last ? last.pose.position.x - start_x : 0.0);
   hapticd_engine_destroy(engine);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The C API's ABI is what was committed: the library exports exactly the symbols of clients/c/abi/hapticd_c.symbols,
-# each with its version node (HAPTICD_C_1), and the structs have the sizes and offsets of
+# each with its version node (HAPTICD_C_2), and the structs have the sizes and offsets of
 # clients/c/abi/hapticd_c.layout. A change to either is an ABI change: update the file in the same commit, and
 # raise the version node (and HAPTICD_C_API_VERSION's major) when an existing symbol or layout changes.
 # Usage: abi_test.sh LIBRARY ABI_DIR LAYOUT_PROGRAM

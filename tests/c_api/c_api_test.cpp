@@ -26,9 +26,13 @@ namespace {
 
 constexpr int kDomain = 149;       // the server's
 constexpr int kEmptyDomain = 150;  // nobody's: the error paths (ctest runs the two tests at once)
+constexpr int kGroupDomain = 148;  // the pair's server
 
 hapticd_client* make(const char* id, int domain = kDomain) {
-  hapticd_client_options o{id, domain, nullptr, nullptr, 0.0};
+  hapticd_client_options o{};
+  o.size = sizeof o;
+  o.client_id = id;
+  o.domain_id = domain;
   hapticd_client* c = nullptr;
   EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_OK) << hapticd_last_error();
   return c;
@@ -43,7 +47,13 @@ TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
   EXPECT_EQ(hapticd_api_version(), HAPTICD_C_API_VERSION);
   hapticd_client* c = nullptr;
   EXPECT_EQ(hapticd_client_create(nullptr, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
-  hapticd_client_options o{"", kEmptyDomain, nullptr, nullptr, 0.0};
+  hapticd_client_options o{};
+  o.client_id = "options-without-size";
+  o.domain_id = kEmptyDomain;
+  EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);  // no size: an older or unset struct
+  EXPECT_NE(std::string(hapticd_last_error()).find("options->size"), std::string::npos) << hapticd_last_error();
+  o.size = sizeof o;
+  o.client_id = "";
   EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(hapticd_last_error()).find("the client id must have 1 to 31 characters"), std::string::npos);
   EXPECT_EQ(c, nullptr);
@@ -92,36 +102,44 @@ TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
   ASSERT_NE(c, nullptr);
   hapticd_device_state state;
   hapticd_reply reply;
-  EXPECT_EQ(hapticd_latest_state(c, nullptr, &state), HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_latest_state(c, "vishard3", nullptr), HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_latest_state(nullptr, "vishard3", &state), HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_latest_state(c, "nobody", &state), HAPTICD_ERROR_NOT_FOUND);
-  EXPECT_EQ(hapticd_wait_for_state(c, "nobody", 0.1, 0, &state), HAPTICD_ERROR_TIMEOUT);
-  EXPECT_EQ(hapticd_wait_for_state(c, "vishard3", -1.0, 0, &state), HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_wait_for_state(c, "vishard3", INFINITY, 0, &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_latest_state(c, nullptr, &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_latest_state(c, "vishard3", nullptr), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_latest_state(nullptr, "vishard3", &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_latest_state(c, "nobody", &state), HAPTICD_ERROR_NOT_FOUND);
+  EXPECT_EQ(hapticd_client_wait_for_state(c, "nobody", 0.1, 0, &state), HAPTICD_ERROR_TIMEOUT);
+  EXPECT_EQ(hapticd_client_wait_for_state(c, "vishard3", -1.0, 0, &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_wait_for_state(c, "vishard3", INFINITY, 0, &state), HAPTICD_ERROR_INVALID_ARGUMENT);
   // Nobody drives "nobody": the request goes unanswered.
-  EXPECT_EQ(hapticd_claim(c, "nobody", 0.3, &reply), HAPTICD_ERROR_TIMEOUT);
+  EXPECT_EQ(hapticd_client_claim(c, "nobody", 0.3, &reply), HAPTICD_ERROR_TIMEOUT);
   EXPECT_EQ(reply.answered, 0);
   const double values[17] = {};
-  EXPECT_EQ(hapticd_set_parameter(c, "vishard3", "virtual_model.mass_kg", values, 17, 0.1, &reply),
+  EXPECT_EQ(hapticd_client_set_parameter(c, "vishard3", "virtual_model.mass_kg", values, 17, 0.1, &reply),
             HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_set_parameter(c, "vishard3", "virtual_model.mass_kg", nullptr, 3, 0.1, &reply),
+  EXPECT_EQ(hapticd_client_set_parameter(c, "vishard3", "virtual_model.mass_kg", nullptr, 3, 0.1, &reply),
             HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_get_parameter(c, "vishard3", nullptr, 0.1, &reply), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_get_parameter(c, "vishard3", nullptr, 0.1, &reply), HAPTICD_ERROR_INVALID_ARGUMENT);
   hapticd_command command{};
   command.kind = 7;
-  EXPECT_EQ(hapticd_send(c, "vishard3", &command), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_send(c, "vishard3", &command), HAPTICD_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(hapticd_last_error()).find("unknown command kind"), std::string::npos);
-  EXPECT_EQ(hapticd_send_group(c, "g", &command, 0), HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_send_group(c, "g", &command, 9), HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_send_coupling(c, "vishard3", nullptr, nullptr, 0), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_send_group(c, "g", &command, 0), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_send_group(c, "g", &command, 9), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_send_coupling(c, "vishard3", nullptr, nullptr, 0), HAPTICD_ERROR_INVALID_ARGUMENT);
   int32_t count = -1;
-  EXPECT_EQ(hapticd_list_devices(c, nullptr, 4, &count), HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_list_devices(c, nullptr, 0, &count), HAPTICD_OK);
+  EXPECT_EQ(hapticd_client_list_devices(c, nullptr, 4, &count), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_list_devices(c, nullptr, 0, &count), HAPTICD_OK);
   EXPECT_EQ(count, 0);
   hapticd_event events[4];
-  EXPECT_EQ(hapticd_take_events(c, events, -1, &count), HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_claim_lost(c, nullptr), 0);
+  EXPECT_EQ(hapticd_client_take_events(c, events, -1, &count), HAPTICD_ERROR_INVALID_ARGUMENT);
+  int32_t lost = -1;
+  EXPECT_EQ(hapticd_client_claim_lost(c, nullptr, &lost), HAPTICD_ERROR_INVALID_ARGUMENT);  // was 0 "not lost"
+  EXPECT_EQ(hapticd_client_claim_lost(c, "vishard3", nullptr), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_claim_lost(nullptr, "vishard3", &lost), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(lost, -1);
+  EXPECT_EQ(hapticd_client_claim_lost(c, "vishard3", &lost), HAPTICD_OK);
+  EXPECT_EQ(lost, 0);
+  EXPECT_EQ(hapticd_client_on_state(c, "an-id-that-is-longer-than-thirty-one-characters", nullptr, nullptr),
+            HAPTICD_ERROR_INVALID_ARGUMENT);
   // The engine helper.
   hapticd_engine* engine = nullptr;
   hapticd_engine_options eo{};
@@ -152,15 +170,22 @@ TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
   EXPECT_EQ(end.exit_code, 1);
   EXPECT_EQ(hapticd_engine_run(engine, answer_nothing, nullptr, &end), HAPTICD_ERROR_INVALID_ARGUMENT);  // once
   EXPECT_EQ(hapticd_engine_stop(nullptr), HAPTICD_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(hapticd_engine_answered(nullptr), 0u);
-  EXPECT_EQ(hapticd_engine_device_count(engine), 0);
+  std::uint64_t answered = 7;
+  EXPECT_EQ(hapticd_engine_answered(nullptr, &answered), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_engine_answered(engine, nullptr), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_engine_answered(engine, &answered), HAPTICD_OK);
+  EXPECT_EQ(answered, 0u);
+  int32_t devices = -1;
+  EXPECT_EQ(hapticd_engine_device_count(nullptr, &devices), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_engine_device_count(engine, &devices), HAPTICD_OK);
+  EXPECT_EQ(devices, 0);
   hapticd_engine_destroy(engine);
   hapticd_engine_destroy(nullptr);
   EXPECT_STREQ(hapticd_status_name(HAPTICD_ERROR_TIMEOUT), "HAPTICD_ERROR_TIMEOUT");
   EXPECT_STREQ(hapticd_status_name(static_cast<hapticd_status>(99)), "an unknown status");
 
   // The message is the calling thread's own.
-  EXPECT_EQ(hapticd_latest_state(c, "", &state), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_latest_state(c, "", &state), HAPTICD_ERROR_INVALID_ARGUMENT);
   std::string other = "unset";
   std::thread([&] { other = hapticd_last_error(); }).join();
   EXPECT_EQ(other, "");
@@ -183,7 +208,7 @@ TEST(CApi, AnEngineDiscoversClaimsAndAnswersStatesWithoutAllocating) {
   ASSERT_NE(c, nullptr);
   ASSERT_NE(other, nullptr);
   hapticd_device_info info;
-  ASSERT_EQ(hapticd_wait_for_device(c, "vishard3", 20.0, 1, &info), HAPTICD_OK) << hapticd_last_error();
+  ASSERT_EQ(hapticd_client_wait_for_device(c, "vishard3", 20.0, 1, &info), HAPTICD_OK) << hapticd_last_error();
   EXPECT_STREQ(info.device, "vishard3");
   EXPECT_EQ(info.dof, 3);
   EXPECT_EQ(info.has_start_pose, 1);
@@ -191,10 +216,10 @@ TEST(CApi, AnEngineDiscoversClaimsAndAnswersStatesWithoutAllocating) {
   EXPECT_GT(info.scheme_count, 0);
   int32_t count = 0;
   hapticd_device_info listed[2];
-  ASSERT_EQ(hapticd_list_devices(c, listed, 2, &count), HAPTICD_OK);
+  ASSERT_EQ(hapticd_client_list_devices(c, listed, 2, &count), HAPTICD_OK);
   EXPECT_EQ(count, 1);
   hapticd_device_state state;
-  ASSERT_EQ(hapticd_wait_for_state(c, "vishard3", 10.0, 0, &state), HAPTICD_OK) << hapticd_last_error();
+  ASSERT_EQ(hapticd_client_wait_for_state(c, "vishard3", 10.0, 0, &state), HAPTICD_OK) << hapticd_last_error();
   EXPECT_STREQ(state.device, "vishard3");
   EXPECT_EQ(state.dof, 3);
   EXPECT_NEAR(state.pose.position.x, info.start_pose.position.x, 0.01);
@@ -202,45 +227,48 @@ TEST(CApi, AnEngineDiscoversClaimsAndAnswersStatesWithoutAllocating) {
   // waits (here for a state 200 serials on, a fraction of a second away).
   for (const double long_timeout : {1e10, 1e300}) {
     const std::uint64_t after = state.serial + 200;
-    ASSERT_EQ(hapticd_wait_for_state(c, "vishard3", long_timeout, after, &state), HAPTICD_OK) << hapticd_last_error();
+    ASSERT_EQ(hapticd_client_wait_for_state(c, "vishard3", long_timeout, after, &state), HAPTICD_OK)
+        << hapticd_last_error();
     EXPECT_GT(state.serial, after);
   }
 
   hapticd_reply reply;
-  ASSERT_EQ(hapticd_claim(c, "vishard3", 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
+  ASSERT_EQ(hapticd_client_claim(c, "vishard3", 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
   EXPECT_EQ(reply.accepted, 1);
-  EXPECT_EQ(hapticd_claim(other, "vishard3", 5.0, &reply), HAPTICD_ERROR_REFUSED);
+  EXPECT_EQ(hapticd_client_claim(other, "vishard3", 5.0, &reply), HAPTICD_ERROR_REFUSED);
   EXPECT_EQ(reply.answered, 1);
   EXPECT_NE(std::string(hapticd_last_error()).find("c-api-engine"), std::string::npos) << hapticd_last_error();
 
   const double stiffness = 2500.0;
-  ASSERT_EQ(
-      hapticd_set_parameter(c, "vishard3", "virtual_model.coupling_stiffness_n_per_m", &stiffness, 1, 5.0, &reply),
-      HAPTICD_OK)
+  ASSERT_EQ(hapticd_client_set_parameter(c, "vishard3", "virtual_model.coupling_stiffness_n_per_m", &stiffness, 1, 5.0,
+                                         &reply),
+            HAPTICD_OK)
       << hapticd_last_error();
-  ASSERT_EQ(hapticd_get_parameter(c, "vishard3", "virtual_model.coupling_stiffness_n_per_m", 5.0, &reply), HAPTICD_OK);
+  ASSERT_EQ(hapticd_client_get_parameter(c, "vishard3", "virtual_model.coupling_stiffness_n_per_m", 5.0, &reply),
+            HAPTICD_OK);
   ASSERT_EQ(reply.value_count, 1);
   EXPECT_EQ(reply.values[0], 2500.0);
   hapticd_parameter_info parameter;
-  ASSERT_EQ(
-      hapticd_describe_parameter(c, "vishard3", "virtual_model.coupling_stiffness_n_per_m", 5.0, &parameter, &reply),
-      HAPTICD_OK);
+  ASSERT_EQ(hapticd_client_describe_parameter(c, "vishard3", "virtual_model.coupling_stiffness_n_per_m", 5.0,
+                                              &parameter, &reply),
+            HAPTICD_OK);
   EXPECT_STREQ(parameter.unit, "N/m");
   EXPECT_EQ(parameter.tunable, 1);
   EXPECT_EQ(parameter.type, HAPTICD_PARAMETER_REAL);
-  EXPECT_EQ(hapticd_get_parameter(c, "vishard3", "virtual_model.no_such_parameter", 5.0, &reply),
+  EXPECT_EQ(hapticd_client_get_parameter(c, "vishard3", "virtual_model.no_such_parameter", 5.0, &reply),
             HAPTICD_ERROR_REFUSED);
 
   // The per-cycle calls: the newest state, and a coupling command answering it.
-  ASSERT_EQ(hapticd_wait_for_state(c, "vishard3", 5.0, state.serial, &state), HAPTICD_OK);
+  ASSERT_EQ(hapticd_client_wait_for_state(c, "vishard3", 5.0, state.serial, &state), HAPTICD_OK);
   const hapticd_twist still{};
   if (hapticd::testing::AllocationGuard::available()) {
     std::size_t reading = 0, sending = 0;
     for (int i = 0; i < 200; ++i) {
       reading += hapticd::testing::count_allocations(
-          [&] { ASSERT_EQ(hapticd_latest_state(c, "vishard3", &state), HAPTICD_OK); });
-      sending += hapticd::testing::count_allocations(
-          [&] { ASSERT_EQ(hapticd_send_coupling(c, "vishard3", &state.pose, &still, state.serial), HAPTICD_OK); });
+          [&] { ASSERT_EQ(hapticd_client_latest_state(c, "vishard3", &state), HAPTICD_OK); });
+      sending += hapticd::testing::count_allocations([&] {
+        ASSERT_EQ(hapticd_client_send_coupling(c, "vishard3", &state.pose, &still, state.serial), HAPTICD_OK);
+      });
     }
     EXPECT_EQ(reading, 0u);
     EXPECT_EQ(sending, 0u);
@@ -248,26 +276,94 @@ TEST(CApi, AnEngineDiscoversClaimsAndAnswersStatesWithoutAllocating) {
   // The server took the commands: the state says the engine is active.
   bool active = false;
   for (int i = 0; i < 200 && !active; ++i) {
-    ASSERT_EQ(hapticd_latest_state(c, "vishard3", &state), HAPTICD_OK);
-    ASSERT_EQ(hapticd_send_coupling(c, "vishard3", &state.pose, &still, state.serial), HAPTICD_OK);
+    ASSERT_EQ(hapticd_client_latest_state(c, "vishard3", &state), HAPTICD_OK);
+    ASSERT_EQ(hapticd_client_send_coupling(c, "vishard3", &state.pose, &still, state.serial), HAPTICD_OK);
     active = (state.flags & HAPTICD_FLAG_ENGINE_ACTIVE) != 0;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   EXPECT_TRUE(active);
   EXPECT_STREQ(state.owner, "c-api-engine");
   hapticd_telemetry telemetry{};
-  for (int i = 0; i < 60 && !(hapticd_latest_telemetry(c, "vishard3", &telemetry) == HAPTICD_OK &&
+  for (int i = 0; i < 60 && !(hapticd_client_latest_telemetry(c, "vishard3", &telemetry) == HAPTICD_OK &&
                               telemetry.commands_accepted > 0);
        ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   EXPECT_GT(telemetry.commands_accepted, 0u);
-  EXPECT_EQ(hapticd_release(c, "vishard3", 5.0, &reply), HAPTICD_OK);
+  EXPECT_EQ(hapticd_client_release(c, "vishard3", 5.0, &reply), HAPTICD_OK);
   hapticd_event events[64];
   int32_t taken = 0;
-  ASSERT_EQ(hapticd_take_events(c, events, 64, &taken), HAPTICD_OK);
+  ASSERT_EQ(hapticd_client_take_events(c, events, 64, &taken), HAPTICD_OK);
   bool owner_event = false;
   for (int i = 0; i < taken; ++i) owner_event |= events[i].kind == HAPTICD_EVENT_OWNER;
   EXPECT_TRUE(owner_event);
+  hapticd_client_destroy(other);
+  hapticd_client_destroy(c);
+}
+
+// Version 2 of the C API: a group is claimed, stopped, recovered and released through the device calls, and a state
+// callback takes the states of the device it names (the C# engine compared names byte by byte per state).
+TEST(CApi, GroupRequestsGoThroughTheDeviceCallsAndAStateCallbackTakesOnlyItsDevice) {
+  const std::string log = ::testing::TempDir() + "c_api_group_server.txt";
+  test::Process server(
+      {test::bin_dir() + "/hapticd", "--config", test::source_dir() + "/config/sessions/dual-arm/vishard3-pair.yaml",
+       "--dds-domain", std::to_string(kGroupDomain), "--duration", "30", "--busy-machine", "--set",
+       "server.realtime_priority=0", "--set", "server.lock_memory=false"},
+      log);
+  ASSERT_TRUE(server.started());
+  hapticd_client* c = make("c-api-pair", kGroupDomain);
+  hapticd_client* other = make("c-api-pair-other", kGroupDomain);
+  ASSERT_NE(c, nullptr);
+  ASSERT_NE(other, nullptr);
+  hapticd_device_state state;
+  ASSERT_EQ(hapticd_client_wait_for_state(c, "right", 20.0, 0, &state), HAPTICD_OK) << hapticd_last_error();
+
+  // The filter: only "right"'s states reach the callback, while both devices publish.
+  struct Seen {
+    std::atomic<int> right{0}, others{0};
+  } seen;
+  const auto count = [](const hapticd_device_state* s, void* user) {
+    auto* into = static_cast<Seen*>(user);
+    (std::string(s->device) == "right" ? into->right : into->others)++;
+  };
+  ASSERT_EQ(hapticd_client_on_state(c, "right", count, &seen), HAPTICD_OK) << hapticd_last_error();
+  for (int i = 0; i < 200 && seen.right < 50; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(hapticd_client_on_state(c, nullptr, nullptr, nullptr), HAPTICD_OK);
+  EXPECT_GE(seen.right.load(), 50);
+  EXPECT_EQ(seen.others.load(), 0);
+  ASSERT_EQ(hapticd_client_latest_state(c, "left", &state), HAPTICD_OK);  // "left" was publishing all along
+
+  // The group through hapticd_client_claim: both devices are the client's; a device of it is refused to another.
+  hapticd_reply reply;
+  ASSERT_EQ(hapticd_client_claim(c, "table", 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
+  for (const char* device : {"left", "right"}) {
+    bool owned = false;
+    for (int i = 0; i < 200 && !owned; ++i) {
+      ASSERT_EQ(hapticd_client_latest_state(c, device, &state), HAPTICD_OK);
+      owned = std::string(state.owner) == "c-api-pair";
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_TRUE(owned) << device;
+  }
+  EXPECT_EQ(hapticd_client_claim(other, "left", 5.0, &reply), HAPTICD_ERROR_REFUSED);
+  // A stop of the group stops both; its recover recovers both.
+  ASSERT_EQ(hapticd_client_emergency_stop(c, "table", 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
+  for (const char* device : {"left", "right"}) {
+    bool stopped = false;
+    for (int i = 0; i < 200 && !stopped; ++i) {
+      ASSERT_EQ(hapticd_client_latest_state(c, device, &state), HAPTICD_OK);
+      stopped = (state.flags & HAPTICD_FLAG_ESTOP) != 0;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_TRUE(stopped) << device;
+  }
+  bool recovered = false;
+  for (int i = 0; i < 50 && !recovered; ++i) {  // once zero torque is reached
+    recovered = hapticd_client_recover(c, "table", 5.0, &reply) == HAPTICD_OK;
+    if (!recovered) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_TRUE(recovered) << hapticd_last_error();
+  ASSERT_EQ(hapticd_client_release(c, "table", 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
+  EXPECT_EQ(hapticd_client_claim(other, "left", 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
   hapticd_client_destroy(other);
   hapticd_client_destroy(c);
 }

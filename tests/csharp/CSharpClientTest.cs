@@ -6,6 +6,8 @@
 //                                   pushes N newtons; a claim the server ends is taken again; the per-cycle calls
 //                                   make no managed garbage; prints where the handle rests
 //   callbacks                       every delegate handed to native code is a static [MonoPInvokeCallback] method
+//   symbols FILE                    every function the library exports (clients/c/abi/hapticd_c.symbols) is bound,
+//                                   and every binding names one it exports
 // Exit code 0 when every check of the mode holds (each failure is printed).
 using System;
 using System.Collections.Generic;
@@ -36,6 +38,7 @@ static class CSharpClientTest
             case "errors": Errors(int.Parse(args[1])); break;
             case "engine": RunEngine(int.Parse(args[1]), args[2], double.Parse(args[3]), double.Parse(args[4])); break;
             case "callbacks": CheckCallbacks(); break;
+            case "symbols": Symbols(args[1]); break;
             default: Console.Error.WriteLine("usage: layout FILE | errors DOMAIN | engine DOMAIN DEVICE SECONDS N | callbacks"); return 2;
         }
         Console.WriteLine(failures == 0 ? "all checks passed" : failures + " failures");
@@ -78,7 +81,7 @@ static class CSharpClientTest
             }
         }
         Check(checkedCount > 40, checkedCount + " sizes and offsets compared");
-        Check(Client.ApiVersion == 1, "the library's API version is the bindings' (1)");
+        Check(Client.ApiVersion == 2, "the library's API version is the bindings' (2)");
     }
 
     static void Errors(int domain)
@@ -104,6 +107,23 @@ static class CSharpClientTest
                   "an unknown command kind: InvalidArgument");
             Check(StatusOf(() => c.SendGroup(new DeviceName("g"), new Command[9], 9)) == Status.InvalidArgument, "a group command of 9: InvalidArgument");
             Check(c.Devices().Length == 0, "no devices on an empty domain");
+            Check(c.Groups().Length == 0, "no groups on an empty domain");
+            Check(StatusOf(() => c.WaitForGroup("nobody", 0.1)) == Status.Timeout, "no group 'nobody': Timeout");
+            GroupState g;
+            Check(!c.TryLatestGroupState(new DeviceName("nobody"), out g), "no latest group state of 'nobody': false");
+            Check(c.LatestFaultReport("nobody") == null, "no fault report of 'nobody': null");
+            Check(!c.ClaimLost("nobody"), "no claim of 'nobody' lost");
+            Check(StatusOf(() => c.ClaimLost("")) == Status.InvalidArgument, "ClaimLost of an empty name: InvalidArgument (was: false)");
+            Check(Client.StatusName(Status.Timeout) == "HAPTICD_ERROR_TIMEOUT", "StatusName(Timeout): " + Client.StatusName(Status.Timeout));
+            Check(StatusOf(() => c.OnState(new DeviceName("an-id-that-is-longer-than-thirty-one-characters"), (ref DeviceState st) => { })) == Status.InvalidArgument,
+                  "a state filter of 47 characters: InvalidArgument");
+            var w = new Wrench();
+            var model = LocalModel.Spring(new Pose { orientation = Quat.Identity }, new Vec3(100, 0, 0), new Vec3());
+            var p0 = new Pose { orientation = Quat.Identity };
+            var t0 = new Twist();
+            Check(StatusOf(() => c.SendWrench(new DeviceName("nobody"), ref w, 0)) == Status.Ok, "a wrench is handed over (nobody reads it)");
+            Check(StatusOf(() => c.SendWrench(new DeviceName("nobody"), ref w, ref model, 0)) == Status.Ok, "a wrench with its local model is handed over");
+            Check(StatusOf(() => c.SendMotion(new DeviceName("nobody"), ref p0, ref t0, 0)) == Status.Ok, "a motion is handed over");
         }
         var disposed = new Client("cs-disposed", domain);
         disposed.Dispose();
@@ -163,6 +183,25 @@ static class CSharpClientTest
             Console.WriteLine("cs-wall-engine: answered " + answered + " states; handle " +
                               (last.pose.position.x - startX).ToString("0.0000") + " m past the start, the wall at 0.0200 m");
         }
+    }
+
+    // Every function of the C API has its binding (step 5 of issue 63: the bindings covered 27 of 37 functions).
+    static void Symbols(string file)
+    {
+        var exported = new HashSet<string>();
+        foreach (var line in File.ReadAllLines(file))
+            if (line.Length > 0) exported.Add(line.Split('@')[0]);
+        var bound = new HashSet<string>();
+        var native = typeof(Client).Assembly.GetType("Hapticd.Native");
+        foreach (var m in native.GetMethods(System.Reflection.BindingFlags.Public | System.Reflection.BindingFlags.Static))
+        {
+            var import = (DllImportAttribute)Attribute.GetCustomAttribute(m, typeof(DllImportAttribute));
+            if (import == null) continue;
+            bound.Add(string.IsNullOrEmpty(import.EntryPoint) ? m.Name : import.EntryPoint);
+        }
+        foreach (var f in exported) Check(bound.Contains(f), f + " is bound");
+        foreach (var f in bound) Check(exported.Contains(f), f + " is a function the library exports");
+        Check(exported.Count > 40, exported.Count + " exported functions");
     }
 
     // IL2CPP marshals only static methods marked [MonoPInvokeCallback]: every delegate of a native callback type the

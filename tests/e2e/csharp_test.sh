@@ -28,6 +28,8 @@ echo "ok: $(grep -c '^ok' layout.log) layout checks"
 timeout 60 mono test.exe errors "$domain" > errors.log 2>&1 || fail "errors: $(cat errors.log)"
 echo "ok: $(grep -c '^ok' errors.log) error paths"
 timeout 60 mono test.exe callbacks > callbacks.log 2>&1 || fail "callbacks: $(cat callbacks.log)"
+timeout 60 mono test.exe symbols "$src/clients/c/abi/hapticd_c.symbols" > symbols.log 2>&1 || fail "symbols: $(grep FAIL symbols.log)"
+echo "ok: $(grep -c '^ok.*is bound' symbols.log) C functions, each bound in C#"
 echo "ok: $(grep -c '^ok' callbacks.log) checks: only static [MonoPInvokeCallback] methods are handed to native code"
 
 timeout 60 "$bin/hapticd" --config "$src/config/sessions/vishard3/dds-coupling.yaml" --dds-domain "$domain" \

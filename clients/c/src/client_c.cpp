@@ -1,6 +1,8 @@
 // The C API (hapticd/client.h) over the C++ client library: each function checks its arguments, calls the
 // library, converts its values, and turns every exception into a status and the thread's message. Nothing of
 // C++ leaves this file through the interface.
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <deque>
@@ -8,6 +10,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "c_status.hpp"
 #include "c_values.hpp"
@@ -48,6 +51,47 @@ hapticd_status request(hapticd_client* c, const char* target, const char* what, 
   return guarded([&] { return reply_status(f(name, timeout_of(timeout_s)), reply); });
 }
 
+bool heard_of_group(hapticd_client* c, std::string_view name) {
+  for (const auto& g : c->client.groups())
+    if (g.group == name) return true;
+  return false;
+}
+bool heard_of_device(hapticd_client* c, std::string_view name) {
+  for (const auto& d : c->client.devices())
+    if (d.device == name) return true;
+  return false;
+}
+
+// Whether `target` names a group: "*" (every device of the server), a group this client has heard of, or - neither
+// heard of yet - a group heard of first within the timeout. Returns the time left of the timeout in `left`.
+bool names_group(hapticd_client* c, std::string_view target, double timeout_s, client::Timeout& left) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s));
+  const auto remaining = [&] {
+    return client::Timeout(std::max(0.0, std::chrono::duration<double>(deadline - Clock::now()).count()));
+  };
+  if (target == "*") {
+    left = remaining();
+    return true;
+  }
+  for (;;) {
+    if (heard_of_group(c, target)) {
+      left = remaining();
+      return true;
+    }
+    if (heard_of_device(c, target)) {
+      left = remaining();
+      return false;
+    }
+    if (Clock::now() >= deadline) {
+      left = client::Timeout(0.0);
+      return false;  // the server says it has no such device
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
 std::vector<double> values_of(const double* values, std::int32_t count) {
   return count > 0 ? std::vector<double>(values, values + count) : std::vector<double>{};
 }
@@ -58,7 +102,7 @@ bool valid_values(const double* values, std::int32_t count) noexcept {
 
 // One thing of a named device or group into `out`: the arguments checked (the timeout when `timed`), then
 // `get(name)`, an optional; nothing is `missing` (HAPTICD_ERROR_TIMEOUT or HAPTICD_ERROR_NOT_FOUND), said with
-// `thing`. The success path allocates nothing (hapticd_latest_state relies on it).
+// `thing`. The success path allocates nothing (hapticd_client_latest_state relies on it).
 template <class Out, class Get>
 hapticd_status fetch(hapticd_client* c, const char* target, const char* what, bool timed, double timeout_s, Out* out,
                      const char* thing, hapticd_status missing, Get&& get) noexcept {
@@ -122,6 +166,9 @@ hapticd_status hapticd_client_create(const hapticd_client_options* options, hapt
   if (out == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "out is NULL");
   *out = nullptr;
   if (options == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the options are NULL");
+  if (options->size < sizeof(hapticd_client_options))
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT,
+                "options->size is less than sizeof(hapticd_client_options) (set .size = sizeof options)");
   const std::string_view id = name_of(options->client_id);
   if (id.empty()) return bad_name("the client id", options->client_id);
   if (options->domain_id < 0 || options->domain_id > 230)
@@ -153,7 +200,8 @@ void hapticd_client_destroy(hapticd_client* client) {
 
 // ---- devices ----
 
-hapticd_status hapticd_list_devices(hapticd_client* c, hapticd_device_info* out, int32_t capacity, int32_t* count) {
+hapticd_status hapticd_client_list_devices(hapticd_client* c, hapticd_device_info* out, int32_t capacity,
+                                           int32_t* count) {
   if (c == nullptr || count == nullptr || capacity < 0 || (capacity > 0 && out == nullptr))
     return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client, count or out is NULL (or capacity < 0)");
   return guarded([&] {
@@ -164,26 +212,27 @@ hapticd_status hapticd_list_devices(hapticd_client* c, hapticd_device_info* out,
   });
 }
 
-hapticd_status hapticd_wait_for_device(hapticd_client* c, const char* device, double timeout_s, int32_t started,
-                                       hapticd_device_info* out) {
+hapticd_status hapticd_client_wait_for_device(hapticd_client* c, const char* device, double timeout_s, int32_t started,
+                                              hapticd_device_info* out) {
   return fetch(c, device, "the device", true, timeout_s, out, "description", HAPTICD_ERROR_TIMEOUT,
                [&](std::string_view d) { return c->client.wait_for_device(d, timeout_of(timeout_s), started != 0); });
 }
 
-hapticd_status hapticd_latest_state(hapticd_client* c, const char* device, hapticd_device_state* out) {
+hapticd_status hapticd_client_latest_state(hapticd_client* c, const char* device, hapticd_device_state* out) {
   return fetch(c, device, "the device", false, 0.0, out, "state", HAPTICD_ERROR_NOT_FOUND,
                [&](std::string_view d) { return c->client.latest_state(d); });
 }
 
-hapticd_status hapticd_wait_for_state(hapticd_client* c, const char* device, double timeout_s, uint64_t after,
-                                      hapticd_device_state* out) {
+hapticd_status hapticd_client_wait_for_state(hapticd_client* c, const char* device, double timeout_s, uint64_t after,
+                                             hapticd_device_state* out) {
   return fetch(c, device, "the device", true, timeout_s, out, "state", HAPTICD_ERROR_TIMEOUT,
                [&](std::string_view d) { return c->client.wait_for_state(d, timeout_of(timeout_s), after); });
 }
 
 // ---- groups ----
 
-hapticd_status hapticd_list_groups(hapticd_client* c, hapticd_group_info* out, int32_t capacity, int32_t* count) {
+hapticd_status hapticd_client_list_groups(hapticd_client* c, hapticd_group_info* out, int32_t capacity,
+                                          int32_t* count) {
   if (c == nullptr || count == nullptr || capacity < 0 || (capacity > 0 && out == nullptr))
     return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client, count or out is NULL (or capacity < 0)");
   return guarded([&] {
@@ -194,25 +243,26 @@ hapticd_status hapticd_list_groups(hapticd_client* c, hapticd_group_info* out, i
   });
 }
 
-hapticd_status hapticd_wait_for_group(hapticd_client* c, const char* group, double timeout_s, hapticd_group_info* out) {
+hapticd_status hapticd_client_wait_for_group(hapticd_client* c, const char* group, double timeout_s,
+                                             hapticd_group_info* out) {
   return fetch(c, group, "the group", true, timeout_s, out, "group description", HAPTICD_ERROR_TIMEOUT,
                [&](std::string_view g) { return c->client.wait_for_group(g, timeout_of(timeout_s)); });
 }
 
-hapticd_status hapticd_latest_group_state(hapticd_client* c, const char* group, hapticd_group_state* out) {
+hapticd_status hapticd_client_latest_group_state(hapticd_client* c, const char* group, hapticd_group_state* out) {
   return fetch(c, group, "the group", false, 0.0, out, "group state", HAPTICD_ERROR_NOT_FOUND,
                [&](std::string_view g) { return c->client.latest_group_state(g); });
 }
 
-hapticd_status hapticd_wait_for_group_state(hapticd_client* c, const char* group, double timeout_s, uint64_t after,
-                                            hapticd_group_state* out) {
+hapticd_status hapticd_client_wait_for_group_state(hapticd_client* c, const char* group, double timeout_s,
+                                                   uint64_t after, hapticd_group_state* out) {
   return fetch(c, group, "the group", true, timeout_s, out, "group state", HAPTICD_ERROR_TIMEOUT,
                [&](std::string_view g) { return c->client.wait_for_group_state(g, timeout_of(timeout_s), after); });
 }
 
 // ---- events, telemetry, fault reports ----
 
-hapticd_status hapticd_take_events(hapticd_client* c, hapticd_event* out, int32_t capacity, int32_t* count) {
+hapticd_status hapticd_client_take_events(hapticd_client* c, hapticd_event* out, int32_t capacity, int32_t* count) {
   if (c == nullptr || count == nullptr || capacity < 0 || (capacity > 0 && out == nullptr))
     return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client, count or out is NULL (or capacity < 0)");
   return guarded([&] {
@@ -229,25 +279,33 @@ hapticd_status hapticd_take_events(hapticd_client* c, hapticd_event* out, int32_
   });
 }
 
-hapticd_status hapticd_latest_telemetry(hapticd_client* c, const char* device, hapticd_telemetry* out) {
+hapticd_status hapticd_client_latest_telemetry(hapticd_client* c, const char* device, hapticd_telemetry* out) {
   return fetch(c, device, "the device", false, 0.0, out, "telemetry", HAPTICD_ERROR_NOT_FOUND,
                [&](std::string_view d) { return c->client.latest_telemetry(d); });
 }
 
-hapticd_status hapticd_latest_fault_report(hapticd_client* c, const char* device, hapticd_fault_report* out) {
+hapticd_status hapticd_client_latest_fault_report(hapticd_client* c, const char* device, hapticd_fault_report* out) {
   return fetch(c, device, "the device", false, 0.0, out, "fault report", HAPTICD_ERROR_NOT_FOUND,
                [&](std::string_view d) { return c->client.latest_fault_report(d); });
 }
 
 // ---- callbacks ----
 
-hapticd_status hapticd_on_state(hapticd_client* c, hapticd_state_callback callback, void* user) {
+hapticd_status hapticd_client_on_state(hapticd_client* c, const char* device, hapticd_state_callback callback,
+                                       void* user) {
   if (c == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client is NULL");
+  client::Name only;  // "": every device
+  if (device != nullptr && *device != '\0') {
+    const std::string_view name = name_of(device);
+    if (name.empty()) return bad_name("the device", device);
+    only.assign(name);
+  }
   return guarded([&] {
     if (callback == nullptr) {
       c->client.on_state({});
     } else {
-      c->client.on_state([callback, user](const client::DeviceState& s) {
+      c->client.on_state([callback, user, only](const client::DeviceState& s) {
+        if (!only.empty() && s.device.view() != only.view()) return;
         hapticd_device_state state;  // on the receive thread's stack: no allocation per state
         to_c(s, state);
         callback(&state, user);
@@ -257,7 +315,7 @@ hapticd_status hapticd_on_state(hapticd_client* c, hapticd_state_callback callba
   });
 }
 
-hapticd_status hapticd_on_event(hapticd_client* c, hapticd_event_callback callback, void* user) {
+hapticd_status hapticd_client_on_event(hapticd_client* c, hapticd_event_callback callback, void* user) {
   if (c == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client is NULL");
   return guarded([&] {
     if (callback == nullptr) {
@@ -273,7 +331,7 @@ hapticd_status hapticd_on_event(hapticd_client* c, hapticd_event_callback callba
   });
 }
 
-hapticd_status hapticd_on_claim_lost(hapticd_client* c, hapticd_claim_lost_callback callback, void* user) {
+hapticd_status hapticd_client_on_claim_lost(hapticd_client* c, hapticd_claim_lost_callback callback, void* user) {
   if (c == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client is NULL");
   return guarded([&] {
     if (callback == nullptr) {
@@ -291,38 +349,43 @@ hapticd_status hapticd_on_claim_lost(hapticd_client* c, hapticd_claim_lost_callb
   });
 }
 
-int32_t hapticd_claim_lost(hapticd_client* c, const char* device) {
+hapticd_status hapticd_client_claim_lost(hapticd_client* c, const char* device, int32_t* lost) {
+  if (c == nullptr || lost == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or lost is NULL");
   const std::string_view name = name_of(device);
-  if (c == nullptr || name.empty()) return 0;
-  try {
-    return c->client.claim_lost(name) ? 1 : 0;
-  } catch (...) {
-    return 0;
-  }
+  if (name.empty()) return bad_name("the device", device);
+  return guarded([&] {
+    *lost = c->client.claim_lost(name) ? 1 : 0;
+    return HAPTICD_OK;
+  });
 }
 
 // ---- requests ----
 
-hapticd_status hapticd_claim(hapticd_client* c, const char* device, double timeout_s, hapticd_reply* reply) {
-  return request(c, device, "the device", timeout_s, reply,
-                 [&](std::string_view d, client::Timeout t) { return c->client.claim(d, t); });
+hapticd_status hapticd_client_claim(hapticd_client* c, const char* target, double timeout_s, hapticd_reply* reply) {
+  return request(c, target, "the device or group", timeout_s, reply, [&](std::string_view t, client::Timeout) {
+    client::Timeout left(0.0);
+    return names_group(c, t, timeout_s, left) ? c->client.claim_group(t, left) : c->client.claim(t, left);
+  });
 }
 
-hapticd_status hapticd_release(hapticd_client* c, const char* device, double timeout_s, hapticd_reply* reply) {
-  return request(c, device, "the device", timeout_s, reply,
-                 [&](std::string_view d, client::Timeout t) { return c->client.release(d, t); });
+hapticd_status hapticd_client_release(hapticd_client* c, const char* target, double timeout_s, hapticd_reply* reply) {
+  return request(c, target, "the device or group", timeout_s, reply, [&](std::string_view t, client::Timeout) {
+    client::Timeout left(0.0);
+    return names_group(c, t, timeout_s, left) ? c->client.release_group(t, left) : c->client.release(t, left);
+  });
 }
 
-hapticd_status hapticd_switch_scheme(hapticd_client* c, const char* device, const char* scheme, double timeout_s,
-                                     hapticd_reply* reply) {
+hapticd_status hapticd_client_switch_scheme(hapticd_client* c, const char* device, const char* scheme, double timeout_s,
+                                            hapticd_reply* reply) {
   const std::string_view s = name_of(scheme);
   if (s.empty()) return bad_name("the scheme", scheme);
   return request(c, device, "the device", timeout_s, reply,
                  [&](std::string_view d, client::Timeout t) { return c->client.switch_scheme(d, s, t); });
 }
 
-hapticd_status hapticd_set_parameter(hapticd_client* c, const char* device, const char* parameter, const double* values,
-                                     int32_t value_count, double timeout_s, hapticd_reply* reply) {
+hapticd_status hapticd_client_set_parameter(hapticd_client* c, const char* device, const char* parameter,
+                                            const double* values, int32_t value_count, double timeout_s,
+                                            hapticd_reply* reply) {
   if (parameter == nullptr || *parameter == '\0')
     return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the parameter is NULL or empty");
   if (!valid_values(values, value_count))
@@ -332,16 +395,16 @@ hapticd_status hapticd_set_parameter(hapticd_client* c, const char* device, cons
   });
 }
 
-hapticd_status hapticd_get_parameter(hapticd_client* c, const char* device, const char* parameter, double timeout_s,
-                                     hapticd_reply* reply) {
+hapticd_status hapticd_client_get_parameter(hapticd_client* c, const char* device, const char* parameter,
+                                            double timeout_s, hapticd_reply* reply) {
   if (parameter == nullptr || *parameter == '\0')
     return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the parameter is NULL or empty");
   return request(c, device, "the device", timeout_s, reply,
                  [&](std::string_view d, client::Timeout t) { return c->client.get_parameter(d, parameter, t); });
 }
 
-hapticd_status hapticd_describe_parameter(hapticd_client* c, const char* device, const char* parameter,
-                                          double timeout_s, hapticd_parameter_info* out, hapticd_reply* reply) {
+hapticd_status hapticd_client_describe_parameter(hapticd_client* c, const char* device, const char* parameter,
+                                                 double timeout_s, hapticd_parameter_info* out, hapticd_reply* reply) {
   if (parameter == nullptr || *parameter == '\0' || out == nullptr)
     return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the parameter or out is NULL (or the parameter empty)");
   return request(c, device, "the device", timeout_s, reply, [&](std::string_view d, client::Timeout t) {
@@ -351,19 +414,31 @@ hapticd_status hapticd_describe_parameter(hapticd_client* c, const char* device,
   });
 }
 
-hapticd_status hapticd_emergency_stop(hapticd_client* c, const char* device, double timeout_s, hapticd_reply* reply) {
-  return request(c, device, "the device", timeout_s, reply,
-                 [&](std::string_view d, client::Timeout t) { return c->client.emergency_stop(d, t); });
+// A stop is sent at once, never after a wait for a description: a name heard of as a group (or "*") stops the group;
+// any other is stopped as a device and, if the server has no such device, as a group.
+hapticd_status hapticd_client_emergency_stop(hapticd_client* c, const char* target, double timeout_s,
+                                             hapticd_reply* reply) {
+  return request(c, target, "the device or group", timeout_s, reply, [&](std::string_view t, client::Timeout left) {
+    if (t == "*" || heard_of_group(c, t)) return c->client.emergency_stop_group(t, left);
+    client::Reply r = c->client.emergency_stop(t, left);
+    if (r.answered && !r.accepted && !heard_of_device(c, t)) {
+      client::Reply g = c->client.emergency_stop_group(t, left);
+      if (g.answered && g.accepted) return g;
+    }
+    return r;
+  });
 }
 
-hapticd_status hapticd_recover(hapticd_client* c, const char* device, double timeout_s, hapticd_reply* reply) {
-  return request(c, device, "the device", timeout_s, reply,
-                 [&](std::string_view d, client::Timeout t) { return c->client.recover(d, t); });
+hapticd_status hapticd_client_recover(hapticd_client* c, const char* target, double timeout_s, hapticd_reply* reply) {
+  return request(c, target, "the device or group", timeout_s, reply, [&](std::string_view t, client::Timeout) {
+    client::Timeout left(0.0);
+    return names_group(c, t, timeout_s, left) ? c->client.recover_group(t, left) : c->client.recover(t, left);
+  });
 }
 
-hapticd_status hapticd_operator_command(hapticd_client* c, const char* device, const char* command,
-                                        const double* values, int32_t value_count, double timeout_s,
-                                        hapticd_reply* reply) {
+hapticd_status hapticd_client_operator_command(hapticd_client* c, const char* device, const char* command,
+                                               const double* values, int32_t value_count, double timeout_s,
+                                               hapticd_reply* reply) {
   const std::string_view name = name_of(command);
   if (name.empty()) return bad_name("the operator command", command);
   if (!valid_values(values, value_count))
@@ -373,30 +448,9 @@ hapticd_status hapticd_operator_command(hapticd_client* c, const char* device, c
   });
 }
 
-hapticd_status hapticd_claim_group(hapticd_client* c, const char* group, double timeout_s, hapticd_reply* reply) {
-  return request(c, group, "the group", timeout_s, reply,
-                 [&](std::string_view g, client::Timeout t) { return c->client.claim_group(g, t); });
-}
-
-hapticd_status hapticd_release_group(hapticd_client* c, const char* group, double timeout_s, hapticd_reply* reply) {
-  return request(c, group, "the group", timeout_s, reply,
-                 [&](std::string_view g, client::Timeout t) { return c->client.release_group(g, t); });
-}
-
-hapticd_status hapticd_emergency_stop_group(hapticd_client* c, const char* group, double timeout_s,
-                                            hapticd_reply* reply) {
-  return request(c, group, "the group", timeout_s, reply,
-                 [&](std::string_view g, client::Timeout t) { return c->client.emergency_stop_group(g, t); });
-}
-
-hapticd_status hapticd_recover_group(hapticd_client* c, const char* group, double timeout_s, hapticd_reply* reply) {
-  return request(c, group, "the group", timeout_s, reply,
-                 [&](std::string_view g, client::Timeout t) { return c->client.recover_group(g, t); });
-}
-
 // ---- engine commands (no allocation: fixed-size values, handed to the sender thread) ----
 
-hapticd_status hapticd_send(hapticd_client* c, const char* device, const hapticd_command* command) {
+hapticd_status hapticd_client_send(hapticd_client* c, const char* device, const hapticd_command* command) {
   if (c == nullptr || command == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or command is NULL");
   const std::string_view name = name_of(device);
   if (name.empty()) return bad_name("the device", device);
@@ -405,8 +459,8 @@ hapticd_status hapticd_send(hapticd_client* c, const char* device, const hapticd
   return handed_over(c->sender.send(name, cmd));
 }
 
-hapticd_status hapticd_send_coupling(hapticd_client* c, const char* device, const hapticd_pose* proxy,
-                                     const hapticd_twist* proxy_twist, uint64_t state_serial) {
+hapticd_status hapticd_client_send_coupling(hapticd_client* c, const char* device, const hapticd_pose* proxy,
+                                            const hapticd_twist* proxy_twist, uint64_t state_serial) {
   if (c == nullptr || proxy == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or proxy is NULL");
   const std::string_view name = name_of(device);
   if (name.empty()) return bad_name("the device", device);
@@ -414,8 +468,8 @@ hapticd_status hapticd_send_coupling(hapticd_client* c, const char* device, cons
   return handed_over(c->sender.send(name, client::EngineCommand::coupling(from_c(*proxy), twist, state_serial)));
 }
 
-hapticd_status hapticd_send_wrench(hapticd_client* c, const char* device, const hapticd_wrench* wrench,
-                                   const hapticd_local_model* local_model, uint64_t state_serial) {
+hapticd_status hapticd_client_send_wrench(hapticd_client* c, const char* device, const hapticd_wrench* wrench,
+                                          const hapticd_local_model* local_model, uint64_t state_serial) {
   if (c == nullptr || wrench == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or wrench is NULL");
   const std::string_view name = name_of(device);
   if (name.empty()) return bad_name("the device", device);
@@ -433,8 +487,8 @@ hapticd_status hapticd_send_wrench(hapticd_client* c, const char* device, const 
   return handed_over(c->sender.send(name, cmd));
 }
 
-hapticd_status hapticd_send_motion(hapticd_client* c, const char* device, const hapticd_pose* pose,
-                                   const hapticd_twist* twist, uint64_t state_serial) {
+hapticd_status hapticd_client_send_motion(hapticd_client* c, const char* device, const hapticd_pose* pose,
+                                          const hapticd_twist* twist, uint64_t state_serial) {
   if (c == nullptr || pose == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or pose is NULL");
   const std::string_view name = name_of(device);
   if (name.empty()) return bad_name("the device", device);
@@ -442,8 +496,8 @@ hapticd_status hapticd_send_motion(hapticd_client* c, const char* device, const 
   return handed_over(c->sender.send(name, client::EngineCommand::motion(from_c(*pose), t, state_serial)));
 }
 
-hapticd_status hapticd_send_group(hapticd_client* c, const char* group, const hapticd_command* commands,
-                                  int32_t count) {
+hapticd_status hapticd_client_send_group(hapticd_client* c, const char* group, const hapticd_command* commands,
+                                         int32_t count) {
   if (c == nullptr || commands == nullptr)
     return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the client or commands is NULL");
   const std::string_view name = name_of(group);

@@ -1,6 +1,6 @@
 // The C API's engine helper (hapticd/client.h, "the engine helper") over hapticd::client::Engine: the states are
 // converted into buffers of the handle's own (no allocation per state), the C callback fills C commands, and the
-// commands go out through the client's sender thread as hapticd_send's do.
+// commands go out through the client's sender thread as hapticd_client_send's do.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -122,8 +122,10 @@ hapticd_status hapticd_engine_connect(hapticd_engine* e) {
   });
 }
 
-int32_t hapticd_engine_device_count(hapticd_engine* e) {
-  return e == nullptr ? 0 : static_cast<int32_t>(e->engine.devices().size());
+hapticd_status hapticd_engine_device_count(hapticd_engine* e, int32_t* count) {
+  if (e == nullptr || count == nullptr) return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the engine or count is NULL");
+  *count = static_cast<int32_t>(e->engine.devices().size());
+  return HAPTICD_OK;
 }
 
 hapticd_status hapticd_engine_device(hapticd_engine* e, int32_t index, hapticd_device_info* out) {
@@ -190,6 +192,11 @@ hapticd_status hapticd_engine_stop(hapticd_engine* e) {
   return HAPTICD_OK;
 }
 
-uint64_t hapticd_engine_answered(hapticd_engine* e) { return e == nullptr ? 0 : e->engine.answered(); }
+hapticd_status hapticd_engine_answered(hapticd_engine* e, uint64_t* answered) {
+  if (e == nullptr || answered == nullptr)
+    return fail(HAPTICD_ERROR_INVALID_ARGUMENT, "the engine or answered is NULL");
+  *answered = e->engine.answered();
+  return HAPTICD_OK;
+}
 
 }  // extern "C"

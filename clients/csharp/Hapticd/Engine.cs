@@ -19,6 +19,8 @@ namespace Hapticd
     {
         static readonly EngineAnswer AnswerCallback = OnAnswer;
         static readonly EngineClaimHook ClaimCallback = OnClaim;
+        static readonly EngineParameterHook ParameterCallback = OnParameter;
+        static readonly EngineChoresHook ChoresCallback = OnChores;
 
         readonly Client client_;
         readonly string device_, name_;
@@ -50,7 +52,18 @@ namespace Hapticd
         public bool Claimed { get { return Volatile.Read(ref claimed_) != 0; } }
         // The handle's pose at the device's first cycle (valid once Claimed).
         public Pose StartPose { get { return deviceInfo_.start_pose; } }
-        public long Answered { get { lock (lock_) return native_ == IntPtr.Zero ? answered_ : (long)Native.hapticd_engine_answered(native_); } }
+        public long Answered { get { lock (lock_) return native_ == IntPtr.Zero ? answered_ : AnsweredBy(native_); } }
+        static long AnsweredBy(IntPtr engine)
+        {
+            ulong n;
+            return Native.hapticd_engine_answered(engine, out n) == Status.Ok ? (long)n : 0;
+        }
+        // A parameter of the device was set at run time (EventKind.Parameter: its plugin slot in Code, "name = values"
+        // in Message), on the engine's thread as soon as it came: re-read what the render function mirrors. Set before
+        // Start.
+        public Client.EventHandler ParameterChanged { get; set; }
+        // Every 20 ms on the engine's thread; return false to end the run. Set before Start.
+        public Func<bool> Chores { get; set; }
         public int RenderErrors { get { return Volatile.Read(ref renderErrors_); } }
         // The run ended (Stop, the session's end, no device, a claim lost to another client); EndReason says why.
         public bool Ended { get { return Volatile.Read(ref ended_) != 0; } }
@@ -108,6 +121,8 @@ namespace Hapticd
                 lock (lock_) native_ = made;
                 if (Native.hapticd_engine_connect(made) == Status.Ok) Native.hapticd_engine_device(made, 0, out deviceInfo_);
                 Native.hapticd_engine_on_claim(made, ClaimCallback, GCHandle.ToIntPtr(self_));
+                if (ParameterChanged != null) Native.hapticd_engine_on_parameter(made, ParameterCallback, GCHandle.ToIntPtr(self_));
+                if (Chores != null) Native.hapticd_engine_on_chores(made, ChoresCallback, GCHandle.ToIntPtr(self_));
                 lock (lock_)
                     if (stopRequested_) Native.hapticd_engine_stop(made);
                 Native.hapticd_engine_run(made, AnswerCallback, GCHandle.ToIntPtr(self_), out end_);
@@ -119,7 +134,7 @@ namespace Hapticd
                 {
                     if (made != IntPtr.Zero)
                     {
-                        answered_ = (long)Native.hapticd_engine_answered(made);
+                        answered_ = AnsweredBy(made);
                         Native.hapticd_engine_destroy(made);  // after its run: no callback comes any more
                     }
                     native_ = IntPtr.Zero;
@@ -137,6 +152,20 @@ namespace Hapticd
             var self = (Engine)GCHandle.FromIntPtr(user).Target;
             Volatile.Write(ref self.claimed_, 1);
             return 1;
+        }
+
+        [MonoPInvokeCallback(typeof(EngineParameterHook))]
+        static void OnParameter(Event* e, ulong answeredThen, IntPtr user)
+        {
+            var self = (Engine)GCHandle.FromIntPtr(user).Target;
+            try { self.ParameterChanged(ref *e); } catch (Exception) { }  // never into the native caller
+        }
+
+        [MonoPInvokeCallback(typeof(EngineChoresHook))]
+        static int OnChores(IntPtr user)
+        {
+            var self = (Engine)GCHandle.FromIntPtr(user).Target;
+            try { return self.Chores() ? 1 : 0; } catch (Exception) { return 0; }  // a failing chore ends the run
         }
 
         [MonoPInvokeCallback(typeof(EngineAnswer))]

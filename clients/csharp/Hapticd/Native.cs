@@ -101,6 +101,7 @@ namespace Hapticd
     [StructLayout(LayoutKind.Sequential)]
     public struct ClientOptions
     {
+        public uint size;
         public IntPtr client_id;
         public int domain_id;
         public IntPtr cyclone_config;
@@ -168,48 +169,73 @@ namespace Hapticd
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     unsafe delegate void StateCallback(DeviceState* state, IntPtr user);
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    unsafe delegate void EventCallback(Event* e, IntPtr user);
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     delegate void ClaimLostCallback(IntPtr device, IntPtr reason, IntPtr user);
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    delegate int EngineChoresHook(IntPtr user);
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    unsafe delegate void EngineParameterHook(Event* e, ulong answeredThen, IntPtr user);
 
-    // The C functions. Names are zero-terminated UTF-8 byte arrays (blittable: pinned, not copied).
+    // Every function of the C API (hapticd/client.h, version 2), in its order; the csharp test checks the list
+    // against the library's exported symbols. Names are zero-terminated UTF-8 byte arrays (blittable: pinned, not
+    // copied). A pointer the C API lets be NULL has an IntPtr overload.
     static unsafe class Native
     {
         const string Lib = "hapticd_c";
         [DllImport(Lib)] public static extern int hapticd_api_version();
         [DllImport(Lib)] public static extern IntPtr hapticd_last_error();
+        [DllImport(Lib)] public static extern IntPtr hapticd_status_name(Status status);
         [DllImport(Lib)] public static extern Status hapticd_client_create(ref ClientOptions options, out ClientHandle client);
         [DllImport(Lib)] public static extern void hapticd_client_destroy(IntPtr client);
-        [DllImport(Lib)] public static extern Status hapticd_list_devices(ClientHandle c, [Out] DeviceInfo[] output, int capacity, out int count);
-        [DllImport(Lib)] public static extern Status hapticd_wait_for_device(ClientHandle c, byte[] device, double timeout, int started, out DeviceInfo info);
-        [DllImport(Lib)] public static extern Status hapticd_latest_state(ClientHandle c, byte[] device, out DeviceState state);
-        [DllImport(Lib)] public static extern Status hapticd_wait_for_state(ClientHandle c, byte[] device, double timeout, ulong after, out DeviceState state);
-        [DllImport(Lib)] public static extern Status hapticd_take_events(ClientHandle c, [Out] Event[] output, int capacity, out int count);
-        [DllImport(Lib)] public static extern Status hapticd_latest_telemetry(ClientHandle c, byte[] device, out Telemetry telemetry);
-        [DllImport(Lib)] public static extern Status hapticd_on_state(ClientHandle c, StateCallback callback, IntPtr user);
-        [DllImport(Lib)] public static extern Status hapticd_on_claim_lost(ClientHandle c, ClaimLostCallback callback, IntPtr user);
-        [DllImport(Lib)] public static extern int hapticd_claim_lost(ClientHandle c, byte[] device);
-        [DllImport(Lib)] public static extern Status hapticd_claim(ClientHandle c, byte[] device, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_release(ClientHandle c, byte[] device, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_switch_scheme(ClientHandle c, byte[] device, byte[] scheme, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_set_parameter(ClientHandle c, byte[] device, byte[] parameter, double[] values, int count, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_get_parameter(ClientHandle c, byte[] device, byte[] parameter, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_describe_parameter(ClientHandle c, byte[] device, byte[] parameter, double timeout, out ParameterInfo info, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_emergency_stop(ClientHandle c, byte[] device, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_recover(ClientHandle c, byte[] device, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_operator_command(ClientHandle c, byte[] device, byte[] command, double[] values, int count, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_claim_group(ClientHandle c, byte[] group, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_release_group(ClientHandle c, byte[] group, double timeout, out Reply reply);
-        [DllImport(Lib)] public static extern Status hapticd_send(ClientHandle c, byte[] device, ref Command command);
-        [DllImport(Lib)] public static extern Status hapticd_send_coupling(ClientHandle c, byte[] device, ref Pose proxy, ref Twist twist, ulong serial);
-        [DllImport(Lib)] public static extern Status hapticd_send_group(ClientHandle c, byte[] group, [In] Command[] commands, int count);
+        // devices
+        [DllImport(Lib)] public static extern Status hapticd_client_list_devices(ClientHandle c, [Out] DeviceInfo[] output, int capacity, out int count);
+        [DllImport(Lib)] public static extern Status hapticd_client_wait_for_device(ClientHandle c, byte[] device, double timeout, int started, out DeviceInfo info);
+        [DllImport(Lib)] public static extern Status hapticd_client_latest_state(ClientHandle c, byte[] device, out DeviceState state);
+        [DllImport(Lib)] public static extern Status hapticd_client_wait_for_state(ClientHandle c, byte[] device, double timeout, ulong after, out DeviceState state);
+        // groups
+        [DllImport(Lib)] public static extern Status hapticd_client_list_groups(ClientHandle c, [Out] GroupInfo[] output, int capacity, out int count);
+        [DllImport(Lib)] public static extern Status hapticd_client_wait_for_group(ClientHandle c, byte[] group, double timeout, out GroupInfo info);
+        [DllImport(Lib)] public static extern Status hapticd_client_latest_group_state(ClientHandle c, byte[] group, out GroupState state);
+        [DllImport(Lib)] public static extern Status hapticd_client_wait_for_group_state(ClientHandle c, byte[] group, double timeout, ulong after, out GroupState state);
+        // events, telemetry, fault reports
+        [DllImport(Lib)] public static extern Status hapticd_client_take_events(ClientHandle c, [Out] Event[] output, int capacity, out int count);
+        [DllImport(Lib)] public static extern Status hapticd_client_latest_telemetry(ClientHandle c, byte[] device, out Telemetry telemetry);
+        [DllImport(Lib)] public static extern Status hapticd_client_latest_fault_report(ClientHandle c, byte[] device, out FaultReport report);
+        // callbacks
+        [DllImport(Lib)] public static extern Status hapticd_client_on_state(ClientHandle c, byte[] device, StateCallback callback, IntPtr user);
+        [DllImport(Lib)] public static extern Status hapticd_client_on_event(ClientHandle c, EventCallback callback, IntPtr user);
+        [DllImport(Lib)] public static extern Status hapticd_client_on_claim_lost(ClientHandle c, ClaimLostCallback callback, IntPtr user);
+        [DllImport(Lib)] public static extern Status hapticd_client_claim_lost(ClientHandle c, byte[] device, out int lost);
+        // requests (a target: a device or a group)
+        [DllImport(Lib)] public static extern Status hapticd_client_claim(ClientHandle c, byte[] target, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_release(ClientHandle c, byte[] target, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_switch_scheme(ClientHandle c, byte[] device, byte[] scheme, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_set_parameter(ClientHandle c, byte[] device, byte[] parameter, double[] values, int count, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_get_parameter(ClientHandle c, byte[] device, byte[] parameter, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_describe_parameter(ClientHandle c, byte[] device, byte[] parameter, double timeout, out ParameterInfo info, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_emergency_stop(ClientHandle c, byte[] target, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_recover(ClientHandle c, byte[] target, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_operator_command(ClientHandle c, byte[] device, byte[] command, double[] values, int count, double timeout, out Reply reply);
+        // engine commands
+        [DllImport(Lib)] public static extern Status hapticd_client_send(ClientHandle c, byte[] device, ref Command command);
+        [DllImport(Lib)] public static extern Status hapticd_client_send_coupling(ClientHandle c, byte[] device, ref Pose proxy, ref Twist twist, ulong serial);
+        [DllImport(Lib)] public static extern Status hapticd_client_send_wrench(ClientHandle c, byte[] device, ref Wrench wrench, ref LocalModel model, ulong serial);
+        [DllImport(Lib, EntryPoint = "hapticd_client_send_wrench")] public static extern Status hapticd_client_send_wrench_alone(ClientHandle c, byte[] device, ref Wrench wrench, IntPtr noModel, ulong serial);
+        [DllImport(Lib)] public static extern Status hapticd_client_send_motion(ClientHandle c, byte[] device, ref Pose pose, ref Twist twist, ulong serial);
+        [DllImport(Lib)] public static extern Status hapticd_client_send_group(ClientHandle c, byte[] group, [In] Command[] commands, int count);
+        // the engine helper
         [DllImport(Lib)] public static extern Status hapticd_engine_create(ClientHandle c, ref EngineOptions options, out IntPtr engine);
         [DllImport(Lib)] public static extern void hapticd_engine_destroy(IntPtr engine);
         [DllImport(Lib)] public static extern Status hapticd_engine_connect(IntPtr engine);
-        [DllImport(Lib)] public static extern int hapticd_engine_device_count(IntPtr engine);
+        [DllImport(Lib)] public static extern Status hapticd_engine_device_count(IntPtr engine, out int count);
         [DllImport(Lib)] public static extern Status hapticd_engine_device(IntPtr engine, int index, out DeviceInfo info);
         [DllImport(Lib)] public static extern Status hapticd_engine_on_claim(IntPtr engine, EngineClaimHook hook, IntPtr user);
+        [DllImport(Lib)] public static extern Status hapticd_engine_on_chores(IntPtr engine, EngineChoresHook hook, IntPtr user);
+        [DllImport(Lib)] public static extern Status hapticd_engine_on_parameter(IntPtr engine, EngineParameterHook hook, IntPtr user);
         [DllImport(Lib)] public static extern Status hapticd_engine_run(IntPtr engine, EngineAnswer answer, IntPtr user, out EngineEnd end);
         [DllImport(Lib)] public static extern Status hapticd_engine_stop(IntPtr engine);
-        [DllImport(Lib)] public static extern ulong hapticd_engine_answered(IntPtr engine);
+        [DllImport(Lib)] public static extern Status hapticd_engine_answered(IntPtr engine, out ulong answered);
     }
 
     // The C client's handle: destroyed once, when disposed or finalised.

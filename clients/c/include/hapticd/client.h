@@ -4,9 +4,21 @@
  * thread; no C++ exception or type crosses this interface.
  *
  * Versions: HAPTICD_C_API_VERSION is the version of this header; hapticd_api_version() the library's. The
- * library's symbols carry the version node HAPTICD_C_1 (a linker version script): a program built against this
- * header runs against any library of the same major version. A struct's layout never changes within a major
- * version; new functions may be added.
+ * library's symbols carry the version node HAPTICD_C_2 (a linker version script; the shared library is
+ * libhapticd_c.so.2): a program built against this header runs against any library of the same major version. A
+ * struct's layout never changes within a major version; new functions may be added, and an options struct may grow
+ * at its end - its first field is its size (`.size = sizeof options`), so the library knows which fields a caller
+ * has. Version 2 (from 1): option structs carry their size; one naming pattern; group requests through the device
+ * calls; a device filter on the state callback; every function that can fail returns a status.
+ *
+ * Names: hapticd_<object>_<verb> - the object is the handle the call works on (hapticd_client_claim,
+ * hapticd_engine_run); the library's own calls have none (hapticd_api_version, hapticd_last_error).
+ *
+ * Errors (libgit2's model): every call that can fail returns a hapticd_status; the message of the calling thread's
+ * last failure is hapticd_last_error(), kept per thread as libgit2's git_error_last() is. Out-values are parameters.
+ * MuJoCo's model - a caller's buffer per call (mj_loadXML's error, error_sz) and a process-wide handler
+ * (mju_user_error, whose default exits) - was not taken: a buffer costs every signature two parameters, a
+ * process-wide handler cannot tell threads apart, and this library never aborts or exits its host (a game engine).
  *
  * Threads and lifetimes, for every function unless it says otherwise:
  *  - A hapticd_client may be used from any thread, by several threads at once; hapticd_client_destroy must not
@@ -21,8 +33,8 @@
  *  - hapticd_last_error() is the message of the last failing call of the calling thread; valid until that
  *    thread's next failing call.
  *
- * Real time: hapticd_latest_state and the hapticd_send* functions allocate no memory and do not wait (tested),
- * so an engine may call them every cycle.
+ * Real time: hapticd_client_latest_state and the hapticd_client_send* functions allocate no memory and do not wait
+ * (tested), so an engine may call them every cycle.
  */
 #ifndef HAPTICD_CLIENT_H
 #define HAPTICD_CLIENT_H
@@ -43,7 +55,7 @@ extern "C" {
 #define HAPTICD_C_API __attribute__((visibility("default")))
 #endif
 
-#define HAPTICD_C_API_VERSION 1
+#define HAPTICD_C_API_VERSION 2
 
 /* The value types (states, descriptions, events, telemetry, fault reports, replies, commands), generated from the
  * data model's table (idl/hapticd_wire.toml; docs/wire-types.md). */
@@ -94,6 +106,7 @@ typedef enum hapticd_parameter_type {
 typedef struct hapticd_client hapticd_client;
 
 typedef struct hapticd_client_options {
+  uint32_t size;         /* sizeof(hapticd_client_options): later versions may add fields after these */
   const char* client_id; /* 1..31 characters, unique per client: the owner name a claim records */
   int32_t domain_id;
   const char* cyclone_config; /* a Cyclone XML file, or NULL */
@@ -103,7 +116,8 @@ typedef struct hapticd_client_options {
   double command_deadline_s; /* 0: 0.05 s; must not exceed the server's deadline */
 } hapticd_client_options;
 
-/* Makes a client (one DDS participant). *out is NULL on failure. */
+/* Makes a client (one DDS participant). *out is NULL on failure. options->size must be at least the size of this
+ * version's struct (HAPTICD_ERROR_INVALID_ARGUMENT otherwise, said so). */
 HAPTICD_C_API hapticd_status hapticd_client_create(const hapticd_client_options* options, hapticd_client** out);
 /* Ends it: its claims end with it (the server sees the participant go). NULL is ignored. Destroying a client twice,
  * or calling anything with a destroyed one, is undefined behaviour (as free() twice is): set your pointer to NULL. */
@@ -111,111 +125,116 @@ HAPTICD_C_API void hapticd_client_destroy(hapticd_client* client);
 
 /* ---- devices ---- */
 /* The descriptions received so far: up to capacity into out, the number there are into *count. */
-HAPTICD_C_API hapticd_status hapticd_list_devices(hapticd_client* client, hapticd_device_info* out, int32_t capacity,
-                                                  int32_t* count);
+HAPTICD_C_API hapticd_status hapticd_client_list_devices(hapticd_client* client, hapticd_device_info* out,
+                                                         int32_t capacity, int32_t* count);
 /* Waits for the device's description (started != 0: one that carries the start pose). */
-HAPTICD_C_API hapticd_status hapticd_wait_for_device(hapticd_client* client, const char* device, double timeout_s,
-                                                     int32_t started, hapticd_device_info* out);
+HAPTICD_C_API hapticd_status hapticd_client_wait_for_device(hapticd_client* client, const char* device,
+                                                            double timeout_s, int32_t started,
+                                                            hapticd_device_info* out);
 /* The newest state (HAPTICD_ERROR_NOT_FOUND before the first). Allocates nothing. */
-HAPTICD_C_API hapticd_status hapticd_latest_state(hapticd_client* client, const char* device,
-                                                  hapticd_device_state* out);
+HAPTICD_C_API hapticd_status hapticd_client_latest_state(hapticd_client* client, const char* device,
+                                                         hapticd_device_state* out);
 /* Waits for a state with serial > after. */
-HAPTICD_C_API hapticd_status hapticd_wait_for_state(hapticd_client* client, const char* device, double timeout_s,
-                                                    uint64_t after, hapticd_device_state* out);
+HAPTICD_C_API hapticd_status hapticd_client_wait_for_state(hapticd_client* client, const char* device, double timeout_s,
+                                                           uint64_t after, hapticd_device_state* out);
 
 /* ---- groups ---- */
-HAPTICD_C_API hapticd_status hapticd_list_groups(hapticd_client* client, hapticd_group_info* out, int32_t capacity,
-                                                 int32_t* count);
-HAPTICD_C_API hapticd_status hapticd_wait_for_group(hapticd_client* client, const char* group, double timeout_s,
-                                                    hapticd_group_info* out);
-HAPTICD_C_API hapticd_status hapticd_latest_group_state(hapticd_client* client, const char* group,
-                                                        hapticd_group_state* out);
-HAPTICD_C_API hapticd_status hapticd_wait_for_group_state(hapticd_client* client, const char* group, double timeout_s,
-                                                          uint64_t after, hapticd_group_state* out);
+HAPTICD_C_API hapticd_status hapticd_client_list_groups(hapticd_client* client, hapticd_group_info* out,
+                                                        int32_t capacity, int32_t* count);
+HAPTICD_C_API hapticd_status hapticd_client_wait_for_group(hapticd_client* client, const char* group, double timeout_s,
+                                                           hapticd_group_info* out);
+HAPTICD_C_API hapticd_status hapticd_client_latest_group_state(hapticd_client* client, const char* group,
+                                                               hapticd_group_state* out);
+HAPTICD_C_API hapticd_status hapticd_client_wait_for_group_state(hapticd_client* client, const char* group,
+                                                                 double timeout_s, uint64_t after,
+                                                                 hapticd_group_state* out);
 
 /* ---- events, telemetry, fault reports ---- */
 /* The events received since the last call, oldest first: up to capacity into out (the rest stay for the next
  * call), the number taken into *count. */
-HAPTICD_C_API hapticd_status hapticd_take_events(hapticd_client* client, hapticd_event* out, int32_t capacity,
-                                                 int32_t* count);
-HAPTICD_C_API hapticd_status hapticd_latest_telemetry(hapticd_client* client, const char* device,
-                                                      hapticd_telemetry* out);
-HAPTICD_C_API hapticd_status hapticd_latest_fault_report(hapticd_client* client, const char* device,
-                                                         hapticd_fault_report* out);
+HAPTICD_C_API hapticd_status hapticd_client_take_events(hapticd_client* client, hapticd_event* out, int32_t capacity,
+                                                        int32_t* count);
+HAPTICD_C_API hapticd_status hapticd_client_latest_telemetry(hapticd_client* client, const char* device,
+                                                             hapticd_telemetry* out);
+HAPTICD_C_API hapticd_status hapticd_client_latest_fault_report(hapticd_client* client, const char* device,
+                                                                hapticd_fault_report* out);
 
 /* ---- callbacks (NULL removes; replacing is atomic: once the call returns the old one is not called again) ---- */
-/* Every state, on the DDS receive thread, one at a time: answer it there. */
+/* Every state of `device` (NULL or "": of every device), on the DDS receive thread, one at a time: answer it there.
+ * One state callback per client: a second call replaces the first, filter and all. */
 typedef void (*hapticd_state_callback)(const hapticd_device_state* state, void* user);
-HAPTICD_C_API hapticd_status hapticd_on_state(hapticd_client* client, hapticd_state_callback callback, void* user);
-/* Every event, on the client's thread (events are also kept for hapticd_take_events). */
+HAPTICD_C_API hapticd_status hapticd_client_on_state(hapticd_client* client, const char* device,
+                                                     hapticd_state_callback callback, void* user);
+/* Every event, on the client's thread (events are also kept for hapticd_client_take_events). */
 typedef void (*hapticd_event_callback)(const hapticd_event* event, void* user);
-HAPTICD_C_API hapticd_status hapticd_on_event(hapticd_client* client, hapticd_event_callback callback, void* user);
+HAPTICD_C_API hapticd_status hapticd_client_on_event(hapticd_client* client, hapticd_event_callback callback,
+                                                     void* user);
 /* A claim of this client ended without its release (the server handed the device on or freed it), once per claim,
  * on the DDS receive thread. Claim again or stop. */
 typedef void (*hapticd_claim_lost_callback)(const char* device, const char* reason, void* user);
-HAPTICD_C_API hapticd_status hapticd_on_claim_lost(hapticd_client* client, hapticd_claim_lost_callback callback,
-                                                   void* user);
-/* 1 when the newest claim of the device (or its group) was lost so, else 0. */
-HAPTICD_C_API int32_t hapticd_claim_lost(hapticd_client* client, const char* device);
+HAPTICD_C_API hapticd_status hapticd_client_on_claim_lost(hapticd_client* client, hapticd_claim_lost_callback callback,
+                                                          void* user);
+/* *lost: 1 when the newest claim of the device (or group) was lost so, else 0. */
+HAPTICD_C_API hapticd_status hapticd_client_claim_lost(hapticd_client* client, const char* device, int32_t* lost);
 
 /* ---- requests: HAPTICD_OK when accepted, HAPTICD_ERROR_REFUSED when refused, HAPTICD_ERROR_TIMEOUT without a
  * reply; reply (may be NULL) receives the reply whatever the status. A request without a reply is sent again
- * with the same id every 250 ms until the timeout; the server applies it once. ---- */
-HAPTICD_C_API hapticd_status hapticd_claim(hapticd_client* client, const char* device, double timeout_s,
-                                           hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_release(hapticd_client* client, const char* device, double timeout_s,
-                                             hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_switch_scheme(hapticd_client* client, const char* device, const char* scheme,
-                                                   double timeout_s, hapticd_reply* reply);
-/* parameter: "<stage>.<name>", e.g. "virtual_model.coupling_stiffness_n_per_m". */
-HAPTICD_C_API hapticd_status hapticd_set_parameter(hapticd_client* client, const char* device, const char* parameter,
-                                                   const double* values, int32_t value_count, double timeout_s,
-                                                   hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_get_parameter(hapticd_client* client, const char* device, const char* parameter,
-                                                   double timeout_s, hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_describe_parameter(hapticd_client* client, const char* device,
-                                                        const char* parameter, double timeout_s,
-                                                        hapticd_parameter_info* out, hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_emergency_stop(hapticd_client* client, const char* device, double timeout_s,
+ * with the same id every 250 ms until the timeout; the server applies it once.
+ * `target` names a device or a device group (session file `groups`): claim, release, emergency stop and recover
+ * act on every device of a group at once (a group claim takes all or none); "*" stops or recovers every device of
+ * the server. A name the client has not heard of yet is waited for (within the timeout) as either. ---- */
+HAPTICD_C_API hapticd_status hapticd_client_claim(hapticd_client* client, const char* target, double timeout_s,
+                                                  hapticd_reply* reply);
+HAPTICD_C_API hapticd_status hapticd_client_release(hapticd_client* client, const char* target, double timeout_s,
                                                     hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_recover(hapticd_client* client, const char* device, double timeout_s,
-                                             hapticd_reply* reply);
-/* Simulated devices: "push" {fx, fy, fz[, ramp_s]}, "move" {dx, dy, dz[, duration_s]}, "grasp" {g}, "release". */
-HAPTICD_C_API hapticd_status hapticd_operator_command(hapticd_client* client, const char* device, const char* command,
-                                                      const double* values, int32_t value_count, double timeout_s,
-                                                      hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_claim_group(hapticd_client* client, const char* group, double timeout_s,
-                                                 hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_release_group(hapticd_client* client, const char* group, double timeout_s,
-                                                   hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_emergency_stop_group(hapticd_client* client, const char* group, double timeout_s,
+HAPTICD_C_API hapticd_status hapticd_client_switch_scheme(hapticd_client* client, const char* device,
+                                                          const char* scheme, double timeout_s, hapticd_reply* reply);
+/* parameter: "<stage>.<name>", e.g. "virtual_model.coupling_stiffness_n_per_m". */
+HAPTICD_C_API hapticd_status hapticd_client_set_parameter(hapticd_client* client, const char* device,
+                                                          const char* parameter, const double* values,
+                                                          int32_t value_count, double timeout_s, hapticd_reply* reply);
+HAPTICD_C_API hapticd_status hapticd_client_get_parameter(hapticd_client* client, const char* device,
+                                                          const char* parameter, double timeout_s,
                                                           hapticd_reply* reply);
-HAPTICD_C_API hapticd_status hapticd_recover_group(hapticd_client* client, const char* group, double timeout_s,
-                                                   hapticd_reply* reply);
+HAPTICD_C_API hapticd_status hapticd_client_describe_parameter(hapticd_client* client, const char* device,
+                                                               const char* parameter, double timeout_s,
+                                                               hapticd_parameter_info* out, hapticd_reply* reply);
+HAPTICD_C_API hapticd_status hapticd_client_emergency_stop(hapticd_client* client, const char* target, double timeout_s,
+                                                           hapticd_reply* reply);
+HAPTICD_C_API hapticd_status hapticd_client_recover(hapticd_client* client, const char* target, double timeout_s,
+                                                    hapticd_reply* reply);
+/* Simulated devices: "push" {fx, fy, fz[, ramp_s]}, "move" {dx, dy, dz[, duration_s]}, "grasp" {g}, "release". */
+HAPTICD_C_API hapticd_status hapticd_client_operator_command(hapticd_client* client, const char* device,
+                                                             const char* command, const double* values,
+                                                             int32_t value_count, double timeout_s,
+                                                             hapticd_reply* reply);
 
 /* ---- engine commands (after a claim). Each is copied into its target's slot and written to DDS by the
  * library's sender thread (Cyclone allocates when it writes; the caller's thread does not): no allocation, no
  * wait. The newest command of a target is written; a write that failed (DDS Security refusing this identity) is
  * told by the next send to that target as HAPTICD_ERROR_DDS. Up to 16 devices and groups per client. ---- */
-HAPTICD_C_API hapticd_status hapticd_send(hapticd_client* client, const char* device, const hapticd_command* command);
-HAPTICD_C_API hapticd_status hapticd_send_coupling(hapticd_client* client, const char* device,
-                                                   const hapticd_pose* proxy, const hapticd_twist* proxy_twist,
-                                                   uint64_t state_serial);
+HAPTICD_C_API hapticd_status hapticd_client_send(hapticd_client* client, const char* device,
+                                                 const hapticd_command* command);
+HAPTICD_C_API hapticd_status hapticd_client_send_coupling(hapticd_client* client, const char* device,
+                                                          const hapticd_pose* proxy, const hapticd_twist* proxy_twist,
+                                                          uint64_t state_serial);
 /* local_model may be NULL. */
-HAPTICD_C_API hapticd_status hapticd_send_wrench(hapticd_client* client, const char* device,
-                                                 const hapticd_wrench* wrench, const hapticd_local_model* local_model,
-                                                 uint64_t state_serial);
-HAPTICD_C_API hapticd_status hapticd_send_motion(hapticd_client* client, const char* device, const hapticd_pose* pose,
-                                                 const hapticd_twist* twist, uint64_t state_serial);
-/* One command per device of the group (after hapticd_claim_group), each naming its device, in the group's order. */
-HAPTICD_C_API hapticd_status hapticd_send_group(hapticd_client* client, const char* group,
-                                                const hapticd_command* commands, int32_t count);
+HAPTICD_C_API hapticd_status hapticd_client_send_wrench(hapticd_client* client, const char* device,
+                                                        const hapticd_wrench* wrench,
+                                                        const hapticd_local_model* local_model, uint64_t state_serial);
+HAPTICD_C_API hapticd_status hapticd_client_send_motion(hapticd_client* client, const char* device,
+                                                        const hapticd_pose* pose, const hapticd_twist* twist,
+                                                        uint64_t state_serial);
+/* One command per device of the group (after hapticd_client_claim of the group), each naming its device, in the
+ * group's order. */
+HAPTICD_C_API hapticd_status hapticd_client_send_group(hapticd_client* client, const char* group,
+                                                       const hapticd_command* commands, int32_t count);
 
 /* ---- the engine helper (docs/engines.md, "The engine helper"; the C++ library's hapticd::client::Engine): finds
  * its device or group and waits until it started, claims it, answers each state through one callback, retakes a
  * claim the server ended, hands parameter events to a hook, ends on hapticd_engine_stop, a duration, the session's
  * end or a silent server (or waits for the server to come back and claims again), releases, says why. Commands go
- * out through the client's sender thread, as hapticd_send's. ---- */
+ * out through the client's sender thread, as hapticd_client_send's. ---- */
 typedef struct hapticd_engine hapticd_engine;
 
 typedef struct hapticd_engine_options {
@@ -256,7 +275,7 @@ typedef int32_t (*hapticd_engine_claim_hook)(int32_t again, void* user);
 /* Every 20 ms on the thread of hapticd_engine_run; return 0 to end the run. */
 typedef int32_t (*hapticd_engine_chores_hook)(void* user);
 /* A parameter of one of its devices was set (HAPTICD_EVENT_PARAMETER), on the thread of hapticd_engine_run as
- * soon as it came; answered_then: hapticd_engine_answered when it arrived. */
+ * soon as it came; answered_then: what hapticd_engine_answered said when it arrived. */
 typedef void (*hapticd_engine_parameter_hook)(const hapticd_event* event, uint64_t answered_then, void* user);
 
 /* The client must outlive the engine. options->size must be at least the size of this version's struct. */
@@ -266,7 +285,7 @@ HAPTICD_C_API void hapticd_engine_destroy(hapticd_engine* engine);
 /* Finds the device or group and waits until it started; HAPTICD_ERROR_NOT_FOUND (said why) if it did not. */
 HAPTICD_C_API hapticd_status hapticd_engine_connect(hapticd_engine* engine);
 /* After hapticd_engine_connect: how many devices it answers for, and each one's description (with its start pose). */
-HAPTICD_C_API int32_t hapticd_engine_device_count(hapticd_engine* engine);
+HAPTICD_C_API hapticd_status hapticd_engine_device_count(hapticd_engine* engine, int32_t* count);
 HAPTICD_C_API hapticd_status hapticd_engine_device(hapticd_engine* engine, int32_t index, hapticd_device_info* out);
 /* Hooks, each optional; set them before hapticd_engine_run. */
 HAPTICD_C_API hapticd_status hapticd_engine_on_claim(hapticd_engine* engine, hapticd_engine_claim_hook hook,
@@ -276,13 +295,15 @@ HAPTICD_C_API hapticd_status hapticd_engine_on_chores(hapticd_engine* engine, ha
 HAPTICD_C_API hapticd_status hapticd_engine_on_parameter(hapticd_engine* engine, hapticd_engine_parameter_hook hook,
                                                          void* user);
 /* Connects (unless done), claims, answers until it ends, releases; end (may be NULL) says why. For the run it takes
- * the client's state and event callbacks (hapticd_on_state, hapticd_on_event) and clears them when it ends. HAPTICD_OK
- * whatever the reason (end->exit_code tells success); an error status only for a bad argument or a second run. */
+ * the client's state and event callbacks (hapticd_client_on_state, hapticd_client_on_event) and clears them when it
+ * ends. HAPTICD_OK whatever the reason (end->exit_code tells success); an error status only for a bad argument or a
+ * second run. */
 HAPTICD_C_API hapticd_status hapticd_engine_run(hapticd_engine* engine, hapticd_engine_answer answer, void* user,
                                                 hapticd_engine_end* end);
 /* Ends the run at its next chore (any thread; not from a signal handler - set a flag and stop from the program). */
 HAPTICD_C_API hapticd_status hapticd_engine_stop(hapticd_engine* engine);
-HAPTICD_C_API uint64_t hapticd_engine_answered(hapticd_engine* engine);
+/* *answered: the states answered so far (any thread). */
+HAPTICD_C_API hapticd_status hapticd_engine_answered(hapticd_engine* engine, uint64_t* answered);
 
 #ifdef __cplusplus
 }
