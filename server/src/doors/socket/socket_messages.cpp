@@ -101,10 +101,9 @@ bool pose_and_twist(const Value& v, hapticd_msg_EngineCommand& c) {
          vector3(v["angular_velocity"], c.twist + 3);
 }
 
-// "key":{"x":..,...} with the named components.
+// {"x":..,"y":..,"z":..} or {"w":..,...}: the named components of v.
 template <std::size_t N>
-void append_object(std::string& out, std::string_view key, const char* const (&names)[N], const double* v) {
-  append_key(out, key);
+void json_components(std::string& out, const char* const (&names)[N], const double* v) {
   for (std::size_t i = 0; i < N; ++i) {
     out += i == 0 ? "{\"" : ",\"";
     out += names[i];
@@ -113,41 +112,29 @@ void append_object(std::string& out, std::string_view key, const char* const (&n
   }
   out += '}';
 }
-void append_vector3(std::string& out, std::string_view key, const double* v) {
+void json_vector3(std::string& out, const double* v) {
   static constexpr const char* kNames[] = {"x", "y", "z"};
-  append_object(out, key, kNames, v);
+  json_components(out, kNames, v);
+}
+void json_quaternion(std::string& out, const double* q) {
+  static constexpr const char* kNames[] = {"w", "x", "y", "z"};
+  json_components(out, kNames, q);
+}
+// ,"key":{...}
+void append_vector3(std::string& out, std::string_view key, const double* v) {
+  append_key(out, key);
+  json_vector3(out, v);
 }
 void append_quaternion(std::string& out, std::string_view key, const double* q) {
-  static constexpr const char* kNames[] = {"w", "x", "y", "z"};
-  append_object(out, key, kNames, q);
+  append_key(out, key);
+  json_quaternion(out, q);
 }
-
 // One member of a JSON object: a comma before all but the first, then "key":.
 void json_member(std::string& out, bool& first, std::string_view key) {
   if (!first) out += ',';
   first = false;
   append_string(out, key);
   out += ':';
-}
-void json_vector3(std::string& out, const double* v) {
-  out += "{\"x\":";
-  append_number(out, v[0]);
-  out += ",\"y\":";
-  append_number(out, v[1]);
-  out += ",\"z\":";
-  append_number(out, v[2]);
-  out += '}';
-}
-void json_quaternion(std::string& out, const double* q) {
-  out += "{\"w\":";
-  append_number(out, q[0]);
-  out += ",\"x\":";
-  append_number(out, q[1]);
-  out += ",\"y\":";
-  append_number(out, q[2]);
-  out += ",\"z\":";
-  append_number(out, q[3]);
-  out += '}';
 }
 
 // The state's and the event's members, the enums' names: generated from idl/hapticd_wire.toml.
