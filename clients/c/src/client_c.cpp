@@ -361,18 +361,22 @@ hapticd_status hapticd_client_claim_lost(hapticd_client* c, const char* device, 
 
 // ---- requests ----
 
-hapticd_status hapticd_client_claim(hapticd_client* c, const char* target, double timeout_s, hapticd_reply* reply) {
+// A request on a device or a group: the group's form when `target` names a group (names_group), else the device's.
+using TargetRequest = client::Reply (client::Client::*)(std::string_view, client::Timeout);
+hapticd_status device_or_group(hapticd_client* c, const char* target, double timeout_s, hapticd_reply* reply,
+                               TargetRequest on_device, TargetRequest on_group) noexcept {
   return request(c, target, "the device or group", timeout_s, reply, [&](std::string_view t, client::Timeout) {
     client::Timeout left(0.0);
-    return names_group(c, t, timeout_s, left) ? c->client.claim_group(t, left) : c->client.claim(t, left);
+    return (c->client.*(names_group(c, t, timeout_s, left) ? on_group : on_device))(t, left);
   });
 }
 
+hapticd_status hapticd_client_claim(hapticd_client* c, const char* target, double timeout_s, hapticd_reply* reply) {
+  return device_or_group(c, target, timeout_s, reply, &client::Client::claim, &client::Client::claim_group);
+}
+
 hapticd_status hapticd_client_release(hapticd_client* c, const char* target, double timeout_s, hapticd_reply* reply) {
-  return request(c, target, "the device or group", timeout_s, reply, [&](std::string_view t, client::Timeout) {
-    client::Timeout left(0.0);
-    return names_group(c, t, timeout_s, left) ? c->client.release_group(t, left) : c->client.release(t, left);
-  });
+  return device_or_group(c, target, timeout_s, reply, &client::Client::release, &client::Client::release_group);
 }
 
 hapticd_status hapticd_client_switch_scheme(hapticd_client* c, const char* device, const char* scheme, double timeout_s,
@@ -430,10 +434,7 @@ hapticd_status hapticd_client_emergency_stop(hapticd_client* c, const char* targ
 }
 
 hapticd_status hapticd_client_recover(hapticd_client* c, const char* target, double timeout_s, hapticd_reply* reply) {
-  return request(c, target, "the device or group", timeout_s, reply, [&](std::string_view t, client::Timeout) {
-    client::Timeout left(0.0);
-    return names_group(c, t, timeout_s, left) ? c->client.recover_group(t, left) : c->client.recover(t, left);
-  });
+  return device_or_group(c, target, timeout_s, reply, &client::Client::recover, &client::Client::recover_group);
 }
 
 hapticd_status hapticd_client_operator_command(hapticd_client* c, const char* device, const char* command,
