@@ -8,6 +8,11 @@ void PoseTrack::reset(const Eigen::Isometry3d& pose, std::int64_t now_ns) noexce
   PoseUpdate drained;
   while (inbox_.take(drained)) {
   }
+  restart(pose, now_ns);
+}
+
+void PoseTrack::restart(const Eigen::Isometry3d& pose, std::int64_t now_ns, std::uint64_t object) noexcept {
+  object_ = object;
   a_ = b_ = Sample{now_ns, pose.translation(), Eigen::Quaterniond(pose.linear())};
   interval_ns_ = 33e6;
   started_ = false;
@@ -26,7 +31,7 @@ PoseTrack::Played PoseTrack::evaluate(std::int64_t now_ns) const noexcept {
 
 PoseTrack::Played PoseTrack::at(std::int64_t now_ns) noexcept {
   PoseUpdate update;
-  if (inbox_.take(update)) {
+  if (inbox_.take(update) && (update.object == 0 || object_ == 0 || update.object == object_)) {
     if (started_)
       interval_ns_ = std::clamp(0.8 * interval_ns_ + 0.2 * static_cast<double>(now_ns - b_.time_ns), 4e6, 200e6);
     started_ = true;

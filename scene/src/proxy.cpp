@@ -21,10 +21,36 @@ constexpr int kSweepSteps = 32;
 void GodObject::configure(const ProxySettings& settings, const Scene& scene) {
   settings_ = settings;
   scene_ = &scene;
+  ignored_.reserve(std::max(kMaxSceneObjects, scene.objects.size()));  // rebind() resizes within these
+  bounds_.reserve(std::max(kMaxSceneObjects, scene.objects.size()));
   ignored_.assign(scene.objects.size(), 0);
   bounds_.resize(scene.objects.size());
   for (std::size_t i = 0; i < scene.objects.size(); ++i) bounds_[i] = bounding_radius(scene.objects[i].shape);
   state_ = ProxyState{};
+}
+
+void GodObject::rebind(const Scene& scene) noexcept {
+  // The objects the proxy was leaving out, by their ids (a handful at most: those it started or was made in).
+  std::array<std::uint64_t, 16> left_out{};
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < ignored_.size() && n < left_out.size(); ++i)
+    if (ignored_[i] != 0 && scene_->objects[i].uid != 0) left_out[n++] = scene_->objects[i].uid;
+  scene_ = &scene;
+  const std::size_t count = std::min(scene.objects.size(), ignored_.capacity());  // no allocation
+  ignored_.resize(count);
+  bounds_.resize(count);
+  const double r = settings_.radius_m;
+  for (std::size_t i = 0; i < count; ++i) {
+    const SceneObject& o = scene.objects[i];
+    bounds_[i] = bounding_radius(o.shape);
+    bool skip = o.uid != 0 && std::find(left_out.begin(), left_out.begin() + static_cast<std::ptrdiff_t>(n), o.uid) !=
+                                  left_out.begin() + static_cast<std::ptrdiff_t>(n);
+    // Made around the proxy: more than half its radius into it (an object the proxy rests on is a radius away).
+    if (!skip && (state_.proxy - o.pose.translation()).norm() - bounds_[i] < r)
+      skip = closest_in_world(o, state_.proxy).distance < 0.5 * r;
+    ignored_[i] = skip ? 1 : 0;
+  }
+  state_.contact_count = 0;  // the contacts named the old scene's objects; the next update finds them again
 }
 
 double GodObject::stiffness_of(const Material& m) const noexcept {

@@ -22,6 +22,7 @@ namespace hapticd::scene {
 struct PoseUpdate {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  std::uint64_t object = 0;  // the object it is for (SceneObject::uid; 0: whichever the track follows)
 };
 
 class PoseTrack {
@@ -32,6 +33,9 @@ class PoseTrack {
   };
   // Not real-time safe to race: call before the loop reads the track.
   void reset(const Eigen::Isometry3d& pose, std::int64_t now_ns) noexcept;
+  // The reader's side, real-time safe: starts over at `pose` following `object` (a new object in the track's
+  // slot): a pose already published for it is kept, one for another object is dropped.
+  void restart(const Eigen::Isometry3d& pose, std::int64_t now_ns, std::uint64_t object = 0) noexcept;
   // Any one writer thread: the engine's newest pose.
   void publish(const PoseUpdate& update) { inbox_.publish(update); }
   // The loop: the pose to render at loop time `now_ns`. Real-time safe.
@@ -49,6 +53,7 @@ class PoseTrack {
   Sample a_, b_;  // the last two poses, a_ older
   double interval_ns_ = 33e6;
   bool started_ = false;
+  std::uint64_t object_ = 0;
 };
 
 }  // namespace hapticd::scene

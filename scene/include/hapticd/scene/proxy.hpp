@@ -53,8 +53,13 @@ struct ProxyState {
 
 class GodObject {
  public:
-  // Not real-time safe: sizes the per-object flags for `scene`, which must outlive the proxy's use of it.
+  // Not real-time safe: sizes the per-object flags for `scene` (and for scenes of up to kMaxSceneObjects that
+  // rebind() may bring), which must outlive the proxy's use of it.
   void configure(const ProxySettings& settings, const Scene& scene);
+  // Real-time safe: renders `scene` from now on (a shared scene's newer version: shared_scene.hpp), keeping the
+  // proxy where it is. An object it was leaving out stays left out (by its uid); an object that holds the proxy
+  // deeply (made around it) is left out until the proxy has left it, as at reset(). At most kMaxSceneObjects.
+  void rebind(const Scene& scene) noexcept;
   // Real-time safe. Starts the proxy at the goal; objects that hold the goal then are left out until it has
   // left them (a device that starts inside an object is not thrown out of it).
   void reset(const Eigen::Vector3d& goal) noexcept;

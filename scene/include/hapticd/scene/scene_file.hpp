@@ -16,8 +16,6 @@ class SceneFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// At most this many objects in a scene (a scene is for what a hand touches, not a level of a game).
-inline constexpr std::size_t kMaxSceneObjects = 1024;
 // At most this many triangles in all of a scene's meshes.
 inline constexpr std::size_t kMaxSceneTriangles = 4'000'000;
 

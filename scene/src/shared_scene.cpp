@@ -1,0 +1,126 @@
+#include "hapticd/scene/shared_scene.hpp"
+
+#include <stdexcept>
+
+namespace hapticd::scene {
+
+SharedScene::Reader::Reader(std::unique_ptr<Scene> first)
+    : current_(first.release()), tracks_(kMaxObjects), tracked_(kMaxObjects, 0) {}
+
+bool SharedScene::Reader::refresh(std::int64_t now_ns) noexcept {
+  bool changed = false;
+  if (stash_ != nullptr && returned_.try_push(stash_)) stash_ = nullptr;
+  if (Scene* offer = offered_.exchange(nullptr, std::memory_order_acq_rel); offer != nullptr) {
+    if (stash_ == nullptr && !returned_.try_push(current_)) stash_ = current_;
+    // (A second scene left while one waits in the stash cannot happen: the editor empties the ring at every edit,
+    // and the stash is emptied at the next refresh before an offer is taken.)
+    current_ = offer;
+    ++taken_;
+    changed = true;
+  }
+  for (SceneObject& o : current_->objects) {
+    if (!o.moving) continue;
+    PoseTrack& track = tracks_[o.slot];
+    if (tracked_[o.slot] != o.uid) {  // a new object in this slot: its track starts where it was added
+      track.restart(o.pose, now_ns, o.uid);
+      tracked_[o.slot] = o.uid;
+    }
+    const PoseTrack::Played played = track.at(now_ns);
+    o.pose = played.pose;
+    o.velocity = played.velocity;
+  }
+  return changed;
+}
+
+SharedScene::SharedScene(Scene initial) : slot_used_(kMaxObjects, 0) {
+  if (initial.objects.size() > kMaxObjects)
+    throw std::invalid_argument("a scene has at most " + std::to_string(kMaxObjects) + " objects");
+  for (SceneObject& o : initial.objects) add(std::move(o));
+}
+
+SharedScene::~SharedScene() {
+  for (auto& r : readers_) {
+    Scene* s = nullptr;
+    while (r->returned_.try_pop(s)) delete s;
+    delete r->offered_.exchange(nullptr);
+    delete r->stash_;
+    delete r->current_;
+  }
+}
+
+SharedScene::Reader& SharedScene::add_reader() {
+  std::lock_guard lock(mutex_);
+  auto first = std::make_unique<Scene>(Scene{objects_});
+  readers_.push_back(std::unique_ptr<Reader>(new Reader(std::move(first))));
+  return *readers_.back();
+}
+
+std::size_t SharedScene::index_of(std::string_view name) const {
+  for (std::size_t i = 0; i < objects_.size(); ++i)
+    if (objects_[i].name == name) return i;
+  throw std::invalid_argument("no object named '" + std::string(name) + "'");
+}
+
+void SharedScene::publish() {
+  for (auto& r : readers_) {
+    auto copy = std::make_unique<Scene>(Scene{objects_});
+    delete r->offered_.exchange(copy.release(), std::memory_order_acq_rel);  // an offer not taken: never read
+  }
+  Scene* s = nullptr;
+  for (auto& r : readers_)
+    while (r->returned_.try_pop(s)) delete s;
+}
+
+std::uint64_t SharedScene::add(SceneObject object) {
+  std::lock_guard lock(mutex_);
+  if (object.name.empty()) throw std::invalid_argument("an object needs a name");
+  for (const SceneObject& o : objects_)
+    if (o.name == object.name) throw std::invalid_argument("the name '" + object.name + "' is taken by another object");
+  if (objects_.size() >= kMaxObjects)
+    throw std::invalid_argument("the scene is full (" + std::to_string(kMaxObjects) + " objects)");
+  std::size_t slot = 0;
+  while (slot_used_[slot] != 0) ++slot;  // one is free: fewer objects than slots
+  slot_used_[slot] = 1;
+  object.slot = static_cast<std::uint32_t>(slot);
+  object.uid = next_uid_++;
+  objects_.push_back(std::move(object));
+  publish();
+  return objects_.back().uid;
+}
+
+void SharedScene::remove(std::string_view name) {
+  std::lock_guard lock(mutex_);
+  const std::size_t i = index_of(name);
+  slot_used_[objects_[i].slot] = 0;
+  objects_.erase(objects_.begin() + static_cast<std::ptrdiff_t>(i));
+  publish();
+}
+
+void SharedScene::set_material(std::string_view name, const Material& material) {
+  std::lock_guard lock(mutex_);
+  objects_[index_of(name)].material = material;
+  publish();
+}
+
+void SharedScene::move(std::string_view name, const PoseUpdate& pose) {
+  std::lock_guard lock(mutex_);
+  const SceneObject& o = objects_[index_of(name)];
+  if (!o.moving) throw std::invalid_argument("'" + o.name + "' was not made a moving object");
+  PoseUpdate update = pose;
+  update.object = o.uid;  // a pose still in the slot's track when another object takes the slot is not its
+  for (auto& r : readers_) r->tracks_[o.slot].publish(update);
+}
+
+Scene SharedScene::snapshot() const {
+  std::lock_guard lock(mutex_);
+  return Scene{objects_};
+}
+
+void SharedScene::collect() {
+  std::lock_guard lock(mutex_);
+  Scene* s = nullptr;
+  for (auto& r : readers_)
+    while (r->returned_.try_pop(s)) delete s;
+}
+
+}  // namespace hapticd::scene
