@@ -270,7 +270,7 @@ def make_c_header(t: Table) -> str:
     for s in t.structs.values():
         if not s.c:
             continue
-        out.extend(wrap(c_doc(s.doc), 116, "/* ")[:1] and [f"/* {c_doc(s.doc)} */"])
+        out.append(f"/* {c_doc(s.doc)} */")
         out.append(f"typedef struct {s.c} {{")
         for f in s.fields:
             if not f.c:
@@ -328,7 +328,7 @@ def cs_fields(t: Table, s: Struct) -> tuple[list[str], list[str]]:
         size = {"name": t.constants["NAME_SIZE"], "names": t.constants["NAME_SIZE"],
                 "text": t.constants["MESSAGE_SIZE"]}.get(base)
         prop = pascal(f.name)
-        if prop == pascal(s.name) or prop in ("Size",):
+        if prop == pascal(s.name):  # C# refuses a member named as its type
             prop += "Text"
         if base in simple and count is None:
             decls.append(f"public {simple[base]} {f.name};")

@@ -10,13 +10,15 @@ SharedScene::Reader::Reader(std::unique_ptr<Scene> first)
 bool SharedScene::Reader::refresh(std::int64_t now_ns) noexcept {
   bool changed = false;
   if (stash_ != nullptr && returned_.try_push(stash_)) stash_ = nullptr;
-  if (Scene* offer = offered_.exchange(nullptr, std::memory_order_acq_rel); offer != nullptr) {
-    if (stash_ == nullptr && !returned_.try_push(current_)) stash_ = current_;
-    // (A second scene left while one waits in the stash cannot happen: the editor empties the ring at every edit,
-    // and the stash is emptied at the next refresh before an offer is taken.)
-    current_ = offer;
-    ++taken_;
-    changed = true;
+  // A new scene only while nothing waits to be handed back: the one left then always has a place (the ring, else
+  // the stash), and an offer not taken now waits for the next refresh.
+  if (stash_ == nullptr) {
+    if (Scene* offer = offered_.exchange(nullptr, std::memory_order_acq_rel); offer != nullptr) {
+      if (!returned_.try_push(current_)) stash_ = current_;
+      current_ = offer;
+      ++taken_;
+      changed = true;
+    }
   }
   for (SceneObject& o : current_->objects) {
     if (!o.moving) continue;
@@ -66,6 +68,10 @@ void SharedScene::publish() {
     auto copy = std::make_unique<Scene>(Scene{objects_});
     delete r->offered_.exchange(copy.release(), std::memory_order_acq_rel);  // an offer not taken: never read
   }
+  free_returned();
+}
+
+void SharedScene::free_returned() {
   Scene* s = nullptr;
   for (auto& r : readers_)
     while (r->returned_.try_pop(s)) delete s;
@@ -118,9 +124,7 @@ Scene SharedScene::snapshot() const {
 
 void SharedScene::collect() {
   std::lock_guard lock(mutex_);
-  Scene* s = nullptr;
-  for (auto& r : readers_)
-    while (r->returned_.try_pop(s)) delete s;
+  free_returned();
 }
 
 }  // namespace hapticd::scene

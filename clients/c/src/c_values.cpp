@@ -31,7 +31,6 @@ template <class T>
 void put(const T& in, T& out) noexcept {
   out = in;
 }
-void put(int in, std::int32_t& out) noexcept { out = in; }
 void put(bool in, std::int32_t& out) noexcept { out = in ? 1 : 0; }
 template <class E, std::enable_if_t<std::is_enum_v<E>, int> = 0>
 void put(E in, std::int32_t& out) noexcept {

@@ -23,8 +23,6 @@ template <class T>
 void get(T in, T& out) noexcept {
   out = in;
 }
-void get(std::int32_t in, int& out) noexcept { out = in; }
-void get(bool in, bool& out) noexcept { out = in; }
 template <std::size_t N>
 void get(const char (&in)[N], Name& out) noexcept {
   out.assign(text_of(in));

@@ -80,7 +80,8 @@ class SharedScene {
 
  private:
   [[nodiscard]] std::size_t index_of(std::string_view name) const;  // throws when unknown
-  void publish();  // under mutex_: a copy of objects_ offered to every reader
+  void publish();        // under mutex_: a copy of objects_ offered to every reader
+  void free_returned();  // under mutex_: the scenes the readers handed back
 
   mutable std::mutex mutex_;
   std::vector<SceneObject> objects_;
