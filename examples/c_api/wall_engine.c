@@ -5,9 +5,11 @@
  * server's claim hold; exit 3 when another client took the device meanwhile), and releases at the end.
  *   hapticd-c-wall-engine [--domain D] [--device NAME] [--id ID] [--duration S] [--push N] [--wait S]
  * --push asks the simulated operator to push with N newtons along +x once the device is claimed; --wait is how
- * long to wait for the device to start (20 s).
+ * long to wait for the device to start (20 s). SIGINT or SIGTERM ends the run as the duration does (the handler
+ * only sets a flag; the helper's chores hook, every 20 ms, reads it).
  * Built against the installed package: cc -std=c11 wall_engine.c $(pkg-config --cflags --libs hapticd-client) */
 #include <hapticd/client.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +20,19 @@ typedef struct wall_engine {
   double wall_x;
   double push_n;
 } wall_engine;
+
+static volatile sig_atomic_t stop_requested = 0;
+static void request_stop(int signal_number) {
+  (void)signal_number;
+  stop_requested = 1;
+}
+
+/* Every 20 ms on the thread that runs the engine: a signal asked it to end (a stop, not a failure: the run says
+ * HAPTICD_ENGINE_STOPPED and releases the device). */
+static int32_t chores(void* user) {
+  if (stop_requested) hapticd_engine_stop((hapticd_engine*)user);
+  return 1;
+}
 
 /* The DDS receive thread, once per state: the proxy, held back at the wall, answers it. */
 static int32_t answer(const hapticd_device_state* states, int32_t count, hapticd_command* commands, void* user) {
@@ -91,6 +106,9 @@ int main(int argc, char** argv) {
   const double start_x = device.start_pose.position.x;
   w.wall_x = start_x + 0.02;
   hapticd_engine_on_claim(engine, claimed, &w);
+  hapticd_engine_on_chores(engine, chores, engine);
+  signal(SIGINT, request_stop);
+  signal(SIGTERM, request_stop);
   hapticd_engine_end end;
   hapticd_engine_run(engine, answer, &w, &end);
   hapticd_device_state last;
