@@ -5,6 +5,7 @@
 #include "hapticd/group_model.hpp"
 #include "hapticd/inverse_kinematics.hpp"
 #include "hapticd/plugin.hpp"
+#include "hapticd/scene_service.hpp"
 #include "hapticd/virtual_model.hpp"
 
 namespace hapticd {
@@ -17,6 +18,7 @@ InverseKinematics::~InverseKinematics() = default;
 RedundancyResolution::~RedundancyResolution() = default;
 VirtualModel::~VirtualModel() = default;
 GroupModel::~GroupModel() = default;
+SceneService::~SceneService() = default;
 
 namespace {
 RuntimeReply refuse(std::string_view name) {
@@ -53,6 +55,8 @@ std::string_view to_string(PluginKind kind) noexcept {
       return "virtual_model";
     case PluginKind::group_model:
       return "group_model";
+    case PluginKind::scene:
+      return "scene";
   }
   return "unknown";
 }

@@ -16,7 +16,8 @@ namespace {
 
 class Reader {
  public:
-  explicit Reader(std::string name) : name_(std::move(name)), folder_(std::filesystem::path(name_).parent_path()) {}
+  explicit Reader(std::string name, bool files_allowed = true)
+      : name_(std::move(name)), folder_(std::filesystem::path(name_).parent_path()), files_allowed_(files_allowed) {}
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
     const std::string line = node.IsDefined() && node.Mark().line >= 0 ? std::to_string(node.Mark().line + 1) : "?";
@@ -114,7 +115,7 @@ class Reader {
                      const std::map<std::string, Material>& materials) const {
     only(map, where,
          {"name", "shape", "radius", "size", "length", "file", "scale", "points", "position", "rpy_deg", "quaternion",
-          "normal", "material"});
+          "normal", "material", "moving"});
     SceneObject o;
     if (!map["name"].IsDefined()) fail(map, where + ".name", "missing");
     o.name = map["name"].as<std::string>();
@@ -192,17 +193,23 @@ class Reader {
   void place_and_dress(SceneObject& o, const YAML::Node& map, const std::string& where,
                        const std::map<std::string, Material>& materials) const {
     o.pose = pose(map, where);
-    if (map["material"].IsDefined()) {
-      const YAML::Node m = map["material"];
-      if (m.IsScalar()) {
-        const auto found = materials.find(m.as<std::string>());
-        if (found == materials.end())
-          fail(m, where + ".material", "no material '" + m.as<std::string>() + "' in materials");
-        o.material = found->second;
-      } else {
-        o.material = material(m, where + ".material");
+    if (map["material"].IsDefined()) o.material = named_or_in_place(map["material"], where + ".material", materials);
+    if (const YAML::Node m = map["moving"]; m.IsDefined()) {
+      try {
+        o.moving = m.as<bool>();
+      } catch (const YAML::Exception&) {
+        fail(m, where + ".moving", "must be true or false");
       }
     }
+  }
+
+  // A material: a name from `materials`, or one in place.
+  Material named_or_in_place(const YAML::Node& m, const std::string& where,
+                             const std::map<std::string, Material>& materials) const {
+    if (!m.IsScalar()) return material(m, where);
+    const auto found = materials.find(m.as<std::string>());
+    if (found == materials.end()) fail(m, where, "no material '" + m.as<std::string>() + "' in materials");
+    return found->second;
   }
 
   // A mesh file (relative to the scene file), read, checked and given its structure here, off the loop.
@@ -219,6 +226,10 @@ class Reader {
   // A mesh file's triangles (relative to the scene file), scaled.
   TriangleMeshData mesh_data(const YAML::Node& map, const std::string& where) const {
     if (!map["file"].IsDefined()) fail(map, where + ".file", "missing (a mesh's STL, OBJ, PLY or glTF file)");
+    if (!files_allowed_)
+      fail(map["file"], where + ".file",
+           "a file named by a client is not read (the server's files are not a client's to open): list a hull's "
+           "points, or name the mesh in the session's scene file");
     std::filesystem::path file = map["file"].as<std::string>();
     if (file.is_relative()) file = folder_ / file;
     Eigen::Vector3d scale = Eigen::Vector3d::Ones();
@@ -233,10 +244,11 @@ class Reader {
     }
   }
 
-  Scene scene(const YAML::Node& root) const {
+  SceneDocument document(const YAML::Node& root) const {
     if (!root.IsDefined() || root.IsNull()) throw SceneFileError(name_ + ": the scene file is empty");
     only(root, "scene", {"materials", "objects"});
-    std::map<std::string, Material> materials;
+    SceneDocument d;
+    std::map<std::string, Material>& materials = d.materials;
     if (root["materials"].IsDefined()) {
       const YAML::Node ms = root["materials"];
       if (!ms.IsMap()) fail(ms, "materials", "must be a mapping of names to materials");
@@ -248,7 +260,7 @@ class Reader {
     if (objects.size() > kMaxSceneObjects)
       fail(objects, "objects",
            std::to_string(objects.size()) + " objects: at most " + std::to_string(kMaxSceneObjects));
-    Scene s;
+    Scene& s = d.scene;
     std::set<std::string> names;
     std::size_t triangles = 0;
     for (std::size_t i = 0; i < objects.size(); ++i) {
@@ -262,17 +274,18 @@ class Reader {
       if (!names.insert(s.objects.back().name).second)
         fail(objects[i]["name"], where + ".name", "'" + s.objects.back().name + "' is taken by another object");
     }
-    return s;
+    return d;
   }
 
  private:
   std::string name_;
   std::filesystem::path folder_;
+  bool files_allowed_ = true;
 };
 
-}  // namespace
-
-Scene parse_scene(const std::string& text, const std::string& name) {
+// Parses `text` as YAML and reads it with `read`; every error a SceneFileError naming `name` and the line.
+template <class Read>
+auto read_text(const std::string& text, const std::string& name, Read read) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -280,20 +293,46 @@ Scene parse_scene(const std::string& text, const std::string& name) {
     throw SceneFileError(name + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
   try {
-    return Reader(name).scene(root);
+    return read(root);
   } catch (const YAML::Exception& e) {
     throw SceneFileError(name + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
 }
 
-Scene load_scene_file(const std::filesystem::path& file) {
+}  // namespace
+
+SceneDocument parse_scene_document(const std::string& text, const std::string& name) {
+  return read_text(text, name, [&](const YAML::Node& root) { return Reader(name).document(root); });
+}
+
+Scene parse_scene(const std::string& text, const std::string& name) { return parse_scene_document(text, name).scene; }
+
+SceneDocument load_scene_document(const std::filesystem::path& file) {
   std::string text;
   try {
     text = read_input_file(file, "scene file");
   } catch (const std::runtime_error& e) {
     throw SceneFileError(e.what());
   }
-  return parse_scene(text, file.string());
+  return parse_scene_document(text, file.string());
+}
+
+Scene load_scene_file(const std::filesystem::path& file) { return load_scene_document(file).scene; }
+
+SceneObject parse_scene_object(const std::string& text, const std::string& name,
+                               const std::map<std::string, Material>& materials) {
+  return read_text(text, name, [&](const YAML::Node& root) {
+    if (!root.IsDefined() || root.IsNull()) throw SceneFileError(name + ": no object");
+    return Reader(name, false).object(root, "object", materials);
+  });
+}
+
+Material parse_material(const std::string& text, const std::string& name,
+                        const std::map<std::string, Material>& materials) {
+  return read_text(text, name, [&](const YAML::Node& root) {
+    if (!root.IsDefined() || root.IsNull()) throw SceneFileError(name + ": no material");
+    return Reader(name, false).named_or_in_place(root, "material", materials);
+  });
 }
 
 }  // namespace hapticd::scene

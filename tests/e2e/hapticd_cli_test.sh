@@ -76,7 +76,7 @@ out=$(timeout 30 "$hapticctl" record some_device "$work/state.csv" --duration 1 
 # 7. --list-plugins: one column each for name, kind and version, however long a name (friction_identification
 #    pushed its row's columns out of line).
 "$hapticd" --list-plugins > "$work/plugins.txt" 2> /dev/null
-kind_columns=$(awk 'NR > 1 { match($0, / (device|virtual_model|inverse_kinematics|controller|group_model) /); print RSTART }' \
+kind_columns=$(awk 'NR > 1 { match($0, / (device|virtual_model|inverse_kinematics|controller|group_model|scene) /); print RSTART }' \
   "$work/plugins.txt" | sort -u | wc -l)
 longest=$(awk 'NR > 1 { if (length($1) > n) n = length($1) } END { print n }' "$work/plugins.txt")
 [ "$kind_columns" -eq 1 ] && [ "$longest" -gt 20 ] && pass "--list-plugins aligned (longest name $longest)" \

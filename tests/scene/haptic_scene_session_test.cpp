@@ -7,9 +7,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "hapticd/testing/allocation_guard.hpp"
+#include "session/device_session.hpp"
 #include "support/test_paths.hpp"
 #include "support/test_session.hpp"
 
@@ -156,6 +160,145 @@ objects:
   Session s = test::build_test_session(guided(
       "[0.01, 0, -0.004]", "      plugin: haptic_scene\n      parameters: {scene: " + scene + ", origin: handle}\n"));
   EXPECT_EQ(test::allocations_over_cycles(test::device_of(s), 3000), 0u);
+}
+
+// The session's scene (its `scene` section): two devices whose haptic_scene models name no file share it; a wall an
+// engine adds while they run is felt by both from their next cycle, as the analytic wall of the same stiffness is,
+// and no longer once removed; the cycles allocate nothing across the edits.
+std::string two_devices_on_the_session_scene(const std::string& scene_section) {
+  const std::string model = "      plugin: haptic_scene\n      parameters: {origin: handle, proxy_radius_m: 0.005}\n";
+  std::string first = guided("[0.005, 0, 0]", model);
+  std::string second = guided("[0.005, 0, 0]", model);
+  second = second.substr(second.find("devices:\n") + 9);  // its device entry
+  second.replace(second.find("name: v3"), 8, "name: w3");
+  first.replace(first.find("devices:\n"), 9, scene_section + "devices:\n");
+  return first + second;
+}
+
+// 1 mm + the proxy's radius ahead of each handle (the models' origin: the handle), as an engine writes it.
+constexpr const char* kWallAhead =
+    R"({"name": "wall", "shape": "plane", "position": [0.006, 0, 0], "normal": [-1, 0, 0],
+        "material": {"stiffness": 2000, "damping": 0}})";
+
+SceneService& scene_of(Session& s, std::size_t device) { return *test::device_of(s, device).chain().scene->object; }
+
+TEST(HapticSceneSession, TwoDevicesShareTheSessionsSceneAndFeelAWallAddedWhileTheyRun) {
+  Session s = test::build_test_session(two_devices_on_the_session_scene("scene:\n"));
+  ASSERT_NE(test::device_of(s, 0).chain().scene, nullptr);
+  SceneService* shared = &scene_of(s, 0);
+  EXPECT_EQ(shared, &scene_of(s, 1));
+  s.step(600);  // 0.3 s: the guides have not moved yet
+  for (const char* d : {"v3", "w3"}) EXPECT_EQ(s.device(d).task.wrench.force.norm(), 0.0);
+  shared->add(kWallAhead);
+  s.step(2400);  // 1.2 s more: 5 mm into the wall
+  for (const char* d : {"v3", "w3"}) {
+    const DeviceView v = s.device(d);
+    ASSERT_TRUE(v.fault.empty()) << d << ": " << v.fault;
+    EXPECT_LT(v.task.wrench.force.x(), -2000 * 0.004) << d;
+    EXPECT_NEAR(v.task.wrench.force.y(), 0.0, 1e-9) << d;
+  }
+  EXPECT_NEAR(s.device("v3").task.wrench.force.x(), s.device("w3").task.wrench.force.x(), 0.2);
+  shared->remove("wall");
+  s.step(100);  // the render guard's rate limit lets the force down over a few cycles
+  for (const char* d : {"v3", "w3"}) EXPECT_EQ(s.device(d).task.wrench.force.norm(), 0.0) << d;
+}
+
+TEST(HapticSceneSession, ADeviceTakesAnEditOfTheSessionsSceneWithoutAllocating) {
+  Session s = test::build_test_session(two_devices_on_the_session_scene("scene:\n"));
+  server::DeviceSession& device = test::device_of(s, 0);
+  device.activate();
+  device.cycle(test::cycle_at(0), 1.0);
+  scene_of(s, 0).add(kWallAhead);  // off the loop: the wall's scene made and offered
+  if (!testing::AllocationGuard::available()) GTEST_SKIP() << "the sanitizer owns malloc";
+  testing::AllocationGuard guard;
+  for (std::uint64_t k = 1; k <= 3000; ++k) device.cycle(test::cycle_at(k), 1.0);  // the edit taken, the wall felt
+  EXPECT_EQ(guard.allocations(), 0u);
+  EXPECT_LT(s.device("v3").task.wrench.force.x(), -2000 * 0.004);
+}
+
+// What an engine's edit says, through the scene's service (the doors' way in): refused edits name the object and
+// the reason and change nothing; a file named by a client is not opened; a pose that is not one is refused.
+std::string refusal(const std::function<void()>& edit) {
+  try {
+    edit();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(HapticSceneSession, EditsThroughTheScenesServiceAreCheckedAndABadOneChangesNothing) {
+  const std::string desk = scene_file("desk-session.yaml", R"(materials:
+  wood: {stiffness: 2500, damping: 8}
+objects:
+  - {name: desk, shape: box, size: [0.3, 0.3, 0.02], position: [0, 0, -0.03], material: wood}
+)");
+  Session s = test::build_test_session(two_devices_on_the_session_scene("scene: {parameters: {file: " + desk + "}}\n"));
+  SceneService& scene = scene_of(s, 0);
+  ASSERT_EQ(scene.objects().size(), 1u);
+  EXPECT_EQ(scene.objects()[0].name, "desk");
+  // A block on the desk, in the file's material, moved by an engine; JSON as the engine socket sends it.
+  EXPECT_GT(scene.add(R"({"name": "block", "shape": "box", "size": [0.02, 0.02, 0.02], "position": [0.05, 0, -0.01],
+                          "material": "wood", "moving": true})"),
+            0u);
+  const std::vector<SceneObjectSummary> two = scene.objects();
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(two[1].shape, "box");
+  EXPECT_TRUE(two[1].moving);
+  struct Case {
+    std::function<void()> edit;
+    const char* says;
+  };
+  Pose nan_pose;
+  nan_pose.position.x() = std::numeric_limits<double>::quiet_NaN();
+  Pose zero_turn;
+  zero_turn.orientation.coeffs().setZero();
+  const std::vector<Case> cases{
+      {[&] { scene.add("{name: ball, shape: sphere, radius: -0.01}"); }, "object.radius: must be positive"},
+      {[&] { scene.add("{name: desk, shape: sphere, radius: 0.01}"); }, "'desk' is taken"},
+      {[&] { scene.add("{name: ball, shape: sphere, radius: 0.01, material: steel}"); }, "no material 'steel'"},
+      {[&] { scene.add("{name: ball, shape: sphere, radius: 0.01, colour: red}"); }, "object.colour: unknown key"},
+      {[&] { scene.add("{name: rock, shape: mesh, file: /etc/passwd}"); }, "a file named by a client is not read"},
+      {[&] { scene.add("{name: rock, shape: convex_hull, file: /etc/passwd}"); },
+       "a file named by a client is not read"},
+      {[&] { scene.add("{name: [unclosed"); }, "the object added:1"},
+      {[&] { scene.add(""); }, "no object"},
+      {[&] { scene.remove("chair"); }, "no object named 'chair'"},
+      {[&] { scene.set_material("desk", "{stiffness: -1}"); }, "material.stiffness: must be positive"},
+      {[&] { scene.set_material("chair", "wood"); }, "no object named 'chair'"},
+      {[&] { scene.move("desk", Pose{}); }, "'desk' was not made a moving object"},
+      {[&] { scene.move("block", nan_pose); }, "is not a pose"},
+      {[&] { scene.move("block", zero_turn); }, "is not a pose"},
+  };
+  for (const Case& c : cases) {
+    const std::string said = refusal(c.edit);
+    EXPECT_NE(said.find(c.says), std::string::npos) << "expected '" << c.says << "', got: " << said;
+  }
+  EXPECT_EQ(scene.objects().size(), 2u);  // nothing changed
+  s.step(200);
+  for (const char* d : {"v3", "w3"}) EXPECT_TRUE(s.device(d).fault.empty()) << d;
+  // Good edits: a material by name or in place, a move, a removal.
+  scene.set_material("block", "{stiffness: 3000, static_friction: 0.4}");
+  scene.set_material("block", "wood");
+  Pose there;
+  there.position = Eigen::Vector3d(0.06, 0, -0.01);
+  scene.move("block", there);
+  scene.remove("block");
+  EXPECT_EQ(scene.objects().size(), 1u);
+}
+
+TEST(HapticSceneSession, TheSessionsSceneFileIsCheckedAtStartAndAModelWithoutSceneNeedsTheSection) {
+  const std::string broken =
+      scene_file("broken-session.yaml", "objects:\n  - name: ball\n    shape: sphere\n    radius: -0.02\n");
+  const std::string error =
+      test::config_error_of(two_devices_on_the_session_scene("scene: {parameters: {file: " + broken + "}}\n"));
+  EXPECT_NE(error.find("scene.parameters.file"), std::string::npos) << error;
+  EXPECT_NE(error.find("broken-session.yaml:4: objects[0].radius: must be positive"), std::string::npos) << error;
+  const std::string unknown =
+      test::config_error_of(two_devices_on_the_session_scene("scene: {parameters: {flie: x.yaml}}\n"));
+  EXPECT_NE(unknown.find("scene.parameters.flie"), std::string::npos) << unknown;
+  const std::string none = test::config_error_of(two_devices_on_the_session_scene(""));
+  EXPECT_NE(none.find("the session has no scene section"), std::string::npos) << none;
 }
 
 }  // namespace

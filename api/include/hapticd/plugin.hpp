@@ -19,11 +19,12 @@
 #include "hapticd/group_model.hpp"
 #include "hapticd/inverse_kinematics.hpp"
 #include "hapticd/parameters.hpp"
+#include "hapticd/scene_service.hpp"
 #include "hapticd/virtual_model.hpp"
 
 namespace hapticd {
 
-enum class PluginKind : std::uint8_t { device, controller, inverse_kinematics, virtual_model, group_model };
+enum class PluginKind : std::uint8_t { device, controller, inverse_kinematics, virtual_model, group_model, scene };
 
 [[nodiscard]] HAPTICD_API std::string_view to_string(PluginKind kind) noexcept;
 
@@ -43,6 +44,7 @@ struct PluginDescriptor {
   std::unique_ptr<InverseKinematics> (*create_inverse_kinematics)();
   std::unique_ptr<VirtualModel> (*create_virtual_model)();
   std::unique_ptr<GroupModel> (*create_group_model)();
+  std::unique_ptr<SceneService> (*create_scene)();  // the session's scene (scene_service.hpp)
 };
 
 struct PluginCatalog {
@@ -115,10 +117,13 @@ PluginDescriptor describe_plugin(const char* name, const char* version, const ch
   } else if constexpr (std::is_base_of_v<GroupModel, T>) {
     d.kind = PluginKind::group_model;
     d.create_group_model = []() -> std::unique_ptr<GroupModel> { return std::make_unique<T>(); };
+  } else if constexpr (std::is_base_of_v<SceneService, T>) {
+    d.kind = PluginKind::scene;
+    d.create_scene = []() -> std::unique_ptr<SceneService> { return std::make_unique<T>(); };
   } else {
     static_assert(std::is_base_of_v<VirtualModel, T>,
                   "a plugin derives from Device, Controller, "
-                  "InverseKinematics, VirtualModel or GroupModel");
+                  "InverseKinematics, VirtualModel, GroupModel or SceneService");
     d.kind = PluginKind::virtual_model;
     d.create_virtual_model = []() -> std::unique_ptr<VirtualModel> { return std::make_unique<T>(); };
   }

@@ -10,6 +10,7 @@ namespace hapticd {
 namespace model {
 class RobotModel;
 }  // namespace model
+class SceneService;
 
 // What the server tells a plugin at configure() time besides its parameters.
 struct PluginContext {
@@ -26,6 +27,10 @@ struct PluginContext {
   double rate_hz = 2000.0;                 // control rate of the loop the plugin will run in
   std::uint64_t seed = 0;                  // seed for any randomness (deterministic per session and device)
   std::filesystem::path config_directory;  // folder of the session file: relative paths resolve against it
+  // The session's haptic scene (its `scene` section; hapticd/scene_service.hpp), shared by its devices and edited
+  // at run time: a virtual model that renders it takes a reader of it. Null without the section. It outlives the
+  // plugin.
+  SceneService* scene = nullptr;
 };
 
 }  // namespace hapticd

@@ -5,12 +5,17 @@
 #include "hapticd/chain_state.hpp"
 #include "hapticd/render_port.hpp"
 #include "hapticd/scene/scene_file.hpp"
+#include "hapticd/scene/shared_scene.hpp"
+#include "hapticd/scene_service.hpp"
 
 namespace hapticd::models {
 
 ParameterSchema HapticSceneModel::parameter_schema() {
   ParameterSchema s = VirtualAdmittance::parameter_schema();  // the virtual body of admittance display
-  s.string("scene", "the scene file (YAML: materials and objects; docs/haptic-scene.md), relative to the session file");
+  s.string("scene",
+           "the scene file (YAML: materials and objects; docs/haptic-scene.md), relative to the session file; empty: "
+           "the session's scene (its `scene` section), shared with its other devices and edited at run time")
+      .default_value(std::string());
   s.string("display", "impedance: the device displays the proxy's force; admittance: a virtual body follows it")
       .choices({"impedance", "admittance"})
       .default_value(std::string("impedance"));
@@ -37,17 +42,27 @@ ParameterSchema HapticSceneModel::parameter_schema() {
 
 void HapticSceneModel::configure(const Parameters& p, const PluginContext& context) {
   std::filesystem::path file = p.string("scene");
-  if (file.is_relative()) file = context.config_directory / file;
-  try {
-    scene_ = scene::load_scene_file(file);
-  } catch (const scene::SceneFileError& e) {
-    throw ParameterError("scene", e.what());
+  reader_ = nullptr;
+  if (file.empty()) {
+    if (context.scene == nullptr)
+      throw ParameterError("scene",
+                           "no scene file given and the session has no scene section: name a file here or add a "
+                           "`scene` section to the session");
+    reader_ = &context.scene->shared().add_reader();  // the session's scene, shared with its other devices
+    reader_->refresh(0);
+  } else {
+    if (file.is_relative()) file = context.config_directory / file;
+    try {
+      own_scene_ = scene::load_scene_file(file);
+    } catch (const scene::SceneFileError& e) {
+      throw ParameterError("scene", e.what());
+    }
   }
   scene::ProxySettings settings;
   settings.radius_m = p.real("proxy_radius_m");
   settings.max_stiffness_n_per_m = p.real("max_stiffness_n_per_m");
   settings.max_iterations = static_cast<int>(p.integer("max_iterations"));
-  proxy_.configure(settings, scene_);
+  proxy_.configure(settings, reader_ != nullptr ? reader_->scene() : own_scene_);
   admittance_display_ = p.string("display") == "admittance";
   origin_at_handle_ = p.string("origin") == "handle";
   if (admittance_display_) {
@@ -65,6 +80,8 @@ Outcome HapticSceneModel::activate(const VirtualModelInput& current) {
 }
 
 Outcome HapticSceneModel::update(const CycleTime& cycle, const VirtualModelInput& input, TaskTarget& target) {
+  // The session's scene: its newest version (an engine's edit) and its moving objects' poses at this cycle.
+  if (reader_ != nullptr && reader_->refresh(cycle.time_ns)) proxy_.rebind(reader_->scene());
   const ChainState& c = input.chain;
   if (admittance_display_) {
     // The virtual body is the proxy's goal: the scene's force acts on it, the motion loop makes the handle follow.

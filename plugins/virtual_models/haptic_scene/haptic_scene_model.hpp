@@ -4,13 +4,16 @@
 //   display: impedance   the device displays the proxy's force on the handle (TaskTarget::wrench)
 //   display: admittance  a virtual admittance (every parameter of the `admittance` model) is the goal the proxy
 //                        follows: the scene's force acts on the virtual body, which the inner motion loop tracks
-// The scene is read and checked at configure (off the loop); the loop only queries it. The scene's force passes
-// the safety layer's passivity observer and controller (the engine port, as an engine's force does) and the
-// rendered-wrench limits.
+// The scene: the model's own scene file (`scene`), or the session's scene (its `scene` section), which the
+// session's devices share and engines edit at run time (scene/shared_scene.hpp: the loop takes each new version
+// whole and plays its moving objects' poses back). Read, checked and built off the loop; the loop only queries it. The
+// scene's force passes the safety layer's passivity observer and controller (the engine port, as an engine's force
+// does) and the rendered-wrench limits.
 #include <Eigen/Core>
 
 #include "hapticd/scene/proxy.hpp"
 #include "hapticd/scene/scene.hpp"
+#include "hapticd/scene/shared_scene.hpp"
 #include "hapticd/virtual_model.hpp"
 #include "virtual_admittance.hpp"
 
@@ -32,7 +35,8 @@ class HapticSceneModel final : public VirtualModel {
   [[nodiscard]] const Eigen::Vector3d& scene_origin() const noexcept { return origin_; }
 
  private:
-  scene::Scene scene_;
+  scene::Scene own_scene_;                        // from the model's own scene file
+  scene::SharedScene::Reader* reader_ = nullptr;  // or the session's scene
   scene::GodObject proxy_;
   VirtualAdmittance admittance_;
   bool admittance_display_ = false;

@@ -440,6 +440,12 @@ int describe_config(const std::string& config_file) {
       "\nteleoperation section (present: this device is one side of a link to another server's; "
       "docs/teleoperation.md):\n");
   print_schema(teleoperation_settings_schema());
+  fmt::print(
+      "\nscene section (present: the session's haptic scene, which its devices' haptic_scene models that name no "
+      "file render and engines edit at run time; docs/haptic-scene.md):\n");
+  fmt::print("  {:<24} {}\n", "plugin", "the scene's plugin (default session_scene)");
+  fmt::print("  {:<24} {}\n", "parameters",
+             "its parameters (session_scene: file, the scene file; hapticd --describe-plugin session_scene)");
   fmt::print("\na device entry (devices: [...]):\n");
   for (const EntryKey& k : device_entry_keys()) fmt::print("  {:<24} {}\n", k.key, k.text);
   fmt::print("\ngroups (optional, top level; docs/multi-device.md): a list of\n");

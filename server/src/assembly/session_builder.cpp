@@ -177,12 +177,31 @@ std::uint64_t device_seed(std::uint64_t session_seed, std::size_t device_index) 
 
 namespace {
 
+// The session's scene (its `scene` section; null without): its plugin loaded - only then, so a session without a
+// scene never maps the scene's libraries - and configured (its scene file read, checked and built) before any
+// device's chain. Any failure fails the start: the scene belongs to every device.
+SessionScene session_scene(const SessionConfig& config, PluginLoader& loader) {
+  if (!config.scene) return nullptr;
+  PluginContext context;
+  context.rate_hz = config.server.rate_hz;
+  context.seed = config.server.seed;
+  context.config_directory = config.file.parent_path();
+  try {
+    return std::make_shared<PluginInstance<SceneService>>(
+        load_and_configure<SceneService>(PluginKind::scene, *config.scene, config, loader, context));
+  } catch (const PluginConfigureError& e) {
+    throw e.error;
+  }
+}
+
 std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& config, PluginLoader& loader,
                                                       std::vector<ConfigureFailure>* report) {
   std::vector<std::unique_ptr<DeviceSession>> sessions;
+  const SessionScene scene = session_scene(config, loader);
   for (std::size_t i = 0; i < config.devices.size(); ++i) {
     const DeviceConfig& dc = config.devices[i];
     PluginContext context;
+    context.scene = scene ? scene->object.get() : nullptr;
     context.device_name = dc.name;
     context.rate_hz = config.server.rate_hz;
     context.seed = device_seed(config.server.seed, i);
@@ -190,6 +209,7 @@ std::vector<std::unique_ptr<DeviceSession>> build_all(const SessionConfig& confi
     context.base_pose = dc.base_pose;
 
     DeviceChain chain;
+    chain.scene = scene;
     try {
       chain.device = load_and_configure<Device>(PluginKind::device, dc.device, config, loader, context);
     } catch (const PluginConfigureError& e) {

@@ -16,12 +16,16 @@
 namespace hapticd::server {
 namespace {
 
-PluginConfig read_plugin(const YAML::Node& node, const std::string& key_path, const std::string& file) {
+// A plugin entry ({plugin, library, parameters}); `plugin` may be left out when there is a default_plugin.
+PluginConfig read_plugin(const YAML::Node& node, const std::string& key_path, const std::string& file,
+                         const char* default_plugin = nullptr) {
   MappingReader reader(node, key_path, file, {"plugin", "library", "parameters"});
   PluginConfig plugin;
   plugin.key_path = key_path;
   plugin.line = line_of(node);
-  plugin.plugin = reader.required_string("plugin");
+  plugin.plugin = default_plugin != nullptr && !reader.optional("plugin").IsDefined()
+                      ? std::string(default_plugin)
+                      : reader.required_string("plugin");
   const YAML::Node library = reader.optional("library");
   if (library.IsDefined() && !library.IsNull()) {
     if (!library.IsScalar())
@@ -253,6 +257,18 @@ void check_ip_address(const std::string& address, const YAML::Node& node, const 
   if (inet_pton(AF_INET, address.c_str(), parsed) != 1 && inet_pton(AF_INET6, address.c_str(), parsed) != 1)
     throw ConfigError(file, line_of(node), key,
                       "'" + address + "' is not an IP address (127.0.0.1 for this machine only, the default)");
+}
+
+// The `scene` section: a plugin entry whose plugin is session_scene unless it names another; `scene:` alone is an
+// empty scene the engines fill.
+std::optional<PluginConfig> read_scene(const YAML::Node& node, const std::string& file) {
+  if (!node.IsDefined()) return std::nullopt;
+  PluginConfig scene;
+  scene.plugin = "session_scene";
+  scene.key_path = "scene";
+  scene.line = line_of(node);
+  if (node.IsNull()) return scene;
+  return read_plugin(node, "scene", file, "session_scene");
 }
 
 LiveViewSettings read_live_view(const YAML::Node& node, const std::string& file) {
@@ -820,13 +836,15 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
   SessionConfig config;
   config.file = path;
   config.overrides = applied;
-  MappingReader top(root, "", file,
-                    {"server", "dds", "gate", "live_view", "engine_socket", "teleoperation", "devices", "groups"});
+  MappingReader top(
+      root, "", file,
+      {"server", "dds", "gate", "live_view", "engine_socket", "teleoperation", "scene", "devices", "groups"});
   config.server = read_server(top.optional("server"), file, path.parent_path());
   config.dds = read_dds(top.optional("dds"), file, path.parent_path());
   config.gate = read_gate(top.optional("gate"), top.optional("dds"), file);
   config.live_view = read_live_view(top.optional("live_view"), file);
   config.engine_socket = read_engine_socket(top.optional("engine_socket"), file, path.parent_path());
+  config.scene = read_scene(top.optional("scene"), file);
 
   const YAML::Node devices = top.required("devices");
   if (!devices.IsSequence() || devices.size() == 0)

@@ -194,6 +194,9 @@ struct SessionConfig {
   LiveViewSettings live_view;
   EngineSocketSettings engine_socket;
   TeleoperationSettings teleoperation;
+  // The session's haptic scene (`scene`; docs/haptic-scene.md): its plugin (session_scene unless named) and its
+  // parameters (the scene file). None without the section.
+  std::optional<PluginConfig> scene;
   std::vector<DeviceConfig> devices;
   std::vector<GroupConfig> groups;
   std::vector<AppliedOverride> overrides;  // what overrides changed: an error there names the override

@@ -85,6 +85,8 @@ PluginInstance<T> create_plugin(const PluginHandle& handle) {
     instance.object = handle.descriptor->create_inverse_kinematics();
   else if constexpr (std::is_same_v<T, GroupModel>)
     instance.object = handle.descriptor->create_group_model();
+  else if constexpr (std::is_same_v<T, SceneService>)
+    instance.object = handle.descriptor->create_scene();
   else
     instance.object = handle.descriptor->create_virtual_model();
   if (!instance.object)

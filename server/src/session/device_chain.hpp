@@ -20,7 +20,13 @@ struct SchemeChain {
   PluginInstance<Controller> controller;
 };
 
+// The session's haptic scene (its `scene` section; hapticd/scene_service.hpp), one for all its devices.
+using SessionScene = std::shared_ptr<PluginInstance<SceneService>>;
+
 struct DeviceChain {
+  // The session's haptic scene (null without the section), shared by its devices: their virtual models read it
+  // (PluginContext::scene), the doors edit it. First: destroyed after every plugin that reads it.
+  SessionScene scene;
   // The device's robot model, parsed once (DeviceDescription::robot_model_file; null without one): the chain
   // state's estimator and every plugin of the chain (PluginContext::robot_model) use it. First: destroyed last.
   std::shared_ptr<const model::RobotModel> robot_model;

@@ -4,6 +4,7 @@
 // key, a size that is not positive, a value that is not finite, a material nobody defined - is a SceneFileError
 // whose message names the file, the line and the key ("scene.yaml:12: objects[1].radius: must be positive").
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -23,5 +24,21 @@ inline constexpr std::size_t kMaxSceneTriangles = 4'000'000;
 [[nodiscard]] Scene load_scene_file(const std::filesystem::path& file);
 // The same from text (`name` stands for the file in messages; mesh files are found relative to its folder).
 [[nodiscard]] Scene parse_scene(const std::string& text, const std::string& name);
+
+// A scene file's objects and its named materials (for the objects added to it later).
+struct SceneDocument {
+  Scene scene;
+  std::map<std::string, Material> materials;
+};
+[[nodiscard]] SceneDocument load_scene_document(const std::filesystem::path& file);
+[[nodiscard]] SceneDocument parse_scene_document(const std::string& text, const std::string& name);
+
+// A client's edit: one object written as a scene file's (YAML or JSON - JSON is YAML), its material a name from
+// `materials` or one in place; or one material so. `name` stands for the text in messages ("the engine's object").
+// Files are refused here (a mesh or hull file named by a client is not the server's to open).
+[[nodiscard]] SceneObject parse_scene_object(const std::string& text, const std::string& name,
+                                             const std::map<std::string, Material>& materials);
+[[nodiscard]] Material parse_material(const std::string& text, const std::string& name,
+                                      const std::map<std::string, Material>& materials);
 
 }  // namespace hapticd::scene

@@ -1,0 +1,61 @@
+#pragma once
+// The session's haptic scene (its `scene` section; docs/haptic-scene.md, "The session's scene"): a plugin of its
+// own kind that holds the one scene the session's devices render and the doors edit. The server loads it only for
+// a session with the section - so a session without a scene never maps the scene's libraries (its meshes'
+// acceleration structure, its file loader) - configures it before any device's chain and hands it to every chain
+// plugin in PluginContext::scene and to the doors.
+//
+// Every method is called off the loop, from any thread (the doors' and the server's); an implementation
+// serialises its edits. A refused edit throws std::invalid_argument with a message that names the object and the
+// reason, and changes nothing. A loop reads the scene through scene::SharedScene's readers (shared()), never
+// through this interface.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hapticd/export.hpp"
+#include "hapticd/parameters.hpp"
+#include "hapticd/plugin_context.hpp"
+#include "hapticd/spatial.hpp"
+
+namespace hapticd {
+namespace scene {
+class SharedScene;
+}  // namespace scene
+
+// One object of the scene as the doors see it.
+struct SceneObjectSummary {
+  std::string name;
+  std::string shape;  // plane, sphere, box, capsule, cylinder, mesh (a convex hull is met as the mesh of its faces)
+  std::uint64_t uid = 0;
+  bool moving = false;
+  std::size_t triangles = 0;  // of a mesh
+  Pose pose;                  // as added (a moving object's later poses are the devices' to play back)
+};
+
+class HAPTICD_API SceneService {
+ public:
+  virtual ~SceneService();
+
+  // Reads the scene's objects at the start (the plugin's parameters: a scene file). Throws ParameterError for a
+  // mistake in them (the server names the session file's key and line).
+  virtual void configure(const Parameters& parameters, const PluginContext& context) = 0;
+
+  // The scene the devices render: a haptic_scene model takes a reader of it (scene/shared_scene.hpp; the scene
+  // library is the plugin's and the models', not the server's).
+  [[nodiscard]] virtual scene::SharedScene& shared() noexcept = 0;
+
+  // Adds one object written as the scene file writes one (YAML or JSON: name, shape, sizes, pose, material - a
+  // name from the scene file's materials or one in place - and `moving` for an object an engine moves); a mesh or
+  // hull file is refused here (a client's file is not the server's to read). Returns the object's uid.
+  virtual std::uint64_t add(std::string_view object) = 0;
+  virtual void remove(std::string_view name) = 0;
+  // The object's material: a name from the scene file's materials or a material in place (YAML or JSON).
+  virtual void set_material(std::string_view name, std::string_view material) = 0;
+  // A moving object's new pose, played back by every device (an update is never felt as a step).
+  virtual void move(std::string_view name, const Pose& pose) = 0;
+  [[nodiscard]] virtual std::vector<SceneObjectSummary> objects() const = 0;
+};
+
+}  // namespace hapticd

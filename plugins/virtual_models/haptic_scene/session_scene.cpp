@@ -1,0 +1,108 @@
+#include "session_scene.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "hapticd/scene/mesh.hpp"
+#include "hapticd/scene/scene_file.hpp"
+
+namespace hapticd::models {
+namespace {
+std::size_t triangles_of(const scene::SceneObject& o) {
+  return o.shape.mesh ? o.shape.mesh->data().triangles.size() : 0;
+}
+}  // namespace
+
+ParameterSchema SessionScene::parameter_schema() {
+  ParameterSchema s;
+  s.string("file",
+           "the scene's objects at the start: a scene file (YAML: materials and objects; docs/haptic-scene.md), "
+           "relative to the session file; empty: the scene starts empty")
+      .default_value(std::string());
+  return s;
+}
+
+void SessionScene::configure(const Parameters& p, const PluginContext& context) {
+  std::filesystem::path file = p.string("file");
+  scene::SceneDocument document;
+  if (!file.empty()) {
+    if (file.is_relative()) file = context.config_directory / file;
+    try {
+      document = scene::load_scene_document(file);
+    } catch (const scene::SceneFileError& e) {
+      throw ParameterError("file", e.what());
+    }
+  }
+  triangles_ = 0;
+  for (const scene::SceneObject& o : document.scene.objects) triangles_ += triangles_of(o);
+  materials_ = std::move(document.materials);
+  scene_ = std::make_unique<scene::SharedScene>(std::move(document.scene));
+}
+
+std::uint64_t SessionScene::add(std::string_view text) {
+  // Parsed and, for a hull, built here on the caller's thread; the scene takes the finished object.
+  scene::SceneObject object = [&] {
+    try {
+      return scene::parse_scene_object(std::string(text), "the object added", materials_);
+    } catch (const scene::SceneFileError& e) {
+      throw std::invalid_argument(e.what());
+    }
+  }();
+  const std::size_t triangles = triangles_of(object);
+  std::lock_guard lock(mutex_);
+  if (triangles_ + triangles > scene::kMaxSceneTriangles)
+    throw std::invalid_argument("'" + object.name + "': the scene would have " +
+                                std::to_string(triangles_ + triangles) + " triangles, at most " +
+                                std::to_string(scene::kMaxSceneTriangles));
+  const std::uint64_t uid = scene_->add(std::move(object));
+  triangles_ += triangles;
+  return uid;
+}
+
+void SessionScene::remove(std::string_view name) {
+  std::lock_guard lock(mutex_);
+  std::size_t triangles = 0;
+  for (const scene::SceneObject& o : scene_->snapshot().objects)
+    if (o.name == name) triangles = triangles_of(o);
+  scene_->remove(name);
+  triangles_ -= triangles;
+}
+
+void SessionScene::set_material(std::string_view name, std::string_view text) {
+  const scene::Material material = [&] {
+    try {
+      return scene::parse_material(std::string(text), "the material of '" + std::string(name) + "'", materials_);
+    } catch (const scene::SceneFileError& e) {
+      throw std::invalid_argument(e.what());
+    }
+  }();
+  scene_->set_material(name, material);
+}
+
+void SessionScene::move(std::string_view name, const Pose& pose) {
+  const double norm = pose.orientation.norm();
+  if (!pose.position.allFinite() || !pose.orientation.coeffs().allFinite() || norm < 1e-6)
+    throw std::invalid_argument("the pose of '" + std::string(name) +
+                                "' is not a pose (a value not finite, or a zero quaternion)");
+  scene::PoseUpdate update;
+  update.position = pose.position;
+  update.orientation = pose.orientation.normalized();
+  scene_->move(name, update);
+}
+
+std::vector<SceneObjectSummary> SessionScene::objects() const {
+  std::vector<SceneObjectSummary> list;
+  for (const scene::SceneObject& o : scene_->snapshot().objects) {
+    SceneObjectSummary s;
+    s.name = o.name;
+    s.shape = scene::kind_name(o.shape.kind);
+    s.uid = o.uid;
+    s.moving = o.moving;
+    s.triangles = triangles_of(o);
+    s.pose = to_pose(o.pose);
+    list.push_back(std::move(s));
+  }
+  return list;
+}
+
+}  // namespace hapticd::models
