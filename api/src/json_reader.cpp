@@ -32,6 +32,11 @@ std::optional<std::string_view> JsonReader::Value::string() const noexcept {
   return node().text;
 }
 
+std::optional<std::string_view> JsonReader::Value::source() const noexcept {
+  if (!reader_ || (node().kind != Kind::object && node().kind != Kind::array)) return std::nullopt;
+  return node().text;
+}
+
 bool JsonReader::fail(const char* why) noexcept {
   error_ = why;
   return false;
@@ -65,15 +70,19 @@ std::uint32_t JsonReader::value(int depth) noexcept {
   nodes_.emplace_back();
   const char c = text_[at_];
   if (c == '{' || c == '[') {
+    const std::size_t begin = at_;
+    // The container's source, once its closing bracket is read.
+    const auto closed = [&] {
+      ++at_;
+      nodes_[index].text = text_.substr(begin, at_ - begin);
+      return index;
+    };
     const bool object = c == '{';
     nodes_[index].kind = object ? Kind::object : Kind::array;
     ++at_;
     skip_space();
     const char close = object ? '}' : ']';
-    if (at_ < text_.size() && text_[at_] == close) {
-      ++at_;
-      return index;
-    }
+    if (at_ < text_.size() && text_[at_] == close) return closed();
     std::uint32_t last = 0;
     for (;;) {
       std::string_view key;
@@ -103,10 +112,7 @@ std::uint32_t JsonReader::value(int depth) noexcept {
         ++at_;
         continue;
       }
-      if (at_ < text_.size() && text_[at_] == close) {
-        ++at_;
-        return index;
-      }
+      if (at_ < text_.size() && text_[at_] == close) return closed();
       return fail(object ? "expected ',' or '}'" : "expected ',' or ']'"), 0;
     }
   }

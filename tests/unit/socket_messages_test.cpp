@@ -126,6 +126,38 @@ TEST(SocketMessages, ARequestSubscriptionAndProfile) {
   EXPECT_EQ(r.request_id, 7u);
 }
 
+// A scene edit hands its object on as the JSON source the client wrote (the scene parses it); a material by name
+// becomes a quoted scalar; a move carries its pose; the answer lists the objects.
+TEST(SocketMessages, ASceneEditCarriesItsObjectsSourceAndItsAnswerListsTheObjects) {
+  Parsed p;
+  const std::string object = R"({"name":"ball","shape":"sphere","radius":0.01,"position":[0,1,2],"x":{"a":[[]]}})";
+  ASSERT_TRUE(p.parse(R"({"scene":{"id":3,"op":"add","object":)" + object + "}}")) << p.message.error;
+  ASSERT_TRUE(p.message.scene.has_value());
+  EXPECT_EQ(p.message.scene->id, 3);
+  EXPECT_EQ(p.message.scene->edit.op, SceneGate::Op::add);
+  EXPECT_EQ(p.message.scene->edit.text, object);
+  ASSERT_TRUE(p.parse(R"({"scene":{"id":4,"op":"material","name":"ball","material":"wood"}})"));
+  EXPECT_EQ(p.message.scene->edit.text, "\"wood\"");
+  EXPECT_EQ(p.message.scene->edit.name, "ball");
+  ASSERT_TRUE(p.parse(R"({"scene":{"id":5,"op":"move","name":"ball","position":{"x":1,"y":2,"z":3}}})"));
+  EXPECT_EQ(p.message.scene->edit.pose.position.z(), 3.0);
+  EXPECT_EQ(p.message.scene->edit.pose.orientation.w(), 1.0);
+  EXPECT_FALSE(p.parse(R"({"scene":{"id":6,"op":"add","object":"ball"}})"));
+  EXPECT_FALSE(p.message.scene.has_value());
+  SceneGate::Reply reply{true, "2 objects", {}};
+  reply.objects.push_back({"ball", "sphere", 7, true, 0, {}});
+  reply.objects.push_back({"rock \"one\"", "mesh", 8, false, 5120, {}});
+  const std::string text = scene_reply(9, reply);
+  JsonReader json;
+  ASSERT_TRUE(json.parse(text)) << text;
+  const JsonReader::Value r = json.root()["scene_reply"];
+  EXPECT_EQ(r["id"].number_or(0), 9);
+  EXPECT_EQ(r["objects"].size(), 2u);
+  EXPECT_EQ(*r["objects"].at(1)["shape"].string(), "mesh");
+  EXPECT_EQ(r["objects"].at(1)["triangles"].number_or(0), 5120);
+  EXPECT_EQ(*r["objects"].at(0)["moving"].boolean(), true);
+}
+
 TEST(SocketMessages, TheStateAndTheReplyAreJsonAClientReads) {
   hapticd_msg_DeviceState s{};
   dds::set_text(s.device, "left");

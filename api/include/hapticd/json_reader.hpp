@@ -20,7 +20,7 @@ class HAPTICD_API JsonReader {
   struct Node {
     Kind kind = Kind::null;
     std::string_view key;   // in an object: the member's key
-    std::string_view text;  // a string's characters (without quotes)
+    std::string_view text;  // a string's characters (without quotes); an object's or array's JSON source
     double number = 0.0;
     bool boolean = false;
     std::uint32_t first = 0;  // array/object: index of the first child (0: none)
@@ -41,6 +41,8 @@ class HAPTICD_API JsonReader {
     [[nodiscard]] std::optional<double> number() const noexcept;
     [[nodiscard]] std::optional<bool> boolean() const noexcept;
     [[nodiscard]] std::optional<std::string_view> string() const noexcept;
+    // An object's or array's JSON source as it was in the text (to hand on whole); none for other kinds.
+    [[nodiscard]] std::optional<std::string_view> source() const noexcept;
     [[nodiscard]] double number_or(double fallback) const noexcept { return number().value_or(fallback); }
 
    private:

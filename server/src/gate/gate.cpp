@@ -2,6 +2,7 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
@@ -37,6 +38,9 @@ Gate::Gate(const GateSettings& settings, double rate_hz, std::vector<DeviceSessi
           settings_, devices_, interval_, [](void* self) { static_cast<Gate*>(self)->wake_publisher(); }, this) {
   for (DeviceSession* s : sessions) s->set_snapshot_interval(interval_);
   for (GroupStage* g : stages) g->set_snapshot_interval(interval_);
+  // The session's scene, which every device's chain holds (the same one): the doors edit it through here.
+  for (DeviceSession* s : sessions)
+    if (s->chain().scene && !scene_) scene_ = std::make_unique<SceneGate>(*s->chain().scene->object);
 }
 
 Gate::~Gate() { stop(); }
@@ -121,6 +125,8 @@ void Gate::service_thread() {
     if (stopping_.load(std::memory_order_acquire)) break;
     for (Door* door : doors_) door->answer_requests(*dispatcher_);
     dispatcher_->check_claims();
+    if (scene_ && scene_->check_claim([this](const Sender& s) { return dispatcher_->gone(s); }))
+      spdlog::info("the scene's claim ended: its owner's channel is gone");
     for (Door* door : doors_) door->service();
     const auto now = Clock::now();
     if (now >= next_telemetry) {

@@ -30,6 +30,7 @@
 #include "gate/event_fanout.hpp"
 #include "gate/lockstep_sync.hpp"
 #include "gate/request_dispatcher.hpp"
+#include "gate/scene_gate.hpp"
 #include "gate/state_fanout.hpp"
 #include "safety/fault_history.hpp"
 
@@ -73,6 +74,8 @@ class Gate final : public CycleListener {
   [[nodiscard]] const DeviceGates& devices() const noexcept { return devices_; }
   [[nodiscard]] RequestDispatcher& requests() noexcept { return *dispatcher_; }
   [[nodiscard]] EventFanout& events() noexcept { return events_; }
+  // The session's haptic scene, for the doors' edits (null: the session has no `scene` section).
+  [[nodiscard]] SceneGate* scene() noexcept { return scene_.get(); }
   [[nodiscard]] std::uint64_t snapshot_interval() const noexcept { return interval_; }
 
   // Any thread (the server's monitor, which takes the reports from the devices): a fault report to every door.
@@ -109,6 +112,7 @@ class Gate final : public CycleListener {
   EventFanout events_;
   StateFanout states_;
   std::unique_ptr<RequestDispatcher> dispatcher_;
+  std::unique_ptr<SceneGate> scene_;
   LockstepSync lockstep_;
   std::vector<Door*> doors_;
   std::mutex admit_mutex_;  // one command at a time (every door's): the hand-over to a device has one producer

@@ -43,6 +43,8 @@ class RequestDispatcher {
   void check_claims();
 
   [[nodiscard]] std::uint64_t claims_ended() const noexcept { return claims_ended_.load(); }
+  // Whether the channel of a claim or a stop is gone (its peer left), as its door tells.
+  [[nodiscard]] bool gone(const Sender& s) const;
   // Requests refused because their client id or subject is not UTF-8 text.
   [[nodiscard]] std::uint64_t text_refused() const noexcept { return text_refused_.load(); }
 
@@ -78,8 +80,6 @@ class RequestDispatcher {
   // requester's own latched E-stops are released; with others' still latched, no; else a stopper, the owner,
   // or anyone on a free device may. nullopt: it may; else the refusal.
   std::optional<Answer> refused_recovery(DeviceGate& d, const Request& r);
-  // Whether the channel of a claim or a stop is gone (its peer left), as its door tells.
-  [[nodiscard]] bool gone(const Sender& s) const;
   [[nodiscard]] bool alive(const PeerId& p) const;
 
   // The device's part of a request (session/device_requests), once the bridge has checked the requester.

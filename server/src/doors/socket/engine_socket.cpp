@@ -200,6 +200,7 @@ void EngineSocket::received(ConnectionId id, std::string_view text, bool binary)
              "' rejected: " + std::string(dds::to_string(v.reason)) +
              (v.reason == dds::RejectReason::not_owner ? " (claim the device first, as client '" + c.id + "')" : ""));
   }
+  if (message_.scene) edit_scene(id, c);
   if (message_.request) {
     bool queued = false;
     if (c.waiting < kRequestsPerClient) {
@@ -223,6 +224,21 @@ void EngineSocket::received(ConnectionId id, std::string_view text, bool binary)
     ++c.waiting;
     gate_.wake();
   }
+}
+
+void EngineSocket::edit_scene(ConnectionId id, Client& c) {
+  // On this thread, off the loop: the object is parsed and built here, the devices take the new scene whole.
+  counters_.scene_edits.fetch_add(1, std::memory_order_relaxed);
+  SceneGate* scene = gate_.scene();
+  const socket_messages::SceneMessage& m = *message_.scene;
+  const SceneGate::Reply reply =
+      scene != nullptr
+          ? scene->apply(m.edit, Sender{PeerId::socket(id), 0}, c.id, monotonic_now_ns())
+          : SceneGate::Reply{false, "this session has no haptic scene (its session file has no `scene` section)", {}};
+  // A move that went through is not answered (an engine sends one per object per frame); anything else is.
+  if (reply.accepted && m.edit.op == SceneGate::Op::move) return;
+  server_->send(id, std::make_shared<const std::string>(socket_messages::scene_reply(m.id, reply)), false,
+                WebSocketServer::Kind::reply);
 }
 
 void EngineSocket::subscribe(Client& c, const std::vector<std::string>& devices, ConnectionId id) {

@@ -38,6 +38,7 @@ struct EngineSocketCounters {
   std::atomic<std::uint64_t> requests{0};      // requests answered
   std::atomic<std::uint64_t> busy{0};          // requests refused because too many were waiting
   std::atomic<std::uint64_t> states{0};        // states sent
+  std::atomic<std::uint64_t> scene_edits{0};   // scene edits answered (accepted or not: SceneGate counts)
 };
 
 class EngineSocket final : public net::WebSocketHandler, public Door {
@@ -94,6 +95,8 @@ class EngineSocket final : public net::WebSocketHandler, public Door {
   bool allowed(Client& c, std::int64_t now_ns);
   // Tells the client what went wrong, the first time and then every 100th time.
   void tell(net::ConnectionId id, std::uint64_t count, std::string_view code, const std::string& message);
+  // A scene edit (message_.scene) through the gate's SceneGate, answered on this connection.
+  void edit_scene(net::ConnectionId id, Client& c);
   void subscribe(Client& c, const std::vector<std::string>& devices, net::ConnectionId id);
   void count_subscribers();
   [[nodiscard]] bool open(std::uint64_t connection) const;

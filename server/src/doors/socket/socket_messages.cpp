@@ -252,9 +252,78 @@ bool Parser::request(const Value& r, std::string_view client, ClientMessage& out
   return true;
 }
 
+namespace {
+struct SceneOpName {
+  std::string_view name;
+  SceneGate::Op op;
+};
+constexpr SceneOpName kSceneOps[] = {
+    {"claim", SceneGate::Op::claim},   {"release", SceneGate::Op::release},   {"add", SceneGate::Op::add},
+    {"remove", SceneGate::Op::remove}, {"material", SceneGate::Op::material}, {"move", SceneGate::Op::move},
+    {"list", SceneGate::Op::list},
+};
+}  // namespace
+
+bool Parser::scene(const Value& s, ClientMessage& out) {
+  std::string_view op, name;
+  double id = 0.0;
+  if (s.kind() != Kind::object || !text(s, "op", 15, op) || !number(s, "id", id) || id < 0.0 ||
+      id > 9007199254740992.0 || !text(s, "name", 64, name) || op.empty()) {
+    out.error = "scene: needs op, a numeric id and at most a name of 64 characters";
+    return false;
+  }
+  SceneMessage m;
+  m.id = static_cast<std::int64_t>(id);
+  const auto found =
+      std::find_if(std::begin(kSceneOps), std::end(kSceneOps), [&](const auto& k) { return k.name == op; });
+  if (found == std::end(kSceneOps)) {
+    out.error = "scene: unknown op (claim, release, add, remove, material, move, list)";
+    return false;
+  }
+  SceneGate::Edit& e = m.edit;
+  e.op = found->op;
+  e.name = name;
+  const bool named = e.op == SceneGate::Op::remove || e.op == SceneGate::Op::material || e.op == SceneGate::Op::move;
+  if (named && name.empty()) {
+    out.error = "scene: " + std::string(op) + " needs the object's name";
+    return false;
+  }
+  if (e.op == SceneGate::Op::add) {
+    const std::optional<std::string_view> object = s["object"].source();
+    if (!object || s["object"].kind() != Kind::object) {
+      out.error = "scene: add needs the object ({\"name\": ..., \"shape\": ..., ...}: docs/haptic-scene.md)";
+      return false;
+    }
+    e.text = *object;
+  } else if (e.op == SceneGate::Op::material) {
+    const Value material = s["material"];
+    if (const std::optional<std::string_view> by_name = material.string(); by_name && by_name->size() <= 64) {
+      out.scene_text = "\"" + std::string(*by_name) + "\"";  // a JSON string is a YAML double-quoted scalar
+      e.text = out.scene_text;
+    } else if (material.kind() == Kind::object) {
+      e.text = *material.source();
+    } else {
+      out.error = "scene: material needs a material's name or a material ({\"stiffness\": ..., ...})";
+      return false;
+    }
+  } else if (e.op == SceneGate::Op::move) {
+    double p[3], q[4];
+    if (!s["position"] || !vector3(s["position"], p) || !quaternion(s["orientation"], q)) {
+      out.error = "scene: move needs a position {x, y, z} (and an orientation {w, x, y, z}, default none)";
+      return false;
+    }
+    e.pose.position = Eigen::Vector3d(p[0], p[1], p[2]);
+    e.pose.orientation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);  // checked by the scene (finite, not zero)
+  }
+  out.scene = m;
+  return true;
+}
+
 bool Parser::parse(std::string_view text_in, std::string_view engine, std::uint64_t& serial, ClientMessage& out) {
   out.commands.clear();
   out.request.reset();
+  out.scene.reset();
+  out.scene_text.clear();
   out.subscribe.reset();
   out.profile.reset();
   out.error.clear();
@@ -294,6 +363,7 @@ bool Parser::parse(std::string_view text_in, std::string_view engine, std::uint6
     }
   }
   if (const Value r = root["request"]; r && !request(r, client, out)) return false;
+  if (const Value s = root["scene"]; s && !scene(s, out)) return false;
   double state_serial = 0.0;
   if (!number(root, "state_serial", state_serial) || state_serial < 0.0) {
     out.error = "state_serial must be a number";
@@ -372,6 +442,33 @@ void state(const hapticd_msg_DeviceState& s, std::string& out) {
   out += ',';
   append_json(out, s);
   out += "}]}";
+}
+
+std::string scene_reply(std::int64_t id, const SceneGate::Reply& r) {
+  std::string out = "{\"scene_reply\":{\"id\":";
+  append_integer(out, id);
+  out += r.accepted ? ",\"accepted\":true" : ",\"accepted\":false";
+  append_key(out, "message");
+  append_string(out, r.message);
+  if (r.accepted && !r.objects.empty()) {
+    out += ",\"objects\":[";
+    for (std::size_t i = 0; i < r.objects.size(); ++i) {
+      const SceneObjectSummary& o = r.objects[i];
+      out += i > 0 ? ",{\"name\":" : "{\"name\":";
+      append_string(out, o.name);
+      append_key(out, "shape");
+      append_string(out, o.shape);
+      append_key(out, "uid");
+      append_integer(out, static_cast<std::int64_t>(o.uid));
+      out += o.moving ? ",\"moving\":true" : ",\"moving\":false";
+      append_key(out, "triangles");
+      append_integer(out, static_cast<std::int64_t>(o.triangles));
+      out += '}';
+    }
+    out += ']';
+  }
+  out += "}}";
+  return out;
 }
 
 std::string reply(std::int64_t id, const hapticd_msg_ControlReply& r) {

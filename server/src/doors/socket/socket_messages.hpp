@@ -10,16 +10,26 @@
 #include <string_view>
 #include <vector>
 
+#include "gate/scene_gate.hpp"
 #include "hapticd/json_reader.hpp"
 #include "hapticd_msg.h"
 
 namespace hapticd::server::socket_messages {
 
-// What one client message asks for. A message may carry commands (for one or more devices), one request, a
-// subscription and a session profile at once.
+// An edit of the session's haptic scene ({"scene": {"id": 1, "op": "add", "object": {...}}}); its name and text
+// point into the parsed message.
+struct SceneMessage {
+  std::int64_t id = 0;
+  SceneGate::Edit edit;
+};
+
+// What one client message asks for. A message may carry commands (for one or more devices), one request, one
+// scene edit, a subscription and a session profile at once.
 struct ClientMessage {
   std::vector<hapticd_msg_EngineCommand> commands;  // at most kMaxCommands
   std::optional<hapticd_msg_ControlRequest> request;
+  std::optional<SceneMessage> scene;
+  std::string scene_text;  // the scene edit's text, when made here (a material's name, quoted)
   std::optional<std::vector<std::string>> subscribe;  // the devices whose states it wants ([]: none)
   std::optional<std::string> profile;                 // session.configure.profile.name: its client id
   std::string error;                                  // "": well-formed; else why not (nothing of it applies)
@@ -39,6 +49,7 @@ class Parser {
   bool command(const JsonReader::Value& entry, std::string_view engine, std::uint64_t& serial,
                std::uint64_t state_serial, ClientMessage& out);
   bool request(const JsonReader::Value& r, std::string_view client, ClientMessage& out);
+  bool scene(const JsonReader::Value& s, ClientMessage& out);
   JsonReader json_;
 };
 
@@ -63,6 +74,8 @@ struct InventoryGroup {
                                     const std::vector<InventoryGroup>& groups);
 // One device's state (written into `out`, its storage reused).
 void state(const hapticd_msg_DeviceState& s, std::string& out);
+// The answer to a scene edit ({"scene_reply": {"id", "accepted", "message"[, "objects"]}}).
+[[nodiscard]] std::string scene_reply(std::int64_t id, const SceneGate::Reply& r);
 // The answer to a request.
 [[nodiscard]] std::string reply(std::int64_t id, const hapticd_msg_ControlReply& r);
 // A device's event (what the DDS interface's Event says): kind as a name ("parameter", "owner", ...).

@@ -1,0 +1,64 @@
+#pragma once
+// The session's haptic scene at the gate (docs/haptic-scene.md, "Engines edit the scene"): who owns it and what the
+// owner's edits do, whichever door they came through. Owned like a device: one owner at a time (claim, release;
+// the claim ends when the channel that made it is gone - a connection closed, checked on the gate's service
+// thread); only the owner edits; anyone may list the objects. An edit is made on the door's thread, off the loop
+// (an object is parsed and built there; the devices take the new scene whole at their next cycle). Edits that
+// remake the scene (add, remove, material) are held to kRemakesPerSecond per owner (a burst of as many); moves to
+// the door's own message rate. Every refusal is counted and says why; a refused edit changes nothing.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gate/peer.hpp"
+#include "hapticd/scene_service.hpp"
+
+namespace hapticd::server {
+
+class SceneGate {
+ public:
+  static constexpr double kRemakesPerSecond = 50.0;
+
+  explicit SceneGate(SceneService& scene) : scene_(scene) {}
+
+  enum class Op : std::uint8_t { claim, release, add, remove, material, move, list };
+  struct Edit {
+    Op op = Op::list;
+    std::string_view name;  // the object (remove, material, move)
+    std::string_view text;  // the object (add) or the material (material): as the scene file writes it, YAML or JSON
+    Pose pose;              // move
+  };
+  struct Reply {
+    bool accepted = false;
+    std::string message;
+    std::vector<SceneObjectSummary> objects;  // list
+  };
+
+  // A door's thread: `sender`'s edit (its client id `client`, for messages and the owner's name); now_ns: the
+  // door's monotonic clock, for the rate limit.
+  Reply apply(const Edit& edit, const Sender& sender, std::string_view client, std::int64_t now_ns);
+  // The gate's service thread: the claim ends when its channel is gone (as the door says). True when it ended.
+  bool check_claim(const std::function<bool(const Sender&)>& gone);
+
+  [[nodiscard]] std::string owner() const;
+  [[nodiscard]] std::uint64_t edits() const noexcept { return edits_.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t refused() const noexcept { return refused_.load(std::memory_order_relaxed); }
+  [[nodiscard]] std::uint64_t rate_limited() const noexcept { return rate_limited_.load(std::memory_order_relaxed); }
+
+ private:
+  Reply edit(const Edit& e);  // under mutex_, from the owner
+
+  SceneService& scene_;
+  mutable std::mutex mutex_;
+  std::string owner_;  // the owner's client id ("": free)
+  Sender owner_channel_;
+  double allowance_ = kRemakesPerSecond;
+  std::int64_t refilled_ns_ = 0;
+  std::atomic<std::uint64_t> edits_{0}, refused_{0}, rate_limited_{0};
+};
+
+}  // namespace hapticd::server

@@ -1,0 +1,221 @@
+"""Engines editing the session's haptic scene over the engine socket (docs/haptic-scene.md, "Engines edit the
+scene"), as a Python engine would (websockets): tests/e2e/scene_socket_test.sh runs it against
+config/sessions/vishard3/socket-scene.yaml. Each check prints "ok: ..." or raises.
+
+  scene_client.py URL
+"""
+import asyncio
+import json
+import sys
+
+import websockets
+
+TIMEOUT = 5.0
+
+
+class Client:
+    """A connection whose messages a background task reads as they come (a client that stops reading while states
+    wait is disconnected): the newest state is kept, answers and errors are queued."""
+
+    def __init__(self, ws):
+        self.ws = ws
+        self.next_id = 0
+        self.state = None
+        self.answers = asyncio.Queue()
+        self.reader = asyncio.create_task(self.read())
+
+    @classmethod
+    async def connect(cls, url, name):
+        ws = await websockets.connect(url)
+        json.loads(await asyncio.wait_for(ws.recv(), TIMEOUT))  # the inventory
+        await ws.send(json.dumps({"session": {"configure": {"profile": {"name": name}}}}))
+        return cls(ws)
+
+    async def read(self):
+        try:
+            async for text in self.ws:
+                m = json.loads(text)
+                if "devices" in m:
+                    self.state = m["devices"][0]["state"]
+                else:
+                    await self.answers.put(m)
+        except websockets.ConnectionClosed:
+            pass
+
+    async def close(self):
+        await self.ws.close()
+        await self.reader
+
+    async def next_answer(self, key, wanted=None, timeout=TIMEOUT):
+        """The next message with `key` (and, when given, that id); None when none comes within timeout."""
+        deadline = asyncio.get_running_loop().time() + timeout
+        while True:
+            left = deadline - asyncio.get_running_loop().time()
+            if left <= 0:
+                return None
+            try:
+                m = await asyncio.wait_for(self.answers.get(), left)
+            except asyncio.TimeoutError:
+                return None
+            if key in m and (wanted is None or m[key].get("id") == wanted):
+                return m[key]
+
+    async def scene(self, op, **fields):
+        """Sends a scene edit and returns its reply (a move that went through has none: None then)."""
+        self.next_id += 1
+        await self.ws.send(json.dumps({"scene": {"id": self.next_id, "op": op, **fields}}))
+        return await self.reply(self.next_id, wait=op != "move")
+
+    async def reply(self, wanted, wait=True):
+        r = await self.next_answer("scene_reply", wanted, TIMEOUT if wait else 0.2)
+        if r is None and wait:
+            raise AssertionError(f"no answer to scene edit {wanted}")
+        return r
+
+    async def raw(self, text):
+        """Sends a message as it is and returns the first error it gets."""
+        await self.ws.send(text)
+        e = await self.next_answer("error")
+        if e is None:
+            raise AssertionError("no error for " + text)
+        return e
+
+    async def newest_state(self, seconds):
+        """The newest state after `seconds`."""
+        await asyncio.sleep(seconds)
+        return self.state
+
+    async def operator(self, name, *values):
+        self.next_id += 1
+        await self.ws.send(json.dumps({"request": {"id": self.next_id, "kind": "operator", "device": "vishard3",
+                                                   "name": name, "values": list(values)}}))
+        r = await self.next_answer("reply", self.next_id)
+        assert r is not None and r["accepted"], r
+
+
+def check(condition, what, detail=""):
+    if not condition:
+        raise AssertionError(f"{what}: {detail}")
+    print("ok:", what, flush=True)
+
+
+async def main(url):
+    owner = await Client.connect(url, "scene-owner")
+    intruder = await Client.connect(url, "intruder")
+    start = (await owner.newest_state(0.5))["cursor_position"]
+    x0 = start["x"]
+
+    # Edits before a claim are refused; the owner claims; a second claim is refused.
+    r = await owner.scene("add", object={"name": "wall", "shape": "plane"})
+    check(not r["accepted"] and "claim the scene first" in r["message"], "an edit before the claim is refused", r)
+    r = await owner.scene("claim")
+    check(r["accepted"], "the owner claims the scene", r)
+    r = await intruder.scene("claim")
+    check(not r["accepted"] and "scene-owner" in r["message"], "a second claim is refused, naming the owner", r)
+
+    # A wall 2 cm ahead of the handle (its plane lies the proxy's radius further); the operator pushes 15 N into it.
+    wall = {"name": "wall", "shape": "plane", "position": [x0 + 0.025, 0, 0], "normal": [-1, 0, 0],
+            "material": {"stiffness": 3000, "damping": 10}}
+    r = await owner.scene("add", object=wall)
+    check(r["accepted"], "the owner adds a wall", r)
+    r = await intruder.scene("add", object=dict(wall, name="wall2"))
+    check(not r["accepted"] and "claimed by 'scene-owner'" in r["message"], "the intruder's add is refused", r)
+    r = await intruder.scene("remove", name="wall")
+    check(not r["accepted"], "the intruder's removal is refused", r)
+    await owner.operator("push", 15.0, 0.0, 0.0, 0.2)
+    x = (await owner.newest_state(1.5))["cursor_position"]["x"] - x0
+    check(0.015 < x < 0.03, "the wall holds the 15 N push", f"{x * 1000:.1f} mm past the start")
+    print(f"   the handle rests {x * 1000:.1f} mm past its start, the wall's surface at 20 mm", flush=True)
+
+    # Bad edits: each refused with its reason, the wall still there.
+    bad = [
+        ("add", {"object": {"name": "ball", "shape": "sphere", "radius": -1}}, "object.radius: must be positive"),
+        ("add", {"object": {"name": "rock", "shape": "mesh", "file": "/etc/passwd"}}, "not read"),
+        ("add", {"object": {"name": "wall", "shape": "sphere", "radius": 0.01}}, "is taken"),
+        ("add", {"object": {"name": "ball", "shape": "sphere", "radius": 0.01, "material": "unobtainium"}},
+         "no material 'unobtainium'"),
+        ("material", {"name": "wall", "material": {"stiffness": -5}}, "must be positive"),
+        ("move", {"name": "wall", "position": {"x": 0, "y": 0, "z": 0}}, "was not made a moving object"),
+        ("remove", {"name": "ghost"}, "no object named 'ghost'"),
+    ]
+    for op, fields, says in bad:
+        r = await owner.scene(op, **fields)
+        check(r is not None and not r["accepted"] and says in r["message"], f"{op} refused: {says}", r)
+    x = (await owner.newest_state(0.5))["cursor_position"]["x"] - x0
+    check(0.015 < x < 0.03, "the wall still holds after the refused edits", f"{x * 1000:.1f} mm")
+
+    # Malformed scene messages: refused as malformed, nothing applied (each from a connection of its own: a client
+    # is told of its first malformed message, then of every 100th).
+    for text, says in [('{"scene": {"id": 1}}', "scene: needs op"),
+                       ('{"scene": {"id": 1, "op": "explode"}}', "unknown op"),
+                       ('{"scene": {"id": 1, "op": "add"}}', "add needs the object"),
+                       ('{"scene": {"id": 1, "op": "move", "name": "wall"}}', "move needs a position"),
+                       ('{"scene": {"id": 1, "op": "remove"}}', "needs the object's name")]:
+        sender = await Client.connect(url, "malformed")
+        e = await sender.raw(text)
+        await sender.close()
+        check(e["code"] == "malformed" and says in e["message"], f"malformed: {says}", e)
+
+    # A moving block: added, moved at 60 Hz (no answers to moves that went through), a NaN-free pose only.
+    r = await owner.scene("add", object={"name": "block", "shape": "box", "size": [0.02, 0.02, 0.02],
+                                         "position": [x0, 0.1, 0], "moving": True})
+    check(r["accepted"], "a moving block is added", r)
+    for k in range(30):
+        r = await owner.scene("move", name="block", position={"x": x0, "y": 0.1 + 0.001 * k, "z": 0})
+        assert r is None, r
+        await asyncio.sleep(1 / 60)
+    check(True, "30 moves at 60 Hz went through unanswered")
+    # (written by hand: Python's json writes an infinity as Infinity, which is not JSON)
+    await owner.ws.send('{"scene": {"id": 9000, "op": "move", "name": "block", "position": {"x": 1e999, "y": 0, "z": 0}}}')
+    r = await owner.reply(9000)
+    check(r is not None and not r["accepted"] and "is not a pose" in r["message"], "an infinite pose is refused", r)
+    r = await owner.scene("move", name="block", position={"x": 0, "y": 0, "z": 0},
+                          orientation={"w": 0, "x": 0, "y": 0, "z": 0})
+    check(r is not None and not r["accepted"] and "is not a pose" in r["message"], "a zero quaternion is refused", r)
+
+    # A flood of adds: beyond 50 remakes a second, refused as rate-limited; the loop runs on (states keep coming).
+    refused = accepted = 0
+    for k in range(120):
+        r = await owner.scene("add", object={"name": f"pebble{k}", "shape": "sphere", "radius": 0.002,
+                                             "position": [x0 - 0.05, 0.2, 0.01 * k]})
+        if r["accepted"]:
+            accepted += 1
+        elif "a second" in r["message"]:
+            refused += 1
+    check(refused > 0 and accepted >= 50, "a flood of adds is rate-limited",
+          f"{accepted} accepted, {refused} refused")
+    serial = owner.state["serial"]
+    later = (await owner.newest_state(0.5))["serial"]
+    check(later - serial > 500, "states keep coming after the flood", f"{later - serial} in 0.5 s")
+
+    # The list, seen by anyone.
+    r = await intruder.scene("list")
+    names = [o["name"] for o in r.get("objects", [])]
+    check(r["accepted"] and "wall" in names and "block" in names, "anyone lists the objects", r["message"])
+
+    # A material changed in place, then the wall removed: the push carries the handle on past it.
+    # (The simulated arm's joint friction may hold the handle where it is: the wall's force tells the stiffness.)
+    hard = -(await owner.newest_state(0.2))["environment_force"]["x"]
+    r = await owner.scene("material", name="wall", material={"stiffness": 1500})
+    check(r["accepted"], "the wall's material is changed", r)
+    soft = -(await owner.newest_state(0.5))["environment_force"]["x"]
+    check(hard > 3 and soft < 0.75 * hard, "the half as stiff wall pushes back less", f"{hard:.2f} -> {soft:.2f} N")
+    r = await owner.scene("remove", name="wall")
+    check(r["accepted"], "the wall is removed", r)
+    x_free = (await owner.newest_state(1.0))["cursor_position"]["x"] - x0
+    check(x_free > 0.035, "without the wall the push carries the handle past it", f"{x_free * 1000:.1f} mm")
+    await owner.operator("release")
+
+    # The owner leaves: its claim ends, the intruder may claim.
+    await owner.close()
+    for _ in range(50):
+        r = await intruder.scene("claim")
+        if r["accepted"]:
+            break
+        await asyncio.sleep(0.1)
+    check(r["accepted"], "the scene's claim ends with its owner's connection", r)
+    await intruder.close()
+
+
+if __name__ == "__main__":
+    asyncio.run(main(sys.argv[1]))
