@@ -1,11 +1,27 @@
 #include "hapticd/scene/shared_scene.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace hapticd::scene {
 
-SharedScene::Reader::Reader(std::unique_ptr<Scene> first)
-    : current_(first.release()), tracks_(kMaxObjects), tracked_(kMaxObjects, 0) {}
+SharedScene::Reader::Reader(std::unique_ptr<Scene> first, std::string device)
+    : current_(first.release()), tracks_(kMaxObjects), tracked_(kMaxObjects, 0), device_(std::move(device)) {}
+
+void SharedScene::Reader::report_contacts(const ProxyState& proxy) noexcept {
+  ContactReport report;
+  for (int i = 0; i < proxy.contact_count; ++i) {
+    const ProxyContact& c = proxy.contacts[static_cast<std::size_t>(i)];
+    if (c.object < 0 || static_cast<std::size_t>(c.object) >= current_->objects.size()) continue;
+    ObjectContact& o = report.contacts[static_cast<std::size_t>(report.count++)];
+    const SceneObject& touched = current_->objects[static_cast<std::size_t>(c.object)];
+    o.object = touched.uid;
+    o.origin = touched.pose.translation();
+    o.force = -c.force;  // the hand pushes the object as the object pushes the hand
+    o.point = c.point;
+  }
+  contacts_.publish(report);
+}
 
 bool SharedScene::Reader::refresh(std::int64_t now_ns) noexcept {
   bool changed = false;
@@ -50,10 +66,10 @@ SharedScene::~SharedScene() {
   }
 }
 
-SharedScene::Reader& SharedScene::add_reader() {
+SharedScene::Reader& SharedScene::add_reader(std::string device) {
   std::lock_guard lock(mutex_);
   auto first = std::make_unique<Scene>(Scene{objects_});
-  readers_.push_back(std::unique_ptr<Reader>(new Reader(std::move(first))));
+  readers_.push_back(std::unique_ptr<Reader>(new Reader(std::move(first), std::move(device))));
   return *readers_.back();
 }
 
@@ -120,6 +136,22 @@ void SharedScene::move(std::string_view name, const PoseUpdate& pose) {
 Scene SharedScene::snapshot() const {
   std::lock_guard lock(mutex_);
   return Scene{objects_};
+}
+
+std::vector<DeviceContact> SharedScene::contacts() {
+  std::lock_guard lock(mutex_);
+  std::vector<DeviceContact> out;
+  for (auto& r : readers_) {
+    (void)r->contacts_.take(r->last_contacts_);  // nothing new: the last report stands
+    for (int i = 0; i < r->last_contacts_.count; ++i) {
+      const ObjectContact& c = r->last_contacts_.contacts[static_cast<std::size_t>(i)];
+      const auto o =
+          std::find_if(objects_.begin(), objects_.end(), [&](const SceneObject& x) { return x.uid == c.object; });
+      if (o == objects_.end()) continue;  // removed since
+      out.push_back({r->device_, o->name, c.object, c.force, c.point, c.origin});
+    }
+  }
+  return out;
 }
 
 void SharedScene::collect() {

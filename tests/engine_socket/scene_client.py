@@ -127,6 +127,16 @@ async def main(url):
     check(0.015 < x < 0.03, "the wall holds the 15 N push", f"{x * 1000:.1f} mm past the start")
     print(f"   the handle rests {x * 1000:.1f} mm past its start, the wall's surface at 20 mm", flush=True)
 
+    # Two-way: what the hand does to the wall, as the engine asks at its frame rate (anyone may ask).
+    felt = -owner.state["environment_force"]["x"]
+    r = await intruder.scene("contacts")
+    on_wall = [c for c in r.get("contacts", []) if c["object"] == "wall" and c["device"] == "vishard3"]
+    check(r["accepted"] and len(on_wall) == 1, "the hand's contact with the wall is reported", r)
+    push = on_wall[0]["force"]
+    check(abs(push["x"] - felt) < 0.1 * felt + 0.2 and abs(push["y"]) < 0.05 and abs(push["z"]) < 0.05,
+          "the wall is pushed with the force the hand feels, reversed", f"{push} against {felt:.2f} N felt")
+    print(f"   the hand pushes the wall with {push['x']:.2f} N; it feels {felt:.2f} N", flush=True)
+
     # Bad edits: each refused with its reason, the wall still there.
     bad = [
         ("add", {"object": {"name": "ball", "shape": "sphere", "radius": -1}}, "object.radius: must be positive"),
@@ -202,6 +212,8 @@ async def main(url):
     check(hard > 3 and soft < 0.75 * hard, "the half as stiff wall pushes back less", f"{hard:.2f} -> {soft:.2f} N")
     r = await owner.scene("remove", name="wall")
     check(r["accepted"], "the wall is removed", r)
+    r = await owner.scene("contacts")
+    check(not any(c["object"] == "wall" for c in r.get("contacts", [])), "a removed object has no contacts", r)
     x_free = (await owner.newest_state(1.0))["cursor_position"]["x"] - x0
     check(x_free > 0.035, "without the wall the push carries the handle past it", f"{x_free * 1000:.1f} mm")
     await owner.operator("release")

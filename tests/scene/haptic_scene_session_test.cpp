@@ -198,7 +198,21 @@ TEST(HapticSceneSession, TwoDevicesShareTheSessionsSceneAndFeelAWallAddedWhileTh
     EXPECT_NEAR(v.task.wrench.force.y(), 0.0, 1e-9) << d;
   }
   EXPECT_NEAR(s.device("v3").task.wrench.force.x(), s.device("w3").task.wrench.force.x(), 0.2);
+  // Two-way: each hand pushes the wall with the force it feels, reversed, at the point it touches (both hands 1 mm
+  // plus the proxy's radius behind the plane: the points lie on it); torque about the wall's origin.
+  const std::vector<SceneContact> contacts = shared->contacts();
+  ASSERT_EQ(contacts.size(), 2u);
+  for (const SceneContact& c : contacts) {
+    EXPECT_EQ(c.object, "wall");
+    const DeviceView v = s.device(c.device);
+    EXPECT_NEAR(c.force.x(), -v.task.wrench.force.x(), 0.02 * std::abs(v.task.wrench.force.x())) << c.device;
+    EXPECT_NEAR(c.force.y(), 0.0, 1e-9);
+    EXPECT_NEAR(c.point.x(), 0.006, 1e-9) << c.device;
+    EXPECT_NEAR((c.torque - (c.point - Eigen::Vector3d(0.006, 0, 0)).cross(c.force)).norm(), 0.0, 1e-9);
+  }
+  EXPECT_NE(contacts[0].device, contacts[1].device);
   shared->remove("wall");
+  EXPECT_TRUE(shared->contacts().empty()) << "a removed object has no contacts";
   s.step(100);  // the render guard's rate limit lets the force down over a few cycles
   for (const char* d : {"v3", "w3"}) EXPECT_EQ(s.device(d).task.wrench.force.norm(), 0.0) << d;
 }

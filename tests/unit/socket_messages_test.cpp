@@ -144,7 +144,7 @@ TEST(SocketMessages, ASceneEditCarriesItsObjectsSourceAndItsAnswerListsTheObject
   EXPECT_EQ(p.message.scene->edit.pose.orientation.w(), 1.0);
   EXPECT_FALSE(p.parse(R"({"scene":{"id":6,"op":"add","object":"ball"}})"));
   EXPECT_FALSE(p.message.scene.has_value());
-  SceneGate::Reply reply{true, "2 objects", {}};
+  SceneGate::Reply reply{true, "2 objects"};
   reply.objects.push_back({"ball", "sphere", 7, true, 0, {}});
   reply.objects.push_back({"rock \"one\"", "mesh", 8, false, 5120, {}});
   const std::string text = scene_reply(9, reply);

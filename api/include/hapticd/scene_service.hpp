@@ -34,6 +34,16 @@ struct SceneObjectSummary {
   Pose pose;                  // as added (a moving object's later poses are the devices' to play back)
 };
 
+// What one device's hand does to one object now: the force on the object (world frame, N) and its torque about
+// the object's origin (N m), at the contact point. An engine's physics applies it to its copy of the object.
+struct SceneContact {
+  std::string device;
+  std::string object;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+};
+
 class HAPTICD_API SceneService {
  public:
   virtual ~SceneService();
@@ -56,6 +66,8 @@ class HAPTICD_API SceneService {
   // A moving object's new pose, played back by every device (an update is never felt as a step).
   virtual void move(std::string_view name, const Pose& pose) = 0;
   [[nodiscard]] virtual std::vector<SceneObjectSummary> objects() const = 0;
+  // Every device's contacts with the objects as of their latest cycles (an engine asks at its own rate).
+  [[nodiscard]] virtual std::vector<SceneContact> contacts() = 0;
 };
 
 }  // namespace hapticd

@@ -48,7 +48,8 @@ void HapticSceneModel::configure(const Parameters& p, const PluginContext& conte
       throw ParameterError("scene",
                            "no scene file given and the session has no scene section: name a file here or add a "
                            "`scene` section to the session");
-    reader_ = &context.scene->shared().add_reader();  // the session's scene, shared with its other devices
+    reader_ =
+        &context.scene->shared().add_reader(context.device_name);  // the session's scene, shared with its other devices
     reader_->refresh(0);
   } else {
     if (file.is_relative()) file = context.config_directory / file;
@@ -86,6 +87,7 @@ Outcome HapticSceneModel::update(const CycleTime& cycle, const VirtualModelInput
   if (admittance_display_) {
     // The virtual body is the proxy's goal: the scene's force acts on it, the motion loop makes the handle follow.
     const scene::ProxyState& s = proxy_.update(admittance_.body_position() - origin_, admittance_.body_velocity());
+    if (reader_ != nullptr) reader_->report_contacts(s);
     RenderPort::Vector6 wrench = RenderPort::Vector6::Zero();
     wrench.head<3>() = s.force;
     RenderPort::Vector6 port_twist;
@@ -94,6 +96,7 @@ Outcome HapticSceneModel::update(const CycleTime& cycle, const VirtualModelInput
   }
   admittance_.take_tuning();
   const scene::ProxyState& s = proxy_.update(c.handle_pose.position - origin_, c.handle_twist.linear);
+  if (reader_ != nullptr) reader_->report_contacts(s);
   RenderPort::Vector6 wrench = RenderPort::Vector6::Zero();
   wrench.head<3>() = s.force;
   RenderPort::Vector6 port_twist;

@@ -90,6 +90,13 @@ void SessionScene::move(std::string_view name, const Pose& pose) {
   scene_->move(name, update);
 }
 
+std::vector<SceneContact> SessionScene::contacts() {
+  std::vector<SceneContact> out;
+  for (const scene::DeviceContact& c : scene_->contacts())  // the torque about the object's origin as rendered
+    out.push_back({c.device, c.object, c.force, (c.point - c.origin).cross(c.force), c.point});
+  return out;
+}
+
 std::vector<SceneObjectSummary> SessionScene::objects() const {
   std::vector<SceneObjectSummary> list;
   for (const scene::SceneObject& o : scene_->snapshot().objects) {

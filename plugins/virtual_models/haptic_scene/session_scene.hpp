@@ -27,6 +27,7 @@ class SessionScene final : public SceneService {
   void set_material(std::string_view name, std::string_view material) override;
   void move(std::string_view name, const Pose& pose) override;
   [[nodiscard]] std::vector<SceneObjectSummary> objects() const override;
+  [[nodiscard]] std::vector<SceneContact> contacts() override;
 
  private:
   std::unique_ptr<scene::SharedScene> scene_ = std::make_unique<scene::SharedScene>();

@@ -13,11 +13,17 @@ SceneGate::Reply SceneGate::apply(const Edit& e, const Sender& sender, std::stri
     reply.objects = scene_.objects();
     reply.accepted = true;
     reply.message = std::to_string(reply.objects.size()) + " objects";
+    return reply;  // a question, not an edit: not counted
+  } else if (e.op == Op::contacts) {
+    reply.contacts = scene_.contacts();
+    reply.accepted = true;
+    reply.message = std::to_string(reply.contacts.size()) + " contacts";
+    return reply;
   } else if (e.op == Op::claim) {
     if (owner_.empty() || mine) {
       owner_ = std::string(client);
       owner_channel_ = sender;
-      reply = {true, "the scene is yours", {}};
+      reply = {true, "the scene is yours"};
     } else {
       reply.message = "the scene is claimed by '" + owner_ + "'";
     }
@@ -26,7 +32,7 @@ SceneGate::Reply SceneGate::apply(const Edit& e, const Sender& sender, std::stri
   } else if (e.op == Op::release) {
     owner_.clear();
     owner_channel_ = {};
-    reply = {true, "released", {}};
+    reply = {true, "released"};
   } else {
     if (e.op != Op::move) {  // a remake of the scene: within the rate
       allowance_ = std::min(kRemakesPerSecond,
@@ -35,7 +41,7 @@ SceneGate::Reply SceneGate::apply(const Edit& e, const Sender& sender, std::stri
       if (allowance_ < 1.0) {
         rate_limited_.fetch_add(1, std::memory_order_relaxed);
         refused_.fetch_add(1, std::memory_order_relaxed);
-        return {false, "more than 50 adds, removals and material changes a second: refused", {}};
+        return {false, "more than 50 adds, removals and material changes a second: refused"};
       }
       allowance_ -= 1.0;
     }
@@ -50,21 +56,21 @@ SceneGate::Reply SceneGate::edit(const Edit& e) {
     switch (e.op) {
       case Op::add:
         scene_.add(e.text);
-        return {true, "added", {}};
+        return {true, "added"};
       case Op::remove:
         scene_.remove(e.name);
-        return {true, "removed", {}};
+        return {true, "removed"};
       case Op::material:
         scene_.set_material(e.name, e.text);
-        return {true, "its material set", {}};
+        return {true, "its material set"};
       case Op::move:
         scene_.move(e.name, e.pose);
-        return {true, "moved", {}};
+        return {true, "moved"};
       default:
-        return {false, "not an edit", {}};
+        return {false, "not an edit"};
     }
   } catch (const std::exception& ex) {  // the scene's reason (an edit never reaches the loop unless it was whole)
-    return {false, ex.what(), {}};
+    return {false, ex.what()};
   }
 }
 

@@ -2,7 +2,9 @@
 // The session's haptic scene at the gate (docs/haptic-scene.md, "Engines edit the scene"): who owns it and what the
 // owner's edits do, whichever door they came through. Owned like a device: one owner at a time (claim, release;
 // the claim ends when the channel that made it is gone - a connection closed, checked on the gate's service
-// thread); only the owner edits; anyone may list the objects. An edit is made on the door's thread, off the loop
+// thread); only the owner edits; anyone may list the objects and ask what the hands do to them (contacts: each
+// device's force and torque on each object it touches, as of the devices' latest cycles - an engine asks at its
+// frame rate and applies them to its copies of the objects). An edit is made on the door's thread, off the loop
 // (an object is parsed and built there; the devices take the new scene whole at their next cycle). Edits that
 // remake the scene (add, remove, material) are held to kRemakesPerSecond per owner (a burst of as many); moves to
 // the door's own message rate. Every refusal is counted and says why; a refused edit changes nothing.
@@ -25,7 +27,7 @@ class SceneGate {
 
   explicit SceneGate(SceneService& scene) : scene_(scene) {}
 
-  enum class Op : std::uint8_t { claim, release, add, remove, material, move, list };
+  enum class Op : std::uint8_t { claim, release, add, remove, material, move, list, contacts };
   struct Edit {
     Op op = Op::list;
     std::string_view name;  // the object (remove, material, move)
@@ -33,9 +35,12 @@ class SceneGate {
     Pose pose;              // move
   };
   struct Reply {
+    Reply() = default;
+    Reply(bool accepted_, std::string message_) : accepted(accepted_), message(std::move(message_)) {}
     bool accepted = false;
     std::string message;
     std::vector<SceneObjectSummary> objects;  // list
+    std::vector<SceneContact> contacts;       // contacts
   };
 
   // A door's thread: `sender`'s edit (its client id `client`, for messages and the owner's name); now_ns: the

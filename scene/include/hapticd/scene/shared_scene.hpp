@@ -22,11 +22,36 @@
 #include <string_view>
 #include <vector>
 
+#include "hapticd/realtime/latest_value.hpp"
 #include "hapticd/realtime/spsc_ring.hpp"
 #include "hapticd/scene/pose_track.hpp"
+#include "hapticd/scene/proxy.hpp"
 #include "hapticd/scene/scene.hpp"
 
 namespace hapticd::scene {
+
+// What a device's hand does to the scene's objects: for each object it touches, the force on the object (the
+// opposite of that object's share of the proxy's force on the hand; world frame, N) at the contact point.
+struct ObjectContact {
+  std::uint64_t object = 0;  // SceneObject::uid
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // the object's origin as the device rendered it (a moving
+                                                     // object's played-back pose)
+};
+struct ContactReport {
+  int count = 0;
+  std::array<ObjectContact, kMaxContacts> contacts{};
+};
+// ... as the editors see it: by device, with the object's name.
+struct DeviceContact {
+  std::string device;
+  std::string object;
+  std::uint64_t uid = 0;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+};
 
 class SharedScene {
  public:
@@ -48,10 +73,13 @@ class SharedScene {
     [[nodiscard]] const Scene& scene() const noexcept { return *current_; }
     // Scenes taken since the reader was made (the first included); for tests and the live view.
     [[nodiscard]] std::uint64_t scenes_taken() const noexcept { return taken_; }
+    // Real-time safe (the loop, after the proxy's update): what the proxy touches now, for the editors
+    // (SharedScene::contacts; a triple buffer, no lock, no allocation).
+    void report_contacts(const ProxyState& proxy) noexcept;
 
    private:
     friend class SharedScene;
-    explicit Reader(std::unique_ptr<Scene> first);
+    Reader(std::unique_ptr<Scene> first, std::string device);
     std::atomic<Scene*> offered_{nullptr};
     Scene* current_ = nullptr;
     realtime::SpscRing<Scene*> returned_{64};
@@ -59,10 +87,13 @@ class SharedScene {
     std::vector<PoseTrack> tracks_;       // per object slot (SceneObject::slot), kMaxObjects
     std::vector<std::uint64_t> tracked_;  // the uid each slot's track follows (the loop's)
     std::uint64_t taken_ = 0;
+    std::string device_;
+    realtime::LatestValue<ContactReport> contacts_;
+    ContactReport last_contacts_;  // the editors' (under the scene's mutex): the newest report taken
   };
 
-  // Off the loop, before or while the loops run; the reader lives as long as this scene.
-  Reader& add_reader();
+  // Off the loop, before or while the loops run; the reader lives as long as this scene. device: whose it is.
+  Reader& add_reader(std::string device = {});
 
   // Edits, from any thread but the loops' (serialised here). Each throws std::invalid_argument with the reason
   // (a name taken or unknown, too many objects) and changes nothing then.
@@ -75,6 +106,9 @@ class SharedScene {
 
   // A copy of the newest scene (the objects' poses as added; moves are the readers').
   [[nodiscard]] Scene snapshot() const;
+  // Any thread but the loops': what every device's hand does to the objects now (each reader's newest report; an
+  // object removed since is left out).
+  [[nodiscard]] std::vector<DeviceContact> contacts();
   // Frees the scenes the readers handed back (each edit does it too).
   void collect();
 

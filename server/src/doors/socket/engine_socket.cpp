@@ -234,7 +234,7 @@ void EngineSocket::edit_scene(ConnectionId id, Client& c) {
   const SceneGate::Reply reply =
       scene != nullptr
           ? scene->apply(m.edit, Sender{PeerId::socket(id), 0}, c.id, monotonic_now_ns())
-          : SceneGate::Reply{false, "this session has no haptic scene (its session file has no `scene` section)", {}};
+          : SceneGate::Reply{false, "this session has no haptic scene (its session file has no `scene` section)"};
   // A move that went through is not answered (an engine sends one per object per frame); anything else is.
   if (reply.accepted && m.edit.op == SceneGate::Op::move) return;
   server_->send(id, std::make_shared<const std::string>(socket_messages::scene_reply(m.id, reply)), false,

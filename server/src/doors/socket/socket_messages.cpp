@@ -260,7 +260,7 @@ struct SceneOpName {
 constexpr SceneOpName kSceneOps[] = {
     {"claim", SceneGate::Op::claim},   {"release", SceneGate::Op::release},   {"add", SceneGate::Op::add},
     {"remove", SceneGate::Op::remove}, {"material", SceneGate::Op::material}, {"move", SceneGate::Op::move},
-    {"list", SceneGate::Op::list},
+    {"list", SceneGate::Op::list},     {"contacts", SceneGate::Op::contacts},
 };
 }  // namespace
 
@@ -277,7 +277,7 @@ bool Parser::scene(const Value& s, ClientMessage& out) {
   const auto found =
       std::find_if(std::begin(kSceneOps), std::end(kSceneOps), [&](const auto& k) { return k.name == op; });
   if (found == std::end(kSceneOps)) {
-    out.error = "scene: unknown op (claim, release, add, remove, material, move, list)";
+    out.error = "scene: unknown op (claim, release, add, remove, material, move, list, contacts)";
     return false;
   }
   SceneGate::Edit& e = m.edit;
@@ -444,17 +444,30 @@ void state(const hapticd_msg_DeviceState& s, std::string& out) {
   out += "}]}";
 }
 
+namespace {
+// ,"key":[{...},{...}]: each item an object that `write` fills after its opening brace.
+template <class T, class Write>
+void append_objects(std::string& out, std::string_view key, const std::vector<T>& items, Write write) {
+  append_key(out, key);
+  out += '[';
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    out += i > 0 ? ",{" : "{";
+    write(items[i]);
+    out += '}';
+  }
+  out += ']';
+}
+}  // namespace
+
 std::string scene_reply(std::int64_t id, const SceneGate::Reply& r) {
   std::string out = "{\"scene_reply\":{\"id\":";
   append_integer(out, id);
   out += r.accepted ? ",\"accepted\":true" : ",\"accepted\":false";
   append_key(out, "message");
   append_string(out, r.message);
-  if (r.accepted && !r.objects.empty()) {
-    out += ",\"objects\":[";
-    for (std::size_t i = 0; i < r.objects.size(); ++i) {
-      const SceneObjectSummary& o = r.objects[i];
-      out += i > 0 ? ",{\"name\":" : "{\"name\":";
+  if (r.accepted && !r.objects.empty())
+    append_objects(out, "objects", r.objects, [&](const SceneObjectSummary& o) {
+      out += "\"name\":";
       append_string(out, o.name);
       append_key(out, "shape");
       append_string(out, o.shape);
@@ -463,10 +476,17 @@ std::string scene_reply(std::int64_t id, const SceneGate::Reply& r) {
       out += o.moving ? ",\"moving\":true" : ",\"moving\":false";
       append_key(out, "triangles");
       append_integer(out, static_cast<std::int64_t>(o.triangles));
-      out += '}';
-    }
-    out += ']';
-  }
+    });
+  if (r.accepted && !r.contacts.empty())
+    append_objects(out, "contacts", r.contacts, [&](const SceneContact& c) {
+      out += "\"device\":";
+      append_string(out, c.device);
+      append_key(out, "object");
+      append_string(out, c.object);
+      append_vector3(out, "force", c.force.data());
+      append_vector3(out, "torque", c.torque.data());
+      append_vector3(out, "point", c.point.data());
+    });
   out += "}}";
   return out;
 }
