@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/json_reader.hpp"
@@ -17,7 +18,9 @@ struct Parsed {
   Parser parser;
   ClientMessage message;
   std::uint64_t serial = 0;
-  bool parse(const std::string& text, std::string_view engine = "engine") {
+  std::string text;  // the message parsed last: a scene edit's name and text point into it
+  bool parse(std::string message_text, std::string_view engine = "engine") {
+    text = std::move(message_text);
     return parser.parse(text, engine, serial, message);
   }
 };
