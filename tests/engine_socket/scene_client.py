@@ -130,7 +130,7 @@ async def main(url):
     # Two-way: what the hand does to the wall, as the engine asks at its frame rate (anyone may ask).
     felt = -owner.state["environment_force"]["x"]
     r = await intruder.scene("contacts")
-    on_wall = [c for c in r.get("contacts", []) if c["object"] == "wall" and c["device"] == "vishard3"]
+    on_wall = [c for c in r["contacts"] if c["object"] == "wall" and c["device"] == "vishard3"]
     check(r["accepted"] and len(on_wall) == 1, "the hand's contact with the wall is reported", r)
     push = on_wall[0]["force"]
     check(abs(push["x"] - felt) < 0.1 * felt + 0.2 and abs(push["y"]) < 0.05 and abs(push["z"]) < 0.05,
@@ -200,7 +200,7 @@ async def main(url):
 
     # The list, seen by anyone.
     r = await intruder.scene("list")
-    names = [o["name"] for o in r.get("objects", [])]
+    names = [o["name"] for o in r["objects"]]
     check(r["accepted"] and "wall" in names and "block" in names, "anyone lists the objects", r["message"])
 
     # A material changed in place, then the wall removed: the push carries the handle on past it.
@@ -213,7 +213,7 @@ async def main(url):
     r = await owner.scene("remove", name="wall")
     check(r["accepted"], "the wall is removed", r)
     r = await owner.scene("contacts")
-    check(not any(c["object"] == "wall" for c in r.get("contacts", [])), "a removed object has no contacts", r)
+    check(not any(c["object"] == "wall" for c in r["contacts"]), "a removed object has no contacts", r)
     x_free = (await owner.newest_state(1.0))["cursor_position"]["x"] - x0
     check(x_free > 0.035, "without the wall the push carries the handle past it", f"{x_free * 1000:.1f} mm")
     await owner.operator("release")

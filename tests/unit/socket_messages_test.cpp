@@ -148,8 +148,9 @@ TEST(SocketMessages, ASceneEditCarriesItsObjectsSourceAndItsAnswerListsTheObject
   EXPECT_FALSE(p.parse(R"({"scene":{"id":6,"op":"add","object":"ball"}})"));
   EXPECT_FALSE(p.message.scene.has_value());
   SceneGate::Reply reply{true, "2 objects"};
-  reply.objects.push_back({"ball", "sphere", 7, true, 0, {}});
-  reply.objects.push_back({"rock \"one\"", "mesh", 8, false, 5120, {}});
+  reply.objects.emplace();
+  reply.objects->push_back({"ball", "sphere", 7, true, 0, {}});
+  reply.objects->push_back({"rock \"one\"", "mesh", 8, false, 5120, {}});
   const std::string text = scene_reply(9, reply);
   JsonReader json;
   ASSERT_TRUE(json.parse(text)) << text;
@@ -159,6 +160,23 @@ TEST(SocketMessages, ASceneEditCarriesItsObjectsSourceAndItsAnswerListsTheObject
   EXPECT_EQ(*r["objects"].at(1)["shape"].string(), "mesh");
   EXPECT_EQ(r["objects"].at(1)["triangles"].number_or(0), 5120);
   EXPECT_EQ(*r["objects"].at(0)["moving"].boolean(), true);
+  // An empty scene and a hand touching nothing answer empty lists (a client reads the key whatever the count); an
+  // edit's answer has neither.
+  SceneGate::Reply none{true, "0 contacts"};
+  none.contacts.emplace();
+  const std::string no_contacts = scene_reply(10, none);  // the reader's values point into the text
+  ASSERT_TRUE(json.parse(no_contacts));
+  EXPECT_EQ(json.root()["scene_reply"]["contacts"].kind(), JsonReader::Kind::array);
+  EXPECT_EQ(json.root()["scene_reply"]["contacts"].size(), 0u);
+  none.contacts.reset();
+  none.objects.emplace();
+  const std::string no_objects = scene_reply(11, none);
+  ASSERT_TRUE(json.parse(no_objects));
+  EXPECT_EQ(json.root()["scene_reply"]["objects"].kind(), JsonReader::Kind::array);
+  const std::string added = scene_reply(12, SceneGate::Reply{true, "added"});
+  ASSERT_TRUE(json.parse(added));
+  EXPECT_FALSE(json.root()["scene_reply"]["objects"]);
+  EXPECT_FALSE(json.root()["scene_reply"]["contacts"]);
 }
 
 TEST(SocketMessages, TheStateAndTheReplyAreJsonAClientReads) {

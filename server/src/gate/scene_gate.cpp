@@ -12,12 +12,12 @@ SceneGate::Reply SceneGate::apply(const Edit& e, const Sender& sender, std::stri
   if (e.op == Op::list) {
     reply.objects = scene_.objects();
     reply.accepted = true;
-    reply.message = std::to_string(reply.objects.size()) + " objects";
+    reply.message = std::to_string(reply.objects->size()) + " objects";
     return reply;  // a question, not an edit: not counted
   } else if (e.op == Op::contacts) {
     reply.contacts = scene_.contacts();
     reply.accepted = true;
-    reply.message = std::to_string(reply.contacts.size()) + " contacts";
+    reply.message = std::to_string(reply.contacts->size()) + " contacts";
     return reply;
   } else if (e.op == Op::claim) {
     if (owner_.empty() || mine) {

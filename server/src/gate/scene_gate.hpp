@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,8 +40,8 @@ class SceneGate {
     Reply(bool accepted_, std::string message_) : accepted(accepted_), message(std::move(message_)) {}
     bool accepted = false;
     std::string message;
-    std::vector<SceneObjectSummary> objects;  // list
-    std::vector<SceneContact> contacts;       // contacts
+    std::optional<std::vector<SceneObjectSummary>> objects;  // the answer to list (none for any other op)
+    std::optional<std::vector<SceneContact>> contacts;       // the answer to contacts
   };
 
   // A door's thread: `sender`'s edit (its client id `client`, for messages and the owner's name); now_ns: the

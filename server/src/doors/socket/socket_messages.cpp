@@ -465,8 +465,8 @@ std::string scene_reply(std::int64_t id, const SceneGate::Reply& r) {
   out += r.accepted ? ",\"accepted\":true" : ",\"accepted\":false";
   append_key(out, "message");
   append_string(out, r.message);
-  if (r.accepted && !r.objects.empty())
-    append_objects(out, "objects", r.objects, [&](const SceneObjectSummary& o) {
+  if (r.objects)  // an empty scene answers an empty list
+    append_objects(out, "objects", *r.objects, [&](const SceneObjectSummary& o) {
       out += "\"name\":";
       append_string(out, o.name);
       append_key(out, "shape");
@@ -477,8 +477,8 @@ std::string scene_reply(std::int64_t id, const SceneGate::Reply& r) {
       append_key(out, "triangles");
       append_integer(out, static_cast<std::int64_t>(o.triangles));
     });
-  if (r.accepted && !r.contacts.empty())
-    append_objects(out, "contacts", r.contacts, [&](const SceneContact& c) {
+  if (r.contacts)
+    append_objects(out, "contacts", *r.contacts, [&](const SceneContact& c) {
       out += "\"device\":";
       append_string(out, c.device);
       append_key(out, "object");
