@@ -19,6 +19,16 @@ JsonReader::Value JsonReader::Value::at(std::size_t n) const noexcept {
   return i != 0 ? Value(reader_, i) : Value();
 }
 
+JsonReader::Value JsonReader::Value::first() const noexcept {
+  if (!reader_ || (node().kind != Kind::array && node().kind != Kind::object) || node().first == 0) return {};
+  return Value(reader_, node().first);
+}
+
+JsonReader::Value JsonReader::Value::next() const noexcept {
+  if (!reader_ || node().next == 0) return {};
+  return Value(reader_, node().next);
+}
+
 std::optional<double> JsonReader::Value::number() const noexcept {
   if (!reader_ || node().kind != Kind::number) return std::nullopt;
   return node().number;

@@ -16,8 +16,11 @@ namespace {
 
 class Reader {
  public:
-  explicit Reader(std::string name, bool files_allowed = true)
-      : name_(std::move(name)), folder_(std::filesystem::path(name_).parent_path()), files_allowed_(files_allowed) {}
+  explicit Reader(std::string name, bool files_allowed = true, TriangleMeshData* uploaded = nullptr)
+      : name_(std::move(name)),
+        folder_(std::filesystem::path(name_).parent_path()),
+        files_allowed_(files_allowed),
+        uploaded_(uploaded) {}
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
     const std::string line = node.IsDefined() && node.Mark().line >= 0 ? std::to_string(node.Mark().line + 1) : "?";
@@ -115,7 +118,7 @@ class Reader {
                      const std::map<std::string, Material>& materials) const {
     only(map, where,
          {"name", "shape", "radius", "size", "length", "file", "scale", "points", "position", "rpy_deg", "quaternion",
-          "normal", "material", "moving"});
+          "normal", "material", "moving", "upload"});
     SceneObject o;
     if (!map["name"].IsDefined()) fail(map, where + ".name", "missing");
     o.name = map["name"].as<std::string>();
@@ -145,7 +148,11 @@ class Reader {
     refuse("file", o.shape.kind == ShapeKind::mesh);
     refuse("scale", o.shape.kind == ShapeKind::mesh);
     refuse("points", false);
-    if (o.shape.kind == ShapeKind::mesh) o.shape.mesh = mesh(map, where, o.name);
+    refuse("upload", o.shape.kind == ShapeKind::mesh && uploaded_ != nullptr);
+    if (uploaded_ != nullptr && o.shape.kind != ShapeKind::mesh)
+      fail(map["shape"], where + ".shape", "an uploaded mesh is added as a mesh");
+    if (o.shape.kind == ShapeKind::mesh)
+      o.shape.mesh = uploaded_ ? uploaded_mesh(map, where, o.name) : mesh(map, where, o.name);
     if (round) o.shape.radius = required_positive(map, where, "radius");
     if (long_) o.shape.half_length = 0.5 * required_positive(map, where, "length");
     if (o.shape.kind == ShapeKind::box) {
@@ -210,6 +217,17 @@ class Reader {
     const auto found = materials.find(m.as<std::string>());
     if (found == materials.end()) fail(m, where, "no material '" + m.as<std::string>() + "' in materials");
     return found->second;
+  }
+
+  // The client's uploaded triangles, checked and given their structure here, off the loop.
+  std::shared_ptr<const MeshShape> uploaded_mesh(const YAML::Node& map, const std::string& where,
+                                                 const std::string& name) const {
+    if (map["file"].IsDefined()) fail(map["file"], where + ".file", "an uploaded mesh names no file");
+    try {
+      return MeshShape::build(std::move(*uploaded_), name);
+    } catch (const std::exception& e) {
+      fail(map["upload"], where + ".upload", e.what());
+    }
   }
 
   // A mesh file (relative to the scene file), read, checked and given its structure here, off the loop.
@@ -281,6 +299,7 @@ class Reader {
   std::string name_;
   std::filesystem::path folder_;
   bool files_allowed_ = true;
+  TriangleMeshData* uploaded_ = nullptr;  // a client's mesh for the object being read
 };
 
 // Parses `text` as YAML and reads it with `read`; every error a SceneFileError naming `name` and the line.
@@ -320,10 +339,10 @@ SceneDocument load_scene_document(const std::filesystem::path& file) {
 Scene load_scene_file(const std::filesystem::path& file) { return load_scene_document(file).scene; }
 
 SceneObject parse_scene_object(const std::string& text, const std::string& name,
-                               const std::map<std::string, Material>& materials) {
+                               const std::map<std::string, Material>& materials, TriangleMeshData* uploaded) {
   return read_text(text, name, [&](const YAML::Node& root) {
     if (!root.IsDefined() || root.IsNull()) throw SceneFileError(name + ": no object");
-    return Reader(name, false).object(root, "object", materials);
+    return Reader(name, false, uploaded).object(root, "object", materials);
   });
 }
 

@@ -93,6 +93,37 @@ class Client:
         assert r is not None and r["accepted"], r
 
 
+def sheet_mesh(x, y, z, n=40, size=0.2):
+    """A flat sheet in the plane at x (world) about (y, z), facing -x: (n + 1)^2 vertices, 2 n^2 triangles,
+    flattened."""
+    vertices = []
+    for i in range(n + 1):
+        for j in range(n + 1):
+            vertices += [round(c, 7) for c in (x, y - size / 2 + size * i / n, z - size / 2 + size * j / n)]
+    triangles = []
+    for i in range(n):
+        for j in range(n):
+            a = i * (n + 1) + j
+            b, c = a + 1, a + n + 1
+            triangles += [a, b, c, b, c + 1, c]
+    return vertices, triangles
+
+
+async def upload(client, name, vertices, triangles, per_part=600):
+    """Uploads a mesh in parts of at most per_part numbers of each list (a part's message must stay within the
+    socket's 16 KB: 600 coordinates of up to 11 characters and 600 indices of up to 5); the last part's reply."""
+    v = [vertices[k:k + per_part] for k in range(0, len(vertices), per_part)]
+    t = [triangles[k:k + per_part] for k in range(0, len(triangles), per_part)]
+    parts = max(len(v), len(t))
+    r = None
+    for k in range(parts):
+        r = await client.scene("upload", upload=name, part=k, parts=parts, vertices=v[k] if k < len(v) else [],
+                               triangles=t[k] if k < len(t) else [])
+        if not r["accepted"]:
+            return r
+    return r
+
+
 def check(condition, what, detail=""):
     if not condition:
         raise AssertionError(f"{what}: {detail}")
@@ -136,6 +167,34 @@ async def main(url):
     check(abs(push["x"] - felt) < 0.1 * felt + 0.2 and abs(push["y"]) < 0.05 and abs(push["z"]) < 0.05,
           "the wall is pushed with the force the hand feels, reversed", f"{push} against {felt:.2f} N felt")
     print(f"   the hand pushes the wall with {push['x']:.2f} N; it feels {felt:.2f} N", flush=True)
+
+    # A mesh uploaded in parts: a flat sheet 1 mm behind the wall's plane (felt once the wall is gone, below).
+    vertices, triangles = sheet_mesh(x0 + 0.026, start["y"], start["z"])
+    r = await upload(owner, "sheet", vertices, triangles)
+    check(r["accepted"] and "finished: 1681 vertices, 3200 triangles" in r["message"],
+          "a mesh of 3200 triangles is uploaded in parts", r)
+    r = await intruder.scene("upload", upload="mine", part=0, parts=1, vertices=[0, 0, 0], triangles=[])
+    check(not r["accepted"] and "claimed by 'scene-owner'" in r["message"], "the intruder's upload is refused", r)
+    r = await owner.scene("upload", upload="stray", part=1, parts=3, vertices=[0, 0, 0], triangles=[])
+    check(not r["accepted"] and "out of order" in r["message"], "a part out of order is refused", r)
+    await owner.ws.send('{"scene": {"id": 9100, "op": "upload", "upload": "inf", "part": 0, "parts": 1, '
+                        '"vertices": [0, 0, 1e999], "triangles": []}}')
+    r = await owner.reply(9100)
+    check(not r["accepted"] and "not finite" in r["message"], "an infinite vertex is refused", r)
+    r = await upload(owner, "broken", [0, 0, 0, 0.01, 0, 0, 0, 0.01, 0], [0, 1, 7])
+    check(r["accepted"], "a mesh naming a vertex it lacks is uploaded", r)
+    r = await owner.scene("add", object={"name": "broken", "shape": "mesh", "upload": "broken"})
+    check(not r["accepted"] and "mesh 'broken'" in r["message"] and "vertex 7" in r["message"],
+          "its add is refused, naming the object and the vertex", r)
+    r = await owner.scene("add", object={"name": "ghost", "shape": "mesh", "upload": "ghost"})
+    check(not r["accepted"] and "no finished upload 'ghost'" in r["message"], "an add of no upload is refused", r)
+    r = await owner.scene("add", object={"name": "sheet", "shape": "mesh", "upload": "sheet",
+                                         "material": {"stiffness": 3000, "damping": 10}})
+    check(r["accepted"], "the uploaded sheet is added", r)
+    r = await owner.scene("list")
+    sheet = [o for o in r["objects"] if o["name"] == "sheet"]
+    check(len(sheet) == 1 and sheet[0]["shape"] == "mesh" and sheet[0]["triangles"] == 3200,
+          "the list shows the sheet's 3200 triangles", r["objects"])
 
     # Bad edits: each refused with its reason, the wall still there.
     bad = [
@@ -214,11 +273,21 @@ async def main(url):
     check(r["accepted"], "the wall is removed", r)
     r = await owner.scene("contacts")
     check(not any(c["object"] == "wall" for c in r["contacts"]), "a removed object has no contacts", r)
+    x = (await owner.newest_state(1.0))["cursor_position"]["x"] - x0
+    check(0.018 < x < 0.03, "the uploaded sheet holds the push once the wall is gone", f"{x * 1000:.1f} mm")
+    r = await owner.scene("contacts")
+    check(any(c["object"] == "sheet" and c["force"]["x"] > 2.0 for c in r["contacts"]),
+          "the hand pushes the sheet", r["contacts"])
+    r = await owner.scene("remove", name="sheet")
+    check(r["accepted"], "the sheet is removed", r)
     x_free = (await owner.newest_state(1.0))["cursor_position"]["x"] - x0
     check(x_free > 0.035, "without the wall the push carries the handle past it", f"{x_free * 1000:.1f} mm")
     await owner.operator("release")
 
-    # The owner leaves: its claim ends, the intruder may claim.
+    # The owner leaves with an upload finished and not added: its claim ends, the intruder may claim, and the
+    # upload went with the claim.
+    r = await upload(owner, "leftover", *sheet_mesh(x0 + 0.1, start["y"], start["z"], n=2))
+    check(r["accepted"], "an upload is left unadded", r)
     await owner.close()
     for _ in range(50):
         r = await intruder.scene("claim")
@@ -226,6 +295,9 @@ async def main(url):
             break
         await asyncio.sleep(0.1)
     check(r["accepted"], "the scene's claim ends with its owner's connection", r)
+    r = await intruder.scene("add", object={"name": "leftover", "shape": "mesh", "upload": "leftover"})
+    check(not r["accepted"] and "no finished upload" in r["message"], "the last owner's upload ended with its claim",
+          r)
     await intruder.close()
 
 

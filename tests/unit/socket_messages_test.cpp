@@ -179,6 +179,38 @@ TEST(SocketMessages, ASceneEditCarriesItsObjectsSourceAndItsAnswerListsTheObject
   EXPECT_FALSE(json.root()["scene_reply"]["contacts"]);
 }
 
+TEST(SocketMessages, AMeshUploadsPartCarriesItsNumbersAndAnAddNamesItsUpload) {
+  Parsed p;
+  ASSERT_TRUE(p.parse(R"({"scene":{"id":1,"op":"upload","upload":"rock","part":2,"parts":5,)"
+                      R"("vertices":[0,0.5,-1e-3,1,2,3],"triangles":[0,1,4294967295]}})"))
+      << p.message.error;
+  const SceneGate::Edit& e = p.message.scene->edit;
+  EXPECT_EQ(e.op, SceneGate::Op::upload);
+  EXPECT_EQ(e.upload, "rock");
+  EXPECT_EQ(e.part, 2);
+  EXPECT_EQ(e.parts, 5);
+  EXPECT_EQ(std::vector<double>(e.vertices.begin(), e.vertices.end()), (std::vector<double>{0, 0.5, -1e-3, 1, 2, 3}));
+  EXPECT_EQ(std::vector<std::uint32_t>(e.triangles.begin(), e.triangles.end()),
+            (std::vector<std::uint32_t>{0, 1, 4294967295u}));
+  ASSERT_TRUE(p.parse(R"({"scene":{"id":2,"op":"add","object":{"name":"rock","shape":"mesh","upload":"rock"}}})"));
+  EXPECT_EQ(p.message.scene->edit.upload, "rock");
+  // Malformed: each refused whole, with what an upload needs.
+  for (const char* bad : {
+           R"({"scene":{"id":3,"op":"upload","upload":"r","part":0,"parts":1,"vertices":[0],"triangles":[1.5]}})",
+           R"({"scene":{"id":3,"op":"upload","upload":"r","part":0,"parts":1,"vertices":[0],"triangles":[-1]}})",
+           R"({"scene":{"id":3,"op":"upload","upload":"r","part":0,"parts":1,"vertices":["0"],"triangles":[]}})",
+           R"({"scene":{"id":3,"op":"upload","upload":"r","part":1,"parts":1,"vertices":[],"triangles":[]}})",
+           R"({"scene":{"id":3,"op":"upload","upload":"r","part":0.5,"parts":2,"vertices":[],"triangles":[]}})",
+           R"({"scene":{"id":3,"op":"upload","part":0,"parts":1,"vertices":[],"triangles":[]}})",
+           R"({"scene":{"id":3,"op":"upload","upload":"r","part":0,"parts":1,"vertices":{},"triangles":[]}})",
+           R"({"scene":{"id":3,"op":"add","object":{"name":"r","shape":"mesh","upload":7}}})",
+       }) {
+    EXPECT_FALSE(p.parse(bad)) << bad;
+    EXPECT_FALSE(p.message.scene.has_value()) << bad;
+    EXPECT_FALSE(p.message.error.empty()) << bad;
+  }
+}
+
 TEST(SocketMessages, TheStateAndTheReplyAreJsonAClientReads) {
   hapticd_msg_DeviceState s{};
   dds::set_text(s.device, "left");

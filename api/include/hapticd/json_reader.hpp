@@ -37,6 +37,10 @@ class HAPTICD_API JsonReader {
     [[nodiscard]] Kind kind() const noexcept { return reader_ ? node().kind : Kind::null; }
     [[nodiscard]] Value operator[](std::string_view key) const noexcept;  // an object's member
     [[nodiscard]] Value at(std::size_t i) const noexcept;                 // an array's element
+    // An array's or object's first element, and an element's next sibling (none at the end): a walk through a
+    // long array in one pass (at(i) walks from the first each time).
+    [[nodiscard]] Value first() const noexcept;
+    [[nodiscard]] Value next() const noexcept;
     [[nodiscard]] std::size_t size() const noexcept { return reader_ ? node().count : 0; }
     [[nodiscard]] std::optional<double> number() const noexcept;
     [[nodiscard]] std::optional<bool> boolean() const noexcept;

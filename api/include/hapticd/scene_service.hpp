@@ -60,6 +60,12 @@ class HAPTICD_API SceneService {
   // name from the scene file's materials or one in place - and `moving` for an object an engine moves); a mesh or
   // hull file is refused here (a client's file is not the server's to read). Returns the object's uid.
   virtual std::uint64_t add(std::string_view object) = 0;
+  // Adds a mesh an engine uploaded: `object` as for add(), a `mesh` with `upload: NAME` in place of a file;
+  // `vertices` three coordinates each (metres, the object's frame), `triangles` three indices into them each. The
+  // triangles are checked (finite, indices in range, the caps; degenerate ones dropped) and built here, on the
+  // caller's thread: an error names the object.
+  virtual std::uint64_t add_mesh(std::string_view object, std::vector<double> vertices,
+                                 std::vector<std::uint32_t> triangles) = 0;
   virtual void remove(std::string_view name) = 0;
   // The object's material: a name from the scene file's materials or a material in place (YAML or JSON).
   virtual void set_material(std::string_view name, std::string_view material) = 0;

@@ -48,6 +48,33 @@ std::uint64_t SessionScene::add(std::string_view text) {
       throw std::invalid_argument(e.what());
     }
   }();
+  return add_object(std::move(object));
+}
+
+std::uint64_t SessionScene::add_mesh(std::string_view text, std::vector<double> vertices,
+                                     std::vector<std::uint32_t> triangles) {
+  if (vertices.size() % 3 != 0 || triangles.size() % 3 != 0)
+    throw std::invalid_argument("an uploaded mesh's vertices and triangles come three numbers each");
+  scene::TriangleMeshData data;
+  data.vertices.reserve(vertices.size() / 3);
+  for (std::size_t i = 0; i + 2 < vertices.size(); i += 3)
+    data.vertices.emplace_back(vertices[i], vertices[i + 1], vertices[i + 2]);
+  data.triangles.reserve(triangles.size() / 3);
+  for (std::size_t i = 0; i + 2 < triangles.size(); i += 3)
+    data.triangles.push_back({triangles[i], triangles[i + 1], triangles[i + 2]});
+  vertices = {};
+  triangles = {};
+  scene::SceneObject object = [&] {
+    try {
+      return scene::parse_scene_object(std::string(text), "the object added", materials_, &data);
+    } catch (const scene::SceneFileError& e) {
+      throw std::invalid_argument(e.what());
+    }
+  }();
+  return add_object(std::move(object));
+}
+
+std::uint64_t SessionScene::add_object(scene::SceneObject object) {
   const std::size_t triangles = triangles_of(object);
   std::lock_guard lock(mutex_);
   if (triangles_ + triangles > scene::kMaxSceneTriangles)

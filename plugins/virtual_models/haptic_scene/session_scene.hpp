@@ -23,6 +23,8 @@ class SessionScene final : public SceneService {
   [[nodiscard]] scene::SharedScene& shared() noexcept override { return *scene_; }
 
   std::uint64_t add(std::string_view object) override;
+  std::uint64_t add_mesh(std::string_view object, std::vector<double> vertices,
+                         std::vector<std::uint32_t> triangles) override;
   void remove(std::string_view name) override;
   void set_material(std::string_view name, std::string_view material) override;
   void move(std::string_view name, const Pose& pose) override;
@@ -30,6 +32,7 @@ class SessionScene final : public SceneService {
   [[nodiscard]] std::vector<SceneContact> contacts() override;
 
  private:
+  std::uint64_t add_object(scene::SceneObject object);
   std::unique_ptr<scene::SharedScene> scene_ = std::make_unique<scene::SharedScene>();
   std::map<std::string, scene::Material> materials_;  // the scene file's, for the objects added later
   std::size_t triangles_ = 0;                         // in all of the scene's meshes, at most kMaxSceneTriangles

@@ -1,6 +1,7 @@
 #include "gate/scene_gate.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace hapticd::server {
@@ -32,7 +33,10 @@ SceneGate::Reply SceneGate::apply(const Edit& e, const Sender& sender, std::stri
   } else if (e.op == Op::release) {
     owner_.clear();
     owner_channel_ = {};
+    uploads_.clear();
     reply = {true, "released"};
+  } else if (e.op == Op::upload) {
+    reply = take_part(e);  // not a remake: bounded by the door's message rate and the upload's caps
   } else {
     if (e.op != Op::move) {  // a remake of the scene: within the rate
       allowance_ = std::min(kRemakesPerSecond,
@@ -55,6 +59,7 @@ SceneGate::Reply SceneGate::edit(const Edit& e) {
   try {
     switch (e.op) {
       case Op::add:
+        if (!e.upload.empty()) return add_upload(e);
         scene_.add(e.text);
         return {true, "added"};
       case Op::remove:
@@ -74,11 +79,67 @@ SceneGate::Reply SceneGate::edit(const Edit& e) {
   }
 }
 
+SceneGate::Reply SceneGate::take_part(const Edit& e) {
+  const std::string name(e.upload);
+  if (name.empty() || name.size() > 64) return {false, "an upload needs a name of 1 to 64 characters"};
+  if (e.parts < 1 || e.parts > kMaxUploadParts)
+    return {false, "upload '" + name + "': parts must be 1 to " + std::to_string(kMaxUploadParts)};
+  if (e.vertices.size() % 3 != 0 || e.triangles.size() % 3 != 0)
+    return {false, "upload '" + name + "': vertices and triangles come three numbers each"};
+  for (const double v : e.vertices)
+    if (!std::isfinite(v)) return {false, "upload '" + name + "': a vertex is not finite"};
+  auto found = std::find_if(uploads_.begin(), uploads_.end(), [&](const Upload& u) { return u.name == name; });
+  if (e.part == 0) {  // a new upload (again from the start, if one of that name was under way)
+    if (found == uploads_.end()) {
+      if (uploads_.size() >= kMaxUploads)
+        return {false, "upload '" + name + "': " + std::to_string(kMaxUploads) +
+                           " uploads are under way or waiting to be added; add or restart one"};
+      found = uploads_.insert(uploads_.end(), Upload{});
+    }
+    *found = Upload{name, e.parts, 0, {}, {}};
+  } else if (found == uploads_.end() || found->next != e.part || found->parts != e.parts) {
+    const std::string expected = found == uploads_.end() ? "part 0 first"
+                                 : found->next == found->parts
+                                     ? "none: it is finished"
+                                     : "part " + std::to_string(found->next) + " of " + std::to_string(found->parts);
+    if (found != uploads_.end()) uploads_.erase(found);  // out of order: dropped whole
+    return {false, "upload '" + name + "': part " + std::to_string(e.part) + " of " + std::to_string(e.parts) +
+                       " out of order (expected " + expected + "); the upload is dropped"};
+  }
+  Upload& u = *found;
+  if ((u.vertices.size() + e.vertices.size()) / 3 > kMaxUploadVertices ||
+      (u.triangles.size() + e.triangles.size()) / 3 > kMaxUploadTriangles) {
+    uploads_.erase(found);
+    return {false, "upload '" + name + "': more than " + std::to_string(kMaxUploadVertices) + " vertices or " +
+                       std::to_string(kMaxUploadTriangles) + " triangles; the upload is dropped"};
+  }
+  u.vertices.insert(u.vertices.end(), e.vertices.begin(), e.vertices.end());
+  u.triangles.insert(u.triangles.end(), e.triangles.begin(), e.triangles.end());
+  ++u.next;
+  if (u.next < u.parts)
+    return {true, "upload '" + name + "': part " + std::to_string(e.part) + " of " + std::to_string(e.parts)};
+  return {true, "upload '" + name + "' finished: " + std::to_string(u.vertices.size() / 3) + " vertices, " +
+                    std::to_string(u.triangles.size() / 3) + " triangles (add it as a mesh with upload: " + name + ")"};
+}
+
+SceneGate::Reply SceneGate::add_upload(const Edit& e) {
+  const auto found =
+      std::find_if(uploads_.begin(), uploads_.end(), [&](const Upload& u) { return u.name == e.upload; });
+  if (found == uploads_.end() || found->next != found->parts)
+    return {false, "no finished upload '" + std::string(e.upload) + "'"};
+  std::vector<double> vertices = std::move(found->vertices);
+  std::vector<std::uint32_t> triangles = std::move(found->triangles);
+  uploads_.erase(found);  // taken, whether the mesh is good or not (a bad one is uploaded again)
+  scene_.add_mesh(e.text, std::move(vertices), std::move(triangles));
+  return {true, "added"};
+}
+
 bool SceneGate::check_claim(const std::function<bool(const Sender&)>& gone) {
   std::lock_guard lock(mutex_);
   if (owner_.empty() || !gone(owner_channel_)) return false;
   owner_.clear();
   owner_channel_ = {};
+  uploads_.clear();
   return true;
 }
 

@@ -8,11 +8,17 @@
 // (an object is parsed and built there; the devices take the new scene whole at their next cycle). Edits that
 // remake the scene (add, remove, material) are held to kRemakesPerSecond per owner (a burst of as many); moves to
 // the door's own message rate. Every refusal is counted and says why; a refused edit changes nothing.
+//
+// Meshes come in parts (upload): each part's vertices and triangles (their indices count from the upload's first
+// vertex) are appended in order, the parts bounded by the door's message size and the whole by kMaxUploadTriangles
+// and kMaxUploadVertices; an add that names the finished upload (`shape: mesh, upload: NAME`) checks and builds it.
+// At most kMaxUploads uploads at once, the owner's only: they end with the claim.
 #include <atomic>
 #include <cstdint>
 #include <functional>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,15 +31,23 @@ namespace hapticd::server {
 class SceneGate {
  public:
   static constexpr double kRemakesPerSecond = 50.0;
+  static constexpr std::size_t kMaxUploads = 4;
+  static constexpr std::size_t kMaxUploadTriangles = 2'000'000;
+  static constexpr std::size_t kMaxUploadVertices = 2'000'000;
+  static constexpr int kMaxUploadParts = 100'000;
 
   explicit SceneGate(SceneService& scene) : scene_(scene) {}
 
-  enum class Op : std::uint8_t { claim, release, add, remove, material, move, list, contacts };
+  enum class Op : std::uint8_t { claim, release, add, remove, material, move, list, contacts, upload };
   struct Edit {
     Op op = Op::list;
-    std::string_view name;  // the object (remove, material, move)
-    std::string_view text;  // the object (add) or the material (material): as the scene file writes it, YAML or JSON
-    Pose pose;              // move
+    std::string_view name;    // the object (remove, material, move)
+    std::string_view text;    // the object (add) or the material (material): as the scene file writes it, YAML or JSON
+    Pose pose;                // move
+    std::string_view upload;  // upload: the upload's name; add: the finished upload the object is made of ("": none)
+    int part = 0, parts = 0;  // upload: this part's number (from 0) of how many
+    std::span<const double> vertices;          // upload: this part's, three coordinates each
+    std::span<const std::uint32_t> triangles;  // upload: this part's, three indices each
   };
   struct Reply {
     Reply() = default;
@@ -57,11 +71,21 @@ class SceneGate {
 
  private:
   Reply edit(const Edit& e);  // under mutex_, from the owner
+  Reply take_part(const Edit& e);
+  Reply add_upload(const Edit& e);
+
+  struct Upload {
+    std::string name;
+    int parts = 0, next = 0;  // how many, the one expected next (parts: finished)
+    std::vector<double> vertices;
+    std::vector<std::uint32_t> triangles;
+  };
 
   SceneService& scene_;
   mutable std::mutex mutex_;
   std::string owner_;  // the owner's client id ("": free)
   Sender owner_channel_;
+  std::vector<Upload> uploads_;  // the owner's
   double allowance_ = kRemakesPerSecond;
   std::int64_t refilled_ns_ = 0;
   std::atomic<std::uint64_t> edits_{0}, refused_{0}, rate_limited_{0};

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hapticd/scene/mesh.hpp"
 #include "hapticd/scene/scene.hpp"
 
 namespace hapticd::scene {
@@ -35,9 +36,12 @@ struct SceneDocument {
 
 // A client's edit: one object written as a scene file's (YAML or JSON - JSON is YAML), its material a name from
 // `materials` or one in place; or one material so. `name` stands for the text in messages ("the engine's object").
-// Files are refused here (a mesh or hull file named by a client is not the server's to open).
+// Files are refused here (a mesh or hull file named by a client is not the server's to open). A mesh the client
+// uploaded comes as `uploaded`: the object is then a `mesh` that names it (`upload: NAME`, no file), and its
+// triangles are checked and built here (MeshShape::build: a clear error naming the object).
 [[nodiscard]] SceneObject parse_scene_object(const std::string& text, const std::string& name,
-                                             const std::map<std::string, Material>& materials);
+                                             const std::map<std::string, Material>& materials,
+                                             TriangleMeshData* uploaded = nullptr);
 [[nodiscard]] Material parse_material(const std::string& text, const std::string& name,
                                       const std::map<std::string, Material>& materials);
 

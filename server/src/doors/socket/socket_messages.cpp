@@ -260,7 +260,7 @@ struct SceneOpName {
 constexpr SceneOpName kSceneOps[] = {
     {"claim", SceneGate::Op::claim},   {"release", SceneGate::Op::release},   {"add", SceneGate::Op::add},
     {"remove", SceneGate::Op::remove}, {"material", SceneGate::Op::material}, {"move", SceneGate::Op::move},
-    {"list", SceneGate::Op::list},     {"contacts", SceneGate::Op::contacts},
+    {"list", SceneGate::Op::list},     {"contacts", SceneGate::Op::contacts}, {"upload", SceneGate::Op::upload},
 };
 }  // namespace
 
@@ -277,7 +277,7 @@ bool Parser::scene(const Value& s, ClientMessage& out) {
   const auto found =
       std::find_if(std::begin(kSceneOps), std::end(kSceneOps), [&](const auto& k) { return k.name == op; });
   if (found == std::end(kSceneOps)) {
-    out.error = "scene: unknown op (claim, release, add, remove, material, move, list, contacts)";
+    out.error = "scene: unknown op (claim, release, add, remove, material, move, list, contacts, upload)";
     return false;
   }
   SceneGate::Edit& e = m.edit;
@@ -295,6 +295,49 @@ bool Parser::scene(const Value& s, ClientMessage& out) {
       return false;
     }
     e.text = *object;
+    if (const Value upload = s["object"]["upload"]) {  // a mesh made of an upload
+      const std::optional<std::string_view> u = upload.string();
+      if (!u || u->empty() || u->size() > 64) {
+        out.error = "scene: an object's upload is the name of an upload (1 to 64 characters)";
+        return false;
+      }
+      e.upload = *u;
+    }
+  } else if (e.op == SceneGate::Op::upload) {
+    const std::optional<std::string_view> u = s["upload"].string();
+    const double part = s["part"].number_or(-1.0), parts = s["parts"].number_or(-1.0);
+    const Value vertices = s["vertices"], triangles = s["triangles"];
+    if (!u || u->empty() || u->size() > 64 || part < 0.0 || parts < 1.0 || part >= parts || parts > 1e6 ||
+        std::floor(part) != part || std::floor(parts) != parts || vertices.kind() != Kind::array ||
+        triangles.kind() != Kind::array) {
+      out.error =
+          "scene: upload needs its name (upload), part (from 0) of parts, and vertices and triangles "
+          "(lists of numbers: x, y, z per vertex; three vertex indices per triangle)";
+      return false;
+    }
+    e.upload = *u;
+    e.part = static_cast<int>(part);
+    e.parts = static_cast<int>(parts);
+    out.scene_vertices.clear();
+    out.scene_triangles.clear();
+    for (Value x = vertices.first(); x; x = x.next()) {
+      const std::optional<double> v = x.number();
+      if (!v) {
+        out.error = "scene: upload: vertices must be numbers";
+        return false;
+      }
+      out.scene_vertices.push_back(*v);  // (not finite: the gate refuses the part)
+    }
+    for (Value x = triangles.first(); x; x = x.next()) {
+      const std::optional<double> t = x.number();
+      if (!t || *t < 0.0 || *t > 4294967295.0 || std::floor(*t) != *t) {
+        out.error = "scene: upload: triangles must be vertex indices (whole numbers from 0)";
+        return false;
+      }
+      out.scene_triangles.push_back(static_cast<std::uint32_t>(*t));
+    }
+    e.vertices = out.scene_vertices;
+    e.triangles = out.scene_triangles;
   } else if (e.op == SceneGate::Op::material) {
     const Value material = s["material"];
     if (const std::optional<std::string_view> by_name = material.string(); by_name && by_name->size() <= 64) {
@@ -324,6 +367,8 @@ bool Parser::parse(std::string_view text_in, std::string_view engine, std::uint6
   out.request.reset();
   out.scene.reset();
   out.scene_text.clear();
+  out.scene_vertices.clear();
+  out.scene_triangles.clear();
   out.subscribe.reset();
   out.profile.reset();
   out.error.clear();

@@ -29,7 +29,9 @@ struct ClientMessage {
   std::vector<hapticd_msg_EngineCommand> commands;  // at most kMaxCommands
   std::optional<hapticd_msg_ControlRequest> request;
   std::optional<SceneMessage> scene;
-  std::string scene_text;  // the scene edit's text, when made here (a material's name, quoted)
+  std::string scene_text;                      // the scene edit's text, when made here (a material's name, quoted)
+  std::vector<double> scene_vertices;          // an upload's part: its vertices and triangles (the edit's spans
+  std::vector<std::uint32_t> scene_triangles;  // point here)
   std::optional<std::vector<std::string>> subscribe;  // the devices whose states it wants ([]: none)
   std::optional<std::string> profile;                 // session.configure.profile.name: its client id
   std::string error;                                  // "": well-formed; else why not (nothing of it applies)
