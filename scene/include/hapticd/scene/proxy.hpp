@@ -24,7 +24,7 @@
 
 namespace hapticd::scene {
 
-inline constexpr int kMaxContacts = 8;
+inline constexpr int kMaxContacts = 16;
 
 struct ProxySettings {
   double radius_m = 0.005;
@@ -49,6 +49,8 @@ struct ProxyState {
   int contact_count = 0;
   std::array<ProxyContact, kMaxContacts> contacts{};
   bool sliding = false;
+  int iterations = 0;  // the solve's iterations in this update, the frictionless and the friction pass together: its
+                       // work (each a gather and a sweep), at most 2 x max_iterations
 };
 
 class GodObject {
@@ -85,7 +87,8 @@ class GodObject {
                                  double step) const noexcept;
   [[nodiscard]] static Eigen::Vector3d project(const Eigen::Vector3d& goal, const Planes& planes, int count) noexcept;
   Eigen::Vector3d sweep(const Eigen::Vector3d& from, const Eigen::Vector3d& to, bool& hit) const noexcept;
-  Eigen::Vector3d solve(const Eigen::Vector3d& start, const Eigen::Vector3d& goal) const noexcept;
+  // (counts its iterations into `iterations`)
+  Eigen::Vector3d solve(const Eigen::Vector3d& start, const Eigen::Vector3d& goal, int& iterations) const noexcept;
   [[nodiscard]] bool skipped(std::size_t object) const noexcept { return ignored_[object] != 0; }
 
   ProxySettings settings_;
@@ -95,6 +98,11 @@ class GodObject {
   ProxyState state_;
   double last_stiffness_ = 0.0;
   bool sliding_ = false;
+  // Where the proxy would be without friction (the friction cone's centre), kept from one update to the next: the
+  // next frictionless solve starts there, not at the proxy - on a dense mesh the proxy held back by friction is
+  // many facets from it, and the solve crosses one facet an iteration.
+  Eigen::Vector3d free_ = Eigen::Vector3d::Zero();
+  bool free_valid_ = false;
 };
 
 }  // namespace hapticd::scene
