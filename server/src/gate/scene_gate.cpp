@@ -107,11 +107,15 @@ SceneGate::Reply SceneGate::take_part(const Edit& e) {
                        " out of order (expected " + expected + "); the upload is dropped"};
   }
   Upload& u = *found;
-  if ((u.vertices.size() + e.vertices.size()) / 3 > kMaxUploadVertices ||
-      (u.triangles.size() + e.triangles.size()) / 3 > kMaxUploadTriangles) {
+  std::size_t vertices = e.vertices.size() / 3, triangles = e.triangles.size() / 3;  // held with this part, in all
+  for (const Upload& held : uploads_) {
+    vertices += held.vertices.size() / 3;
+    triangles += held.triangles.size() / 3;
+  }
+  if (vertices > kMaxUploadVertices || triangles > kMaxUploadTriangles) {
     uploads_.erase(found);
-    return {false, "upload '" + name + "': more than " + std::to_string(kMaxUploadVertices) + " vertices or " +
-                       std::to_string(kMaxUploadTriangles) + " triangles; the upload is dropped"};
+    return {false, "upload '" + name + "': the uploads would hold more than " + std::to_string(kMaxUploadVertices) +
+                       " vertices or " + std::to_string(kMaxUploadTriangles) + " triangles; the upload is dropped"};
   }
   u.vertices.insert(u.vertices.end(), e.vertices.begin(), e.vertices.end());
   u.triangles.insert(u.triangles.end(), e.triangles.begin(), e.triangles.end());

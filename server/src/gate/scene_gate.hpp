@@ -10,9 +10,9 @@
 // the door's own message rate. Every refusal is counted and says why; a refused edit changes nothing.
 //
 // Meshes come in parts (upload): each part's vertices and triangles (their indices count from the upload's first
-// vertex) are appended in order, the parts bounded by the door's message size and the whole by kMaxUploadTriangles
-// and kMaxUploadVertices; an add that names the finished upload (`shape: mesh, upload: NAME`) checks and builds it.
-// At most kMaxUploads uploads at once, the owner's only: they end with the claim.
+// vertex) are appended in order, the parts bounded by the door's message size and all the uploads held together by
+// kMaxUploadTriangles and kMaxUploadVertices (72 MB at most); an add that names the finished upload (`shape: mesh,
+// upload: NAME`) checks and builds it. At most kMaxUploads uploads at once, the owner's only: they end with the claim.
 #include <atomic>
 #include <cstdint>
 #include <functional>
