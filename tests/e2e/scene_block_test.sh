@@ -22,12 +22,7 @@ timeout 60 "$bin/hapticd" --config "$src/config/sessions/vishard3/socket-scene.y
   $(loose_watchdogs vishard3) > server.log 2>&1 &
 server=$!
 trap 'kill $server 2> /dev/null' EXIT
-url=
-for _ in $(seq 100); do
-  url=$(sed -n 's/.*engine socket on \(ws:[^ ]*\) .*/\1/p' server.log)
-  [ -n "$url" ] && break
-  sleep 0.1
-done
+url=$(socket_url server.log)
 [ -n "$url" ] || fail "the server did not say where its engine socket is"
 moved() { sed -n 's/^block moved \([0-9.]*\) mm.*/\1/p' "$1"; }
 # The hand at rest (it starts moving at 4 s): the block stays where the engine put it.

@@ -19,12 +19,7 @@ timeout 60 "$bin/hapticd" --config "$src/config/sessions/vishard3/socket-scene.y
   $(loose_watchdogs vishard3) > server.log 2>&1 &
 server=$!
 trap 'kill $server 2> /dev/null' EXIT
-url=
-for _ in $(seq 100); do
-  url=$(sed -n 's/.*engine socket on \(ws:[^ ]*\) .*/\1/p' server.log)
-  [ -n "$url" ] && break
-  sleep 0.1
-done
+url=$(socket_url server.log)
 [ -n "$url" ] || fail "the server did not say where its engine socket is"
 timeout 45 "$py" "$src/tests/engine_socket/scene_client.py" "$url" > client.log 2>&1 || fail "the client failed"
 cat client.log

@@ -30,3 +30,14 @@ freeze_beyond_claim_hold() {
   grep -q "the server ended the claim of '$device'" "$log" || { echo "the claim's loss was not told"; return 1; }
   grep -q "claimed '$device' again" "$log" || { echo "the engine did not claim again"; return 1; }
 }
+# socket_url LOG: waits (10 s at most) until the server's LOG says where its engine socket is (a port of 0: the
+# system's choice) and prints its URL; prints nothing when it does not say so in time.
+socket_url() {
+  local url=
+  for _ in $(seq 100); do
+    url=$(sed -n 's/.*engine socket on \(ws:[^ ]*\) .*/\1/p' "$1")
+    [ -n "$url" ] && break
+    sleep 0.1
+  done
+  echo "$url"
+}
