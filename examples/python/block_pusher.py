@@ -8,8 +8,8 @@ Coulomb friction, and moves it in the scene. So the hand pushes the block across
 
 With config/sessions/vishard3/socket-scene.yaml running and the simulated operator's hand moving forward (its
 target at 1.5 cm/s: docs/haptic-scene.md, "A block pushed across a table"), the hand meets the block and pushes it,
-with the force of the block's friction while it slides. Prints the block's position and the hand's push once a
-second and, at the end, how far the block went ("block moved 29.6 mm in 6.0 s").
+with the force of the block's friction while it slides. Prints the block's position and the hand's mean push
+once a second and, at the end, how far the block went ("block moved 29.6 mm in 6.0 s").
 """
 import asyncio
 import json
@@ -76,6 +76,7 @@ async def run(url: str, seconds: float) -> int:
         for s in (signal.SIGINT, signal.SIGTERM):
             loop.add_signal_handler(s, stop.set)
         frame = 0
+        pushed = [0.0, 0.0]  # the push summed over the second so far (its mean is printed)
         while not stop.is_set() and loop.time() - began < seconds:
             # The hand's push on the block (its horizontal part: the table carries the rest).
             push = [0.0, 0.0]
@@ -96,11 +97,13 @@ async def run(url: str, seconds: float) -> int:
                     velocity = [0.0, 0.0]
             block[0] += velocity[0] * dt
             block[1] += velocity[1] * dt
+            pushed = [pushed[0] + push[0], pushed[1] + push[1]]
             await scene("move", name="block", position={"x": block[0], "y": block[1], "z": block[2]})
             frame += 1
-            if frame % int(FRAME_HZ) == 0:
+            if frame % int(FRAME_HZ) == 0:  # the second's mean push: a frame's own moves with the hand's sway
                 print(f"block at {1000 * (block[0] - start[0]):+.1f} {1000 * (block[1] - start[1]):+.1f} mm, "
-                      f"pushed with {push[0]:.2f} {push[1]:.2f} N", flush=True)
+                      f"pushed with {pushed[0] / FRAME_HZ:.2f} {pushed[1] / FRAME_HZ:.2f} N", flush=True)
+                pushed = [0.0, 0.0]
             await asyncio.sleep(max(0.0, began + frame * dt - loop.time()))
         moved = math.hypot(block[0] - start[0], block[1] - start[1])
         print(f"block moved {1000 * moved:.1f} mm in {loop.time() - began:.1f} s", flush=True)
