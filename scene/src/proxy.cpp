@@ -28,6 +28,7 @@ void GodObject::configure(const ProxySettings& settings, const Scene& scene) {
   bounds_.resize(scene.objects.size());
   for (std::size_t i = 0; i < scene.objects.size(); ++i) bounds_[i] = bounding_radius(scene.objects[i].shape);
   state_ = ProxyState{};
+  free_ = state_.proxy;
 }
 
 void GodObject::rebind(const Scene& scene) noexcept {
@@ -52,7 +53,7 @@ void GodObject::rebind(const Scene& scene) noexcept {
     ignored_[i] = skip ? 1 : 0;
   }
   state_.contact_count = 0;  // the contacts named the old scene's objects; the next update finds them again
-  free_valid_ = false;
+  free_ = state_.proxy;
 }
 
 double GodObject::stiffness_of(const Material& m) const noexcept {
@@ -63,7 +64,7 @@ void GodObject::reset(const Eigen::Vector3d& goal) noexcept {
   state_ = ProxyState{};
   state_.proxy = goal;
   sliding_ = false;
-  free_valid_ = false;
+  free_ = goal;
   for (std::size_t i = 0; i < ignored_.size(); ++i)
     ignored_[i] = closest_in_world(scene_->objects[i], goal).distance < settings_.radius_m ? 1 : 0;
 }
@@ -300,7 +301,7 @@ const ProxyState& GodObject::update(const Eigen::Vector3d& goal, const Eigen::Ve
 
   // 0. An object that moved into the proxy pushes it out (and so the hand, through the spring); the frictionless
   // point too, where friction holds the proxy apart from it (else it goes with the proxy).
-  const bool apart = free_valid_ && (free_ - state_.proxy).squaredNorm() > 0.0;
+  const bool apart = (free_ - state_.proxy).squaredNorm() > 0.0;
   for (int pass = 0; pass < 2; ++pass)
     for (std::size_t i = 0; i < scene_->objects.size(); ++i) {
       if (skipped(i)) continue;
@@ -318,9 +319,8 @@ const ProxyState& GodObject::update(const Eigen::Vector3d& goal, const Eigen::Ve
   // 1. Where the proxy would go without friction.
   const Eigen::Vector3d previous = state_.proxy;
   state_.iterations = 0;
-  const Eigen::Vector3d free = solve(free_valid_ ? free_ : previous, goal, state_.iterations);
+  const Eigen::Vector3d free = solve(free_, goal, state_.iterations);
   free_ = free;
-  free_valid_ = true;
   Planes planes;
   int count = gather(free, kForceTolerance, planes);
 

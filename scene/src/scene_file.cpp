@@ -126,6 +126,13 @@ class Reader {
     if (!map["shape"].IsDefined())
       fail(map, where + ".shape", "missing (plane, sphere, box, capsule, cylinder, convex_hull or mesh)");
     const std::string shape = map["shape"].as<std::string>();
+    // An upload is a client's mesh: named by a mesh added with its triangles, by nothing else (a hull too).
+    if (map["upload"].IsDefined() && (uploaded_ == nullptr || shape != "mesh"))
+      fail(map["upload"], where + ".upload",
+           uploaded_ == nullptr ? "names no upload here (an engine's mesh, added at run time)"
+                                : "an uploaded mesh is added as a mesh");
+    if (uploaded_ != nullptr && shape != "mesh")
+      fail(map["shape"], where + ".shape", "an uploaded mesh is added as a mesh");
     if (shape == "convex_hull") return convex_hull_object(map, where, materials);
     const std::map<std::string, ShapeKind> kinds{{"plane", ShapeKind::plane},       {"sphere", ShapeKind::sphere},
                                                  {"box", ShapeKind::box},           {"capsule", ShapeKind::capsule},
@@ -148,9 +155,6 @@ class Reader {
     refuse("file", o.shape.kind == ShapeKind::mesh);
     refuse("scale", o.shape.kind == ShapeKind::mesh);
     refuse("points", false);
-    refuse("upload", o.shape.kind == ShapeKind::mesh && uploaded_ != nullptr);
-    if (uploaded_ != nullptr && o.shape.kind != ShapeKind::mesh)
-      fail(map["shape"], where + ".shape", "an uploaded mesh is added as a mesh");
     if (o.shape.kind == ShapeKind::mesh)
       o.shape.mesh = uploaded_ ? uploaded_mesh(map, where, o.name) : mesh(map, where, o.name);
     if (round) o.shape.radius = required_positive(map, where, "radius");

@@ -65,6 +65,9 @@ TEST(SceneFile, EveryMistakeNamesTheFileTheLineAndTheKey) {
       {"objects: [\n", "s.yaml:"},
       {"", "the scene file is empty"},
       {"things: []\n", "scene.things: unknown key"},
+      {"objects:\n  - {name: a, shape: convex_hull, points: [[0, 0, 0]], upload: a}\n",
+       "s.yaml:2: objects[0].upload: names no upload here"},
+      {"objects:\n  - {name: a, shape: mesh, file: a.obj, upload: a}\n", "objects[0].upload: names no upload here"},
   };
   for (const Case& c : cases) {
     const std::string e = error_of(c.text);

@@ -100,9 +100,8 @@ class GodObject {
   bool sliding_ = false;
   // Where the proxy would be without friction (the friction cone's centre), kept from one update to the next: the
   // next frictionless solve starts there, not at the proxy - on a dense mesh the proxy held back by friction is
-  // many facets from it, and the solve crosses one facet an iteration.
+  // many facets from it, and the solve crosses one facet an iteration. At the proxy after reset() and rebind().
   Eigen::Vector3d free_ = Eigen::Vector3d::Zero();
-  bool free_valid_ = false;
 };
 
 }  // namespace hapticd::scene
