@@ -1,7 +1,7 @@
 """hapticd: the Python package of the hapticd haptic control server (docs/python.md).
 
 - ``Client``: hapticd's DDS interface - devices, states (NumPy arrays), claims, every request, events, fault
-  reports, engine commands. Loopback only by default.
+  reports, engine commands, the session's haptic scene (``Client.scene()``, a ``Scene``). Loopback only by default.
 - ``run_engine``: a Python function answers each state of a device with an engine command at the loop rate.
 - ``Session``: a session in this process, stepped in lockstep (for experiments and notebooks).
 - ``recording.read``: a recording (``hapticd --record FILE.h5``) as NumPy arrays.
@@ -35,6 +35,7 @@ from ._hapticd import (  # noqa: F401
     LoopSummary,
     Mode,
     Pose,
+    Scene,
     SchemeInfo,
     Session,
     SessionStatistics,
@@ -51,7 +52,7 @@ from .errors import ClaimLost, Error, RequestRefused, SessionError, Timeout  # n
 __all__ = [
     "ClaimLost", "Client", "CycleRecord", "DeviceDescription", "DeviceInfo", "DeviceState", "DeviceView", "EngineCommand",
     "EngineInput", "EngineStats", "Error", "Event", "EventKind", "FaultReport", "GroupInfo", "GroupState",
-    "JointDescription", "LocalModel", "LoopSummary", "Mode", "Pose", "RequestRefused", "SchemeInfo", "Session", "SessionError",
-    "SessionStatistics", "SimulatedTruth", "Telemetry", "Timeout", "Twist", "Wrench", "flag_names", "run_engine",
-    "states",
+    "JointDescription", "LocalModel", "LoopSummary", "Mode", "Pose", "RequestRefused", "Scene", "SchemeInfo", "Session",
+    "SessionError", "SessionStatistics", "SimulatedTruth", "Telemetry", "Timeout", "Twist", "Wrench", "flag_names",
+    "run_engine", "states",
 ]

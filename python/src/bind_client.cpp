@@ -119,8 +119,10 @@ server applies wrench + stiffness * (anchor - x) - damping * velocity (6 values 
 
 void bind_client(py::module_& m) {
   bind_types(m);
-  py::class_<ClientHandle>(m, "Client", R"(A client of hapticd's DDS interface: one DDS participant (loopback only by
-default). Waiting calls release the GIL; a refused request raises RequestRefused, no reply in time Timeout.)")
+  py::class_<ClientHandle> client_class(m, "Client",
+                                        R"(A client of hapticd's DDS interface: one DDS participant (loopback only by
+default). Waiting calls release the GIL; a refused request raises RequestRefused, no reply in time Timeout.)");
+  client_class
       .def(py::init([](const std::string& client_id, int domain, const std::string& cyclone_config,
                        const std::string& network, double command_deadline_s) {
              ClientOptions options(client_id, domain);
@@ -354,6 +356,7 @@ default). Waiting calls release the GIL; a refused request raises RequestRefused
           },
           py::arg("group"), py::arg("commands"),
           "one command per device of a claimed group, in the group's order: [(device, EngineCommand), ...]");
+  bind_scene(m, client_class);
 }
 
 }  // namespace hapticd::python

@@ -7,10 +7,12 @@
 namespace hapticd::python {
 
 namespace py = pybind11;
+struct ClientHandle;
 
 void bind_spatial(py::module_& m);  // Pose, Twist, Wrench with NumPy fields
 void bind_client(py::module_& m);   // the DDS client library: Client and its value types
-void bind_engine(py::module_& m);   // the engine helper under run_engine
+void bind_scene(py::module_& m, py::class_<ClientHandle>& client);  // Scene, from Client.scene()
+void bind_engine(py::module_& m);                                   // the engine helper under run_engine
 void bind_session(py::module_& m);  // the in-process session API: Session, DeviceView, EngineInput
 
 // Raise the package's exceptions (hapticd.errors): a refused request, no answer in time, a session that cannot

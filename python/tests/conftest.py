@@ -25,14 +25,15 @@ def session_path(*parts):
 
 
 class Server:
-    """hapticd with the simulated ViSHaRD3 in admittance display coupled over DDS (real time, no RT priority)."""
+    """hapticd with the simulated ViSHaRD3 (real time, no RT priority): by default in admittance display coupled over
+    DDS (vishard3/dds-coupling.yaml), else the session file named."""
 
-    def __init__(self, domain, duration_s, tmp_path, extra=()):
+    def __init__(self, domain, duration_s, tmp_path, extra=(), session="dds-coupling.yaml"):
         self.domain = domain
         self.stats = os.path.join(tmp_path, f"stats-{domain}.json")
         self.log = open(os.path.join(tmp_path, f"server-{domain}.log"), "w")
         self.process = subprocess.Popen(
-            [os.path.join(BIN, "hapticd"), "--config", session_path("vishard3", "dds-coupling.yaml"),
+            [os.path.join(BIN, "hapticd"), "--config", session_path("vishard3", session),
              "--dds-domain", str(domain), "--duration", str(duration_s), "--stats-json", self.stats,
              "--log-level", "warn", "--set", "server.realtime_priority=0", "--set", "server.lock_memory=false",
              *LOOSE_WATCHDOGS, *extra],
@@ -51,14 +52,16 @@ class Server:
 
 @pytest.fixture
 def server(request, tmp_path):
-    """A server for one test: the domain from the test's marker (pytest.mark.domain(N)), at most 40 s."""
+    """A server for one test: the domain from the test's marker (pytest.mark.domain(N), or (N, SESSION): a session
+    file of config/sessions/vishard3), at most 40 s."""
     marker = request.node.get_closest_marker("domain")
     assert marker is not None, "a test with a server names its DDS domain: @pytest.mark.domain(N)"
-    s = Server(marker.args[0], 40, str(tmp_path))
+    session = marker.args[1] if len(marker.args) > 1 else "dds-coupling.yaml"
+    s = Server(marker.args[0], 40, str(tmp_path), session=session)
     time.sleep(0.2)
     yield s
     s.stop()
 
 
 def pytest_configure(config):
-    config.addinivalue_line("markers", "domain(id): the DDS domain of the test's server (one per test)")
+    config.addinivalue_line("markers", "domain(id[, session]): the DDS domain of the test's server (one per test)")

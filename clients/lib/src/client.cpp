@@ -13,6 +13,7 @@
 
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
+#include "scene_wire.hpp"
 #include "wire.hpp"
 
 namespace hapticd::client {
@@ -334,6 +335,9 @@ struct Client::Impl {
   std::unique_ptr<dds::Writer<hapticd_msg_World>> world_writer;
   bool world_writer_made = false;
   std::uint64_t world_serial = 0;
+  // The haptic scene's client (scene()), made on first use; before the participant goes.
+  std::mutex scene_mutex;
+  std::unique_ptr<SceneClient> scene;
   template <class T>
   dds::Writer<T>* writer(std::string_view target, std::unique_ptr<dds::Writer<T>> TargetWriters::*slot,
                          bool TargetWriters::*made) {
@@ -631,6 +635,12 @@ bool Client::send(std::string_view device, const EngineCommand& command) {
   c.serial = impl_->serial.fetch_add(1) + 1;
   dds::Writer<hapticd_msg_EngineCommand>* writer = impl_->command_writer(device);
   return writer != nullptr && writer->write(c);
+}
+
+SceneClient& Client::scene() {
+  std::lock_guard lock(impl_->scene_mutex);
+  if (!impl_->scene) impl_->scene = make_scene_client(impl_->participant, impl_->options.client_id);
+  return *impl_->scene;
 }
 
 bool Client::publish_world(std::span<const WorldShape> shapes, double time_s) {

@@ -31,6 +31,9 @@ HAPTICD_DDS_TOPIC(hapticd_msg_GroupState, state, "hapticd_group_state")
 HAPTICD_DDS_TOPIC(hapticd_msg_GroupCommand, command, "hapticd_group_command")
 HAPTICD_DDS_TOPIC(hapticd_msg_World, state, "hapticd_world")
 HAPTICD_DDS_TOPIC(hapticd_msg_TeleopPacket, link, "hapticd_teleop")
+HAPTICD_DDS_TOPIC(hapticd_msg_SceneRequest, request, "hapticd_scene_request")
+HAPTICD_DDS_TOPIC(hapticd_msg_SceneMeshPart, request, "hapticd_scene_mesh_part")
+HAPTICD_DDS_TOPIC(hapticd_msg_SceneReply, reply, "hapticd_scene_reply")
 #undef HAPTICD_DDS_TOPIC
 
 struct QosDeleter {

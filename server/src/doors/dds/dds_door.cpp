@@ -45,10 +45,12 @@ DdsDoor::DdsDoor(const DdsSettings& settings, Gate& gate, const std::vector<int>
                                         group_command_filter_, partitions);
   if (previous) (void)pthread_setaffinity_np(pthread_self(), sizeof *previous, &*previous);
   intake_ = std::make_unique<CommandIntake>(*dds_, gate_);
+  scene_ = std::make_unique<SceneIntake>(dds_->participant, gate_.scene(), dds_->peers);
 }
 
 DdsDoor::~DdsDoor() {
   intake_->close();
+  scene_.reset();
   worlds_.reset();
 }
 
@@ -56,15 +58,21 @@ void DdsDoor::relay_worlds(std::function<void(const hapticd_msg_World&)> sink) {
   worlds_ = std::make_unique<WorldRelay>(dds_->participant, std::move(sink));
 }
 
-void DdsDoor::start() { intake_->listen(); }
+void DdsDoor::start() {
+  intake_->listen();
+  scene_->start();
+}
 
 void DdsDoor::stop() {
   intake_->close();
+  scene_->stop();
   cyclone_log::report_suppressed();
 }
 
 bool DdsDoor::channel_open(const Sender& s) const {
-  return s.peer.door == DoorKind::dds && dds_->peers.matched(dds_->request.get(), s.channel);
+  // A device's claim is bound to a request writer, the scene's to a scene request writer.
+  return s.peer.door == DoorKind::dds &&
+         (dds_->peers.matched(dds_->request.get(), s.channel) || scene_->channel_open(s.channel));
 }
 
 bool DdsDoor::alive(const PeerId& p) {

@@ -9,7 +9,8 @@
 //        samples on their topics;
 //   presence  a claim's channel is its request writer (still matched?); a peer is alive while one of its command
 //        writers' liveliness holds.
-// It also relays the engines' worlds to the live view (WorldRelay) and counts the DDS deadlines engines miss.
+// It also takes the haptic scene's requests on a thread of their own (SceneIntake), relays the engines' worlds to
+// the live view (WorldRelay) and counts the DDS deadlines engines miss.
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -22,6 +23,7 @@
 #include "config/session_config.hpp"
 #include "doors/dds/command_intake.hpp"
 #include "doors/dds/dds_endpoints.hpp"
+#include "doors/dds/scene_intake.hpp"
 #include "doors/dds/world_relay.hpp"
 #include "gate/door.hpp"
 #include "gate/gate.hpp"
@@ -45,6 +47,7 @@ class DdsDoor final : public Door {
   [[nodiscard]] std::uint64_t worlds_relayed() const noexcept { return worlds_ ? worlds_->accepted() : 0; }
   [[nodiscard]] std::uint64_t worlds_rejected() const noexcept { return worlds_ ? worlds_->rejected() : 0; }
   [[nodiscard]] std::uint64_t deadline_misses(std::size_t device) const { return intake_->deadline_misses(device); }
+  [[nodiscard]] const SceneIntake& scene() const noexcept { return *scene_; }
 
   // Door.
   [[nodiscard]] DoorKind kind() const noexcept override { return DoorKind::dds; }
@@ -74,6 +77,7 @@ class DdsDoor final : public Door {
   dds_topic_filter command_filter_, request_filter_, group_command_filter_;
   std::unique_ptr<DdsEndpoints> dds_;
   std::unique_ptr<CommandIntake> intake_;
+  std::unique_ptr<SceneIntake> scene_;  // after dds_: it uses the participant and the peers
   std::unique_ptr<WorldRelay> worlds_;
   std::chrono::steady_clock::time_point next_log_report_;
 };

@@ -23,6 +23,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hapticd/client/scene_client.hpp"
 #include "hapticd/client/types.hpp"
 #include "hapticd/parameter_info.hpp"
 
@@ -46,9 +47,6 @@ struct Reply {
   std::string message;
   std::vector<double> values;  // get_parameter: the value in effect (a boolean as 0 or 1)
 };
-
-using Timeout = std::chrono::duration<double>;
-inline constexpr Timeout kDefaultTimeout{2.0};
 
 // One device's command within a group command (Client::send_group).
 struct DeviceCommand {
@@ -161,6 +159,10 @@ class HAPTICD_API Client {
   // keyed by this client's id; the servers' live views draw them beside their devices. False when it could not be
   // written (too many shapes, DDS Security does not permit this identity to publish hapticd_world).
   bool publish_world(std::span<const WorldShape> shapes, double time_s = 0.0);
+
+  // ---- the session's haptic scene (docs/haptic-scene.md): claim it, edit it, ask what the hands do to it ----
+  // Made on first use, on this client's participant (the scene's claim is this client's); lives as long as it.
+  SceneClient& scene();
 
  private:
   // The devices of a group as its description names them (none before it arrived).

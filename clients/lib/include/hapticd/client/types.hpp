@@ -3,6 +3,7 @@
 // SDK's types (Pose, Twist, Wrench, JointVector), and what a client sends. No DDS header is needed to use them.
 // Names are bounded texts held in place (Name): a state is converted without touching the heap.
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -15,6 +16,10 @@
 #include "hapticd/state_flags.hpp"
 
 namespace hapticd::client {
+
+// How long a waiting call waits (seconds).
+using Timeout = std::chrono::duration<double>;
+inline constexpr Timeout kDefaultTimeout{2.0};
 
 inline constexpr int kMaxGroupDevices = 8;  // devices per group (the data model's MAX_GROUP_DEVICES)
 inline constexpr int kMaxValues = 16;       // values per request or reply
