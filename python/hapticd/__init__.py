@@ -36,6 +36,8 @@ from ._hapticd import (  # noqa: F401
     Mode,
     Pose,
     Scene,
+    SceneContact,
+    SceneObject,
     SchemeInfo,
     Session,
     SessionStatistics,
@@ -52,7 +54,7 @@ from .errors import ClaimLost, Error, RequestRefused, SessionError, Timeout  # n
 __all__ = [
     "ClaimLost", "Client", "CycleRecord", "DeviceDescription", "DeviceInfo", "DeviceState", "DeviceView", "EngineCommand",
     "EngineInput", "EngineStats", "Error", "Event", "EventKind", "FaultReport", "GroupInfo", "GroupState",
-    "JointDescription", "LocalModel", "LoopSummary", "Mode", "Pose", "RequestRefused", "Scene", "SchemeInfo", "Session",
-    "SessionError", "SessionStatistics", "SimulatedTruth", "Telemetry", "Timeout", "Twist", "Wrench", "flag_names",
-    "run_engine", "states",
+    "JointDescription", "LocalModel", "LoopSummary", "Mode", "Pose", "RequestRefused", "Scene", "SceneContact",
+    "SceneObject", "SchemeInfo", "Session", "SessionError", "SessionStatistics", "SimulatedTruth", "Telemetry", "Timeout",
+    "Twist", "Wrench", "flag_names", "run_engine", "states",
 ]

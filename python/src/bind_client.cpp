@@ -76,6 +76,11 @@ void bind_types(py::module_& m) {
   bind_Telemetry(m);
   bind_CycleRecord(m);
   bind_FaultReport(m);
+  bind_SceneObject(m).def("__repr__", [](const SceneObject& o) {
+    return "SceneObject('" + o.name + "', " + o.shape + (o.moving ? ", moving)" : ")");
+  });
+  bind_SceneContact(m).def(
+      "__repr__", [](const SceneContact& c) { return "SceneContact('" + c.device + "' on '" + c.object_name + "')"; });
 
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   py::class_<LocalModel>(m, "LocalModel", R"(A wrench command's local model: every cycle until the next command the

@@ -44,35 +44,6 @@ SceneReply ask(SceneHandle& h, F&& f) {
   return r;
 }
 
-py::list objects_of(const SceneReply& r) {
-  py::list out;
-  for (const client::SceneObject& o : r.objects) {
-    py::dict d;
-    d["name"] = o.name;
-    d["shape"] = o.shape;
-    d["uid"] = o.uid;
-    d["moving"] = o.moving;
-    d["triangles"] = o.triangles;
-    d["pose"] = o.pose;
-    out.append(d);
-  }
-  return out;
-}
-
-py::list contacts_of(const SceneReply& r) {
-  py::list out;
-  for (const client::SceneContact& c : r.contacts) {
-    py::dict d;
-    d["device"] = c.device;
-    d["object"] = c.object;
-    d["force"] = py::array_t<double>(3, c.force.data());
-    d["torque"] = py::array_t<double>(3, c.torque.data());
-    d["point"] = py::array_t<double>(3, c.point.data());
-    out.append(d);
-  }
-  return out;
-}
-
 }  // namespace
 
 void bind_scene(py::module_& m, py::class_<ClientHandle>& client) {
@@ -143,17 +114,17 @@ A refused edit raises RequestRefused with the server's reason, no answer in time
       .def(
           "objects",
           [](SceneHandle& h, double timeout_s) {
-            return objects_of(ask(h, [&](SceneClient& s) { return s.objects(Timeout(timeout_s)); }));
+            return ask(h, [&](SceneClient& s) { return s.objects(Timeout(timeout_s)); }).objects;
           },
-          py::arg("timeout") = 2.0, "Every object: dicts of name, shape, uid, moving, triangles, pose.")
+          py::arg("timeout") = 2.0, "Every object (SceneObject: name, shape, uid, moving, triangles, pose).")
       .def(
           "contacts",
           [](SceneHandle& h, double timeout_s) {
-            return contacts_of(ask(h, [&](SceneClient& s) { return s.contacts(Timeout(timeout_s)); }));
+            return ask(h, [&](SceneClient& s) { return s.contacts(Timeout(timeout_s)); }).contacts;
           },
           py::arg("timeout") = 2.0,
-          "What every device's hand does to the objects now: dicts of device, object, force and torque on the "
-          "object (N, N m about its origin), point.")
+          "What every device's hand does to the objects now (SceneContact: device, object_name, force and torque "
+          "on the object - N, N m about its origin -, point).")
       .def_property_readonly("refused_moves", [](SceneHandle& h) { return h.get().refused_moves(); })
       .def_property_readonly("last_refusal", [](SceneHandle& h) { return h.get().last_refusal(); });
   client.def(

@@ -37,8 +37,8 @@ def test_an_engine_owns_the_scene_the_hand_pushes_what_it_adds(server):
         time.sleep(1.5)
         held = c.wait_for_state("vishard3", timeout=5.0).pose.position[0] - start[0]
         contacts = scene.contacts()
-        assert [(k["device"], k["object"]) for k in contacts] == [("vishard3", "wall")]
-        pressed = contacts[0]["force"][0]
+        assert [(k.device, k.object_name) for k in contacts] == [("vishard3", "wall")]
+        pressed = contacts[0].force[0]
         print(f"the wall holds the push: handle at {1e3 * held:.2f} mm, pressing the wall with {pressed:.2f} N")
         assert pressed > 5.0
         assert held == pytest.approx(0.015 + pressed / 3000, abs=0.001)
@@ -56,8 +56,8 @@ def test_an_engine_owns_the_scene_the_hand_pushes_what_it_adds(server):
         scene.remove("wall")
         time.sleep(1.0)
         on_sheet = c.wait_for_state("vishard3", timeout=5.0).pose.position[0] - start[0]
-        on = [k for k in scene.contacts() if k["object"] == "sheet"]
-        pushed = sum(k["force"][0] for k in on)  # the proxy rests on a few of the sheet's triangles at once
+        on = [k for k in scene.contacts() if k.object_name == "sheet"]
+        pushed = sum(k.force[0] for k in on)  # the proxy rests on a few of the sheet's triangles at once
         print(f"the sheet holds it: handle at {1e3 * on_sheet:.2f} mm, pressing the sheet with {pushed:.2f} N")
         assert pushed > 5.0
         assert on_sheet == pytest.approx(0.016 + pushed / 3000, abs=0.001)
@@ -74,9 +74,9 @@ def test_an_engine_owns_the_scene_the_hand_pushes_what_it_adds(server):
         while scene.refused_moves == 0 and time.time() < deadline:
             time.sleep(0.01)
         assert scene.refused_moves == 1 and "moving" in scene.last_refusal
-        objects = {o["name"]: o for o in scene.objects()}
+        objects = {o.name: o for o in scene.objects()}
         assert set(objects) == {"sheet", "block"}
-        assert objects["sheet"]["shape"] == "mesh" and objects["sheet"]["triangles"] == 3200
-        assert objects["block"]["moving"]
+        assert objects["sheet"].shape == "mesh" and objects["sheet"].triangles == 3200
+        assert objects["block"].moving and objects["block"].pose.position[0] == pytest.approx(start[0] + 0.2)
         scene.release()
         other.scene().claim()

@@ -10,7 +10,7 @@ from hapticd import _hapticd
 
 STUBS = os.path.join(os.path.dirname(hapticd.__file__), "_hapticd.pyi")
 VALUE_CLASSES = ("LoopSummary", "SchemeInfo", "DeviceInfo", "DeviceState", "GroupInfo", "GroupState", "Event",
-                 "Telemetry", "CycleRecord", "FaultReport")
+                 "Telemetry", "CycleRecord", "FaultReport", "SceneObject", "SceneContact")
 
 
 def stub_classes():

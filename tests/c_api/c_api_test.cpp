@@ -368,5 +368,120 @@ TEST(CApi, GroupRequestsGoThroughTheDeviceCallsAndAStateCallbackTakesOnlyItsDevi
   hapticd_client_destroy(c);
 }
 
+// The session's haptic scene through the C API (hapticd_client_scene_*) against a real server on
+// vishard3/dds-scene.yaml: the owner's wall holds the simulated operator's push, the contacts and the listing come
+// back as the C structs, a mesh goes up from C arrays, and what is bad is a status with the reason.
+TEST(CApi, TheScenesCallsEditTheSessionsSceneAndSayWhyWhenRefused) {
+  constexpr int kSceneDomain = 160;
+  const std::string log = ::testing::TempDir() + "c_api_scene_server.txt";
+  test::Process server(
+      {test::bin_dir() + "/hapticd", "--config", test::source_dir() + "/config/sessions/vishard3/dds-scene.yaml",
+       "--dds-domain", std::to_string(kSceneDomain), "--duration", "30", "--set", "server.realtime_priority=0", "--set",
+       "server.lock_memory=false", "--set", "devices.vishard3.safety.max_stall_s=1.0", "--set",
+       "devices.vishard3.safety.max_consecutive_overruns=2000"},
+      log);
+  ASSERT_TRUE(server.started());
+  hapticd_client* c = make("c-scene-engine", kSceneDomain);
+  hapticd_client* other = make("c-scene-other", kSceneDomain);
+  ASSERT_NE(c, nullptr);
+  ASSERT_NE(other, nullptr);
+  hapticd_device_info info;
+  ASSERT_EQ(hapticd_client_wait_for_device(c, "vishard3", 20.0, 1, &info), HAPTICD_OK) << hapticd_last_error();
+  hapticd_device_state state;
+  ASSERT_EQ(hapticd_client_wait_for_state(c, "vishard3", 10.0, 0, &state), HAPTICD_OK) << hapticd_last_error();
+  const hapticd_vec3 start = state.pose.position;
+
+  hapticd_reply reply;
+  EXPECT_EQ(hapticd_client_scene_add(c, "{\"name\": \"x\", \"shape\": \"sphere\", \"radius\": 0.01}", 5.0, &reply),
+            HAPTICD_ERROR_REFUSED);
+  EXPECT_STREQ(hapticd_last_error(), "claim the scene first");
+  ASSERT_EQ(hapticd_client_scene_claim(c, 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
+  EXPECT_EQ(hapticd_client_scene_claim(other, 5.0, &reply), HAPTICD_ERROR_REFUSED);
+  EXPECT_NE(std::string(reply.message).find("c-scene-engine"), std::string::npos) << reply.message;
+
+  char wall[512];
+  std::snprintf(wall, sizeof wall,
+                R"({"name": "wall", "shape": "plane", "position": [%.6f, %.6f, %.6f], "normal": [-1, 0, 0],
+                    "material": {"stiffness": 3000, "damping": 5}})",
+                start.x + 0.02, start.y, start.z);
+  ASSERT_EQ(hapticd_client_scene_add(c, wall, 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
+  const double push[] = {15.0, 0.0, 0.0, 0.3};
+  ASSERT_EQ(hapticd_client_operator_command(c, "vishard3", "push", push, 4, 5.0, &reply), HAPTICD_OK);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  hapticd_scene_contact contacts[4];
+  int32_t count = 0;
+  ASSERT_EQ(hapticd_client_scene_contacts(other, contacts, 4, &count, 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
+  ASSERT_EQ(count, 1);
+  EXPECT_STREQ(contacts[0].device, "vishard3");
+  EXPECT_STREQ(contacts[0].object_name, "wall");
+  ASSERT_EQ(hapticd_client_wait_for_state(c, "vishard3", 5.0, 0, &state), HAPTICD_OK);
+  const double held = state.pose.position.x - start.x;
+  std::printf("the wall holds the push: the handle at %.2f mm, pressing the wall with %.2f N\n", 1e3 * held,
+              contacts[0].force.x);
+  EXPECT_GT(contacts[0].force.x, 5.0);
+  EXPECT_NEAR(held, 0.015 + contacts[0].force.x / 3000, 0.001);
+
+  // A mesh from C arrays (one triangle far away), a moving block, the listing; the count without room for them.
+  const double vertices[] = {0, -0.01, -0.01, 0, 0.01, -0.01, 0, 0, 0.01};
+  const uint32_t triangle[] = {0, 1, 2};
+  ASSERT_EQ(hapticd_client_scene_add_mesh(c, R"({"name": "shard", "shape": "mesh", "position": [0.5, 0, 0]})", vertices,
+                                          3, triangle, 1, 5.0, &reply),
+            HAPTICD_OK)
+      << hapticd_last_error();
+  ASSERT_EQ(
+      hapticd_client_scene_add(
+          c,
+          R"({"name": "block", "shape": "box", "size": [0.02, 0.02, 0.02], "position": [0.6, 0, 0], "moving": true})",
+          5.0, &reply),
+      HAPTICD_OK)
+      << hapticd_last_error();
+  ASSERT_EQ(hapticd_client_scene_objects(c, nullptr, 0, &count, 5.0, &reply), HAPTICD_OK);
+  EXPECT_EQ(count, 3);
+  hapticd_scene_object objects[3];
+  ASSERT_EQ(hapticd_client_scene_objects(c, objects, 3, &count, 5.0, &reply), HAPTICD_OK);
+  EXPECT_STREQ(objects[1].name, "shard");
+  EXPECT_STREQ(objects[1].shape, "mesh");
+  EXPECT_EQ(objects[1].triangles, 1u);
+  EXPECT_EQ(objects[2].moving, 1);
+  EXPECT_NEAR(objects[2].pose.position.x, 0.6, 1e-9);
+  hapticd_pose to{{0.6, 0.01, 0.0}, {1.0, 0.0, 0.0, 0.0}};
+  EXPECT_EQ(hapticd_client_scene_move(c, "block", &to), HAPTICD_OK);
+  EXPECT_EQ(hapticd_client_scene_move(c, "wall", &to), HAPTICD_OK);  // written; refused by the server (not moving)
+  uint64_t refused = 0;
+  char why[128];
+  for (int i = 0; i < 500 && refused == 0; ++i) {
+    ASSERT_EQ(hapticd_client_scene_refused_moves(c, &refused, why, sizeof why), HAPTICD_OK);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(refused, 1u);
+  EXPECT_NE(std::string(why).find("moving"), std::string::npos) << why;
+
+  // Refused by the server, with the reason; bad arguments never leave the process.
+  EXPECT_EQ(hapticd_client_scene_add(c, R"({"name": "ball", "shape": "sphere", "radius": -1})", 5.0, &reply),
+            HAPTICD_ERROR_REFUSED);
+  EXPECT_NE(std::string(reply.message).find("radius"), std::string::npos) << reply.message;
+  EXPECT_EQ(hapticd_client_scene_remove(other, "wall", 5.0, &reply), HAPTICD_ERROR_REFUSED);
+  EXPECT_EQ(hapticd_client_scene_set_material(c, "wall", "a: &x [1]\nb: *x", 5.0, &reply), HAPTICD_ERROR_REFUSED);
+  EXPECT_EQ(hapticd_client_scene_add(c, nullptr, 5.0, &reply), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_add(nullptr, wall, 5.0, &reply), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_add(c, wall, -1.0, &reply), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_add(c, wall, std::nan(""), &reply), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_add_mesh(c, "{}", nullptr, 3, triangle, 1, 5.0, &reply),
+            HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_add_mesh(c, "{}", vertices, -1, triangle, 1, 5.0, &reply),
+            HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_move(c, "block", nullptr), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_move(c, "", &to), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_remove(c, "a-name-of-more-than-thirty-one-characters", 5.0, &reply),
+            HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_objects(c, nullptr, 2, &count, 5.0, &reply), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_contacts(c, contacts, 4, nullptr, 5.0, &reply), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_refused_moves(c, nullptr, nullptr, 0), HAPTICD_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(hapticd_client_scene_release(c, 5.0, &reply), HAPTICD_OK);
+  EXPECT_EQ(hapticd_client_scene_claim(other, 5.0, &reply), HAPTICD_OK) << hapticd_last_error();
+  hapticd_client_destroy(other);
+  hapticd_client_destroy(c);
+}
+
 }  // namespace
 }  // namespace hapticd

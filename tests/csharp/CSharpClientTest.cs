@@ -8,6 +8,8 @@
 //   callbacks                       every delegate handed to native code is a static [MonoPInvokeCallback] method
 //   symbols FILE                    every function the library exports (clients/c/abi/hapticd_c.symbols) is bound,
 //                                   and every binding names one it exports
+//   scene DOMAIN                    the session's haptic scene (a server on vishard3/dds-scene.yaml): a wall the
+//                                   operator pushes, the contacts and the listing, a mesh, refusals as exceptions
 // Exit code 0 when every check of the mode holds (each failure is printed).
 using System;
 using System.Collections.Generic;
@@ -39,7 +41,8 @@ static class CSharpClientTest
             case "engine": RunEngine(int.Parse(args[1]), args[2], double.Parse(args[3]), double.Parse(args[4])); break;
             case "callbacks": CheckCallbacks(); break;
             case "symbols": Symbols(args[1]); break;
-            default: Console.Error.WriteLine("usage: layout FILE | errors DOMAIN | engine DOMAIN DEVICE SECONDS N | callbacks"); return 2;
+            case "scene": Scene(int.Parse(args[1])); break;
+            default: Console.Error.WriteLine("usage: layout FILE | errors DOMAIN | engine DOMAIN DEVICE SECONDS N | callbacks | symbols FILE | scene DOMAIN"); return 2;
         }
         Console.WriteLine(failures == 0 ? "all checks passed" : failures + " failures");
         return failures == 0 ? 0 : 1;
@@ -57,7 +60,8 @@ static class CSharpClientTest
             {"hapticd_client_options", typeof(ClientOptions)}, {"hapticd_engine_options", typeof(EngineOptions)},
             {"hapticd_engine_end", typeof(EngineEnd)}, {"hapticd_group_info", typeof(GroupInfo)},
             {"hapticd_group_state", typeof(GroupState)}, {"hapticd_fault_cycle", typeof(CycleRecord)},
-            {"hapticd_fault_report", typeof(FaultReport)} };
+            {"hapticd_fault_report", typeof(FaultReport)}, {"hapticd_scene_object", typeof(SceneObject)},
+            {"hapticd_scene_contact", typeof(SceneContact)} };
         int checkedCount = 0;
         foreach (var line in File.ReadAllLines(file))
         {
@@ -186,6 +190,47 @@ static class CSharpClientTest
     }
 
     // Every function of the C API has its binding (step 5 of issue 63: the bindings covered 27 of 37 functions).
+    static void Scene(int domain)
+    {
+        using (var client = new Client("cs-scene-engine", domain))
+        using (var other = new Client("cs-scene-other", domain))
+        {
+            client.WaitForDevice("vishard3", 20.0, true);
+            var start = client.WaitForState("vishard3", 10.0).pose.position;
+            client.SceneClaim();
+            Check(StatusOf(() => other.SceneClaim()) == Status.Refused, "a second engine's claim is refused");
+            var inv = System.Globalization.CultureInfo.InvariantCulture;
+            string wall = string.Format(inv, "{{\"name\": \"wall\", \"shape\": \"plane\", \"position\": [{0}, {1}, {2}], " +
+                "\"normal\": [-1, 0, 0], \"material\": {{\"stiffness\": 3000, \"damping\": 5}}}}", start.x + 0.02, start.y, start.z);
+            client.SceneAdd(wall);
+            client.OperatorCommand("vishard3", "push", new double[] { 15, 0, 0, 0.3 });
+            Thread.Sleep(1500);
+            var contacts = other.SceneContacts();
+            Check(contacts.Length == 1 && contacts[0].Device == "vishard3" && contacts[0].ObjectName == "wall",
+                  contacts.Length + " contacts, the hand's on the wall");
+            double held = client.WaitForState("vishard3", 5.0).pose.position.x - start.x;
+            double pressed = contacts.Length > 0 ? contacts[0].force.x : 0;
+            Console.WriteLine("the wall holds the push: the handle at " + (1e3 * held).ToString("0.00", inv) + " mm, pressing " +
+                              pressed.ToString("0.00", inv) + " N");
+            Check(pressed > 5 && Math.Abs(held - (0.015 + pressed / 3000)) < 0.001, "the wall's spring holds the hand");
+            client.SceneAddMesh("{\"name\": \"shard\", \"shape\": \"mesh\", \"position\": [0.5, 0, 0]}",
+                                new double[] { 0, -0.01, -0.01, 0, 0.01, -0.01, 0, 0, 0.01 }, new uint[] { 0, 1, 2 });
+            var objects = client.SceneObjects();
+            Check(objects.Length == 2 && objects[1].Name == "shard" && objects[1].Shape == "mesh" && objects[1].triangles == 1,
+                  "the listing: the wall and the uploaded mesh");
+            var refused = StatusOf(() => client.SceneAdd("{\"name\": \"ball\", \"shape\": \"sphere\", \"radius\": -1}"));
+            Check(refused == Status.Refused, "a negative radius is refused");
+            Check(StatusOf(() => other.SceneRemove("wall")) == Status.Refused, "an intruder's removal is refused");
+            var to = new Pose();
+            to.orientation.w = 1;
+            client.SceneMove("wall", ref to);  // written; refused by the server (the wall is not moving)
+            for (int i = 0; i < 500 && client.SceneRefusedMoves() == 0; ++i) Thread.Sleep(10);
+            Check(client.SceneRefusedMoves() == 1, "a move of a still object is refused and counted");
+            client.SceneRelease();
+            Check(StatusOf(() => other.SceneClaim()) == Status.Ok, "released: the other engine claims the scene");
+        }
+    }
+
     static void Symbols(string file)
     {
         var exported = new HashSet<string>();

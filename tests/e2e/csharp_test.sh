@@ -5,7 +5,8 @@
 # wall engine (Hapticd.Engine) against the server over DDS on loopback (domain DOMAIN): its per-cycle calls make
 # no managed garbage, stopped (SIGSTOP) beyond the server's claim hold it is told of its lost claim and claims
 # again, and it holds the simulated operator's 15 N push at its wall (about 5 mm past it through the 3000 N/m
-# coupling). Unity itself is not run here.
+# coupling); and the session's haptic scene from C# (a server on vishard3/dds-scene.yaml, domain DOMAIN + 10).
+# Unity itself is not run here.
 # Usage: csharp_test.sh BIN_DIR LIB_DIR SOURCE_DIR WORK_DIR DOMAIN GENERATED_DIR (NativeTypes.g.cs: the structs,
 # generated from idl/hapticd_wire.toml)
 set -u
@@ -50,4 +51,17 @@ awk -v x="$past" 'BEGIN { exit !(x > 0.015 && x < 0.03) }' || fail "the wall did
 echo "ok: the C# engine's wall holds the 15 N push ($past m past the start)"
 wait "$server" || fail "the server exited with $?"
 trap - EXIT
-echo "6 passed, 0 failed"
+
+# The session's haptic scene from C# (its own server, on the next domain).
+timeout 60 "$bin/hapticd" --config "$src/config/sessions/vishard3/dds-scene.yaml" --dds-domain $((domain + 10)) \
+  --duration 30 --log-level warn --set server.realtime_priority=0 --set server.lock_memory=false \
+  $(loose_watchdogs vishard3) > server.log 2>&1 &
+server=$!
+trap 'kill $server 2> /dev/null' EXIT
+timeout 60 mono test.exe scene $((domain + 10)) > scene.log 2>&1 || { cp scene.log engine.log; fail "scene: $(grep FAIL scene.log)"; }
+grep "wall holds" scene.log
+echo "ok: $(grep -c '^ok' scene.log) checks of the haptic scene from C#"
+kill -INT $server
+wait "$server" || fail "the scene's server exited with $?"
+trap - EXIT
+echo "7 passed, 0 failed"

@@ -116,10 +116,10 @@ TEST(SceneDds, AnEngineOwnsTheScenePushedByTheHandAndEveryBadEditIsRefused) {
   ASSERT_TRUE(r.accepted) << r.message;
   ASSERT_EQ(r.contacts.size(), 1u);
   const Eigen::Vector3d felt = server.recording().force().back();
-  std::printf("contacts: v3 pushes '%s' with %.2f N (the hand feels %.2f N)\n", r.contacts[0].object.c_str(),
+  std::printf("contacts: v3 pushes '%s' with %.2f N (the hand feels %.2f N)\n", r.contacts[0].object_name.c_str(),
               r.contacts[0].force.x(), felt.x());
   EXPECT_EQ(r.contacts[0].device, "v3");
-  EXPECT_EQ(r.contacts[0].object, "wall");
+  EXPECT_EQ(r.contacts[0].object_name, "wall");
   EXPECT_NEAR(r.contacts[0].force.x(), -felt.x(), 0.05 * pressed);
   EXPECT_NEAR(r.contacts[0].force.y(), 0.0, 1e-6);
 

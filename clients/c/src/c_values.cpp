@@ -112,6 +112,10 @@ void to_c(const client::Event& in, hapticd_event& out) noexcept { copy_fields(in
 
 void to_c(const client::Telemetry& in, hapticd_telemetry& out) noexcept { copy_fields(in, out); }
 
+void to_c(const client::SceneObject& in, hapticd_scene_object& out) noexcept { copy_fields(in, out); }
+
+void to_c(const client::SceneContact& in, hapticd_scene_contact& out) noexcept { copy_fields(in, out); }
+
 void to_c(const client::FaultReport& in, hapticd_fault_report& out) noexcept {
   copy_fields(in, out);
   // The newest records, oldest first.

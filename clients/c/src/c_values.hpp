@@ -32,6 +32,8 @@ void to_c(const client::Telemetry& in, hapticd_telemetry& out) noexcept;
 void to_c(const client::FaultReport& in, hapticd_fault_report& out) noexcept;
 void to_c(const client::Reply& in, hapticd_reply& out) noexcept;
 void to_c(const ParameterInfo& in, hapticd_parameter_info& out) noexcept;
+void to_c(const client::SceneObject& in, hapticd_scene_object& out) noexcept;
+void to_c(const client::SceneContact& in, hapticd_scene_contact& out) noexcept;
 
 // An engine command from its C form; false (and nothing written) for an unknown kind.
 [[nodiscard]] bool from_c(const hapticd_command& in, client::EngineCommand& out) noexcept;

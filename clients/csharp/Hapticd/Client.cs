@@ -243,6 +243,47 @@ namespace Hapticd
             return lost != 0;
         }
 
+        // ---- the session's haptic scene (docs/haptic-scene.md): claim it, edit it at the engine's frame rate (objects
+        // and materials as JSON, as the scene file writes them), ask what the hands do to it. A refusal throws. ----
+        public Reply SceneClaim(double timeoutS = 2.0) { return Request((out Reply r) => Native.hapticd_client_scene_claim(handle_, timeoutS, out r)); }
+        public Reply SceneRelease(double timeoutS = 2.0) { return Request((out Reply r) => Native.hapticd_client_scene_release(handle_, timeoutS, out r)); }
+        public Reply SceneAdd(string objectJson, double timeoutS = 2.0) { return Request((out Reply r) => Native.hapticd_client_scene_add(handle_, Text.Name(objectJson), timeoutS, out r)); }
+        // vertices: x, y, z of each (m, the object's frame); triangles: three indices each.
+        public Reply SceneAddMesh(string objectJson, double[] vertices, uint[] triangles, double timeoutS = 10.0)
+        {
+            return Request((out Reply r) => Native.hapticd_client_scene_add_mesh(handle_, Text.Name(objectJson), vertices, vertices.Length / 3, triangles, triangles.Length / 3, timeoutS, out r));
+        }
+        public Reply SceneRemove(string name, double timeoutS = 2.0) { return Request((out Reply r) => Native.hapticd_client_scene_remove(handle_, Text.Name(name), timeoutS, out r)); }
+        public Reply SceneSetMaterial(string name, string material, double timeoutS = 2.0) { return Request((out Reply r) => Native.hapticd_client_scene_set_material(handle_, Text.Name(name), Text.Name(material), timeoutS, out r)); }
+        // A moving object's new pose, at the engine's frame rate (not waited for; refusals: SceneRefusedMoves).
+        public void SceneMove(string name, ref Pose pose) { Check(Native.hapticd_client_scene_move(handle_, Text.Name(name), ref pose)); }
+        public ulong SceneRefusedMoves()
+        {
+            ulong count;
+            Check(Native.hapticd_client_scene_refused_moves(handle_, out count, null, 0));
+            return count;
+        }
+        public SceneObject[] SceneObjects(double timeoutS = 2.0)
+        {
+            Reply reply;
+            int count;
+            Check(Native.hapticd_client_scene_objects(handle_, null, 0, out count, timeoutS, out reply));
+            var all = new SceneObject[count];
+            Check(Native.hapticd_client_scene_objects(handle_, all, count, out count, timeoutS, out reply));
+            if (count < all.Length) Array.Resize(ref all, count);
+            return all;
+        }
+        public SceneContact[] SceneContacts(double timeoutS = 2.0)
+        {
+            Reply reply;
+            int count;
+            Check(Native.hapticd_client_scene_contacts(handle_, null, 0, out count, timeoutS, out reply));
+            var all = new SceneContact[count];
+            Check(Native.hapticd_client_scene_contacts(handle_, all, count, out count, timeoutS, out reply));
+            if (count < all.Length) Array.Resize(ref all, count);
+            return all;
+        }
+
         delegate Status RequestCall(out Reply reply);
         static Reply Request(RequestCall call)
         {

@@ -217,6 +217,17 @@ namespace Hapticd
         [DllImport(Lib)] public static extern Status hapticd_client_emergency_stop(ClientHandle c, byte[] target, double timeout, out Reply reply);
         [DllImport(Lib)] public static extern Status hapticd_client_recover(ClientHandle c, byte[] target, double timeout, out Reply reply);
         [DllImport(Lib)] public static extern Status hapticd_client_operator_command(ClientHandle c, byte[] device, byte[] command, double[] values, int count, double timeout, out Reply reply);
+        // the session's haptic scene (texts as Text.Name makes them: UTF-8, zero-terminated)
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_claim(ClientHandle c, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_release(ClientHandle c, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_add(ClientHandle c, byte[] obj, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_add_mesh(ClientHandle c, byte[] obj, double[] vertices, long vertexCount, uint[] triangles, long triangleCount, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_remove(ClientHandle c, byte[] obj, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_set_material(ClientHandle c, byte[] obj, byte[] material, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_move(ClientHandle c, byte[] obj, ref Pose pose);
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_refused_moves(ClientHandle c, out ulong count, byte[] last, int capacity);
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_objects(ClientHandle c, [Out] SceneObject[] output, int capacity, out int count, double timeout, out Reply reply);
+        [DllImport(Lib)] public static extern Status hapticd_client_scene_contacts(ClientHandle c, [Out] SceneContact[] output, int capacity, out int count, double timeout, out Reply reply);
         // engine commands
         [DllImport(Lib)] public static extern Status hapticd_client_send(ClientHandle c, byte[] device, ref Command command);
         [DllImport(Lib)] public static extern Status hapticd_client_send_coupling(ClientHandle c, byte[] device, ref Pose proxy, ref Twist twist, ulong serial);

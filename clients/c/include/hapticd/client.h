@@ -230,6 +230,46 @@ HAPTICD_C_API hapticd_status hapticd_client_send_motion(hapticd_client* client, 
 HAPTICD_C_API hapticd_status hapticd_client_send_group(hapticd_client* client, const char* group,
                                                        const hapticd_command* commands, int32_t count);
 
+/* ---- the session's haptic scene (docs/haptic-scene.md; a session with a `scene` section): the server renders its
+ * objects at loop rate; an engine claims the scene and edits it at its own frame rate (the C++ library's
+ * hapticd::client::SceneClient). Every call but hapticd_client_scene_move waits for the server's answer: HAPTICD_OK
+ * accepted, HAPTICD_ERROR_REFUSED refused (the reason in reply->message and hapticd_last_error), HAPTICD_ERROR_TIMEOUT
+ * none; reply may be NULL. Objects and materials are JSON as the scene file writes them (at most 4095 bytes). ---- */
+HAPTICD_C_API hapticd_status hapticd_client_scene_claim(hapticd_client* client, double timeout_s, hapticd_reply* reply);
+HAPTICD_C_API hapticd_status hapticd_client_scene_release(hapticd_client* client, double timeout_s,
+                                                          hapticd_reply* reply);
+/* object: {"name": "wall", "shape": "plane", "position": [...], "normal": [...], "material": {...}, "moving": 0/1} */
+HAPTICD_C_API hapticd_status hapticd_client_scene_add(hapticd_client* client, const char* object, double timeout_s,
+                                                      hapticd_reply* reply);
+/* A mesh: object as for add (shape "mesh", no file); vertex_count vertices of three coordinates (m, the object's
+ * frame), triangle_count triangles of three indices into them. Uploaded in parts, then checked and built by the
+ * server (timeout_s for each part and for the add). */
+HAPTICD_C_API hapticd_status hapticd_client_scene_add_mesh(hapticd_client* client, const char* object,
+                                                           const double* vertices, int64_t vertex_count,
+                                                           const uint32_t* triangles, int64_t triangle_count,
+                                                           double timeout_s, hapticd_reply* reply);
+HAPTICD_C_API hapticd_status hapticd_client_scene_remove(hapticd_client* client, const char* object, double timeout_s,
+                                                         hapticd_reply* reply);
+/* material: a name from the scene's materials, or a material in JSON. */
+HAPTICD_C_API hapticd_status hapticd_client_scene_set_material(hapticd_client* client, const char* object,
+                                                               const char* material, double timeout_s,
+                                                               hapticd_reply* reply);
+/* A moving object's new pose (world frame), played back by every device between updates. Not answered when it goes
+ * through: HAPTICD_OK means written; a refusal is counted (hapticd_client_scene_refused_moves). */
+HAPTICD_C_API hapticd_status hapticd_client_scene_move(hapticd_client* client, const char* object,
+                                                       const hapticd_pose* pose);
+/* *count: the refused moves so far; last (may be NULL, capacity bytes): the newest one's reason. */
+HAPTICD_C_API hapticd_status hapticd_client_scene_refused_moves(hapticd_client* client, uint64_t* count, char* last,
+                                                                int32_t capacity);
+/* Every object: up to capacity into out, the number there are into *count. */
+HAPTICD_C_API hapticd_status hapticd_client_scene_objects(hapticd_client* client, hapticd_scene_object* out,
+                                                          int32_t capacity, int32_t* count, double timeout_s,
+                                                          hapticd_reply* reply);
+/* What every device's hand does to the objects now: up to capacity into out, the number there are into *count. */
+HAPTICD_C_API hapticd_status hapticd_client_scene_contacts(hapticd_client* client, hapticd_scene_contact* out,
+                                                           int32_t capacity, int32_t* count, double timeout_s,
+                                                           hapticd_reply* reply);
+
 /* ---- the engine helper (docs/engines.md, "The engine helper"; the C++ library's hapticd::client::Engine): finds
  * its device or group and waits until it started, claims it, answers each state through one callback, retakes a
  * claim the server ended, hands parameter events to a hook, ends on hapticd_engine_stop, a duration, the session's

@@ -34,7 +34,7 @@ struct SceneObject {
 // torque about the object's origin as the device rendered it (N m), at the contact point (m).
 struct SceneContact {
   std::string device;
-  std::string object;
+  std::string object_name;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
