@@ -8,7 +8,7 @@ namespace hapticd::scene {
 SharedScene::Reader::Reader(std::unique_ptr<Scene> first, std::string device)
     : current_(first.release()), tracks_(kMaxObjects), tracked_(kMaxObjects, 0), device_(std::move(device)) {}
 
-void SharedScene::Reader::report_contacts(const ProxyState& proxy) noexcept {
+void SharedScene::Reader::report_contacts(const ProxyState& proxy, double radius) noexcept {
   ContactReport report;
   for (int i = 0; i < proxy.contact_count; ++i) {
     const ProxyContact& c = proxy.contacts[static_cast<std::size_t>(i)];
@@ -20,6 +20,9 @@ void SharedScene::Reader::report_contacts(const ProxyState& proxy) noexcept {
     o.force = -c.force;  // the hand pushes the object as the object pushes the hand
     o.point = c.point;
   }
+  report.reported = true;
+  report.proxy = proxy.proxy;
+  report.radius = radius;
   contacts_.publish(report);
 }
 
@@ -50,7 +53,8 @@ bool SharedScene::Reader::refresh(std::int64_t now_ns) noexcept {
   return changed;
 }
 
-SharedScene::SharedScene(Scene initial) : slot_used_(kMaxObjects, 0) {
+SharedScene::SharedScene(Scene initial)
+    : moved_(kMaxObjects, Eigen::Isometry3d::Identity()), slot_used_(kMaxObjects, 0) {
   if (initial.objects.size() > kMaxObjects)
     throw std::invalid_argument("a scene has at most " + std::to_string(kMaxObjects) + " objects");
   for (SceneObject& o : initial.objects) add(std::move(o));
@@ -105,6 +109,7 @@ std::uint64_t SharedScene::add(SceneObject object) {
   slot_used_[slot] = 1;
   object.slot = static_cast<std::uint32_t>(slot);
   object.uid = next_uid_++;
+  moved_[slot] = object.pose;
   objects_.push_back(std::move(object));
   publish();
   return objects_.back().uid;
@@ -131,6 +136,26 @@ void SharedScene::move(std::string_view name, const PoseUpdate& pose) {
   PoseUpdate update = pose;
   update.object = o.uid;  // a pose still in the slot's track when another object takes the slot is not its
   for (auto& r : readers_) r->tracks_[o.slot].publish(update);
+  moved_[o.slot] = Eigen::Translation3d(pose.position) * pose.orientation;
+}
+
+Scene SharedScene::drawn() const {
+  std::lock_guard lock(mutex_);
+  Scene out{objects_};
+  for (SceneObject& o : out.objects)
+    if (o.moving) o.pose = moved_[o.slot];
+  return out;
+}
+
+std::vector<DeviceProxy> SharedScene::proxies() {
+  std::lock_guard lock(mutex_);
+  std::vector<DeviceProxy> out;
+  for (auto& r : readers_) {
+    (void)r->contacts_.take(r->last_contacts_);
+    const ContactReport& c = r->last_contacts_;
+    if (c.reported) out.push_back({r->device_, c.proxy, c.radius, c.count > 0});
+  }
+  return out;
 }
 
 Scene SharedScene::snapshot() const {

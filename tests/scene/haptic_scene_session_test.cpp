@@ -9,10 +9,13 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "hapticd/json_reader.hpp"
 #include "hapticd/testing/allocation_guard.hpp"
+#include "live_view/haptic_scene_view.hpp"
 #include "session/device_session.hpp"
 #include "support/test_paths.hpp"
 #include "support/test_session.hpp"
@@ -215,6 +218,84 @@ TEST(HapticSceneSession, TwoDevicesShareTheSessionsSceneAndFeelAWallAddedWhileTh
   EXPECT_TRUE(shared->contacts().empty()) << "a removed object has no contacts";
   s.step(100);  // the render guard's rate limit lets the force down over a few cycles
   for (const char* d : {"v3", "w3"}) EXPECT_EQ(s.device(d).task.wrench.force.norm(), 0.0) << d;
+}
+
+// The live view's picture of the session's scene (channel /haptic_scene/scene): every kind of object at its size and
+// pose, a mesh's triangles (at most 2000 of a larger one), each device's proxy with its radius (touching or not);
+// the still objects again only when they change (or every 2 s), the moving ones and the proxies at every update.
+TEST(HapticSceneSession, TheLiveViewDrawsTheScenesObjectsAndEachDevicesProxy) {
+  Session s = test::build_test_session(two_devices_on_the_session_scene("scene:\n"));
+  SceneService& scene = scene_of(s, 0);
+  scene.add(kWallAhead);
+  scene.add(R"({"name": "desk", "shape": "box", "size": [0.3, 0.2, 0.02], "position": [0, 0, -0.05]})");
+  scene.add(R"({"name": "ball", "shape": "sphere", "radius": 0.02, "position": [0, 0.1, 0]})");
+  scene.add(R"({"name": "rail", "shape": "capsule", "radius": 0.005, "length": 0.1, "position": [0, -0.1, 0]})");
+  scene.add(R"({"name": "can", "shape": "cylinder", "radius": 0.01, "length": 0.04, "position": [0.1, 0.1, 0],
+                "moving": true})");
+  std::vector<double> vertices;  // a sheet of 60 x 60 squares: 7200 triangles
+  std::vector<std::uint32_t> triangles;
+  const int n = 60;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) vertices.insert(vertices.end(), {0.2, 0.001 * i, 0.001 * j});
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const auto v = [&](int a, int b) { return static_cast<std::uint32_t>(a * (n + 1) + b); };
+      triangles.insert(triangles.end(), {v(i, j), v(i, j + 1), v(i + 1, j + 1), v(i, j), v(i + 1, j + 1), v(i + 1, j)});
+    }
+  scene.add_mesh(R"({"name": "sheet", "shape": "mesh"})", vertices, triangles);
+  Pose can;
+  can.position = Eigen::Vector3d(0.1, 0.12, 0.0);
+  scene.move("can", can);
+  s.step(2400);  // the hands pressed into the wall
+
+  const SceneDrawing d = scene.drawing(live_view::HapticSceneView::kMaxTriangles);
+  ASSERT_EQ(d.objects.size(), 6u);
+  EXPECT_EQ(d.objects[1].size, Eigen::Vector3d(0.3, 0.2, 0.02));
+  EXPECT_EQ(d.objects[2].size.x(), 0.02);
+  EXPECT_EQ(d.objects[3].size, Eigen::Vector3d(0.005, 0.1, 0.0));
+  EXPECT_TRUE(d.objects[4].moving);
+  EXPECT_EQ(d.objects[4].pose.position, can.position) << "a moving object where it was last moved to";
+  EXPECT_EQ(d.objects[5].triangles, 7200u);
+  EXPECT_EQ(d.objects[5].corners.size(), 3u * 1800) << "every 4th of 7200 triangles: 1800";
+  ASSERT_EQ(d.proxies.size(), 2u);
+  for (const SceneProxyDrawing& p : d.proxies) {
+    EXPECT_EQ(p.radius, 0.005);
+    EXPECT_TRUE(p.touching) << p.device;
+    EXPECT_NEAR(p.position.x(), 0.001, 1e-6) << p.device << ": the proxy rests on the wall, its radius before it";
+  }
+
+  live_view::HapticSceneView view(scene);
+  std::string out;
+  const auto entities = [&](const std::string& text, bool first = false) {
+    JsonReader json(1 << 16);
+    EXPECT_TRUE(json.parse(text)) << json.error();
+    std::vector<std::string> ids;
+    const JsonReader::Value list = json.root()["entities"];
+    for (JsonReader::Value e = list.first(); e; e = e.next()) ids.emplace_back(*e["id"].string());
+    std::map<std::string, std::size_t> counts;  // primitives of every entity together
+    for (JsonReader::Value e = list.first(); e; e = e.next())
+      for (const char* kind : {"cubes", "spheres", "cylinders", "triangles"}) counts[kind] += e[kind].size();
+    if (first) {
+      EXPECT_EQ(counts["cubes"], 2u) << "the desk and the wall's surface";
+      EXPECT_EQ(counts["spheres"], 5u) << "the ball, the rail's two ends, two proxies";
+      EXPECT_EQ(counts["cylinders"], 2u) << "the rail and the can";
+      EXPECT_EQ(counts["triangles"], 1u) << "the sheet";
+    }
+    return ids;
+  };
+  view.scene_update(1, 0, out);
+  EXPECT_EQ(entities(out, true),
+            (std::vector<std::string>{"haptic_scene/moving", "haptic_scene/still", "haptic_scene/proxies"}));
+  view.scene_update(2, 100'000'000, out);
+  EXPECT_EQ(entities(out), (std::vector<std::string>{"haptic_scene/moving", "haptic_scene/proxies"}))
+      << "nothing still changed";
+  scene.remove("ball");
+  view.scene_update(3, 200'000'000, out);
+  EXPECT_EQ(entities(out).size(), 3u) << "a still object removed: the still ones again";
+  view.scene_update(4, 300'000'000, out);
+  EXPECT_EQ(entities(out).size(), 2u);
+  view.scene_update(5, 2'300'000'000, out);
+  EXPECT_EQ(entities(out).size(), 3u) << "every 2 s the still ones again, for a viewer that came late";
 }
 
 TEST(HapticSceneSession, ADeviceTakesAnEditOfTheSessionsSceneWithoutAllocating) {

@@ -24,6 +24,7 @@ class CountingScene final : public SceneService {
   void move(std::string_view, const Pose&) override {}
   [[nodiscard]] std::vector<SceneObjectSummary> objects() const override { return {}; }
   [[nodiscard]] std::vector<SceneContact> contacts() override { return {}; }
+  [[nodiscard]] SceneDrawing drawing(std::size_t) override { return {}; }
   std::uint64_t adds = 0;
   std::size_t vertices = 0, triangles = 0;
 };

@@ -5,7 +5,7 @@ namespace hapticd {
 // Version of the binary plugin contract (interfaces, value types, descriptor layout). A plugin built against
 // another version is refused by the loader before any of its code is called. Bump on every change to a type
 // in api/include/hapticd that a plugin compiles against.
-inline constexpr int kApiVersion = 16;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
+inline constexpr int kApiVersion = 17;  // 2: DeviceState::sensor_acceleration; 3: ChainState in the inputs;
                                         // 4: EngineInput in VirtualModelInput; 5: EngineInput weight,
                                         //    local model and motion; 6: RenderGuard in
                                         //    VirtualModelInput, update() may throw;
@@ -31,6 +31,7 @@ inline constexpr int kApiVersion = 16;  // 2: DeviceState::sensor_acceleration; 
                                         //    newtons, not joint torques); Device::write no longer pure
                                         // 15: the scene plugin kind (SceneService, PluginDescriptor::create_scene)
                                         //    and PluginContext::scene
-                                        // 16: SceneService::add_mesh (a mesh an engine uploaded)
+                                        // 16: SceneService::add_mesh (a mesh an engine uploaded);
+                                        // 17: SceneService::drawing (the live view's picture of the scene)
 
 }  // namespace hapticd

@@ -44,6 +44,31 @@ struct SceneContact {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
 };
 
+// The scene as a viewer draws it (the live view, docs/live-view.md): each object's shape, its size and where it is
+// now, and each device's proxy.
+struct SceneObjectDrawing {
+  std::string name;
+  std::string shape;  // as in SceneObjectSummary
+  bool moving = false;
+  Pose pose;  // now: a moving object's newest pose
+  // box: the edge lengths; sphere: the radius; capsule, cylinder: the radius and the length (along the object's z)
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  // mesh: up to drawing()'s max_triangles of its triangles (every k-th of a larger one), three corners each, in
+  // the object's frame; triangles: how many it has
+  std::vector<Eigen::Vector3f> corners;
+  std::size_t triangles = 0;
+};
+struct SceneProxyDrawing {
+  std::string device;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+  bool touching = false;
+};
+struct SceneDrawing {
+  std::vector<SceneObjectDrawing> objects;
+  std::vector<SceneProxyDrawing> proxies;
+};
+
 class HAPTICD_API SceneService {
  public:
   virtual ~SceneService();
@@ -74,6 +99,8 @@ class HAPTICD_API SceneService {
   [[nodiscard]] virtual std::vector<SceneObjectSummary> objects() const = 0;
   // Every device's contacts with the objects as of their latest cycles (an engine asks at its own rate).
   [[nodiscard]] virtual std::vector<SceneContact> contacts() = 0;
+  // The scene as a viewer draws it now, each mesh with at most max_triangles of its triangles.
+  [[nodiscard]] virtual SceneDrawing drawing(std::size_t max_triangles) = 0;
 };
 
 }  // namespace hapticd

@@ -61,6 +61,7 @@ void HapticSceneModel::configure(const Parameters& p, const PluginContext& conte
   }
   scene::ProxySettings settings;
   settings.radius_m = p.real("proxy_radius_m");
+  proxy_radius_m_ = settings.radius_m;
   settings.max_stiffness_n_per_m = p.real("max_stiffness_n_per_m");
   settings.max_iterations = static_cast<int>(p.integer("max_iterations"));
   proxy_.configure(settings, reader_ != nullptr ? reader_->scene() : own_scene_);
@@ -87,7 +88,7 @@ Outcome HapticSceneModel::update(const CycleTime& cycle, const VirtualModelInput
   if (admittance_display_) {
     // The virtual body is the proxy's goal: the scene's force acts on it, the motion loop makes the handle follow.
     const scene::ProxyState& s = proxy_.update(admittance_.body_position() - origin_, admittance_.body_velocity());
-    if (reader_ != nullptr) reader_->report_contacts(s);
+    if (reader_ != nullptr) reader_->report_contacts(s, proxy_radius_m_);
     RenderPort::Vector6 wrench = RenderPort::Vector6::Zero();
     wrench.head<3>() = s.force;
     RenderPort::Vector6 port_twist;
@@ -96,7 +97,7 @@ Outcome HapticSceneModel::update(const CycleTime& cycle, const VirtualModelInput
   }
   admittance_.take_tuning();
   const scene::ProxyState& s = proxy_.update(c.handle_pose.position - origin_, c.handle_twist.linear);
-  if (reader_ != nullptr) reader_->report_contacts(s);
+  if (reader_ != nullptr) reader_->report_contacts(s, proxy_radius_m_);
   RenderPort::Vector6 wrench = RenderPort::Vector6::Zero();
   wrench.head<3>() = s.force;
   RenderPort::Vector6 port_twist;

@@ -41,6 +41,7 @@ class HapticSceneModel final : public VirtualModel {
   VirtualAdmittance admittance_;
   bool admittance_display_ = false;
   bool origin_at_handle_ = false;
+  double proxy_radius_m_ = 0.0;  // reported with the contacts (the live view draws the proxy)
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
 };
 

@@ -140,3 +140,44 @@ std::vector<SceneObjectSummary> SessionScene::objects() const {
 }
 
 }  // namespace hapticd::models
+
+namespace hapticd::models {
+
+SceneDrawing SessionScene::drawing(std::size_t max_triangles) {
+  SceneDrawing d;
+  for (const scene::SceneObject& o : scene_->drawn().objects) {
+    SceneObjectDrawing x;
+    x.name = o.name;
+    x.shape = scene::kind_name(o.shape.kind);
+    x.moving = o.moving;
+    x.pose = to_pose(o.pose);
+    switch (o.shape.kind) {
+      case scene::ShapeKind::box:
+        x.size = 2.0 * o.shape.half_extents;
+        break;
+      case scene::ShapeKind::sphere:
+        x.size = Eigen::Vector3d(o.shape.radius, 0, 0);
+        break;
+      case scene::ShapeKind::capsule:
+      case scene::ShapeKind::cylinder:
+        x.size = Eigen::Vector3d(o.shape.radius, 2.0 * o.shape.half_length, 0);
+        break;
+      case scene::ShapeKind::plane:
+        break;
+      case scene::ShapeKind::mesh: {
+        const scene::TriangleMeshData& m = o.shape.mesh->data();
+        x.triangles = m.triangles.size();
+        const std::size_t step = max_triangles == 0 ? 0 : (m.triangles.size() + max_triangles - 1) / max_triangles;
+        for (std::size_t t = 0; step > 0 && t < m.triangles.size(); t += step)
+          for (const std::uint32_t v : m.triangles[t]) x.corners.push_back(m.vertices[v].cast<float>());
+        break;
+      }
+    }
+    d.objects.push_back(std::move(x));
+  }
+  for (const scene::DeviceProxy& p : scene_->proxies())
+    d.proxies.push_back({p.device, p.position, p.radius, p.touching});
+  return d;
+}
+
+}  // namespace hapticd::models

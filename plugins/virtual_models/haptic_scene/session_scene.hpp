@@ -30,6 +30,7 @@ class SessionScene final : public SceneService {
   void move(std::string_view name, const Pose& pose) override;
   [[nodiscard]] std::vector<SceneObjectSummary> objects() const override;
   [[nodiscard]] std::vector<SceneContact> contacts() override;
+  [[nodiscard]] SceneDrawing drawing(std::size_t max_triangles) override;
 
  private:
   std::uint64_t add_object(scene::SceneObject object);

@@ -100,8 +100,9 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
                                       clock.device);
   executor_ = std::make_unique<Executor>(settings_, loops_->loops());
   if (config.live_view.enabled)  // binds its port before the DDS interface starts
-    live_view_ = std::make_unique<live_view::LiveView>(config.live_view, devices, config.server.rate_hz,
-                                                       config.file.filename().string());
+    live_view_ = std::make_unique<live_view::LiveView>(
+        config.live_view, devices, config.server.rate_hz, config.file.filename().string(),
+        !devices.empty() && devices.front()->chain().scene ? devices.front()->chain().scene->object.get() : nullptr);
   if (config.dds.enabled || config.engine_socket.enabled) {  // the gate, with the doors the session opens
     doors_ = std::make_unique<Doors>(config, devices, stages, dds_cpus_);
     for (std::size_t d = 0; d < devices.size(); ++d)

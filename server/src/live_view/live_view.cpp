@@ -10,7 +10,7 @@ namespace hapticd::server::live_view {
 
 namespace {
 
-std::vector<Channel> channels_of(const std::vector<DeviceSession*>& devices) {
+std::vector<Channel> channels_of(const std::vector<DeviceSession*>& devices, bool with_scene) {
   std::vector<Channel> channels;
   const std::string transforms = frame_transforms_schema(), scene = scene_update_schema(),
                     state = device_state_schema();
@@ -21,6 +21,8 @@ std::vector<Channel> channels_of(const std::vector<DeviceSession*>& devices) {
     channels.push_back({LiveView::channel_id(d, 2), prefix + "/state", kDeviceStateName, state});
   }
   channels.push_back({LiveView::channel_id(devices.size(), 0), "/world/scene", kSceneUpdateName, scene});
+  if (with_scene)
+    channels.push_back({LiveView::channel_id(devices.size(), 1), "/haptic_scene/scene", kSceneUpdateName, scene});
   return channels;
 }
 
@@ -37,8 +39,10 @@ std::int64_t wall_now_ns() {
 }  // namespace
 
 LiveView::LiveView(const LiveViewSettings& settings, const std::vector<DeviceSession*>& devices, double loop_rate_hz,
-                   const std::string& session_name)
-    : address_(settings.address), rate_hz_(settings.rate_hz) {
+                   const std::string& session_name, SceneService* scene)
+    : address_(settings.address),
+      scene_(scene != nullptr ? std::make_unique<HapticSceneView>(*scene) : nullptr),
+      rate_hz_(settings.rate_hz) {
   FoxgloveServerOptions options;
   options.address = settings.address;
   options.port = settings.port;
@@ -46,7 +50,7 @@ LiveView::LiveView(const LiveViewSettings& settings, const std::vector<DeviceSes
   options.allowed_origins = settings.allowed_origins;
   options.page = viewer_page();
   options.name = "hapticd: " + session_name;
-  server_ = std::make_unique<FoxgloveServer>(options, channels_of(devices));
+  server_ = std::make_unique<FoxgloveServer>(options, channels_of(devices, scene != nullptr));
   const auto interval = static_cast<std::uint64_t>(std::max(1.0, std::round(loop_rate_hz / settings.rate_hz)));
   sources_.reserve(devices.size());
   for (DeviceSession* d : devices) {
@@ -81,6 +85,11 @@ void LiveView::tick() {
     const auto time_ns = static_cast<std::uint64_t>(wall_now_ns());
     if (world_.scene_update(time_ns, steady_now_ns(), message_))
       server_->publish(world_channel_id(), time_ns, message_);
+  }
+  if (scene_ && server_->subscribed(scene_channel_id())) {
+    const auto time_ns = static_cast<std::uint64_t>(wall_now_ns());
+    scene_->scene_update(time_ns, steady_now_ns(), message_);
+    server_->publish(scene_channel_id(), time_ns, message_);
   }
   for (std::size_t d = 0; d < sources_.size(); ++d) {
     Source& s = sources_[d];

@@ -42,6 +42,16 @@ struct ObjectContact {
 struct ContactReport {
   int count = 0;
   std::array<ObjectContact, kMaxContacts> contacts{};
+  bool reported = false;                            // the device's proxy has been updated (its position is known)
+  Eigen::Vector3d proxy = Eigen::Vector3d::Zero();  // the proxy's centre (the scene's frame)
+  double radius = 0.0;                              // the proxy's
+};
+// A device's proxy as the editors (and the live view) see it.
+struct DeviceProxy {
+  std::string device;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+  bool touching = false;
 };
 // ... as the editors see it: by device, with the object's name.
 struct DeviceContact {
@@ -75,7 +85,7 @@ class SharedScene {
     [[nodiscard]] std::uint64_t scenes_taken() const noexcept { return taken_; }
     // Real-time safe (the loop, after the proxy's update): what the proxy touches now, for the editors
     // (SharedScene::contacts; a triple buffer, no lock, no allocation).
-    void report_contacts(const ProxyState& proxy) noexcept;
+    void report_contacts(const ProxyState& proxy, double radius = 0.0) noexcept;
 
    private:
     friend class SharedScene;
@@ -109,6 +119,11 @@ class SharedScene {
   // Any thread but the loops': what every device's hand does to the objects now (each reader's newest report; an
   // object removed since is left out).
   [[nodiscard]] std::vector<DeviceContact> contacts();
+  // Any thread but the loops': each device's proxy as of its newest report (devices not yet reported left out).
+  [[nodiscard]] std::vector<DeviceProxy> proxies();
+  // A copy of the newest scene with each moving object at the pose it was last moved to (for drawing: the devices
+  // render it one update interval behind, pose_track.hpp).
+  [[nodiscard]] Scene drawn() const;
   // Frees the scenes the readers handed back (each edit does it too).
   void collect();
 
@@ -119,6 +134,7 @@ class SharedScene {
 
   mutable std::mutex mutex_;
   std::vector<SceneObject> objects_;
+  std::vector<Eigen::Isometry3d> moved_;  // per slot: a moving object's newest pose (drawn())
   std::vector<char> slot_used_;
   std::uint64_t next_uid_ = 1;
   std::deque<std::unique_ptr<Reader>> readers_;
