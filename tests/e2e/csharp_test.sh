@@ -21,8 +21,8 @@ mcs -unsafe -target:library -out:Hapticd.dll "$src"/clients/csharp/Hapticd/*.cs 
 mcs -unsafe -r:Hapticd.dll -out:test.exe "$src/tests/csharp/CSharpClientTest.cs" > build.log 2>&1 ||
   fail "the test does not compile: $(cat build.log)"
 mcs -unsafe -target:library -r:Hapticd.dll -out:sample.dll "$src/clients/csharp/unity/Samples/HapticWall.cs" \
-  "$src/tests/csharp/UnityEngineStandIn.cs" > build.log 2>&1 || fail "the Unity sample does not compile: $(cat build.log)"
-echo "ok: Hapticd.dll, the test and the Unity sample compile"
+  "$src/clients/csharp/unity/Samples/HapticSceneMirror.cs" "$src/tests/csharp/UnityEngineStandIn.cs" > build.log 2>&1 || fail "the Unity sample does not compile: $(cat build.log)"
+echo "ok: Hapticd.dll, the test and the Unity samples compile"
 export LD_LIBRARY_PATH="$lib" MONO_PATH="$work"
 mono test.exe layout "$src/clients/c/abi/hapticd_c.layout" > layout.log 2>&1 || fail "layout: $(grep FAIL layout.log)"
 echo "ok: $(grep -c '^ok' layout.log) layout checks"
