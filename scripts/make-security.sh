@@ -7,7 +7,8 @@
 #     it may command, comma-separated, * for all (default: engine=*); teleop:NAME=OWN,PEER: the identity of a
 #     teleoperation side's server whose device is OWN and whose peer's is PEER (docs/teleoperation.md)
 # Identities: server (the hapticd server: every topic but the teleoperation link's), one per engine (writes
-# requests and commands in its devices' partitions only - hapticd.<device>, docs/dds-interface.md - and reads the
+# requests and commands in its devices' partitions only - hapticd.<device>, docs/dds-interface.md -, its world in
+# the default partition, the haptic scene's requests there too when it may command every device, and reads the
 # server's topics), one per teleoperation side (a server's topics, and the link's packets written only in its own
 # device's partition hapticd.teleop.OWN and read only from its peer's, so no other identity can speak for either
 # side), watcher (may only watch: reads the server's topics, writes nothing). The governance
@@ -84,8 +85,9 @@ openssl smime -sign -in "$out/governance.xml" -text -out "$out/governance.p7s" -
 server_topics="hapticd_description hapticd_state hapticd_reply hapticd_event hapticd_telemetry hapticd_fault_report"
 server_topics="$server_topics hapticd_group_description hapticd_group_state hapticd_plugin_api_version"
 server_topics="$server_topics hapticd_plugin_catalog hapticd_world hapticd_command hapticd_group_command hapticd_request"
+server_topics="$server_topics hapticd_scene_request hapticd_scene_mesh_part hapticd_scene_reply"
 engine_publish="hapticd_command hapticd_group_command hapticd_request"
-reads="hapticd_description hapticd_state hapticd_reply hapticd_event hapticd_telemetry hapticd_fault_report hapticd_group_description hapticd_group_state"
+reads="hapticd_description hapticd_state hapticd_reply hapticd_event hapticd_telemetry hapticd_fault_report hapticd_group_description hapticd_group_state hapticd_scene_reply"
 topics_xml() { for t in $1; do printf '<topic>%s</topic>' "$t"; done; }
 partitions_xml() { for p in $1; do printf '<partition>%s</partition>' "$p"; done; }
 grant() {  # name publish-topics subscribe-topics [publish-partitions [server]]  (a client's subscriptions: the
@@ -94,8 +96,12 @@ grant() {  # name publish-topics subscribe-topics [publish-partitions [server]] 
   local publish="" subscribe="" partitions=""
   [ -n "${4:-}" ] && partitions="<partitions>$(partitions_xml "$4")</partitions>"
   [ -n "$2" ] && publish="<publish><topics>$(topics_xml "$2")</topics>$partitions</publish>"
-  # An engine's world for the live view (hapticd_world) is written in the default partition.
-  [ "$kind" != server ] && [ -n "$2" ] && publish="$publish<publish><topics>$(topics_xml hapticd_world)</topics></publish>"
+  # An engine's world for the live view (hapticd_world) is written in the default partition, and so are the
+  # session's haptic scene's requests (one scene per server, keyless: docs/haptic-scene.md) - by an engine that may
+  # command every device only: every device of the session feels the scene.
+  local own="hapticd_world"
+  case " ${4:-} " in *" hapticd.* "*) own="$own hapticd_scene_request hapticd_scene_mesh_part" ;; esac
+  [ "$kind" != server ] && [ -n "$2" ] && publish="$publish<publish><topics>$(topics_xml "$own")</topics></publish>"
   [ -n "$3" ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics>$partitions</subscribe>"
   [ "$kind" != server ] && subscribe="<subscribe><topics>$(topics_xml "$3")</topics></subscribe>"
   [ -z "$3" ] && subscribe=""

@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "hapticd/client.h"
 #include "hapticd/testing/allocation_guard.hpp"
@@ -36,6 +37,26 @@ hapticd_client* make(const char* id, int domain = kDomain) {
   hapticd_client* c = nullptr;
   EXPECT_EQ(hapticd_client_create(&o, &c), HAPTICD_OK) << hapticd_last_error();
   return c;
+}
+
+// hapticd on a shipped session of the simulated ViSHaRD3 (config/sessions/vishard3/SESSION) on `domain`, for 30 s,
+// without real-time privileges and with the loop's watchdogs loosened (tests/e2e/session_copy.sh says why).
+std::vector<std::string> served(const std::string& session, int domain) {
+  return {test::bin_dir() + "/hapticd",
+          "--config",
+          test::source_dir() + "/config/sessions/vishard3/" + session,
+          "--dds-domain",
+          std::to_string(domain),
+          "--duration",
+          "30",
+          "--set",
+          "server.realtime_priority=0",
+          "--set",
+          "server.lock_memory=false",
+          "--set",
+          "devices.vishard3.safety.max_stall_s=1.0",
+          "--set",
+          "devices.vishard3.safety.max_consecutive_overruns=2000"};
 }
 
 hapticd_device_info& info_out() {
@@ -196,12 +217,7 @@ TEST(CApi, EveryBadArgumentIsAStatusWithAMessageNeverAnAbort) {
 
 TEST(CApi, AnEngineDiscoversClaimsAndAnswersStatesWithoutAllocating) {
   const std::string log = ::testing::TempDir() + "c_api_server.txt";
-  test::Process server(
-      {test::bin_dir() + "/hapticd", "--config", test::source_dir() + "/config/sessions/vishard3/dds-coupling.yaml",
-       "--dds-domain", std::to_string(kDomain), "--duration", "30", "--set", "server.realtime_priority=0", "--set",
-       "server.lock_memory=false", "--set", "devices.vishard3.safety.max_stall_s=1.0", "--set",
-       "devices.vishard3.safety.max_consecutive_overruns=2000"},
-      log);
+  test::Process server(served("dds-coupling.yaml", kDomain), log);
   ASSERT_TRUE(server.started());
   hapticd_client* c = make("c-api-engine");
   hapticd_client* other = make("c-api-other");
@@ -374,12 +390,7 @@ TEST(CApi, GroupRequestsGoThroughTheDeviceCallsAndAStateCallbackTakesOnlyItsDevi
 TEST(CApi, TheScenesCallsEditTheSessionsSceneAndSayWhyWhenRefused) {
   constexpr int kSceneDomain = 160;
   const std::string log = ::testing::TempDir() + "c_api_scene_server.txt";
-  test::Process server(
-      {test::bin_dir() + "/hapticd", "--config", test::source_dir() + "/config/sessions/vishard3/dds-scene.yaml",
-       "--dds-domain", std::to_string(kSceneDomain), "--duration", "30", "--set", "server.realtime_priority=0", "--set",
-       "server.lock_memory=false", "--set", "devices.vishard3.safety.max_stall_s=1.0", "--set",
-       "devices.vishard3.safety.max_consecutive_overruns=2000"},
-      log);
+  test::Process server(served("dds-scene.yaml", kSceneDomain), log);
   ASSERT_TRUE(server.started());
   hapticd_client* c = make("c-scene-engine", kSceneDomain);
   hapticd_client* other = make("c-scene-other", kSceneDomain);

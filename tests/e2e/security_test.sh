@@ -9,7 +9,9 @@
 # plain run. The round trip with security against the plain one, in the same run. A teleoperation pair with the
 # sides' identities (teleop:lab-m=master,remote, teleop:lab-r=remote,master): a second master server - the round-4
 # impostor - with the server identity, or with the remote side's, cannot speak for the master (refused at start by
-# access control), and the remote reports no packet from anyone but its master. Skipped (77) without root (the
+# access control), and the remote reports no packet from anyone but its master. The session's haptic scene: edited by
+# an identity that may command every device (scener=*: hapticd-mujoco-scene's objects go in), refused to one that may
+# command vishard3 only (its scene topics are not allowed). Skipped (77) without root (the
 # capture needs it). Usage: security_test.sh BIN_DIR SOURCE_DIR WORK_DIR
 set -uo pipefail
 bin=$1 src=$2 work=$3
@@ -18,7 +20,7 @@ rm -rf "$work"; mkdir -p "$work"
 fail() { echo "FAIL: $*"; exit 1; }
 domain=89
 ports=(29650 29900)  # 7400 + 250 * 89 and the participants' unicast ports above it
-bash "$src/scripts/make-security.sh" "$work/security" $domain engine=vishard3 other=another-device \
+bash "$src/scripts/make-security.sh" "$work/security" $domain engine=vishard3 other=another-device scener=* \
   teleop:lab-m=master,remote teleop:lab-r=remote,master > /dev/null || fail "make-security.sh"
 session=$src/config/sessions/vishard3/dds-coupling.yaml
 source "$src/tests/e2e/session_copy.sh"  # loose_watchdogs: why, there
@@ -100,4 +102,19 @@ grep -q "peer: bound 1 times; 0 packets rejected" "$work/teleop-remote.log" ||
   fail "the remote's link: $(grep "link's peer" "$work/teleop-remote.log")"
 grep -q "device 'remote': ok" "$work/teleop-remote.log" || fail "the remote: $(tail -3 "$work/teleop-remote.log")"
 echo "teleoperation: $(grep -o "peer: bound.*participant than the bound peer" "$work/teleop-remote.log"); impostors: $(grep -o "cannot create.*Security" "$work/teleop-impostor-server.log")"
+
+# ---- the haptic scene: felt by every device, so edited only by an identity that may command every device ----
+session=$src/config/sessions/vishard3/dds-scene.yaml
+serve scene 14 --set "dds.cyclone_config=$(secure server)"
+sleep 0.5
+mirror() {  # IDENTITY: hapticd-mujoco-scene's block on the table, for a moment, with that identity
+  HAPTICD_DDS_CONFIG=$(secure "$1") timeout 30 "$bin/hapticd-mujoco-scene" "$src/config/scenes/scene-block.xml" \
+    --device vishard3 --domain $domain --duration 1 --wait 8 --id "$1" > "$work/scene-$1.log" 2>&1
+}
+mirror scener || fail "the identity that may command every device could not edit the scene: $(cat "$work/scene-scener.log")"
+grep -q "2 objects in the scene" "$work/scene-scener.log" || fail "the scene: $(cat "$work/scene-scener.log")"
+mirror engine && fail "an identity that may command vishard3 only edited the scene: $(cat "$work/scene-engine.log")"
+grep -q "Not Allowed By Security" "$work/scene-engine.log" || fail "the refusal: $(cat "$work/scene-engine.log")"
+wait $server
+echo "haptic scene: 'scener' (every device) edits it; 'engine' (vishard3 only): $(grep -o "cannot create.*Security" "$work/scene-engine.log")"
 echo "1 passed, 0 failed"

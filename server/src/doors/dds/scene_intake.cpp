@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <vector>
 
 #include "executor/loop_clock.hpp"
 #include "hapticd/dds/conversion.hpp"
@@ -40,6 +41,19 @@ bool plain_name(std::string_view s) {
 
 void put(const Eigen::Vector3d& v, double (&out)[3]) {
   for (int i = 0; i < 3; ++i) out[i] = v[i];
+}
+
+// The page of `list` from `first` into `entries` (at most MAX_SCENE_ENTRIES, each by `fill`), its place in the
+// list into the reply; returns how many.
+template <class T, class Entry, std::size_t N, class Fill>
+std::int32_t page(const std::vector<T>& list, std::uint32_t first, hapticd_msg_SceneReply& out, Entry (&entries)[N],
+                  Fill&& fill) {
+  const std::size_t total = list.size(), from = std::min<std::size_t>(first, total);
+  const std::size_t n = std::min(N, total - from);
+  out.total = static_cast<std::uint32_t>(total);
+  out.first = static_cast<std::uint32_t>(from);
+  for (std::size_t i = 0; i < n; ++i) fill(list[from + i], entries[i]);
+  return static_cast<std::int32_t>(n);
 }
 
 }  // namespace
@@ -171,39 +185,23 @@ void SceneIntake::answer(const SceneGate::Edit& edit, const std::optional<PeerId
   out.request_id = request_id;
   out.accepted = r.accepted;
   dds::set_text(out.message, r.message);
-  if (r.objects) {
-    const std::size_t total = r.objects->size(), from = std::min<std::size_t>(first, total);
-    const std::size_t n = std::min<std::size_t>(hapticd_msg_MAX_SCENE_ENTRIES, total - from);
-    out.total = static_cast<std::uint32_t>(total);
-    out.first = static_cast<std::uint32_t>(from);
-    out.object_count = static_cast<std::int32_t>(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const SceneObjectSummary& o = (*r.objects)[from + i];
-      hapticd_msg_SceneObjectEntry& e = out.objects[i];
+  if (r.objects)
+    out.object_count = page(*r.objects, first, out, out.objects, [](const SceneObjectSummary& o, auto& e) {
       dds::set_text(e.object_name, o.name);
       dds::set_text(e.shape, o.shape);
       e.uid = o.uid;
       e.moving = o.moving;
       e.triangle_count = o.triangles;
       dds::to_msg(o.pose, e.placement);
-    }
-  }
-  if (r.contacts) {
-    const std::size_t total = r.contacts->size(), from = std::min<std::size_t>(first, total);
-    const std::size_t n = std::min<std::size_t>(hapticd_msg_MAX_SCENE_ENTRIES, total - from);
-    out.total = static_cast<std::uint32_t>(total);
-    out.first = static_cast<std::uint32_t>(from);
-    out.contact_count = static_cast<std::int32_t>(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const SceneContact& c = (*r.contacts)[from + i];
-      hapticd_msg_SceneContactEntry& e = out.contacts[i];
+    });
+  if (r.contacts)
+    out.contact_count = page(*r.contacts, first, out, out.contacts, [](const SceneContact& c, auto& e) {
       dds::set_text(e.device, c.device);
       dds::set_text(e.object_name, c.object);
       put(c.force, e.force);
       put(c.torque, e.torque);
       put(c.point, e.point);
-    }
-  }
+    });
   (void)replies_.write(out);
   answered_.fetch_add(1, std::memory_order_relaxed);
   // Questions are answered anew each time; an edit's answer is kept, so that its repeat is not applied again.

@@ -162,6 +162,8 @@ class HAPTICD_API Client {
 
   // ---- the session's haptic scene (docs/haptic-scene.md): claim it, edit it, ask what the hands do to it ----
   // Made on first use, on this client's participant (the scene's claim is this client's); lives as long as it.
+  // Throws std::runtime_error when its topics cannot be made (DDS Security: only an identity that may command every
+  // device may edit the scene, docs/deployment.md).
   SceneClient& scene();
 
  private:
