@@ -78,9 +78,9 @@ void sheet(double at, int n, std::vector<double>& vertices, std::vector<std::uin
 }
 
 TEST(SceneDds, AnEngineOwnsTheScenePushedByTheHandAndEveryBadEditIsRefused) {
-  Server server(scene_session(158));
-  Client engine({"scene-engine", 158});
-  Client intruder({"intruder", 158});
+  Server server(scene_session(164));
+  Client engine({"scene-engine", 164});
+  Client intruder({"intruder", 164});
   server.start();
   ASSERT_TRUE(engine.wait_for_device("v3", 10s, true));
   client::SceneClient& scene = engine.scene();
@@ -229,7 +229,7 @@ TEST(SceneDds, AnEngineOwnsTheScenePushedByTheHandAndEveryBadEditIsRefused) {
 
   // The claim ends with its participant: a new engine claims once the old one is gone.
   {
-    Client brief({"brief-engine", 158});
+    Client brief({"brief-engine", 164});
     ASSERT_TRUE(scene.release(5s).accepted);
     ASSERT_TRUE(brief.scene().claim(5s).accepted);
     EXPECT_FALSE(other.claim(5s).accepted);
@@ -243,8 +243,8 @@ TEST(SceneDds, AnEngineOwnsTheScenePushedByTheHandAndEveryBadEditIsRefused) {
 }
 
 TEST(SceneDds, ASessionWithoutASceneSaysSo) {
-  Server server(e2e::session_yaml(159, 30.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
-  Client engine({"scene-engine", 159});
+  Server server(e2e::session_yaml(165, 30.0, "constant", "[0.0, 0.0, 0.0]", "realtime"));
+  Client engine({"scene-engine", 165});
   server.start();
   ASSERT_TRUE(engine.wait_for_device("v3", 10s, true));
   const SceneReply r = engine.scene().claim(5s);
