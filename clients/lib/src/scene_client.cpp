@@ -15,7 +15,11 @@
 
 namespace hapticd::client {
 namespace {
-constexpr std::chrono::milliseconds kRetry{250};            // a request without an answer is sent again after this
+constexpr std::chrono::milliseconds kRetry{250};  // a request without an answer is sent again after this
+// Only a server whose session has a scene answers (the others on the domain stay silent).
+constexpr const char* kNoAnswer =
+    "no answer within the timeout: no server on this DDS domain has a haptic scene (a session file with a `scene` "
+    "section), or it is not reachable";
 constexpr std::uint64_t kMoveBit = std::uint64_t{1} << 63;  // a move's id: its refusal is told apart from the rest
 
 std::chrono::steady_clock::duration countable(Timeout timeout) {
@@ -103,7 +107,7 @@ struct SceneClient::Impl {
     dds::set_text(m->content, content);
     m->first = first;
     std::unique_ptr<hapticd_msg_SceneReply> answer = ask(requests, *m, timeout);
-    if (!answer) return unanswered("no answer within the timeout");
+    if (!answer) return unanswered(kNoAnswer);
     SceneReply r = scene_wire::from_msg(*answer);
     if (raw != nullptr) *raw = std::move(answer);
     return r;
@@ -207,7 +211,7 @@ SceneReply SceneClient::add_mesh(std::string_view object, std::span<const double
     std::copy(triangles.begin() + static_cast<std::ptrdiff_t>(3 * t0),
               triangles.begin() + static_cast<std::ptrdiff_t>(3 * t1), part->triangles);
     std::unique_ptr<hapticd_msg_SceneReply> answer = impl_->ask(impl_->parts, *part, timeout);
-    if (!answer) return unanswered("no answer to the upload's part " + std::to_string(k) + " within the timeout");
+    if (!answer) return unanswered(std::string(kNoAnswer) + " (the upload's part " + std::to_string(k) + ")");
     if (!answer->accepted) return scene_wire::from_msg(*answer);
   }
   return impl_->request(hapticd_msg_SCENE_ADD, {}, text, timeout);

@@ -45,7 +45,9 @@ DdsDoor::DdsDoor(const DdsSettings& settings, Gate& gate, const std::vector<int>
                                         group_command_filter_, partitions);
   if (previous) (void)pthread_setaffinity_np(pthread_self(), sizeof *previous, &*previous);
   intake_ = std::make_unique<CommandIntake>(*dds_, gate_);
-  scene_ = std::make_unique<SceneIntake>(dds_->participant, gate_.scene(), dds_->peers);
+  // The haptic scene's topics only where the session has a scene: a server without one stays silent, so an engine
+  // on a domain shared with other servers hears only the server whose scene it edits.
+  if (gate_.scene() != nullptr) scene_ = std::make_unique<SceneIntake>(dds_->participant, *gate_.scene(), dds_->peers);
 }
 
 DdsDoor::~DdsDoor() {
@@ -60,19 +62,19 @@ void DdsDoor::relay_worlds(std::function<void(const hapticd_msg_World&)> sink) {
 
 void DdsDoor::start() {
   intake_->listen();
-  scene_->start();
+  if (scene_) scene_->start();
 }
 
 void DdsDoor::stop() {
   intake_->close();
-  scene_->stop();
+  if (scene_) scene_->stop();
   cyclone_log::report_suppressed();
 }
 
 bool DdsDoor::channel_open(const Sender& s) const {
   // A device's claim is bound to a request writer, the scene's to a scene request writer.
   return s.peer.door == DoorKind::dds &&
-         (dds_->peers.matched(dds_->request.get(), s.channel) || scene_->channel_open(s.channel));
+         (dds_->peers.matched(dds_->request.get(), s.channel) || (scene_ && scene_->channel_open(s.channel)));
 }
 
 bool DdsDoor::alive(const PeerId& p) {

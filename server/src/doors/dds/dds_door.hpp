@@ -47,7 +47,8 @@ class DdsDoor final : public Door {
   [[nodiscard]] std::uint64_t worlds_relayed() const noexcept { return worlds_ ? worlds_->accepted() : 0; }
   [[nodiscard]] std::uint64_t worlds_rejected() const noexcept { return worlds_ ? worlds_->rejected() : 0; }
   [[nodiscard]] std::uint64_t deadline_misses(std::size_t device) const { return intake_->deadline_misses(device); }
-  [[nodiscard]] const SceneIntake& scene() const noexcept { return *scene_; }
+  // The haptic scene's intake (null: the session has no scene).
+  [[nodiscard]] const SceneIntake* scene() const noexcept { return scene_.get(); }
 
   // Door.
   [[nodiscard]] DoorKind kind() const noexcept override { return DoorKind::dds; }
@@ -77,7 +78,7 @@ class DdsDoor final : public Door {
   dds_topic_filter command_filter_, request_filter_, group_command_filter_;
   std::unique_ptr<DdsEndpoints> dds_;
   std::unique_ptr<CommandIntake> intake_;
-  std::unique_ptr<SceneIntake> scene_;  // after dds_: it uses the participant and the peers
+  std::unique_ptr<SceneIntake> scene_;  // after dds_: it uses the participant and the peers; null: no scene
   std::unique_ptr<WorldRelay> worlds_;
   std::chrono::steady_clock::time_point next_log_report_;
 };

@@ -58,7 +58,7 @@ std::int32_t page(const std::vector<T>& list, std::uint32_t first, hapticd_msg_S
 
 }  // namespace
 
-SceneIntake::SceneIntake(const dds::Participant& participant, SceneGate* scene, PeerDirectory& peers)
+SceneIntake::SceneIntake(const dds::Participant& participant, SceneGate& scene, PeerDirectory& peers)
     : scene_(scene),
       peers_(peers),
       requests_(participant),
@@ -174,10 +174,7 @@ void SceneIntake::answer(const SceneGate::Edit& edit, const std::optional<PeerId
     refuse(client, request_id, "the requester is not known yet (discovery): send the request again");
     return;
   }
-  const SceneGate::Reply r =
-      scene_ != nullptr
-          ? scene_->apply(edit, Sender{*peer, writer}, client, monotonic_now_ns())
-          : SceneGate::Reply{false, "this session has no haptic scene (its session file has no `scene` section)"};
+  const SceneGate::Reply r = scene_.apply(edit, Sender{*peer, writer}, client, monotonic_now_ns());
   if (r.accepted && edit.op == SceneGate::Op::move) return;
   hapticd_msg_SceneReply& out = *reply_;
   out = hapticd_msg_SceneReply{};

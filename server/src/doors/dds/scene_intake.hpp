@@ -28,8 +28,8 @@ class SceneIntake {
  public:
   static constexpr std::size_t kRemembered = 32;
 
-  // scene: the session's (null: it has none, and every request is refused saying so).
-  SceneIntake(const dds::Participant& participant, SceneGate* scene, PeerDirectory& peers);
+  // Made only for a session with a scene (a server without one does not answer: see dds_door.cpp).
+  SceneIntake(const dds::Participant& participant, SceneGate& scene, PeerDirectory& peers);
   ~SceneIntake();
   SceneIntake(const SceneIntake&) = delete;
   SceneIntake& operator=(const SceneIntake&) = delete;
@@ -54,7 +54,7 @@ class SceneIntake {
   bool repeat(const PeerId& peer, std::string_view client, std::uint64_t request_id);
   void remember(const PeerId& peer);
 
-  SceneGate* scene_;
+  SceneGate& scene_;
   PeerDirectory& peers_;
   dds::Reader<hapticd_msg_SceneRequest> requests_;
   dds::Reader<hapticd_msg_SceneMeshPart> parts_;
