@@ -1,6 +1,7 @@
 #pragma once
 // The C API's one error model (hapticd/client.h): a status code, and the calling thread's message for
 // hapticd_last_error(); no exception crosses the interface.
+#include <cmath>
 #include <exception>
 #include <new>
 #include <string>
@@ -27,6 +28,9 @@ hapticd_status guarded(F&& f) noexcept {
     return fail(HAPTICD_ERROR_INTERNAL, "an unknown error");
   }
 }
+
+// A timeout argument: finite and >= 0.
+[[nodiscard]] inline bool valid_timeout(double seconds) noexcept { return std::isfinite(seconds) && seconds >= 0.0; }
 
 // A name argument: 1..31 characters. Empty view when it is not one (the caller fails with bad_name).
 [[nodiscard]] std::string_view name_of(const char* text) noexcept;

@@ -27,9 +27,8 @@ using hapticd::client_c::from_c;
 using hapticd::client_c::guarded;
 using hapticd::client_c::name_of;
 using hapticd::client_c::to_c;
+using hapticd::client_c::valid_timeout;
 namespace client = hapticd::client;
-
-bool valid_timeout(double t) noexcept { return std::isfinite(t) && t >= 0.0; }
 
 client::Timeout timeout_of(double seconds) noexcept { return client::Timeout(seconds); }
 

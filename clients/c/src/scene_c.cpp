@@ -13,23 +13,16 @@
 
 namespace {
 
-using hapticd::client_c::copy_text;
 using hapticd::client_c::fail;
 using hapticd::client_c::from_c;
 using hapticd::client_c::guarded;
 using hapticd::client_c::name_of;
 using hapticd::client_c::to_c;
+using hapticd::client_c::valid_timeout;
 namespace client = hapticd::client;
 
-bool valid_timeout(double t) noexcept { return std::isfinite(t) && t >= 0.0; }
-
 hapticd_status answer(const client::SceneReply& r, hapticd_reply* out) noexcept {
-  if (out != nullptr) {
-    *out = hapticd_reply{};
-    out->answered = r.answered ? 1 : 0;
-    out->accepted = r.accepted ? 1 : 0;
-    copy_text(out->message, r.message);
-  }
+  if (out != nullptr) to_c(client::Reply{r.answered, r.accepted, r.message, {}}, *out);
   if (!r.answered) return fail(HAPTICD_ERROR_TIMEOUT, r.message);
   if (!r.accepted) return fail(HAPTICD_ERROR_REFUSED, r.message);
   return HAPTICD_OK;

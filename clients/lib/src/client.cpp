@@ -13,21 +13,13 @@
 
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
+#include "request_timing.hpp"
 #include "scene_wire.hpp"
 #include "wire.hpp"
 
 namespace hapticd::client {
 
 namespace {
-constexpr std::chrono::milliseconds kRequestRetry{250};  // a request without a reply is sent again after this
-
-// A timeout the steady clock can count: at most about three years (1e10 s and more overflowed its nanoseconds and
-// returned at once); not positive or NaN: none.
-std::chrono::steady_clock::duration countable(Timeout timeout) {
-  constexpr Timeout kLongest{1e8};
-  const Timeout t = timeout > Timeout::zero() ? std::min(timeout, kLongest) : Timeout::zero();
-  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(t);
-}
 
 // A writer in a target's partition, or none where the domain's DDS Security permissions do not let this identity
 // publish the topic there.

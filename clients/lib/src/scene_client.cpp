@@ -11,22 +11,16 @@
 
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/endpoints.hpp"
+#include "request_timing.hpp"
 #include "scene_wire.hpp"
 
 namespace hapticd::client {
 namespace {
-constexpr std::chrono::milliseconds kRetry{250};  // a request without an answer is sent again after this
 // Only a server whose session has a scene answers (the others on the domain stay silent).
 constexpr const char* kNoAnswer =
     "no answer within the timeout: no server on this DDS domain has a haptic scene (a session file with a `scene` "
     "section), or it is not reachable";
 constexpr std::uint64_t kMoveBit = std::uint64_t{1} << 63;  // a move's id: its refusal is told apart from the rest
-
-std::chrono::steady_clock::duration countable(Timeout timeout) {
-  constexpr Timeout kLongest{1e8};
-  const Timeout t = timeout > Timeout::zero() ? std::min(timeout, kLongest) : Timeout::zero();
-  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(t);
-}
 
 SceneReply unanswered(std::string why) {
   SceneReply r;
@@ -84,7 +78,7 @@ struct SceneClient::Impl {
       const bool written = writer.write(m);
       lock.lock();
       if (!written && !answered()) break;
-      const auto retry = std::min(until, std::chrono::steady_clock::now() + kRetry);
+      const auto retry = std::min(until, std::chrono::steady_clock::now() + kRequestRetry);
       if (changed.wait_until(lock, retry, answered) || retry >= until) break;
     }
     pending.erase(m.request_id);

@@ -201,8 +201,10 @@ void SceneIntake::answer(const SceneGate::Edit& edit, const std::optional<PeerId
     });
   (void)replies_.write(out);
   answered_.fetch_add(1, std::memory_order_relaxed);
-  // Questions are answered anew each time; an edit's answer is kept, so that its repeat is not applied again.
-  if (edit.op != SceneGate::Op::list && edit.op != SceneGate::Op::contacts) remember(*peer);
+  // Questions are answered anew each time, and a move is never sent again; an edit's answer is kept, so that its
+  // repeat is not applied again.
+  if (edit.op != SceneGate::Op::list && edit.op != SceneGate::Op::contacts && edit.op != SceneGate::Op::move)
+    remember(*peer);
 }
 
 void SceneIntake::refuse(std::string_view client, std::uint64_t request_id, std::string_view why) {
