@@ -142,7 +142,7 @@ wall node.log timeout 30 node "$here/wall_engine.mjs" "$url" vishard3 6
 ok "the Node engine's wall holds the 15 N push"
 wall python.log timeout 30 "$py" "$here/wall_engine.py" "$url" vishard3 6
 ok "the Python engine's wall holds the 15 N push"
-timeout 60 node "$here/browser_wall.mjs" "$url" vishard3 5 claimed.flag > browser.log 2>&1 &
+timeout 60 node "$here/browser_page.mjs" "${url/ws:/http:}/wall.html?device=vishard3" wall 5 claimed.flag > browser.log 2>&1 &
 browser=$!
 for _ in $(seq 250); do [ -f claimed.flag ] && break; sleep 0.1; done
 [ -f claimed.flag ] || fail "the page in chromium did not claim the device"

@@ -196,6 +196,40 @@ async def main(url):
     check(len(sheet) == 1 and sheet[0]["shape"] == "mesh" and sheet[0]["triangles"] == 3200,
           "the list shows the sheet's 3200 triangles", r["objects"])
 
+    # Drawn for anyone (the browser's scene page draws from this): the objects with their sizes and the proxies;
+    # a mesh's triangles in pages, every corner where it was uploaded (to 0.1 mm).
+    r = await intruder.scene("draw")
+    drawn = {o["name"]: o for o in r["drawing"]["objects"]}
+    proxies = r["drawing"]["proxies"]
+    check(r["accepted"] and drawn["wall"]["shape"] == "plane" and drawn["sheet"]["triangles"] == 3200 and
+          "corners_0_1mm" in drawn["sheet"] and drawn["sheet"]["corners_0_1mm"] == [] and
+          [p["device"] for p in proxies] == ["vishard3"] and abs(proxies[0]["radius"] - 0.005) < 1e-9,
+          "anyone draws the scene: its objects, no triangles, and the proxy", r)
+    pages, corners, first = 0, [], 0
+    while True:
+        r = await intruder.scene("draw", name="sheet", max_triangles=5000, first=first)
+        c = r["drawing"]["objects"][0]["corners_0_1mm"] if r["accepted"] else []
+        if not c:
+            break
+        pages, corners, first = pages + 1, corners + c, first + len(c) // 9
+    uploaded = sorted(tuple(sorted(tuple(round(vertices[3 * v + k] * 1e4) for k in range(3))
+                                   for v in triangles[3 * t:3 * t + 3])) for t in range(len(triangles) // 3))
+    got = sorted(tuple(sorted(tuple(corners[9 * t + 3 * i:9 * t + 3 * i + 3]) for i in range(3)))
+                 for t in range(len(corners) // 9))
+    # (float corners: a coordinate may round to the next tenth of a millimetre, the same for every vertex)
+    same = len(got) == len(uploaded) and all(abs(a - b) <= 1 for g, u in zip(got, uploaded)
+                                              for gc, uc in zip(g, u) for a, b in zip(gc, uc))
+    check(pages == 8 and same, "the sheet is drawn in 8 pages of 400 triangles, as uploaded",
+          f"{pages} pages, {len(got)} triangles")
+    r = await intruder.scene("draw", name="sheet", max_triangles=1000)
+    check(r["accepted"] and r["drawing"]["objects"][0]["drawn"] == 800 and r["drawing"]["proxies"] == [],
+          "drawn with at most 1000 of its triangles: every 4th", r["message"])
+    r = await intruder.scene("draw", name="ghost")
+    check(not r["accepted"] and "no object named 'ghost'" in r["message"], "drawing no object is refused", r)
+    await intruder.ws.send('{"scene": {"id": 9200, "op": "draw", "name": "sheet", "max_triangles": 1e9}}')
+    e = await intruder.next_answer("error")
+    check(e is not None and "max_triangles" in e["message"], "a drawing of a billion triangles is malformed", e)
+
     # Bad edits: each refused with its reason, the wall still there.
     bad = [
         ("add", {"object": {"name": "ball", "shape": "sphere", "radius": -1}}, "object.radius: must be positive"),

@@ -20,6 +20,8 @@ SceneGate::Reply SceneGate::apply(const Edit& e, const Sender& sender, std::stri
     reply.accepted = true;
     reply.message = std::to_string(reply.contacts->size()) + " contacts";
     return reply;
+  } else if (e.op == Op::draw) {
+    return draw(e);
   } else if (e.op == Op::claim) {
     if (owner_.empty() || mine) {
       owner_ = std::string(client);
@@ -53,6 +55,31 @@ SceneGate::Reply SceneGate::apply(const Edit& e, const Sender& sender, std::stri
   }
   (reply.accepted ? edits_ : refused_).fetch_add(1, std::memory_order_relaxed);
   return reply;
+}
+
+SceneGate::Reply SceneGate::draw(const Edit& e) {
+  Reply reply;
+  SceneDrawing d = scene_.drawing(e.name.empty() ? 0 : std::min(e.max_triangles, kMaxDrawTriangles));
+  if (e.name.empty()) {
+    reply.message = std::to_string(d.objects.size()) + " objects, " + std::to_string(d.proxies.size()) + " proxies";
+  } else {
+    const auto found =
+        std::find_if(d.objects.begin(), d.objects.end(), [&](const auto& o) { return o.name == e.name; });
+    if (found == d.objects.end()) return {false, "no object named '" + std::string(e.name) + "'"};
+    SceneObjectDrawing o = std::move(*found);
+    reply.drawn = o.corners.size() / 3;
+    const std::size_t first = std::min(e.first, reply.drawn);
+    const std::size_t last = std::min(first + kDrawPage, reply.drawn);
+    o.corners = std::vector<Eigen::Vector3f>(o.corners.begin() + static_cast<std::ptrdiff_t>(3 * first),
+                                             o.corners.begin() + static_cast<std::ptrdiff_t>(3 * last));
+    d.objects.assign(1, std::move(o));
+    d.proxies.clear();
+    reply.message = "triangles " + std::to_string(first) + " to " + std::to_string(last) + " of " +
+                    std::to_string(reply.drawn) + " drawn";
+  }
+  reply.accepted = true;
+  reply.drawing = std::move(d);
+  return reply;  // a question: not counted
 }
 
 SceneGate::Reply SceneGate::edit(const Edit& e) {

@@ -2,8 +2,8 @@
 // The session's haptic scene at the gate (docs/haptic-scene.md, "Engines edit the scene"): who owns it and what the
 // owner's edits do, whichever door they came through. Owned like a device: one owner at a time (claim, release;
 // the claim ends when the channel that made it is gone - a connection closed, checked on the gate's service
-// thread); only the owner edits; anyone may list the objects and ask what the hands do to them (contacts: each
-// device's force and torque on each object it touches, as of the devices' latest cycles - an engine asks at its
+// thread); only the owner edits; anyone may list the objects, draw them and ask what the hands do to them (contacts:
+// each device's force and torque on each object it touches, as of the devices' latest cycles - an engine asks at its
 // frame rate and applies them to its copies of the objects). An edit is made on the door's thread, off the loop
 // (an object is parsed and built there; the devices take the new scene whole at their next cycle). Edits that
 // remake the scene (add, remove, material) are held to kRemakesPerSecond per owner (a burst of as many); moves to
@@ -38,7 +38,11 @@ class SceneGate {
 
   explicit SceneGate(SceneService& scene) : scene_(scene) {}
 
-  enum class Op : std::uint8_t { claim, release, add, remove, material, move, list, contacts, upload };
+  // A drawing's mesh corners come in pages of kDrawPage triangles (a page of 400 is about 25 kB of JSON).
+  static constexpr std::size_t kDrawPage = 400;
+  static constexpr std::size_t kMaxDrawTriangles = 20'000;
+
+  enum class Op : std::uint8_t { claim, release, add, remove, material, move, list, contacts, upload, draw };
   struct Edit {
     Op op = Op::list;
     std::string_view name;    // the object (remove, material, move)
@@ -48,6 +52,9 @@ class SceneGate {
     int part = 0, parts = 0;  // upload: this part's number (from 0) of how many
     std::span<const double> vertices;          // upload: this part's, three coordinates each
     std::span<const std::uint32_t> triangles;  // upload: this part's, three indices each
+    // draw: with no name, every object without its triangles and every proxy; with a mesh's name, that mesh
+    // drawn with at most max_triangles of its triangles (every k-th), those from `first` on (kDrawPage of them).
+    std::size_t max_triangles = 0, first = 0;
   };
   struct Reply {
     Reply() = default;
@@ -56,6 +63,8 @@ class SceneGate {
     std::string message;
     std::optional<std::vector<SceneObjectSummary>> objects;  // the answer to list (none for any other op)
     std::optional<std::vector<SceneContact>> contacts;       // the answer to contacts
+    std::optional<SceneDrawing> drawing;                     // the answer to draw
+    std::size_t drawn = 0;                                   // draw of a mesh: how many triangles it is drawn with
   };
 
   // A door's thread: `sender`'s edit (its client id `client`, for messages and the owner's name); now_ns: the
@@ -71,6 +80,7 @@ class SceneGate {
 
  private:
   Reply edit(const Edit& e);  // under mutex_, from the owner
+  Reply draw(const Edit& e);
   Reply take_part(const Edit& e);
   Reply add_upload(const Edit& e);
 

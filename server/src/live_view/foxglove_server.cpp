@@ -117,8 +117,7 @@ FoxgloveServer::FoxgloveServer(FoxgloveServerOptions options, std::vector<Channe
   o.handshake_timeout = options.handshake_timeout;
   o.allowed_origins = options.allowed_origins;
   o.origin_hint = "the origins listed in the session's live_view.allowed_origins";
-  o.page = options.page;
-  o.page_path = "/viewer.html";
+  if (!options.page.empty()) o.pages.push_back({"/viewer.html", options.page});
   transport_ = std::make_unique<WebSocketServer>(std::move(o), *protocol_);
   protocol_->transport = transport_.get();
 }

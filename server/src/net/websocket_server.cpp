@@ -241,10 +241,12 @@ class StreamConnection final : public Connection, public std::enable_shared_from
                                                  " may not connect to the " + o.what +
                                                  ": pages served from this machine may, and " + o.origin_hint + "\n");
     }
-    if (!websocket::is_upgrade(request_) && request_.method() == http::verb::get && !o.page.empty()) {
+    if (!websocket::is_upgrade(request_) && request_.method() == http::verb::get && !o.pages.empty()) {
       const std::string_view target = to_std(request_.target());
-      if (target == "/" || target.substr(0, 2) == "/?" || target.substr(0, o.page_path.size()) == o.page_path)
-        return serve_page();
+      const std::string_view path = target.substr(0, target.find('?'));
+      if (path == "/") return serve_page(o.pages.front());
+      for (const WebSocketOptions::Page& page : o.pages)
+        if (path == page.path) return serve_page(page);
     }
     if (!o.token.empty()) {
       std::string_view given = query_value(to_std(request_.target()), "token");
@@ -276,7 +278,9 @@ class StreamConnection final : public Connection, public std::enable_shared_from
     ws_.async_accept(request_, [self = this->shared_from_this()](beast::error_code e) { self->on_accepted(e); });
   }
 
-  void serve_page() { respond(http::status::ok, "text/html; charset=utf-8", std::string(server_.options.page)); }
+  void serve_page(const WebSocketOptions::Page& page) {
+    respond(http::status::ok, "text/html; charset=utf-8", std::string(page.html));
+  }
 
   void refuse(http::status status, std::string text) { respond(status, "text/plain", std::move(text)); }
 

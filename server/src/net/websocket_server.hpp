@@ -54,9 +54,12 @@ struct WebSocketOptions {
   // "https://app.foxglove.dev"); a client without an Origin (a program, not a browser page) always may.
   std::vector<std::string> allowed_origins;
   std::string origin_hint;  // where the refusal of an origin tells the user to list it
-  // A page served to a plain HTTP GET of "/" or of page_path (empty: none).
-  std::string_view page;
-  std::string page_path = "/index.html";
+  // Pages served to a plain HTTP GET of their paths (a query after the path is the page's); "/" serves the first.
+  struct Page {
+    std::string path;  // "/wall.html"
+    std::string_view html;
+  };
+  std::vector<Page> pages;
 };
 
 struct WebSocketCounters {

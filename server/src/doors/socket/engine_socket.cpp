@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "doors/socket/wall_page.hpp"
+#include "doors/socket/socket_pages.hpp"
 #include "executor/loop_clock.hpp"
 #include "gate/request_dispatcher.hpp"
 #include "hapticd/dds/conversion.hpp"
@@ -96,8 +96,8 @@ EngineSocket::EngineSocket(const EngineSocketSettings& settings, Gate& gate, std
   o.allowed_origins = settings.allowed_origins;
   o.cpus = std::move(cpus);
   o.origin_hint = "the origins listed in the session's engine_socket.allowed_origins";
-  o.page = wall_page();  // a wall engine in the browser, from the socket's own origin
-  o.page_path = "/wall.html";
+  // A wall engine and the haptic scene in the browser, from the socket's own origin ("/" is the wall's).
+  o.pages = {{"/wall.html", wall_page()}, {"/scene.html", scene_page()}};
   server_ = std::make_unique<WebSocketServer>(std::move(o), *this);
 }
 

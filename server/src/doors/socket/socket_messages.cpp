@@ -261,6 +261,7 @@ constexpr SceneOpName kSceneOps[] = {
     {"claim", SceneGate::Op::claim},   {"release", SceneGate::Op::release},   {"add", SceneGate::Op::add},
     {"remove", SceneGate::Op::remove}, {"material", SceneGate::Op::material}, {"move", SceneGate::Op::move},
     {"list", SceneGate::Op::list},     {"contacts", SceneGate::Op::contacts}, {"upload", SceneGate::Op::upload},
+    {"draw", SceneGate::Op::draw},
 };
 }  // namespace
 
@@ -277,7 +278,7 @@ bool Parser::scene(const Value& s, ClientMessage& out) {
   const auto found =
       std::find_if(std::begin(kSceneOps), std::end(kSceneOps), [&](const auto& k) { return k.name == op; });
   if (found == std::end(kSceneOps)) {
-    out.error = "scene: unknown op (claim, release, add, remove, material, move, list, contacts, upload)";
+    out.error = "scene: unknown op (claim, release, add, remove, material, move, list, contacts, upload, draw)";
     return false;
   }
   SceneGate::Edit& e = m.edit;
@@ -338,6 +339,15 @@ bool Parser::scene(const Value& s, ClientMessage& out) {
     }
     e.vertices = out.scene_vertices;
     e.triangles = out.scene_triangles;
+  } else if (e.op == SceneGate::Op::draw) {
+    const double most = s["max_triangles"].number_or(2000.0), first = s["first"].number_or(0.0);
+    if (!(most >= 0.0 && most <= static_cast<double>(SceneGate::kMaxDrawTriangles) && std::floor(most) == most &&
+          first >= 0.0 && first <= 1e9 && std::floor(first) == first)) {
+      out.error = "scene: draw's max_triangles is a whole number to 20000 and its first one from 0";
+      return false;
+    }
+    e.max_triangles = static_cast<std::size_t>(most);
+    e.first = static_cast<std::size_t>(first);
   } else if (e.op == SceneGate::Op::material) {
     const Value material = s["material"];
     if (const std::optional<std::string_view> by_name = material.string(); by_name && by_name->size() <= 64) {
@@ -504,6 +514,53 @@ void append_objects(std::string& out, std::string_view key, const std::vector<T>
 }
 }  // namespace
 
+namespace {
+// ,"drawing":{"objects":[...],"proxies":[...]}: each object's shape, pose and size; a mesh's corners (three per
+// triangle) as one list of numbers, in tenths of a millimetre (whole numbers: a third of the text of metres).
+void append_drawing(std::string& out, const SceneDrawing& d, std::size_t drawn) {
+  append_key(out, "drawing");
+  out += "{\"objects\":[";
+  for (std::size_t i = 0; i < d.objects.size(); ++i) {
+    const SceneObjectDrawing& o = d.objects[i];
+    out += i > 0 ? ",{\"name\":" : "{\"name\":";
+    append_string(out, o.name);
+    append_key(out, "shape");
+    append_string(out, o.shape);
+    out += o.moving ? ",\"moving\":true" : ",\"moving\":false";
+    append_vector3(out, "position", o.pose.position.data());
+    const double q[4] = {o.pose.orientation.w(), o.pose.orientation.x(), o.pose.orientation.y(),
+                         o.pose.orientation.z()};
+    append_quaternion(out, "orientation", q);
+    append_vector3(out, "size", o.size.data());
+    append_key(out, "triangles");
+    append_integer(out, static_cast<std::int64_t>(o.triangles));
+    if (o.shape == "mesh") {
+      append_key(out, "drawn");
+      append_integer(out, static_cast<std::int64_t>(drawn));
+      out += ",\"corners_0_1mm\":[";
+      for (std::size_t k = 0; k < o.corners.size(); ++k)
+        for (int c = 0; c < 3; ++c) {
+          if (k + c > 0) out += ',';
+          append_integer(out, static_cast<std::int64_t>(std::lround(o.corners[k][c] * 1e4f)));
+        }
+      out += ']';
+    }
+    out += '}';
+  }
+  out += "],\"proxies\":[";
+  for (std::size_t i = 0; i < d.proxies.size(); ++i) {
+    const SceneProxyDrawing& p = d.proxies[i];
+    out += i > 0 ? ",{\"device\":" : "{\"device\":";
+    append_string(out, p.device);
+    append_vector3(out, "position", p.position.data());
+    append_key(out, "radius");
+    append_number(out, p.radius);
+    out += p.touching ? ",\"touching\":true}" : ",\"touching\":false}";
+  }
+  out += "]}";
+}
+}  // namespace
+
 std::string scene_reply(std::int64_t id, const SceneGate::Reply& r) {
   std::string out = "{\"scene_reply\":{\"id\":";
   append_integer(out, id);
@@ -532,6 +589,7 @@ std::string scene_reply(std::int64_t id, const SceneGate::Reply& r) {
       append_vector3(out, "torque", c.torque.data());
       append_vector3(out, "point", c.point.data());
     });
+  if (r.drawing) append_drawing(out, *r.drawing, r.drawn);
   out += "}}";
   return out;
 }

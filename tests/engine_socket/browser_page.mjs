@@ -1,19 +1,20 @@
-// The wall engine of a web page (tools/engine_socket/wall.html, served by the engine socket) in Debian's chromium,
-// headless: opens http://HOST:PORT/wall.html?device=DEVICE, clicks its Claim button as a person would (a trusted
-// mouse event through the DevTools protocol), lets it run RUN_S seconds, then reads the page's
-// window.wall through the DevTools protocol (with `ws`) and prints it as JSON on one line. The engine socket test
-// checks what it says (tests/e2e/engine_socket_test.sh).
-//   node browser_wall.mjs SOCKET_URL DEVICE RUN_S [CLAIMED_FILE]
-// CLAIMED_FILE: written once the page has claimed the device (the test then has the operator push).
+// A page the engine socket serves (tools/engine_socket/wall.html, scene.html) in Debian's chromium, headless: opens
+// PAGE_URL, clicks its button `claim` as a person would (a trusted mouse event through the DevTools protocol) until
+// window[VAR].claimed, lets it run RUN_S seconds, then reads the page's window[VAR] through the DevTools protocol
+// (with `ws`) and prints it as JSON on one line. The tests check what it says (tests/e2e/engine_socket_test.sh,
+// scene_browser_test.sh).
+//   node browser_page.mjs PAGE_URL VAR RUN_S [CLAIMED_FILE | --look]
+// CLAIMED_FILE: written once the page has claimed (the test then has the operator push); --look: no click, the page
+// only looks for RUN_S seconds.
 import { spawn } from "node:child_process";
 import { writeFileSync } from "node:fs";
 import { createRequire } from "node:module";
 const require = createRequire(new URL("../live_view/package.json", import.meta.url));
 const WebSocket = require("ws");
 
-const [socketUrl, device, runS, claimedFile] = process.argv.slice(2);
+const [page, variable, runS, claimedFile] = process.argv.slice(2);
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-const page = `${socketUrl.replace(/^ws:/, "http:")}/wall.html?device=${encodeURIComponent(device)}`;
+const claimed = `window.${variable} && window.${variable}.claimed`;
 const port = 9800 + Math.floor(Math.random() * 150);
 const chromium = spawn("chromium", ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-timer-throttling",
   "--disable-renderer-backgrounding", `--remote-debugging-port=${port}`, "--remote-debugging-address=127.0.0.1",
@@ -51,24 +52,25 @@ try {
   };
   // The page claims only on a person's click: a real (trusted) mouse click on its Claim button, as a person's.
   const where = `(() => { const b = document.getElementById("claim"); if (!b || b.disabled) return null;
-    const r = b.getBoundingClientRect(); return { x: r.x + r.width / 2, y: r.y + r.height / 2 }; })()`;
+    b.scrollIntoView({ block: "center" }); const r = b.getBoundingClientRect(); return { x: r.x + r.width / 2, y: r.y + r.height / 2 }; })()`;
   // Clicked again until the page has claimed (a click before the page's first paint hits nothing; a slow server -
   // ThreadSanitizer's - answers late), at most 20 times in 10 s.
   let button = null;
-  for (let i = 0; i < 100 && !(button = await evaluate(where)); ++i) await sleep(100);
-  if (!button) throw new Error("the page's Claim button did not become active");
-  for (let click = 0; click < 20 && !(await evaluate("window.wall && window.wall.claimed")); ++click) {
+  const look = claimedFile === "--look";
+  for (let i = 0; i < 100 && !look && !(button = await evaluate(where)); ++i) await sleep(100);
+  if (!button && !look) throw new Error("the page's Claim button did not become active");
+  for (let click = 0; click < 20 && !look && !(await evaluate(claimed)); ++click) {
     button = (await evaluate(where)) || button;
     for (const type of ["mousePressed", "mouseReleased"])
       await call("Input.dispatchMouseEvent", { type, x: button.x, y: button.y, button: "left", clickCount: 1 });
-    for (let i = 0; i < 5 && !(await evaluate("window.wall && window.wall.claimed")); ++i) await sleep(100);
+    for (let i = 0; i < 5 && !(await evaluate(claimed)); ++i) await sleep(100);
   }
-  if (claimedFile) writeFileSync(claimedFile, "claimed\n");
+  if (claimedFile && !look) writeFileSync(claimedFile, "claimed\n");
   await sleep(1000 * Number(runS));
-  console.log(JSON.stringify(await evaluate("window.wall")));
+  console.log(JSON.stringify(await evaluate(`window.${variable}`)));
   dev.close();
 } catch (e) {
-  console.error(`browser wall: ${e.message}`);
+  console.error(`browser page: ${e.message}`);
   status = 1;
 } finally {
   chromium.kill();
