@@ -30,6 +30,7 @@ packages=(
   chromium
   mono-mcs mono-runtime
   python3-websockets
+  rosidl-tools python3-rosidl python3-catkin-pkg python3-empy
 )
 
 missing=()

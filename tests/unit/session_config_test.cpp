@@ -149,6 +149,15 @@ INSTANTIATE_TEST_SUITE_P(
                   "live_view.address", "address: localhost", "not an IP address"},
         BadConfig{"live_view_unknown_key", kHeader + kValidDevices + "live_view:\n  prot: 1\n", "live_view.prot",
                   "prot: 1", "unknown key"},
+        // ROS 2's topics.
+        BadConfig{"ros2_namespace", kHeader + kValidDevices + "ros2:\n  namespace: hapticd\n", "ros2.namespace",
+                  "namespace: hapticd", "is not a ROS 2 namespace"},
+        BadConfig{"ros2_world_frame", kHeader + kValidDevices + "ros2:\n  world_frame: /world\n", "ros2.world_frame",
+                  "world_frame: /world", "is not a frame id"},
+        BadConfig{"ros2_rate_above_the_loop", kHeader + "  rate_hz: 500\n" + kValidDevices + "ros2:\n  rate_hz: 1000\n",
+                  "ros2.rate_hz", "rate_hz: 1000", "more than the loop's rate"},
+        BadConfig{"ros2_unknown_key", kHeader + kValidDevices + "ros2:\n  domian_id: 3\n", "ros2.domian_id",
+                  "domian_id: 3", "unknown key"},
         // The gate's settings: in the gate section, or (older sessions) in dds - not both.
         BadConfig{"gate_key_in_dds_and_gate",
                   kHeader + kValidDevices + "dds:\n  max_force_n: 100\ngate:\n  max_force_n: 50\n", "dds.max_force_n",

@@ -202,6 +202,12 @@ int run_session(const RunOptions& options) {
                      s->config.engine_socket.address);
     }
 
+  if (doors != nullptr && doors->ros2() != nullptr)
+    spdlog::info(
+        "ROS 2 topics in ROS domain {} at {} Hz: {}/<device>/pose, twist, wrench, joint_states or buttons, "
+        "robot_description; /tf (docs/ros2.md)",
+        s->config.ros2.domain_id, s->config.ros2.rate_hz, s->config.ros2.ns);
+
   for (const ConfigureFailure& f : s->configure_failures)
     spdlog::error("device '{}' {}: {}", f.device,
                   f.powered ? "is held in its safe state (zero torque)" : "is left out (its drives stay unpowered)",
@@ -440,6 +446,10 @@ int describe_config(const std::string& config_file) {
       "\nteleoperation section (present: this device is one side of a link to another server's; "
       "docs/teleoperation.md):\n");
   print_schema(teleoperation_settings_schema());
+  fmt::print(
+      "\nros2 section (present: the devices on ROS 2's topics and types: pose, twist, wrench, joint states, buttons, "
+      "TF, robot description; docs/ros2.md):\n");
+  print_schema(ros2_settings_schema());
   fmt::print(
       "\nscene section (present: the session's haptic scene, which its devices' haptic_scene models that name no "
       "file render and engines edit at run time; docs/haptic-scene.md):\n");

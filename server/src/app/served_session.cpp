@@ -103,7 +103,7 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
     live_view_ = std::make_unique<live_view::LiveView>(
         config.live_view, devices, config.server.rate_hz, config.file.filename().string(),
         !devices.empty() && devices.front()->chain().scene ? devices.front()->chain().scene->object.get() : nullptr);
-  if (config.dds.enabled || config.engine_socket.enabled) {  // the gate, with the doors the session opens
+  if (config.dds.enabled || config.engine_socket.enabled || config.ros2.enabled) {  // the gate and its doors
     doors_ = std::make_unique<Doors>(config, devices, stages, dds_cpus_);
     for (std::size_t d = 0; d < devices.size(); ++d)
       doors_->set_loop_statistics(d, &executor_->live(loops_->loop_of(devices[d])));

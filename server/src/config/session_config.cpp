@@ -838,13 +838,18 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
   config.overrides = applied;
   MappingReader top(
       root, "", file,
-      {"server", "dds", "gate", "live_view", "engine_socket", "teleoperation", "scene", "devices", "groups"});
+      {"server", "dds", "gate", "live_view", "engine_socket", "teleoperation", "ros2", "scene", "devices", "groups"});
   config.server = read_server(top.optional("server"), file, path.parent_path());
   config.dds = read_dds(top.optional("dds"), file, path.parent_path());
   config.gate = read_gate(top.optional("gate"), top.optional("dds"), file);
   config.live_view = read_live_view(top.optional("live_view"), file);
   config.engine_socket = read_engine_socket(top.optional("engine_socket"), file, path.parent_path());
   config.scene = read_scene(top.optional("scene"), file);
+  config.ros2 = read_ros2(top.optional("ros2"), file);
+  if (config.ros2.enabled && config.ros2.rate_hz > config.server.rate_hz)
+    throw ConfigError(file, root["ros2"]["rate_hz"].IsDefined() ? line_of(root["ros2"]["rate_hz"]) : config.ros2.line,
+                      "ros2.rate_hz",
+                      "more than the loop's rate (server.rate_hz: " + std::to_string(config.server.rate_hz) + " Hz)");
 
   const YAML::Node devices = top.required("devices");
   if (!devices.IsSequence() || devices.size() == 0)

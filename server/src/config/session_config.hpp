@@ -11,6 +11,7 @@
 
 #include "config/config_overrides.hpp"
 #include "config/repulsion_settings.hpp"
+#include "config/ros2_settings.hpp"
 #include "config/teleoperation_settings.hpp"
 #include "hapticd/dds/network.hpp"
 #include "hapticd/parameters.hpp"
@@ -194,6 +195,7 @@ struct SessionConfig {
   LiveViewSettings live_view;
   EngineSocketSettings engine_socket;
   TeleoperationSettings teleoperation;
+  Ros2Settings ros2;
   // The session's haptic scene (`scene`; docs/haptic-scene.md): its plugin (session_scene unless named) and its
   // parameters (the scene file). None without the section.
   std::optional<PluginConfig> scene;

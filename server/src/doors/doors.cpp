@@ -26,10 +26,19 @@ Doors::Doors(const SessionConfig& config, std::vector<DeviceSession*> sessions, 
     gate_->add_door(*socket_);
   }
   if (dds_) gate_->add_door(*dds_);
+  if (config.ros2.enabled) {
+    try {
+      ros2_ = std::make_unique<Ros2Door>(config.ros2, config.dds, *gate_);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("ROS 2 topics: ") + e.what());
+    }
+    gate_->add_door(*ros2_);  // last: the ROS 2 topics are for watching, the engines' doors come first
+  }
 }
 
 Doors::~Doors() {
   gate_->stop();
+  ros2_.reset();
   link_.reset();
   socket_.reset();
   dds_.reset();

@@ -2,8 +2,9 @@
 // The session's gate and its doors, built from the session file (docs/architecture.md, "The gate and its doors"):
 // the gate (gate/gate.hpp) with the `gate` section's settings, and a door for each section that asks for one -
 // DDS (`dds`), the engine socket (`engine_socket`; with or without DDS), the teleoperation link (`teleoperation`;
-// its packets travel over DDS). The doors are added to the gate in the order a state reaches them: the link
-// first (its round trip is the loop's), the socket (its hand-off returns at once), DDS's write last.
+// its packets travel over DDS), ROS 2's topics (`ros2`). The doors are added to the gate in the order a state
+// reaches them: the link first (its round trip is the loop's), the socket (its hand-off returns at once), DDS's
+// write, ROS 2's last (for watching).
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -13,6 +14,7 @@
 
 #include "config/session_config.hpp"
 #include "doors/dds/dds_door.hpp"
+#include "doors/ros2/ros2_door.hpp"
 #include "doors/socket/engine_socket.hpp"
 #include "doors/teleop/teleop_link.hpp"
 #include "gate/gate.hpp"
@@ -46,6 +48,7 @@ class Doors final : public CycleListener {
   [[nodiscard]] const DdsDoor* dds() const noexcept { return dds_.get(); }                    // nullptr: no dds section
   [[nodiscard]] const EngineSocket* engine_socket() const noexcept { return socket_.get(); }  // nullptr: none
   [[nodiscard]] const TeleopLink* teleop_link() const noexcept { return link_.get(); }        // nullptr: none
+  [[nodiscard]] const Ros2Door* ros2() const noexcept { return ros2_.get(); }                 // nullptr: none
 
   // Any thread.
   void publish_fault_report(std::size_t device, const FaultReport& report) {
@@ -75,6 +78,7 @@ class Doors final : public CycleListener {
   std::unique_ptr<DdsDoor> dds_;
   std::unique_ptr<EngineSocket> socket_;
   std::unique_ptr<TeleopLink> link_;
+  std::unique_ptr<Ros2Door> ros2_;
 };
 
 }  // namespace hapticd::server

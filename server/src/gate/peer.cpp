@@ -30,6 +30,8 @@ std::string PeerId::text() const {
       return "connection " + std::to_string(connection());
     case DoorKind::link:
       return "the teleoperation link";
+    case DoorKind::ros2:
+      return "ROS 2";
     case DoorKind::none:
       break;
   }

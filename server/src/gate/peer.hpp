@@ -11,8 +11,8 @@
 
 namespace hapticd::server {
 
-enum class DoorKind : std::uint8_t { none = 0, dds = 1, socket = 2, link = 3 };
-inline constexpr std::size_t kDoorKinds = 4;
+enum class DoorKind : std::uint8_t { none = 0, dds = 1, socket = 2, link = 3, ros2 = 4 };
+inline constexpr std::size_t kDoorKinds = 5;
 
 struct PeerId {
   DoorKind door = DoorKind::none;
