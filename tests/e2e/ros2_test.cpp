@@ -264,5 +264,188 @@ TEST(Ros2, EveryTopicOnRos2sWireWithItsTypeQosFramesUnitsAndStamps) {
   EXPECT_EQ(server.bridge().ros2()->write_failures(), 0u);
 }
 
+// Two simulated ViSHaRD3s in admittance display (an engine's wrench moves the virtual body): v3 given to ROS, w3 not.
+std::string command_session() {
+  return "server: {clock: realtime, seed: 7, realtime_priority: 0, lock_memory: false, duration_s: 60}\n"
+         "ros2: {domain_id: " +
+         std::to_string(kRosDomain + 1) + ", commands: [v3]}\ndevices:\n" +
+         test::sim_vishard3_device_yaml("v3", "constant", "[0.0, 0.0, 0.0]") + e2e::coupling_chain_yaml() +
+         "    safety: {" + e2e::kRealtimeWatchdogs + "}\n" +
+         test::sim_vishard3_device_yaml("w3", "constant", "[0.0, 0.0, 0.0]") + e2e::coupling_chain_yaml() +
+         "    safety: {" + e2e::kRealtimeWatchdogs + "}\n";
+}
+
+// A ROS 2 node's publisher of wrench commands: the generated type, ROS 2's default QoS (reliable, keep last 10).
+struct WrenchPublisher {
+  WrenchPublisher(dds_entity_t participant, const std::string& device) {
+    dds_qos_t* q = dds_create_qos();
+    dds_qset_reliability(q, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+    dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 10);
+    const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
+    dds_qset_data_representation(q, 1, &xcdr1);
+    topic = dds_create_topic(participant, &geometry_msgs_msg_dds__WrenchStamped__desc,
+                             ("rt/hapticd/" + device + "/wrench_command").c_str(), q, nullptr);
+    writer = dds_create_writer(participant, topic, q, nullptr);
+    dds_delete_qos(q);
+    for (int i = 0; i < 300; ++i) {  // matched with the server's reader
+      dds_publication_matched_status_t m{};
+      if (dds_get_publication_matched_status(writer, &m) == DDS_RETCODE_OK && m.current_count > 0) break;
+      std::this_thread::sleep_for(10ms);
+    }
+  }
+  ~WrenchPublisher() { dds_delete(writer); }
+  // n commands of force (fx, 0, 0) at 200 Hz, stamped now, in `frame`.
+  void push(double fx, int n, const char* frame = "world") {
+    for (int i = 0; i < n; ++i) {
+      geometry_msgs_msg_dds__WrenchStamped_ w{};
+      const dds_time_t now = dds_time();
+      w.header.stamp.sec = static_cast<std::int32_t>(now / 1'000'000'000);
+      w.header.stamp.nanosec = static_cast<std::uint32_t>(now % 1'000'000'000);
+      w.header.frame_id = const_cast<char*>(frame);
+      w.wrench.force.x = fx;
+      (void)dds_write(writer, &w);
+      std::this_thread::sleep_for(5ms);
+    }
+  }
+  dds_entity_t topic = 0, writer = 0;
+};
+
+TEST(Ros2, AWrenchCommandMovesTheDeviceGivenToRosAndIsRefusedAndCountedForAnyOther) {
+  if (e2e::kSanitized) GTEST_SKIP() << "real-time rates: not under a sanitizer";
+  Server server(command_session());
+  dds::Participant ros(dds::ParticipantOptions{kRosDomain + 1, {}, {}});
+  server.start();
+  Doors& doors = server.bridge();
+  EXPECT_EQ(doors.owner(0), "ros2") << "a device given to ROS is claimed by ROS for the session";
+  EXPECT_EQ(doors.owner(1), "");
+  WrenchPublisher v3(ros.get(), "v3"), w3(ros.get(), "w3");
+  std::this_thread::sleep_for(300ms);
+  const double x0 = server.recording().position().back().x();
+
+  // 8 N along x for 1 s: the admittance's virtual body, and the handle with it, move along +x.
+  v3.push(8.0, 200);
+  const double moved = server.recording().position().back().x() - x0;
+  std::printf("8 N along x from ROS 2 for 1 s: the handle moved %.1f mm, %llu commands accepted\n", 1000 * moved,
+              static_cast<unsigned long long>(doors.commands_accepted(0)));
+  EXPECT_GT(moved, 0.005) << "the handle moved " << moved << " m";
+  EXPECT_GE(doors.commands_accepted(0), 150u);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
+
+  // The same command to the device not given to ROS: refused by the gate, counted, never applied.
+  w3.push(8.0, 50);
+  EXPECT_EQ(doors.commands_accepted(1), 0u);
+  EXPECT_GE(doors.rejected_by_reason(1)[static_cast<std::size_t>(dds::RejectReason::not_owner)], 40u);
+
+  // A NaN wrench, a wrench beyond the gate's bound and a frame the server does not know: refused and counted.
+  const std::uint64_t accepted = doors.commands_accepted(0);
+  v3.push(std::nan(""), 5);
+  v3.push(1e4, 5);
+  v3.push(8.0, 5, "elsewhere");
+  std::this_thread::sleep_for(100ms);
+  EXPECT_EQ(doors.commands_accepted(0), accepted);
+  EXPECT_GE(doors.rejected_by_reason(0)[static_cast<std::size_t>(dds::RejectReason::non_finite)], 4u);
+  EXPECT_GE(doors.rejected_by_reason(0)[static_cast<std::size_t>(dds::RejectReason::out_of_bounds)], 4u);
+  EXPECT_GE(doors.ros2()->commands().refused_frames(), 4u);
+  // A wrench in the handle's frame is accepted (turned into the world's by the handle's orientation).
+  v3.push(2.0, 5, "v3/handle");
+  std::this_thread::sleep_for(50ms);
+  EXPECT_GE(doors.commands_accepted(0), accepted + 4);
+  server.stop();
+  server.join();
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
+}
+
+// A ROS 2 service client as rmw_cyclonedds makes one: a request writer on rq/<name>Request and a reply reader on
+// rr/<name>Reply (ROS 2's services default QoS: reliable, volatile, keep last 10), its GUID in every request.
+struct TriggerClient {
+  TriggerClient(dds_entity_t participant, const std::string& service, std::uint64_t guid_) : guid(guid_) {
+    dds_qos_t* q = dds_create_qos();
+    dds_qset_reliability(q, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+    dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 10);
+    const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
+    dds_qset_data_representation(q, 1, &xcdr1);
+    request_topic = dds_create_topic(participant, &std_srvs_srv_dds__Trigger_Request__desc,
+                                     ("rq" + service + "Request").c_str(), q, nullptr);
+    reply_topic = dds_create_topic(participant, &std_srvs_srv_dds__Trigger_Response__desc,
+                                   ("rr" + service + "Reply").c_str(), q, nullptr);
+    writer = dds_create_writer(participant, request_topic, q, nullptr);
+    reader = dds_create_reader(participant, reply_topic, q, nullptr);
+    dds_delete_qos(q);
+    for (int i = 0; i < 300; ++i) {
+      dds_publication_matched_status_t m{};
+      dds_subscription_matched_status_t r{};
+      if (dds_get_publication_matched_status(writer, &m) == DDS_RETCODE_OK && m.current_count > 0 &&
+          dds_get_subscription_matched_status(reader, &r) == DDS_RETCODE_OK && r.current_count > 0)
+        break;
+      std::this_thread::sleep_for(10ms);
+    }
+  }
+  ~TriggerClient() {
+    dds_delete(writer);
+    dds_delete(reader);
+  }
+  // Calls the service; the reply that carries this client's GUID and the request's sequence number.
+  std::optional<std::pair<bool, std::string>> call() {
+    const std_srvs_srv_dds__Trigger_Request_ request{guid, ++sequence, 0};
+    if (dds_write(writer, &request) != DDS_RETCODE_OK) return std::nullopt;
+    const auto until = std::chrono::steady_clock::now() + 5s;
+    while (std::chrono::steady_clock::now() < until) {
+      void* samples[1] = {};
+      dds_sample_info_t info;
+      while (dds_take(reader, samples, &info, 1, 1) > 0) {
+        const auto& r = *static_cast<const std_srvs_srv_dds__Trigger_Response_*>(samples[0]);
+        std::optional<std::pair<bool, std::string>> answer;
+        if (info.valid_data && r.client_guid == guid && r.sequence_number == sequence)
+          answer = std::make_pair(r.success, std::string(r.message));
+        dds_return_loan(reader, samples, 1);
+        if (answer) return answer;
+      }
+      std::this_thread::sleep_for(10ms);
+    }
+    return std::nullopt;
+  }
+  std::uint64_t guid;
+  std::int64_t sequence = 0;
+  dds_entity_t request_topic = 0, reply_topic = 0, writer = 0, reader = 0;
+};
+
+TEST(Ros2, EstopAndRecoverAsRos2ServicesUnderTheStopLatchRules) {
+  if (e2e::kSanitized) GTEST_SKIP() << "real-time rates: not under a sanitizer";
+  Server server(command_session());
+  // Two ROS 2 processes (participants) in the session's ROS domain; the first stops the device with one service
+  // client and recovers it with another (rmw_cyclonedds gives each client a GUID of its own).
+  dds::Participant node(dds::ParticipantOptions{kRosDomain + 1, {}, {}});
+  dds::Participant other_node(dds::ParticipantOptions{kRosDomain + 1, {}, {}});
+  server.start();
+  TriggerClient stopper(node.get(), "/hapticd/v3/estop", 0x1234);
+  TriggerClient own_recovery(node.get(), "/hapticd/v3/recover", 0x5678);
+  TriggerClient other_recovery(other_node.get(), "/hapticd/v3/recover", 0x9999);
+  std::this_thread::sleep_for(300ms);
+
+  const auto stopped = stopper.call();
+  ASSERT_TRUE(stopped.has_value()) << "no reply to the E-stop";
+  EXPECT_TRUE(stopped->first) << stopped->second;
+  for (int i = 0; i < 200 && server.device().status().fault() != DeviceFault::emergency_stop; ++i)
+    std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::emergency_stop);
+
+  // Another client may not release the stop; the one that stopped it may.
+  const auto refused = other_recovery.call();
+  ASSERT_TRUE(refused.has_value());
+  EXPECT_FALSE(refused->first);
+  EXPECT_NE(refused->second.find("stopped by"), std::string::npos) << refused->second;
+  std::this_thread::sleep_for(500ms);  // the safe mode settles before a recovery
+  const auto recovered = own_recovery.call();
+  ASSERT_TRUE(recovered.has_value());
+  EXPECT_TRUE(recovered->first) << recovered->second;
+  for (int i = 0; i < 300 && server.device().status().fault() != DeviceFault::none; ++i)
+    std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(server.device().status().fault(), DeviceFault::none);
+  std::printf("ROS 2 services: estop '%s'; another client's recover refused: '%s'; own recover '%s'\n",
+              stopped->second.c_str(), refused->second.c_str(), recovered->second.c_str());
+  server.stop();
+  server.join();
+}
+
 }  // namespace
 }  // namespace hapticd::server

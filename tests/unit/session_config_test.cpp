@@ -156,6 +156,8 @@ INSTANTIATE_TEST_SUITE_P(
                   "world_frame: /world", "is not a frame id"},
         BadConfig{"ros2_rate_above_the_loop", kHeader + "  rate_hz: 500\n" + kValidDevices + "ros2:\n  rate_hz: 1000\n",
                   "ros2.rate_hz", "rate_hz: 1000", "more than the loop's rate"},
+        BadConfig{"ros2_commands_unknown_device", kHeader + kValidDevices + "ros2:\n  commands: [axis, arm]\n",
+                  "ros2.commands", "commands: [axis, arm]", "no device 'arm' in this session"},
         BadConfig{"ros2_unknown_key", kHeader + kValidDevices + "ros2:\n  domian_id: 3\n", "ros2.domian_id",
                   "domian_id: 3", "unknown key"},
         // The gate's settings: in the gate section, or (older sessions) in dds - not both.

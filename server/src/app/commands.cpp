@@ -450,6 +450,8 @@ int describe_config(const std::string& config_file) {
       "\nros2 section (present: the devices on ROS 2's topics and types: pose, twist, wrench, joint states, buttons, "
       "TF, robot description; docs/ros2.md):\n");
   print_schema(ros2_settings_schema());
+  fmt::print("  {:<24} {}\n", "commands",
+             "the devices given to ROS 2 (claimed by it for the session; wrench_command and pose_command)");
   fmt::print(
       "\nscene section (present: the session's haptic scene, which its devices' haptic_scene models that name no "
       "file render and engines edit at run time; docs/haptic-scene.md):\n");

@@ -52,6 +52,7 @@ ParameterSchema ros2_settings_schema() {
       .default_value(d.ns);
   s.string("world_frame", "the frame id of the world frame (the TF tree's root; rviz2's fixed frame)")
       .default_value(d.world_frame);
+  // commands: a list (read by read_ros2), documented here for --describe-config.
   return s;
 }
 
@@ -62,7 +63,16 @@ Ros2Settings read_ros2(const YAML::Node& node, const std::string& file) {
   r.line = line_of(node);
   if (node.IsNull()) return r;  // `ros2:` alone: on with the defaults
   if (!node.IsMap()) throw ConfigError(file, line_of(node), "ros2", "expected a mapping of ROS 2 settings");
-  const Parameters p = read_parameters(node, ros2_settings_schema(), file, "ros2", line_of(node));
+  const Parameters p = read_parameters(node, ros2_settings_schema(), file, "ros2", line_of(node), {"commands"});
+  if (const YAML::Node c = node["commands"]; c.IsDefined()) {
+    if (!c.IsSequence())
+      throw ConfigError(file, line_of(c), "ros2.commands", "expected a list of device names ([vishard3])");
+    for (const YAML::Node& d : c) {
+      if (!d.IsScalar()) throw ConfigError(file, line_of(d), "ros2.commands", "expected a device name");
+      r.commands.push_back(d.as<std::string>());
+      r.command_lines.push_back(line_of(d));
+    }
+  }
   r.enabled = p.boolean("enabled");
   r.domain_id = static_cast<int>(p.integer("domain_id"));
   r.rate_hz = p.real("rate_hz");

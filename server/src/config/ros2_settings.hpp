@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <vector>
 
 #include "hapticd/parameters.hpp"
 
@@ -16,6 +17,8 @@ struct Ros2Settings {
   double rate_hz = 250.0;             // each device's topics, at most the loop's rate
   std::string ns = "/hapticd";        // the topics' namespace: <ns>/<device>/pose
   std::string world_frame = "world";  // the frame id of the world (REP 105's "world"; rviz2's fixed frame)
+  std::vector<std::string> commands;  // the devices given to ROS: claimed by ROS, commanded over its topics
+  std::vector<int> command_lines;     // where each is named (an error found against the devices names it)
   int line = 0;                       // of the section (errors found later name it)
 };
 

@@ -885,6 +885,11 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
     device.collision = read_collision(reader.optional("collision"), file, reader.path_of("collision"));
     config.devices.push_back(std::move(device));
   }
+  for (std::size_t i = 0; i < config.ros2.commands.size(); ++i)
+    if (std::none_of(config.devices.begin(), config.devices.end(),
+                     [&](const DeviceConfig& d) { return d.name == config.ros2.commands[i]; }))
+      throw ConfigError(file, config.ros2.command_lines[i], "ros2.commands",
+                        "no device '" + config.ros2.commands[i] + "' in this session");
   config.groups = read_groups(top.optional("groups"), file, config.devices);
   config.teleoperation = read_teleoperation(top.optional("teleoperation"), file);
   if (TeleoperationSettings& t = config.teleoperation; t.enabled) {

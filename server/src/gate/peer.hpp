@@ -26,8 +26,11 @@ struct PeerId {
   static PeerId dds_participant(const std::array<unsigned char, 16>& guid) noexcept { return {DoorKind::dds, guid}; }
   static PeerId socket(std::uint64_t connection) noexcept;
   static PeerId link() noexcept { return {DoorKind::link, {}}; }
+  static PeerId ros2() noexcept { return {DoorKind::ros2, {}}; }
   [[nodiscard]] bool is_socket() const noexcept { return door == DoorKind::socket; }
   [[nodiscard]] bool is_link() const noexcept { return door == DoorKind::link; }
+  // A claim for the whole session (the teleoperation link's, ROS 2's): never ended by the claim checks.
+  [[nodiscard]] bool holds_for_session() const noexcept { return door == DoorKind::link || door == DoorKind::ros2; }
   // The connection of a socket peer (0 for any other).
   [[nodiscard]] std::uint64_t connection() const noexcept;
 };

@@ -309,9 +309,10 @@ std::optional<RequestDispatcher::Answer> RequestDispatcher::refused_recovery(Dev
   if (!d.stops.empty())
     return Answer{false, std::string(stopper ? "its stop released, " : "") + "stopped by " + d.stops.holders() +
                              ": only who stopped it can release its stop"};
-  // A device its server's teleoperation link holds is recovered by whoever asks (the link cannot ask; the person at
-  // the device does): as a free device's, its E-stops requested through a door still latch under their stoppers.
-  if (stopper || d.gate.owner().empty() || d.gate.owner_peer().is_link() || d.gate.owned_by(r.requester))
+  // A device its server's teleoperation link or ROS 2 holds for the session is recovered by whoever asks (the link
+  // cannot ask; the person at the device does): as a free device's, its E-stops requested through a door still
+  // latch under their stoppers.
+  if (stopper || d.gate.owner().empty() || d.gate.owner_peer().holds_for_session() || d.gate.owned_by(r.requester))
     return std::nullopt;
   return Answer{false, "claimed by '" + d.gate.owner() + "'"};
 }
@@ -335,7 +336,7 @@ void RequestDispatcher::check_claims() {
     std::int64_t claimed_ns = 0;
     {
       std::lock_guard lock(d.mutex);
-      if (d.gate.owner().empty() || d.gate.owner_peer().is_link()) continue;  // the link's: the session's
+      if (d.gate.owner().empty() || d.gate.owner_peer().holds_for_session()) continue;  // the session's claim
       owner = d.gate.owner_peer();
       claim_channel = d.claim_channel;
       claimed_ns = d.claimed_ns;

@@ -63,9 +63,14 @@ Ros2Door::Ros2Door(const Ros2Settings& settings, const DdsSettings& network, Gat
     }
     devices_.push_back(std::move(device));
   }
+  commands_ = std::make_unique<ros2::Commands>(settings, p, gate);
+  services_ = std::make_unique<ros2::Services>(settings, p, gate);
 }
 
-Ros2Door::~Ros2Door() = default;
+Ros2Door::~Ros2Door() {
+  commands_->close();
+  services_->close();
+}
 
 std::uint64_t Ros2Door::published(std::size_t device) const noexcept {
   return device < devices_.size() ? devices_[device]->published.load(std::memory_order_relaxed) : 0;
@@ -74,6 +79,8 @@ std::uint64_t Ros2Door::published(std::size_t device) const noexcept {
 void Ros2Door::state(std::size_t index, const DeviceSnapshot&, const hapticd_msg_DeviceState& m) {
   if (index >= devices_.size()) return;
   Device& d = *devices_[index];
+  const double* o = m.handle_pose.orientation;  // every state's: a wrench command in the handle frame is turned by it
+  commands_->set_handle_orientation(index, Eigen::Quaterniond(o[0], o[1], o[2], o[3]).normalized());
   // Decimated on the loop's clock: at most rate_hz, never a burst to catch up.
   if (d.started && m.loop_time_ns < d.next_ns) return;
   d.next_ns =

@@ -9,8 +9,11 @@
 //   <ns>/<device>/buttons       sensor_msgs/msg/Joy             a handle device's buttons    sensor data QoS
 //   /tf                         tf2_msgs/msg/TFMessage          world -> base -> handle      tf2_ros's QoS
 //   <ns>/<device>/robot_description  std_msgs/msg/String  the URDF, once          transient local
-// The types are ROS 2's own definitions through rosidl (idl/ros2/; ros2_msg.h); the topics and QoS are in
-// ros2_topic.hpp, the messages in ros2_messages.hpp. It writes on the gate's publisher thread, never on the loop.
+// and reads each device's wrench_command and pose_command (ros2_commands.hpp: through the gate; the devices the
+// section gives to ROS are claimed by ROS for the session) and answers its estop and recover services
+// (ros2_services.hpp: std_srvs/srv/Trigger, through the request dispatcher). The types are ROS 2's own definitions
+// through rosidl (idl/ros2/; ros2_msg.h); the topics and QoS are in ros2_topic.hpp, the messages in ros2_messages.hpp.
+// It writes on the gate's publisher thread, never on the loop.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -20,7 +23,9 @@
 
 #include "config/ros2_settings.hpp"
 #include "config/session_config.hpp"
+#include "doors/ros2/ros2_commands.hpp"
 #include "doors/ros2/ros2_messages.hpp"
+#include "doors/ros2/ros2_services.hpp"
 #include "doors/ros2/ros2_topic.hpp"
 #include "gate/door.hpp"
 #include "hapticd/dds/participant.hpp"
@@ -36,11 +41,24 @@ class Ros2Door final : public Door {
   ~Ros2Door() override;
 
   [[nodiscard]] DoorKind kind() const noexcept override { return DoorKind::ros2; }
+  // ROS's claims last the session: its channel is always open, its peer always alive.
+  [[nodiscard]] bool channel_open(const Sender& s) const override { return s.peer.door == DoorKind::ros2; }
+  [[nodiscard]] bool alive(const PeerId& p) override { return p.door == DoorKind::ros2; }
   void state(std::size_t device, const DeviceSnapshot&, const hapticd_msg_DeviceState& m) override;
+  void answer_requests(RequestDispatcher& dispatcher) override { services_->answer(dispatcher); }
+  void start() override {
+    commands_->listen();
+    services_->listen();
+  }
+  void stop() override {
+    commands_->close();
+    services_->close();
+  }
 
   // For tests and the session's report: states published per device, and writes that failed.
   [[nodiscard]] std::uint64_t published(std::size_t device) const noexcept;
   [[nodiscard]] std::uint64_t write_failures() const noexcept { return failures_.load(std::memory_order_relaxed); }
+  [[nodiscard]] const ros2::Commands& commands() const noexcept { return *commands_; }
 
  private:
   struct Device {
@@ -56,6 +74,8 @@ class Ros2Door final : public Door {
   dds::Participant participant_;
   std::optional<ros2::Writer> tf_;
   std::vector<std::unique_ptr<Device>> devices_;  // by the gate's device index
+  std::unique_ptr<ros2::Commands> commands_;
+  std::unique_ptr<ros2::Services> services_;
   std::atomic<std::uint64_t> failures_{0};
 };
 
