@@ -86,9 +86,11 @@ server_topics="hapticd_description hapticd_state hapticd_reply hapticd_event hap
 server_topics="$server_topics hapticd_group_description hapticd_group_state hapticd_plugin_api_version"
 server_topics="$server_topics hapticd_plugin_catalog hapticd_world hapticd_command hapticd_group_command hapticd_request"
 server_topics="$server_topics hapticd_scene_request hapticd_scene_mesh_part hapticd_scene_reply"
+# A ros2 section's topics and services (docs/ros2.md): ROS 2's DDS names, under its default namespace.
+server_topics="$server_topics rt/hapticd/* rt/tf rq/hapticd/* rr/hapticd/*"
 engine_publish="hapticd_command hapticd_group_command hapticd_request"
 reads="hapticd_description hapticd_state hapticd_reply hapticd_event hapticd_telemetry hapticd_fault_report hapticd_group_description hapticd_group_state hapticd_scene_reply"
-topics_xml() { for t in $1; do printf '<topic>%s</topic>' "$t"; done; }
+topics_xml() { set -f; for t in $1; do printf '<topic>%s</topic>' "$t"; done; set +f; }  # (no globbing: rt/hapticd/*)
 partitions_xml() { for p in $1; do printf '<partition>%s</partition>' "$p"; done; }
 grant() {  # name publish-topics subscribe-topics [publish-partitions [server]]  (a client's subscriptions: the
   # default partition; a server's: its publishing partitions)

@@ -31,7 +31,8 @@ echo "ok: the server's recording holds the buttons and the gripper"
 
 # Over DDS, in real time.
 timeout 60 "$bin/hapticd" --config "$session" --dds-domain "$domain" --duration 8 --log-level warn \
-  --set server.realtime_priority=0 --set server.lock_memory=false $(loose_watchdogs omega) $deadline > server.log 2>&1 &
+  --set server.realtime_priority=0 --set server.lock_memory=false $(loose_watchdogs omega) $deadline \
+  --set ros2.domain_id=173 > server.log 2>&1 &
 server=$!
 trap 'kill $server 2>/dev/null || true' EXIT  # TERM: timeout passes it on (-9 would orphan the server)
 ctl() { timeout 20 "$bin/hapticctl" --domain "$domain" --timeout 5 "$@"; }
@@ -44,6 +45,11 @@ ctl record omega dds.h5 --duration 0.5 > record.txt || fail "hapticctl record: $
 [ "$(column handle.buttons dds.omega.csv)" = 5 ] || fail "buttons over DDS: $(tail -1 dds.omega.csv)"
 near "$(column handle.gripper dds.omega.csv)" 0.3 || fail "gripper over DDS"
 echo "ok: the DDS state carries the buttons and the gripper"
+# On ROS 2's wire (docs/ros2.md): the handle device's sensor_msgs/Joy - as many buttons as its description has (the
+# omega.7: one, held) and the gripper's opening as its axis.
+timeout 20 "$bin/ros2_subscriber" 173 omega 1 buttons > joy.txt || fail "the ROS 2 reader: $(cat joy.txt)"
+grep -q "^buttons 1 axes 0\.300 frame omega/handle$" joy.txt || fail "the ROS 2 buttons: $(cat joy.txt)"
+echo "ok: ROS 2's Joy carries them: $(cat joy.txt)"
 wait "$server" || fail "the server exited with $?"
 trap - EXIT
-echo "2 passed, 0 failed"
+echo "3 passed, 0 failed"

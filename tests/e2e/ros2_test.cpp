@@ -1,8 +1,8 @@
 // ROS 2 sees the devices (docs/ros2.md): a server with a `ros2` section, served as `hapticd` serves it, read by
-// readers built from the same rosidl-generated types a ROS 2 node's middleware registers - on ROS domain 166 with the
-// loopback-only configuration. Checked against ROS 2's conventions: the DDS topic names ("rt/" + the ROS name;
-// ROS 2 design, "Topic and Service name mapping to DDS"), the type names (pkg::msg::dds_::Type_, as rmw_cyclonedds
-// and rmw_fastrtps register them), the QoS profiles (rmw's sensor data and default, tf2_ros's broadcaster,
+// readers built from the same rosidl-generated types a ROS 2 node's middleware registers - on ROS domains 166-168 with
+// the loopback-only configuration. Checked against ROS 2's conventions: the DDS topic names ("rt/" + the ROS name; ROS
+// 2 design, "Topic and Service name mapping to DDS"), the type names (pkg::msg::dds_::Type_, as rmw_cyclonedds and
+// rmw_fastrtps register them), the QoS profiles (rmw's sensor data and default, tf2_ros's broadcaster,
 // robot_state_publisher's transient local description), XCDR1 samples (the encapsulation rmw_cyclonedds writes),
 // stamps of the wall clock, frames and units (REP 103).
 #include <dds/dds.h>
@@ -265,10 +265,10 @@ TEST(Ros2, EveryTopicOnRos2sWireWithItsTypeQosFramesUnitsAndStamps) {
 }
 
 // Two simulated ViSHaRD3s in admittance display (an engine's wrench moves the virtual body): v3 given to ROS, w3 not.
-std::string command_session() {
+std::string command_session(int ros_domain) {
   return "server: {clock: realtime, seed: 7, realtime_priority: 0, lock_memory: false, duration_s: 60}\n"
          "ros2: {domain_id: " +
-         std::to_string(kRosDomain + 1) + ", commands: [v3]}\ndevices:\n" +
+         std::to_string(ros_domain) + ", commands: [v3]}\ndevices:\n" +
          test::sim_vishard3_device_yaml("v3", "constant", "[0.0, 0.0, 0.0]") + e2e::coupling_chain_yaml() +
          "    safety: {" + e2e::kRealtimeWatchdogs + "}\n" +
          test::sim_vishard3_device_yaml("w3", "constant", "[0.0, 0.0, 0.0]") + e2e::coupling_chain_yaml() +
@@ -312,7 +312,7 @@ struct WrenchPublisher {
 
 TEST(Ros2, AWrenchCommandMovesTheDeviceGivenToRosAndIsRefusedAndCountedForAnyOther) {
   if (e2e::kSanitized) GTEST_SKIP() << "real-time rates: not under a sanitizer";
-  Server server(command_session());
+  Server server(command_session(kRosDomain + 1));
   dds::Participant ros(dds::ParticipantOptions{kRosDomain + 1, {}, {}});
   server.start();
   Doors& doors = server.bridge();
@@ -411,11 +411,12 @@ struct TriggerClient {
 
 TEST(Ros2, EstopAndRecoverAsRos2ServicesUnderTheStopLatchRules) {
   if (e2e::kSanitized) GTEST_SKIP() << "real-time rates: not under a sanitizer";
-  Server server(command_session());
-  // Two ROS 2 processes (participants) in the session's ROS domain; the first stops the device with one service
-  // client and recovers it with another (rmw_cyclonedds gives each client a GUID of its own).
-  dds::Participant node(dds::ParticipantOptions{kRosDomain + 1, {}, {}});
-  dds::Participant other_node(dds::ParticipantOptions{kRosDomain + 1, {}, {}});
+  Server server(command_session(kRosDomain + 2));
+  // Two ROS 2 processes (participants) in the session's ROS domain (each test its own: ctest runs them at once); the
+  // first stops the device with one service client and recovers it with another (rmw_cyclonedds gives each client a
+  // GUID of its own).
+  dds::Participant node(dds::ParticipantOptions{kRosDomain + 2, {}, {}});
+  dds::Participant other_node(dds::ParticipantOptions{kRosDomain + 2, {}, {}});
   server.start();
   TriggerClient stopper(node.get(), "/hapticd/v3/estop", 0x1234);
   TriggerClient own_recovery(node.get(), "/hapticd/v3/recover", 0x5678);
