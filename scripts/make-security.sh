@@ -90,6 +90,7 @@ server_topics="$server_topics hapticd_scene_request hapticd_scene_mesh_part hapt
 server_topics="$server_topics rt/hapticd/* rt/tf rq/hapticd/* rr/hapticd/*"
 engine_publish="hapticd_command hapticd_group_command hapticd_request"
 reads="hapticd_description hapticd_state hapticd_reply hapticd_event hapticd_telemetry hapticd_fault_report hapticd_group_description hapticd_group_state hapticd_scene_reply"
+reads="$reads rt/hapticd/* rt/tf"  # and a ros2 section's published topics
 topics_xml() { set -f; for t in $1; do printf '<topic>%s</topic>' "$t"; done; set +f; }  # (no globbing: rt/hapticd/*)
 partitions_xml() { for p in $1; do printf '<partition>%s</partition>' "$p"; done; }
 grant() {  # name publish-topics subscribe-topics [publish-partitions [server]]  (a client's subscriptions: the

@@ -11,7 +11,8 @@
 # impostor - with the server identity, or with the remote side's, cannot speak for the master (refused at start by
 # access control), and the remote reports no packet from anyone but its master. The session's haptic scene: edited by
 # an identity that may command every device (scener=*: hapticd-mujoco-scene's objects go in), refused to one that may
-# command vishard3 only (its scene topics are not allowed). Skipped (77) without root (the
+# command vishard3 only (its scene topics are not allowed). The session's ROS 2 topics under the server's identity:
+# taken by a ROS 2 subscriber with the watcher's credentials, by none without. Skipped (77) without root (the
 # capture needs it). Usage: security_test.sh BIN_DIR SOURCE_DIR WORK_DIR
 set -uo pipefail
 bin=$1 src=$2 work=$3
@@ -44,13 +45,19 @@ wait $sniffer; wait $server
 grep -q "found .*vishard3" "$work/sniff-plain.txt" || fail "the capture did not see the plain traffic: $(cat "$work/sniff-plain.txt")"
 
 # ---- secure ----
-serve secure 16 --set "dds.cyclone_config=$(secure server)"
+serve secure 16 --set "dds.cyclone_config=$(secure server)" --set ros2.domain_id=$domain
 sleep 0.5
 python3 "$src/tests/e2e/sniff_udp.py" 3 "${ports[@]}" vishard3 joint1 > "$work/sniff-secure.txt" &
 sniffer=$!
 HAPTICD_DDS_CONFIG=$(secure engine) timeout 20 "$bin/hapticd-scene-engine" --domain $domain --duration 5 --wait 5 \
   > "$work/engine-secure.log" 2>&1 || fail "the engine with credentials: $(cat "$work/engine-secure.log")"
 wait $sniffer
+# The session's ROS 2 topics (docs/ros2.md) under the same identity: a ROS 2 subscriber with the watcher's
+# credentials takes them, one without none (after the capture: a participant without credentials discovers in clear).
+HAPTICD_DDS_CONFIG=$(secure watcher) timeout 20 "$bin/ros2_subscriber" $domain vishard3 2 > "$work/ros2-watcher.txt" 2>&1 &
+ros2_watcher=$!
+timeout 20 "$bin/ros2_subscriber" $domain vishard3 2 > "$work/ros2-plain.txt" 2>&1 &
+ros2_plain=$!
 # Without credentials: not matched. The watcher: sees the device, may not request.
 timeout 20 "$bin/hapticctl" --domain $domain --timeout 2 list > "$work/list-plain.txt" 2>&1
 HAPTICD_DDS_CONFIG=$(secure watcher) timeout 20 "$bin/hapticctl" --domain $domain --timeout 3 --id watcher list \
@@ -61,8 +68,12 @@ claim_code=$?
 HAPTICD_DDS_CONFIG=$(secure other) timeout 20 "$bin/hapticctl" --domain $domain --timeout 3 --id other claim vishard3 \
   > "$work/claim-other.txt" 2>&1
 other_code=$?
+wait $ros2_watcher $ros2_plain
 wait $server
 echo "secure engine: $(tail -1 "$work/engine-secure.log")"
+echo "ROS 2 topics, the watcher: $(tr '\n' ' ' < "$work/ros2-watcher.txt"); without credentials: $(tr '\n' ' ' < "$work/ros2-plain.txt")"
+grep -Eq "^pose [1-9]" "$work/ros2-watcher.txt" || fail "the watcher took no ROS 2 pose: $(cat "$work/ros2-watcher.txt")"
+grep -q "^pose 0$" "$work/ros2-plain.txt" || fail "a ROS 2 subscriber without credentials: $(cat "$work/ros2-plain.txt")"
 echo "capture, plain:  $(cat "$work/sniff-plain.txt")"
 echo "capture, secure: $(cat "$work/sniff-secure.txt")"
 grep -q "answered [1-9]" "$work/engine-secure.log" || fail "the engine with credentials answered no state"
