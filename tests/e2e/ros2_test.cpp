@@ -54,16 +54,23 @@ std::string ros2_session(double rate_hz) {
          e2e::kRealtimeWatchdogs + "}\n";
 }
 
+// ROS 2's QoS of a profile (reliable or best effort, keep last `depth`, volatile or transient local), XCDR1. The
+// caller deletes it.
+dds_qos_t* ros_qos(bool reliable, int depth, bool transient_local = false) {
+  dds_qos_t* q = dds_create_qos();
+  dds_qset_reliability(q, reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT, DDS_MSECS(100));
+  dds_qset_history(q, DDS_HISTORY_KEEP_LAST, depth);
+  dds_qset_durability(q, transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
+  const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
+  dds_qset_data_representation(q, 1, &xcdr1);
+  return q;
+}
+
 // A reader of one ROS 2 topic with the QoS a ROS 2 subscriber of that profile asks for.
 struct TopicReader {
   TopicReader(dds_entity_t participant, const std::string& ros_name, const dds_topic_descriptor_t* type, bool reliable,
               int depth, bool transient_local = false) {
-    dds_qos_t* q = dds_create_qos();
-    dds_qset_reliability(q, reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT, DDS_MSECS(100));
-    dds_qset_history(q, DDS_HISTORY_KEEP_LAST, depth);
-    dds_qset_durability(q, transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
-    const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
-    dds_qset_data_representation(q, 1, &xcdr1);
+    dds_qos_t* q = ros_qos(reliable, depth, transient_local);
     topic = dds_create_topic(participant, type, ("rt" + ros_name).c_str(), q, nullptr);
     reader = dds_create_reader(participant, topic, q, nullptr);
     dds_delete_qos(q);
@@ -278,11 +285,7 @@ std::string command_session(int ros_domain) {
 // A ROS 2 node's publisher of wrench commands: the generated type, ROS 2's default QoS (reliable, keep last 10).
 struct WrenchPublisher {
   WrenchPublisher(dds_entity_t participant, const std::string& device) {
-    dds_qos_t* q = dds_create_qos();
-    dds_qset_reliability(q, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
-    dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 10);
-    const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
-    dds_qset_data_representation(q, 1, &xcdr1);
+    dds_qos_t* q = ros_qos(true, 10);
     topic = dds_create_topic(participant, &geometry_msgs_msg_dds__WrenchStamped__desc,
                              ("rt/hapticd/" + device + "/wrench_command").c_str(), q, nullptr);
     writer = dds_create_writer(participant, topic, q, nullptr);
@@ -359,11 +362,7 @@ TEST(Ros2, AWrenchCommandMovesTheDeviceGivenToRosAndIsRefusedAndCountedForAnyOth
 // rr/<name>Reply (ROS 2's services default QoS: reliable, volatile, keep last 10), its GUID in every request.
 struct TriggerClient {
   TriggerClient(dds_entity_t participant, const std::string& service, std::uint64_t guid_) : guid(guid_) {
-    dds_qos_t* q = dds_create_qos();
-    dds_qset_reliability(q, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
-    dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 10);
-    const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
-    dds_qset_data_representation(q, 1, &xcdr1);
+    dds_qos_t* q = ros_qos(true, 10);
     request_topic = dds_create_topic(participant, &std_srvs_srv_dds__Trigger_Request__desc,
                                      ("rq" + service + "Request").c_str(), q, nullptr);
     reply_topic = dds_create_topic(participant, &std_srvs_srv_dds__Trigger_Response__desc,

@@ -39,14 +39,12 @@ Commands::Commands(const Ros2Settings& settings, dds_entity_t participant, Gate&
       r->pose = pose;
       r->name = name;
       const std::string ros_name = settings.ns + "/" + name + (pose ? "/pose_command" : "/wrench_command");
-      const std::string topic = dds_topic_name(ros_name), what = "cannot read the ROS 2 topic " + ros_name;
-      r->topic = dds::Entity(dds::check(dds_create_topic(participant,
-                                                         pose ? &geometry_msgs_msg_dds__PoseStamped__desc
-                                                              : &geometry_msgs_msg_dds__WrenchStamped__desc,
-                                                         topic.c_str(), q.get(), nullptr),
-                                        what.c_str()));
-      r->reader =
-          dds::Entity(dds::check(dds_create_reader(participant, r->topic.get(), q.get(), nullptr), what.c_str()));
+      const std::string what = "cannot read the ROS 2 topic " + ros_name;
+      r->topic =
+          make_topic(participant, dds_topic_name(ros_name),
+                     pose ? &geometry_msgs_msg_dds__PoseStamped__desc : &geometry_msgs_msg_dds__WrenchStamped__desc,
+                     q.get(), what);
+      r->reader = make_reader(participant, r->topic, q.get(), what);
       readers_.push_back(std::move(r));
     }
   }

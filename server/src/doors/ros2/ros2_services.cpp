@@ -33,16 +33,12 @@ Services::Services(const Ros2Settings& settings, dds_entity_t participant, Gate&
       s->estop = estop;
       const std::string name = settings.ns + "/" + s->device + (estop ? "/estop" : "/recover");
       const std::string what = "cannot offer the ROS 2 service " + name;
-      s->request_topic = dds::Entity(dds::check(dds_create_topic(participant, &std_srvs_srv_dds__Trigger_Request__desc,
-                                                                 ("rq" + name + "Request").c_str(), q.get(), nullptr),
-                                                what.c_str()));
-      s->reply_topic = dds::Entity(dds::check(dds_create_topic(participant, &std_srvs_srv_dds__Trigger_Response__desc,
-                                                               ("rr" + name + "Reply").c_str(), q.get(), nullptr),
-                                              what.c_str()));
-      s->reader = dds::Entity(
-          dds::check(dds_create_reader(participant, s->request_topic.get(), q.get(), nullptr), what.c_str()));
-      s->writer =
-          dds::Entity(dds::check(dds_create_writer(participant, s->reply_topic.get(), q.get(), nullptr), what.c_str()));
+      s->request_topic =
+          make_topic(participant, "rq" + name + "Request", &std_srvs_srv_dds__Trigger_Request__desc, q.get(), what);
+      s->reply_topic =
+          make_topic(participant, "rr" + name + "Reply", &std_srvs_srv_dds__Trigger_Response__desc, q.get(), what);
+      s->reader = make_reader(participant, s->request_topic, q.get(), what);
+      s->writer = make_writer(participant, s->reply_topic, q.get(), what);
       services_.push_back(std::move(s));
     }
 }

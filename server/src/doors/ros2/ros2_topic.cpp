@@ -32,13 +32,25 @@ dds::Qos qos(Profile profile) {
 
 std::string dds_topic_name(std::string_view ros_name) { return "rt" + std::string(ros_name); }
 
+dds::Entity make_topic(dds_entity_t participant, const std::string& dds_name, const dds_topic_descriptor_t* type,
+                       const dds_qos_t* qos, const std::string& what) {
+  return dds::Entity(dds::check(dds_create_topic(participant, type, dds_name.c_str(), qos, nullptr), what.c_str()));
+}
+dds::Entity make_reader(dds_entity_t participant, const dds::Entity& topic, const dds_qos_t* qos,
+                        const std::string& what) {
+  return dds::Entity(dds::check(dds_create_reader(participant, topic.get(), qos, nullptr), what.c_str()));
+}
+dds::Entity make_writer(dds_entity_t participant, const dds::Entity& topic, const dds_qos_t* qos,
+                        const std::string& what) {
+  return dds::Entity(dds::check(dds_create_writer(participant, topic.get(), qos, nullptr), what.c_str()));
+}
+
 Writer::Writer(dds_entity_t participant, const std::string& ros_name, const dds_topic_descriptor_t* type,
                Profile profile) {
   const dds::Qos q = qos(profile);
-  const std::string name = dds_topic_name(ros_name);
   const std::string what = "cannot create the ROS 2 topic " + ros_name;
-  topic_ = dds::Entity(dds::check(dds_create_topic(participant, type, name.c_str(), q.get(), nullptr), what.c_str()));
-  writer_ = dds::Entity(dds::check(dds_create_writer(participant, topic_.get(), q.get(), nullptr), what.c_str()));
+  topic_ = make_topic(participant, dds_topic_name(ros_name), type, q.get(), what);
+  writer_ = make_writer(participant, topic_, q.get(), what);
 }
 
 }  // namespace hapticd::server::ros2

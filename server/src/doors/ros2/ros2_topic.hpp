@@ -23,6 +23,15 @@ enum class Profile : std::uint8_t {
 // "rt/hapticd/vishard3/pose" of "/hapticd/vishard3/pose".
 [[nodiscard]] std::string dds_topic_name(std::string_view ros_name);
 
+// A topic, reader or writer of the door's (the DDS names as given: "rt/...", "rq/...Request", "rr/...Reply"). Throw
+// dds::Error starting with `what` when Cyclone refuses.
+[[nodiscard]] dds::Entity make_topic(dds_entity_t participant, const std::string& dds_name,
+                                     const dds_topic_descriptor_t* type, const dds_qos_t* qos, const std::string& what);
+[[nodiscard]] dds::Entity make_reader(dds_entity_t participant, const dds::Entity& topic, const dds_qos_t* qos,
+                                      const std::string& what);
+[[nodiscard]] dds::Entity make_writer(dds_entity_t participant, const dds::Entity& topic, const dds_qos_t* qos,
+                                      const std::string& what);
+
 class Writer {
  public:
   // Throws dds::Error naming the topic when Cyclone refuses it.
