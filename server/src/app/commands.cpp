@@ -254,6 +254,14 @@ int run_session(const RunOptions& options) {
           "peer; its energy in claimed {:.4f} J, credited {:.4f} J (what its force and motion could carry)",
           link->settings().device, link->bindings(), link->impostor_packets(), e.peer_claimed, e.peer_credited);
     }
+    if (const Ros2Door* ros = doors->ros2(); ros != nullptr) {
+      for (std::size_t i = 0; i < sessions.size(); ++i)
+        spdlog::info("{}: ROS 2 states published {}", sessions[i]->name(), ros->published(i));
+      spdlog::info("ROS 2 commands received {}, refused for an unknown frame {}", ros->commands().received(),
+                   ros->commands().refused_frames());
+      if (const std::uint64_t failed = ros->write_failures(); failed > 0)
+        spdlog::warn("{} writes of ROS 2 topics failed (Cyclone refused them: see its messages above)", failed);
+    }
     if (const std::uint64_t unknown = doors->unknown_device_commands(); unknown > 0)
       spdlog::warn("{} engine commands named a device this server does not have: rejected as malformed", unknown);
     if (const std::uint64_t unknown = doors->unknown_device_requests(); unknown > 0)

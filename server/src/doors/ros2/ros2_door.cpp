@@ -88,12 +88,12 @@ void Ros2Door::state(std::size_t index, const DeviceSnapshot&, const hapticd_msg
   d.started = true;
   const dds_time_t now = dds_time();
   d.messages->fill(m, now);
-  bool ok = d.pose->write(&d.messages->pose(), now) && d.twist->write(&d.messages->twist(), now) &&
-            d.wrench->write(&d.messages->wrench(), now);
-  if (d.joints) ok = d.joints->write(&d.messages->joint_state(), now) && ok;
-  if (d.buttons) ok = d.buttons->write(&d.messages->joy(), now) && ok;
-  ok = tf_->write(&d.messages->tf(), now) && ok;
-  if (!ok) failures_.fetch_add(1, std::memory_order_relaxed);
+  // Every topic written even when one write fails; each failure counted (the session's report says how many).
+  int failed = !d.pose->write(&d.messages->pose(), now) + !d.twist->write(&d.messages->twist(), now) +
+               !d.wrench->write(&d.messages->wrench(), now) + !tf_->write(&d.messages->tf(), now);
+  if (d.joints) failed += !d.joints->write(&d.messages->joint_state(), now);
+  if (d.buttons) failed += !d.buttons->write(&d.messages->joy(), now);
+  if (failed > 0) failures_.fetch_add(static_cast<std::uint64_t>(failed), std::memory_order_relaxed);
   d.published.fetch_add(1, std::memory_order_relaxed);
 }
 
