@@ -158,6 +158,10 @@ INSTANTIATE_TEST_SUITE_P(
                   "ros2.rate_hz", "rate_hz: 1000", "more than the loop's rate"},
         BadConfig{"ros2_commands_unknown_device", kHeader + kValidDevices + "ros2:\n  commands: [axis, arm]\n",
                   "ros2.commands", "commands: [axis, arm]", "no device 'arm' in this session"},
+        BadConfig{"ros2_commands_the_teleoperation_device",
+                  kHeader + kValidDevices +
+                      "dds: {domain_id: 3}\nteleoperation: {peer: far, role: master}\nros2:\n  commands: [axis]\n",
+                  "ros2.commands", "commands: [axis]", "is the teleoperation link's"},
         BadConfig{"ros2_unknown_key", kHeader + kValidDevices + "ros2:\n  domian_id: 3\n", "ros2.domian_id",
                   "domian_id: 3", "unknown key"},
         // The gate's settings: in the gate section, or (older sessions) in dds - not both.

@@ -911,6 +911,11 @@ SessionConfig read_session_config(const std::string& text, const std::filesystem
     if (t.peer == t.device)
       throw ConfigError(file, line_of(root["teleoperation"]["peer"]), "teleoperation.peer",
                         "the peer is the other server's device; '" + t.peer + "' is this one's");
+    // A device has one holder for the session: the link or ROS 2, not both.
+    for (std::size_t i = 0; i < config.ros2.commands.size(); ++i)
+      if (config.ros2.commands[i] == t.device)
+        throw ConfigError(file, config.ros2.command_lines[i], "ros2.commands",
+                          "'" + t.device + "' is the teleoperation link's: ROS 2 cannot command it too");
   }
   return config;
 }

@@ -1,6 +1,7 @@
 #include "doors/ros2/ros2_commands.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "doors/ros2/ros2_topic.hpp"
 #include "gate/gate.hpp"
@@ -28,7 +29,9 @@ Commands::Commands(const Ros2Settings& settings, dds_entity_t participant, Gate&
     const std::string& name = d->device->name();
     if (std::find(settings.commands.begin(), settings.commands.end(), name) != settings.commands.end()) {
       std::lock_guard lock(d->mutex);
-      d->gate.claim(kClient, PeerId::ros2());  // for the session: ROS 2 topics have no claims
+      // For the session: ROS 2 topics have no claims. (The config keeps the teleoperation link's device out.)
+      if (!d->gate.claim(kClient, PeerId::ros2()))
+        throw std::runtime_error("'" + name + "' is held by '" + d->gate.owner() + "': ROS 2 cannot command it");
       d->claim_channel = Sender{PeerId::ros2(), 0};
       d->claimed_ns = 0;
     }
