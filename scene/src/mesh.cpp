@@ -68,10 +68,14 @@ std::shared_ptr<const MeshShape> MeshShape::build(TriangleMeshData data, const s
   // Angle-weighted vertex normals (Thuermer and Wuethrich): smooth across a tessellated curve, flat faces kept flat.
   mesh->normals_.assign(data.vertices.size(), Eigen::Vector3d::Zero());
   mesh->face_normals_.reserve(data.triangles.size());
+  mesh->balls_.reserve(data.triangles.size());
   for (const auto& t : data.triangles) {
     const Eigen::Vector3d a = data.vertices[t[0]], b = data.vertices[t[1]], c = data.vertices[t[2]];
     const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
     mesh->face_normals_.push_back(n);
+    const Eigen::Vector3d centre = (a + b + c) / 3.0;
+    mesh->balls_.push_back(
+        Ball{centre, std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()})});
     const Eigen::Vector3d p[3] = {a, b, c};
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d e1 = (p[(k + 1) % 3] - p[k]).normalized(), e2 = (p[(k + 2) % 3] - p[k]).normalized();
@@ -155,17 +159,26 @@ void MeshShape::query(const Eigen::Vector3d& p, double radius, bool (*callback)(
 }
 
 void MeshShape::for_each_near(const Eigen::Vector3d& p, double radius, NearFunction f, void* context) const noexcept {
+  for_each_ahead(p, radius, Eigen::Vector3d::Zero(), f, context);
+}
+
+void MeshShape::for_each_ahead(const Eigen::Vector3d& p, double radius, const Eigen::Vector3d& u, NearFunction f,
+                               void* context) const noexcept {
   struct Query {
     const MeshShape* mesh;
-    Eigen::Vector3d p;
+    Eigen::Vector3d p, u;
     double radius;
     NearFunction f;
     void* context;
-  } q{this, p, radius, f, context};
+  } q{this, p, u, radius, f, context};
   query(
       p, radius,
       [](RTCPointQueryFunctionArguments* args) {
         auto* q = static_cast<Query*>(args->userPtr);
+        const Ball& b = q->mesh->balls_[args->primID];
+        const Eigen::Vector3d to = b.centre - q->p;
+        const double reach = q->radius + b.radius;
+        if (to.squaredNorm() > reach * reach || to.dot(q->u) + b.radius <= 0.0) return false;
         const auto& t = q->mesh->data_.triangles[args->primID];
         const auto& v = q->mesh->data_.vertices;
         const TrianglePoint c = closest_on_triangle(q->p, v[t[0]], v[t[1]], v[t[2]]);
@@ -187,6 +200,7 @@ bool MeshShape::nearest(const Eigen::Vector3d& p, double max_distance, Near& out
       p, max_distance,
       [](RTCPointQueryFunctionArguments* args) {
         auto* q = static_cast<Query*>(args->userPtr);
+        if (q->mesh->beyond(args->primID, q->p, q->best)) return false;
         const auto& t = q->mesh->data_.triangles[args->primID];
         const auto& v = q->mesh->data_.vertices;
         const TrianglePoint c = closest_on_triangle(q->p, v[t[0]], v[t[1]], v[t[2]]);

@@ -153,8 +153,8 @@ double GodObject::mesh_step(std::size_t object, const Eigen::Vector3d& x, const 
     Eigen::Vector3d local, u;
     double r, step;
   } c{o.pose.inverse(Eigen::Isometry) * x, o.pose.linear().transpose() * u, settings_.radius_m, step};
-  o.shape.mesh->for_each_near(
-      c.local, c.r + step + kSkin,
+  o.shape.mesh->for_each_ahead(
+      c.local, c.r + step + kSkin, c.u,
       [](void* p, const MeshShape::Near& near) {
         auto* c = static_cast<Context*>(p);
         const Eigen::Vector3d v = c->local - near.closest.point;
