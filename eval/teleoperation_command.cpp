@@ -72,6 +72,7 @@ int run(const Options& o) {
   Progress progress("teleoperation",
                     tasks.size() * o.schemes.size() * o.round_trips_ms.size() * o.losses_percent.size());
   Json rows = Json::array();
+  double largest_delay_error = 0.0;
   Json traces = Json::array();
   fmt::print(
       "teleoperation, {}: P passive, S stable; the wall's felt stiffness K [N/m], free motion's drift [mm]; "
@@ -138,12 +139,29 @@ int run(const Options& o) {
                         .set("drift_mm", r.drift_mm)
                         .set("max_force_n", r.max_force_n)
                         .set("dissipated_j", r.dissipated_j)
-                        .set("packets_lost", static_cast<unsigned long>(r.to_remote.lost + r.to_master.lost)));
+                        .set("packets_lost", static_cast<unsigned long>(r.to_remote.lost + r.to_master.lost))
+                        .set("delay_true_ms", Json::array()
+                                                  .push(1e3 * r.delays.true_to_remote_s)
+                                                  .push(1e3 * r.delays.true_to_master_s))
+                        .set("delay_measured_master_ms", Json::array()
+                                                             .push(1e3 * r.delays.master.mean_delay_out_s)
+                                                             .push(1e3 * r.delays.master.mean_delay_in_s))
+                        .set("delay_measured_remote_ms", Json::array()
+                                                             .push(1e3 * r.delays.remote.mean_delay_in_s)
+                                                             .push(1e3 * r.delays.remote.mean_delay_out_s))
+                        .set("clock_offset_s", Json::array()
+                                                   .push(r.delays.true_offset_s)
+                                                   .push(r.delays.master.offset_s)));
+          largest_delay_error = std::max(largest_delay_error, r.delays.largest_error_s);
         }
         fmt::print("\n");
       }
     }
   }
+  fmt::print(
+      "one-way delays as both sides measured them from the packets' times (the remote's clock {:g} s ahead, {:g} ppm "
+      "fast): within {:.3f} ms of the channel's true means in every row\n",
+      TeleopRow{}.remote_clock_offset_s, TeleopRow{}.remote_clock_drift_ppm, 1e3 * largest_delay_error);
   Json result = Json::object();
   result.set("experiment", "teleoperation")
       .set("title", "Teleoperation: a stiff wall and free motion through a delayed, lossy link")
@@ -154,6 +172,7 @@ int run(const Options& o) {
       .set("jitter_ms", o.jitter_ms)
       .set("duration_s", o.duration_s)
       .set("wall_offset_m", 0.03)
+      .set("largest_delay_error_ms", 1e3 * largest_delay_error)
       .set("rows", rows)
       .set("traces", traces)
       .set("command", command_line());

@@ -50,6 +50,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     TeleopSide side(role, s);
     LinkPacket packet;
     packet.sequence = p.serial;
+    packet.sent_ns = p.sent_ns;  // and the echo's times, as any peer may send them (the delay measurement's input)
+    packet.has_echo = p.has_echo;
+    packet.echo_sent_ns = p.echo_sent_ns;
+    packet.echo_received_ns = p.echo_received_ns;
     packet.position = {p.position[0], p.position[1], p.position[2]};
     packet.velocity = {p.velocity[0], p.velocity[1], p.velocity[2]};
     packet.force = {p.force[0], p.force[1], p.force[2]};
@@ -60,13 +64,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     sample.force = packet.force;  // the remote's environment, as extreme as a packet may be
     double in = 0.0, out = 0.0;
     for (int k = 0; k < 4; ++k) {
-      side.receive(packet);
+      side.receive(packet, sample.time_ns);
       ++packet.sequence;
       sample.time_ns += 1'000'000;
       sample.velocity = packet.velocity;
       const SideOutput o = side.cycle(sample, 1e-3);
       require(o.force.allFinite() && o.force.norm() <= s.max_force * (1 + 1e-9));
       require(o.packet.position.allFinite() && o.packet.wave.allFinite() && std::isfinite(o.packet.energy_in));
+      const LinkClockFigures& clock = side.status().clock;
+      require(std::isfinite(clock.round_trip_s) && std::isfinite(clock.offset_s) && clock.round_trip_s >= 0.0 &&
+              std::isfinite(clock.mean_delay_in_s) && std::isfinite(clock.mean_delay_out_s));
       require(side.status().port->energy_in() >= in && side.status().port->energy_out() >= out);
       in = side.status().port->energy_in();
       out = side.status().port->energy_out();

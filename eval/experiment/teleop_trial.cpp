@@ -130,6 +130,15 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
   std::vector<double> ts, mx, rx, fx, fpos;  // for the figures of merit
   double min_energy = 0.0;
   double max_force = 0.0;
+  // The remote's clock: ahead and faster (the packets' times only). A packet's true send time from its time stamp.
+  const double rate = 1.0 + row.remote_clock_drift_ppm * 1e-6;
+  const auto offset_ns = std::llround(row.remote_clock_offset_s * 1e9);
+  auto remote_clock = [&](std::int64_t t) { return offset_ns + std::llround(static_cast<double>(t) * rate); };
+  auto remote_send_time = [&](std::int64_t stamp) {
+    return std::llround(static_cast<double>(stamp - offset_ns) / rate);
+  };
+  double true_sum_to_remote = 0.0, true_sum_to_master = 0.0;
+  std::uint64_t true_to_remote = 0, true_to_master = 0;
   for (std::uint64_t k = 1; k <= cycles; ++k) {
     master.step(1);
     remote.step(1);
@@ -144,10 +153,20 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
       break;
     }
     const std::int64_t now = std::llround(mv.time_s * 1e9);
-    to_master.deliver(now, [&](const LinkPacket& p) { master_side.receive(p); });
-    to_remote.deliver(now, [&](const LinkPacket& p) { remote_side.receive(p); });
+    to_master.deliver(now, [&](const LinkPacket& p) {
+      true_sum_to_master += 1e-9 * static_cast<double>(now - remote_send_time(p.sent_ns));
+      ++true_to_master;
+      master_side.receive(p, now);
+    });
+    to_remote.deliver(now, [&](const LinkPacket& p) {
+      true_sum_to_remote += 1e-9 * static_cast<double>(now - p.sent_ns);
+      ++true_to_remote;
+      remote_side.receive(p, remote_clock(now));
+    });
+    LocalSample remote_sample = sample_of(rv);
+    remote_sample.time_ns = remote_clock(now);
     const teleop::SideOutput mo_out = master_side.cycle(sample_of(mv), dt);
-    const teleop::SideOutput ro_out = remote_side.cycle(sample_of(rv), dt);
+    const teleop::SideOutput ro_out = remote_side.cycle(remote_sample, dt);
     apply(master, "master", mo_out.force, k);
     apply(remote, "remote", ro_out.force, k);
     to_remote.send(mo_out.packet, now);
@@ -169,6 +188,16 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
     if (row.keep_samples)
       result.samples.push_back({t, xm, xr, mo_out.force, ro_out.force, rv.operator_wrench.force, energy});
   }
+  TeleopResult::Delays& d = result.delays;
+  d.true_to_remote_s = true_to_remote > 0 ? true_sum_to_remote / static_cast<double>(true_to_remote) : 0.0;
+  d.true_to_master_s = true_to_master > 0 ? true_sum_to_master / static_cast<double>(true_to_master) : 0.0;
+  d.master = master_side.status().clock;
+  d.remote = remote_side.status().clock;
+  d.true_offset_s = 1e-9 * static_cast<double>(remote_clock(std::llround(row.duration_s * 1e9)) -
+                                               std::llround(row.duration_s * 1e9));
+  for (const double e : {d.master.mean_delay_in_s - d.true_to_master_s, d.master.mean_delay_out_s - d.true_to_remote_s,
+                         d.remote.mean_delay_in_s - d.true_to_remote_s, d.remote.mean_delay_out_s - d.true_to_master_s})
+    d.largest_error_s = std::max(d.largest_error_s, std::abs(e));
   result.to_remote = to_remote.counters();
   result.to_master = to_master.counters();
   result.min_energy_j = min_energy;

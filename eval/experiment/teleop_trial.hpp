@@ -29,6 +29,10 @@ struct TeleopRow {
   double wall_offset_m = 0.03;  // the remote's wall, ahead of its start along x
   std::uint64_t seed = 1;
   bool keep_samples = false;
+  // The remote's clock against the master's (no common clock: each server's loop clock): ahead by this at the
+  // start and running this much faster. Only the packets' times see it; the delay measurement must see through it.
+  double remote_clock_offset_s = 12.5;
+  double remote_clock_drift_ppm = 40.0;
 };
 
 struct TeleopSample {
@@ -57,6 +61,16 @@ struct TeleopResult {
   double max_force_n = 0.0;   // on the master
   double dissipated_j = 0.0;  // by the passivity controllers, both sides
   teleop::ChannelCounters to_remote, to_master;
+  // The one-way delays each way: the channel's true mean over the packets delivered (each from its send to the
+  // cycle that took it) and each side's measurement from the packets' times (teleop/link_clock.hpp); the remote's
+  // clock offset at the end, true and as the master measured it [s].
+  struct Delays {
+    double true_to_remote_s = 0.0, true_to_master_s = 0.0;
+    teleop::LinkClockFigures master, remote;  // master: in = to the master, out = to the remote
+    double true_offset_s = 0.0;
+    // The largest difference of a measured mean one-way delay (either side, either way) from the true one [s].
+    double largest_error_s = 0.0;
+  } delays;
   std::vector<TeleopSample> samples;  // with keep_samples: every cycle
 };
 

@@ -69,7 +69,16 @@ void TeleopSide::rebase(const LocalSample& sample) noexcept {
   started_ = true;
 }
 
-void TeleopSide::receive(const LinkPacket& packet) noexcept {
+void TeleopSide::receive(const LinkPacket& packet, std::int64_t arrival_ns) noexcept {
+  // Every timed exchange measures the link, a stale packet's too (it took the way it took).
+  if (arrival_ns != kUntimed && packet.has_echo) {
+    clock_.exchange(packet.echo_sent_ns, packet.echo_received_ns, packet.sent_ns, arrival_ns);
+    status_.clock = clock_.figures();
+  }
+  if (arrival_ns != kUntimed) {
+    echo_sent_ns_ = packet.sent_ns;
+    echo_arrival_ns_ = arrival_ns;
+  }
   if (have_peer_ && static_cast<std::int64_t>(packet.sequence - peer_.sequence) <= 0) {
     ++status_.stale;
     return;
@@ -90,6 +99,9 @@ void TeleopSide::peer_changed() noexcept {
   energy_bound_ = 0.0;
   have_peer_ = false;
   peer_ = LinkPacket{};
+  echo_arrival_ns_ = kUntimed;
+  clock_.reset();  // another peer, another clock
+  status_.clock = clock_.figures();
   rebase_pending_ = true;
 }
 
@@ -138,6 +150,9 @@ SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped)
   waves_ = 0;
   out.packet.sequence = ++sequence_;
   out.packet.sent_ns = sample.time_ns;
+  out.packet.has_echo = echo_arrival_ns_ != kUntimed;
+  out.packet.echo_sent_ns = out.packet.has_echo ? echo_sent_ns_ : 0;
+  out.packet.echo_received_ns = out.packet.has_echo ? echo_arrival_ns_ : 0;
   out.packet.energy_in = port_.energy_in();
   out.packet.stopped = stopped;
   return out;

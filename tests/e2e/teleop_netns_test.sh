@@ -79,4 +79,22 @@ grep -q "device 'remote' fault emergency_stop" "$work/remote.log" || fail "the r
 grep -q "teleoperation link lost (no packet from 'remote' .*): the force fades out" "$work/master.log" ||
   fail "the master did not fade its force when the link was lost"
 grep -q "device 'master': ok" "$work/master.log" || fail "the master faulted: $(grep -h FAULT "$work/master.log")"
+# Both sides measured the link's delay from the packets' times alone (no common clock assumed; here one host's):
+# each one-way mean within 2 ms of the relay's (20 ms and up to 2 ms of jitter: 21 ms on average), and the two
+# sides' readings of each other's clock (their loop clocks: the time since each server's start) opposite within 2 ms.
+delay() {
+  sed -n "s/.*teleoperation link's delay, measured: one-way to this side \([0-9.]*\) ms, from it \([0-9.]*\) ms (means); round trip \([0-9.]*\) ms .*; the peer's clock \([-+0-9.]*\) ms from this one's; \([0-9]*\) exchanges, \([0-9]*\) refused/\1 \2 \3 \4 \5 \6/p" "$work/$1"
+}
+read -r m_in m_out m_rtt m_offset m_exchanges m_refused <<< "$(delay master.log)"
+read -r r_in r_out r_rtt r_offset r_exchanges r_refused <<< "$(delay remote.log)"
+[ -n "${m_refused:-}" ] && [ -n "${r_refused:-}" ] || fail "no delay line: $(grep -h "link's delay" "$work"/*.log)"
+echo "master measured: to it $m_in ms, from it $m_out ms, round trip $m_rtt ms, the remote's clock $m_offset ms ($m_exchanges exchanges)"
+echo "remote measured: to it $r_in ms, from it $r_out ms, round trip $r_rtt ms, the master's clock $r_offset ms ($r_exchanges exchanges)"
+for d in "$m_in" "$m_out" "$r_in" "$r_out"; do
+  awk -v d="$d" 'BEGIN { exit !(d > 19.0 && d < 23.0) }' || fail "a measured one-way delay of $d ms: the relay's is 21 ms"
+done
+awk -v a="$m_offset" -v b="$r_offset" 'BEGIN { exit !(a + b > -2.0 && a + b < 2.0) }' ||
+  fail "the sides' clock offsets disagree: the master reads the remote's at $m_offset ms, the remote the master's at $r_offset ms"
+[ "$m_refused" -eq 0 ] && [ "$r_refused" -eq 0 ] && [ "$m_exchanges" -gt 3000 ] && [ "$r_exchanges" -gt 3000 ] ||
+  fail "delay exchanges: $m_exchanges and $r_exchanges taken, $m_refused and $r_refused refused"
 echo "PASS: teleoperation across namespaces through the relay (40 ms round trip, 5 % loss each way)"

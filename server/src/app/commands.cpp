@@ -253,6 +253,18 @@ int run_session(const RunOptions& options) {
           "{}: teleoperation link's peer: bound {} times; {} packets rejected from another participant than the bound "
           "peer; its energy in claimed {:.4f} J, credited {:.4f} J (what its force and motion could carry)",
           link->settings().device, link->bindings(), link->impostor_packets(), e.peer_claimed, e.peer_credited);
+      const TeleopLink::Delay d = link->delay();
+      if (d.valid) {
+        spdlog::info(
+            "{}: teleoperation link's delay, measured: one-way to this side {:.2f} ms, from it {:.2f} ms (means); "
+            "round trip {:.2f} ms (the shortest of the last 2 s); the peer's clock {:+.3f} ms from this one's; {} "
+            "exchanges, {} refused",
+            link->settings().device, 1e3 * d.mean_in_s, 1e3 * d.mean_out_s, 1e3 * d.round_trip_s, 1e3 * d.offset_s,
+            d.samples, d.refused);
+      } else {
+        spdlog::info("{}: teleoperation link's delay: not measured (no exchange with the peer; {} refused)",
+                     link->settings().device, d.refused);
+      }
     }
     if (const Ros2Door* ros = doors->ros2(); ros != nullptr) {
       for (std::size_t i = 0; i < sessions.size(); ++i)

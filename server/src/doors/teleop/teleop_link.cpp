@@ -57,7 +57,7 @@ TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceGate& device
   device_.claimed_ns = 0;
 }
 
-void TeleopLink::take_packets() {
+void TeleopLink::take_packets(std::int64_t now_ns) {
   const std::int32_t peer_role =
       role_of(settings_.role == teleop::Role::master ? teleop::Role::remote : teleop::Role::master);
   reader_.take([&](const hapticd_msg_TeleopPacket& p, const dds_sample_info_t& info) {
@@ -71,13 +71,16 @@ void TeleopLink::take_packets() {
     teleop::LinkPacket packet;
     packet.sequence = p.serial;
     packet.sent_ns = p.sent_ns;
+    packet.has_echo = p.has_echo;
+    packet.echo_sent_ns = p.echo_sent_ns;
+    packet.echo_received_ns = p.echo_received_ns;
     packet.position = vec(p.position);
     packet.velocity = vec(p.velocity);
     packet.force = vec(p.force);
     packet.wave = vec(p.wave);
     packet.energy_in = p.energy_in;
     packet.stopped = p.stopped;
-    side_.receive(packet);
+    side_.receive(packet, now_ns);
     taken_.fetch_add(1, std::memory_order_relaxed);
   });
 }
@@ -148,8 +151,17 @@ TeleopLink::Energy TeleopLink::energy() const noexcept {
           peer_credited_.load(std::memory_order_relaxed)};
 }
 
+TeleopLink::Delay TeleopLink::delay() const noexcept {
+  return {delay_valid_.load(std::memory_order_relaxed),   round_trip_.load(std::memory_order_relaxed),
+          offset_.load(std::memory_order_relaxed),        mean_in_.load(std::memory_order_relaxed),
+          mean_out_.load(std::memory_order_relaxed),      delay_samples_.load(std::memory_order_relaxed),
+          delay_refused_.load(std::memory_order_relaxed)};
+}
+
 void TeleopLink::on_state(const DeviceSnapshot& s) {
-  take_packets();
+  // The packets arrived by this state's time (they are taken with it: up to one state's period late - the
+  // teleoperation sessions publish every cycle).
+  take_packets(s.time_ns);
   teleop::LocalSample sample;
   sample.time_ns = s.time_ns;
   sample.position = s.handle_pose.position;
@@ -212,6 +224,14 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   peer_credited_.store(st.peer_energy_credited, std::memory_order_relaxed);
   if (st.received > 0 && port.observed() < lowest_observed_.load(std::memory_order_relaxed))
     lowest_observed_.store(port.observed(), std::memory_order_relaxed);
+  const teleop::LinkClockFigures& clock = st.clock;
+  delay_valid_.store(clock.valid, std::memory_order_relaxed);
+  round_trip_.store(clock.round_trip_s, std::memory_order_relaxed);
+  offset_.store(clock.offset_s, std::memory_order_relaxed);
+  mean_in_.store(clock.mean_delay_in_s, std::memory_order_relaxed);
+  mean_out_.store(clock.mean_delay_out_s, std::memory_order_relaxed);
+  delay_samples_.store(clock.samples, std::memory_order_relaxed);
+  delay_refused_.store(clock.refused, std::memory_order_relaxed);
   if (out.force.norm() > max_force_.load(std::memory_order_relaxed))
     max_force_.store(out.force.norm(), std::memory_order_relaxed);
 
@@ -224,6 +244,9 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   }
   packet_.serial = out.packet.sequence;
   packet_.sent_ns = out.packet.sent_ns;
+  packet_.has_echo = out.packet.has_echo;
+  packet_.echo_sent_ns = out.packet.echo_sent_ns;
+  packet_.echo_received_ns = out.packet.echo_received_ns;
   copy(packet_.position, out.packet.position);
   copy(packet_.velocity, out.packet.velocity);
   copy(packet_.force, out.packet.force);

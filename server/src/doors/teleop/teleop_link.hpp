@@ -71,10 +71,19 @@ class TeleopLink final : public Door {
     double peer_claimed = 0.0, peer_credited = 0.0;
   };
   [[nodiscard]] Energy energy() const noexcept;
+  // The link's delay as this side measures it from the packets' times (teleop/link_clock.hpp) [s]: the shortest
+  // round trip of the last 2 s, the peer's clock offset (its clock minus this one's), the mean one-way delays
+  // to and from this side; exchanges taken and refused (impossible times).
+  struct Delay {
+    bool valid = false;
+    double round_trip_s = 0.0, offset_s = 0.0, mean_in_s = 0.0, mean_out_s = 0.0;
+    std::uint64_t samples = 0, refused = 0;
+  };
+  [[nodiscard]] Delay delay() const noexcept;
   [[nodiscard]] const TeleoperationSettings& settings() const noexcept { return settings_; }
 
  private:
-  void take_packets();
+  void take_packets(std::int64_t now_ns);  // now_ns: their arrival, on the loop's clock
   // Whether `writer` may speak for the peer: binds the link to it when it is unbound or its bound writer is gone;
   // else (an impostor) counts and reports it and returns false.
   bool admit(dds_instance_handle_t writer);
@@ -101,6 +110,9 @@ class TeleopLink final : public Door {
   std::atomic<std::uint64_t> sent_{0}, taken_{0}, rejected_{0}, stops_{0}, losses_{0}, impostors_{0}, bindings_{0};
   std::atomic<double> in_{0.0}, out_{0.0}, dissipated_{0.0}, lowest_observed_{0.0}, max_force_{0.0};
   std::atomic<double> peer_claimed_{0.0}, peer_credited_{0.0};
+  std::atomic<bool> delay_valid_{false};
+  std::atomic<double> round_trip_{0.0}, offset_{0.0}, mean_in_{0.0}, mean_out_{0.0};
+  std::atomic<std::uint64_t> delay_samples_{0}, delay_refused_{0};
 };
 
 }  // namespace hapticd::server

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "hapticd/teleop/energy_port.hpp"
+#include "hapticd/teleop/link_clock.hpp"
 #include "hapticd/teleop/link_packet.hpp"
 
 namespace hapticd::teleop {
@@ -80,6 +81,9 @@ struct SideStatus {
   double fade = 1.0;  // the master's force weight: falls to 0 over fade_s while the link is lost, rises when back
   // Position-force, the remote: its setpoint's distance from the master's motion as last received [m].
   double drift_m = 0.0;
+  // The link's round trip, the peer's clock offset and the one-way delays, from the packets' times (timed
+  // packets only: receive() with their arrival).
+  LinkClockFigures clock;
 };
 
 class TeleopSide {
@@ -94,7 +98,10 @@ class TeleopSide {
   void rebase(const LocalSample& sample) noexcept;
   // A packet from the other side (any order; only the newest by sequence is kept: serial-number arithmetic, RFC
   // 1982, so a serial that wraps goes on and one far ahead - 2^64-1 after 100 - is older, not newer).
-  void receive(const LinkPacket& packet) noexcept;
+  // `arrival_ns`: when it arrived, on the clock of this side's samples (kUntimed: not known - no delay measured
+  // from it, and this side's packets echo none).
+  static constexpr std::int64_t kUntimed = INT64_MIN;
+  void receive(const LinkPacket& packet, std::int64_t arrival_ns = kUntimed) noexcept;
   // The packets come from another sender from now on (its server restarted: the link's owner re-bound it): its
   // serials and its energy count start afresh, and the side re-anchors at its first packet (no pull towards
   // where the new sender's motion starts). The energy credited so far stays.
@@ -132,6 +139,11 @@ class TeleopSide {
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   std::uint64_t sequence_ = 0;
   LinkPacket peer_;  // the newest packet taken
+  // The packet that arrived last (newest or not: each arrival is a measurement of the way here) - its send time and
+  // arrival, which this side's packets echo.
+  std::int64_t echo_sent_ns_ = 0;
+  std::int64_t echo_arrival_ns_ = kUntimed;
+  LinkClock clock_;
   bool have_peer_ = false;
   // Waves arrived since the last cycle (their mean is this cycle's wave; none: zero).
   Eigen::Vector3d wave_sum_ = Eigen::Vector3d::Zero();
