@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include "hapticd/server/session.hpp"
 
@@ -15,7 +16,7 @@ using teleop::ChannelSettings;
 using teleop::LinkPacket;
 using teleop::LocalSample;
 using teleop::Role;
-using teleop::TeleopSide;
+using teleop::TeleopPort;
 
 std::vector<std::string> master_overrides(TeleopTask task) {
   const std::string p = "devices.master.device.parameters.";
@@ -110,8 +111,8 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
   ChannelModel to_remote(channel);
   channel.seed = row.seed ^ 0xA5A5A5A5ULL;
   ChannelModel to_master(channel);
-  TeleopSide master_side(Role::master, row.link);
-  TeleopSide remote_side(Role::remote, row.link);
+  TeleopPort master_side(Role::master, row.link);
+  TeleopPort remote_side(Role::remote, row.link);
 
   server::SessionOptions mo{master_overrides(row.task), plugin_paths};
   mo.overrides.push_back("server.seed=" + std::to_string(row.seed));
@@ -165,12 +166,23 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
     });
     LocalSample remote_sample = sample_of(rv);
     remote_sample.time_ns = remote_clock(now);
-    const teleop::SideOutput mo_out = master_side.cycle(sample_of(mv), dt);
-    const teleop::SideOutput ro_out = remote_side.cycle(remote_sample, dt);
-    apply(master, "master", mo_out.force, k);
-    apply(remote, "remote", ro_out.force, k);
-    to_remote.send(mo_out.packet, now);
-    to_master.send(ro_out.packet, now);
+    const teleop::PortCycle mo_out = master_side.cycle(sample_of(mv), dt, false, false);
+    const teleop::PortCycle ro_out = remote_side.cycle(remote_sample, dt, false, false);
+    // What the ports decided, done as the server's link does: the force to the device, or its E-stop.
+    for (auto [session, name, out] : {std::tuple{&master, "master", &mo_out}, std::tuple{&remote, "remote", &ro_out}}) {
+      if (out->apply) apply(*session, name, out->force, k);
+      if (out->stop) {
+        if (result.stop_code.empty()) result.stop_code = out->stop_code;
+        server::DeviceRequest estop;
+        estop.kind = server::DeviceRequest::Kind::emergency_stop;
+        session->request(name, estop);
+      }
+    }
+    const double t_now = static_cast<double>(k) * dt;
+    if (!(row.outage_start_s >= 0.0 && t_now >= row.outage_start_s && t_now < row.outage_start_s + row.outage_s)) {
+      to_remote.send(mo_out.packet, now);
+      to_master.send(ro_out.packet, now);
+    }
 
     const teleop::EnergyPort& pm = *master_side.status().port;
     const teleop::EnergyPort& pr = *remote_side.status().port;
@@ -193,8 +205,8 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
   d.true_to_master_s = true_to_master > 0 ? true_sum_to_master / static_cast<double>(true_to_master) : 0.0;
   d.master = master_side.status().clock;
   d.remote = remote_side.status().clock;
-  d.true_offset_s = 1e-9 * static_cast<double>(remote_clock(std::llround(row.duration_s * 1e9)) -
-                                               std::llround(row.duration_s * 1e9));
+  d.true_offset_s =
+      1e-9 * static_cast<double>(remote_clock(std::llround(row.duration_s * 1e9)) - std::llround(row.duration_s * 1e9));
   for (const double e : {d.master.mean_delay_in_s - d.true_to_master_s, d.master.mean_delay_out_s - d.true_to_remote_s,
                          d.remote.mean_delay_in_s - d.true_to_remote_s, d.remote.mean_delay_out_s - d.true_to_master_s})
     d.largest_error_s = std::max(d.largest_error_s, std::abs(e));

@@ -1,16 +1,17 @@
 #pragma once
 // A teleoperation trial in lockstep (docs/teleoperation.md, "Evaluation"): the master and remote sessions
-// (config/sessions/teleoperation/), a TeleopSide each, and a ChannelModel each way, stepped cycle by cycle on one
-// virtual clock: each cycle both sessions step, each side takes what its channel delivered by then and its
-// device's handle, and its force reaches its device as an engine's wrench in the next cycle. The same row and seed
-// give the same run.
+// (config/sessions/teleoperation/), a TeleopPort each - the server's side of the link with its policies, as its
+// TeleopLink runs it - and a ChannelModel each way, stepped cycle by cycle on one virtual clock: each cycle both
+// sessions step, each port takes what its channel delivered by then and its device's handle, its force reaches its
+// device as an engine's wrench in the next cycle, and a stop it decides is its device's E-stop. The same row and
+// seed give the same run.
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "hapticd/teleop/channel_model.hpp"
-#include "hapticd/teleop/teleop_side.hpp"
+#include "hapticd/teleop/teleop_port.hpp"
 
 namespace hapticd::eval {
 
@@ -33,6 +34,9 @@ struct TeleopRow {
   // start and running this much faster. Only the packets' times see it; the delay measurement must see through it.
   double remote_clock_offset_s = 12.5;
   double remote_clock_drift_ppm = 40.0;
+  // Every packet either way is lost from outage_start_s for outage_s (a cut link; < 0: none).
+  double outage_start_s = -1.0;
+  double outage_s = 0.0;
 };
 
 struct TeleopSample {
@@ -47,6 +51,7 @@ struct TeleopSample {
 
 struct TeleopResult {
   std::string fault;            // a device's fault ("" none): the run ended there
+  std::string stop_code;        // a port stopped its device ("" none): why (teleop/teleop_port.hpp)
   double min_energy_j = 0.0;    // the link's observed energy at its lowest (< 0: it created energy)
   bool passive = false;         // min_energy_j >= -1 mJ
   bool stable = false;          // no fault and no sustained or growing oscillation (below)

@@ -74,8 +74,7 @@ std::shared_ptr<const MeshShape> MeshShape::build(TriangleMeshData data, const s
     const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
     mesh->face_normals_.push_back(n);
     const Eigen::Vector3d centre = (a + b + c) / 3.0;
-    mesh->balls_.push_back(
-        Ball{centre, std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()})});
+    mesh->balls_.push_back(Ball{centre, std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()})});
     const Eigen::Vector3d p[3] = {a, b, c};
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d e1 = (p[(k + 1) % 3] - p[k]).normalized(), e2 = (p[(k + 2) % 3] - p[k]).normalized();

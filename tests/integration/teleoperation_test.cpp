@@ -127,12 +127,12 @@ TEST(Teleoperation, BothSidesMeasureTheOneWayDelaysAndTheClockOffset) {
     const TeleopResult r =
         run_teleop_trial(row, test::source_dir() + "/config/sessions/teleoperation", {test::plugin_dir()});
     const TeleopResult::Delays& d = r.delays;
-    SCOPED_TRACE(std::to_string(c.rtt_ms) + " ms, loss " + std::to_string(c.loss) + ", jitter " +
-                 std::to_string(c.jitter_ms) + " ms: true " + std::to_string(1e3 * d.true_to_remote_s) + " / " +
-                 std::to_string(1e3 * d.true_to_master_s) + " ms, the master measured " +
-                 std::to_string(1e3 * d.master.mean_delay_out_s) + " / " + std::to_string(1e3 * d.master.mean_delay_in_s) +
-                 ", the remote " + std::to_string(1e3 * d.remote.mean_delay_in_s) + " / " +
-                 std::to_string(1e3 * d.remote.mean_delay_out_s));
+    SCOPED_TRACE(
+        std::to_string(c.rtt_ms) + " ms, loss " + std::to_string(c.loss) + ", jitter " + std::to_string(c.jitter_ms) +
+        " ms: true " + std::to_string(1e3 * d.true_to_remote_s) + " / " + std::to_string(1e3 * d.true_to_master_s) +
+        " ms, the master measured " + std::to_string(1e3 * d.master.mean_delay_out_s) + " / " +
+        std::to_string(1e3 * d.master.mean_delay_in_s) + ", the remote " +
+        std::to_string(1e3 * d.remote.mean_delay_in_s) + " / " + std::to_string(1e3 * d.remote.mean_delay_out_s));
     ASSERT_TRUE(d.master.valid && d.remote.valid);
     EXPECT_GT(d.master.samples, 4000u);
     EXPECT_EQ(d.master.refused + d.remote.refused, 0u);
@@ -142,6 +142,26 @@ TEST(Teleoperation, BothSidesMeasureTheOneWayDelaysAndTheClockOffset) {
     EXPECT_NEAR(d.master.offset_s, d.true_offset_s, 1e-3);
     EXPECT_NEAR(d.remote.offset_s, -d.true_offset_s, 1e-3);
   }
+}
+
+// The evaluation runs the server's port with its policies: a link cut for longer than its timeout stops the remote
+// (its E-stop, as the server's link does) and the trial ends there; a shorter cut only fades the master's force.
+TEST(Teleoperation, ACutLinkStopsTheRemoteAsTheServersLinkDoes) {
+  TeleopRow row;
+  row.task = TeleopTask::free;
+  row.round_trip_s = 0.05;
+  row.link.passivity = Passivity::tdpa;
+  row.outage_start_s = 2.0;
+  row.outage_s = 1.5;  // the link's timeout: 1 s
+  const std::string config = test::source_dir() + "/config/sessions/teleoperation";
+  TeleopResult r = run_teleop_trial(row, config, {test::plugin_dir()});
+  EXPECT_EQ(r.stop_code, "teleoperation_link_lost");
+  EXPECT_EQ(r.fault.rfind("remote: ", 0), 0u) << r.fault;
+  row.outage_s = 0.5;
+  r = run_teleop_trial(row, config, {test::plugin_dir()});
+  EXPECT_EQ(r.stop_code, "");
+  EXPECT_EQ(r.fault, "");
+  EXPECT_TRUE(r.passive && r.stable) << describe(r);
 }
 
 TEST(Teleoperation, RefusesABadRow) {

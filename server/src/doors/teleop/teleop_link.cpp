@@ -48,7 +48,7 @@ TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceGate& device
       name_(settings.device),
       reader_(participant, {}, nullptr, {link_partition(settings.peer)}),
       writer_(participant, {}, link_partition(settings.device)),
-      side_(settings.role, settings.link) {
+      port_(settings.role, settings.link) {
   dds::set_text(packet_.sender, name_);
   dds::set_text(packet_.receiver, settings.peer);
   packet_.role = role_of(settings.role);
@@ -80,7 +80,7 @@ void TeleopLink::take_packets(std::int64_t now_ns) {
     packet.wave = vec(p.wave);
     packet.energy_in = p.energy_in;
     packet.stopped = p.stopped;
-    side_.receive(packet, now_ns);
+    port_.receive(packet, now_ns);
     taken_.fetch_add(1, std::memory_order_relaxed);
   });
 }
@@ -129,7 +129,7 @@ bool TeleopLink::admit(dds_instance_handle_t writer) {
     spdlog::info("{}: teleoperation link bound to '{}' (participant {})", name_, settings_.peer, who);
     return true;
   }
-  side_.peer_changed();  // a restarted peer: its serials and energy start afresh
+  port_.peer_changed();  // a restarted peer: its serials and energy start afresh
   const std::string message = fmt::format(
       "teleoperation link re-bound to '{}' (participant {}): the peer it was bound to is gone", settings_.peer, who);
   spdlog::warn("{}: {}", name_, message);
@@ -152,9 +152,9 @@ TeleopLink::Energy TeleopLink::energy() const noexcept {
 }
 
 TeleopLink::Delay TeleopLink::delay() const noexcept {
-  return {delay_valid_.load(std::memory_order_relaxed),   round_trip_.load(std::memory_order_relaxed),
-          offset_.load(std::memory_order_relaxed),        mean_in_.load(std::memory_order_relaxed),
-          mean_out_.load(std::memory_order_relaxed),      delay_samples_.load(std::memory_order_relaxed),
+  return {delay_valid_.load(std::memory_order_relaxed),  round_trip_.load(std::memory_order_relaxed),
+          offset_.load(std::memory_order_relaxed),       mean_in_.load(std::memory_order_relaxed),
+          mean_out_.load(std::memory_order_relaxed),     delay_samples_.load(std::memory_order_relaxed),
           delay_refused_.load(std::memory_order_relaxed)};
 }
 
@@ -171,46 +171,33 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   // and the peer's link times out (the remote stops, the master's force fades).
   const bool stopped = s.fault != DeviceFault::none || s.estop;
   if (!started_) {
-    side_.start(sample);
     started_ = true;
     last_ns_ = s.time_ns;
   }
-  if (was_stopped_ && !stopped) side_.rebase(sample);  // recovered: on from here, no pull towards the peer
-  was_stopped_ = stopped;
   const double dt = std::clamp(static_cast<double>(s.time_ns - last_ns_) * 1e-9, 1e-5, 0.1);
   last_ns_ = s.time_ns;
-  const teleop::SideOutput out = side_.cycle(sample, dt, stopped);
-  const teleop::SideStatus& st = side_.status();
+  const teleop::PortCycle out = port_.cycle(sample, dt, stopped, s.stopping);
+  const teleop::SideStatus& st = port_.status();
 
-  // Safety: the peer's stop stops this side; a silent link stops the remote and fades the master.
-  // On the peer's stop itself, not while it lasts: this side may recover before the peer does (its force stays
-  // faded out until the peer runs again).
-  if (st.peer_stopped && !peer_stop_seen_) {
-    peer_stop_seen_ = true;
-    if (!stopped)
-      stop_device("teleoperation_peer_stopped",
-                  "teleoperation: the peer device '" + settings_.peer + "' stopped; this one stops too");
-  } else if (!st.peer_stopped) {
-    peer_stop_seen_ = false;
-  }
-  if (st.waiting && !waiting_reported_) {
-    waiting_reported_ = true;
+  // What the port decided, carried out and reported: a stop, a loss, the link back, the wait for the peer.
+  if (out.waiting)
     spdlog::info("{}: no teleoperation packet from '{}' yet: waiting for the peer (this side holds still)", name_,
                  settings_.peer);
+  if (out.lost) losses_.fetch_add(1, std::memory_order_relaxed);
+  const std::string silent =
+      out.lost ? fmt::format("no packet from '{}' for {:.2f} s", settings_.peer, st.silence_s) : std::string();
+  if (out.stop) {
+    const std::string_view code = out.stop_code;
+    stop_device(code, code == "teleoperation_link_lost"
+                          ? "teleoperation link lost (" + silent + "): the remote stops"
+                          : "teleoperation: the peer device '" + settings_.peer + "' stopped; this one stops too");
   }
-  if (st.link_lost && !lost_reported_) {
-    lost_reported_ = true;
-    losses_.fetch_add(1, std::memory_order_relaxed);
-    const std::string silent = fmt::format("no packet from '{}' for {:.2f} s", settings_.peer, st.silence_s);
-    if (settings_.role == teleop::Role::remote && !stopped) {
-      stop_device("teleoperation_link_lost", "teleoperation link lost (" + silent + "): the remote stops");
-    } else {
-      spdlog::warn("{}: teleoperation link lost ({}): the force fades out", name_, silent);
-      events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_lost",
-                   "teleoperation link lost (" + silent + "): the force fades out");
-    }
-  } else if (!st.link_lost && lost_reported_) {
-    lost_reported_ = false;
+  if (out.lost && !(out.stop && std::string_view(out.stop_code) == "teleoperation_link_lost")) {
+    spdlog::warn("{}: teleoperation link lost ({}): the force fades out", name_, silent);
+    events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_lost",
+                 "teleoperation link lost (" + silent + "): the force fades out");
+  }
+  if (out.back) {
     spdlog::info("{}: teleoperation link back: packets from '{}' again", name_, settings_.peer);
     events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_back",
                  "teleoperation link back: packets from '" + settings_.peer + "' again");
@@ -235,7 +222,7 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   if (out.force.norm() > max_force_.load(std::memory_order_relaxed))
     max_force_.store(out.force.norm(), std::memory_order_relaxed);
 
-  if (!stopped && !s.stopping) {
+  if (out.apply) {
     EngineInput input;
     input.has_wrench = true;
     input.wrench.force = out.force;

@@ -29,7 +29,7 @@
 #include "gate/door.hpp"
 #include "gate/event_fanout.hpp"
 #include "hapticd/dds/endpoints.hpp"
-#include "hapticd/teleop/teleop_side.hpp"
+#include "hapticd/teleop/teleop_port.hpp"
 #include "hapticd_msg.h"
 #include "session/device_snapshot.hpp"
 
@@ -97,16 +97,12 @@ class TeleopLink final : public Door {
   std::string name_;  // the linked device's
   dds::Reader<hapticd_msg_TeleopPacket> reader_;
   dds::Writer<hapticd_msg_TeleopPacket> writer_;
-  teleop::TeleopSide side_;
+  teleop::TeleopPort port_;  // the link's side and its policies; this door carries them out
   hapticd_msg_TeleopPacket packet_{};
   std::int64_t last_ns_ = 0;
+  bool started_ = false;             // a state seen (last_ns_ holds its time)
   dds_instance_handle_t bound_ = 0;  // the peer's writer (0: none yet)
   std::uint64_t engine_sequence_ = 0;
-  bool started_ = false;
-  bool was_stopped_ = false;
-  bool lost_reported_ = false;
-  bool waiting_reported_ = false;
-  bool peer_stop_seen_ = false;
   std::atomic<std::uint64_t> sent_{0}, taken_{0}, rejected_{0}, stops_{0}, losses_{0}, impostors_{0}, bindings_{0};
   std::atomic<double> in_{0.0}, out_{0.0}, dissipated_{0.0}, lowest_observed_{0.0}, max_force_{0.0};
   std::atomic<double> peer_claimed_{0.0}, peer_credited_{0.0};

@@ -9,8 +9,8 @@
 namespace hapticd::teleop {
 
 struct LinkPacket {
-  std::uint64_t sequence = 0;                          // the sender's count, from 1; a receiver keeps only the newest
-  std::int64_t sent_ns = 0;                            // the sender's clock when it was sent
+  std::uint64_t sequence = 0;  // the sender's count, from 1; a receiver keeps only the newest
+  std::int64_t sent_ns = 0;    // the sender's clock when it was sent
   // The newest packet the sender had taken when it sent this one (link_clock.hpp): its sent_ns (the receiver's
   // clock) and when it arrived (the sender's clock). None before the sender has taken a timed packet.
   bool has_echo = false;
