@@ -25,6 +25,9 @@ std::string_view check_teleop_packet(const hapticd_msg_TeleopPacket& p, const Te
   unsigned char stopped = 0;
   std::memcpy(&stopped, &p.stopped, 1);
   if (stopped > 1) return "the stopped flag is neither 0 nor 1";
+  unsigned char echo = 0;
+  std::memcpy(&echo, &p.has_echo, 1);
+  if (echo > 1) return "the echo flag is neither 0 nor 1";
   if (p.serial == 0) return "the serial is zero";
   if (!bounded(p.position, b.max_position_m)) return "the position is not finite or out of range";
   if (!bounded(p.velocity, b.max_speed_m_s)) return "the velocity is not finite or out of range";
