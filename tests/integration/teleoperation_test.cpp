@@ -144,6 +144,23 @@ TEST(Teleoperation, BothSidesMeasureTheOneWayDelaysAndTheClockOffset) {
   }
 }
 
+// The docs' recommendation, held over a dense sweep rather than the grid's rows (docs/teleoperation.md, "The
+// sweep"): position-position with the time-domain controllers holds the wall passive and stable at every round trip
+// from 0 to 800 ms in steps of 10 ms, without loss and with 20 %, and keeps at least half its no-delay stiffness.
+TEST(Teleoperation, PositionPositionHoldsTheWallAtEveryRoundTripOfTheSweep) {
+  double no_delay = 0.0;
+  for (const double loss : {0.0, 0.2}) {
+    for (int rtt = 0; rtt <= 800; rtt += 10) {
+      const TeleopResult r =
+          run(TeleopTask::wall, Architecture::position_position, Passivity::tdpa, static_cast<double>(rtt), loss);
+      SCOPED_TRACE(std::to_string(rtt) + " ms, loss " + std::to_string(loss));
+      EXPECT_TRUE(r.passive && r.stable) << describe(r);
+      if (rtt == 0 && loss == 0.0) no_delay = r.felt_stiffness_n_per_m;
+      EXPECT_GT(r.felt_stiffness_n_per_m, 0.5 * no_delay) << describe(r);
+    }
+  }
+}
+
 // The evaluation runs the server's port with its policies: a link cut for longer than its timeout stops the remote
 // (its E-stop, as the server's link does) and the trial ends there; a shorter cut only fades the master's force.
 TEST(Teleoperation, ACutLinkStopsTheRemoteAsTheServersLinkDoes) {
