@@ -171,15 +171,15 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
     // What the ports decided, done as the server's link does: the force to the device, or its E-stop.
     for (auto [session, name, out] : {std::tuple{&master, "master", &mo_out}, std::tuple{&remote, "remote", &ro_out}}) {
       if (out->apply) apply(*session, name, out->force, k);
-      if (out->stop) {
-        if (result.stop_code.empty()) result.stop_code = out->stop_code;
+      if (out->stop != teleop::PortStop::none) {
+        if (result.stop_code.empty()) result.stop_code = teleop::stop_code(out->stop);
         server::DeviceRequest estop;
         estop.kind = server::DeviceRequest::Kind::emergency_stop;
         session->request(name, estop);
       }
     }
-    const double t_now = static_cast<double>(k) * dt;
-    if (!(row.outage_start_s >= 0.0 && t_now >= row.outage_start_s && t_now < row.outage_start_s + row.outage_s)) {
+    const double t = static_cast<double>(k) * dt;
+    if (!(row.outage_start_s >= 0.0 && t >= row.outage_start_s && t < row.outage_start_s + row.outage_s)) {
       to_remote.send(mo_out.packet, now);
       to_master.send(ro_out.packet, now);
     }
@@ -189,7 +189,6 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
     const double energy = (pm.energy_in() - pm.energy_out()) + c * (pr.energy_in() - pr.energy_out());
     min_energy = std::min(min_energy, energy);
     max_force = std::max(max_force, mo_out.force.norm());
-    const double t = static_cast<double>(k) * dt;
     const Eigen::Vector3d xm = mv.handle_pose.position - master_origin;
     const Eigen::Vector3d xr = rv.handle_pose.position - remote_origin;
     ts.push_back(t);

@@ -175,9 +175,8 @@ void MeshShape::for_each_ahead(const Eigen::Vector3d& p, double radius, const Ei
       [](RTCPointQueryFunctionArguments* args) {
         auto* q = static_cast<Query*>(args->userPtr);
         const Ball& b = q->mesh->balls_[args->primID];
-        const Eigen::Vector3d to = b.centre - q->p;
-        const double reach = q->radius + b.radius;
-        if (to.squaredNorm() > reach * reach || to.dot(q->u) + b.radius <= 0.0) return false;
+        if (q->mesh->beyond(args->primID, q->p, q->radius) || (b.centre - q->p).dot(q->u) + b.radius <= 0.0)
+          return false;  // out of reach, or wholly behind the way
         const auto& t = q->mesh->data_.triangles[args->primID];
         const auto& v = q->mesh->data_.vertices;
         const TrianglePoint c = closest_on_triangle(q->p, v[t[0]], v[t[1]], v[t[2]]);

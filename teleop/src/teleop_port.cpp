@@ -2,6 +2,18 @@
 
 namespace hapticd::teleop {
 
+const char* stop_code(PortStop stop) noexcept {
+  switch (stop) {
+    case PortStop::peer_stopped:
+      return "teleoperation_peer_stopped";
+    case PortStop::link_lost:
+      return "teleoperation_link_lost";
+    case PortStop::none:
+      break;
+  }
+  return "";
+}
+
 PortCycle TeleopPort::cycle(const LocalSample& sample, double dt, bool stopped, bool ending) noexcept {
   PortCycle c;
   if (!started_) {
@@ -20,10 +32,7 @@ PortCycle TeleopPort::cycle(const LocalSample& sample, double dt, bool stopped, 
   // peer does (its force stays faded out until the peer runs again).
   if (st.peer_stopped && !peer_stop_seen_) {
     peer_stop_seen_ = true;
-    if (!stopped) {
-      c.stop = true;
-      c.stop_code = "teleoperation_peer_stopped";
-    }
+    if (!stopped) c.stop = PortStop::peer_stopped;
   } else if (!st.peer_stopped) {
     peer_stop_seen_ = false;
   }
@@ -35,15 +44,12 @@ PortCycle TeleopPort::cycle(const LocalSample& sample, double dt, bool stopped, 
   if (st.link_lost && !lost_reported_) {
     lost_reported_ = true;
     c.lost = true;
-    if (side_.role() == Role::remote && !stopped && !c.stop) {
-      c.stop = true;
-      c.stop_code = "teleoperation_link_lost";
-    }
+    if (side_.role() == Role::remote && !stopped && c.stop == PortStop::none) c.stop = PortStop::link_lost;
   } else if (!st.link_lost && lost_reported_) {
     lost_reported_ = false;
     c.back = true;
   }
-  if (c.stop) c.apply = false;
+  if (c.stop != PortStop::none) c.apply = false;
   return c;
 }
 

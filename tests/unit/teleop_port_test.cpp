@@ -41,21 +41,21 @@ LinkSettings settings() {
 TEST(TeleopPort, ThePeersStopStopsThisSideOncePerStop) {
   TeleopPort port(Role::master, settings());
   port.receive(from_peer(1, 0.0), 0);
-  EXPECT_FALSE(port.cycle(at(1, 0.0), 1e-3, false, false).stop);
+  EXPECT_EQ(port.cycle(at(1, 0.0), 1e-3, false, false).stop, PortStop::none);
   port.receive(from_peer(2, 0.0, true), 2 * kMs);
   const PortCycle c = port.cycle(at(2, 0.0), 1e-3, false, false);
-  EXPECT_TRUE(c.stop);
-  EXPECT_EQ(std::string_view(c.stop_code), "teleoperation_peer_stopped");
+  EXPECT_EQ(c.stop, PortStop::peer_stopped);
+  EXPECT_EQ(std::string_view(stop_code(c.stop)), "teleoperation_peer_stopped");
   EXPECT_FALSE(c.apply);
   // While the peer stays stopped, this side (stopped, then recovered before the peer) is not stopped again.
-  EXPECT_FALSE(port.cycle(at(3, 0.0), 1e-3, true, false).stop);
+  EXPECT_EQ(port.cycle(at(3, 0.0), 1e-3, true, false).stop, PortStop::none);
   port.receive(from_peer(3, 0.0, true), 4 * kMs);
-  EXPECT_FALSE(port.cycle(at(4, 0.0), 1e-3, false, false).stop);
+  EXPECT_EQ(port.cycle(at(4, 0.0), 1e-3, false, false).stop, PortStop::none);
   // The peer runs again, then stops again: this side stops again.
   port.receive(from_peer(4, 0.0), 5 * kMs);
-  EXPECT_FALSE(port.cycle(at(5, 0.0), 1e-3, false, false).stop);
+  EXPECT_EQ(port.cycle(at(5, 0.0), 1e-3, false, false).stop, PortStop::none);
   port.receive(from_peer(5, 0.0, true), 6 * kMs);
-  EXPECT_TRUE(port.cycle(at(6, 0.0), 1e-3, false, false).stop);
+  EXPECT_EQ(port.cycle(at(6, 0.0), 1e-3, false, false).stop, PortStop::peer_stopped);
 }
 
 TEST(TeleopPort, ASilentLinkStopsTheRemoteAndFadesTheMaster) {
@@ -65,9 +65,9 @@ TEST(TeleopPort, ASilentLinkStopsTheRemoteAndFadesTheMaster) {
     int stops = 0, losses = 0, backs = 0;
     for (int k = 1; k <= 400; ++k) {
       const PortCycle c = port.cycle(at(k, 0.0), 1e-3, false, false);
-      stops += c.stop ? 1 : 0;
+      stops += c.stop != PortStop::none ? 1 : 0;
       losses += c.lost ? 1 : 0;
-      if (c.stop) EXPECT_EQ(std::string_view(c.stop_code), "teleoperation_link_lost");
+      if (c.stop != PortStop::none) EXPECT_EQ(std::string_view(stop_code(c.stop)), "teleoperation_link_lost");
     }
     EXPECT_EQ(losses, 1);
     EXPECT_EQ(stops, role == Role::remote ? 1 : 0);
@@ -104,7 +104,7 @@ TEST(TeleopPort, NoForceWhileTheSessionEndsAndNoAllocation) {
   }
   EXPECT_EQ(guard.allocations(), 0u);
   EXPECT_FALSE(c.apply);
-  EXPECT_FALSE(c.stop);
+  EXPECT_EQ(c.stop, PortStop::none);
   EXPECT_GT(c.force.norm(), 1.0);  // the link's pull is computed (and reported), only not applied
 }
 

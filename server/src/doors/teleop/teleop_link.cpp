@@ -186,13 +186,12 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   if (out.lost) losses_.fetch_add(1, std::memory_order_relaxed);
   const std::string silent =
       out.lost ? fmt::format("no packet from '{}' for {:.2f} s", settings_.peer, st.silence_s) : std::string();
-  if (out.stop) {
-    const std::string_view code = out.stop_code;
-    stop_device(code, code == "teleoperation_link_lost"
-                          ? "teleoperation link lost (" + silent + "): the remote stops"
-                          : "teleoperation: the peer device '" + settings_.peer + "' stopped; this one stops too");
-  }
-  if (out.lost && !(out.stop && std::string_view(out.stop_code) == "teleoperation_link_lost")) {
+  if (out.stop == teleop::PortStop::link_lost)
+    stop_device(teleop::stop_code(out.stop), "teleoperation link lost (" + silent + "): the remote stops");
+  if (out.stop == teleop::PortStop::peer_stopped)
+    stop_device(teleop::stop_code(out.stop),
+                "teleoperation: the peer device '" + settings_.peer + "' stopped; this one stops too");
+  if (out.lost && out.stop != teleop::PortStop::link_lost) {
     spdlog::warn("{}: teleoperation link lost ({}): the force fades out", name_, silent);
     events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_lost",
                  "teleoperation link lost (" + silent + "): the force fades out");

@@ -1,7 +1,7 @@
 #pragma once
 // The link's delay and the peer's clock, measured from the packets (docs/teleoperation.md, "Measured delay"). No
-// common clock is assumed: each packet carries its send time on the sender's clock (t3) and echoes the newest
-// packet the sender had taken - that packet's send time on the receiver's clock (t1) and when it arrived, on the
+// common clock is assumed: each packet carries its send time on the sender's clock (t3) and echoes the packet that
+// arrived at the sender last - that packet's send time on the receiver's clock (t1) and when it arrived, on the
 // sender's (t2) - and the receiver notes its arrival (t4). As in NTP (RFC 5905):
 //   round trip = (t4 - t1) - (t3 - t2)        clock offset (peer minus own) = ((t2 - t1) + (t3 - t4)) / 2
 // and each packet's one-way delay to this side is t4 - t3 + offset. The offset is taken from the exchange with the

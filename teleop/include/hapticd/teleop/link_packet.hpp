@@ -11,8 +11,8 @@ namespace hapticd::teleop {
 struct LinkPacket {
   std::uint64_t sequence = 0;  // the sender's count, from 1; a receiver keeps only the newest
   std::int64_t sent_ns = 0;    // the sender's clock when it was sent
-  // The newest packet the sender had taken when it sent this one (link_clock.hpp): its sent_ns (the receiver's
-  // clock) and when it arrived (the sender's clock). None before the sender has taken a timed packet.
+  // The packet that arrived at the sender last before it sent this one, newest or not (link_clock.hpp): its sent_ns
+  // (the receiver's clock) and when it arrived (the sender's clock). None before a timed packet has arrived.
   bool has_echo = false;
   std::int64_t echo_sent_ns = 0;
   std::int64_t echo_received_ns = 0;

@@ -16,13 +16,16 @@
 
 namespace hapticd::teleop {
 
+// A stop the port decides for its device.
+enum class PortStop { none, peer_stopped, link_lost };
+// Its code in events and reports: "teleoperation_peer_stopped", "teleoperation_link_lost" ("" for none).
+const char* stop_code(PortStop stop) noexcept;
+
 struct PortCycle {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // for the device's handle
-  bool apply = false;  // hand `force` to the device (not while it is stopped or its session ends)
-  LinkPacket packet;   // to send
-  // The device must stop now (its E-stop), and why: "teleoperation_peer_stopped", "teleoperation_link_lost".
-  bool stop = false;
-  const char* stop_code = "";
+  bool apply = false;              // hand `force` to the device (not while it is stopped or its session ends)
+  LinkPacket packet;               // to send
+  PortStop stop = PortStop::none;  // the device must stop now (its E-stop), and why
   // What changed this cycle, for the reports.
   bool lost = false;     // the link was lost (silent for link_timeout_s)
   bool back = false;     // packets again after a loss
@@ -43,8 +46,6 @@ class TeleopPort {
   PortCycle cycle(const LocalSample& sample, double dt, bool stopped, bool ending) noexcept;
 
   [[nodiscard]] const SideStatus& status() const noexcept { return side_.status(); }
-  [[nodiscard]] const TeleopSide& side() const noexcept { return side_; }
-  [[nodiscard]] Role role() const noexcept { return side_.role(); }
 
  private:
   TeleopSide side_;
