@@ -35,6 +35,17 @@ std::string_view check_teleop_packet(const hapticd_msg_TeleopPacket& p, const Te
   if (!bounded(p.wave, b.max_wave)) return "the wave variable is not finite or out of range";
   if (!std::isfinite(p.energy_in) || p.energy_in < 0.0 || p.energy_in > b.max_energy_j)
     return "the energy is not finite, negative or out of range";
+  double norm2 = 0.0;
+  for (const double x : p.orientation) {
+    if (!std::isfinite(x)) return "the orientation is not finite";
+    norm2 += x * x;
+  }
+  if (std::abs(norm2 - 1.0) > 1e-3) return "the orientation is not a unit quaternion";
+  if (!bounded(p.angular_velocity, b.max_angular_speed_rad_s))
+    return "the angular velocity is not finite or out of range";
+  if (!bounded(p.torque, b.max_torque_n_m)) return "the torque is not finite or out of range";
+  if (!std::isfinite(p.rotation_energy_in) || p.rotation_energy_in < 0.0 || p.rotation_energy_in > b.max_energy_j)
+    return "the rotation's energy is not finite, negative or out of range";
   return {};
 }
 

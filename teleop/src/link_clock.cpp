@@ -15,6 +15,7 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) noexcept {
 }
 
 constexpr double kLongestRoundTrip = 600.0;  // [s]: an echo older than this is not an exchange of this link
+constexpr double kTie = 50e-6;               // [s]: round trips this close to the shortest are as short
 
 }  // namespace
 
@@ -43,22 +44,28 @@ void LinkClock::exchange(std::int64_t t1, std::int64_t t2, std::int64_t t3, std:
   const std::int64_t slot = floor_div(t4, bin_ns_);
   Bin& bin = bins_[static_cast<std::size_t>(((slot % kBins) + kBins) % kBins)];
   const std::int64_t start = slot * bin_ns_;
-  if (!bin.used || bin.start_ns != start) bin = Bin{start, true, rtt, offset};
-  if (rtt < bin.round_trip_s) {
-    bin.round_trip_s = rtt;
-    bin.offset_s = offset;
+  if (!bin.used || bin.start_ns != start || rtt < bin.round_trip_s - kTie) bin = Bin{start, true, rtt, offset, 0.0, 0};
+  if (rtt <= bin.round_trip_s + kTie) {
+    bin.offset_deviation_s += offset - bin.offset_s;
+    ++bin.ties;
   }
-  // The shortest round trip among the bins of the window (the present bin and the kBins - 1 before it).
-  const Bin* best = &bin;
+  // The shortest round trip among the bins of the window (the present bin and the kBins - 1 before it), and the
+  // mean offset of the exchanges that took it in the newest bin that has it (clocks that tick in steps - a loop's
+  // cycles - give many; the newest follows a drifting clock).
+  auto in_window = [&](const Bin& b) { return b.used && b.start_ns <= start && start - b.start_ns < kBins * bin_ns_; };
+  double shortest = bin.round_trip_s;
   for (const Bin& b : bins_)
-    if (b.used && b.start_ns <= start && start - b.start_ns < kBins * bin_ns_ && b.round_trip_s < best->round_trip_s)
+    if (in_window(b)) shortest = std::min(shortest, b.round_trip_s);
+  const Bin* best = nullptr;
+  for (const Bin& b : bins_)
+    if (in_window(b) && b.round_trip_s <= shortest + kTie && (best == nullptr || b.start_ns > best->start_ns))
       best = &b;
 
   LinkClockFigures& f = figures_;
   ++f.samples;
   f.valid = true;
-  f.round_trip_s = best->round_trip_s;
-  f.offset_s = best->offset_s;
+  f.round_trip_s = shortest;
+  f.offset_s = best->offset_s + best->offset_deviation_s / static_cast<double>(best->ties);
   f.delay_in_s = seconds(static_cast<__int128>(t4) - t3) + f.offset_s;
   f.delay_out_s = seconds(static_cast<__int128>(t2) - t1) - f.offset_s;
   sum_in_ += f.delay_in_s;

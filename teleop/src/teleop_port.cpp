@@ -26,6 +26,7 @@ PortCycle TeleopPort::cycle(const LocalSample& sample, double dt, bool stopped, 
   const SideStatus& st = side_.status();
   c.packet = out.packet;
   c.force = out.force;
+  c.torque = out.torque;
   c.apply = !stopped && !ending;
 
   // The peer's stop stops this side - on the stop itself, not while it lasts: this side may recover before the

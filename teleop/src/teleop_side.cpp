@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "hapticd/teleop/rotation.hpp"
+
 namespace hapticd::teleop {
 namespace {
 
@@ -26,6 +28,12 @@ std::string link_settings_problem(const LinkSettings& s) {
   if (bad(s.max_force, 0.0, 1000.0)) return "max_force must be in [0, 1000] N";
   if (bad(s.link_timeout_s, 1e-3, 60.0)) return "link_timeout_s must be in [0.001, 60] s";
   if (bad(s.fade_s, 0.0, 10.0)) return "fade_s must be in [0, 10] s";
+  if (bad(s.rotational_stiffness, 0.0, 1e4)) return "rotational_stiffness must be in [0, 10000] N m/rad";
+  if (bad(s.rotational_damping, 0.0, 1e3)) return "rotational_damping must be in [0, 1000] N m s/rad";
+  if (bad(s.max_angular_speed, 1e-3, 100.0)) return "max_angular_speed must be in [0.001, 100] rad/s";
+  if (bad(s.max_torque, 0.0, 1000.0)) return "max_torque must be in [0, 1000] N m";
+  if (s.rotation && s.passivity == Passivity::wave)
+    return "wave variables carry translation only (with rotation: passivity tdpa or none)";
   if (s.passivity == Passivity::wave && s.architecture != Architecture::position_force)
     return "wave variables carry the position-force architecture only (passivity: tdpa or none for position-position)";
   return "";
@@ -51,13 +59,17 @@ TeleopSide::TeleopSide(Role role, const LinkSettings& settings) : role_(role), s
   if (const std::string problem = link_settings_problem(settings); !problem.empty())
     throw std::invalid_argument("teleoperation: " + problem);
   status_.port = &port_;
+  status_.rotation_port = &rotation_port_;
 }
 
 void TeleopSide::start(const LocalSample& sample) noexcept {
   started_ = true;
   origin_ = sample.position;
+  orientation_origin_ = sample.orientation.normalized();
   setpoint_.setZero();
   setpoint_velocity_.setZero();
+  rotation_setpoint_.setIdentity();
+  rotation_setpoint_velocity_.setZero();
 }
 
 void TeleopSide::rebase(const LocalSample& sample) noexcept {
@@ -66,6 +78,11 @@ void TeleopSide::rebase(const LocalSample& sample) noexcept {
   origin_ = sample.position - (role_ == Role::master ? Eigen::Vector3d(peer / settings_.motion_scale) : peer);
   setpoint_ = peer;
   setpoint_velocity_.setZero();
+  // Rotation is not scaled: this side's rotation from the start becomes the peer's.
+  const Eigen::Quaterniond peer_rotation = have_peer_ ? peer_.orientation : Eigen::Quaterniond::Identity();
+  orientation_origin_ = (peer_rotation.conjugate() * sample.orientation).normalized();
+  rotation_setpoint_ = peer_rotation;
+  rotation_setpoint_velocity_.setZero();
   started_ = true;
 }
 
@@ -95,8 +112,8 @@ void TeleopSide::receive(const LinkPacket& packet, std::int64_t arrival_ns) noex
 }
 
 void TeleopSide::peer_changed() noexcept {
-  credited_before_ = credited_peer_energy();
-  energy_bound_ = 0.0;
+  translation_budget_ = {credited(translation_budget_, peer_.energy_in), 0.0};
+  rotation_budget_ = {credited(rotation_budget_, peer_.rotation_energy_in), 0.0};
   have_peer_ = false;
   peer_ = LinkPacket{};
   echo_arrival_ns_ = kUntimed;
@@ -116,8 +133,13 @@ double TeleopSide::peer_power_bound() const noexcept {
   return 2.0 * bound;
 }
 
-double TeleopSide::credited_peer_energy() const noexcept {
-  return credited_before_ + (have_peer_ ? std::min(peer_.energy_in, energy_bound_) : 0.0);
+double TeleopSide::peer_rotation_power_bound() const noexcept {
+  // As peer_power_bound, for rotation (not scaled).
+  const LinkSettings& s = settings_;
+  const double bound = role_ == Role::remote                            ? s.max_torque * peer_.angular_velocity.norm()
+                       : s.architecture == Architecture::position_force ? peer_.torque.norm() * s.max_angular_speed
+                                                                        : s.max_torque * peer_.angular_velocity.norm();
+  return 2.0 * bound;
 }
 
 SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped) noexcept {
@@ -127,7 +149,10 @@ SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped)
     rebase_pending_ = false;
   }
   // The bound grows with the peer's newest motion and force while its packets come.
-  if (have_peer_ && status_.silence_s <= settings_.link_timeout_s) energy_bound_ += peer_power_bound() * dt;
+  if (have_peer_ && status_.silence_s <= settings_.link_timeout_s) {
+    translation_budget_.bound += peer_power_bound() * dt;
+    rotation_budget_.bound += peer_rotation_power_bound() * dt;
+  }
   SideOutput out;
   const Eigen::Vector3d x = sample.position - origin_;
   const Eigen::Vector3d& v = sample.velocity;
@@ -146,6 +171,12 @@ SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped)
 
   out.force =
       role_ == Role::master ? master_force(x, v, dt, out.packet) : remote_force(x, v, sample.force, dt, out.packet);
+  if (settings_.rotation) {
+    const Eigen::Quaterniond q = (sample.orientation.normalized() * orientation_origin_.conjugate()).normalized();
+    const Eigen::Vector3d& w = sample.angular_velocity;
+    out.torque = role_ == Role::master ? master_torque(q, w, dt, out.packet)
+                                       : remote_torque(q, w, sample.torque, dt, out.packet);
+  }
   wave_sum_.setZero();
   waves_ = 0;
   out.packet.sequence = ++sequence_;
@@ -154,6 +185,7 @@ SideOutput TeleopSide::cycle(const LocalSample& sample, double dt, bool stopped)
   out.packet.echo_sent_ns = out.packet.has_echo ? echo_sent_ns_ : 0;
   out.packet.echo_received_ns = out.packet.has_echo ? echo_arrival_ns_ : 0;
   out.packet.energy_in = port_.energy_in();
+  out.packet.rotation_energy_in = rotation_port_.energy_in();
   out.packet.stopped = stopped;
   return out;
 }
@@ -166,8 +198,8 @@ Eigen::Vector3d TeleopSide::master_force(const Eigen::Vector3d& x, const Eigen::
   const Eigen::Vector3d vs = s.motion_scale * v;
   out.position = xs;
   out.velocity = vs;
-  status_.peer_energy_in = (credited_before_ + peer_.energy_in) * c;
-  status_.peer_energy_credited = credited_peer_energy() * c;
+  status_.peer_energy_in = (translation_budget_.before + peer_.energy_in) * c;
+  status_.peer_energy_credited = credited(translation_budget_, peer_.energy_in) * c;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   if (s.passivity == Passivity::wave) {
     // The force on the link in the remote's units, f = b v - sqrt(2b) w, sent as u = (b v + f) / sqrt(2b).
@@ -198,8 +230,8 @@ Eigen::Vector3d TeleopSide::remote_force(const Eigen::Vector3d& x, const Eigen::
   out.position = x;
   out.velocity = v;
   out.force = f_env;
-  status_.peer_energy_in = (credited_before_ + peer_.energy_in) / c;
-  status_.peer_energy_credited = credited_peer_energy() / c;
+  status_.peer_energy_in = (translation_budget_.before + peer_.energy_in) / c;
+  status_.peer_energy_credited = credited(translation_budget_, peer_.energy_in) / c;
   const bool follow = have_peer_ && !status_.link_lost && !peer_.stopped;
   if (s.architecture == Architecture::position_position) {
     Eigen::Vector3d force = Eigen::Vector3d::Zero();
@@ -230,6 +262,59 @@ Eigen::Vector3d TeleopSide::remote_force(const Eigen::Vector3d& x, const Eigen::
   if (have_peer_) status_.drift_m = (peer_.position - setpoint_).norm();
   const Eigen::Vector3d force = s.stiffness * (setpoint_ - x) + s.damping * (setpoint_velocity_ - v);
   return clamp_norm(force, s.max_force);
+}
+
+Eigen::Vector3d TeleopSide::master_torque(const Eigen::Quaterniond& q, const Eigen::Vector3d& w, double dt,
+                                          LinkPacket& out) noexcept {
+  const LinkSettings& s = settings_;
+  out.orientation = q;
+  out.angular_velocity = w;
+  status_.peer_rotation_energy_in = (rotation_budget_.before + peer_.rotation_energy_in) * s.force_scale;
+  status_.peer_rotation_energy_credited = credited(rotation_budget_, peer_.rotation_energy_in) * s.force_scale;
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+  if (have_peer_) {
+    if (s.architecture == Architecture::position_force) {
+      torque = s.force_scale * peer_.torque;
+    } else {
+      torque = s.force_scale * (s.rotational_stiffness * rotation_between(q, peer_.orientation) +
+                                s.rotational_damping * (peer_.angular_velocity - w));
+    }
+  }
+  torque = status_.fade * clamp_norm(torque, s.max_torque);
+  return rotation_port_.force_out(torque, w, dt, status_.peer_rotation_energy_credited, s.passivity == Passivity::tdpa);
+}
+
+Eigen::Vector3d TeleopSide::remote_torque(const Eigen::Quaterniond& q, const Eigen::Vector3d& w,
+                                          const Eigen::Vector3d& t_env, double dt, LinkPacket& out) noexcept {
+  const LinkSettings& s = settings_;
+  out.orientation = q;
+  out.angular_velocity = w;
+  out.torque = t_env;
+  status_.peer_rotation_energy_in = (rotation_budget_.before + peer_.rotation_energy_in) / s.force_scale;
+  status_.peer_rotation_energy_credited = credited(rotation_budget_, peer_.rotation_energy_in) / s.force_scale;
+  const bool follow = have_peer_ && !status_.link_lost && !peer_.stopped;
+  const bool control = s.passivity == Passivity::tdpa;
+  if (s.architecture == Architecture::position_position) {
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+    if (follow)
+      torque = s.rotational_stiffness * rotation_between(q, peer_.orientation) +
+               s.rotational_damping * (peer_.angular_velocity - w);
+    torque = clamp_norm(torque, s.max_torque);
+    return rotation_port_.force_out(torque, w, dt, status_.peer_rotation_energy_credited, control);
+  }
+  // Position-force: the link turns the setpoint; the environment's torque on the handle pushes back on it.
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+  if (follow) {
+    omega = peer_.angular_velocity + rotation_between(rotation_setpoint_, peer_.orientation) / s.drift_time_s;
+    omega = clamp_norm(omega, s.max_angular_speed);
+  }
+  omega = rotation_port_.velocity_out(omega, t_env, dt, status_.peer_rotation_energy_credited, control);
+  rotation_setpoint_velocity_ = omega;
+  rotation_setpoint_ = (rotation_of(omega * dt) * rotation_setpoint_).normalized();
+  if (have_peer_) status_.rotation_drift_rad = rotation_between(rotation_setpoint_, peer_.orientation).norm();
+  const Eigen::Vector3d torque =
+      s.rotational_stiffness * rotation_between(q, rotation_setpoint_) + s.rotational_damping * (omega - w);
+  return clamp_norm(torque, s.max_torque);
 }
 
 }  // namespace hapticd::teleop

@@ -20,7 +20,7 @@ wait "$server"
 trap - EXIT
 echo "$out"
 fail() { echo "FAIL: $*"; cat "$work/server.log"; exit 1; }
-echo "$out" | grep -q "description: vishard3, data model 16, plugin sim, 3 joints \[joint1,joint2,joint3\], schemes \[default/admittance\], deadline 0.050 s, fade 0.020 s" \
+echo "$out" | grep -q "description: vishard3, data model 17, plugin sim, 3 joints \[joint1,joint2,joint3\], schemes \[default/admittance\], deadline 0.050 s, fade 0.020 s" \
   || fail "the description did not arrive intact"
 echo "$out" | grep -q "^push: accepted" || fail "the operator request"
 echo "$out" | grep -q "release: accepted" || fail "the release"

@@ -49,7 +49,8 @@ class Peer {
     dds::set_text(packet_.sender, me);
     dds::set_text(packet_.receiver, to);
     packet_.role = role;
-    packet_.energy_in = 1000.0;  // plenty: the served side's passivity controller never has to act for want of it
+    packet_.orientation[0] = 1.0;  // identity: a translation-only link's
+    packet_.energy_in = 1000.0;    // plenty: the served side's passivity controller never has to act for want of it
   }
   ~Peer() { stop(); }
   // The packet to send from now on (the serial is the peer's); `bad`: every 10th packet is replaced by it.
@@ -141,6 +142,20 @@ bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds tim
   return true;
 }
 
+// A link in six degrees of freedom needs a device that can render its torques: a ViSHaRD3 (three joints, a passive
+// gimbal) is refused at start, naming the key and the device.
+TEST(TeleopLink, RotationOnADeviceWithoutTorquesIsRefusedAtStart) {
+  std::string yaml = side_yaml(156, 1.0, "master", "master", "remote", "attachment: none", "tdpa");
+  yaml.replace(yaml.find("link_timeout_s"), 0, "rotation: true, ");
+  try {
+    Server server(yaml);
+    FAIL() << "a ViSHaRD3 took a link with rotation";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("teleoperation.rotation: device 'master' has 3 joints"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(TeleopLink, TheRemoteFollowsIntoItsWallRejectsMalformedPacketsAndStopsWhenTheLinkFallsSilent) {
   constexpr int kDomain = 155;
   Server server(side_yaml(kDomain, 8.0, "remote", "remote", "master",
@@ -154,11 +169,12 @@ TEST(TeleopLink, TheRemoteFollowsIntoItsWallRejectsMalformedPacketsAndStopsWhenT
     p.energy_in = 1000.0;
   });
   // Malformed, or not for this link: each is rejected and counted, never applied.
-  std::vector<hapticd_msg_TeleopPacket> bad(6);
+  std::vector<hapticd_msg_TeleopPacket> bad(7);
   for (auto& b : bad) {
     dds::set_text(b.sender, "master");
     dds::set_text(b.receiver, "remote");
     b.role = hapticd_msg_TELEOP_MASTER;
+    b.orientation[0] = 1.0;
   }
   bad[0].position[0] = std::nan("");        // not finite
   bad[1].position[0] = 1e6;                 // out of range
@@ -166,6 +182,7 @@ TEST(TeleopLink, TheRemoteFollowsIntoItsWallRejectsMalformedPacketsAndStopsWhenT
   bad[3].energy_in = -5.0;
   dds::set_text(bad[4].sender, "intruder");               // another device
   std::memset(bad[5].sender, 'x', sizeof bad[5].sender);  // not terminated
+  bad[6].orientation[0] = 3.0;                            // not a unit quaternion
   master.set_bad(bad);
   server.start();
   ASSERT_TRUE(master.wait_matched(20s));

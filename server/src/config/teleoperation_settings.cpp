@@ -69,6 +69,31 @@ ParameterSchema teleoperation_settings_schema() {
       .minimum(0.0)
       .maximum(10.0)
       .default_value(d.fade_s);
+  s.boolean("rotation",
+            "six degrees of freedom: the handle's orientation and angular velocity go over the link too and torques "
+            "come back (passivity tdpa or none; the device must render torques)")
+      .default_value(d.rotation);
+  s.real("rotational_stiffness_n_m_per_rad",
+         "position_force: the remote's orientation controller; position_position: the coupling's rotational spring")
+      .unit("N m/rad")
+      .minimum(0.0)
+      .maximum(1e4)
+      .default_value(d.rotational_stiffness);
+  s.real("rotational_damping_n_m_s_per_rad", "its damping")
+      .unit("N m s/rad")
+      .minimum(0.0)
+      .maximum(1e3)
+      .default_value(d.rotational_damping);
+  s.real("max_angular_speed_rad_s", "the remote's orientation setpoint's speed limit")
+      .unit("rad/s")
+      .minimum(1e-3)
+      .maximum(100.0)
+      .default_value(d.max_angular_speed);
+  s.real("max_torque_n_m", "the torque the link commands on either side at most")
+      .unit("N m")
+      .minimum(0.0)
+      .maximum(1000.0)
+      .default_value(d.max_torque);
   return s;
 }
 
@@ -100,6 +125,11 @@ TeleoperationSettings read_teleoperation(const YAML::Node& node, const std::stri
   l.max_force = p.real("max_force_n");
   l.link_timeout_s = p.real("link_timeout_s");
   l.fade_s = p.real("fade_s");
+  l.rotation = p.boolean("rotation");
+  l.rotational_stiffness = p.real("rotational_stiffness_n_m_per_rad");
+  l.rotational_damping = p.real("rotational_damping_n_m_s_per_rad");
+  l.max_angular_speed = p.real("max_angular_speed_rad_s");
+  l.max_torque = p.real("max_torque_n_m");
   if (const std::string problem = teleop::link_settings_problem(l); !problem.empty())
     throw ConfigError(file, line_of(node["passivity"]) > 0 ? line_of(node["passivity"]) : line_of(node),
                       "teleoperation.passivity", problem);

@@ -7,6 +7,7 @@
 #include <thread>
 #include <type_traits>
 
+#include "executor/loop_clock.hpp"
 #include "hapticd/demand.hpp"
 #include "session/finite.hpp"
 
@@ -185,6 +186,7 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   DeviceSnapshot& s = snapshot_;
   s.cycle = cycle.index;
   s.time_ns = cycle.time_ns;
+  s.handover_ns = monotonic_now_ns();
   s.handle_pose = estimator_.state().handle_pose;
   s.handle_twist = estimator_.state().handle_twist;
   s.operator_wrench = estimator_.state().operator_wrench;

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <stdexcept>
 
+#include "executor/loop_clock.hpp"
 #include "gate/peer.hpp"
 #include "hapticd/dds/conversion.hpp"
 #include "hapticd/dds/teleop_validation.hpp"
@@ -20,6 +22,18 @@ void copy(double (&to)[3], const Eigen::Vector3d& from) noexcept {
 }
 
 Eigen::Vector3d vec(const double (&v)[3]) noexcept { return {v[0], v[1], v[2]}; }
+
+// The wire's quaternion is w, x, y, z (checked unit by check_teleop_packet).
+Eigen::Quaterniond quat(const double (&q)[4]) noexcept {
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
+}
+
+void copy(double (&to)[4], const Eigen::Quaterniond& from) noexcept {
+  to[0] = from.w();
+  to[1] = from.x();
+  to[2] = from.y();
+  to[3] = from.z();
+}
 
 std::int32_t role_of(teleop::Role r) noexcept {
   return r == teleop::Role::master ? hapticd_msg_TELEOP_MASTER : hapticd_msg_TELEOP_REMOTE;
@@ -41,17 +55,23 @@ std::string participant_of(dds_entity_t reader, dds_instance_handle_t writer) {
 }  // namespace
 
 TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceGate& device, const dds::Participant& participant,
-                       EventFanout& events)
+                       EventFanout& events, bool real_time)
     : settings_(settings),
       device_(device),
       events_(events),
       name_(settings.device),
       reader_(participant, {}, nullptr, {link_partition(settings.peer)}),
       writer_(participant, {}, link_partition(settings.device)),
-      port_(settings.role, settings.link) {
+      port_(settings.role, settings.link),
+      real_time_(real_time) {
   dds::set_text(packet_.sender, name_);
   dds::set_text(packet_.receiver, settings.peer);
   packet_.role = role_of(settings.role);
+  if (const int dof = device_.device->description().dof(); settings.link.rotation && dof < 6)
+    throw std::runtime_error(fmt::format(
+        "teleoperation.rotation: device '{}' has {} joints and cannot render the link's torques (rotation needs a "
+        "six-degree-of-freedom handle such as the ViSHaRD6's)",
+        name_, dof));
   std::lock_guard lock(device_.mutex);
   device_.gate.claim("teleoperation:" + settings.peer, PeerId::link());
   device_.claimed_ns = 0;
@@ -79,6 +99,10 @@ void TeleopLink::take_packets(std::int64_t now_ns) {
     packet.force = vec(p.force);
     packet.wave = vec(p.wave);
     packet.energy_in = p.energy_in;
+    packet.orientation = quat(p.orientation);
+    packet.angular_velocity = vec(p.angular_velocity);
+    packet.torque = vec(p.torque);
+    packet.rotation_energy_in = p.rotation_energy_in;
     packet.stopped = p.stopped;
     port_.receive(packet, now_ns);
     taken_.fetch_add(1, std::memory_order_relaxed);
@@ -159,14 +183,27 @@ TeleopLink::Delay TeleopLink::delay() const noexcept {
 }
 
 void TeleopLink::on_state(const DeviceSnapshot& s) {
-  // The packets arrived by this state's time (they are taken with it: up to one state's period late - the
-  // teleoperation sessions publish every cycle).
-  take_packets(s.time_ns);
+  // The loop clock's present time: the packets are timed when they are taken and sent (the link's delay is their
+  // transit, not how late this thread runs), each server on its own loop clock. A state is handed over after its
+  // cycle's time by the loop's wake-up and compute time (tens of microseconds, now and then milliseconds): the
+  // monotonic clock's lead over the loop clock is the least of those leads lately (it creeps up 1 us a state, to
+  // follow a device's clock drifting from the monotonic one).
+  std::int64_t now_ns = s.time_ns;
+  if (real_time_) {
+    const std::int64_t lead = s.handover_ns - s.time_ns;
+    clock_lead_ns_ = clock_known_ ? std::min(clock_lead_ns_ + 1000, lead) : lead;
+    clock_known_ = true;
+    now_ns = std::max(s.time_ns, monotonic_now_ns() - clock_lead_ns_);
+  }
+  take_packets(now_ns);
   teleop::LocalSample sample;
-  sample.time_ns = s.time_ns;
+  sample.time_ns = now_ns;
   sample.position = s.handle_pose.position;
   sample.velocity = s.handle_twist.linear;
   sample.force = s.operator_wrench.force;  // what holds the handle: the remote's environment
+  sample.orientation = s.handle_pose.orientation;
+  sample.angular_velocity = s.handle_twist.angular;
+  sample.torque = s.operator_wrench.torque;
   // Stopped: a fault or an E-stop (the peer stops too). The server's orderly end is not a stop: its packets end
   // and the peer's link times out (the remote stops, the master's force fades).
   const bool stopped = s.fault != DeviceFault::none || s.estop;
@@ -202,14 +239,18 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
                  "teleoperation link back: packets from '" + settings_.peer + "' again");
   }
 
+  // Translation's port and rotation's (zero without rotation): the link's energies are their sums; each port's
+  // observed energy is its own (neither pays for the other), so the lowest is either's.
   const teleop::EnergyPort& port = *st.port;
-  in_.store(port.energy_in(), std::memory_order_relaxed);
-  out_.store(port.energy_out(), std::memory_order_relaxed);
-  dissipated_.store(port.dissipated(), std::memory_order_relaxed);
-  peer_claimed_.store(st.peer_energy_in, std::memory_order_relaxed);
-  peer_credited_.store(st.peer_energy_credited, std::memory_order_relaxed);
-  if (st.received > 0 && port.observed() < lowest_observed_.load(std::memory_order_relaxed))
-    lowest_observed_.store(port.observed(), std::memory_order_relaxed);
+  const teleop::EnergyPort& turn = *st.rotation_port;
+  in_.store(port.energy_in() + turn.energy_in(), std::memory_order_relaxed);
+  out_.store(port.energy_out() + turn.energy_out(), std::memory_order_relaxed);
+  dissipated_.store(port.dissipated() + turn.dissipated(), std::memory_order_relaxed);
+  peer_claimed_.store(st.peer_energy_in + st.peer_rotation_energy_in, std::memory_order_relaxed);
+  peer_credited_.store(st.peer_energy_credited + st.peer_rotation_energy_credited, std::memory_order_relaxed);
+  const double observed = std::min(port.observed(), turn.observed());
+  if (st.received > 0 && observed < lowest_observed_.load(std::memory_order_relaxed))
+    lowest_observed_.store(observed, std::memory_order_relaxed);
   const teleop::LinkClockFigures& clock = st.clock;
   delay_valid_.store(clock.valid, std::memory_order_relaxed);
   round_trip_.store(clock.round_trip_s, std::memory_order_relaxed);
@@ -225,6 +266,7 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
     EngineInput input;
     input.has_wrench = true;
     input.wrench.force = out.force;
+    input.wrench.torque = out.torque;
     input.sequence = ++engine_sequence_;
     device_.device->engine_input(input);
   }
@@ -238,6 +280,10 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   copy(packet_.force, out.packet.force);
   copy(packet_.wave, out.packet.wave);
   packet_.energy_in = out.packet.energy_in;
+  copy(packet_.orientation, out.packet.orientation);
+  copy(packet_.angular_velocity, out.packet.angular_velocity);
+  copy(packet_.torque, out.packet.torque);
+  packet_.rotation_energy_in = out.packet.rotation_energy_in;
   packet_.stopped = out.packet.stopped;
   if (writer_.write(packet_)) sent_.fetch_add(1, std::memory_order_relaxed);
 }

@@ -39,8 +39,11 @@ class TeleopLink final : public Door {
  public:
   // Claims `device` for the link (it is free: the gate is being built). Throws std::runtime_error when the DDS
   // entities cannot be created.
+  // `real_time`: the loop runs on a real clock (its present time on the publisher thread is a state's time plus what
+  // has passed since its handover: the packets' times are when they are sent and taken), else on a virtual one (a
+  // state's time is the present).
   TeleopLink(const TeleoperationSettings& settings, DeviceGate& device, const dds::Participant& participant,
-             EventFanout& events);
+             EventFanout& events, bool real_time);
 
   [[nodiscard]] std::size_t device() const noexcept { return device_.index; }
   // Door: the link's peer is itself (the session holds its claim); a new state of the linked device runs it.
@@ -99,6 +102,9 @@ class TeleopLink final : public Door {
   dds::Writer<hapticd_msg_TeleopPacket> writer_;
   teleop::TeleopPort port_;  // the link's side and its policies; this door carries them out
   hapticd_msg_TeleopPacket packet_{};
+  bool real_time_;
+  std::int64_t clock_lead_ns_ = 0;  // the monotonic clock minus the loop clock (real time)
+  bool clock_known_ = false;
   std::int64_t last_ns_ = 0;
   bool started_ = false;             // a state seen (last_ns_ holds its time)
   dds_instance_handle_t bound_ = 0;  // the peer's writer (0: none yet)

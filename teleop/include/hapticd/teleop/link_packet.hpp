@@ -4,6 +4,7 @@
 // axes; the master scales its motion to the remote's (motion_scale) before it sends it, so both sides' packets
 // speak the remote's units of motion. Energies are each sender's own: the receiver converts them.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 
 namespace hapticd::teleop {
@@ -25,6 +26,13 @@ struct LinkPacket {
   // The energy that has entered the link at the sender's port since the link started [J], never decreasing:
   // a lost or late packet leaves the receiver with less than was sent, never more (time-domain passivity).
   double energy_in = 0.0;
+  // Six degrees of freedom (LinkSettings::rotation; else identity and zeros): the handle's rotation since the link
+  // started (world axes), its angular velocity [rad/s], the remote's environment's torque [N m] and the energy that
+  // entered rotation's port [J] (a port of its own, never decreasing).
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+  double rotation_energy_in = 0.0;
   bool stopped = false;  // the sender's device is stopped (E-stop, fault): the receiver stops too
 };
 

@@ -22,7 +22,8 @@ enum class PortStop { none, peer_stopped, link_lost };
 const char* stop_code(PortStop stop) noexcept;
 
 struct PortCycle {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // for the device's handle
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // for the device's handle
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // with rotation
   bool apply = false;              // hand `force` to the device (not while it is stopped or its session ends)
   LinkPacket packet;               // to send
   PortStop stop = PortStop::none;  // the device must stop now (its E-stop), and why

@@ -12,8 +12,16 @@
 // energy that entered at each port carried in the packets); or wave variables (position-force only: the master's
 // motion and the remote's force travel as waves, which a delay cannot make active; a lost wave is read as zero).
 // Scaling: the remote moves motion_scale times the master's motion; the master feels force_scale times the
-// remote's force. Everything runs on the caller's thread without allocating.
+// remote's force. Six degrees of freedom (`rotation`): the handle's orientation and angular velocity go over the
+// link as well and the torques come back, by the same architecture as the translation (position-position: a
+// rotational spring-damper across the link; position-force: the remote's orientation setpoint follows the master's
+// rotation and the environment's torque comes back); rotation is not scaled (the master feels force_scale times the
+// remote's torque). Rotation has an energy port of its own (its energy in travels as rotation_energy_in) so that
+// neither part of the link can pay for the other: each is passive, and so is their sum. Everything runs on the
+// caller's thread without allocating.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -45,6 +53,14 @@ struct LinkSettings {
   // over fade_s, and in again over fade_s when packets come back).
   double link_timeout_s = 1.0;
   double fade_s = 0.1;
+  // Six degrees of freedom: orientation, angular velocity and torque over the link too (TDPA or none: wave
+  // variables carry translation only). Position-position: the coupling's rotational spring-damper; position-force:
+  // the remote's orientation controller. Its setpoint closes its rotation from the master's over drift_time_s.
+  bool rotation = false;
+  double rotational_stiffness = 2.0;  // [N m/rad]
+  double rotational_damping = 0.05;   // [N m s/rad]
+  double max_angular_speed = 3.0;     // the remote setpoint's [rad/s]
+  double max_torque = 1.0;            // either side commands at most [N m]
 };
 
 // The settings' first problem ("" when there is none).
@@ -57,20 +73,28 @@ struct LocalSample {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // the handle (world) [m]
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [m/s]
   Eigen::Vector3d force = Eigen::Vector3d::Zero();     // the environment's force on the handle (the remote) [N]
+  // With rotation: the handle's orientation (world), angular velocity [rad/s] and the environment's torque [N m].
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
 };
 
 struct SideOutput {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // to apply to the local handle [N]
-  LinkPacket packet;                                // to send
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // to apply to the local handle [N]
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // [N m] (zero without rotation)
+  LinkPacket packet;                                 // to send
 };
 
 struct SideStatus {
-  const EnergyPort* port = nullptr;
+  const EnergyPort* port = nullptr;           // translation's
+  const EnergyPort* rotation_port = nullptr;  // rotation's (its energies stay zero without rotation)
   // The other port's energy in, in this side's units [J]: as its packets claim it, and as credited - no more than
   // the link's own force and motion at that port could have carried (a peer's claim is never taken on trust). The
   // passivity controller spends only what is credited.
   double peer_energy_in = 0.0;
   double peer_energy_credited = 0.0;
+  double peer_rotation_energy_in = 0.0;  // the same for rotation's ports
+  double peer_rotation_energy_credited = 0.0;
   std::uint64_t received = 0;  // packets taken
   std::uint64_t stale = 0;     // packets not newer than one already taken (reordered, or a serial gone back): ignored
   std::uint64_t peers = 0;     // senders the side has taken packets from (peer_changed: one more)
@@ -81,6 +105,7 @@ struct SideStatus {
   double fade = 1.0;  // the master's force weight: falls to 0 over fade_s while the link is lost, rises when back
   // Position-force, the remote: its setpoint's distance from the master's motion as last received [m].
   double drift_m = 0.0;
+  double rotation_drift_rad = 0.0;  // and its orientation setpoint's angle from the master's rotation
   // The link's round trip, the peer's clock offset and the one-way delays, from the packets' times (timed
   // packets only: receive() with their arrival).
   LinkClockFigures clock;
@@ -116,27 +141,42 @@ class TeleopSide {
   [[nodiscard]] const Eigen::Vector3d& setpoint() const noexcept { return setpoint_; }
 
  private:
+  // What the peer's energy in is credited at: what earlier senders were credited, and what the bound has let in
+  // since this one came (its units) [J].
+  struct Budget {
+    double before = 0.0;
+    double bound = 0.0;
+  };
+
   Eigen::Vector3d master_force(const Eigen::Vector3d& x, const Eigen::Vector3d& v, double dt, LinkPacket& out) noexcept;
   Eigen::Vector3d remote_force(const Eigen::Vector3d& x, const Eigen::Vector3d& v, const Eigen::Vector3d& f_env,
                                double dt, LinkPacket& out) noexcept;
-  // The energy scale from the remote's units to the master's: force_scale / motion_scale.
+  // Rotation's counterparts: the handle's orientation from the link's start (world axes) and angular velocity.
+  Eigen::Vector3d master_torque(const Eigen::Quaterniond& q, const Eigen::Vector3d& w, double dt,
+                                LinkPacket& out) noexcept;
+  Eigen::Vector3d remote_torque(const Eigen::Quaterniond& q, const Eigen::Vector3d& w, const Eigen::Vector3d& t_env,
+                                double dt, LinkPacket& out) noexcept;
+  // The energy scale from the remote's units to the master's: force_scale / motion_scale (rotation: force_scale).
   [[nodiscard]] double to_master_units() const noexcept { return settings_.force_scale / settings_.motion_scale; }
 
   // The power the peer's port can take in at most, as its newest packet shows it (its units) [W].
   [[nodiscard]] double peer_power_bound() const noexcept;
+  [[nodiscard]] double peer_rotation_power_bound() const noexcept;
   // The peer's energy in as credited (its units): claimed, within what the bound has let in since the peer came.
-  [[nodiscard]] double credited_peer_energy() const noexcept;
+  [[nodiscard]] double credited(const Budget& budget, double claimed) const noexcept {
+    return budget.before + (have_peer_ ? std::min(claimed, budget.bound) : 0.0);
+  }
 
   Role role_;
   LinkSettings settings_;
   EnergyPort port_;
+  EnergyPort rotation_port_;
   SideStatus status_;
   bool started_ = false;
   bool rebase_pending_ = false;  // peer_changed: re-anchor at the next cycle with a packet
-  // The peer's energy (its units): credited by earlier senders; what the bound has let in since this one came.
-  double credited_before_ = 0.0;
-  double energy_bound_ = 0.0;
+  Budget translation_budget_, rotation_budget_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation_origin_ = Eigen::Quaterniond::Identity();
   std::uint64_t sequence_ = 0;
   LinkPacket peer_;  // the newest packet taken
   // The packet that arrived last (newest or not: each arrival is a measurement of the way here) - its send time and
@@ -151,6 +191,9 @@ class TeleopSide {
   // Position-force, the remote: its setpoint (start frame) and the setpoint's velocity.
   Eigen::Vector3d setpoint_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d setpoint_velocity_ = Eigen::Vector3d::Zero();
+  // Its orientation setpoint (from the start, world axes) and angular velocity.
+  Eigen::Quaterniond rotation_setpoint_ = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d rotation_setpoint_velocity_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace hapticd::teleop
