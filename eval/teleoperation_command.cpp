@@ -25,10 +25,11 @@ struct Options {
   std::string architecture = "position_force";
   double jitter_ms = 0.0;
   double duration_s = 6.0;
-  double stiffness = teleop::LinkSettings{}.stiffness;
-  double damping = teleop::LinkSettings{}.damping;
+  double stiffness = -1.0;  // < 0: the pair's (pair_link below)
+  double damping = -1.0;
   double motion_scale = 1.0;
   double force_scale = 1.0;
+  int dof = 3;  // 6: the ViSHaRD6 pair in six degrees of freedom (master6.yaml, remote6.yaml)
   // The wall's run over time at this delay (and the lowest loss run) goes into the report; < 0: the round trip
   // run nearest to 200 ms.
   double trace_round_trip_ms = -1.0;
@@ -48,6 +49,9 @@ std::string cell(const TeleopResult& r) {
 
 int run(const Options& o) {
   std::string tried;
+  if (o.dof == 6 && o.architecture == "position_force" &&
+      std::find(o.schemes.begin(), o.schemes.end(), "wave") != o.schemes.end())
+    throw std::invalid_argument("--dof 6: wave variables carry translation only (--passivity none tdpa)");
   const auto master_file = find_config_file("sessions/teleoperation/master.yaml", &tried);
   if (!master_file) throw std::runtime_error("no config/sessions/teleoperation/master.yaml; looked at:" + tried);
   const std::filesystem::path config_dir = master_file->parent_path();
@@ -91,32 +95,40 @@ int run(const Options& o) {
           row.jitter_s = o.jitter_ms * 1e-3;
           row.duration_s = o.duration_s;
           row.seed = o.common.seed;
+          row.link = pair_link(o.dof == 6);
+          row.six_dof = o.dof == 6;
           row.link.architecture = o.architecture == "position_position" ? teleop::Architecture::position_position
                                                                         : teleop::Architecture::position_force;
           row.link.passivity = parse_passivity(scheme);
-          row.link.stiffness = o.stiffness;
-          row.link.damping = o.damping;
+          if (o.stiffness >= 0.0) row.link.stiffness = o.stiffness;
+          if (o.damping >= 0.0) row.link.damping = o.damping;
           row.link.motion_scale = o.motion_scale;
           row.link.force_scale = o.force_scale;
           // The wall at the trace delay and the lowest loss: its run over time, for the report's figure.
           row.keep_samples = task == TeleopTask::wall && rtt == trace_rtt && loss == trace_loss;
           const TeleopResult r = run_teleop_trial(row, config_dir);
           if (row.keep_samples) {
-            std::vector<double> t, xm, xr, f;
+            std::vector<double> t, xm, xr, f, am, ar, tm;
             for (std::size_t k = 0; k < r.samples.size(); k += 10) {  // 100 Hz
               t.push_back(r.samples[k].t);
               xm.push_back(r.samples[k].master.x());
               xr.push_back(r.samples[k].remote.x());
               f.push_back(r.samples[k].master_force.x());
+              am.push_back(r.samples[k].master_angle);
+              ar.push_back(r.samples[k].remote_angle);
+              tm.push_back(r.samples[k].master_torque);
             }
-            traces.push(Json::object()
-                            .set("passivity", scheme)
-                            .set("round_trip_ms", rtt)
-                            .set("loss_percent", loss)
-                            .set("time_s", t)
-                            .set("master_x_m", xm)
-                            .set("remote_x_m", xr)
-                            .set("master_force_x_n", f));
+            Json trace = Json::object()
+                             .set("passivity", scheme)
+                             .set("round_trip_ms", rtt)
+                             .set("loss_percent", loss)
+                             .set("time_s", t)
+                             .set("master_x_m", xm)
+                             .set("remote_x_m", xr)
+                             .set("master_force_x_n", f);
+            if (row.six_dof)
+              trace.set("master_angle_z_rad", am).set("remote_angle_z_rad", ar).set("master_torque_z_n_m", tm);
+            traces.push(trace);
           }
           progress.advance(fmt::format("{} {} {:g} ms {:g} %", to_string(task), scheme, rtt, loss));
           fmt::print("  {:>2g}%: {:<5} {} E {:>9.1f}", loss, cell(r),
@@ -125,7 +137,11 @@ int run(const Options& o) {
                                                                  : fmt::format("K {:>5.0f}", r.felt_stiffness_n_per_m))
                          : fmt::format("drift {:>5.1f}", r.drift_mm),
                      1e3 * r.min_energy_j);
-          rows.push(
+          if (row.six_dof)
+            fmt::print(" {}", task == TeleopTask::wall
+                                  ? fmt::format("Kr {:.2f}", r.felt_rotational_stiffness_n_m_per_rad)
+                                  : fmt::format("turn {:.2f}", r.rotation_oscillation));
+          Json entry =
               Json::object()
                   .set("task", to_string(task))
                   .set("passivity", scheme)
@@ -149,7 +165,12 @@ int run(const Options& o) {
                   .set("delay_measured_remote_ms", Json::array()
                                                        .push(1e3 * r.delays.remote.mean_delay_in_s)
                                                        .push(1e3 * r.delays.remote.mean_delay_out_s))
-                  .set("clock_offset_s", Json::array().push(r.delays.true_offset_s).push(r.delays.master.offset_s)));
+                  .set("clock_offset_s", Json::array().push(r.delays.true_offset_s).push(r.delays.master.offset_s));
+          if (row.six_dof)
+            entry.set("felt_rotational_stiffness_n_m_per_rad", r.felt_rotational_stiffness_n_m_per_rad)
+                .set("rotation_oscillation", r.rotation_oscillation)
+                .set("max_torque_n_m", r.max_torque_n_m);
+          rows.push(entry);
           largest_delay_error = std::max(largest_delay_error, r.delays.largest_error_s);
         }
         fmt::print("\n");
@@ -165,11 +186,12 @@ int run(const Options& o) {
       .set("title", "Teleoperation: a stiff wall and free motion through a delayed, lossy link")
       .set("device", o.common.device)
       .set("architecture", o.architecture)
-      .set("stiffness_n_per_m", o.stiffness)
-      .set("damping_n_s_per_m", o.damping)
+      .set("stiffness_n_per_m", o.stiffness >= 0.0 ? o.stiffness : pair_link(o.dof == 6).stiffness)
+      .set("damping_n_s_per_m", o.damping >= 0.0 ? o.damping : pair_link(o.dof == 6).damping)
       .set("jitter_ms", o.jitter_ms)
       .set("duration_s", o.duration_s)
       .set("wall_offset_m", 0.03)
+      .set("dof", o.dof)
       .set("largest_delay_error_ms", 1e3 * largest_delay_error)
       .set("rows", rows)
       .set("traces", traces)
@@ -210,10 +232,12 @@ void add_teleoperation_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   cmd->add_option("--duration", o->duration_s, "each run [s]")->check(CLI::Range(4.0, 600.0))->capture_default_str();
-  cmd->add_option("--stiffness", o->stiffness, "the remote's position controller or the coupling [N/m]")
-      ->check(CLI::Range(0.0, 1e5))
-      ->capture_default_str();
-  cmd->add_option("--damping", o->damping, "its damping [N s/m]")->check(CLI::Range(0.0, 1e4))->capture_default_str();
+  cmd->add_option("--stiffness", o->stiffness,
+                  "the remote's position controller or the coupling [N/m] (default: the pair's sessions', 1500; "
+                  "--dof 6: 800)")
+      ->check(CLI::Range(0.0, 1e5));
+  cmd->add_option("--damping", o->damping, "its damping [N s/m] (default: 20; --dof 6: 40)")
+      ->check(CLI::Range(0.0, 1e4));
   cmd->add_option("--motion-scale", o->motion_scale, "remote motion per master motion")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
@@ -222,6 +246,11 @@ void add_teleoperation_command(CLI::App& app, int& exit_code) {
       "the wall's run over time at this round-trip delay (one of --round-trips; at the lowest loss run) goes "
       "into the report [ms]; default: the round trip run nearest to 200 ms");
   cmd->add_option("--table", o->table, "also write the rows alone to this JSON file");
+  cmd->add_option("--dof", o->dof,
+                  "3: the ViSHaRD3 pair in translation; 6: the ViSHaRD6 pair in six degrees of freedom (the operator "
+                  "also turns the handle; the remote's plate meets its wall)")
+      ->check(CLI::IsMember({3, 6}))
+      ->capture_default_str();
   cmd->add_option("--force-scale", o->force_scale, "master force per remote force")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();

@@ -6,19 +6,21 @@
 # About 0.25 s a run: 486 runs per architecture and jitter, some 8 minutes in all on a 2-core machine.
 # Usage: scripts/teleop-sweep.sh [OUT_DIR] [JITTER_MS]    (defaults: build/teleop-sweep, 10)
 #        BUILD=build/ci (default) or another build tree with bin/hapticd-eval
+#        DOF=6: the ViSHaRD6 pair in six degrees of freedom (`--dof 6`: the rotation's felt stiffness too)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-build/teleop-sweep}
 jitter=${2:-10}
 build=${BUILD:-build/ci}
+dof=${DOF:-3}
 mkdir -p "$out"
 round_trips=$(seq -s ' ' 0 10 800)
 for architecture in position_force position_position; do
   for j in 0 "$jitter"; do
     name="$architecture-jitter-$j"
-    echo "== $name" >&2
+    echo "== $name (dof $dof)" >&2
     # shellcheck disable=SC2086  # the round trips are words
-    "$build/bin/hapticd-eval" teleoperation --architecture "$architecture" --passivity tdpa \
+    "$build/bin/hapticd-eval" teleoperation --dof "$dof" --architecture "$architecture" --passivity tdpa \
       --round-trips $round_trips --losses 0 5 20 --jitter "$j" --no-figures --out "$out/$name" \
       --table "$out/$name.json" > "$out/$name.log"
   done
@@ -47,4 +49,11 @@ for architecture in ("position_force", "position_position"):
                 print(f"  the wall at 500 ms, {loss} % loss: {k500:.0f} N/m, {100 * k500 / k0:.0f} % of the no-delay row")
             else:
                 print(f"  the wall at 500 ms, {loss} % loss: not stable")
+        kr = {(r["round_trip_ms"], r["loss_percent"]): r.get("felt_rotational_stiffness_n_m_per_rad")
+              for r in rows if r["task"] == "wall"}
+        for loss in (0, 5, 20):
+            k0, k500 = kr.get((0, loss)), kr.get((500, loss))
+            if k0 is not None and k500 is not None and k500 == k500 and k0 > 0:
+                print(f"  rotation at the wall at 500 ms, {loss} % loss: {k500:.2f} N m/rad, "
+                      f"{100 * k500 / k0:.0f} % of the no-delay row")
 PY

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "hapticd/server/session.hpp"
+#include "hapticd/teleop/rotation.hpp"
 
 namespace hapticd::eval {
 namespace {
@@ -18,13 +19,29 @@ using teleop::LocalSample;
 using teleop::Role;
 using teleop::TeleopPort;
 
-std::vector<std::string> master_overrides(TeleopTask task) {
+std::vector<std::string> master_overrides(const TeleopRow& row) {
   const std::string p = "devices.master.device.parameters.";
-  if (task == TeleopTask::wall) {
-    return {p + "operator_motion=step", p + "operator_motion_m=[0.06, 0, 0]", p + "operator_motion_start_s=0.3",
-            p + "operator_force=ramp",  p + "operator_force_n=[2.0, 0, 0]",   p + "operator_force_start_s=3.0"};
+  std::vector<std::string> o;
+  if (row.task == TeleopTask::wall) {
+    o = {p + "operator_motion=step", p + "operator_motion_m=[0.06, 0, 0]", p + "operator_motion_start_s=0.3",
+         p + "operator_force=ramp",  p + "operator_force_n=[2.0, 0, 0]",   p + "operator_force_start_s=3.0"};
+    if (row.six_dof)
+      for (const char* r :
+           {"operator_rotation=step", "operator_rotation_rad=[0, 0, 0.15]", "operator_rotation_start_s=1.5"})
+        o.push_back(p + r);
+  } else {
+    o = {p + "operator_motion=sine", p + "operator_motion_m=[0.03, 0, 0]", p + "operator_motion_frequency_hz=0.5"};
+    if (row.six_dof)
+      for (const char* r :
+           {"operator_rotation=sine", "operator_rotation_rad=[0, 0, 0.2]", "operator_rotation_frequency_hz=0.5"})
+        o.push_back(p + r);
   }
-  return {p + "operator_motion=sine", p + "operator_motion_m=[0.03, 0, 0]", p + "operator_motion_frequency_hz=0.5"};
+  return o;
+}
+
+// The handle's rotation about z from `start` (world) [rad].
+double angle_about_z(const Eigen::Quaterniond& q, const Eigen::Quaterniond& start) {
+  return teleop::rotation_between(start, q).z();
 }
 
 std::vector<std::string> remote_overrides(const TeleopRow& row) {
@@ -38,13 +55,17 @@ LocalSample sample_of(const server::DeviceView& v) {
   s.position = v.handle_pose.position;
   s.velocity = v.handle_twist.linear;
   s.force = v.operator_wrench.force;  // what holds the handle: for the remote, its environment
+  s.orientation = v.handle_pose.orientation;
+  s.angular_velocity = v.handle_twist.angular;
+  s.torque = v.operator_wrench.torque;
   return s;
 }
 
-void apply(server::Session& session, const std::string& device, const Eigen::Vector3d& force, std::uint64_t seq) {
+void apply(server::Session& session, const std::string& device, const teleop::PortCycle& out, std::uint64_t seq) {
   EngineInput input;
   input.has_wrench = true;
-  input.wrench.force = force;
+  input.wrench.force = out.force;
+  input.wrench.torque = out.torque;
   input.sequence = seq;
   session.set_engine_input(device, input);
 }
@@ -99,6 +120,19 @@ double mean(const std::vector<double>& y) {
 
 const char* to_string(TeleopTask task) noexcept { return task == TeleopTask::wall ? "wall" : "free"; }
 
+teleop::LinkSettings pair_link(bool six_dof) {
+  teleop::LinkSettings link;
+  if (six_dof) {
+    link.stiffness = 800.0;
+    link.damping = 40.0;
+    link.rotation = true;
+    link.rotational_stiffness = 3.0;
+    link.rotational_damping = 0.05;
+    link.max_torque = 1.5;
+  }
+  return link;
+}
+
 TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path& config_dir,
                               const std::vector<std::filesystem::path>& plugin_paths) {
   if (!(row.duration_s >= 2.0 && row.duration_s <= 600.0))
@@ -111,15 +145,17 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
   ChannelModel to_remote(channel);
   channel.seed = row.seed ^ 0xA5A5A5A5ULL;
   ChannelModel to_master(channel);
+  if (row.six_dof != row.link.rotation)
+    throw std::invalid_argument("teleoperation trial: six degrees of freedom take the link's rotation (and only they)");
   TeleopPort master_side(Role::master, row.link);
   TeleopPort remote_side(Role::remote, row.link);
 
-  server::SessionOptions mo{master_overrides(row.task), plugin_paths};
+  server::SessionOptions mo{master_overrides(row), plugin_paths};
   mo.overrides.push_back("server.seed=" + std::to_string(row.seed));
   server::SessionOptions ro{remote_overrides(row), plugin_paths};
   ro.overrides.push_back("server.seed=" + std::to_string(row.seed + 1));
-  server::Session master = server::Session::from_file(config_dir / "master.yaml", mo);
-  server::Session remote = server::Session::from_file(config_dir / "remote.yaml", ro);
+  server::Session master = server::Session::from_file(config_dir / (row.six_dof ? "master6.yaml" : "master.yaml"), mo);
+  server::Session remote = server::Session::from_file(config_dir / (row.six_dof ? "remote6.yaml" : "remote.yaml"), ro);
   const double dt = master.period_s();
   if (std::abs(remote.period_s() - dt) > 1e-12)
     throw std::invalid_argument("teleoperation trial: the master and the remote must run at one rate");
@@ -128,7 +164,10 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
   const auto cycles = static_cast<std::uint64_t>(std::llround(row.duration_s / dt));
   const double c = row.link.force_scale / row.link.motion_scale;
   Eigen::Vector3d master_origin, remote_origin;
+  Eigen::Quaterniond master_start, remote_start;
   std::vector<double> ts, mx, rx, fx, fpos;  // for the figures of merit
+  std::vector<double> ma, ra, mt;            // six degrees of freedom: the rotations about z, the master's torque
+  double max_torque = 0.0;
   double min_energy = 0.0;
   double max_force = 0.0;
   // The remote's clock: ahead and faster (the packets' times only). A packet's true send time from its time stamp.
@@ -148,6 +187,8 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
     if (k == 1) {
       master_origin = mv.handle_pose.position;
       remote_origin = rv.handle_pose.position;
+      master_start = mv.handle_pose.orientation;
+      remote_start = rv.handle_pose.orientation;
     }
     if (!mv.fault.empty() || !rv.fault.empty()) {
       result.fault = !mv.fault.empty() ? "master: " + mv.fault : "remote: " + rv.fault;
@@ -170,7 +211,7 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
     const teleop::PortCycle ro_out = remote_side.cycle(remote_sample, dt, false, false);
     // What the ports decided, done as the server's link does: the force to the device, or its E-stop.
     for (auto [session, name, out] : {std::tuple{&master, "master", &mo_out}, std::tuple{&remote, "remote", &ro_out}}) {
-      if (out->apply) apply(*session, name, out->force, k);
+      if (out->apply) apply(*session, name, *out, k);
       if (out->stop != teleop::PortStop::none) {
         if (result.stop_code.empty()) result.stop_code = teleop::stop_code(out->stop);
         server::DeviceRequest estop;
@@ -186,9 +227,20 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
 
     const teleop::EnergyPort& pm = *master_side.status().port;
     const teleop::EnergyPort& pr = *remote_side.status().port;
-    const double energy = (pm.energy_in() - pm.energy_out()) + c * (pr.energy_in() - pr.energy_out());
+    // Rotation's ports (their own budgets; rotation is not scaled: the remote's torque counts force_scale times).
+    const teleop::EnergyPort& qm = *master_side.status().rotation_port;
+    const teleop::EnergyPort& qr = *remote_side.status().rotation_port;
+    const double energy = (pm.energy_in() - pm.energy_out()) + c * (pr.energy_in() - pr.energy_out()) +
+                          (qm.energy_in() - qm.energy_out()) +
+                          row.link.force_scale * (qr.energy_in() - qr.energy_out());
     min_energy = std::min(min_energy, energy);
     max_force = std::max(max_force, mo_out.force.norm());
+    max_torque = std::max(max_torque, mo_out.torque.norm());
+    const double am = angle_about_z(mv.handle_pose.orientation, master_start);
+    const double ar = angle_about_z(rv.handle_pose.orientation, remote_start);
+    ma.push_back(am);
+    ra.push_back(ar);
+    mt.push_back(mo_out.torque.z());
     const Eigen::Vector3d xm = mv.handle_pose.position - master_origin;
     const Eigen::Vector3d xr = rv.handle_pose.position - remote_origin;
     ts.push_back(t);
@@ -197,7 +249,8 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
     fx.push_back(-mo_out.force.x());
     fpos.push_back(xm.x());
     if (row.keep_samples)
-      result.samples.push_back({t, xm, xr, mo_out.force, ro_out.force, rv.operator_wrench.force, energy});
+      result.samples.push_back(
+          {t, xm, xr, mo_out.force, ro_out.force, rv.operator_wrench.force, energy, am, ar, mo_out.torque.z()});
   }
   TeleopResult::Delays& d = result.delays;
   d.true_to_remote_s = true_to_remote > 0 ? true_sum_to_remote / static_cast<double>(true_to_remote) : 0.0;
@@ -214,16 +267,30 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
   result.min_energy_j = min_energy;
   result.passive = min_energy >= -1e-3;
   result.max_force_n = max_force;
-  result.dissipated_j = master_side.status().port->dissipated() + c * remote_side.status().port->dissipated();
+  result.dissipated_j = master_side.status().port->dissipated() + c * remote_side.status().port->dissipated() +
+                        master_side.status().rotation_port->dissipated() +
+                        row.link.force_scale * remote_side.status().rotation_port->dissipated();
+  result.max_torque_n_m = max_torque;
 
   // Figures of merit over the run's last part (a run that faulted has no such part: it is unstable).
   const double end = row.duration_s;
   std::vector<double> wt, wm, wr, sx, sf, dm, dr;
+  std::vector<double> wam, war, fam, fat, fr_m, fr_r;  // rotation: the last 1.5 s; the contact's; the last 2 s
   for (std::size_t i = 0; i < ts.size(); ++i) {
     if (ts[i] >= end - 1.5) {
       wt.push_back(ts[i]);
       wm.push_back(mx[i]);
       wr.push_back(rx[i]);
+      wam.push_back(ma[i]);
+      war.push_back(ra[i]);
+    }
+    if (row.task == TeleopTask::wall && ts[i] >= 3.0 && fx[i] > 0.5) {
+      fam.push_back(ma[i]);
+      fat.push_back(-mt[i]);
+    }
+    if (ts[i] >= end - 2.0) {
+      fr_m.push_back(ma[i]);
+      fr_r.push_back(ra[i]);
     }
     if (ts[i] >= end - 2.0) {
       dm.push_back(row.link.motion_scale * mx[i]);
@@ -238,6 +305,13 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
   if (row.task == TeleopTask::wall) {
     result.oscillation_mm = 1e3 * std::max(detrended_peak_to_peak(wt, wm), detrended_peak_to_peak(wt, wr));
     result.stable = result.fault.empty() && result.oscillation_mm < 5.0;
+    if (row.six_dof) {
+      result.rotation_oscillation = std::max(detrended_peak_to_peak(wt, wam), detrended_peak_to_peak(wt, war));
+      result.stable = result.stable && result.rotation_oscillation < 0.02;
+      result.felt_rotational_stiffness_n_m_per_rad = !result.stable                          ? std::nan("")
+                                                     : fam.size() >= 200 && mean(fam) > 1e-3 ? mean(fat) / mean(fam)
+                                                                                             : 0.0;
+    }
     result.felt_stiffness_n_per_m = std::nan("");  // an oscillating contact has no stiffness
     // Force per depth past where the wall is for the master (the remote's wall over the motion scale), averaged
     // over the contact: what the operator feels, however the link's drift has moved the master meanwhile.
@@ -250,6 +324,11 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
     const double master_p2p = peak_to_peak(dm);
     result.oscillation_mm = master_p2p > 0.0 ? peak_to_peak(dr) / master_p2p : 0.0;  // a ratio here
     result.stable = result.fault.empty() && master_p2p < 0.12 && result.oscillation_mm < 1.5;
+    if (row.six_dof) {
+      const double turned = peak_to_peak(fr_m);
+      result.rotation_oscillation = turned > 0.0 ? peak_to_peak(fr_r) / turned : 0.0;  // a ratio here
+      result.stable = result.stable && turned < 1.0 && result.rotation_oscillation < 1.5;
+    }
   }
   return result;
 }

@@ -5,6 +5,7 @@
 // sessions step, each port takes what its channel delivered by then and its device's handle, its force reaches its
 // device as an engine's wrench in the next cycle, and a stop it decides is its device's E-stop. The same row and
 // seed give the same run.
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -37,6 +38,10 @@ struct TeleopRow {
   // Every packet either way is lost from outage_start_s for outage_s (a cut link; < 0: none).
   double outage_start_s = -1.0;
   double outage_s = 0.0;
+  // Six degrees of freedom: the ViSHaRD6 pair (master6.yaml, remote6.yaml; link.rotation must be on). The operator
+  // also turns the handle about z: the wall task to 0.15 rad from 1.5 s, tilting the remote's plate against its wall;
+  // free motion 0.2 rad back and forth with the motion.
+  bool six_dof = false;
 };
 
 struct TeleopSample {
@@ -47,6 +52,8 @@ struct TeleopSample {
   Eigen::Vector3d remote_force = Eigen::Vector3d::Zero();  // on the remote
   Eigen::Vector3d environment = Eigen::Vector3d::Zero();   // the remote's environment on its handle (sensor)
   double energy = 0.0;                                     // the link's stored energy as observed (master units)
+  double master_angle = 0.0, remote_angle = 0.0;  // six degrees of freedom: each handle's rotation about z [rad]
+  double master_torque = 0.0;                     // the link's torque on the master about z [N m]
 };
 
 struct TeleopResult {
@@ -63,8 +70,14 @@ struct TeleopResult {
   // Free motion: the remote's mean position minus the master's (scaled) over the last 2 s (one period of the
   // operator's motion); NaN for the wall, where the two differ by the contact's deflection, not by drift.
   double drift_mm = 0.0;
-  double max_force_n = 0.0;   // on the master
-  double dissipated_j = 0.0;  // by the passivity controllers, both sides
+  // Six degrees of freedom: the wall task's torque felt at the master about z over its rotation (both averaged over
+  // the contact from 3 s on; NaN when unstable), and the rotation's peak to peak in the last 1.5 s about its trend;
+  // free motion: the remote's rotation's amplitude over the master's. NaN for a translation-only row.
+  double felt_rotational_stiffness_n_m_per_rad = std::nan("");
+  double rotation_oscillation = std::nan("");
+  double max_torque_n_m = 0.0;  // on the master
+  double max_force_n = 0.0;     // on the master
+  double dissipated_j = 0.0;    // by the passivity controllers, both sides
   teleop::ChannelCounters to_remote, to_master;
   // The one-way delays each way: the channel's true mean over the packets delivered (each from its send to the
   // cycle that took it) and each side's measurement from the packets' times (teleop/link_clock.hpp); the remote's
@@ -79,11 +92,17 @@ struct TeleopResult {
   std::vector<TeleopSample> samples;  // with keep_samples: every cycle
 };
 
-// `config_dir`: where master.yaml and remote.yaml are (config/sessions/teleoperation); `plugin_paths` are searched
-// for plugins first. Throws std::runtime_error when a session cannot be built, std::invalid_argument for a bad row.
+// `config_dir`: where master.yaml and remote.yaml (master6.yaml and remote6.yaml) are (config/sessions/teleoperation);
+// `plugin_paths` are searched for plugins first. Throws std::runtime_error when a session cannot be built,
+// std::invalid_argument for a bad row.
 TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path& config_dir,
                               const std::vector<std::filesystem::path>& plugin_paths = {});
 
 const char* to_string(TeleopTask task) noexcept;
+
+// The link as the pair's sessions set it (config/sessions/teleoperation/master.yaml; six_dof: master6.yaml): the
+// ViSHaRD6 pair couples more softly and with more damping (with the ViSHaRD3's 1500 N/m it oscillates at 200-500 ms
+// round trip and its remote faults), and in rotation.
+teleop::LinkSettings pair_link(bool six_dof);
 
 }  // namespace hapticd::eval

@@ -181,6 +181,40 @@ TEST(Teleoperation, ACutLinkStopsTheRemoteAsTheServersLinkDoes) {
   EXPECT_TRUE(r.passive && r.stable) << describe(r);
 }
 
+// Six degrees of freedom (docs/teleoperation.md, "Rotation"): the ViSHaRD6 pair (master6.yaml, remote6.yaml), the
+// operator pushing the handle into the remote's wall and turning it 0.15 rad, which tilts the remote's plate against
+// the wall: position-position with the time-domain controllers holds the contact passive and stable in translation
+// and rotation at every round trip from 0 to 800 ms every 10 ms with 20 % loss, and keeps at least half of both
+// no-delay stiffnesses; in free motion the remote turns with the master.
+TEST(Teleoperation, SixDegreesOfFreedomHoldTheTiltedContactAtEveryRoundTripOfTheSweep) {
+  TeleopRow row;
+  row.six_dof = true;
+  row.link = pair_link(true);
+  row.link.architecture = Architecture::position_position;
+  const std::string config = test::source_dir() + "/config/sessions/teleoperation";
+  const TeleopResult no_delay = run_teleop_trial(row, config, {test::plugin_dir()});
+  ASSERT_TRUE(no_delay.passive && no_delay.stable) << describe(no_delay);
+  EXPECT_GT(no_delay.felt_rotational_stiffness_n_m_per_rad, 1.0);  // the plate's 4.5 N m/rad in series with the 3
+  EXPECT_GT(no_delay.max_torque_n_m, 0.1);
+  row.loss = 0.2;
+  for (int rtt = 0; rtt <= 800; rtt += 10) {
+    row.round_trip_s = rtt * 1e-3;
+    const TeleopResult r = run_teleop_trial(row, config, {test::plugin_dir()});
+    SCOPED_TRACE(std::to_string(rtt) + " ms, 20 % loss");
+    EXPECT_TRUE(r.passive && r.stable) << describe(r) << ", rotation " << r.rotation_oscillation;
+    EXPECT_GT(r.felt_stiffness_n_per_m, 0.5 * no_delay.felt_stiffness_n_per_m) << describe(r);
+    EXPECT_GT(r.felt_rotational_stiffness_n_m_per_rad, 0.5 * no_delay.felt_rotational_stiffness_n_m_per_rad);
+  }
+  row.task = TeleopTask::free;
+  row.round_trip_s = 0.2;
+  const TeleopResult free = run_teleop_trial(row, config, {test::plugin_dir()});
+  EXPECT_TRUE(free.passive && free.stable) << describe(free);
+  EXPECT_NEAR(free.rotation_oscillation, 1.0, 0.2);  // the remote's rotation over the master's
+  // A six-degree-of-freedom row needs the link's rotation.
+  row.link.rotation = false;
+  EXPECT_THROW(run_teleop_trial(row, config, {test::plugin_dir()}), std::invalid_argument);
+}
+
 TEST(Teleoperation, RefusesABadRow) {
   TeleopRow row;
   row.link.stiffness = -5.0;

@@ -229,6 +229,13 @@ ParameterSchema SimDevice::parameter_schema() {
       .minimum(0.0)
       .maximum(1e4)
       .default_value(WallSettings{}.damping);
+  s.real("wall_contact_half_width_m",
+         "0: the handle touches the wall at its point; else with a square plate of this half width that turns with "
+         "the handle (four corners, a quarter of the wall's spring-damper each): a tilt is turned back too")
+      .unit("m")
+      .minimum(0.0)
+      .maximum(0.2)
+      .default_value(WallSettings{}.contact_half_width_m);
   return s;
 }
 
@@ -382,6 +389,7 @@ void SimDevice::configure(const Parameters& p, const PluginContext& context) {
   wall.offset_m = p.real("wall_offset_m");
   wall.stiffness = p.real("wall_stiffness");
   wall.damping = p.real("wall_damping");
+  wall.contact_half_width_m = p.real("wall_contact_half_width_m");
   wall_.configure(wall);
   passive_gimbal_ = p.boolean("passive_gimbal");
 
@@ -462,7 +470,9 @@ void SimDevice::substep() noexcept {
   const Vector6d twist = chain_->handle_twist();
   const double t = static_cast<double>(simulated_ns_) * 1e-9;
   Vector6d wrench = attachment_.step(t, substep_s_, handle, twist);
-  wrench.head<3>() += wall_.force(handle.translation(), twist.head<3>());
+  const WallWrench wall = wall_.wrench(handle, twist.head<3>(), twist.tail<3>());
+  wrench.head<3>() += wall.force;
+  wrench.tail<3>() += wall.torque;
   if (passive_gimbal_) wrench.tail<3>().setZero();
   if (sensor_present_) sensor_reading(handle, twist, wrench);
   truth_.handle_pose = handle;

@@ -129,9 +129,10 @@ int check_config(const std::string& file, const std::vector<std::string>& sets) 
     fmt::print("  group {}: {}; {} pair(s) with collision capsules\n", g->name(), names, g->guards().size());
   }
   if (const TeleoperationSettings& t = s->config.teleoperation; t.enabled)
-    fmt::print("  teleoperation: {} is the {} of '{}' on DDS domain {} ({}, passivity {}; link lost after {} s)\n",
+    fmt::print("  teleoperation: {} is the {} of '{}' on DDS domain {} ({}{}, passivity {}; link lost after {} s)\n",
                t.device, t.role == teleop::Role::master ? "master" : "remote", t.peer, s->config.dds.domain_id,
-               teleop::to_string(t.link.architecture), teleop::to_string(t.link.passivity), t.link.link_timeout_s);
+               teleop::to_string(t.link.architecture), t.link.rotation ? " in six degrees of freedom" : "",
+               teleop::to_string(t.link.passivity), t.link.link_timeout_s);
   return kExitOk;
 }
 
