@@ -250,6 +250,11 @@ int run_session(const RunOptions& options) {
           link->settings().device, link->settings().peer, link->packets_sent(), link->packets_taken(),
           link->packets_rejected(), link->losses(), link->stops(), e.in, e.out, e.dissipated, e.lowest_observed,
           e.max_force_n);
+      if (link->settings().link.rotation)
+        spdlog::info(
+            "{}: teleoperation link in rotation: largest torque {:.3f} N m (the energies above count rotation's "
+            "port too)",
+            link->settings().device, e.max_torque_n_m);
       spdlog::info(
           "{}: teleoperation link's peer: bound {} times; {} packets rejected from another participant than the bound "
           "peer; its energy in claimed {:.4f} J, credited {:.4f} J (what its force and motion could carry)",

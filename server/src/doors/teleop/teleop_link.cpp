@@ -169,10 +169,14 @@ void TeleopLink::stop_device(std::string_view code, const std::string& message) 
 }
 
 TeleopLink::Energy TeleopLink::energy() const noexcept {
-  return {in_.load(std::memory_order_relaxed),           out_.load(std::memory_order_relaxed),
-          dissipated_.load(std::memory_order_relaxed),   lowest_observed_.load(std::memory_order_relaxed),
-          max_force_.load(std::memory_order_relaxed),    peer_claimed_.load(std::memory_order_relaxed),
-          peer_credited_.load(std::memory_order_relaxed)};
+  return {in_.load(std::memory_order_relaxed),
+          out_.load(std::memory_order_relaxed),
+          dissipated_.load(std::memory_order_relaxed),
+          lowest_observed_.load(std::memory_order_relaxed),
+          max_force_.load(std::memory_order_relaxed),
+          peer_claimed_.load(std::memory_order_relaxed),
+          peer_credited_.load(std::memory_order_relaxed),
+          max_torque_.load(std::memory_order_relaxed)};
 }
 
 TeleopLink::Delay TeleopLink::delay() const noexcept {
@@ -184,17 +188,10 @@ TeleopLink::Delay TeleopLink::delay() const noexcept {
 
 void TeleopLink::on_state(const DeviceSnapshot& s) {
   // The loop clock's present time: the packets are timed when they are taken and sent (the link's delay is their
-  // transit, not how late this thread runs), each server on its own loop clock. A state is handed over after its
-  // cycle's time by the loop's wake-up and compute time (tens of microseconds, now and then milliseconds): the
-  // monotonic clock's lead over the loop clock is the least of those leads lately (it creeps up 1 us a state, to
-  // follow a device's clock drifting from the monotonic one).
-  std::int64_t now_ns = s.time_ns;
-  if (real_time_) {
-    const std::int64_t lead = s.handover_ns - s.time_ns;
-    clock_lead_ns_ = clock_known_ ? std::min(clock_lead_ns_ + 1000, lead) : lead;
-    clock_known_ = true;
-    now_ns = std::max(s.time_ns, monotonic_now_ns() - clock_lead_ns_);
-  }
+  // transit, not how late this thread runs), each server on its own loop clock - the state's time plus what has
+  // passed on the monotonic clock since its cycle was due.
+  const std::int64_t now_ns =
+      real_time_ ? s.time_ns + std::max<std::int64_t>(0, monotonic_now_ns() - s.cycle_monotonic_ns) : s.time_ns;
   take_packets(now_ns);
   teleop::LocalSample sample;
   sample.time_ns = now_ns;
@@ -261,6 +258,8 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   delay_refused_.store(clock.refused, std::memory_order_relaxed);
   if (out.force.norm() > max_force_.load(std::memory_order_relaxed))
     max_force_.store(out.force.norm(), std::memory_order_relaxed);
+  if (out.torque.norm() > max_torque_.load(std::memory_order_relaxed))
+    max_torque_.store(out.torque.norm(), std::memory_order_relaxed);
 
   if (out.apply) {
     EngineInput input;

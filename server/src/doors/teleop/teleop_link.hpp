@@ -40,8 +40,8 @@ class TeleopLink final : public Door {
   // Claims `device` for the link (it is free: the gate is being built). Throws std::runtime_error when the DDS
   // entities cannot be created.
   // `real_time`: the loop runs on a real clock (its present time on the publisher thread is a state's time plus what
-  // has passed since its handover: the packets' times are when they are sent and taken), else on a virtual one (a
-  // state's time is the present).
+  // has passed since its cycle was due: the packets' times are when they are sent and taken), else on a virtual one
+  // (a state's time is the present).
   TeleopLink(const TeleoperationSettings& settings, DeviceGate& device, const dds::Participant& participant,
              EventFanout& events, bool real_time);
 
@@ -72,6 +72,7 @@ class TeleopLink final : public Door {
   struct Energy {
     double in = 0.0, out = 0.0, dissipated = 0.0, lowest_observed = 0.0, max_force_n = 0.0;
     double peer_claimed = 0.0, peer_credited = 0.0;
+    double max_torque_n_m = 0.0;  // the largest torque the link applied here (rotation) [N m]
   };
   [[nodiscard]] Energy energy() const noexcept;
   // The link's delay as this side measures it from the packets' times (teleop/link_clock.hpp) [s]: the shortest
@@ -103,15 +104,13 @@ class TeleopLink final : public Door {
   teleop::TeleopPort port_;  // the link's side and its policies; this door carries them out
   hapticd_msg_TeleopPacket packet_{};
   bool real_time_;
-  std::int64_t clock_lead_ns_ = 0;  // the monotonic clock minus the loop clock (real time)
-  bool clock_known_ = false;
   std::int64_t last_ns_ = 0;
   bool started_ = false;             // a state seen (last_ns_ holds its time)
   dds_instance_handle_t bound_ = 0;  // the peer's writer (0: none yet)
   std::uint64_t engine_sequence_ = 0;
   std::atomic<std::uint64_t> sent_{0}, taken_{0}, rejected_{0}, stops_{0}, losses_{0}, impostors_{0}, bindings_{0};
   std::atomic<double> in_{0.0}, out_{0.0}, dissipated_{0.0}, lowest_observed_{0.0}, max_force_{0.0};
-  std::atomic<double> peer_claimed_{0.0}, peer_credited_{0.0};
+  std::atomic<double> peer_claimed_{0.0}, peer_credited_{0.0}, max_torque_{0.0};
   std::atomic<bool> delay_valid_{false};
   std::atomic<double> round_trip_{0.0}, offset_{0.0}, mean_in_{0.0}, mean_out_{0.0};
   std::atomic<std::uint64_t> delay_samples_{0}, delay_refused_{0};
