@@ -49,8 +49,7 @@ std::string cell(const TeleopResult& r) {
 
 int run(const Options& o) {
   std::string tried;
-  if (o.dof == 6 && o.architecture == "position_force" &&
-      std::find(o.schemes.begin(), o.schemes.end(), "wave") != o.schemes.end())
+  if (o.dof == 6 && std::find(o.schemes.begin(), o.schemes.end(), "wave") != o.schemes.end())
     throw std::invalid_argument("--dof 6: wave variables carry translation only (--passivity none tdpa)");
   const auto master_file = find_config_file("sessions/teleoperation/master.yaml", &tried);
   if (!master_file) throw std::runtime_error("no config/sessions/teleoperation/master.yaml; looked at:" + tried);

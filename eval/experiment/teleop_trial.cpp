@@ -227,13 +227,15 @@ TeleopResult run_teleop_trial(const TeleopRow& row, const std::filesystem::path&
 
     const teleop::EnergyPort& pm = *master_side.status().port;
     const teleop::EnergyPort& pr = *remote_side.status().port;
-    // Rotation's ports (their own budgets; rotation is not scaled: the remote's torque counts force_scale times).
+    // Rotation's ports have budgets of their own (rotation is not scaled: the remote's torque counts force_scale
+    // times): each part must stay passive by itself - a sum would let one part's surplus hide the other's deficit.
     const teleop::EnergyPort& qm = *master_side.status().rotation_port;
     const teleop::EnergyPort& qr = *remote_side.status().rotation_port;
-    const double energy = (pm.energy_in() - pm.energy_out()) + c * (pr.energy_in() - pr.energy_out()) +
-                          (qm.energy_in() - qm.energy_out()) +
-                          row.link.force_scale * (qr.energy_in() - qr.energy_out());
-    min_energy = std::min(min_energy, energy);
+    const double translation = (pm.energy_in() - pm.energy_out()) + c * (pr.energy_in() - pr.energy_out());
+    const double rotation =
+        (qm.energy_in() - qm.energy_out()) + row.link.force_scale * (qr.energy_in() - qr.energy_out());
+    const double energy = translation + rotation;
+    min_energy = std::min({min_energy, translation, rotation});
     max_force = std::max(max_force, mo_out.force.norm());
     max_torque = std::max(max_torque, mo_out.torque.norm());
     const double am = angle_about_z(mv.handle_pose.orientation, master_start);

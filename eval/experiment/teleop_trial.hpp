@@ -59,7 +59,7 @@ struct TeleopSample {
 struct TeleopResult {
   std::string fault;            // a device's fault ("" none): the run ended there
   std::string stop_code;        // a port stopped its device ("" none): why (teleop/teleop_port.hpp)
-  double min_energy_j = 0.0;    // the link's observed energy at its lowest (< 0: it created energy)
+  double min_energy_j = 0.0;    // the observed energy at its lowest, translation and rotation each (< 0: created)
   bool passive = false;         // min_energy_j >= -1 mJ
   bool stable = false;          // no fault and no sustained or growing oscillation (below)
   double oscillation_mm = 0.0;  // the wall task: the master's peak to peak in the last 1.5 s about its trend;
