@@ -13,7 +13,9 @@ the other side (ExternalNetworkAddress) and names it as its peer, so that everyt
 Ports: Cyclone's unicast discovery and data ports of domain D are 7400 + 250 D + 10 + 2 i and + 11 + 2 i for
 participant index i. The datagrams in flight are bounded (--max-queued-mb, as a router's queue is): one that
 arrives while the queue is full is dropped and counted as an overflow, so a flood costs bounded memory. Prints
-what it relayed, dropped and dropped for overflow per direction at the end (SIGINT, SIGTERM or --duration).
+what it relayed, dropped and dropped for overflow per direction at the end (SIGINT, SIGTERM or --duration), and how
+long it held the datagrams it sent on average (from reading one to sending it: the delay and jitter asked, plus the
+relay's own lateness - its wait's millisecond granularity, its scheduling).
 Standard library only.
 """
 import argparse
@@ -71,9 +73,9 @@ def main(argv=None):
     rng = random.Random(a.seed)
     sel = selectors.DefaultSelector()
     senders = {}  # target address -> a socket to send from
-    counts = {}  # route -> [relayed, dropped, overflow]
+    counts = {}  # route -> [relayed, dropped, overflow, sent, held seconds in total]
     for listen, target in a.route:
-        counts[(listen, target)] = [0, 0, 0]
+        counts[(listen, target)] = [0, 0, 0, 0, 0.0]
         if target not in senders:
             s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
             s.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, 4 << 20)
@@ -108,7 +110,10 @@ def main(argv=None):
                     data = key.fileobj.recv(65536)
                 except BlockingIOError:
                     break
-                # Both draws for every datagram: a setting changes only what it governs.
+                # Held from when it was read (a time taken before the select's wait would release it early by
+                # that wait; a late reading only delays it). Both draws for every datagram: a setting changes only
+                # what it governs.
+                arrived = time.monotonic()
                 lost = rng.random() < a.loss
                 jitter = rng.random() * a.jitter_ms
                 if lost:
@@ -118,20 +123,23 @@ def main(argv=None):
                     counts[(listen, target)][2] += 1
                     continue
                 order += 1
-                heapq.heappush(pending, (now + (a.delay_ms + jitter) * 1e-3, order, target, port, data))
+                heapq.heappush(pending, (arrived + (a.delay_ms + jitter) * 1e-3, order, listen, target, port, data, arrived))
                 queued += len(data)
                 counts[(listen, target)][0] += 1
         now = time.monotonic()
         while pending and pending[0][0] <= now:
-            _, _, target, port, data = heapq.heappop(pending)
+            _, _, listen, target, port, data, arrived = heapq.heappop(pending)
             queued -= len(data)
             try:
                 senders[target].sendto(data, (target, port))
             except OSError:
-                pass  # nobody there (yet): as a network would lose it
-    for (listen, target), (relayed, dropped, overflow) in counts.items():
+                continue  # nobody there (yet): as a network would lose it
+            route = counts[(listen, target)]
+            route[3] += 1
+            route[4] += time.monotonic() - arrived  # what it was held, as measured (the delay the sides should read)
+    for (listen, target), (relayed, dropped, overflow, sent, held) in counts.items():
         print(f"hapticd-link-relay: {listen} -> {target}: relayed {relayed}, dropped {dropped}, "
-              f"overflow {overflow}", flush=True)
+              f"overflow {overflow}; held {1e3 * held / max(sent, 1):.2f} ms on average", flush=True)
     return 0
 
 

@@ -186,7 +186,6 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   DeviceSnapshot& s = snapshot_;
   s.cycle = cycle.index;
   s.time_ns = cycle.time_ns;
-  s.cycle_monotonic_ns = cycle_monotonic_ns_;
   s.handle_pose = estimator_.state().handle_pose;
   s.handle_twist = estimator_.state().handle_twist;
   s.operator_wrench = estimator_.state().operator_wrench;
@@ -227,7 +226,6 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
 
 void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns,
                                       std::int64_t lateness_ns) noexcept {
-  cycle_monotonic_ns_ = monotonic_now_ns() - lateness_ns;  // the cycle's due time, for the snapshot's readers
   if (const int p = requests_.passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0) {
     safety_.guard().set_passivity_control(p == 1);
     status_.passivity_control_.store(p == 1, std::memory_order_release);

@@ -183,8 +183,7 @@ class DeviceSession {
   std::uint64_t snapshot_interval_ = 0;
   std::uint64_t view_interval_ = 0;
   bool snapshot_every_cycle_ = false;
-  std::int64_t cycle_monotonic_ns_ = 0;  // when this cycle was due on the monotonic clock (DeviceSnapshot)
-  std::uint64_t estops_handled_ = 0;     // loop thread: the E-stop requests seen
+  std::uint64_t estops_handled_ = 0;  // loop thread: the E-stop requests seen
   // After a scheme switch or a recovery: the torque the drives held fades out against the chain's commands.
   TorqueBlend blend_;
 

@@ -13,10 +13,6 @@ namespace hapticd::server {
 struct DeviceSnapshot {
   std::uint64_t cycle = 0;
   std::int64_t time_ns = 0;  // the cycle's time on the loop clock
-  // When the cycle was due on the monotonic clock (the loop's wake-up less its lateness): a reader on another thread
-  // tells the loop clock's present time from it - time_ns plus what has passed since (a real-time loop's; a virtual
-  // clock has no present).
-  std::int64_t cycle_monotonic_ns = 0;
   Pose handle_pose;
   Twist handle_twist;
   Wrench operator_wrench;                  // world, at the handle

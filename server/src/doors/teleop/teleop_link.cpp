@@ -77,7 +77,11 @@ TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceGate& device
   device_.claimed_ns = 0;
 }
 
-void TeleopLink::take_packets(std::int64_t now_ns) {
+std::int64_t TeleopLink::link_now(std::int64_t state_ns) const noexcept {
+  return real_time_ ? monotonic_now_ns() - origin_ns_ : state_ns;
+}
+
+void TeleopLink::take_packets(std::int64_t state_ns) {
   const std::int32_t peer_role =
       role_of(settings_.role == teleop::Role::master ? teleop::Role::remote : teleop::Role::master);
   reader_.take([&](const hapticd_msg_TeleopPacket& p, const dds_sample_info_t& info) {
@@ -104,7 +108,7 @@ void TeleopLink::take_packets(std::int64_t now_ns) {
     packet.torque = vec(p.torque);
     packet.rotation_energy_in = p.rotation_energy_in;
     packet.stopped = p.stopped;
-    port_.receive(packet, now_ns);
+    port_.receive(packet, link_now(state_ns));
     taken_.fetch_add(1, std::memory_order_relaxed);
   });
 }
@@ -187,12 +191,16 @@ TeleopLink::Delay TeleopLink::delay() const noexcept {
 }
 
 void TeleopLink::on_state(const DeviceSnapshot& s) {
-  // The loop clock's present time: the packets are timed when they are taken and sent (the link's delay is their
-  // transit, not how late this thread runs), each server on its own loop clock - the state's time plus what has
-  // passed on the monotonic clock since its cycle was due.
-  const std::int64_t now_ns =
-      real_time_ ? s.time_ns + std::max<std::int64_t>(0, monotonic_now_ns() - s.cycle_monotonic_ns) : s.time_ns;
-  take_packets(now_ns);
+  // The link's clock. Real time: the monotonic clock read when each packet has been taken and before this side's is
+  // sent (the link's delay is their transit, not how late this thread runs), from the first state's time. So a
+  // reading can only be late - an arrival read after the take, a send read before the write - which lengthens the
+  // round trips it enters, and the clock estimate's shortest round trip leaves those out. (Stamps read early shorten
+  // round trips, which the estimate then picks: the state's time plus what had passed since its cycle was due read
+  // early by the time between the loop's wake-up and the device's read - CI read a one-way delay 2.4 ms long - and
+  // one clock reading before the take stamped a packet taken after a preemption early.) Virtual: the state's time.
+  if (real_time_ && !started_) origin_ns_ = monotonic_now_ns() - s.time_ns;
+  take_packets(s.time_ns);
+  const std::int64_t now_ns = link_now(s.time_ns);
   teleop::LocalSample sample;
   sample.time_ns = now_ns;
   sample.position = s.handle_pose.position;

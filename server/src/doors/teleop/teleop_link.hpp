@@ -39,9 +39,8 @@ class TeleopLink final : public Door {
  public:
   // Claims `device` for the link (it is free: the gate is being built). Throws std::runtime_error when the DDS
   // entities cannot be created.
-  // `real_time`: the loop runs on a real clock (its present time on the publisher thread is a state's time plus what
-  // has passed since its cycle was due: the packets' times are when they are sent and taken), else on a virtual one
-  // (a state's time is the present).
+  // `real_time`: the loop runs on a real clock (the packets are timed by the monotonic clock when they are sent and
+  // taken), else on a virtual one (a state's time is the present).
   TeleopLink(const TeleoperationSettings& settings, DeviceGate& device, const dds::Participant& participant,
              EventFanout& events, bool real_time);
 
@@ -87,7 +86,10 @@ class TeleopLink final : public Door {
   [[nodiscard]] const TeleoperationSettings& settings() const noexcept { return settings_; }
 
  private:
-  void take_packets(std::int64_t now_ns);  // now_ns: their arrival, on the loop's clock
+  // Each packet arrives when it is taken: the link's clock read after the take (real time), or the state's time.
+  void take_packets(std::int64_t state_ns);
+  // The link's clock now: real time, the monotonic clock from the link's origin; else the state's time.
+  [[nodiscard]] std::int64_t link_now(std::int64_t state_ns) const noexcept;
   // Whether `writer` may speak for the peer: binds the link to it when it is unbound or its bound writer is gone;
   // else (an impostor) counts and reports it and returns false.
   bool admit(dds_instance_handle_t writer);
@@ -104,6 +106,7 @@ class TeleopLink final : public Door {
   teleop::TeleopPort port_;  // the link's side and its policies; this door carries them out
   hapticd_msg_TeleopPacket packet_{};
   bool real_time_;
+  std::int64_t origin_ns_ = 0;  // real time: the monotonic clock's reading at the link clock's zero
   std::int64_t last_ns_ = 0;
   bool started_ = false;             // a state seen (last_ns_ holds its time)
   dds_instance_handle_t bound_ = 0;  // the peer's writer (0: none yet)
