@@ -103,6 +103,10 @@ ServedSession::ServedSession(const SessionConfig& config, const std::vector<Devi
     live_view_ = std::make_unique<live_view::LiveView>(
         config.live_view, devices, config.server.rate_hz, config.file.filename().string(),
         !devices.empty() && devices.front()->chain().scene ? devices.front()->chain().scene->object.get() : nullptr);
+  if (config.teleoperation.enabled)  // the device's side of the link runs in its cycle; the doors carry its packets
+    for (DeviceSession* d : devices)
+      if (d->name() == config.teleoperation.device)
+        d->enable_teleoperation(config.teleoperation.role, config.teleoperation.link);
   if (config.dds.enabled || config.engine_socket.enabled || config.ros2.enabled) {  // the gate and its doors
     doors_ = std::make_unique<Doors>(config, devices, stages, dds_cpus_);
     for (std::size_t d = 0; d < devices.size(); ++d)

@@ -18,7 +18,11 @@ Doors::Doors(const SessionConfig& config, std::vector<DeviceSession*> sessions, 
     DeviceGate* linked = gate_->devices().find(config.teleoperation.device);
     if (linked == nullptr) throw std::runtime_error("teleoperation: no device '" + config.teleoperation.device + "'");
     if (!dds_) throw std::runtime_error("teleoperation: the link travels over DDS: the session needs a dds section");
-    link_ = std::make_unique<TeleopLink>(config.teleoperation, *linked, dds_->participant(), gate_->events(),
+    TeleopPhase* phase = linked->device->teleoperation();
+    if (phase == nullptr)
+      throw std::runtime_error("teleoperation: the device '" + config.teleoperation.device +
+                               "' runs no link side (DeviceSession::enable_teleoperation)");
+    link_ = std::make_unique<TeleopLink>(config.teleoperation, *linked, *phase, dds_->participant(), gate_->events(),
                                          config.server.clock != ClockMode::lockstep);
     gate_->add_door(*link_);
   }

@@ -27,6 +27,8 @@
 
 namespace hapticd::server {
 
+class TeleopPhase;
+
 class DeviceRequests {
  public:
   // The parts of its device the requests reach; all outlive this (members of the same DeviceSession).
@@ -58,6 +60,8 @@ class DeviceRequests {
   void passivity_control(bool on) noexcept { passivity_request_.store(on ? 1 : 0, std::memory_order_release); }
   // The rendering engine's newest input; the loop picks it up at the next cycle and stamps it with that cycle's time.
   void engine_input(const EngineInput& input) { engine_.publish(input); }
+  // The device's side of a teleoperation link (its transport's face: deliver, take; nullptr: not a link's).
+  [[nodiscard]] TeleopPhase* teleoperation() const noexcept { return teleop_; }
   // The engine released the device: its input fades out without the engine counting as stale.
   void end_engine_input() noexcept { engine_.end(); }
   // The control scheme `name` from the next cycle boundary on (scheme_switcher.hpp); false if there is none.
@@ -106,6 +110,7 @@ class DeviceRequests {
   const DeviceStatus& status_;
   SchemeSwitcher& schemes_;
   EngineInputPort& engine_;
+  TeleopPhase* teleop_ = nullptr;  // set before the loop runs (DeviceSession::enable_teleoperation)
   // Every stop (an E-stop request, a fault the loop raises) increments stop_epoch_; a recovery request records the
   // epoch it was made in (+1, 0: none) and is carried out only while no stop has come since.
   std::atomic<std::uint64_t> stop_epoch_{0};

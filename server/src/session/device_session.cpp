@@ -142,7 +142,7 @@ DeviceSession::ChainFault DeviceSession::chain_step(const CycleTime& cycle) {
   if (const DeviceFault f = safety_.begin_cycle(state_.joints.velocity, estimator_.state(), group_force_);
       f != DeviceFault::none)
     return {f};
-  engine_.take(cycle);
+  engine_.take(cycle, teleop_ ? teleop_->input() : nullptr);
   SchemeChain& scheme = schemes_.active();
   if (scheme.virtual_model) {
     if (const Outcome o =
@@ -224,6 +224,11 @@ void DeviceSession::publish_snapshot(const CycleTime& cycle, double torque_scale
   if (view) status_.view_snapshots_.publish(s);
 }
 
+void DeviceSession::enable_teleoperation(teleop::Role role, const teleop::LinkSettings& settings) {
+  teleop_ = std::make_unique<TeleopPhase>(role, settings);
+  requests_.teleop_ = teleop_.get();
+}
+
 void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t consecutive_overruns,
                                       std::int64_t lateness_ns) noexcept {
   if (const int p = requests_.passivity_request_.exchange(-1, std::memory_order_acquire); p >= 0) {
@@ -273,6 +278,12 @@ void DeviceSession::read_and_estimate(const CycleTime& cycle, std::uint32_t cons
   safe_path_ = status_.fault() != DeviceFault::none || stopped_;
   if (measurement_valid_) estimate(cycle);
   estimator_.state().neighbour = NeighbourClearance{};  // the group stage, next, finds this cycle's
+  if (teleop_) {
+    // The teleoperation link's side on this state: its force reaches the chain in this cycle, a stop it decides at
+    // the next (the E-stop, as any door's).
+    teleop_->cycle(cycle.time_ns, estimator_.state(), status_.fault() != DeviceFault::none, ending_ || stopped_);
+    if (teleop_->stop() != teleop::PortStop::none) requests_.emergency_stop();
+  }
   group_force_.setZero();
 }
 
@@ -295,6 +306,7 @@ void DeviceSession::run_chain(const CycleTime& cycle) noexcept {
 }
 
 void DeviceSession::limit_and_write(const CycleTime& cycle, double torque_scale) noexcept {
+  ending_ = torque_scale < 1.0;  // the session's planned end: the teleoperation link's next cycle applies no force
   if (safe_path_) {
     safe_mode_step(cycle);
   } else {

@@ -44,6 +44,7 @@
 #include "session/device_status.hpp"
 #include "session/engine_input_port.hpp"
 #include "session/scheme_switcher.hpp"
+#include "session/teleop_phase.hpp"
 #include "session/torque_blend.hpp"
 
 namespace hapticd::server {
@@ -78,6 +79,10 @@ class DeviceSession {
     run_chain(cycle);
     limit_and_write(cycle, torque_scale);
   }
+  // Not real-time safe, before the loop runs: the device is one side of a teleoperation link - its port runs in the
+  // cycle after the estimate (session/teleop_phase.hpp); its transport reaches it through requests().teleoperation().
+  // Throws std::invalid_argument for bad link settings.
+  void enable_teleoperation(teleop::Role role, const teleop::LinkSettings& settings);
   // Not real-time safe. Zero torque, chain off, device disabled (brakes engaged). A disable() that throws is
   // caught, so the caller goes on to disable the other devices, and kept in disable_error(); a plugin whose
   // deactivate() throws does not keep the device from being disabled (take_plugin_errors()).
@@ -183,7 +188,9 @@ class DeviceSession {
   std::uint64_t snapshot_interval_ = 0;
   std::uint64_t view_interval_ = 0;
   bool snapshot_every_cycle_ = false;
-  std::uint64_t estops_handled_ = 0;  // loop thread: the E-stop requests seen
+  std::unique_ptr<TeleopPhase> teleop_;  // the device's side of a teleoperation link, if it is one
+  bool ending_ = false;                  // the last cycle's torque was ramped down (the session's planned end)
+  std::uint64_t estops_handled_ = 0;     // loop thread: the E-stop requests seen
   // After a scheme switch or a recovery: the torque the drives held fades out against the chain's commands.
   TorqueBlend blend_;
 

@@ -11,8 +11,9 @@ double engine_weight(double age_s, double previous, double period_s, const Engin
   return target > previous ? std::min(target, previous + step) : target;
 }
 
-void EngineInputPort::take(const CycleTime& cycle) noexcept {
-  if (inbox_.take(incoming_)) {  // the owner's newest input (a new owner's after a release)
+void EngineInputPort::take(const CycleTime& cycle, const EngineInput* local) noexcept {
+  if (local != nullptr) incoming_ = *local;
+  if (local != nullptr || inbox_.take(incoming_)) {  // the owner's newest input (a new owner's after a release)
     input_ = incoming_;
     input_.received_ns = cycle.time_ns;
     seen_ = true;

@@ -31,8 +31,9 @@ class EngineInputPort {
   void publish(const EngineInput& input) { inbox_.publish(input); }
   // Any thread: the engine released the device; its input fades out from the next cycle on, not stale.
   void end() noexcept { ended_.store(true, std::memory_order_release); }
-  // Loop thread: takes the newest input, if any, and weights it for this cycle.
-  void take(const CycleTime& cycle) noexcept;
+  // Loop thread: takes the newest input, if any, and weights it for this cycle. `local`: the input made in this
+  // cycle by the loop itself (the teleoperation link's force), taken instead of the inbox's.
+  void take(const CycleTime& cycle, const EngineInput* local = nullptr) noexcept;
   // Loop thread: after a recovery the input ramps in again, as after a silence.
   void restart() noexcept {
     seen_ = false;

@@ -54,15 +54,15 @@ std::string participant_of(dds_entity_t reader, dds_instance_handle_t writer) {
 
 }  // namespace
 
-TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceGate& device, const dds::Participant& participant,
-                       EventFanout& events, bool real_time)
+TeleopLink::TeleopLink(const TeleoperationSettings& settings, DeviceGate& device, TeleopPhase& phase,
+                       const dds::Participant& participant, EventFanout& events, bool real_time)
     : settings_(settings),
       device_(device),
       events_(events),
       name_(settings.device),
       reader_(participant, {}, nullptr, {link_partition(settings.peer)}),
       writer_(participant, {}, link_partition(settings.device)),
-      port_(settings.role, settings.link),
+      phase_(phase),
       real_time_(real_time) {
   dds::set_text(packet_.sender, name_);
   dds::set_text(packet_.receiver, settings.peer);
@@ -108,7 +108,7 @@ void TeleopLink::take_packets(std::int64_t state_ns) {
     packet.torque = vec(p.torque);
     packet.rotation_energy_in = p.rotation_energy_in;
     packet.stopped = p.stopped;
-    port_.receive(packet, link_now(state_ns));
+    phase_.deliver(packet, link_now(state_ns));
     taken_.fetch_add(1, std::memory_order_relaxed);
   });
 }
@@ -157,7 +157,7 @@ bool TeleopLink::admit(dds_instance_handle_t writer) {
     spdlog::info("{}: teleoperation link bound to '{}' (participant {})", name_, settings_.peer, who);
     return true;
   }
-  port_.peer_changed();  // a restarted peer: its serials and energy start afresh
+  phase_.peer_changed();  // a restarted peer: its serials and energy start afresh
   const std::string message = fmt::format(
       "teleoperation link re-bound to '{}' (participant {}): the peer it was bound to is gone", settings_.peer, who);
   spdlog::warn("{}: {}", name_, message);
@@ -165,8 +165,8 @@ bool TeleopLink::admit(dds_instance_handle_t writer) {
   return true;
 }
 
-void TeleopLink::stop_device(std::string_view code, const std::string& message) {
-  device_.device->emergency_stop();
+void TeleopLink::stopped(teleop::PortStop stop, const std::string& message) {
+  const std::string_view code = teleop::stop_code(stop);
   stops_.fetch_add(1, std::memory_order_relaxed);
   spdlog::warn("{}: {}", name_, message);
   events_.send(device_, hapticd_msg_EVENT_ESTOP, code, message);
@@ -191,72 +191,81 @@ TeleopLink::Delay TeleopLink::delay() const noexcept {
 }
 
 void TeleopLink::on_state(const DeviceSnapshot& s) {
-  // The link's clock. Real time: the monotonic clock read when each packet has been taken and before this side's is
-  // sent (the link's delay is their transit, not how late this thread runs), from the first state's time. So a
-  // reading can only be late - an arrival read after the take, a send read before the write - which lengthens the
-  // round trips it enters, and the clock estimate's shortest round trip leaves those out. (Stamps read early shorten
-  // round trips, which the estimate then picks: the state's time plus what had passed since its cycle was due read
-  // early by the time between the loop's wake-up and the device's read - CI read a one-way delay 2.4 ms long - and
-  // one clock reading before the take stamped a packet taken after a preemption early.) Virtual: the state's time.
+  // The link's clock. Real time: the monotonic clock read when each packet has been taken and when this side's is
+  // written (the link's delay is their transit, not how late this thread or the loop runs), from the first state's
+  // time. So a reading can only be late - an arrival read after the take, a send read before the write - which
+  // lengthens the round trips it enters, and the clock estimate's shortest round trip leaves those out. (Stamps
+  // read early shorten round trips, which the estimate then picks: the state's time plus what had passed since its
+  // cycle was due read early by the time between the loop's wake-up and the device's read - CI read a one-way delay
+  // 2.4 ms long.) Virtual: the state's time (the loop's packets carry their cycle's).
   if (real_time_ && !started_) origin_ns_ = monotonic_now_ns() - s.time_ns;
+  started_ = true;
   take_packets(s.time_ns);
-  const std::int64_t now_ns = link_now(s.time_ns);
-  teleop::LocalSample sample;
-  sample.time_ns = now_ns;
-  sample.position = s.handle_pose.position;
-  sample.velocity = s.handle_twist.linear;
-  sample.force = s.operator_wrench.force;  // what holds the handle: the remote's environment
-  sample.orientation = s.handle_pose.orientation;
-  sample.angular_velocity = s.handle_twist.angular;
-  sample.torque = s.operator_wrench.torque;
-  // Stopped: a fault or an E-stop (the peer stops too). The server's orderly end is not a stop: its packets end
-  // and the peer's link times out (the remote stops, the master's force fades).
-  const bool stopped = s.fault != DeviceFault::none || s.estop;
-  if (!started_) {
-    started_ = true;
-    last_ns_ = s.time_ns;
-  }
-  const double dt = std::clamp(static_cast<double>(s.time_ns - last_ns_) * 1e-9, 1e-5, 0.1);
-  last_ns_ = s.time_ns;
-  const teleop::PortCycle out = port_.cycle(sample, dt, stopped, s.stopping);
-  const teleop::SideStatus& st = port_.status();
 
-  // What the port decided, carried out and reported: a stop, a loss, the link back, the wait for the peer.
-  if (out.waiting)
+  // The newest packet the loop made (its port runs in the device's cycle: session/teleop_phase.hpp), sent now.
+  teleop::LinkPacket out;
+  if (phase_.take_outgoing(out)) {
+    packet_.serial = out.sequence;
+    packet_.has_echo = out.has_echo;
+    packet_.echo_sent_ns = out.echo_sent_ns;
+    packet_.echo_received_ns = out.echo_received_ns;
+    copy(packet_.position, out.position);
+    copy(packet_.velocity, out.velocity);
+    copy(packet_.force, out.force);
+    copy(packet_.wave, out.wave);
+    packet_.energy_in = out.energy_in;
+    copy(packet_.orientation, out.orientation);
+    copy(packet_.angular_velocity, out.angular_velocity);
+    copy(packet_.torque, out.torque);
+    packet_.rotation_energy_in = out.rotation_energy_in;
+    packet_.stopped = out.stopped;
+    packet_.sent_ns = real_time_ ? link_now(s.time_ns) : out.sent_ns;
+    if (writer_.write(packet_)) sent_.fetch_add(1, std::memory_order_relaxed);
+  }
+  report();
+}
+
+void TeleopLink::report() {
+  TeleopReport r;
+  if (!phase_.take_report(r)) return;
+  const TeleopReport& seen = seen_;
+  // What the loop's port decided - a stop, a loss, the link back, the wait for the peer - said once each.
+  if (r.waiting && !seen.waiting)
     spdlog::info("{}: no teleoperation packet from '{}' yet: waiting for the peer (this side holds still)", name_,
                  settings_.peer);
-  if (out.lost) losses_.fetch_add(1, std::memory_order_relaxed);
-  const std::string silent =
-      out.lost ? fmt::format("no packet from '{}' for {:.2f} s", settings_.peer, st.silence_s) : std::string();
-  if (out.stop == teleop::PortStop::link_lost)
-    stop_device(teleop::stop_code(out.stop), "teleoperation link lost (" + silent + "): the remote stops");
-  if (out.stop == teleop::PortStop::peer_stopped)
-    stop_device(teleop::stop_code(out.stop),
-                "teleoperation: the peer device '" + settings_.peer + "' stopped; this one stops too");
-  if (out.lost && out.stop != teleop::PortStop::link_lost) {
-    spdlog::warn("{}: teleoperation link lost ({}): the force fades out", name_, silent);
-    events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_lost",
-                 "teleoperation link lost (" + silent + "): the force fades out");
+  const std::string silent = fmt::format("no packet from '{}' for {:.2f} s", settings_.peer, r.silence_s);
+  if (r.lost_stops > seen.lost_stops)
+    stopped(teleop::PortStop::link_lost, "teleoperation link lost (" + silent + "): the remote stops");
+  if (r.peer_stops > seen.peer_stops)
+    stopped(teleop::PortStop::peer_stopped,
+            "teleoperation: the peer device '" + settings_.peer + "' stopped; this one stops too");
+  if (r.losses > seen.losses) {
+    losses_.fetch_add(r.losses - seen.losses, std::memory_order_relaxed);
+    if (r.lost_stops == seen.lost_stops) {
+      spdlog::warn("{}: teleoperation link lost ({}): the force fades out", name_, silent);
+      events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_lost",
+                   "teleoperation link lost (" + silent + "): the force fades out");
+    }
   }
-  if (out.back) {
+  if (r.backs > seen.backs) {
     spdlog::info("{}: teleoperation link back: packets from '{}' again", name_, settings_.peer);
     events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_back",
                  "teleoperation link back: packets from '" + settings_.peer + "' again");
   }
+  if (r.dropped > seen.dropped && (seen.dropped == 0 || r.dropped / 1000 > seen.dropped / 1000))
+    spdlog::warn("{}: {} teleoperation packets dropped so far: the loop had not taken the 256 before them", name_,
+                 r.dropped);
+  seen_ = r;
 
-  // Translation's port and rotation's (zero without rotation): the link's energies are their sums; each port's
-  // observed energy is its own (neither pays for the other), so the lowest is either's.
-  const teleop::EnergyPort& port = *st.port;
-  const teleop::EnergyPort& turn = *st.rotation_port;
-  in_.store(port.energy_in() + turn.energy_in(), std::memory_order_relaxed);
-  out_.store(port.energy_out() + turn.energy_out(), std::memory_order_relaxed);
-  dissipated_.store(port.dissipated() + turn.dissipated(), std::memory_order_relaxed);
-  peer_claimed_.store(st.peer_energy_in + st.peer_rotation_energy_in, std::memory_order_relaxed);
-  peer_credited_.store(st.peer_energy_credited + st.peer_rotation_energy_credited, std::memory_order_relaxed);
-  const double observed = std::min(port.observed(), turn.observed());
-  if (st.received > 0 && observed < lowest_observed_.load(std::memory_order_relaxed))
-    lowest_observed_.store(observed, std::memory_order_relaxed);
-  const teleop::LinkClockFigures& clock = st.clock;
+  in_.store(r.energy_in, std::memory_order_relaxed);
+  out_.store(r.energy_out, std::memory_order_relaxed);
+  dissipated_.store(r.dissipated, std::memory_order_relaxed);
+  peer_claimed_.store(r.peer_claimed, std::memory_order_relaxed);
+  peer_credited_.store(r.peer_credited, std::memory_order_relaxed);
+  lowest_observed_.store(r.lowest_observed, std::memory_order_relaxed);
+  max_force_.store(r.max_force, std::memory_order_relaxed);
+  max_torque_.store(r.max_torque, std::memory_order_relaxed);
+  const teleop::LinkClockFigures& clock = r.clock;
   delay_valid_.store(clock.valid, std::memory_order_relaxed);
   round_trip_.store(clock.round_trip_s, std::memory_order_relaxed);
   offset_.store(clock.offset_s, std::memory_order_relaxed);
@@ -264,35 +273,6 @@ void TeleopLink::on_state(const DeviceSnapshot& s) {
   mean_out_.store(clock.mean_delay_out_s, std::memory_order_relaxed);
   delay_samples_.store(clock.samples, std::memory_order_relaxed);
   delay_refused_.store(clock.refused, std::memory_order_relaxed);
-  if (out.force.norm() > max_force_.load(std::memory_order_relaxed))
-    max_force_.store(out.force.norm(), std::memory_order_relaxed);
-  if (out.torque.norm() > max_torque_.load(std::memory_order_relaxed))
-    max_torque_.store(out.torque.norm(), std::memory_order_relaxed);
-
-  if (out.apply) {
-    EngineInput input;
-    input.has_wrench = true;
-    input.wrench.force = out.force;
-    input.wrench.torque = out.torque;
-    input.sequence = ++engine_sequence_;
-    device_.device->engine_input(input);
-  }
-  packet_.serial = out.packet.sequence;
-  packet_.sent_ns = out.packet.sent_ns;
-  packet_.has_echo = out.packet.has_echo;
-  packet_.echo_sent_ns = out.packet.echo_sent_ns;
-  packet_.echo_received_ns = out.packet.echo_received_ns;
-  copy(packet_.position, out.packet.position);
-  copy(packet_.velocity, out.packet.velocity);
-  copy(packet_.force, out.packet.force);
-  copy(packet_.wave, out.packet.wave);
-  packet_.energy_in = out.packet.energy_in;
-  copy(packet_.orientation, out.packet.orientation);
-  copy(packet_.angular_velocity, out.packet.angular_velocity);
-  copy(packet_.torque, out.packet.torque);
-  packet_.rotation_energy_in = out.packet.rotation_energy_in;
-  packet_.stopped = out.packet.stopped;
-  if (writer_.write(packet_)) sent_.fetch_add(1, std::memory_order_relaxed);
 }
 
 }  // namespace hapticd::server

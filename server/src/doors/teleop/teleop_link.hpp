@@ -32,6 +32,7 @@
 #include "hapticd/teleop/teleop_port.hpp"
 #include "hapticd_msg.h"
 #include "session/device_snapshot.hpp"
+#include "session/teleop_phase.hpp"
 
 namespace hapticd::server {
 
@@ -41,8 +42,8 @@ class TeleopLink final : public Door {
   // entities cannot be created.
   // `real_time`: the loop runs on a real clock (the packets are timed by the monotonic clock when they are sent and
   // taken), else on a virtual one (a state's time is the present).
-  TeleopLink(const TeleoperationSettings& settings, DeviceGate& device, const dds::Participant& participant,
-             EventFanout& events, bool real_time);
+  TeleopLink(const TeleoperationSettings& settings, DeviceGate& device, TeleopPhase& phase,
+             const dds::Participant& participant, EventFanout& events, bool real_time);
 
   [[nodiscard]] std::size_t device() const noexcept { return device_.index; }
   // Door: the link's peer is itself (the session holds its claim); a new state of the linked device runs it.
@@ -95,7 +96,10 @@ class TeleopLink final : public Door {
   bool admit(dds_instance_handle_t writer);
   [[nodiscard]] bool matched(dds_instance_handle_t writer) const;
   void reject(std::string_view code, std::string_view problem, std::atomic<std::uint64_t>& counter);
-  void stop_device(std::string_view code, const std::string& message);
+  // The loop's port stopped the device (its E-stop, requested in the loop): counted, logged, an event.
+  void stopped(teleop::PortStop stop, const std::string& message);
+  // What the loop's newest report tells: the events it decided and the figures.
+  void report();
 
   TeleoperationSettings settings_;
   DeviceGate& device_;
@@ -103,14 +107,13 @@ class TeleopLink final : public Door {
   std::string name_;  // the linked device's
   dds::Reader<hapticd_msg_TeleopPacket> reader_;
   dds::Writer<hapticd_msg_TeleopPacket> writer_;
-  teleop::TeleopPort port_;  // the link's side and its policies; this door carries them out
+  TeleopPhase& phase_;  // the link's side in the device's cycle: this door carries its packets and reports
   hapticd_msg_TeleopPacket packet_{};
   bool real_time_;
-  std::int64_t origin_ns_ = 0;  // real time: the monotonic clock's reading at the link clock's zero
-  std::int64_t last_ns_ = 0;
-  bool started_ = false;             // a state seen (last_ns_ holds its time)
+  std::int64_t origin_ns_ = 0;       // real time: the monotonic clock's reading at the link clock's zero
+  bool started_ = false;             // a state seen (origin_ns_ set)
+  TeleopReport seen_;                // the report the events were said for
   dds_instance_handle_t bound_ = 0;  // the peer's writer (0: none yet)
-  std::uint64_t engine_sequence_ = 0;
   std::atomic<std::uint64_t> sent_{0}, taken_{0}, rejected_{0}, stops_{0}, losses_{0}, impostors_{0}, bindings_{0};
   std::atomic<double> in_{0.0}, out_{0.0}, dissipated_{0.0}, lowest_observed_{0.0}, max_force_{0.0};
   std::atomic<double> peer_claimed_{0.0}, peer_credited_{0.0}, max_torque_{0.0};
