@@ -1,6 +1,7 @@
 // The teleoperation link's side in the device's cycle (session/teleop_phase.hpp, docs/teleoperation.md "One control
 // path"): a packet delivered before a cycle is felt in that cycle; the peer's stop stops the device; the loop's
-// newest packet goes out; a full inbox drops and counts; the cycle never allocates, with packets flowing.
+// newest packet goes out; a full inbox drops and counts, and a peer change stays in order behind it; the cycle never
+// allocates, with packets flowing.
 #include "session/teleop_phase.hpp"
 
 #include <gtest/gtest.h>
@@ -101,6 +102,23 @@ TEST(TeleopPhase, AFullInboxDropsAndCountsAndNothingIsLostAfter) {
   EXPECT_EQ(r.dropped, 44u);
   EXPECT_EQ(r.received, 256u);
   EXPECT_TRUE(m.phase->deliver(remote_packet(301, {-2.0, 0, 0}), 0));  // room again after the cycle took them
+}
+
+TEST(TeleopPhase, APeerChangeWithTheInboxFullStaysBehindTheOldPeersPackets) {
+  // A restarted peer while the loop is behind: the old peer's packets (high serials) fill the ring. The change must
+  // reach the port after them, or the new peer's serials (from 1 again) read as old and the link is lost.
+  MasterSide m;
+  for (std::uint64_t k = 1; k <= 256; ++k) ASSERT_TRUE(m.phase->deliver(remote_packet(1000 + k, {-1.0, 0, 0}), 0));
+  m.phase->peer_changed();                                            // no room: it waits
+  EXPECT_FALSE(m.phase->deliver(remote_packet(1, {-2.0, 0, 0}), 0));  // behind it: dropped, counted
+  m.device.cycle(cycle_at(0), 1.0);                                   // takes the old peer's packets
+  ASSERT_TRUE(m.phase->deliver(remote_packet(2, {-2.0, 0, 0}), 0));   // the change, then the new peer's packet
+  m.device.cycle(cycle_at(1), 1.0);
+  TeleopReport r;
+  ASSERT_TRUE(m.phase->take_report(r));
+  EXPECT_EQ(r.received, 257u) << "the new peer's packet was taken as stale";
+  EXPECT_EQ(r.dropped, 1u);
+  EXPECT_NEAR(m.device.published_snapshot().engine_wrench.force.x(), -2.0, 1e-9);
 }
 
 TEST(TeleopPhase, TheCycleNeverAllocatesWithPacketsFlowingBothWays) {

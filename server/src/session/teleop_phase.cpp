@@ -9,26 +9,29 @@ TeleopPhase::TeleopPhase(teleop::Role role, const teleop::LinkSettings& settings
 }
 
 bool TeleopPhase::deliver(const teleop::LinkPacket& packet, std::int64_t arrival_ns) noexcept {
+  if (marker_pending_) push_marker();  // the new peer's packets only after its marker: else dropped, counted
   Arrival a;
   a.packet = packet;
   a.arrival_ns = arrival_ns;
-  if (inbox_.try_push(a)) return true;
+  if (!marker_pending_ && inbox_.try_push(a)) return true;
   dropped_.fetch_add(1, std::memory_order_relaxed);
   return false;
 }
 
 void TeleopPhase::peer_changed() noexcept {
-  // In the ring, in order with the packets (those before are the old peer's); with no room, at the next cycle.
+  // In the ring, in order with the packets: those before it are the old peer's. With no room it waits for room, and
+  // the new peer's packets wait behind it.
+  marker_pending_ = true;
+  push_marker();
+}
+
+void TeleopPhase::push_marker() noexcept {
   Arrival a;
   a.peer_changed = true;
-  if (!inbox_.try_push(a)) peer_changes_.fetch_add(1, std::memory_order_release);
+  marker_pending_ = !inbox_.try_push(a);
 }
 
 void TeleopPhase::cycle(std::int64_t time_ns, const ChainState& state, bool stopped, bool ending) noexcept {
-  if (const std::uint64_t changes = peer_changes_.load(std::memory_order_acquire); changes != peer_changes_seen_) {
-    peer_changes_seen_ = changes;
-    port_.peer_changed();
-  }
   Arrival a;
   while (inbox_.try_pop(a)) {
     if (a.peer_changed) {

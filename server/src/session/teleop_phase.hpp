@@ -73,9 +73,10 @@ class TeleopPhase {
   realtime::LatestValue<teleop::LinkPacket> outbox_;
   realtime::LatestValue<TeleopReport> reports_;
   std::atomic<std::uint64_t> dropped_{0};
-  std::atomic<std::uint64_t> peer_changes_{0};  // markers the ring had no room for: taken at the next cycle
+  // The transport's: a peer change the ring had no room for yet.
+  bool marker_pending_ = false;
+  void push_marker() noexcept;
   // The loop's.
-  std::uint64_t peer_changes_seen_ = 0;
   TeleopReport report_;
   EngineInput input_;
   bool apply_ = false;

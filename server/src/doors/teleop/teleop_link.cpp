@@ -233,19 +233,16 @@ void TeleopLink::report() {
   if (r.waiting && !seen.waiting)
     spdlog::info("{}: no teleoperation packet from '{}' yet: waiting for the peer (this side holds still)", name_,
                  settings_.peer);
-  const std::string silent = fmt::format("no packet from '{}' for {:.2f} s", settings_.peer, r.silence_s);
+  auto silent = [&] { return fmt::format("no packet from '{}' for {:.2f} s", settings_.peer, r.silence_s); };
   if (r.lost_stops > seen.lost_stops)
-    stopped(teleop::PortStop::link_lost, "teleoperation link lost (" + silent + "): the remote stops");
+    stopped(teleop::PortStop::link_lost, "teleoperation link lost (" + silent() + "): the remote stops");
   if (r.peer_stops > seen.peer_stops)
     stopped(teleop::PortStop::peer_stopped,
             "teleoperation: the peer device '" + settings_.peer + "' stopped; this one stops too");
-  if (r.losses > seen.losses) {
-    losses_.fetch_add(r.losses - seen.losses, std::memory_order_relaxed);
-    if (r.lost_stops == seen.lost_stops) {
-      spdlog::warn("{}: teleoperation link lost ({}): the force fades out", name_, silent);
-      events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_lost",
-                   "teleoperation link lost (" + silent + "): the force fades out");
-    }
+  if (r.losses > seen.losses && r.lost_stops == seen.lost_stops) {
+    const std::string message = "teleoperation link lost (" + silent() + "): the force fades out";
+    spdlog::warn("{}: {}", name_, message);
+    events_.send(device_, hapticd_msg_EVENT_ENGINE_STALE, "teleoperation_link_lost", message);
   }
   if (r.backs > seen.backs) {
     spdlog::info("{}: teleoperation link back: packets from '{}' again", name_, settings_.peer);
@@ -256,6 +253,7 @@ void TeleopLink::report() {
     spdlog::warn("{}: {} teleoperation packets dropped so far: the loop had not taken the 256 before them", name_,
                  r.dropped);
   seen_ = r;
+  losses_.store(r.losses, std::memory_order_relaxed);
 
   in_.store(r.energy_in, std::memory_order_relaxed);
   out_.store(r.energy_out, std::memory_order_relaxed);

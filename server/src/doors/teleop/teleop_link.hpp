@@ -46,7 +46,8 @@ class TeleopLink final : public Door {
              const dds::Participant& participant, EventFanout& events, bool real_time);
 
   [[nodiscard]] std::size_t device() const noexcept { return device_.index; }
-  // Door: the link's peer is itself (the session holds its claim); a new state of the linked device runs it.
+  // Door: the link's peer is itself (the session holds its claim); a new state of the linked device carries its
+  // packets (on_state).
   [[nodiscard]] DoorKind kind() const noexcept override { return DoorKind::link; }
   [[nodiscard]] bool channel_open(const Sender&) const override { return true; }
   [[nodiscard]] bool alive(const PeerId&) override { return true; }
